@@ -1,0 +1,68 @@
+//! Criterion benchmarks of the exact core.
+//!
+//! * `seed/<problem>`: parse + derive + exact solve of each seed example
+//!   (target: under 100 µs each).
+//! * `npendulum/derive/<n>`: parse + derive (equations, mass matrix,
+//!   forcing) of the n-link pendulum chain, n = 2…12 — measured side by side
+//!   with ../shared/anchors/symengine_npendulum.py (`scripts/anchors.sh`).
+//! * `npendulum/solve/<n>`: the exact accelerations in lowest terms.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use qdot::Scene;
+use std::hint::black_box;
+
+const SEEDS: &[&str] = &[
+    "seed_21_1",
+    "seed_21_2",
+    "seed_22_2",
+    "seed_23_2",
+    "seed_23_3",
+    "seed_23_4",
+    "seed_24_1",
+];
+
+fn seeds(c: &mut Criterion) {
+    let mut g = c.benchmark_group("seed");
+    for name in SEEDS {
+        let path = format!("{}/examples/{name}.qd", env!("CARGO_MANIFEST_DIR"));
+        let src = std::fs::read_to_string(&path).expect("example exists");
+        g.bench_function(*name, |b| {
+            b.iter(|| {
+                let s = Scene::parse(black_box(&src)).expect("parses");
+                let l = s.lagrange().expect("derives");
+                black_box(l.accelerations().expect("solves"))
+            })
+        });
+    }
+    g.finish();
+}
+
+fn npendulum(c: &mut Criterion) {
+    let mut g = c.benchmark_group("npendulum/derive");
+    g.sample_size(20);
+    for n in [2usize, 3, 4, 6, 8, 10, 12] {
+        let src = qdot::gallery::pendulum_chain(n);
+        g.bench_with_input(BenchmarkId::from_parameter(n), &src, |b, src| {
+            b.iter(|| {
+                let s = Scene::parse(black_box(src)).expect("parses");
+                black_box(s.lagrange().expect("derives"))
+            })
+        });
+    }
+    g.finish();
+    let mut g = c.benchmark_group("npendulum/solve");
+    g.sample_size(10);
+    for n in [2usize, 3] {
+        let src = qdot::gallery::pendulum_chain(n);
+        g.bench_with_input(BenchmarkId::from_parameter(n), &src, |b, src| {
+            b.iter(|| {
+                let s = Scene::parse(black_box(src)).expect("parses");
+                black_box(s.lagrange().expect("derives").accelerations().expect("solves"))
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, seeds, npendulum);
+criterion_main!(benches);

@@ -1,0 +1,201 @@
+//! Atoms: the indeterminates of qdot's polynomials.
+//!
+//! Every expression is a rational function whose variables are *atoms*:
+//! parameters, coordinates and their time derivatives, time, π, and the
+//! transcendental or algebraic functions that cannot be expanded further
+//! (`sin(θ)`, `cos(θ)`, `√3`, `√(k·m)`, `exp(x)`, …). Atoms are interned in
+//! one process-wide table; a [`Var`] is the index of an atom, with its
+//! algebraic *kind* packed in the two low bits so the hot paths
+//! (reduction of `cos²`, `√3²`) never touch the table:
+//!
+//! * `PLAIN` — no relation;
+//! * `TRIG_COS` — `cos(u)`, with `cos(u)² = 1 − sin(u)²` (kept, not rationalized);
+//! * `RADICAL` — `√n` or `√P`, with `r² = n` / `r² = P` (rationalized out of denominators).
+
+use crate::expr::Expr;
+use crate::poly::{Poly, Var};
+use rustc_hash::FxHashMap;
+use std::sync::{Arc, OnceLock, RwLock};
+
+pub const KIND_MASK: Var = 0b11;
+pub const PLAIN: Var = 0;
+pub const TRIG_COS: Var = 1;
+pub const RADICAL: Var = 2;
+
+/// The kind bits of a variable.
+#[inline]
+pub fn kind(v: Var) -> Var {
+    v & KIND_MASK
+}
+
+/// True for variables `r` with a relation `r² = P`.
+#[inline]
+pub fn is_reducible(v: Var) -> bool {
+    kind(v) != PLAIN
+}
+
+/// True for variables that are rationalized out of denominators.
+#[inline]
+pub fn is_radical(v: Var) -> bool {
+    kind(v) == RADICAL
+}
+
+/// What an atom stands for.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Atom {
+    /// A constant symbol (real, positive).
+    Param(Arc<str>),
+    /// A generalized coordinate's `order`-th time derivative.
+    Coord(Arc<str>, u32),
+    /// Time `t`.
+    Time,
+    /// π.
+    Pi,
+    /// √n for a square-free integer n > 1 (stored as its decimal digits).
+    Root(Arc<str>),
+    /// √P for a non-constant primitive polynomial P.
+    SqrtOf(Expr),
+    /// sin(u) for a canonical base angle u.
+    Sin(Expr),
+    /// cos(u); always interned right after `Sin(u)`.
+    Cos(Expr),
+    Exp(Expr),
+    Ln(Expr),
+    Atan(Expr),
+}
+
+struct Entry {
+    atom: Atom,
+    /// For reducible atoms: the polynomial P with atom² = P.
+    square: Option<Poly>,
+}
+
+#[derive(Default)]
+struct Table {
+    entries: Vec<Entry>,
+    index: FxHashMap<Atom, Var>,
+}
+
+fn table() -> &'static RwLock<Table> {
+    static T: OnceLock<RwLock<Table>> = OnceLock::new();
+    T.get_or_init(|| RwLock::new(Table::default()))
+}
+
+fn read() -> std::sync::RwLockReadGuard<'static, Table> {
+    match table().read() {
+        Ok(g) => g,
+        Err(p) => p.into_inner(),
+    }
+}
+
+fn write() -> std::sync::RwLockWriteGuard<'static, Table> {
+    match table().write() {
+        Ok(g) => g,
+        Err(p) => p.into_inner(),
+    }
+}
+
+impl Table {
+    fn push(&mut self, atom: Atom, kind: Var, square: Option<Poly>) -> Var {
+        let v = ((self.entries.len() as Var) << 2) | kind;
+        self.entries.push(Entry {
+            atom: atom.clone(),
+            square,
+        });
+        self.index.insert(atom, v);
+        v
+    }
+}
+
+/// The variable of a plain atom (parameter, coordinate, time, π, exp, ln, atan).
+pub fn intern(atom: Atom) -> Var {
+    if let Some(&v) = read().index.get(&atom) {
+        return v;
+    }
+    let mut t = write();
+    if let Some(&v) = t.index.get(&atom) {
+        return v;
+    }
+    debug_assert!(!matches!(
+        atom,
+        Atom::Sin(_) | Atom::Cos(_) | Atom::Root(_) | Atom::SqrtOf(_)
+    ));
+    t.push(atom, PLAIN, None)
+}
+
+/// The pair (sin u, cos u) for a canonical base angle `u`.
+pub fn intern_trig(u: &Expr) -> (Var, Var) {
+    let key = Atom::Sin(u.clone());
+    {
+        let t = read();
+        if let (Some(&s), Some(&c)) = (t.index.get(&key), t.index.get(&Atom::Cos(u.clone()))) {
+            return (s, c);
+        }
+    }
+    let mut t = write();
+    if let (Some(&s), Some(&c)) = (t.index.get(&key), t.index.get(&Atom::Cos(u.clone()))) {
+        return (s, c);
+    }
+    let s = t.push(key, PLAIN, None);
+    let square = &Poly::one() - &Poly::var(s).pow(2);
+    let c = t.push(Atom::Cos(u.clone()), TRIG_COS, Some(square));
+    (s, c)
+}
+
+/// A radical atom: `Root(n)` with square n, or `SqrtOf(P)` with square P.
+pub fn intern_radical(atom: Atom, square: Poly) -> Var {
+    if let Some(&v) = read().index.get(&atom) {
+        return v;
+    }
+    let mut t = write();
+    if let Some(&v) = t.index.get(&atom) {
+        return v;
+    }
+    t.push(atom, RADICAL, Some(square))
+}
+
+/// The atom behind a variable.
+pub fn atom(v: Var) -> Atom {
+    let t = read();
+    match t.entries.get((v >> 2) as usize) {
+        Some(e) => e.atom.clone(),
+        None => Atom::Param(Arc::from(format!("?{v}"))),
+    }
+}
+
+/// For a reducible variable r, the polynomial P with r² = P.
+pub fn square_of(v: Var) -> Option<Poly> {
+    let t = read();
+    t.entries.get((v >> 2) as usize).and_then(|e| e.square.clone())
+}
+
+/// Shorthands.
+pub fn param(name: &str) -> Var {
+    intern(Atom::Param(Arc::from(name)))
+}
+pub fn coord(name: &str, order: u32) -> Var {
+    intern(Atom::Coord(Arc::from(name), order))
+}
+pub fn time() -> Var {
+    intern(Atom::Time)
+}
+pub fn pi() -> Var {
+    intern(Atom::Pi)
+}
+
+/// The sine partner of a cosine variable (they are interned consecutively).
+pub fn sin_partner(cos: Var) -> Var {
+    // cos was pushed right after sin: index − 1, kind PLAIN.
+    (((cos >> 2) - 1) << 2) | PLAIN
+}
+
+/// The cosine partner of a sine variable, if `v` is `Sin(u)`.
+pub fn cos_partner(sin: Var) -> Option<Var> {
+    let t = read();
+    match t.entries.get((sin >> 2) as usize) {
+        Some(Entry {
+            atom: Atom::Sin(_), ..
+        }) => Some((((sin >> 2) + 1) << 2) | TRIG_COS),
+        _ => None,
+    }
+}

@@ -1,0 +1,384 @@
+//! Elementary functions with exact rules.
+//!
+//! * `sin`/`cos` of a sum expand by the addition theorems, integer multiples
+//!   by the multiple-angle formulas, so every trig atom has a *base angle*:
+//!   a single monomial divided by a positive integer (`θ`, `θ/2`, `Ω·t`), or
+//!   an irreducible non-polynomial argument. Multiples of π/12 have exact
+//!   values (`sin(π/6) = 1/2`, `cos(π/4) = √2/2`).
+//! * `sqrt` of a rational is a product of prime radicals `√p`
+//!   (`√12 = 2√3`); of a polynomial, positive-parameter square factors come
+//!   out (`√(k·m²) = m·√k`) and the rest is a radical atom `√P`.
+//! * `exp`, `ln`, `atan` are atoms, with `exp(0) = 1`, `ln(1) = 0`,
+//!   `ln(exp(x)) = x`, `atan(0) = 0`.
+
+use super::atom::{self, Atom};
+use super::{Expr, MathError};
+use crate::num::Q;
+use crate::poly::{Mono, Poly, Var};
+use num_bigint::BigInt;
+use num_traits::{One, Signed, ToPrimitive, Zero};
+use rustc_hash::FxHashMap;
+use std::sync::Arc;
+
+/// Largest multiple of a base angle expanded by the multiple-angle formulas.
+const MAX_MULTIPLE: i64 = 12;
+
+/// sin and cos of an expression, expanded into base-angle atoms.
+pub fn sin_cos(u: &Expr) -> (Expr, Expr) {
+    if u.is_zero() {
+        return (Expr::zero(), Expr::one());
+    }
+    if !u.is_poly() {
+        return base_sin_cos_signed(u);
+    }
+    let pi = atom::pi();
+    let mut s = Expr::zero();
+    let mut c = Expr::one();
+    for (m, coef) in u.num().terms() {
+        let (ts, tc) = if m.0.len() == 1 && m.0[0] == (pi, 1) && is_twelfth(coef) {
+            exact_pi(coef)
+        } else {
+            term_sin_cos(m, coef)
+        };
+        let ns = s.mul(&tc).add(&c.mul(&ts));
+        let nc = c.mul(&tc).sub(&s.mul(&ts));
+        s = ns;
+        c = nc;
+    }
+    (s, c)
+}
+
+pub fn sin(u: &Expr) -> Expr {
+    sin_cos(u).0
+}
+pub fn cos(u: &Expr) -> Expr {
+    sin_cos(u).1
+}
+pub fn tan(u: &Expr) -> Result<Expr, MathError> {
+    let (s, c) = sin_cos(u);
+    s.div(&c).map_err(|_| {
+        MathError::new("tan is undefined here: cos of its argument is zero")
+    })
+}
+
+fn is_twelfth(q: &Q) -> bool {
+    (q * &Q::from_i64(12)).is_integer()
+}
+
+/// sin, cos of (k·π) where 12k is an integer.
+fn exact_pi(k: &Q) -> (Expr, Expr) {
+    let n = (k * &Q::from_i64(12)).as_i64().unwrap_or(0).rem_euclid(24);
+    (sin_twelfths(n), sin_twelfths((n + 6) % 24))
+}
+
+/// sin(n·π/12), exactly.
+fn sin_twelfths(n: i64) -> Expr {
+    let n = n.rem_euclid(24);
+    if n >= 12 {
+        return sin_twelfths(n - 12).neg();
+    }
+    let n = if n > 6 { 12 - n } else { n };
+    let r2 = sqrt_rational(&Q::from_i64(2));
+    let r3 = sqrt_rational(&Q::from_i64(3));
+    let r6 = sqrt_rational(&Q::from_i64(6));
+    let quarter = Q::new(1, 4).unwrap_or_else(Q::one);
+    let half = Q::new(1, 2).unwrap_or_else(Q::one);
+    match n {
+        0 => Expr::zero(),
+        1 => r6.sub(&r2).scale(&quarter),
+        2 => Expr::rational(half),
+        3 => r2.scale(&half),
+        4 => r3.scale(&half),
+        5 => r6.add(&r2).scale(&quarter),
+        _ => Expr::one(),
+    }
+}
+
+/// sin, cos of one term `coef·m` of a polynomial argument.
+fn term_sin_cos(m: &Mono, coef: &Q) -> (Expr, Expr) {
+    // coef = p/q; base angle m/q, multiple p (when small).
+    let p = coef.numer();
+    let q = coef.denom();
+    let small = p.abs() <= BigInt::from(MAX_MULTIPLE) && !m.0.is_empty();
+    let (base_coef, mult) = if small {
+        (Q::from_bigint(BigInt::one()).checked_div(&Q::from_bigint(q)).unwrap_or_else(Q::one), p.to_i64().unwrap_or(1))
+    } else if coef.is_negative() {
+        (-coef.clone(), -1)
+    } else {
+        (coef.clone(), 1)
+    };
+    let base = Expr::poly(Poly::monomial(m.clone(), base_coef));
+    let (s1, c1) = intern_base(&base);
+    multiple(&s1, &c1, mult)
+}
+
+/// sin(n·x), cos(n·x) from sin x, cos x.
+fn multiple(s1: &Expr, c1: &Expr, n: i64) -> (Expr, Expr) {
+    // A rotation by −x is (cos x, −sin x).
+    let s1 = if n < 0 { s1.neg() } else { s1.clone() };
+    let n = n.unsigned_abs();
+    let mut s = Expr::zero();
+    let mut c = Expr::one();
+    // Binary powering of the rotation (c + i s).
+    let (mut bs, mut bc) = (s1, c1.clone());
+    let mut k = n;
+    while k > 0 {
+        if k & 1 == 1 {
+            let ns = s.mul(&bc).add(&c.mul(&bs));
+            let nc = c.mul(&bc).sub(&s.mul(&bs));
+            s = ns;
+            c = nc;
+        }
+        k >>= 1;
+        if k > 0 {
+            let ns = bs.mul(&bc).scale(&Q::from_i64(2));
+            let nc = bc.mul(&bc).sub(&bs.mul(&bs));
+            bs = ns;
+            bc = nc;
+        }
+    }
+    (s, c)
+}
+
+/// sin, cos of a non-polynomial argument: an atom pair, with the sign of
+/// the argument normalized (leading coefficient of the numerator positive).
+fn base_sin_cos_signed(u: &Expr) -> (Expr, Expr) {
+    if u.num().leading_coeff().is_some_and(|c| c.is_negative()) {
+        let (s, c) = intern_base(&u.neg());
+        (s.neg(), c)
+    } else {
+        intern_base(u)
+    }
+}
+
+fn intern_base(u: &Expr) -> (Expr, Expr) {
+    let (s, c) = atom::intern_trig(u);
+    (Expr::var(s), Expr::var(c))
+}
+
+// ---------------------------------------------------------------- radicals
+
+/// Factor n > 0 as (square part s, square-free part r): n = s²·r, with the
+/// primes of r found by trial division (a large unfactored cofactor that is
+/// not a perfect square stays in r as one number).
+fn square_free(n: &BigInt) -> (BigInt, Vec<BigInt>) {
+    let mut n = n.clone();
+    let mut s = BigInt::one();
+    let mut primes = Vec::new();
+    let mut p = BigInt::from(2u32);
+    let limit = BigInt::from(100_000u32);
+    while &p * &p <= n && p <= limit {
+        let mut e = 0u32;
+        while (&n % &p).is_zero() {
+            n /= &p;
+            e += 1;
+        }
+        for _ in 0..e / 2 {
+            s *= &p;
+        }
+        if e % 2 == 1 {
+            primes.push(p.clone());
+        }
+        p += if p == BigInt::from(2u32) { 1u32 } else { 2u32 };
+    }
+    if n > BigInt::one() {
+        let r = n.sqrt();
+        if &r * &r == n {
+            s *= r;
+        } else {
+            primes.push(n);
+        }
+    }
+    (s, primes)
+}
+
+/// √q for a rational q ≥ 0 (an error for q < 0).
+pub fn sqrt_q(q: &Q) -> Result<Expr, MathError> {
+    if q.is_negative() {
+        return Err(MathError::new(format!("square root of the negative number {q}"))
+            .hint("qdot works over the reals"));
+    }
+    Ok(sqrt_rational(q))
+}
+
+fn sqrt_rational(q: &Q) -> Expr {
+    if q.is_zero() {
+        return Expr::zero();
+    }
+    // √(a/b) = √(a·b)/b
+    let a = q.numer().abs();
+    let b = q.denom();
+    let (s, primes) = square_free(&(&a * &b));
+    let mut out = Expr::rational(Q::from_bigint(s).checked_div(&Q::from_bigint(b)).unwrap_or_else(Q::one));
+    for p in primes {
+        let v = atom::intern_radical(
+            Atom::Root(Arc::from(p.to_string())),
+            Poly::constant(Q::from_bigint(p)),
+        );
+        out = out.mul(&Expr::var(v));
+    }
+    out
+}
+
+/// Whether a variable stands for a positive quantity (a parameter, π, a
+/// positive radical), so its square root may be taken out of a radical.
+fn is_positive_atom(v: Var) -> bool {
+    matches!(atom::atom(v), Atom::Param(_) | Atom::Pi | Atom::Root(_))
+}
+
+/// √u, exactly.
+pub fn sqrt(u: &Expr) -> Result<Expr, MathError> {
+    if let Some(q) = u.as_rational() {
+        return sqrt_q(&q);
+    }
+    // √(n/d) = √(n·d)/d
+    let nd = &(u.num() * u.den()) * &Poly::one();
+    let den = Expr::from_poly(u.den().clone());
+    // numeric content
+    let content = nd.content();
+    let mut prim = nd.scale(&Q::one().checked_div(&content).unwrap_or_else(Q::one));
+    let mut outside = sqrt_rational(&content);
+    // a negative leading coefficient stays inside: √(−x) is √(−x).
+    // monomial content of positive atoms
+    let mut mono_gcd: Option<Mono> = None;
+    for (m, _) in prim.terms() {
+        mono_gcd = Some(match mono_gcd {
+            None => m.clone(),
+            Some(g) => g.gcd(m),
+        });
+    }
+    if let Some(g) = mono_gcd {
+        let mut take = Mono::default();
+        for &(v, e) in g.0.iter() {
+            if e >= 2 && is_positive_atom(v) {
+                take.0.push((v, e - e % 2));
+                outside = outside.mul(&Expr::poly(Poly::monomial(
+                    Mono(std::iter::once((v, e / 2)).collect()),
+                    Q::one(),
+                )));
+            }
+        }
+        if !take.0.is_empty() {
+            let divisor = Poly::monomial(take, Q::one());
+            if let Some(p) = prim.div_exact(&divisor) {
+                prim = p;
+            }
+        }
+    }
+    let inner = if prim.is_one() {
+        Expr::one()
+    } else if let Some(r) = perfect_square_monomial(&prim) {
+        r
+    } else {
+        let v = atom::intern_radical(Atom::SqrtOf(Expr::from_poly(prim.clone())), prim);
+        Expr::var(v)
+    };
+    outside.mul(&inner).div(&den)
+}
+
+/// √m for a monomial m with only even exponents of positive atoms.
+fn perfect_square_monomial(p: &Poly) -> Option<Expr> {
+    if p.len() != 1 {
+        return None;
+    }
+    let (m, c) = &p.terms()[0];
+    if !c.is_one() {
+        return None;
+    }
+    let mut half = Mono::default();
+    for &(v, e) in m.0.iter() {
+        if e % 2 != 0 || !is_positive_atom(v) {
+            return None;
+        }
+        half.0.push((v, e / 2));
+    }
+    Some(Expr::poly(Poly::monomial(half, Q::one())))
+}
+
+// ---------------------------------------------------------------- exp, ln, atan
+
+pub fn exp(u: &Expr) -> Expr {
+    if u.is_zero() {
+        return Expr::one();
+    }
+    if let Some(v) = u.as_var() {
+        if let Atom::Ln(inner) = atom::atom(v) {
+            return inner;
+        }
+    }
+    Expr::var(atom::intern(Atom::Exp(u.clone())))
+}
+
+pub fn ln(u: &Expr) -> Result<Expr, MathError> {
+    if u.is_zero() {
+        return Err(MathError::new("ln(0) is undefined"));
+    }
+    if u.is_one() {
+        return Ok(Expr::zero());
+    }
+    if let Some(q) = u.as_rational() {
+        if q.is_negative() {
+            return Err(MathError::new(format!("ln of the negative number {q}")));
+        }
+    }
+    if let Some(v) = u.as_var() {
+        if let Atom::Exp(inner) = atom::atom(v) {
+            return Ok(inner);
+        }
+    }
+    Ok(Expr::var(atom::intern(Atom::Ln(u.clone()))))
+}
+
+pub fn atan(u: &Expr) -> Expr {
+    if u.is_zero() {
+        return Expr::zero();
+    }
+    if u.num().leading_coeff().is_some_and(|c| c.is_negative()) {
+        return atan(&u.neg()).neg();
+    }
+    Expr::var(atom::intern(Atom::Atan(u.clone())))
+}
+
+// ---------------------------------------------------------------- evaluation, substitution
+
+/// The numeric value of an atom, with `f` giving parameters, coordinates and time.
+pub fn eval_atom(v: Var, f: &dyn Fn(&Atom) -> Option<f64>) -> Option<f64> {
+    let a = atom::atom(v);
+    let ev = |e: &Expr| e.eval_f64(f);
+    match &a {
+        Atom::Param(_) | Atom::Coord(..) | Atom::Time => f(&a),
+        Atom::Pi => Some(std::f64::consts::PI),
+        Atom::Root(n) => n.parse::<f64>().ok().map(f64::sqrt),
+        Atom::SqrtOf(u) => ev(u).map(f64::sqrt),
+        Atom::Sin(u) => ev(u).map(f64::sin),
+        Atom::Cos(u) => ev(u).map(f64::cos),
+        Atom::Exp(u) => ev(u).map(f64::exp),
+        Atom::Ln(u) => ev(u).map(f64::ln),
+        Atom::Atan(u) => ev(u).map(f64::atan),
+    }
+}
+
+/// The value of atom `v` after substituting `map` (None: unchanged).
+pub fn subs_atom(v: Var, map: &FxHashMap<Var, Expr>) -> Result<Option<Expr>, MathError> {
+    if let Some(x) = map.get(&v) {
+        return Ok(Some(x.clone()));
+    }
+    let a = atom::atom(v);
+    let inner = match &a {
+        Atom::SqrtOf(u) | Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) | Atom::Atan(u) => u,
+        _ => return Ok(None),
+    };
+    if !inner.vars().iter().any(|w| map.contains_key(w) || super::diff::atom_depends_on_any(*w, map)) {
+        return Ok(None);
+    }
+    let u = inner.subs_many(map)?;
+    Ok(Some(match &a {
+        Atom::SqrtOf(_) => sqrt(&u)?,
+        Atom::Sin(_) => sin(&u),
+        Atom::Cos(_) => cos(&u),
+        Atom::Exp(_) => exp(&u),
+        Atom::Ln(_) => ln(&u)?,
+        _ => atan(&u),
+    }))
+}
+

@@ -1,0 +1,494 @@
+//! Printing: qdot's input syntax (re-parseable, used in JSON) and readable
+//! Unicode (θ̈₃, 14/23·g, −, ·, superscripts).
+//!
+//! Layout, as a person writes it: an expression is *collected* by its
+//! coordinate monomials (q̈ terms first, then q̇, then q, then the rest), each
+//! with its coefficient in the parameters printed in lowest terms
+//! (`13/2·G/g·ÿ₃ + 2·G·r/g·θ̈₃`). A coefficient with several terms is
+//! printed as content × primitive part (`g·R·(G·R − P·r)/(G·R² + J₂·g + P·r²)`).
+
+use super::atom::{self, Atom};
+use super::Expr;
+use crate::num::Q;
+use crate::poly::{Mono, Poly, Var};
+use std::cmp::Ordering;
+
+/// Which notation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Style {
+    /// qdot's input syntax: `14*g/23`, `theta3''`, `sin(theta3)^2`.
+    Input,
+    /// Unicode text: `14/23·g`, `θ̈₃`, `sin²(θ₃)`.
+    Unicode,
+}
+
+/// qdot's input syntax.
+pub fn input(e: &Expr) -> String {
+    render(e, Style::Input)
+}
+
+/// Readable Unicode.
+pub fn unicode(e: &Expr) -> String {
+    render(e, Style::Unicode)
+}
+
+pub fn render(e: &Expr, st: Style) -> String {
+    if e.is_zero() {
+        return "0".into();
+    }
+    // Collect by coordinate monomials when the denominator is free of coordinates.
+    let den_has_coord = e.den().vars().into_iter().any(is_dynamic);
+    let num_has_coord = e.num().vars().into_iter().any(is_dynamic);
+    if den_has_coord || !num_has_coord {
+        return fraction(e.num(), e.den(), st);
+    }
+    // Split num into Σ key·coef with key a monomial in dynamic atoms.
+    let mut groups: Vec<(Mono, Poly)> = Vec::new();
+    for (m, c) in e.num().terms() {
+        let mut key = Mono::default();
+        let mut rest = Mono::default();
+        for &(v, x) in m.0.iter() {
+            if is_dynamic(v) {
+                key.0.push((v, x));
+            } else {
+                rest.0.push((v, x));
+            }
+        }
+        let t = Poly::monomial(rest, c.clone());
+        match groups.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, p)) => *p = &*p + &t,
+            None => groups.push((key, t)),
+        }
+    }
+    if groups.len() == 1 && groups[0].0.0.is_empty() {
+        return fraction(e.num(), e.den(), st);
+    }
+    let mut items: Vec<(Mono, String, bool)> = Vec::new();
+    for (key, coef) in groups {
+        if key.0.is_empty() && e.den().is_one() {
+            // The terms free of coordinates, one by one.
+            for (m, q) in sorted_terms(&coef) {
+                let c = Expr::from_poly(Poly::monomial(m, q));
+                let (neg, body) = term_with_coef(&c, &key, st);
+                items.push((key.clone(), body, neg));
+            }
+            continue;
+        }
+        let c = Expr::from_parts(coef, e.den().clone()).unwrap_or_else(|_| Expr::zero());
+        let (neg, body) = term_with_coef(&c, &key, st);
+        items.push((key, body, neg));
+    }
+    items.sort_by(|a, b| display_order(&a.0, &b.0).then_with(|| a.1.cmp(&b.1)));
+    join_terms(items.into_iter().map(|(_, s, n)| (n, s)), st)
+}
+
+/// Coordinates, their derivatives, time and anything built on them.
+fn is_dynamic(v: Var) -> bool {
+    match atom::atom(v) {
+        Atom::Coord(..) | Atom::Time => true,
+        Atom::Param(_) | Atom::Pi | Atom::Root(_) => false,
+        _ => Expr::var(v).is_time_dependent(),
+    }
+}
+
+/// Sort key: highest derivative order first, then higher degree, then
+/// coordinates before functions of them.
+fn display_order(a: &Mono, b: &Mono) -> Ordering {
+    let key = |m: &Mono| {
+        let mut order = -1i64;
+        let mut deg = 0i64;
+        for &(v, e) in m.0.iter() {
+            if let Atom::Coord(_, k) = atom::atom(v) {
+                order = order.max(k as i64);
+                deg += e as i64;
+            }
+        }
+        (order, deg, m.total_degree() as i64)
+    };
+    let (ka, kb) = (key(a), key(b));
+    kb.cmp(&ka)
+}
+
+/// `coef·key`, returning (is negative, text without the sign).
+fn term_with_coef(c: &Expr, key: &Mono, st: Style) -> (bool, String) {
+    // The sign goes outside: the coefficient's first displayed term is positive.
+    let neg = sorted_terms(c.num())
+        .first()
+        .is_some_and(|(_, q)| q.is_negative());
+    let c = if neg { c.neg() } else { c.clone() };
+    let body = fraction(c.num(), c.den(), st);
+    if key.0.is_empty() {
+        return (neg, body);
+    }
+    let key_s = mono_str(key, st);
+    let mul = mul_sign(st);
+    if let Some(q) = c.as_rational() {
+        if q.is_one() {
+            return (neg, key_s);
+        }
+        return (neg, coef_times(&q, &key_s, st));
+    }
+    let body = if c.num().len() == 1 {
+        body
+    } else {
+        format!("({body})")
+    };
+    (neg, format!("{body}{mul}{key_s}"))
+}
+
+fn mul_sign(st: Style) -> &'static str {
+    match st {
+        Style::Input => "*",
+        Style::Unicode => "·",
+    }
+}
+
+/// `q·x`: `3/2·x` (Unicode) or `3*x/2` (input).
+fn coef_times(q: &Q, x: &str, st: Style) -> String {
+    let (n, d) = (q.numer(), q.denom());
+    let one = num_bigint::BigInt::from(1);
+    match st {
+        Style::Unicode => {
+            if d == one {
+                format!("{n}·{x}")
+            } else {
+                format!("{n}/{d}·{x}")
+            }
+        }
+        Style::Input => {
+            let head = if n == one { x.to_string() } else { format!("{n}*{x}") };
+            if d == one {
+                head
+            } else {
+                format!("{head}/{d}")
+            }
+        }
+    }
+}
+
+fn join_terms(items: impl Iterator<Item = (bool, String)>, st: Style) -> String {
+    let (plus, minus, lead_minus) = match st {
+        Style::Input => (" + ", " - ", "-"),
+        Style::Unicode => (" + ", " − ", "−"),
+    };
+    let mut out = String::new();
+    for (i, (neg, s)) in items.enumerate() {
+        if i == 0 {
+            if neg {
+                out.push_str(lead_minus);
+            }
+        } else {
+            out.push_str(if neg { minus } else { plus });
+        }
+        out.push_str(&s);
+    }
+    out
+}
+
+/// (signed rational content, monomial gcd, primitive integer polynomial
+/// whose first displayed term is positive).
+fn split_poly(p: &Poly) -> (Q, Mono, Poly) {
+    let mut g: Option<Mono> = None;
+    for (m, _) in p.terms() {
+        g = Some(match g {
+            None => m.clone(),
+            Some(x) => x.gcd(m),
+        });
+    }
+    let g = g.unwrap_or_default();
+    let content = p.content();
+    let mut prim = p.scale(&Q::one().checked_div(&content).unwrap_or_else(Q::one));
+    if !g.0.is_empty() {
+        if let Some(x) = prim.div_exact(&Poly::monomial(g.clone(), Q::one())) {
+            prim = x;
+        }
+    }
+    let mut content = content;
+    let first_neg = sorted_terms(&prim)
+        .first()
+        .is_some_and(|(_, c)| c.is_negative());
+    if first_neg {
+        prim = -&prim;
+        content = -content;
+    }
+    (content, g, prim)
+}
+
+/// Terms in display order.
+fn sorted_terms(p: &Poly) -> Vec<(Mono, Q)> {
+    let mut t: Vec<(Mono, Q, String)> = p
+        .terms()
+        .iter()
+        .map(|(m, c)| (m.clone(), c.clone(), mono_str(m, Style::Input)))
+        .collect();
+    t.sort_by(|a, b| display_order(&a.0, &b.0).then_with(|| a.2.cmp(&b.2)));
+    t.into_iter().map(|(m, c, _)| (m, c)).collect()
+}
+
+/// A polynomial as a sum, terms in display order.
+fn sum_str(p: &Poly, st: Style) -> String {
+    let items = sorted_terms(p).into_iter().map(|(m, c)| {
+        let neg = c.is_negative();
+        let c = c.abs();
+        let ms = mono_str(&m, st);
+        let s = if m.0.is_empty() {
+            q_str(&c, st)
+        } else if c.is_one() {
+            ms
+        } else {
+            coef_times(&c, &ms, st)
+        };
+        (neg, s)
+    });
+    join_terms(items, st)
+}
+
+fn q_str(q: &Q, _st: Style) -> String {
+    q.to_string()
+}
+
+/// num/den, with contents pulled out: `g·R·(G·R − P·r)/(G·R² + J₂·g + P·r²)`.
+fn fraction(num: &Poly, den: &Poly, st: Style) -> String {
+    if den.is_one() {
+        if num.len() == 1 {
+            return sum_str(num, st);
+        }
+        // A sum with fractional coefficients: keep it as a sum.
+        return sum_str(num, st);
+    }
+    let (cn, mn, pn) = split_poly(num);
+    let (cd, md, pd) = split_poly(den);
+    let c = cn.checked_div(&cd).unwrap_or_else(Q::one);
+    let neg = c.is_negative();
+    let c = c.abs();
+    let mul = mul_sign(st);
+    let mut top: Vec<String> = Vec::new();
+    let cnum = Q::from_bigint(c.numer());
+    let cden = Q::from_bigint(c.denom());
+    if !cnum.is_one() {
+        top.push(cnum.to_string());
+    }
+    if !mn.0.is_empty() {
+        top.push(mono_str(&mn, st));
+    }
+    if !pn.is_one() {
+        let s = sum_str(&pn, st);
+        top.push(if pn.len() > 1 && !(top.is_empty() && false) {
+            format!("({s})")
+        } else {
+            s
+        });
+    }
+    let mut bottom: Vec<String> = Vec::new();
+    if !cden.is_one() {
+        bottom.push(cden.to_string());
+    }
+    if !md.0.is_empty() {
+        bottom.push(mono_str(&md, st));
+    }
+    if !pd.is_one() {
+        let s = sum_str(&pd, st);
+        bottom.push(if pd.len() > 1 { format!("({s})") } else { s });
+    }
+    // A lone parenthesized numerator doesn't need its parentheses.
+    if top.len() == 1 && top[0].starts_with('(') && pn.len() > 1 {
+        let inner = top[0][1..top[0].len() - 1].to_string();
+        top[0] = format!("({inner})");
+    }
+    let t = if top.is_empty() { "1".to_string() } else { top.join(mul) };
+    let s = if bottom.is_empty() {
+        t
+    } else {
+        let b = if bottom.len() == 1 {
+            bottom.remove(0)
+        } else {
+            format!("({})", bottom.join(mul))
+        };
+        format!("{t}/{b}")
+    };
+    if neg {
+        match st {
+            Style::Input => format!("-{s}"),
+            Style::Unicode => format!("−{s}"),
+        }
+    } else {
+        s
+    }
+}
+
+/// Factor order inside a monomial: parameters, π, radicals, t, functions,
+/// then coordinates by derivative order.
+fn factor_rank(v: Var) -> (u8, u32, String) {
+    let a = atom::atom(v);
+    let name = atom_input(&a);
+    match a {
+        Atom::Param(_) => (0, 0, name),
+        Atom::Pi => (1, 0, name),
+        Atom::Root(_) | Atom::SqrtOf(_) => (2, 0, name),
+        Atom::Time => (3, 0, name),
+        Atom::Sin(_) | Atom::Cos(_) | Atom::Exp(_) | Atom::Ln(_) | Atom::Atan(_) => (4, 0, name),
+        Atom::Coord(_, k) => (5, k, name),
+    }
+}
+
+pub fn mono_str(m: &Mono, st: Style) -> String {
+    if m.0.is_empty() {
+        return "1".into();
+    }
+    let mut fs: Vec<(Var, u32)> = m.0.iter().copied().collect();
+    fs.sort_by_key(|&(v, _)| factor_rank(v));
+    let parts: Vec<String> = fs.into_iter().map(|(v, e)| power_str(v, e, st)).collect();
+    parts.join(mul_sign(st))
+}
+
+fn power_str(v: Var, e: u32, st: Style) -> String {
+    let a = atom::atom(v);
+    match st {
+        Style::Input => {
+            let s = atom_input(&a);
+            if e == 1 {
+                s
+            } else {
+                format!("{s}^{e}")
+            }
+        }
+        Style::Unicode => {
+            if e == 1 {
+                return atom_unicode(&a);
+            }
+            let sup = superscript(e);
+            match &a {
+                Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) | Atom::Atan(u) => {
+                    let f = fn_name(&a);
+                    format!("{f}{sup}({})", unicode(u))
+                }
+                _ => format!("{}{sup}", atom_unicode(&a)),
+            }
+        }
+    }
+}
+
+fn fn_name(a: &Atom) -> &'static str {
+    match a {
+        Atom::Sin(_) => "sin",
+        Atom::Cos(_) => "cos",
+        Atom::Exp(_) => "exp",
+        Atom::Ln(_) => "ln",
+        Atom::Atan(_) => "atan",
+        _ => "",
+    }
+}
+
+/// An atom in input syntax.
+pub fn atom_input(a: &Atom) -> String {
+    match a {
+        Atom::Param(n) => n.to_string(),
+        Atom::Coord(n, k) => format!("{n}{}", "'".repeat(*k as usize)),
+        Atom::Time => "t".into(),
+        Atom::Pi => "pi".into(),
+        Atom::Root(n) => format!("sqrt({n})"),
+        Atom::SqrtOf(u) => format!("sqrt({})", input(u)),
+        Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) | Atom::Atan(u) => {
+            format!("{}({})", fn_name(a), input(u))
+        }
+    }
+}
+
+fn atom_unicode(a: &Atom) -> String {
+    match a {
+        Atom::Param(n) => pretty_name(n, 0),
+        Atom::Coord(n, k) => pretty_name(n, *k),
+        Atom::Time => "t".into(),
+        Atom::Pi => "π".into(),
+        Atom::Root(n) => format!("√{n}"),
+        Atom::SqrtOf(u) => format!("√({})", unicode(u)),
+        _ => format!("{}({})", fn_name(a), unicode_arg(a)),
+    }
+}
+
+fn unicode_arg(a: &Atom) -> String {
+    match a {
+        Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) | Atom::Atan(u) => unicode(u),
+        _ => String::new(),
+    }
+}
+
+fn superscript(e: u32) -> String {
+    const S: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    e.to_string()
+        .chars()
+        .map(|c| S[c.to_digit(10).unwrap_or(0) as usize])
+        .collect()
+}
+
+fn subscript(s: &str) -> String {
+    const S: [char; 10] = ['₀', '₁', '₂', '₃', '₄', '₅', '₆', '₇', '₈', '₉'];
+    s.chars()
+        .map(|c| c.to_digit(10).map(|d| S[d as usize]).unwrap_or(c))
+        .collect()
+}
+
+const GREEK: &[(&str, &str)] = &[
+    ("alpha", "α"),
+    ("beta", "β"),
+    ("gamma", "γ"),
+    ("delta", "δ"),
+    ("epsilon", "ε"),
+    ("eps", "ε"),
+    ("zeta", "ζ"),
+    ("eta", "η"),
+    ("theta", "θ"),
+    ("th", "θ"),
+    ("iota", "ι"),
+    ("kappa", "κ"),
+    ("lambda", "λ"),
+    ("mu", "μ"),
+    ("nu", "ν"),
+    ("xi", "ξ"),
+    ("rho", "ρ"),
+    ("sigma", "σ"),
+    ("tau", "τ"),
+    ("phi", "φ"),
+    ("chi", "χ"),
+    ("psi", "ψ"),
+    ("omega", "ω"),
+    ("Gamma", "Γ"),
+    ("Delta", "Δ"),
+    ("Theta", "Θ"),
+    ("Lambda", "Λ"),
+    ("Phi", "Φ"),
+    ("Psi", "Ψ"),
+    ("Omega", "Ω"),
+];
+
+/// `theta3` → `θ₃`, with one (˙) or two (¨) dots for derivatives.
+pub fn pretty_name(name: &str, dots: u32) -> String {
+    let split = name
+        .char_indices()
+        .rev()
+        .take_while(|(_, c)| c.is_ascii_digit())
+        .last()
+        .map(|(i, _)| i)
+        .unwrap_or(name.len());
+    let (base, digits) = name.split_at(split);
+    let (base, digits) = if base.is_empty() { (name, "") } else { (base, digits) };
+    let base = GREEK
+        .iter()
+        .find(|(k, _)| *k == base)
+        .map(|(_, g)| g.to_string())
+        .unwrap_or_else(|| base.to_string());
+    let mark = match dots {
+        0 => String::new(),
+        1 => "\u{307}".into(),
+        2 => "\u{308}".into(),
+        3 => "\u{20DB}".into(),
+        _ => "\u{20DC}".into(),
+    };
+    let base = if base.chars().count() == 1 || dots == 0 {
+        format!("{base}{mark}")
+    } else {
+        // Long names: mark the whole name with primes instead.
+        format!("{base}{}", "′".repeat(dots as usize))
+    };
+    format!("{base}{}", subscript(digits))
+}

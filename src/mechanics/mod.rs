@@ -1,0 +1,186 @@
+//! Lagrange's equations of the second kind.
+//!
+//! For every coordinate q_k (the seed's eq. 23.90, extended to V and R):
+//!
+//! ```text
+//! d/dt(∂E/∂q̇_k) − ∂E/∂q_k = Q_k,
+//! Q_k = −∂V/∂q_k + ∂U/∂q_k + ∂L/∂q_k + ∂D/∂q̇_k − ∂R/∂q̇_k + (force on q_k)
+//! ```
+//!
+//! and the split M(q,t)·q̈ = f(q,q̇,t) with M_ij = ∂²E/∂q̇_i∂q̇_j, read off
+//! the left-hand sides as the coefficients of q̈_j (they are linear in q̈).
+
+use crate::diag::Diagnostic;
+use crate::expr::{atom, Expr};
+use crate::parse::ast::Role;
+use crate::poly::{Poly, Var};
+use crate::scene::Scene;
+
+/// One equation: `lhs = rhs` for a coordinate.
+#[derive(Clone, Debug)]
+pub struct Equation {
+    pub coordinate: String,
+    /// d/dt(∂E/∂q̇_k) − ∂E/∂q_k.
+    pub lhs: Expr,
+    /// The generalized force Q_k.
+    pub rhs: Expr,
+}
+
+/// Lagrange's equations of a scene, with the mass matrix and forcing.
+#[derive(Clone, Debug)]
+pub struct Lagrange {
+    pub coordinates: Vec<String>,
+    /// Total kinetic energy E.
+    pub kinetic: Expr,
+    pub equations: Vec<Equation>,
+    /// M_ij = ∂²E/∂q̇_i∂q̇_j.
+    pub mass_matrix: Vec<Vec<Expr>>,
+    /// f with M·q̈ = f.
+    pub forcing: Vec<Expr>,
+}
+
+impl Lagrange {
+    /// Derive the equations of a scene.
+    pub fn derive(scene: &Scene) -> Result<Lagrange, Diagnostic> {
+        let n = scene.coordinates.len();
+        if n == 0 {
+            return Err(Diagnostic::global(
+                "the scene declares no coordinates, so there are no Lagrange equations",
+            )
+            .with_hint("declare the generalized coordinates with `coordinates q1, q2, …`"));
+        }
+        if !scene.has_role(Role::Kinetic) {
+            return Err(Diagnostic::global("the scene has no kinetic energy")
+                .with_hint("add `kinetic E = …` (several `kinetic` lines add up)"));
+        }
+        let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
+        let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();
+        let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
+        let qdd: Vec<Var> = names.iter().map(|c| atom::coord(c, 2)).collect();
+
+        let e = scene.role_sum(Role::Kinetic);
+        // V − U as one potential; L; D − R as one (book-sign) dissipation.
+        let has_v = scene.has_role(Role::Potential) || scene.has_role(Role::ForceFunction);
+        let v = if has_v {
+            scene
+                .role_sum(Role::Potential)
+                .sub(&scene.role_sum(Role::ForceFunction))
+        } else {
+            Expr::zero()
+        };
+        let l = scene.role_sum(Role::Work);
+        let has_d = scene.has_role(Role::Dissipation) || scene.has_role(Role::Rayleigh);
+        let d = if has_d {
+            scene
+                .role_sum(Role::Dissipation)
+                .sub(&scene.role_sum(Role::Rayleigh))
+        } else {
+            Expr::zero()
+        };
+        let e_vars = e.vars();
+        let mentions = |x: &Expr, vars: &[Var], v: Var| -> bool {
+            let _ = x;
+            vars.iter()
+                .any(|&a| a == v || crate::expr::diff::atom_depends_on(a, v))
+        };
+        let v_vars = v.vars();
+        let l_vars = l.vars();
+        let d_vars = d.vars();
+
+        let mut equations = Vec::with_capacity(n);
+        let mut mass = vec![vec![Expr::zero(); n]; n];
+        let mut forcing = Vec::with_capacity(n);
+        for k in 0..n {
+            let p = if mentions(&e, &e_vars, qd[k]) {
+                e.diff(qd[k])
+            } else {
+                Expr::zero()
+            };
+            let mut lhs = p.dt();
+            if mentions(&e, &e_vars, q[k]) {
+                lhs = lhs.sub(&e.diff(q[k]));
+            }
+            let mut rhs = Expr::zero();
+            if mentions(&v, &v_vars, q[k]) {
+                rhs = rhs.sub(&v.diff(q[k]));
+            }
+            if mentions(&l, &l_vars, q[k]) {
+                rhs = rhs.add(&l.diff(q[k]));
+            }
+            if mentions(&d, &d_vars, qd[k]) {
+                rhs = rhs.add(&d.diff(qd[k]));
+            }
+            for f in scene.forces.iter().filter(|f| f.coordinate == k) {
+                rhs = rhs.add(&f.value);
+            }
+            // Mass-matrix row and the rest of the left-hand side.
+            let (row, rest) = split_linear(&lhs, &qdd);
+            for (j, m) in row.into_iter().enumerate() {
+                mass[k][j] = m;
+            }
+            forcing.push(rhs.sub(&rest));
+            equations.push(Equation {
+                coordinate: names[k].clone(),
+                lhs,
+                rhs,
+            });
+        }
+        Ok(Lagrange {
+            coordinates: names,
+            kinetic: e,
+            equations,
+            mass_matrix: mass,
+            forcing,
+        })
+    }
+
+    /// The exact accelerations q̈ = M⁻¹·f.
+    pub fn accelerations(&self) -> Result<Vec<(String, Expr)>, Diagnostic> {
+        let sol = crate::solve::linear::solve(&self.mass_matrix, &self.forcing).map_err(|e| {
+            match e {
+                crate::solve::linear::SolveError::Singular { dependent } => {
+                    let names: Vec<&str> = dependent
+                        .iter()
+                        .filter_map(|&i| self.coordinates.get(i).map(|s| s.as_str()))
+                        .collect();
+                    Diagnostic::global(format!(
+                        "the mass matrix is singular: the coordinates {} are not independent in the kinetic energy",
+                        names.join(", ")
+                    ))
+                    .with_hint("a combination of their velocities carries no kinetic energy; remove a redundant coordinate or add the missing inertia")
+                }
+                crate::solve::linear::SolveError::Math(m) => Diagnostic::global(m.message),
+            }
+        })?;
+        Ok(self.coordinates.iter().cloned().zip(sol).collect())
+    }
+}
+
+/// Split `e` (linear in the variables `vs`) as Σ coef_j·vs_j + rest.
+pub fn split_linear(e: &Expr, vs: &[Var]) -> (Vec<Expr>, Expr) {
+    let den = e.den().clone();
+    let mut rest = e.num().clone();
+    let mut coefs = Vec::with_capacity(vs.len());
+    for &v in vs {
+        if !rest.contains_var(v) {
+            coefs.push(Expr::zero());
+            continue;
+        }
+        let cs = rest.coeffs_in(v);
+        let c1 = cs.get(1).cloned().unwrap_or_default();
+        // Any higher power would mean a nonlinear left-hand side; Lagrange's
+        // left-hand sides are always linear in q̈, so cs.len() ≤ 2.
+        rest = cs.first().cloned().unwrap_or_default();
+        if cs.len() > 2 {
+            let higher: Vec<Poly> = cs[2..].to_vec();
+            let mut extra = Poly::zero();
+            for (i, c) in higher.iter().enumerate() {
+                extra = &extra + &(c * &Poly::var(v).pow(i as u32 + 2));
+            }
+            rest = &rest + &extra;
+        }
+        coefs.push(Expr::from_parts(c1, den.clone()).unwrap_or_else(|_| Expr::zero()));
+    }
+    let rest = Expr::from_parts(rest, den).unwrap_or_else(|_| Expr::zero());
+    (coefs, rest)
+}

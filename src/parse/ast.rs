@@ -1,0 +1,148 @@
+//! The syntax tree of a `.qd` scene, exactly as written (no evaluation).
+//!
+//! Every node carries a [`Span`] (byte offsets into the source) so that later
+//! stages can point at the offending text. The grammar is `grammar/qd.ebnf`;
+//! the parser in `parse/mod.rs` follows it rule by rule.
+
+use num_rational::BigRational;
+
+/// Byte range `start..end` into the scene source.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub struct Span {
+    pub start: usize,
+    pub end: usize,
+}
+
+impl Span {
+    pub fn new(start: usize, end: usize) -> Span {
+        Span { start, end }
+    }
+    /// The smallest span covering both.
+    pub fn to(self, other: Span) -> Span {
+        Span::new(self.start.min(other.start), self.end.max(other.end))
+    }
+}
+
+/// An identifier with its position.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Ident {
+    pub name: String,
+    pub span: Span,
+}
+
+/// A declared name in `coordinates …` or `parameters …`, with an optional
+/// dimension annotation `r: length` (parsed and kept; not yet interpreted).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Decl {
+    pub name: Ident,
+    pub dimension: Option<Ident>,
+}
+
+/// The role a named expression plays in Lagrange's equations.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Role {
+    /// `kinetic` — kinetic energy E.
+    Kinetic,
+    /// `potential` — potential energy V: Q_k −= ∂V/∂q_k.
+    Potential,
+    /// `forcefunction` — the book's force function U = −V: Q_k += ∂U/∂q_k.
+    ForceFunction,
+    /// `work` — work L of non-conservative forces: Q_k += ∂L/∂q_k.
+    Work,
+    /// `dissipation` — the book's D ≤ 0: Q_k += ∂D/∂q̇_k.
+    Dissipation,
+    /// `rayleigh` — Rayleigh's R ≥ 0: Q_k −= ∂R/∂q̇_k.
+    Rayleigh,
+}
+
+impl Role {
+    pub fn keyword(self) -> &'static str {
+        match self {
+            Role::Kinetic => "kinetic",
+            Role::Potential => "potential",
+            Role::ForceFunction => "forcefunction",
+            Role::Work => "work",
+            Role::Dissipation => "dissipation",
+            Role::Rayleigh => "rayleigh",
+        }
+    }
+    pub fn from_keyword(s: &str) -> Option<Role> {
+        Some(match s {
+            "kinetic" => Role::Kinetic,
+            "potential" => Role::Potential,
+            "forcefunction" => Role::ForceFunction,
+            "work" => Role::Work,
+            "dissipation" => Role::Dissipation,
+            "rayleigh" => Role::Rayleigh,
+            _ => return None,
+        })
+    }
+}
+
+/// One statement (one logical line) of a scene.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Stmt {
+    /// `coordinates y3, theta3`
+    Coordinates(Vec<Decl>, Span),
+    /// `parameters G, g, r`
+    Parameters(Vec<Decl>, Span),
+    /// `m = G/g`
+    Def { name: Ident, value: Expr, span: Span },
+    /// `kinetic E1 = 1/2*m*y1'^2`; the name is also an ordinary definition.
+    Role {
+        role: Role,
+        name: Ident,
+        value: Expr,
+        span: Span,
+    },
+    /// `force theta: M0*cos(t)` — a generalized force on one coordinate.
+    Force {
+        coordinate: Ident,
+        value: Expr,
+        span: Span,
+    },
+}
+
+impl Stmt {
+    pub fn span(&self) -> Span {
+        match self {
+            Stmt::Coordinates(_, s) | Stmt::Parameters(_, s) => *s,
+            Stmt::Def { span, .. } | Stmt::Role { span, .. } | Stmt::Force { span, .. } => *span,
+        }
+    }
+}
+
+/// Binary operators.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum BinOp {
+    Add,
+    Sub,
+    Mul,
+    Div,
+    Pow,
+}
+
+/// An expression as written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Expr {
+    pub kind: ExprKind,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum ExprKind {
+    /// An exact number: `3`, `0.25` (= 1/4), `1.5e-3` (= 3/2000).
+    Num(BigRational),
+    /// An angle in degrees: `30deg` or `30°`; the value is the number of degrees.
+    Degrees(BigRational),
+    /// A name: parameter, coordinate, definition, `t` or `pi`.
+    Name(String),
+    /// Unary minus.
+    Neg(Box<Expr>),
+    /// `a + b`, `a - b`, `a * b` (also implicit: `2r`, `2(x+y)`), `a / b`, `a ^ b`.
+    Bin(BinOp, Box<Expr>, Box<Expr>),
+    /// `sin(x)`, `sqrt(x)`, … — the function name and its arguments.
+    Call(Ident, Vec<Expr>),
+    /// `x'` (order 1), `x''` (order 2), …: the total time derivative.
+    Prime(Box<Expr>, u32),
+}

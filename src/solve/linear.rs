@@ -1,0 +1,176 @@
+//! Exact linear systems A·x = b over the field of rational functions.
+//!
+//! Fraction-free (Bareiss) elimination: each row is cleared of denominators,
+//! the elimination runs on polynomials with exact divisions by the previous
+//! pivot (Sylvester's identity), and back-substitution computes the Cramer
+//! numerators X_i = det·x_i, again with exact divisions. Only the final
+//! quotients X_i/det are brought to canonical form, so intermediate
+//! expressions never carry denominators and no gcd is computed until the end.
+//!
+//! The elimination runs in the free polynomial ring (sin and cos as
+//! independent variables), where Sylvester's identity makes every division
+//! exact; the relation sin² + cos² = 1 is applied when the results are made
+//! canonical, which is sound because reduction is a ring homomorphism.
+
+use crate::expr::{Expr, MathError};
+use crate::poly::Poly;
+
+#[derive(Clone, Debug)]
+pub enum SolveError {
+    /// The matrix is singular; `dependent` lists the unknowns (column
+    /// indices) of a null vector's support.
+    Singular { dependent: Vec<usize> },
+    Math(MathError),
+}
+
+fn lcm(a: &Poly, b: &Poly) -> Poly {
+    if b.is_one() {
+        return a.clone();
+    }
+    if a.is_one() {
+        return b.clone();
+    }
+    let g = a.gcd(b);
+    match b.div_exact(&g) {
+        Some(q) => a * &q,
+        None => a * b,
+    }
+}
+
+/// Solve `a·x = b` exactly (a square).
+pub fn solve(a: &[Vec<Expr>], b: &[Expr]) -> Result<Vec<Expr>, SolveError> {
+    let n = a.len();
+    if n == 0 {
+        return Ok(Vec::new());
+    }
+    // Rows cleared of denominators: [A | b] over polynomials.
+    let mut m: Vec<Vec<Poly>> = Vec::with_capacity(n);
+    for i in 0..n {
+        let row: Vec<&Expr> = a[i].iter().chain(std::iter::once(&b[i])).collect();
+        let mut l = Poly::one();
+        for e in &row {
+            l = lcm(&l, e.den());
+        }
+        let mut out = Vec::with_capacity(n + 1);
+        for e in &row {
+            if e.den().is_one() {
+                out.push(e.num() * &l);
+            } else {
+                let f = l.div_exact(e.den()).unwrap_or_else(|| l.clone());
+                out.push(e.num() * &f);
+            }
+        }
+        m.push(out);
+    }
+    let mut prev = Poly::one();
+    for k in 0..n {
+        // Pivot: the nonzero (also modulo sin² + cos² = 1) entry with fewest terms.
+        let piv = (k..n)
+            .filter(|&r| !m[r][k].is_zero() && !crate::expr::reduce_poly(&m[r][k]).is_zero())
+            .min_by_key(|&r| m[r][k].len());
+        let Some(p) = piv else {
+            return Err(SolveError::Singular {
+                dependent: dependent_unknowns(a),
+            });
+        };
+        m.swap(k, p);
+        for i in k + 1..n {
+            if m[i][k].is_zero() {
+                // Row i still needs scaling by the pivot ratio for the identity.
+                for j in k + 1..=n {
+                    let t = &m[k][k] * &m[i][j];
+                    m[i][j] = exact(&t, &prev)?;
+                }
+                continue;
+            }
+            for j in k + 1..=n {
+                let t = &(&m[k][k] * &m[i][j]) - &(&m[i][k] * &m[k][j]);
+                m[i][j] = exact(&t, &prev)?;
+            }
+            m[i][k] = Poly::zero();
+        }
+        prev = m[k][k].clone();
+    }
+    let det = m[n - 1][n - 1].clone();
+    if crate::expr::reduce_poly(&det).is_zero() {
+        return Err(SolveError::Singular {
+            dependent: dependent_unknowns(a),
+        });
+    }
+    // Cramer numerators X_i = det·x_i.
+    let mut xs = vec![Poly::zero(); n];
+    for i in (0..n).rev() {
+        let mut t = &det * &m[i][n];
+        for j in i + 1..n {
+            t = &t - &(&m[i][j] * &xs[j]);
+        }
+        xs[i] = exact(&t, &m[i][i])?;
+    }
+    xs.into_iter()
+        .map(|x| {
+            Expr::from_parts(x, det.clone()).map_err(|_| SolveError::Singular {
+                dependent: dependent_unknowns(a),
+            })
+        })
+        .collect()
+}
+
+fn exact(t: &Poly, d: &Poly) -> Result<Poly, SolveError> {
+    if d.is_one() {
+        return Ok(t.clone());
+    }
+    t.div_exact(d).ok_or_else(|| {
+        SolveError::Math(MathError::new(
+            "internal error: a fraction-free elimination step did not divide exactly",
+        ))
+    })
+}
+
+/// The support of a null vector of a singular matrix (Gaussian elimination
+/// over the canonical expressions, whose zero test is exact).
+pub fn dependent_unknowns(a: &[Vec<Expr>]) -> Vec<usize> {
+    let n = a.len();
+    let cols = a.first().map(|r| r.len()).unwrap_or(0);
+    let mut m: Vec<Vec<Expr>> = a.to_vec();
+    let mut pivot_cols = Vec::new();
+    let mut row = 0;
+    for c in 0..cols {
+        let Some(p) = (row..n).find(|&r| !m[r][c].is_zero()) else {
+            continue;
+        };
+        m.swap(row, p);
+        let inv = match m[row][c].recip() {
+            Ok(x) => x,
+            Err(_) => continue,
+        };
+        for j in 0..cols {
+            m[row][j] = m[row][j].mul(&inv);
+        }
+        for r in 0..n {
+            if r != row && !m[r][c].is_zero() {
+                let f = m[r][c].clone();
+                for j in 0..cols {
+                    let t = f.mul(&m[row][j]);
+                    m[r][j] = m[r][j].sub(&t);
+                }
+            }
+        }
+        pivot_cols.push(c);
+        row += 1;
+        if row == n {
+            break;
+        }
+    }
+    // The first free column gives a null vector: x_free = 1, x_pivot = −m[r][free].
+    let Some(free) = (0..cols).find(|c| !pivot_cols.contains(c)) else {
+        return (0..cols).collect();
+    };
+    let mut out = vec![free];
+    for (r, &pc) in pivot_cols.iter().enumerate() {
+        if !m[r][free].is_zero() {
+            out.push(pc);
+        }
+    }
+    out.sort_unstable();
+    out
+}

@@ -1,0 +1,3 @@
+//! Exact solving: linear systems over rational functions.
+
+pub mod linear;

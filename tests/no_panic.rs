@@ -1,0 +1,58 @@
+//! No input makes qdot panic: random bytes and random token sequences go
+//! through the parser and the whole pipeline (derive, solve, print); every
+//! failure must be a `Diagnostic`.
+
+use proptest::prelude::*;
+use qdot::Scene;
+
+fn pipeline(src: &str) {
+    let Ok(scene) = Scene::parse(src) else {
+        return;
+    };
+    let Ok(l) = scene.lagrange() else {
+        return;
+    };
+    let _ = qdot::output::derive_text(&l);
+    if let Ok(acc) = l.accelerations() {
+        let _ = qdot::output::solve_json(&l, &acc);
+    }
+}
+
+const TOKENS: &[&str] = &[
+    "coordinates", "parameters", "kinetic", "potential", "forcefunction", "work",
+    "dissipation", "rayleigh", "force", "x", "y", "a", "b", "t", "pi", "E", "V",
+    "=", ":", ",", "+", "-", "*", "/", "^", "(", ")", "'", "''", "\n", " ", "#",
+    "1", "2", "0", "0.5", "1e-3", "30deg", "°", "sin", "cos", "sqrt", "tan", "ln",
+    "exp", "atan", "θ", ";", "[", "]", "{", "}", "\"",
+];
+
+fn token_soup() -> impl Strategy<Value = String> {
+    prop::collection::vec(prop::sample::select(TOKENS), 0..40).prop_map(|v| v.concat())
+}
+
+/// Mostly well-formed scenes with random right-hand sides.
+fn near_scene() -> impl Strategy<Value = String> {
+    (token_soup(), token_soup()).prop_map(|(a, b)| {
+        format!("coordinates x, y\nparameters a, b\nkinetic E = 1/2*a*x'^2 + 1/2*b*y'^2 + {a}\npotential V = {b}\n")
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 400, .. ProptestConfig::default() })]
+
+    #[test]
+    fn random_bytes_never_panic(bytes in prop::collection::vec(any::<u8>(), 0..200)) {
+        let src = String::from_utf8_lossy(&bytes);
+        pipeline(&src);
+    }
+
+    #[test]
+    fn random_tokens_never_panic(src in token_soup()) {
+        pipeline(&src);
+    }
+
+    #[test]
+    fn random_scenes_never_panic(src in near_scene()) {
+        pipeline(&src);
+    }
+}

@@ -1,0 +1,199 @@
+//! Property tests of the canonical form: it agrees with a numeric
+//! evaluation of the expression as written, derivatives agree with finite
+//! differences, and printing then parsing gives the same expression.
+
+use proptest::prelude::*;
+use qdot::expr::atom::Atom;
+use qdot::parse::ast::{BinOp, Expr as Ast, ExprKind};
+use qdot::{Expr, Scene};
+
+const SCENE: &str = "coordinates x, y\nparameters a, b\n";
+
+fn scene() -> Scene {
+    Scene::parse(SCENE).expect("scene parses")
+}
+
+/// Random expressions over x, y, a, b as source text.
+fn expr_src() -> impl Strategy<Value = String> {
+    let leaf = prop_oneof![
+        (1i64..9).prop_map(|n| n.to_string()),
+        (1i64..9, 2i64..7).prop_map(|(n, d)| format!("({n}/{d})")),
+        Just("x".to_string()),
+        Just("y".to_string()),
+        Just("a".to_string()),
+        Just("b".to_string()),
+        Just("pi".to_string()),
+    ];
+    leaf.prop_recursive(4, 24, 3, |inner| {
+        prop_oneof![
+            (inner.clone(), inner.clone()).prop_map(|(l, r)| format!("({l} + {r})")),
+            (inner.clone(), inner.clone()).prop_map(|(l, r)| format!("({l} - {r})")),
+            (inner.clone(), inner.clone()).prop_map(|(l, r)| format!("({l} * {r})")),
+            (inner.clone(), inner.clone()).prop_map(|(l, r)| format!("({l}) / (a + {r}*{r})")),
+            (inner.clone(), 0u32..4).prop_map(|(l, e)| format!("({l})^{e}")),
+            inner.clone().prop_map(|l| format!("sin({l})")),
+            inner.clone().prop_map(|l| format!("cos({l})")),
+            inner.clone().prop_map(|l| format!("sqrt(b + ({l})^2)")),
+            inner.clone().prop_map(|l| format!("cos(x - y) * {l}")),
+            inner.prop_map(|l| format!("sin(2*x + pi/6) * {l}")),
+        ]
+    })
+}
+
+/// Evaluate the syntax tree directly, independently of the canonical form.
+fn eval_ast(e: &Ast, env: &dyn Fn(&str) -> f64) -> f64 {
+    match &e.kind {
+        ExprKind::Num(r) => {
+            use num_traits::ToPrimitive;
+            r.to_f64().unwrap_or(f64::NAN)
+        }
+        ExprKind::Degrees(r) => {
+            use num_traits::ToPrimitive;
+            r.to_f64().unwrap_or(f64::NAN) * std::f64::consts::PI / 180.0
+        }
+        ExprKind::Name(n) => env(n),
+        ExprKind::Neg(x) => -eval_ast(x, env),
+        ExprKind::Bin(op, a, b) => {
+            let (x, y) = (eval_ast(a, env), eval_ast(b, env));
+            match op {
+                BinOp::Add => x + y,
+                BinOp::Sub => x - y,
+                BinOp::Mul => x * y,
+                BinOp::Div => x / y,
+                BinOp::Pow => x.powf(y),
+            }
+        }
+        ExprKind::Call(f, args) => {
+            let x = eval_ast(&args[0], env);
+            match f.name.as_str() {
+                "sin" => x.sin(),
+                "cos" => x.cos(),
+                "tan" => x.tan(),
+                "sqrt" => x.sqrt(),
+                "exp" => x.exp(),
+                "ln" => x.ln(),
+                "atan" => x.atan(),
+                _ => f64::NAN,
+            }
+        }
+        ExprKind::Prime(..) => f64::NAN,
+    }
+}
+
+fn point(vals: [f64; 4]) -> impl Fn(&str) -> f64 {
+    move |n: &str| match n {
+        "x" => vals[0],
+        "y" => vals[1],
+        "a" => vals[2],
+        "b" => vals[3],
+        "pi" => std::f64::consts::PI,
+        _ => f64::NAN,
+    }
+}
+
+fn eval_expr(e: &Expr, vals: [f64; 4]) -> f64 {
+    let env = point(vals);
+    e.eval_f64(&|a: &Atom| match a {
+        Atom::Param(n) => Some(env(n)),
+        Atom::Coord(n, 0) => Some(env(n)),
+        _ => None,
+    })
+    .unwrap_or(f64::NAN)
+}
+
+fn close(x: f64, y: f64, tol: f64) -> bool {
+    (x - y).abs() <= tol * (1.0 + x.abs().max(y.abs()))
+}
+
+fn vals() -> impl Strategy<Value = [f64; 4]> {
+    (-2.0f64..2.0, -2.0f64..2.0, 0.5f64..2.0, 0.5f64..2.0).prop_map(|(x, y, a, b)| [x, y, a, b])
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, .. ProptestConfig::default() })]
+
+    #[test]
+    fn canonical_form_agrees_with_numeric_evaluation(src in expr_src(), v in vals()) {
+        let s = scene();
+        let e = s.expr(&src).expect("random expression evaluates");
+        let ast = qdot::parse::parse_expr(&src).expect("parses");
+        let want = eval_ast(&ast, &point(v));
+        prop_assume!(want.is_finite() && want.abs() < 1e8);
+        let got = eval_expr(&e, v);
+        prop_assert!(close(got, want, 1e-7), "{src}: canonical {e} gives {got}, direct {want}");
+    }
+
+    #[test]
+    fn print_then_parse_is_identity(src in expr_src()) {
+        let s = scene();
+        let e = s.expr(&src).expect("evaluates");
+        let printed = e.to_string();
+        let again = s.expr(&printed).unwrap_or_else(|d| panic!("{printed}: {d}"));
+        prop_assert_eq!(&again, &e, "printed as {}", printed);
+    }
+
+    #[test]
+    fn derivative_agrees_with_finite_differences(src in expr_src(), v in vals()) {
+        let s = scene();
+        let e = s.expr(&src).expect("evaluates");
+        let x = qdot::expr::atom::coord("x", 0);
+        let d = e.diff(x);
+        let h = 1e-5;
+        let f = |dx: f64| eval_expr(&e, [v[0] + dx, v[1], v[2], v[3]]);
+        let fd = (f(h) - f(-h)) / (2.0 * h);
+        let got = eval_expr(&d, v);
+        prop_assume!(fd.is_finite() && fd.abs() < 1e5 && got.is_finite());
+        prop_assert!(close(got, fd, 1e-4), "{src}: d/dx = {d} gives {got}, finite difference {fd}");
+    }
+
+    #[test]
+    fn subtraction_from_itself_is_zero(src in expr_src()) {
+        let s = scene();
+        let e = s.expr(&src).expect("evaluates");
+        let again = s.expr(&format!("({src}) - ({src})")).expect("evaluates");
+        prop_assert!(again.is_zero());
+        prop_assert!(e.sub(&e).is_zero());
+    }
+}
+
+#[test]
+fn exact_radicals() {
+    let s = scene();
+    let cases = [
+        ("sqrt(3)*sqrt(3)", "3"),
+        ("sqrt(12)", "2*sqrt(3)"),
+        ("1/sqrt(3)", "sqrt(3)/3"),
+        ("sqrt(6)", "sqrt(2)*sqrt(3)"),
+        ("sqrt(1/2)", "sqrt(2)/2"),
+        ("sin(pi/6)", "1/2"),
+        ("cos(pi/6)", "sqrt(3)/2"),
+        ("sin(30deg)", "1/2"),
+        ("cos(45deg)", "sqrt(2)/2"),
+        ("tan(pi/3)", "sqrt(3)"),
+        ("tan(pi/4)", "1"),
+        ("sin(pi/12)", "(sqrt(6) - sqrt(2))/4"),
+        ("cos(pi)", "-1"),
+        ("sin(x)^2 + cos(x)^2", "1"),
+        ("cos(2*x)", "1 - 2*sin(x)^2"),
+        ("sin(x - y)", "sin(x)*cos(y) - cos(x)*sin(y)"),
+        ("1/(sqrt(2) + 1)", "sqrt(2) - 1"),
+        ("sqrt(a^2*b)", "a*sqrt(b)"),
+        ("0.25", "1/4"),
+        ("2a", "2*a"),
+        ("exp(ln(a))", "a"),
+    ];
+    for (lhs, rhs) in cases {
+        let l = s.expr(lhs).unwrap();
+        let r = s.expr(rhs).unwrap();
+        assert_eq!(l, r, "{lhs} = {l}, want {rhs} = {r}");
+    }
+}
+
+#[test]
+fn lowest_terms() {
+    let s = scene();
+    let e = s.expr("(x^2 - y^2)/(x + y)").unwrap();
+    assert_eq!(e.to_string(), "x - y");
+    let e = s.expr("(a*x + a*y)/(2*a*b)").unwrap();
+    assert_eq!(e, s.expr("(x + y)/(2*b)").unwrap());
+}
