@@ -57,7 +57,12 @@ fn npendulum(c: &mut Criterion) {
         g.bench_with_input(BenchmarkId::from_parameter(n), &src, |b, src| {
             b.iter(|| {
                 let s = Scene::parse(black_box(src)).expect("parses");
-                black_box(s.lagrange().expect("derives").accelerations().expect("solves"))
+                black_box(
+                    s.lagrange()
+                        .expect("derives")
+                        .accelerations()
+                        .expect("solves"),
+                )
             })
         });
     }

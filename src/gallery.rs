@@ -16,7 +16,9 @@ pub fn pendulum_chain(n: usize) -> String {
             s.push_str("x1 = l*sin(q1)\ny1 = -l*cos(q1)\n");
         } else {
             let p = i - 1;
-            s.push_str(&format!("x{i} = x{p} + l*sin(q{i})\ny{i} = y{p} - l*cos(q{i})\n"));
+            s.push_str(&format!(
+                "x{i} = x{p} + l*sin(q{i})\ny{i} = y{p} - l*cos(q{i})\n"
+            ));
         }
         s.push_str(&format!("kinetic E{i} = 1/2*m*(x{i}'^2 + y{i}'^2)\n"));
         s.push_str(&format!("potential V{i} = m*g*y{i}\n"));

@@ -15,7 +15,7 @@
 //!     forcefunction U = m*g*x - 1/2*k*x^2
 //! ").unwrap();
 //! let acc = scene.lagrange().unwrap().accelerations().unwrap();
-//! assert_eq!(acc[0].1.to_string(), "g - k*x/m");
+//! assert_eq!(acc[0].1.to_string(), "-k*x/m + g");
 //! ```
 //!
 //! The data's path: [`parse`] → [`scene`] → [`expr`] (canonical exact

@@ -6,7 +6,11 @@ use qdot::{Diagnostic, Scene};
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "qdot", version, about = "Exact analytical mechanics: Lagrange's equations, derived and solved exactly")]
+#[command(
+    name = "qdot",
+    version,
+    about = "Exact analytical mechanics: Lagrange's equations, derived and solved exactly"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

@@ -19,7 +19,7 @@
 
 use crate::num::Q;
 use num_bigint::BigInt;
-use num_integer::{Integer, Roots};
+use num_integer::Integer;
 use num_traits::{Signed, ToPrimitive, Zero};
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
@@ -263,7 +263,12 @@ impl Mono {
         if e == 0 {
             return Mono::one();
         }
-        Mono(self.0.iter().map(|&(v, x)| (v, x.saturating_mul(e))).collect())
+        Mono(
+            self.0
+                .iter()
+                .map(|&(v, x)| (v, x.saturating_mul(e)))
+                .collect(),
+        )
     }
 
     /// `self` with variable `v` removed.
@@ -971,7 +976,12 @@ impl Poly {
         let terms = self
             .terms
             .iter()
-            .map(|(m, c)| (Mono::from_pairs(m.0.iter().map(|&(v, e)| (f(v), e))), c.clone()))
+            .map(|(m, c)| {
+                (
+                    Mono::from_pairs(m.0.iter().map(|&(v, e)| (f(v), e))),
+                    c.clone(),
+                )
+            })
             .collect();
         Poly::from_terms(terms)
     }
@@ -1193,7 +1203,10 @@ impl Poly {
         if !d.terms[0].0.divides(&self.terms[0].0) {
             return None;
         }
-        let (ld, la) = (&d.terms[d.terms.len() - 1].0, &self.terms[self.terms.len() - 1].0);
+        let (ld, la) = (
+            &d.terms[d.terms.len() - 1].0,
+            &self.terms[self.terms.len() - 1].0,
+        );
         if !ld.divides(la) {
             return None;
         }
@@ -1937,7 +1950,9 @@ fn subresultant(a: Vec<Poly>, b: Vec<Poly>) -> Vec<Poly> {
             None
         } else {
             let div = &gg * &h.pow(delta);
-            r.iter().map(|c| c.div_exact(&div)).collect::<Option<Vec<_>>>()
+            r.iter()
+                .map(|c| c.div_exact(&div))
+                .collect::<Option<Vec<_>>>()
         };
         let next = match next {
             Some(n) => n,

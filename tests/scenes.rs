@@ -119,8 +119,16 @@ fn potential_rayleigh_work_and_force_together() {
          force y: M0*sin(w*t)\n",
     );
     let l = s.lagrange().unwrap();
-    check(&s, &l.equations[0].rhs, "-k*x + k*(y - x) - c*x' + c*(y' - x') + F0*cos(w*t)");
-    check(&s, &l.equations[1].rhs, "-k*(y - x) - c*(y' - x') + M0*sin(w*t)");
+    check(
+        &s,
+        &l.equations[0].rhs,
+        "-k*x + k*(y - x) - c*x' + c*(y' - x') + F0*cos(w*t)",
+    );
+    check(
+        &s,
+        &l.equations[1].rhs,
+        "-k*(y - x) - c*(y' - x') + M0*sin(w*t)",
+    );
     let a = acc(&s);
     check(&s, &a[0], "(-2*k*x + k*y - 2*c*x' + c*y' + F0*cos(w*t))/m");
     check(&s, &a[1], "(k*x - k*y + c*x' - c*y' + M0*sin(w*t))/m");
@@ -128,7 +136,8 @@ fn potential_rayleigh_work_and_force_together() {
 
 #[test]
 fn singular_mass_matrix_names_the_coordinates() {
-    let s = parse("coordinates x, y, z\nparameters m\nkinetic E = 1/2*m*(x' + y')^2 + 1/2*m*z'^2\n");
+    let s =
+        parse("coordinates x, y, z\nparameters m\nkinetic E = 1/2*m*(x' + y')^2 + 1/2*m*z'^2\n");
     let err = s.lagrange().unwrap().accelerations().unwrap_err();
     assert!(err.message.contains("singular"), "{}", err.message);
     assert!(err.message.contains("x, y"), "{}", err.message);
@@ -138,7 +147,8 @@ fn singular_mass_matrix_names_the_coordinates() {
 #[test]
 fn skips_what_is_not_needed() {
     // E independent of q: no ∂E/∂q; no dissipation: none in Q.
-    let s = parse("coordinates x\nparameters m, k\nkinetic E = 1/2*m*x'^2\npotential V = 1/2*k*x^2\n");
+    let s =
+        parse("coordinates x\nparameters m, k\nkinetic E = 1/2*m*x'^2\npotential V = 1/2*k*x^2\n");
     let l = s.lagrange().unwrap();
     check(&s, &l.equations[0].lhs, "m*x''");
     check(&s, &l.equations[0].rhs, "-k*x");

@@ -23,10 +23,7 @@ fn accelerations(s: &Scene) -> Vec<(String, Expr)> {
 /// Assert exact equality, showing both sides on failure.
 fn assert_exact(s: &Scene, got: &Expr, want: &str) {
     let w = s.expr(want).expect("expected value parses");
-    assert!(
-        got.equals(&w),
-        "got {got}, want {want} (= {w})"
-    );
+    assert!(got.equals(&w), "got {got}, want {want} (= {w})");
     // Canonical: structurally equal too (no cos in these denominators).
     assert_eq!(got, &w, "not in the same canonical form");
 }

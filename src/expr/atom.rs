@@ -166,7 +166,9 @@ pub fn atom(v: Var) -> Atom {
 /// For a reducible variable r, the polynomial P with r² = P.
 pub fn square_of(v: Var) -> Option<Poly> {
     let t = read();
-    t.entries.get((v >> 2) as usize).and_then(|e| e.square.clone())
+    t.entries
+        .get((v >> 2) as usize)
+        .and_then(|e| e.square.clone())
 }
 
 /// Shorthands.

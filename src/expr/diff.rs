@@ -98,9 +98,12 @@ pub fn atom_depends_on(a: Var, v: Var) -> bool {
         return true;
     }
     match atom::atom(a) {
-        Atom::SqrtOf(u) | Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) | Atom::Atan(u) => {
-            u.depends_on(v)
-        }
+        Atom::SqrtOf(u)
+        | Atom::Sin(u)
+        | Atom::Cos(u)
+        | Atom::Exp(u)
+        | Atom::Ln(u)
+        | Atom::Atan(u) => u.depends_on(v),
         _ => false,
     }
 }
@@ -171,10 +174,12 @@ impl Expr {
 fn atom_time_dependent(a: Var) -> bool {
     match atom::atom(a) {
         Atom::Coord(..) | Atom::Time => true,
-        Atom::SqrtOf(u) | Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) | Atom::Atan(u) => {
-            u.is_time_dependent()
-        }
+        Atom::SqrtOf(u)
+        | Atom::Sin(u)
+        | Atom::Cos(u)
+        | Atom::Exp(u)
+        | Atom::Ln(u)
+        | Atom::Atan(u) => u.is_time_dependent(),
         _ => false,
     }
 }
-

@@ -23,7 +23,28 @@ use std::sync::Arc;
 /// Largest multiple of a base angle expanded by the multiple-angle formulas.
 const MAX_MULTIPLE: i64 = 12;
 
+/// Most terms of an argument expanded by the addition theorems; an argument
+/// with more keeps its extra terms together in one base angle.
+const MAX_EXPANDED_TERMS: usize = 6;
+
+/// Whether a term of an argument is expanded on its own: a power product of
+/// parameters, coordinates, t and π (θ1, Ω·t, π/6), not of functions.
+fn is_simple_term(m: &Mono) -> bool {
+    m.0.iter().all(|&(v, _)| {
+        matches!(
+            atom::atom(v),
+            Atom::Param(_) | Atom::Coord(..) | Atom::Time | Atom::Pi
+        )
+    })
+}
+
 /// sin and cos of an expression, expanded into base-angle atoms.
+///
+/// A polynomial argument is split into its simple terms (see
+/// [`is_simple_term`]), each expanded by the addition and multiple-angle
+/// theorems, and the rest, which is kept as one base angle: `cos(θ1 − θ2)`
+/// expands, `cos(y·cos x)` does not (expanding it would multiply the size of
+/// the expression without making zero-testing any more complete).
 pub fn sin_cos(u: &Expr) -> (Expr, Expr) {
     if u.is_zero() {
         return (Expr::zero(), Expr::one());
@@ -34,12 +55,26 @@ pub fn sin_cos(u: &Expr) -> (Expr, Expr) {
     let pi = atom::pi();
     let mut s = Expr::zero();
     let mut c = Expr::one();
+    let mut rest: Vec<(Mono, Q)> = Vec::new();
+    let mut expanded = 0;
     for (m, coef) in u.num().terms() {
         let (ts, tc) = if m.0.len() == 1 && m.0[0] == (pi, 1) && is_twelfth(coef) {
             exact_pi(coef)
-        } else {
+        } else if expanded < MAX_EXPANDED_TERMS && is_simple_term(m) {
+            expanded += 1;
             term_sin_cos(m, coef)
+        } else {
+            rest.push((m.clone(), coef.clone()));
+            continue;
         };
+        let ns = s.mul(&tc).add(&c.mul(&ts));
+        let nc = c.mul(&tc).sub(&s.mul(&ts));
+        s = ns;
+        c = nc;
+    }
+    if !rest.is_empty() {
+        let r = Expr::poly(Poly::from_terms(rest));
+        let (ts, tc) = base_sin_cos_signed(&r);
         let ns = s.mul(&tc).add(&c.mul(&ts));
         let nc = c.mul(&tc).sub(&s.mul(&ts));
         s = ns;
@@ -56,9 +91,8 @@ pub fn cos(u: &Expr) -> Expr {
 }
 pub fn tan(u: &Expr) -> Result<Expr, MathError> {
     let (s, c) = sin_cos(u);
-    s.div(&c).map_err(|_| {
-        MathError::new("tan is undefined here: cos of its argument is zero")
-    })
+    s.div(&c)
+        .map_err(|_| MathError::new("tan is undefined here: cos of its argument is zero"))
 }
 
 fn is_twelfth(q: &Q) -> bool {
@@ -101,7 +135,12 @@ fn term_sin_cos(m: &Mono, coef: &Q) -> (Expr, Expr) {
     let q = coef.denom();
     let small = p.abs() <= BigInt::from(MAX_MULTIPLE) && !m.0.is_empty();
     let (base_coef, mult) = if small {
-        (Q::from_bigint(BigInt::one()).checked_div(&Q::from_bigint(q)).unwrap_or_else(Q::one), p.to_i64().unwrap_or(1))
+        (
+            Q::from_bigint(BigInt::one())
+                .checked_div(&Q::from_bigint(q))
+                .unwrap_or_else(Q::one),
+            p.to_i64().unwrap_or(1),
+        )
     } else if coef.is_negative() {
         (-coef.clone(), -1)
     } else {
@@ -195,8 +234,10 @@ fn square_free(n: &BigInt) -> (BigInt, Vec<BigInt>) {
 /// √q for a rational q ≥ 0 (an error for q < 0).
 pub fn sqrt_q(q: &Q) -> Result<Expr, MathError> {
     if q.is_negative() {
-        return Err(MathError::new(format!("square root of the negative number {q}"))
-            .hint("qdot works over the reals"));
+        return Err(
+            MathError::new(format!("square root of the negative number {q}"))
+                .hint("qdot works over the reals"),
+        );
     }
     Ok(sqrt_rational(q))
 }
@@ -209,7 +250,11 @@ fn sqrt_rational(q: &Q) -> Expr {
     let a = q.numer().abs();
     let b = q.denom();
     let (s, primes) = square_free(&(&a * &b));
-    let mut out = Expr::rational(Q::from_bigint(s).checked_div(&Q::from_bigint(b)).unwrap_or_else(Q::one));
+    let mut out = Expr::rational(
+        Q::from_bigint(s)
+            .checked_div(&Q::from_bigint(b))
+            .unwrap_or_else(Q::one),
+    );
     for p in primes {
         let v = atom::intern_radical(
             Atom::Root(Arc::from(p.to_string())),
@@ -223,7 +268,7 @@ fn sqrt_rational(q: &Q) -> Expr {
 /// Whether a variable stands for a positive quantity (a parameter, π, a
 /// positive radical), so its square root may be taken out of a radical.
 fn is_positive_atom(v: Var) -> bool {
-    matches!(atom::atom(v), Atom::Param(_) | Atom::Pi | Atom::Root(_))
+    matches!(atom::atom(v), Atom::Param(_) | Atom::Pi)
 }
 
 /// √u, exactly.
@@ -250,12 +295,18 @@ pub fn sqrt(u: &Expr) -> Result<Expr, MathError> {
     if let Some(g) = mono_gcd {
         let mut take = Mono::default();
         for &(v, e) in g.0.iter() {
-            if e >= 2 && is_positive_atom(v) {
-                take.0.push((v, e - e % 2));
-                outside = outside.mul(&Expr::poly(Poly::monomial(
-                    Mono(std::iter::once((v, e / 2)).collect()),
-                    Q::one(),
-                )));
+            if is_positive_atom(v) {
+                // √(a^e) = a^(e div 2)·√a for a positive atom a.
+                take.0.push((v, e));
+                if e >= 2 {
+                    outside = outside.mul(&Expr::poly(Poly::monomial(
+                        Mono(std::iter::once((v, e / 2)).collect()),
+                        Q::one(),
+                    )));
+                }
+                if e % 2 == 1 {
+                    outside = outside.mul(&positive_atom_sqrt(v));
+                }
             }
         }
         if !take.0.is_empty() {
@@ -274,6 +325,13 @@ pub fn sqrt(u: &Expr) -> Result<Expr, MathError> {
         Expr::var(v)
     };
     outside.mul(&inner).div(&den)
+}
+
+/// √a for a positive atom a (a parameter or π; √(√p) is not simplified).
+fn positive_atom_sqrt(v: Var) -> Expr {
+    let a = Expr::var(v);
+    let r = atom::intern_radical(Atom::SqrtOf(a), Poly::var(v));
+    Expr::var(r)
 }
 
 /// √m for a monomial m with only even exponents of positive atoms.
@@ -306,6 +364,39 @@ pub fn exp(u: &Expr) -> Expr {
             return inner;
         }
     }
+    if !u.is_poly() {
+        // exp(−u) = 1/exp(u): the atom's argument has a positive leading coefficient.
+        if u.num().leading_coeff().is_some_and(|c| c.is_negative()) {
+            return exp_atom(&u.neg()).recip().unwrap_or_else(|_| Expr::one());
+        }
+        return exp_atom(u);
+    }
+    // exp(Σ c·m) = Π exp(m/q)^p for c = p/q: products and powers of base atoms.
+    let mut out = Expr::one();
+    for (m, c) in u.num().terms() {
+        let p = c.numer();
+        let small = p.abs() <= BigInt::from(MAX_MULTIPLE);
+        let (base_coef, mult) = if small {
+            (
+                Q::one()
+                    .checked_div(&Q::from_bigint(c.denom()))
+                    .unwrap_or_else(Q::one),
+                p.to_i64().unwrap_or(1),
+            )
+        } else if c.is_negative() {
+            (-c.clone(), -1)
+        } else {
+            (c.clone(), 1)
+        };
+        let base = exp_atom(&Expr::poly(Poly::monomial(m.clone(), base_coef)));
+        if let Ok(f) = base.powi(mult) {
+            out = out.mul(&f);
+        }
+    }
+    out
+}
+
+fn exp_atom(u: &Expr) -> Expr {
     Expr::var(atom::intern(Atom::Exp(u.clone())))
 }
 
@@ -365,10 +456,19 @@ pub fn subs_atom(v: Var, map: &FxHashMap<Var, Expr>) -> Result<Option<Expr>, Mat
     }
     let a = atom::atom(v);
     let inner = match &a {
-        Atom::SqrtOf(u) | Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) | Atom::Atan(u) => u,
+        Atom::SqrtOf(u)
+        | Atom::Sin(u)
+        | Atom::Cos(u)
+        | Atom::Exp(u)
+        | Atom::Ln(u)
+        | Atom::Atan(u) => u,
         _ => return Ok(None),
     };
-    if !inner.vars().iter().any(|w| map.contains_key(w) || super::diff::atom_depends_on_any(*w, map)) {
+    if !inner
+        .vars()
+        .iter()
+        .any(|w| map.contains_key(w) || super::diff::atom_depends_on_any(*w, map))
+    {
         return Ok(None);
     }
     let u = inner.subs_many(map)?;
@@ -381,4 +481,3 @@ pub fn subs_atom(v: Var, map: &FxHashMap<Var, Expr>) -> Result<Option<Expr>, Mat
         _ => atan(&u),
     }))
 }
-

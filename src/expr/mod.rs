@@ -74,10 +74,10 @@ pub struct Expr(Arc<Rat>);
 /// Returns `None` when `p` is already reduced (the common case, checked
 /// without touching the atom table).
 fn reduce(p: &Poly) -> Option<Poly> {
-    let needs = p.terms().iter().any(|(m, _)| {
-        m.0.iter()
-            .any(|&(v, e)| e >= 2 && atom::is_reducible(v))
-    });
+    let needs = p
+        .terms()
+        .iter()
+        .any(|(m, _)| m.0.iter().any(|&(v, e)| e >= 2 && atom::is_reducible(v)));
     if !needs {
         return None;
     }
@@ -109,10 +109,10 @@ fn reduce(p: &Poly) -> Option<Poly> {
         if !changed {
             return Some(out);
         }
-        let again = out.terms().iter().any(|(m, _)| {
-            m.0.iter()
-                .any(|&(v, e)| e >= 2 && atom::is_reducible(v))
-        });
+        let again = out
+            .terms()
+            .iter()
+            .any(|(m, _)| m.0.iter().any(|&(v, e)| e >= 2 && atom::is_reducible(v)));
         if !again {
             return Some(out);
         }
@@ -493,10 +493,7 @@ impl Expr {
     }
 
     /// Replace several atoms at once.
-    pub fn subs_many(
-        &self,
-        map: &rustc_hash::FxHashMap<Var, Expr>,
-    ) -> Result<Expr, MathError> {
+    pub fn subs_many(&self, map: &rustc_hash::FxHashMap<Var, Expr>) -> Result<Expr, MathError> {
         let n = subs_poly(&self.0.num, map)?;
         let d = subs_poly(&self.0.den, map)?;
         n.div(&d)
@@ -506,10 +503,7 @@ impl Expr {
     pub fn eval_f64(&self, f: &dyn Fn(&Atom) -> Option<f64>) -> Option<f64> {
         let mut ok = true;
         let val = |v: Var| -> f64 {
-            match func::eval_atom(v, f) {
-                Some(x) => x,
-                None => f64::NAN,
-            }
+            func::eval_atom(v, f).unwrap_or(f64::NAN)
         };
         let n = self.0.num.eval_f64(&val);
         let d = self.0.den.eval_f64(&val);

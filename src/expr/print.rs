@@ -60,7 +60,7 @@ pub fn render(e: &Expr, st: Style) -> String {
             None => groups.push((key, t)),
         }
     }
-    if groups.len() == 1 && groups[0].0.0.is_empty() {
+    if groups.len() == 1 && groups[0].0 .0.is_empty() {
         return fraction(e.num(), e.den(), st);
     }
     let mut items: Vec<(Mono, String, bool)> = Vec::new();
@@ -78,7 +78,11 @@ pub fn render(e: &Expr, st: Style) -> String {
         let (neg, body) = term_with_coef(&c, &key, st);
         items.push((key, body, neg));
     }
-    items.sort_by(|a, b| display_order(&a.0, &b.0).then_with(|| a.1.cmp(&b.1)));
+    items.sort_by(|a, b| {
+        display_order(&a.0, &b.0)
+            .then_with(|| b.0.cmp(&a.0))
+            .then_with(|| a.1.cmp(&b.1))
+    });
     join_terms(items.into_iter().map(|(_, s, n)| (n, s)), st)
 }
 
@@ -128,12 +132,16 @@ fn term_with_coef(c: &Expr, key: &Mono, st: Style) -> (bool, String) {
         }
         return (neg, coef_times(&q, &key_s, st));
     }
-    let body = if c.num().len() == 1 {
-        body
-    } else {
-        format!("({body})")
-    };
-    (neg, format!("{body}{mul}{key_s}"))
+    if c.num().len() == 1 {
+        let numeric_top = c.num().terms()[0].0 .0.is_empty();
+        if st == Style::Input || numeric_top {
+            // `k*x/m`: the key joins the numerator.
+            let top = c.num().mul_mono(key, &Q::one());
+            return (neg, fraction(&top, c.den(), st));
+        }
+        return (neg, format!("{body}{mul}{key_s}"));
+    }
+    (neg, format!("({body}){mul}{key_s}"))
 }
 
 fn mul_sign(st: Style) -> &'static str {
@@ -156,7 +164,11 @@ fn coef_times(q: &Q, x: &str, st: Style) -> String {
             }
         }
         Style::Input => {
-            let head = if n == one { x.to_string() } else { format!("{n}*{x}") };
+            let head = if n == one {
+                x.to_string()
+            } else {
+                format!("{n}*{x}")
+            };
             if d == one {
                 head
             } else {
@@ -262,6 +274,25 @@ fn fraction(num: &Poly, den: &Poly, st: Style) -> String {
     let neg = c.is_negative();
     let c = c.abs();
     let mul = mul_sign(st);
+    let unit_numerator = c.numer() == num_bigint::BigInt::from(1) && !c.is_one();
+    if st == Style::Unicode
+        && pn.is_one()
+        && pd.is_one()
+        && !mn.0.is_empty()
+        && !md.0.is_empty()
+        && !unit_numerator
+    {
+        // `13/2·G/g`, `G·r/g`, `3/4·G/(g·r)`
+        let head = if c.is_one() {
+            String::new()
+        } else {
+            format!("{c}·")
+        };
+        let sign = if neg { "−" } else { "" };
+        let d = mono_str(&md, st);
+        let d = if md.0.len() > 1 { format!("({d})") } else { d };
+        return format!("{sign}{head}{}/{d}", mono_str(&mn, st));
+    }
     let mut top: Vec<String> = Vec::new();
     let cnum = Q::from_bigint(c.numer());
     let cden = Q::from_bigint(c.denom());
@@ -273,7 +304,7 @@ fn fraction(num: &Poly, den: &Poly, st: Style) -> String {
     }
     if !pn.is_one() {
         let s = sum_str(&pn, st);
-        top.push(if pn.len() > 1 && !(top.is_empty() && false) {
+        top.push(if pn.len() > 1 {
             format!("({s})")
         } else {
             s
@@ -295,11 +326,15 @@ fn fraction(num: &Poly, den: &Poly, st: Style) -> String {
         let inner = top[0][1..top[0].len() - 1].to_string();
         top[0] = format!("({inner})");
     }
-    let t = if top.is_empty() { "1".to_string() } else { top.join(mul) };
+    let t = if top.is_empty() {
+        "1".to_string()
+    } else {
+        top.join(mul)
+    };
     let s = if bottom.is_empty() {
         t
     } else {
-        let b = if bottom.len() == 1 {
+        let b = if bottom.len() == 1 && !bottom[0].contains(mul) {
             bottom.remove(0)
         } else {
             format!("({})", bottom.join(mul))
@@ -318,16 +353,19 @@ fn fraction(num: &Poly, den: &Poly, st: Style) -> String {
 
 /// Factor order inside a monomial: parameters, π, radicals, t, functions,
 /// then coordinates by derivative order.
-fn factor_rank(v: Var) -> (u8, u32, String) {
+fn factor_rank(v: Var) -> (u8, u32, String, String) {
     let a = atom::atom(v);
     let name = atom_input(&a);
+    let name = (name.to_lowercase(), name);
     match a {
-        Atom::Param(_) => (0, 0, name),
-        Atom::Pi => (1, 0, name),
-        Atom::Root(_) | Atom::SqrtOf(_) => (2, 0, name),
-        Atom::Time => (3, 0, name),
-        Atom::Sin(_) | Atom::Cos(_) | Atom::Exp(_) | Atom::Ln(_) | Atom::Atan(_) => (4, 0, name),
-        Atom::Coord(_, k) => (5, k, name),
+        Atom::Param(_) => (0, 0, name.0, name.1),
+        Atom::Pi => (1, 0, name.0, name.1),
+        Atom::Root(_) | Atom::SqrtOf(_) => (2, 0, name.0, name.1),
+        Atom::Time => (3, 0, name.0, name.1),
+        Atom::Sin(_) | Atom::Cos(_) | Atom::Exp(_) | Atom::Ln(_) | Atom::Atan(_) => {
+            (4, 0, name.0, name.1)
+        }
+        Atom::Coord(_, k) => (5, k, name.0, name.1),
     }
 }
 
@@ -471,7 +509,11 @@ pub fn pretty_name(name: &str, dots: u32) -> String {
         .map(|(i, _)| i)
         .unwrap_or(name.len());
     let (base, digits) = name.split_at(split);
-    let (base, digits) = if base.is_empty() { (name, "") } else { (base, digits) };
+    let (base, digits) = if base.is_empty() {
+        (name, "")
+    } else {
+        (base, digits)
+    };
     let base = GREEK
         .iter()
         .find(|(k, _)| *k == base)

@@ -11,6 +11,9 @@
 //! depth of the produced tree (so long `a + b + c + …` chains, which are parsed
 //! by a loop, cannot build a tree too deep to drop or to walk recursively).
 
+// `ast.rs` is kept byte-identical to the main repository's copy; default
+// rustfmt would re-wrap its `Stmt::Def` variant, so it is not formatted here.
+#[rustfmt::skip]
 pub mod ast;
 
 use std::cell::Cell;
@@ -50,24 +53,18 @@ pub fn parse_scene(src: &str) -> Result<Vec<Stmt>, Diagnostic> {
 }
 
 /// Parse a string that must hold exactly one expression (surrounding white
-/// space, newlines and comments are allowed).
+/// space, newlines and comments are allowed; newlines are white space
+/// throughout, as inside parentheses).
 pub fn parse_expr(src: &str) -> Result<Expr, Diagnostic> {
     let p = P::new(src);
-    // The whole string behaves like the inside of parentheses: newlines are
-    // white space.
-    p.parens.set(1);
-    let d = match p.expr(src) {
-        Ok((rest, node)) => {
-            let rest = p.ws(rest);
-            if rest.is_empty() {
-                return Ok(node.e);
-            }
-            p.unexpected(rest)
+    match p.whole_expr(src) {
+        Ok((_, node)) => Ok(*node.e),
+        Err(nom::Err::Error(_)) => {
+            let d = p.expected(p.ws_nl(src), "an expression", HINT_EXPR, None);
+            Err(p.finish(failure(d)))
         }
-        Err(nom::Err::Error(_)) => p.expected(p.ws(src), "an expression", HINT_EXPR, None),
-        Err(e) => return Err(p.finish(e)),
-    };
-    Err(p.finish(failure(d)))
+        Err(e) => Err(p.finish(e)),
+    }
 }
 
 // ---------------------------------------------------------------------------
@@ -101,13 +98,77 @@ fn failure(d: Diagnostic) -> nom::Err<PErr> {
     nom::Err::Failure(PErr::Diag(Box::new(d)))
 }
 
+// The error constructors used on the recursive path are kept out of line, so
+// that the frames of the recursive rules stay small (deep nesting must not
+// exhaust a 2 MiB thread stack, even in debug builds).
+
+#[cold]
+#[inline(never)]
+fn too_deep(at: Span) -> nom::Err<PErr> {
+    failure(
+        Diagnostic::error(
+            at,
+            format!("expression too deep (more than {MAX_DEPTH} levels)"),
+        )
+        .with_hint("split it into several named definitions"),
+    )
+}
+
+#[cold]
+#[inline(never)]
+fn star_star(op: Span) -> nom::Err<PErr> {
+    failure(
+        Diagnostic::error(Span::new(op.start, op.end + 1), "`**` is not an operator")
+            .with_hint("write powers with `^`, like `x^2`"),
+    )
+}
+
+#[cold]
+#[inline(never)]
+fn too_many_primes(at: Span) -> nom::Err<PErr> {
+    failure(
+        Diagnostic::error(at, "too many primes")
+            .with_hint("a derivative order must fit in 32 bits"),
+    )
+}
+
+#[cold]
+#[inline(never)]
+fn prime_on_number(at: Span) -> nom::Err<PErr> {
+    failure(
+        Diagnostic::error(at, "a prime `'` (time derivative) can't follow a number").with_hint(
+            "primes apply to names, calls and parenthesized expressions: `x'`, `sin(x)'`, `(2*x)'`; the derivative of a constant is 0",
+        ),
+    )
+}
+
+/// An operator character as a static string, for messages.
+fn op_str(c: char) -> &'static str {
+    match c {
+        '+' => "+",
+        '-' => "-",
+        '*' => "*",
+        '/' => "/",
+        _ => "^",
+    }
+}
+
 const HINT_EXPR: &str =
     "an expression is a number, a name, a call like `sin(x)` or an expression in parentheses";
 
-/// An expression together with the depth of its tree.
+/// An expression together with the depth of its tree. The expression is
+/// boxed so that parse results stay small on the stack (the recursive rules
+/// pass them around at every nesting level) and move into parents for free.
+///
+/// `outer` is the source text the operand came from: the node's own span
+/// widened by enclosing parentheses and leading unary `+` signs (which leave
+/// no node). Parents take their spans from the `outer` spans of their
+/// children, so `(a+b)*c` spans from `(` while the sum inside keeps the
+/// precise span `a+b`.
 struct Node {
-    e: Expr,
+    e: Box<Expr>,
     d: u32,
+    outer: Span,
 }
 
 /// Decrements a counter when dropped (on success and on error alike).
@@ -122,23 +183,24 @@ impl Drop for Guard<'_> {
 // ---------------------------------------------------------------------------
 // Character classes
 
-fn is_ident_start(c: char) -> bool {
+/// `ident_start ::= Letter | "_"` (Letter: Unicode `Alphabetic`)
+fn ident_start(c: char) -> bool {
     c.is_alphabetic() || c == '_'
 }
 
-fn is_ident_char(c: char) -> bool {
+/// `ident_char ::= Letter | [0-9] | "_"`
+fn ident_char(c: char) -> bool {
     c.is_alphabetic() || c.is_ascii_digit() || c == '_'
 }
 
+/// One character of `space` (everything white except the newline).
 fn is_space(c: char) -> bool {
     c != '\n' && (c.is_whitespace() || c == '\u{feff}')
 }
 
 /// Characters that have a meaning somewhere in the language.
 fn is_known(c: char) -> bool {
-    is_ident_char(c)
-        || is_space(c)
-        || "\n#+-*/^'()=,:;.°".contains(c)
+    ident_char(c) || is_space(c) || "\n#+-*/^'()=,:;.°".contains(c)
 }
 
 /// A character for a message: control characters escaped.
@@ -150,14 +212,16 @@ fn show_char(c: char) -> String {
     }
 }
 
+/// The next character of the input.
 fn first(i: &str) -> Option<char> {
     i.chars().next()
 }
 
+/// Can an operand (an `atom`) start here? Used to detect `a b`.
 fn starts_operand(i: &str) -> bool {
     let mut cs = i.chars();
     match cs.next() {
-        Some(c) if is_ident_start(c) || c.is_ascii_digit() || c == '(' => true,
+        Some(c) if ident_start(c) || c.is_ascii_digit() || c == '(' => true,
         Some('.') => cs.next().is_some_and(|c| c.is_ascii_digit()),
         _ => false,
     }
@@ -165,15 +229,16 @@ fn starts_operand(i: &str) -> bool {
 
 /// Show a piece of source in a message, shortened if long.
 fn excerpt(s: &str) -> String {
-    let s = s.trim();
+    let s = s.split_whitespace().collect::<Vec<_>>().join(" ");
     if s.chars().count() > 40 {
         let head: String = s.chars().take(37).collect();
         format!("{head}…")
     } else {
-        s.to_string()
+        s
     }
 }
 
+/// `10^n`.
 fn pow10(n: usize) -> BigInt {
     num_traits::pow(BigInt::from(10u32), n)
 }
@@ -226,8 +291,8 @@ impl<'s> P<'s> {
         if c == '\n' {
             return (Span::new(p, p), "the end of the line".into());
         }
-        let len = if is_ident_start(c) {
-            i.find(|c: char| !is_ident_char(c)).unwrap_or(i.len())
+        let len = if ident_start(c) {
+            i.find(|c: char| !ident_char(c)).unwrap_or(i.len())
         } else if c.is_ascii_digit() {
             i.find(|c: char| !(c.is_ascii_digit() || c == '.'))
                 .unwrap_or(i.len())
@@ -345,33 +410,29 @@ impl<'s> P<'s> {
                 format!("expected {what}, but the file ends"),
             )
             .with_hint(hint),
-            Some('\n') => {
-                Diagnostic::error(span, format!("expected {what}, but the line ends"))
-                    .with_hint(hint)
-            }
-            Some(c) if !is_known(c) => self.unexpected(i),
-            Some(_) => Diagnostic::error(span, format!("expected {what}, found {shown}"))
+            Some('\n') => Diagnostic::error(span, format!("expected {what}, but the line ends"))
                 .with_hint(hint),
+            Some(c) if !is_known(c) => self.unexpected(i),
+            Some(_) => {
+                Diagnostic::error(span, format!("expected {what}, found {shown}")).with_hint(hint)
+            }
         }
     }
 
-    /// Turn a recoverable "nothing here" after operator `op` into an error.
-    fn after_op<T>(
-        &self,
-        res: PResult<'s, T>,
-        at: &'s str,
-        op: &str,
-        op_span: Span,
-    ) -> PResult<'s, T> {
-        match res {
-            Err(nom::Err::Error(_)) => {
+    /// The error for the operand after operator `op` (at `at`): a
+    /// recoverable "nothing here" becomes "expected an expression after …".
+    #[cold]
+    #[inline(never)]
+    fn op_error(&self, e: nom::Err<PErr>, at: &'s str, op: &str, op_span: Span) -> nom::Err<PErr> {
+        match e {
+            nom::Err::Error(_) => {
                 let at = self.ws(at);
                 let hint = if at.is_empty() {
                     format!("complete the expression or remove the trailing `{op}`")
                 } else {
                     HINT_EXPR.to_string()
                 };
-                self.fail(self.expected(
+                failure(self.expected(
                     at,
                     &format!("an expression after `{op}`"),
                     &hint,
@@ -405,27 +466,34 @@ impl<'s> P<'s> {
         Guard(&self.parens)
     }
 
-    /// Build a node, refusing trees deeper than [`MAX_DEPTH`].
-    fn node(&self, kind: ExprKind, span: Span, d: u32) -> Result<Node, nom::Err<PErr>> {
+    /// A leaf node (depth 1).
+    fn leaf(kind: ExprKind, span: Span) -> Node {
+        Node {
+            e: Box::new(Expr { kind, span }),
+            d: 1,
+            outer: span,
+        }
+    }
+
+    /// Build an inner node of depth `d`, refusing trees deeper than
+    /// [`MAX_DEPTH`]; the error points at `at` (the operator or operand that
+    /// went too deep).
+    fn node(&self, kind: ExprKind, span: Span, d: u32, at: Span) -> Result<Node, nom::Err<PErr>> {
         if d > MAX_DEPTH {
-            return Err(failure(
-                Diagnostic::error(
-                    span,
-                    format!("expression too deep (more than {MAX_DEPTH} levels)"),
-                )
-                .with_hint("split it into several named definitions"),
-            ));
+            return Err(too_deep(at));
         }
         Ok(Node {
-            e: Expr { kind, span },
+            e: Box::new(Expr { kind, span }),
             d,
+            outer: span,
         })
     }
 
     fn bin(&self, op: BinOp, l: Node, r: Node) -> Result<Node, nom::Err<PErr>> {
-        let span = l.e.span.to(r.e.span);
+        let span = l.outer.to(r.outer);
         let d = l.d.max(r.d) + 1;
-        self.node(ExprKind::Bin(op, Box::new(l.e), Box::new(r.e)), span, d)
+        let at = r.outer;
+        self.node(ExprKind::Bin(op, l.e, r.e), span, d, at)
     }
 
     /// Final conversion of a parse error into a diagnostic. If a `(` left
@@ -512,16 +580,71 @@ impl<'s> P<'s> {
         let mut out = Vec::new();
         loop {
             i = self.ws(i);
+            let start = self.pos(i);
             if !matches!(first(i), None | Some('\n') | Some(';')) {
-                let (rest, stmt) = self.statement(i)?;
+                let (rest, stmt) = match self.statement(i) {
+                    Err(nom::Err::Failure(PErr::Diag(d))) => {
+                        return Err(failure(self.note_continuation(start, *d)))
+                    }
+                    other => other?,
+                };
                 out.push(stmt);
                 i = self.ws(rest);
             }
             match first(i) {
                 Some(';') => i = &i[1..],
                 None | Some('\n') => return Ok((i, out)),
-                Some(_) => return self.fail(self.unexpected(i)),
+                Some(_) => {
+                    let d = self.unexpected(i);
+                    return Err(failure(self.note_continuation(start, d)));
+                }
             }
+        }
+    }
+
+    /// If the statement starting at `start` ran over a line break outside
+    /// parentheses before the error, a line ended in an operator: that
+    /// trailing operator is the likely mistake, so the hint says so.
+    fn note_continuation(&self, start: usize, d: Diagnostic) -> Diagnostic {
+        let Some(span) = d.span else { return d };
+        let end = span.start.min(self.src.len());
+        let mut depth = 0i64;
+        let mut in_comment = false;
+        let mut last = None; // last significant char on the current line
+        let mut continued = None; // (line offset, operator)
+        for (p, c) in self.src[start.min(end)..end].char_indices() {
+            match c {
+                '\n' => {
+                    in_comment = false;
+                    if depth <= 0 {
+                        if let Some(op) = last {
+                            continued = Some((start + p, op));
+                        }
+                    }
+                    last = None;
+                }
+                _ if in_comment => {}
+                '#' => in_comment = true,
+                c if is_space(c) => {}
+                c => {
+                    match c {
+                        '(' => depth += 1,
+                        ')' => depth -= 1,
+                        _ => {}
+                    }
+                    last = Some(c);
+                }
+            }
+        }
+        match continued {
+            Some((p, op)) => {
+                let (line, _) = Diagnostic::line_col(self.src, p);
+                let hint = format!(
+                    "line {line} ends with `{op}`, so the expression continues on the next line; complete it or remove the trailing `{op}`"
+                );
+                d.with_hint(hint)
+            }
+            None => d,
         }
     }
 
@@ -536,7 +659,7 @@ impl<'s> P<'s> {
             Err(e) => return Err(e),
         };
         let next = self.ws(after);
-        let next_is_ident = first(next).is_some_and(is_ident_start);
+        let next_is_ident = first(next).is_some_and(ident_start);
         let next_is_eq = next.starts_with('=');
         let at_end = matches!(first(next), None | Some('\n') | Some(';'));
         let word = kw.name.as_str();
@@ -705,8 +828,8 @@ impl<'s> P<'s> {
         let (rest, name) = self.ident(rest)?;
         let head = format!("{} {}", role.keyword(), name.name);
         let rest = self.equals(rest, &head, &format!("write `{head} = expression`"))?;
-        let (rest, value) = self.rhs(rest, "=")?;
-        let span = Span::new(start, value.span.end);
+        let (rest, (value, outer)) = self.rhs(rest, "=")?;
+        let span = Span::new(start, outer.end);
         Ok((
             rest,
             Stmt::Role {
@@ -746,8 +869,8 @@ impl<'s> P<'s> {
                 ));
             }
         };
-        let (rest, value) = self.rhs(rest, ":")?;
-        let span = Span::new(start, value.span.end);
+        let (rest, (value, outer)) = self.rhs(rest, ":")?;
+        let span = Span::new(start, outer.end);
         Ok((
             rest,
             Stmt::Force {
@@ -770,8 +893,8 @@ impl<'s> P<'s> {
             format!("a definition is written `{} = expression`", name.name)
         };
         let rest = self.equals(rest, &name.name, &hint)?;
-        let (rest, value) = self.rhs(rest, "=")?;
-        let span = name.span.to(value.span);
+        let (rest, (value, outer)) = self.rhs(rest, "=")?;
+        let span = name.span.to(outer);
         Ok((rest, Stmt::Def { name, value, span }))
     }
 
@@ -789,12 +912,13 @@ impl<'s> P<'s> {
         }
     }
 
-    /// The expression after `=` or `:` that ends a statement.
-    fn rhs(&self, i: &'s str, after: &str) -> PResult<'s, Expr> {
+    /// The expression after `=` or `:` that ends a statement, with the
+    /// source span it came from (including enclosing parentheses).
+    fn rhs(&self, i: &'s str, after: &str) -> PResult<'s, (Expr, Span)> {
         let at = self.ws(i);
         let op_span = Span::new(self.pos(i) - after.len(), self.pos(i));
         match self.expr(i) {
-            Ok((rest, node)) => Ok((rest, node.e)),
+            Ok((rest, node)) => Ok((rest, (*node.e, node.outer))),
             Err(nom::Err::Error(_)) => self.fail(self.expected(
                 at,
                 &format!("an expression after `{after}`"),
@@ -806,6 +930,18 @@ impl<'s> P<'s> {
     }
 
     // ----- expressions -------------------------------------------------------
+
+    /// `whole_expr ::= ws_nl expr ws_nl` — the input of [`parse_expr`]; it
+    /// must end after the expression.
+    fn whole_expr(&self, i: &'s str) -> PResult<'s, Node> {
+        let _p = self.open_paren();
+        let (rest, node) = self.expr(i)?;
+        let rest = self.ws_nl(rest);
+        if !rest.is_empty() {
+            return self.fail(self.unexpected(rest));
+        }
+        Ok((rest, node))
+    }
 
     /// `expr ::= sum`
     fn expr(&self, i: &'s str) -> PResult<'s, Node> {
@@ -823,7 +959,10 @@ impl<'s> P<'s> {
             };
             let op_span = self.span(j, k);
             let k = self.ws_nl(k);
-            let (rest, rhs) = self.after_op(self.product(k), k, &op.to_string(), op_span)?;
+            let (rest, rhs) = match self.product(k) {
+                Ok(x) => x,
+                Err(e) => return Err(self.op_error(e, k, op_str(op), op_span)),
+            };
             let op = if op == '+' { BinOp::Add } else { BinOp::Sub };
             lhs = self.bin(op, lhs, rhs)?;
             i = rest;
@@ -834,12 +973,12 @@ impl<'s> P<'s> {
     /// `product ::= unary ( ws ( "*" | "/" ) ws_nl unary | implicit_factor )*`
     fn product(&self, i: &'s str) -> PResult<'s, Node> {
         let (mut i, mut lhs) = self.unary(i)?;
-        let mut last = lhs.e.span;
+        let mut last = lhs.outer;
         let mut last_is_name = matches!(lhs.e.kind, ExprKind::Name(_));
         loop {
             if self.implicit_here(i) {
                 let (rest, f) = self.implicit_factor(i)?;
-                last = f.e.span;
+                last = f.outer;
                 last_is_name = false;
                 lhs = self.bin(BinOp::Mul, lhs, f)?;
                 i = rest;
@@ -851,14 +990,14 @@ impl<'s> P<'s> {
             };
             let op_span = self.span(j, k);
             if op == '*' && k.starts_with('*') {
-                return self.fail(
-                    Diagnostic::error(Span::new(op_span.start, op_span.end + 1), "`**` is not an operator")
-                        .with_hint("write powers with `^`, like `x^2`"),
-                );
+                return Err(star_star(op_span));
             }
             let k = self.ws_nl(k);
-            let (rest, rhs) = self.after_op(self.unary(k), k, &op.to_string(), op_span)?;
-            last = rhs.e.span;
+            let (rest, rhs) = match self.unary(k) {
+                Ok(x) => x,
+                Err(e) => return Err(self.op_error(e, k, op_str(op), op_span)),
+            };
+            last = rhs.outer;
             last_is_name = matches!(rhs.e.kind, ExprKind::Name(_));
             let op = if op == '*' { BinOp::Mul } else { BinOp::Div };
             lhs = self.bin(op, lhs, rhs)?;
@@ -873,7 +1012,7 @@ impl<'s> P<'s> {
         let p = self.pos(i);
         let prev = self.src[..p].chars().next_back();
         match (prev, first(i)) {
-            (Some(d), Some(n)) if d.is_ascii_digit() => is_ident_start(n) || n == '(',
+            (Some(d), Some(n)) if d.is_ascii_digit() => ident_start(n) || n == '(',
             (Some(')'), Some('(')) => true,
             _ => false,
         }
@@ -885,13 +1024,18 @@ impl<'s> P<'s> {
     }
 
     /// Reject two operands side by side (`a b`) with a helpful hint.
-    fn side_by_side(&self, i: &'s str, left: Span, left_is_name: bool) -> Result<(), nom::Err<PErr>> {
+    fn side_by_side(
+        &self,
+        i: &'s str,
+        left: Span,
+        left_is_name: bool,
+    ) -> Result<(), nom::Err<PErr>> {
         let j = self.ws(i);
         if !starts_operand(j) {
             return Ok(());
         }
         let right = match self.power(j) {
-            Ok((_, r)) => r.e.span,
+            Ok((_, r)) => r.outer,
             Err(nom::Err::Error(_)) => self.token(j).0,
             Err(e) => return Err(e),
         };
@@ -902,7 +1046,7 @@ impl<'s> P<'s> {
             format!("to call `{l}`, write `{l}{r}` without a space; to multiply, write `{l}*{r}`")
         } else if after_number && r == "deg" {
             format!("for an angle in degrees write `{l}deg` without a space, or `{l}°`")
-        } else if after_number && (j.starts_with('(') || first(j).is_some_and(is_ident_start)) {
+        } else if after_number && (j.starts_with('(') || first(j).is_some_and(ident_start)) {
             format!("did you mean `{l}*{r}`? (an implicit product is written without a space: `{l}{r}`)")
         } else {
             format!("did you mean `{l}*{r}`?")
@@ -923,14 +1067,18 @@ impl<'s> P<'s> {
         };
         let _g = self.enter(j)?;
         let sign_span = self.span(j, k);
-        let (rest, inner) = self.after_op(self.unary(k), k, &sign.to_string(), sign_span)?;
-        let span = sign_span.to(inner.e.span);
+        let (rest, inner) = match self.unary(k) {
+            Ok(x) => x,
+            Err(e) => return Err(self.op_error(e, k, op_str(sign), sign_span)),
+        };
+        let span = sign_span.to(inner.outer);
         if sign == '-' {
-            let node = self.node(ExprKind::Neg(Box::new(inner.e)), span, inner.d + 1)?;
+            let node = self.node(ExprKind::Neg(inner.e), span, inner.d + 1, sign_span)?;
             Ok((rest, node))
         } else {
+            // unary plus leaves no node; the operand keeps its own span
             let mut inner = inner;
-            inner.e.span = span;
+            inner.outer = span;
             Ok((rest, inner))
         }
     }
@@ -944,7 +1092,10 @@ impl<'s> P<'s> {
         };
         let op_span = self.span(j, k);
         let k = self.ws_nl(k);
-        let (rest, ex) = self.after_op(self.exponent(k), k, "^", op_span)?;
+        let (rest, ex) = match self.exponent(k) {
+            Ok(x) => x,
+            Err(e) => return Err(self.op_error(e, k, "^", op_span)),
+        };
         Ok((rest, self.bin(BinOp::Pow, base, ex)?))
     }
 
@@ -956,14 +1107,18 @@ impl<'s> P<'s> {
             return self.power(j);
         };
         let sign_span = self.span(j, k);
-        let (rest, inner) = self.after_op(self.exponent(k), k, &sign.to_string(), sign_span)?;
-        let span = sign_span.to(inner.e.span);
+        let (rest, inner) = match self.exponent(k) {
+            Ok(x) => x,
+            Err(e) => return Err(self.op_error(e, k, op_str(sign), sign_span)),
+        };
+        let span = sign_span.to(inner.outer);
         if sign == '-' {
-            let node = self.node(ExprKind::Neg(Box::new(inner.e)), span, inner.d + 1)?;
+            let node = self.node(ExprKind::Neg(inner.e), span, inner.d + 1, sign_span)?;
             Ok((rest, node))
         } else {
+            // unary plus leaves no node; the operand keeps its own span
             let mut inner = inner;
-            inner.e.span = span;
+            inner.outer = span;
             Ok((rest, inner))
         }
     }
@@ -990,20 +1145,17 @@ impl<'s> P<'s> {
         };
         let is_group = start.starts_with('(');
         if !is_group && matches!(a.e.kind, ExprKind::Num(_) | ExprKind::Degrees(_)) {
-            return self.fail(
-                Diagnostic::error(prime_span, "a prime `'` (time derivative) can't follow a number")
-                    .with_hint("primes apply to names, calls and parenthesized expressions: `x'`, `sin(x)'`, `(2*x)'`; the derivative of a constant is 0"),
-            );
+            return Err(prime_on_number(prime_span));
         }
         if order == u32::MAX {
-            return self.fail(
-                Diagnostic::error(prime_span, "too many primes")
-                    .with_hint("a derivative order must fit in 32 bits"),
-            );
+            return Err(too_many_primes(prime_span));
         }
-        let span = Span::new(a.e.span.start, self.pos(i));
+        let span = Span::new(a.outer.start, self.pos(i));
         let d = a.d + 1;
-        Ok((i, self.node(ExprKind::Prime(Box::new(a.e), order), span, d)?))
+        Ok((
+            i,
+            self.node(ExprKind::Prime(a.e, order), span, d, prime_span)?,
+        ))
     }
 
     /// `atom ::= literal | call | name | group`
@@ -1011,7 +1163,7 @@ impl<'s> P<'s> {
         let i = self.ws(i);
         match first(i) {
             Some(c) if c.is_ascii_digit() || (c == '.' && starts_operand(i)) => self.literal(i),
-            Some(c) if is_ident_start(c) => {
+            Some(c) if ident_start(c) => {
                 let (rest, _) = self.ident(i)?;
                 if rest.starts_with('(') {
                     self.call(i)
@@ -1039,27 +1191,10 @@ impl<'s> P<'s> {
             loop {
                 let (rest, arg) = match self.expr(k) {
                     Ok(x) => x,
-                    Err(nom::Err::Error(_)) => {
-                        let at = self.ws(k);
-                        let (what, hint) = if args.is_empty() {
-                            (
-                                format!("an argument of `{}`", name.name),
-                                HINT_EXPR.to_string(),
-                            )
-                        } else if at.starts_with(')') {
-                            (
-                                "an argument after `,`".to_string(),
-                                "remove the trailing `,`".to_string(),
-                            )
-                        } else {
-                            ("an argument after `,`".to_string(), HINT_EXPR.to_string())
-                        };
-                        return self.fail(self.expected(at, &what, &hint, None));
-                    }
-                    Err(e) => return Err(e),
+                    Err(e) => return Err(self.arg_error(e, k, &name, args.is_empty())),
                 };
                 d = d.max(arg.d);
-                args.push(arg.e);
+                args.push(*arg.e);
                 let j = self.ws(rest);
                 match first(j) {
                     Some(',') => k = &j[1..],
@@ -1067,18 +1202,48 @@ impl<'s> P<'s> {
                         k = &j[1..];
                         break;
                     }
-                    _ => {
-                        return self.fail(self.close_expected(
-                            j,
-                            open,
-                            &format!("`,` or `)` after an argument of `{}`", name.name),
-                        ))
-                    }
+                    _ => return Err(self.args_unclosed(j, open, &name)),
                 }
             }
         }
         let span = Span::new(name.span.start, self.pos(k));
-        Ok((k, self.node(ExprKind::Call(name, args), span, d + 1)?))
+        let at = name.span;
+        Ok((k, self.node(ExprKind::Call(name, args), span, d + 1, at)?))
+    }
+
+    /// The error for a missing argument at `k` of the call of `name`.
+    #[cold]
+    #[inline(never)]
+    fn arg_error(
+        &self,
+        e: nom::Err<PErr>,
+        k: &'s str,
+        name: &Ident,
+        first_arg: bool,
+    ) -> nom::Err<PErr> {
+        if !matches!(e, nom::Err::Error(_)) {
+            return e;
+        }
+        let at = self.ws(k);
+        let (what, hint) = if first_arg {
+            (format!("an argument of `{}`", name.name), HINT_EXPR)
+        } else if at.starts_with(')') {
+            (
+                "an argument after `,`".to_string(),
+                "remove the trailing `,`",
+            )
+        } else {
+            ("an argument after `,`".to_string(), HINT_EXPR)
+        };
+        failure(self.expected(at, &what, hint, None))
+    }
+
+    /// The error when neither `,` nor `)` follows an argument of `name`.
+    #[cold]
+    #[inline(never)]
+    fn args_unclosed(&self, j: &'s str, open: usize, name: &Ident) -> nom::Err<PErr> {
+        let what = format!("`,` or `)` after an argument of `{}`", name.name);
+        failure(self.close_expected(j, open, &what))
     }
 
     /// The error when `)` (or `,`) is expected at `j` for the `(` at `open`.
@@ -1099,7 +1264,7 @@ impl<'s> P<'s> {
     /// `name ::= ident`
     fn name(&self, i: &'s str) -> PResult<'s, Node> {
         let (rest, id) = self.ident(i)?;
-        Ok((rest, self.node(ExprKind::Name(id.name), id.span, 1)?))
+        Ok((rest, Self::leaf(ExprKind::Name(id.name), id.span)))
     }
 
     /// `group ::= "(" ws_nl expr ws_nl ")"`
@@ -1109,29 +1274,36 @@ impl<'s> P<'s> {
         let _p = self.open_paren();
         let (rest, mut inner) = match self.expr(k) {
             Ok(x) => x,
-            Err(nom::Err::Error(_)) => {
-                let at = self.ws(k);
-                if at.starts_with(')') {
-                    return self.fail(
-                        Diagnostic::error(Span::new(open, self.pos(at) + 1), "empty parentheses `()`")
-                            .with_hint("put an expression inside the parentheses, or remove them"),
-                    );
-                }
-                if at.is_empty() {
-                    return self.fail(self.close_expected(at, open, ""));
-                }
-                return self.fail(self.expected(at, "an expression after `(`", HINT_EXPR, None));
-            }
-            Err(e) => return Err(e),
+            Err(e) => return Err(self.group_error(e, k, open)),
         };
         let j = self.ws(rest);
         match char::<_, PErr>(')').parse(j) {
             Ok((after, _)) => {
-                inner.e.span = Span::new(open, self.pos(after));
+                inner.outer = Span::new(open, self.pos(after));
                 Ok((after, inner))
             }
-            Err(_) => self.fail(self.close_expected(j, open, "`)`")),
+            Err(_) => Err(failure(self.close_expected(j, open, "`)`"))),
         }
+    }
+
+    /// The error when no expression follows the `(` at `open`.
+    #[cold]
+    #[inline(never)]
+    fn group_error(&self, e: nom::Err<PErr>, k: &'s str, open: usize) -> nom::Err<PErr> {
+        if !matches!(e, nom::Err::Error(_)) {
+            return e;
+        }
+        let at = self.ws(k);
+        if at.starts_with(')') {
+            return failure(
+                Diagnostic::error(Span::new(open, self.pos(at) + 1), "empty parentheses `()`")
+                    .with_hint("put an expression inside the parentheses, or remove them"),
+            );
+        }
+        if at.is_empty() {
+            return failure(self.close_expected(at, open, ""));
+        }
+        failure(self.expected(at, "an expression after `(`", HINT_EXPR, None))
     }
 
     // ----- tokens ------------------------------------------------------------
@@ -1143,11 +1315,11 @@ impl<'s> P<'s> {
         match self.angle_unit(rest) {
             Ok((rest, _)) => {
                 let span = self.span(i, rest);
-                Ok((rest, self.node(ExprKind::Degrees(value), span, 1)?))
+                Ok((rest, Self::leaf(ExprKind::Degrees(value), span)))
             }
             Err(_) => {
                 let span = self.span(i, rest);
-                Ok((rest, self.node(ExprKind::Num(value), span, 1)?))
+                Ok((rest, Self::leaf(ExprKind::Num(value), span)))
             }
         }
     }
@@ -1155,7 +1327,7 @@ impl<'s> P<'s> {
     /// `angle_unit ::= "deg" | space? "°"` — `deg` not followed by an `ident_char`.
     fn angle_unit(&self, i: &'s str) -> PResult<'s, &'s str> {
         if let Ok((rest, d)) = tag::<_, _, PErr>("deg").parse(i) {
-            if !first(rest).is_some_and(is_ident_char) {
+            if !first(rest).is_some_and(ident_char) {
                 return Ok((rest, d));
             }
             return self.nothing(i);
@@ -1166,17 +1338,20 @@ impl<'s> P<'s> {
     /// `number ::= digits ( "." digits )? sci_exponent?`
     fn number(&self, i: &'s str) -> PResult<'s, BigRational> {
         if let Ok((rest, _)) = char::<_, PErr>('.').parse(i) {
-            if let Ok((rest, frac)) = digit1::<_, PErr>(rest) {
+            if let Ok((rest, frac)) = Self::digits(rest) {
                 return self.fail(
-                    Diagnostic::error(self.span(i, rest), "a number can't start with a decimal point")
-                        .with_hint(format!("write `0.{frac}`")),
+                    Diagnostic::error(
+                        self.span(i, rest),
+                        "a number can't start with a decimal point",
+                    )
+                    .with_hint(format!("write `0.{frac}`")),
                 );
             }
         }
-        let (mut rest, int) = digit1(i)?;
+        let (mut rest, int) = Self::digits(i)?;
         let mut frac = "";
         if let Ok((after_dot, _)) = char::<_, PErr>('.').parse(rest) {
-            match digit1::<_, PErr>(after_dot) {
+            match Self::digits(after_dot) {
                 Ok((after, f)) => {
                     frac = f;
                     rest = after;
@@ -1200,11 +1375,18 @@ impl<'s> P<'s> {
                 .unwrap_or(rest.len());
             let span = Span::new(self.pos(i), self.pos(rest) + end);
             return self.fail(
-                Diagnostic::error(span, format!("malformed number `{}`", &self.src[span.start..span.end]))
-                    .with_hint("a number has at most one decimal point, before any exponent: `1.25`, `1.5e-3`"),
+                Diagnostic::error(
+                    span,
+                    format!("malformed number `{}`", &self.src[span.start..span.end]),
+                )
+                .with_hint(
+                    "a number has at most one decimal point, before any exponent: `1.25`, `1.5e-3`",
+                ),
             );
         }
-        let mut numer: BigInt = format!("{int}{frac}").parse().unwrap_or_else(|_| BigInt::zero());
+        let mut numer: BigInt = format!("{int}{frac}")
+            .parse()
+            .unwrap_or_else(|_| BigInt::zero());
         let mut denom = pow10(frac.len());
         if exp >= 0 {
             numer *= pow10(exp as usize);
@@ -1219,8 +1401,7 @@ impl<'s> P<'s> {
 
     /// `sci_exponent ::= [eE] [+-]? digits` — taken only when a digit follows.
     fn sci_exponent(&self, i: &'s str) -> PResult<'s, i64> {
-        let (rest, (_, sign, digits)) =
-            (one_of("eE"), opt(one_of("+-")), digit1).parse(i)?;
+        let (rest, (_, sign, digits)) = (one_of("eE"), opt(one_of("+-")), Self::digits).parse(i)?;
         let significant = digits.trim_start_matches('0');
         let n: u32 = if significant.len() > 6 {
             u32::MAX
@@ -1237,10 +1418,15 @@ impl<'s> P<'s> {
         Ok((rest, if sign == Some('-') { -n } else { n }))
     }
 
+    /// `digits ::= [0-9]+`
+    fn digits(i: &'s str) -> PResult<'s, &'s str> {
+        digit1(i)
+    }
+
     /// `ident ::= ident_start ident_char*`
     fn ident(&self, i: &'s str) -> PResult<'s, Ident> {
         let i = self.ws(i);
-        let (rest, name) = recognize((satisfy(is_ident_start), take_while(is_ident_char))).parse(i)?;
+        let (rest, name) = recognize((satisfy(ident_start), take_while(ident_char))).parse(i)?;
         Ok((
             rest,
             Ident {

@@ -70,7 +70,11 @@ impl<'a> Evaluator<'a> {
     pub fn definition(&mut self, i: usize) -> Result<Expr, Diagnostic> {
         match &self.state[i] {
             State::Done(e) => return Ok(e.clone()),
-            State::Busy => return Err(Diagnostic::global("internal error: a definition re-entered itself")),
+            State::Busy => {
+                return Err(Diagnostic::global(
+                    "internal error: a definition re-entered itself",
+                ))
+            }
             State::Todo => {}
         }
         let Some((_, Some(body))) = self.defs.get(i).copied() else {
@@ -99,9 +103,7 @@ impl<'a> Evaluator<'a> {
             ExprKind::Num(r) => Ok(Expr::rational(Q::from_big(r.clone()))),
             ExprKind::Degrees(r) => {
                 let q = Q::from_big(r.clone());
-                let k = q
-                    .checked_div(&Q::from_i64(180))
-                    .unwrap_or_else(Q::zero);
+                let k = q.checked_div(&Q::from_i64(180)).unwrap_or_else(Q::zero);
                 Ok(Expr::pi().scale(&k))
             }
             ExprKind::Name(n) => self.name(n, e.span),
@@ -117,8 +119,11 @@ impl<'a> Evaluator<'a> {
                             BinOp::Sub => Ok(x.sub(&y)),
                             BinOp::Mul => Ok(x.mul(&y)),
                             _ => x.div(&y).map_err(|_| {
-                                Diagnostic::error(b.span, "division by zero: this divisor is exactly 0")
-                                    .with_hint("check the definitions it uses")
+                                Diagnostic::error(
+                                    b.span,
+                                    "division by zero: this divisor is exactly 0",
+                                )
+                                .with_hint("check the definitions it uses")
                             }),
                         }
                     }
@@ -203,16 +208,18 @@ impl<'a> Evaluator<'a> {
             .with_hint("write exp(y*ln(x)) for x^y"));
         };
         if q.is_integer() {
-            let n = q.as_i64().filter(|n| n.abs() <= 10_000).ok_or_else(|| {
-                Diagnostic::error(exp.span, format!("exponent {q} is too large"))
-            })?;
+            let n = q
+                .as_i64()
+                .filter(|n| n.abs() <= 10_000)
+                .ok_or_else(|| Diagnostic::error(exp.span, format!("exponent {q} is too large")))?;
             return base.powi(n).map_err(|m| self.err(span, m));
         }
         let twice = &q * &Q::from_i64(2);
         if twice.is_integer() {
-            let n = twice.as_i64().filter(|n| n.abs() <= 10_000).ok_or_else(|| {
-                Diagnostic::error(exp.span, format!("exponent {q} is too large"))
-            })?;
+            let n = twice
+                .as_i64()
+                .filter(|n| n.abs() <= 10_000)
+                .ok_or_else(|| Diagnostic::error(exp.span, format!("exponent {q} is too large")))?;
             let r = func::sqrt(base).map_err(|m| self.err(span, m))?;
             return r.powi(n).map_err(|m| self.err(span, m));
         }
@@ -227,11 +234,16 @@ impl<'a> Evaluator<'a> {
         let Some(&(_, arity)) = FUNCTIONS.iter().find(|(n, _)| *n == f.name) else {
             let list: Vec<&str> = FUNCTIONS.iter().map(|(n, _)| *n).collect();
             let hint = if self.names.contains_key(&f.name) {
-                format!("`{}` is not a function; write `{}*(…)` to multiply", f.name, f.name)
+                format!(
+                    "`{}` is not a function; write `{}*(…)` to multiply",
+                    f.name, f.name
+                )
             } else {
                 format!("the functions are {}", list.join(", "))
             };
-            return Err(Diagnostic::error(f.span, format!("unknown function `{}`", f.name)).with_hint(hint));
+            return Err(
+                Diagnostic::error(f.span, format!("unknown function `{}`", f.name)).with_hint(hint),
+            );
         };
         if args.len() != arity {
             return Err(Diagnostic::error(

@@ -92,7 +92,11 @@ impl Scene {
 
         let mut declare = |name: &ast::Ident, b: Binding| -> Result<(), Diagnostic> {
             if name.name == "t" || name.name == "pi" {
-                let what = if name.name == "t" { "time" } else { "the constant π" };
+                let what = if name.name == "t" {
+                    "time"
+                } else {
+                    "the constant π"
+                };
                 return Err(Diagnostic::error(
                     name.span,
                     format!("`{}` is reserved: it is {what}", name.name),
@@ -158,6 +162,13 @@ impl Scene {
         }
         names.insert("t".into(), (Binding::Time, Span::default()));
         names.insert("pi".into(), (Binding::Pi, Span::default()));
+        // Intern q, q̇, q̈ in declaration order: printing lists terms of
+        // equal rank in the order the coordinates were declared.
+        for c in &coordinates {
+            for k in 0..=2 {
+                crate::expr::atom::coord(&c.name, k);
+            }
+        }
 
         let mut ev = eval::Evaluator::new(src, &names, &def_asts);
         let mut definitions = Vec::with_capacity(def_asts.len());
@@ -175,7 +186,10 @@ impl Scene {
             let Some(k) = coordinates.iter().position(|x| x.name == c.name) else {
                 let mut d = Diagnostic::error(
                     c.span,
-                    format!("`force {}:` needs a coordinate, and `{}` is not one", c.name, c.name),
+                    format!(
+                        "`force {}:` needs a coordinate, and `{}` is not one",
+                        c.name, c.name
+                    ),
                 );
                 let list: Vec<&str> = coordinates.iter().map(|c| c.name.as_str()).collect();
                 d = d.with_hint(if list.is_empty() {
@@ -231,7 +245,9 @@ impl Scene {
 
     /// The definitions playing `role`, in source order.
     pub fn role(&self, role: Role) -> impl Iterator<Item = &Definition> {
-        self.definitions.iter().filter(move |d| d.role == Some(role))
+        self.definitions
+            .iter()
+            .filter(move |d| d.role == Some(role))
     }
 
     /// The sum of all definitions playing `role` (zero if none).

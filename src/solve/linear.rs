@@ -19,7 +19,9 @@ use crate::poly::Poly;
 pub enum SolveError {
     /// The matrix is singular; `dependent` lists the unknowns (column
     /// indices) of a null vector's support.
-    Singular { dependent: Vec<usize> },
+    Singular {
+        dependent: Vec<usize>,
+    },
     Math(MathError),
 }
 
@@ -143,15 +145,15 @@ pub fn dependent_unknowns(a: &[Vec<Expr>]) -> Vec<usize> {
             Ok(x) => x,
             Err(_) => continue,
         };
-        for j in 0..cols {
-            m[row][j] = m[row][j].mul(&inv);
+        for x in m[row].iter_mut() {
+            *x = x.mul(&inv);
         }
         for r in 0..n {
             if r != row && !m[r][c].is_zero() {
                 let f = m[r][c].clone();
-                for j in 0..cols {
-                    let t = f.mul(&m[row][j]);
-                    m[r][j] = m[r][j].sub(&t);
+                let pivot_row = m[row].clone();
+                for (x, p) in m[r].iter_mut().zip(&pivot_row) {
+                    *x = x.sub(&f.mul(p));
                 }
             }
         }

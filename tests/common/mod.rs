@@ -1,0 +1,229 @@
+//! Shared test helpers: a compact S-expression printer of the AST, a
+//! fully parenthesized source printer, span stripping, and error locations.
+#![allow(dead_code)]
+
+use qdot::diag::Diagnostic;
+use qdot::parse::ast::{BinOp, Expr, ExprKind, Ident, Span, Stmt};
+use qdot::parse::{parse_expr, parse_scene};
+
+fn op_str(op: BinOp) -> &'static str {
+    match op {
+        BinOp::Add => "+",
+        BinOp::Sub => "-",
+        BinOp::Mul => "*",
+        BinOp::Div => "/",
+        BinOp::Pow => "^",
+    }
+}
+
+/// `(* 2 r)`, `(^ (' y1 1) 2)`, `(- x)` (unary minus), `(sin x)` (a call),
+/// `(f)` (a call without arguments), `1/4`, `30deg`.
+pub fn sexpr(e: &Expr) -> String {
+    match &e.kind {
+        ExprKind::Num(r) => r.to_string(),
+        ExprKind::Degrees(r) => format!("{r}deg"),
+        ExprKind::Name(n) => n.clone(),
+        ExprKind::Neg(x) => format!("(- {})", sexpr(x)),
+        ExprKind::Bin(op, a, b) => format!("({} {} {})", op_str(*op), sexpr(a), sexpr(b)),
+        ExprKind::Call(f, args) => {
+            let mut s = format!("({}", f.name);
+            for a in args {
+                s.push(' ');
+                s.push_str(&sexpr(a));
+            }
+            s.push(')');
+            s
+        }
+        ExprKind::Prime(x, n) => format!("(' {} {n})", sexpr(x)),
+    }
+}
+
+fn decls(ds: &[qdot::parse::ast::Decl]) -> String {
+    ds.iter()
+        .map(|d| match &d.dimension {
+            Some(dim) => format!("{}:{}", d.name.name, dim.name),
+            None => d.name.name.clone(),
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+pub fn stmt_sexpr(s: &Stmt) -> String {
+    match s {
+        Stmt::Coordinates(ds, _) => format!("(coordinates {})", decls(ds)),
+        Stmt::Parameters(ds, _) => format!("(parameters {})", decls(ds)),
+        Stmt::Def { name, value, .. } => format!("(def {} {})", name.name, sexpr(value)),
+        Stmt::Role {
+            role, name, value, ..
+        } => format!("({} {} {})", role.keyword(), name.name, sexpr(value)),
+        Stmt::Force {
+            coordinate, value, ..
+        } => format!("(force {} {})", coordinate.name, sexpr(value)),
+    }
+}
+
+/// The S-expression of a scene, one statement per line.
+pub fn scene(src: &str) -> String {
+    match parse_scene(src) {
+        Ok(stmts) => stmts.iter().map(stmt_sexpr).collect::<Vec<_>>().join("\n"),
+        Err(d) => panic!("parse error in {src:?}: {d} at {:?}", d.span),
+    }
+}
+
+/// The S-expression of one expression.
+pub fn ex(src: &str) -> String {
+    match parse_expr(src) {
+        Ok(e) => sexpr(&e),
+        Err(d) => panic!("parse error in {src:?}: {d} at {:?}", d.span),
+    }
+}
+
+/// The value of `x = SRC` in a scene, as an S-expression.
+pub fn def(src: &str) -> String {
+    let full = format!("x = {src}");
+    match parse_scene(&full) {
+        Ok(stmts) => {
+            assert_eq!(stmts.len(), 1, "{full:?}");
+            match &stmts[0] {
+                Stmt::Def { value, .. } => sexpr(value),
+                s => panic!("not a definition: {s:?}"),
+            }
+        }
+        Err(d) => panic!("parse error in {full:?}: {d} at {:?}", d.span),
+    }
+}
+
+/// Where an error is: (line, column, end line, end column, message, hint).
+#[derive(Debug, PartialEq)]
+pub struct At {
+    pub line: usize,
+    pub col: usize,
+    pub width: usize,
+    pub message: String,
+    pub hint: String,
+}
+
+pub fn locate(src: &str, d: &Diagnostic) -> At {
+    let span = d.span.expect("error has a span");
+    let (line, col) = Diagnostic::line_col(src, span.start);
+    At {
+        line,
+        col,
+        width: src[span.start..span.end].chars().count(),
+        message: d.message.clone(),
+        hint: d.hint.clone().unwrap_or_default(),
+    }
+}
+
+pub fn scene_err(src: &str) -> At {
+    match parse_scene(src) {
+        Ok(s) => panic!("expected an error for {src:?}, got {s:?}"),
+        Err(d) => locate(src, &d),
+    }
+}
+
+pub fn expr_err(src: &str) -> At {
+    match parse_expr(src) {
+        Ok(e) => panic!("expected an error for {src:?}, got {}", sexpr(&e)),
+        Err(d) => locate(src, &d),
+    }
+}
+
+/// Zero all spans, to compare trees modulo positions.
+pub fn strip(e: &Expr) -> Expr {
+    let kind = match &e.kind {
+        ExprKind::Neg(x) => ExprKind::Neg(Box::new(strip(x))),
+        ExprKind::Bin(op, a, b) => ExprKind::Bin(*op, Box::new(strip(a)), Box::new(strip(b))),
+        ExprKind::Call(f, args) => ExprKind::Call(
+            Ident {
+                name: f.name.clone(),
+                span: Span::default(),
+            },
+            args.iter().map(strip).collect(),
+        ),
+        ExprKind::Prime(x, n) => ExprKind::Prime(Box::new(strip(x)), *n),
+        k => k.clone(),
+    };
+    Expr {
+        kind,
+        span: Span::default(),
+    }
+}
+
+/// Print an exact rational as a decimal literal, if it has one.
+pub fn decimal(r: &num_rational::BigRational) -> Option<String> {
+    use num_bigint::BigInt;
+    use num_traits::{Signed, Zero};
+    if r.is_negative() {
+        return None;
+    }
+    let den = r.denom().clone();
+    let mut k = 0usize;
+    let ten = BigInt::from(10);
+    let mut scale = BigInt::from(1);
+    // multiply by 10 until the denominator divides the scale
+    while !(&scale % &den).is_zero() {
+        scale *= &ten;
+        k += 1;
+        if k > 2100 {
+            return None;
+        }
+    }
+    let scaled = r.numer() * (&scale / &den);
+    let digits = scaled.to_string();
+    if k == 0 {
+        return Some(digits);
+    }
+    let digits = format!("{:0>width$}", digits, width = k + 1);
+    let (int, frac) = digits.split_at(digits.len() - k);
+    Some(format!("{int}.{frac}"))
+}
+
+/// Fully parenthesized source text of an expression.
+pub fn print_full(e: &Expr) -> String {
+    match &e.kind {
+        ExprKind::Num(r) => decimal(r).unwrap_or_else(|| format!("({}/{})", r.numer(), r.denom())),
+        ExprKind::Degrees(r) => format!("{}deg", decimal(r).expect("decimal degrees")),
+        ExprKind::Name(n) => n.clone(),
+        ExprKind::Neg(x) => format!("(-{})", print_full(x)),
+        ExprKind::Bin(op, a, b) => {
+            format!("({} {} {})", print_full(a), op_str(*op), print_full(b))
+        }
+        ExprKind::Call(f, args) => format!(
+            "{}({})",
+            f.name,
+            args.iter().map(print_full).collect::<Vec<_>>().join(", ")
+        ),
+        ExprKind::Prime(x, n) => {
+            let inner = match &x.kind {
+                ExprKind::Name(_) | ExprKind::Call(..) => print_full(x),
+                _ => format!("({})", print_full(x)),
+            };
+            format!("{inner}{}", "'".repeat(*n as usize))
+        }
+    }
+}
+
+/// A statement printed back as source, expressions fully parenthesized.
+pub fn print_stmt(s: &Stmt) -> String {
+    let ds = |ds: &[qdot::parse::ast::Decl]| {
+        ds.iter()
+            .map(|d| match &d.dimension {
+                Some(dim) => format!("{}: {}", d.name.name, dim.name),
+                None => d.name.name.clone(),
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    match s {
+        Stmt::Coordinates(d, _) => format!("coordinates {}", ds(d)),
+        Stmt::Parameters(d, _) => format!("parameters {}", ds(d)),
+        Stmt::Def { name, value, .. } => format!("{} = {}", name.name, print_full(value)),
+        Stmt::Role {
+            role, name, value, ..
+        } => format!("{} {} = {}", role.keyword(), name.name, print_full(value)),
+        Stmt::Force {
+            coordinate, value, ..
+        } => format!("force {}: {}", coordinate.name, print_full(value)),
+    }
+}

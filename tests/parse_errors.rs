@@ -1,0 +1,825 @@
+//! Error positions (line, column, width in characters), messages and hints.
+
+mod common;
+
+use common::{expr_err, locate, scene_err, At};
+use pretty_assertions::assert_eq;
+use qdot::parse::{parse_expr, parse_scene, MAX_DEPTH, MAX_NESTING};
+
+fn short(src: &str) -> String {
+    src.chars().take(60).collect()
+}
+
+/// Check one scene error: position `line:col`, width, exact message, and a
+/// piece of the hint.
+#[track_caller]
+fn check(src: &str, line: usize, col: usize, width: usize, message: &str, hint_part: &str) {
+    let at = scene_err(src);
+    assert_eq!(
+        (at.line, at.col, at.width, at.message.as_str()),
+        (line, col, width, message),
+        "for {:?}",
+        short(src)
+    );
+    assert!(
+        at.hint.contains(hint_part),
+        "hint {:?} lacks {hint_part:?} for {:?}",
+        at.hint,
+        short(src)
+    );
+}
+
+#[track_caller]
+fn check_expr(src: &str, line: usize, col: usize, width: usize, message: &str, hint_part: &str) {
+    let At {
+        line: l,
+        col: c,
+        width: w,
+        message: m,
+        hint,
+    } = expr_err(src);
+    assert_eq!(
+        (l, c, w, m.as_str()),
+        (line, col, width, message),
+        "for {src:?}"
+    );
+    assert!(
+        hint.contains(hint_part),
+        "hint {hint:?} lacks {hint_part:?}"
+    );
+}
+
+#[test]
+fn unknown_characters() {
+    check(
+        "x = 3 $ 4",
+        1,
+        7,
+        1,
+        "unknown character `$`",
+        "not part of the .qd language",
+    );
+    check(
+        "x = 1\r\ny = $",
+        2,
+        5,
+        1,
+        "unknown character `$`",
+        "not part",
+    );
+    check("x = a → b", 1, 7, 1, "unknown character `→`", "not part");
+    check("x = x²", 1, 6, 1, "unknown character `²`", "`x^2`");
+    check("x = a × b", 1, 7, 1, "unknown character `×`", "`*`");
+    check("x = a − b", 1, 7, 1, "unknown character `−`", "ASCII `-`");
+    check(
+        "x = \u{1}",
+        1,
+        5,
+        1,
+        "unknown character `\\u{1}`",
+        "not part",
+    );
+    check("x = [a]", 1, 5, 1, "unknown character `[`", "`(` and `)`");
+    check("θ = ε $", 1, 7, 1, "unknown character `$`", "not part");
+}
+
+#[test]
+fn side_by_side() {
+    check(
+        "x = a b",
+        1,
+        7,
+        1,
+        "two expressions side by side",
+        "did you mean `a*b`?",
+    );
+    check(
+        "x = 2*a b+c",
+        1,
+        9,
+        1,
+        "two expressions side by side",
+        "did you mean `a*b`?",
+    );
+    check("x = 3 4", 1, 7, 1, "two expressions side by side", "`3*4`");
+    check(
+        "x = 2 r",
+        1,
+        7,
+        1,
+        "two expressions side by side",
+        "without a space: `2r`",
+    );
+    check(
+        "x = (a+b) (c+d)",
+        1,
+        11,
+        5,
+        "two expressions side by side",
+        "`(a+b)*(c+d)`",
+    );
+    check(
+        "x = (a)b",
+        1,
+        8,
+        1,
+        "two expressions side by side",
+        "`(a)*b`",
+    );
+    check(
+        "x = sin (x)",
+        1,
+        9,
+        3,
+        "two expressions side by side",
+        "write `sin(x)` without a space",
+    );
+    check(
+        "x = 30 deg",
+        1,
+        8,
+        3,
+        "two expressions side by side",
+        "`30deg` without a space, or `30°`",
+    );
+    check(
+        "x = f(a b)",
+        1,
+        9,
+        1,
+        "two expressions side by side",
+        "`a*b`",
+    );
+    check("x = a'b", 1, 7, 1, "two expressions side by side", "`a'*b`");
+    check(
+        "x = 30°x",
+        1,
+        8,
+        1,
+        "two expressions side by side",
+        "`30°*x`",
+    );
+    check(
+        "x = (a\n b)",
+        2,
+        2,
+        1,
+        "two expressions side by side",
+        "is a `)` missing",
+    );
+    check_expr("a b", 1, 3, 1, "two expressions side by side", "`a*b`");
+}
+
+#[test]
+fn definitions() {
+    check(
+        "m G/g",
+        1,
+        3,
+        1,
+        "expected `=` after `m`, found `G`",
+        "`m = expression`",
+    );
+    check(
+        "m\nn = 1",
+        1,
+        2,
+        0,
+        "expected `=` after `m`, but the line ends",
+        "`m = expression`",
+    );
+    check(
+        "f(x) = x^2",
+        1,
+        2,
+        1,
+        "expected `=` after `f`, found `(`",
+        "functions can't be defined",
+    );
+    check(
+        "x =",
+        1,
+        3,
+        1,
+        "expected an expression after `=`, but the file ends",
+        "a number, a name",
+    );
+    check(
+        "x = \ny = 1",
+        1,
+        5,
+        0,
+        "expected an expression after `=`, but the line ends",
+        "a number",
+    );
+    check(
+        "x = # nothing\ny = 1",
+        1,
+        14,
+        0,
+        "expected an expression after `=`, but the line ends",
+        "a number",
+    );
+    check(
+        "x = ; y = 1",
+        1,
+        5,
+        1,
+        "expected an expression after `=`, found `;`",
+        "a number",
+    );
+    check(
+        "x = a = b",
+        1,
+        7,
+        1,
+        "unexpected `=`",
+        "separate them with `;`",
+    );
+    check("x = a, b", 1, 6, 1, "unexpected `,`", "commas separate");
+    check(
+        "x = 1: 2",
+        1,
+        6,
+        1,
+        "unexpected `:`",
+        "`force COORD: expression`",
+    );
+    check(
+        "3 = x",
+        1,
+        1,
+        1,
+        "a statement must start with a name or a keyword, found `3`",
+        "`NAME = expression`",
+    );
+    check(
+        "+ b",
+        1,
+        1,
+        1,
+        "a statement can't start with `+`",
+        "end the previous line with the operator",
+    );
+    check(
+        "a = 1\n  * b",
+        2,
+        3,
+        1,
+        "a statement can't start with `*`",
+        "end the previous line",
+    );
+    check("x = 3\n)", 2, 1, 1, "unmatched `)`", "matching `(`");
+    check("'x = 1", 1, 1, 1, "unexpected `'`", "a prime");
+}
+
+#[test]
+fn roles_forces_and_declarations() {
+    check(
+        "kinetic 3 = x",
+        1,
+        9,
+        1,
+        "expected a name after `kinetic`, found `3`",
+        "`kinetic NAME = expression`",
+    );
+    check(
+        "kinetic",
+        1,
+        8,
+        0,
+        "expected a name after `kinetic`, but the file ends",
+        "`kinetic = expression`",
+    );
+    check(
+        "kinetic E 1/2*m",
+        1,
+        11,
+        1,
+        "expected `=` after `kinetic E`, found `1`",
+        "`kinetic E = expression`",
+    );
+    check(
+        "kinetic E",
+        1,
+        10,
+        0,
+        "expected `=` after `kinetic E`, but the file ends",
+        "`kinetic E = expression`",
+    );
+    check(
+        "rayleigh R: x",
+        1,
+        11,
+        1,
+        "expected `=` after `rayleigh R`, found `:`",
+        "`rayleigh R = expression`",
+    );
+    check(
+        "kinetic T =",
+        1,
+        11,
+        1,
+        "expected an expression after `=`, but the file ends",
+        "a number",
+    );
+    check(
+        "force th = 3",
+        1,
+        10,
+        1,
+        "expected `:` after `force th`, found `=`",
+        "`force th: expression`",
+    );
+    check(
+        "force 3: x",
+        1,
+        7,
+        1,
+        "expected a coordinate name after `force`, found `3`",
+        "`force COORD: expression`",
+    );
+    check(
+        "force: 3",
+        1,
+        6,
+        1,
+        "expected a coordinate name after `force`, found `:`",
+        "`force COORD: expression`",
+    );
+    check(
+        "force th:",
+        1,
+        9,
+        1,
+        "expected an expression after `:`, but the file ends",
+        "a number",
+    );
+    check(
+        "coordinates",
+        1,
+        1,
+        11,
+        "empty `coordinates` list",
+        "`coordinates x, y`",
+    );
+    check(
+        "parameters # none",
+        1,
+        1,
+        10,
+        "empty `parameters` list",
+        "`parameters x, y`",
+    );
+    check(
+        "coordinates 3",
+        1,
+        13,
+        1,
+        "expected a name after `coordinates`, found `3`",
+        "`coordinates x, y`",
+    );
+    check(
+        "coordinates x y",
+        1,
+        15,
+        1,
+        "expected `,` before `y`",
+        "separate the names with commas",
+    );
+    check(
+        "coordinates x,",
+        1,
+        15,
+        0,
+        "expected a name after `,`, but the file ends",
+        "separated by commas",
+    );
+    check(
+        "coordinates x,,y",
+        1,
+        15,
+        1,
+        "expected a name after `,`, found `,`",
+        "separated by commas",
+    );
+    check(
+        "parameters r:",
+        1,
+        14,
+        0,
+        "expected a dimension name after `r:`, but the file ends",
+        "`r: length`",
+    );
+    check(
+        "parameters m = 3",
+        1,
+        14,
+        1,
+        "a declaration can't have a value",
+        "write a definition `m = …`",
+    );
+    check(
+        "parameters m; x",
+        1,
+        16,
+        0,
+        "expected `=` after `x`, but the file ends",
+        "`x = expression`",
+    );
+}
+
+#[test]
+fn parentheses() {
+    check(
+        "x = (a + b\ny = 3",
+        1,
+        5,
+        1,
+        "unclosed `(`",
+        "add the matching `)`",
+    );
+    check(
+        "x = f(a, b",
+        1,
+        6,
+        1,
+        "unclosed `(`",
+        "add the matching `)`",
+    );
+    check("x = (a", 1, 5, 1, "unclosed `(`", "add the matching `)`");
+    check(
+        "y = 1 # ok (\nx = (a + # open\n  b\nz = 2",
+        2,
+        5,
+        1,
+        "unclosed `(`",
+        "matching `)`",
+    );
+    check(
+        "x = sin(a\nkinetic T = 3",
+        1,
+        8,
+        1,
+        "unclosed `(`",
+        "matching `)`",
+    );
+    check("x = a)", 1, 6, 1, "unmatched `)`", "matching `(`");
+    check("x = (a))", 1, 8, 1, "unmatched `)`", "matching `(`");
+    check(
+        "x = (a, b)",
+        1,
+        7,
+        1,
+        "expected `)`, found `,`",
+        "the `(` at line 1, column 5 is still open",
+    );
+    check(
+        "x = f(a; b)",
+        1,
+        8,
+        1,
+        "expected `,` or `)` after an argument of `f`, found `;`",
+        "column 6 is still open",
+    );
+    check(
+        "x = f(a,)",
+        1,
+        9,
+        1,
+        "expected an argument after `,`, found `)`",
+        "remove the trailing `,`",
+    );
+    check(
+        "x = f(,a)",
+        1,
+        7,
+        1,
+        "expected an argument of `f`, found `,`",
+        "a number",
+    );
+    check(
+        "x = ()",
+        1,
+        5,
+        2,
+        "empty parentheses `()`",
+        "put an expression inside",
+    );
+    check(
+        "x = ( = )",
+        1,
+        7,
+        1,
+        "expected an expression after `(`, found `=`",
+        "a number",
+    );
+    check_expr("(a", 1, 1, 1, "unclosed `(`", "matching `)`");
+    check_expr("a)", 1, 2, 1, "unmatched `)`", "matching `(`");
+}
+
+#[test]
+fn operators() {
+    check(
+        "x = a ** b",
+        1,
+        7,
+        2,
+        "`**` is not an operator",
+        "write powers with `^`",
+    );
+    check(
+        "x = a +",
+        1,
+        7,
+        1,
+        "expected an expression after `+`, but the file ends",
+        "remove the trailing `+`",
+    );
+    check(
+        "x = a +\n\n# end\n",
+        1,
+        7,
+        1,
+        "expected an expression after `+`, but the file ends",
+        "remove the trailing `+`",
+    );
+    check(
+        "x = a /",
+        1,
+        7,
+        1,
+        "expected an expression after `/`, but the file ends",
+        "remove the trailing `/`",
+    );
+    check(
+        "x = 2^",
+        1,
+        6,
+        1,
+        "expected an expression after `^`, but the file ends",
+        "remove the trailing `^`",
+    );
+    check(
+        "x = -",
+        1,
+        5,
+        1,
+        "expected an expression after `-`, but the file ends",
+        "remove the trailing `-`",
+    );
+    check(
+        "x = 1 +* 2",
+        1,
+        8,
+        1,
+        "expected an expression after `+`, found `*`",
+        "a number",
+    );
+    check(
+        "a = 1\nb = 2\nc = 3 ^ ^ 2",
+        3,
+        9,
+        1,
+        "expected an expression after `^`, found `^`",
+        "a number",
+    );
+    check(
+        "x = a // b",
+        1,
+        8,
+        1,
+        "expected an expression after `/`, found `/`",
+        "a number",
+    );
+    // a trailing operator makes the next line part of the expression
+    check(
+        "x = 2 ^\ny = 3",
+        2,
+        3,
+        1,
+        "unexpected `=`",
+        "line 1 ends with `^`",
+    );
+    check(
+        "x = a +  # c\nkinetic T = 3",
+        2,
+        9,
+        1,
+        "two expressions side by side",
+        "line 1 ends with `+`",
+    );
+    check(
+        "x = a *\n\ny = 3",
+        3,
+        3,
+        1,
+        "unexpected `=`",
+        "remove the trailing `*`",
+    );
+}
+
+#[test]
+fn numbers() {
+    check(
+        "x = .5",
+        1,
+        5,
+        2,
+        "a number can't start with a decimal point",
+        "write `0.5`",
+    );
+    check(
+        "x = a*.25",
+        1,
+        7,
+        3,
+        "a number can't start with a decimal point",
+        "write `0.25`",
+    );
+    check(
+        "x = 1.2.3",
+        1,
+        5,
+        5,
+        "malformed number `1.2.3`",
+        "at most one decimal point",
+    );
+    check(
+        "x = 1.5e3.2",
+        1,
+        5,
+        7,
+        "malformed number `1.5e3.2`",
+        "at most one decimal point",
+    );
+    check(
+        "x = 3.x",
+        1,
+        5,
+        2,
+        "malformed number `3.`",
+        "write `3.0` or `3`",
+    );
+    check(
+        "x = 3.",
+        1,
+        5,
+        2,
+        "malformed number `3.`",
+        "write `3.0` or `3`",
+    );
+    check("x = a..b", 1, 6, 1, "unexpected `.`", "inside a number");
+    check(
+        "x = 1e99999",
+        1,
+        6,
+        6,
+        "exponent out of range",
+        "up to 1000",
+    );
+    check(
+        "x = 1e-1001",
+        1,
+        6,
+        6,
+        "exponent out of range",
+        "up to 1000",
+    );
+    check(
+        "x = 2'",
+        1,
+        6,
+        1,
+        "a prime `'` (time derivative) can't follow a number",
+        "`(2*x)'`",
+    );
+    check(
+        "x = 30deg'",
+        1,
+        10,
+        1,
+        "a prime `'` (time derivative) can't follow a number",
+        "names, calls",
+    );
+    check("x = a°", 1, 6, 1, "unexpected `°`", "`30°`");
+}
+
+#[test]
+fn parse_expr_errors() {
+    check_expr(
+        "",
+        1,
+        1,
+        0,
+        "expected an expression, but the file ends",
+        "a number",
+    );
+    check_expr(
+        "  \n ",
+        2,
+        2,
+        0,
+        "expected an expression, but the file ends",
+        "a number",
+    );
+    check_expr("x = 1", 1, 3, 1, "unexpected `=`", "`;`");
+    check_expr(
+        "a +",
+        1,
+        3,
+        1,
+        "expected an expression after `+`, but the file ends",
+        "trailing `+`",
+    );
+    check_expr(
+        ")",
+        1,
+        1,
+        1,
+        "expected an expression, found `)`",
+        "a number",
+    );
+}
+
+#[test]
+fn nesting_limits() {
+    let n = MAX_NESTING as usize;
+    // parentheses: the top-level expression is one level, each group one more
+    let ok = format!("x = {}1{}", "(".repeat(n - 1), ")".repeat(n - 1));
+    assert!(parse_scene(&ok).is_ok());
+    let deep = format!("x = {}1{}", "(".repeat(n), ")".repeat(n));
+    check(
+        &deep,
+        1,
+        5 + n,
+        1,
+        "expression nested too deeply (more than 200 levels)",
+        "split it",
+    );
+    let huge = format!("x = {}1{}", "(".repeat(100_000), ")".repeat(100_000));
+    check(
+        &huge,
+        1,
+        5 + n,
+        1,
+        "expression nested too deeply (more than 200 levels)",
+        "split it",
+    );
+    // calls, unary signs and power towers
+    let calls = format!("x = {}1{}", "f(".repeat(50_000), ")".repeat(50_000));
+    assert_eq!(
+        scene_err(&calls).message,
+        "expression nested too deeply (more than 200 levels)"
+    );
+    let signs = format!("x = {}x", "-".repeat(100_000));
+    assert_eq!(
+        scene_err(&signs).message,
+        "expression nested too deeply (more than 200 levels)"
+    );
+    let tower = format!("x = 2{}", "^2".repeat(100_000));
+    assert_eq!(
+        scene_err(&tower).message,
+        "expression nested too deeply (more than 200 levels)"
+    );
+    let unclosed = "(".repeat(100_000);
+    assert!(parse_expr(&unclosed).is_err());
+    assert!(parse_scene(&format!("x = {unclosed}")).is_err());
+}
+
+#[test]
+fn depth_limit_on_long_chains() {
+    let n = MAX_DEPTH as usize;
+    // `1+1+…+1` with n terms has depth n
+    let ok = format!("x = 1{}", "+1".repeat(n - 1));
+    assert!(parse_scene(&ok).is_ok());
+    let deep = format!("x = 1{}", "+1".repeat(n));
+    check(
+        &deep,
+        1,
+        4 + 2 * n + 1,
+        1,
+        "expression too deep (more than 1000 levels)",
+        "split it",
+    );
+    let huge = format!("x = 1{}", "*x".repeat(200_000));
+    assert_eq!(
+        scene_err(&huge).message,
+        "expression too deep (more than 1000 levels)"
+    );
+    // many primes are one node
+    let primes = format!("x = y{}", "'".repeat(10_000));
+    assert!(parse_scene(&primes).is_ok());
+}
+
+#[test]
+fn rendered_error() {
+    let src = "m = 1\nx = 3 $ 4\n";
+    let d = parse_scene(src).unwrap_err();
+    assert_eq!(
+        d.render("scene.qd", src),
+        "error: unknown character `$`\n --> scene.qd:2:7\n  |\n2 | x = 3 $ 4\n  |       ^\n  = hint: this character is not part of the .qd language\n"
+    );
+    let at = locate(src, &d);
+    assert_eq!((at.line, at.col), (2, 7));
+}

@@ -1,0 +1,108 @@
+//! The grammar file and the parser stay in step: every rule of
+//! `grammar/qd.ebnf` appears as a doc comment "/// `rule ::= body`" in
+//! `src/parse/mod.rs` with the same body (white space aside).
+
+use std::collections::BTreeMap;
+
+fn strip_comments(s: &str) -> String {
+    let mut out = String::new();
+    let mut rest = s;
+    while let Some(a) = rest.find("/*") {
+        out.push_str(&rest[..a]);
+        let b = rest[a + 2..].find("*/").expect("unterminated comment") + a + 4;
+        rest = &rest[b..];
+    }
+    assert!(!rest.contains("*/"), "stray */");
+    out.push_str(rest);
+    out
+}
+
+fn norm(s: &str) -> String {
+    s.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// rule name -> body, from the EBNF.
+fn grammar_rules() -> BTreeMap<String, String> {
+    let src =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/grammar/qd.ebnf")).unwrap();
+    let text = strip_comments(&src);
+    let mut rules = BTreeMap::new();
+    let mut current: Option<(String, String)> = None;
+    for line in text.lines() {
+        let starts_rule = line
+            .split_once("::=")
+            .filter(|(name, _)| !line.starts_with(' ') && !name.trim().contains(' '));
+        if let Some((name, body)) = starts_rule {
+            if let Some((n, b)) = current.take() {
+                rules.insert(n, norm(&b));
+            }
+            current = Some((name.trim().to_string(), body.to_string()));
+        } else if let Some((_, b)) = current.as_mut() {
+            b.push(' ');
+            b.push_str(line);
+        }
+    }
+    if let Some((n, b)) = current {
+        rules.insert(n, norm(&b));
+    }
+    rules
+}
+
+/// rule name -> body, from the parser's doc comments.
+fn parser_rules() -> BTreeMap<String, String> {
+    let src =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/src/parse/mod.rs")).unwrap();
+    let mut rules = BTreeMap::new();
+    for line in src.lines() {
+        let Some(doc) = line.trim().strip_prefix("/// `") else {
+            continue;
+        };
+        let Some((name, rest)) = doc.split_once(" ::= ") else {
+            continue;
+        };
+        let body = rest.split_once('`').map(|(b, _)| b).unwrap_or(rest);
+        rules.insert(name.to_string(), norm(body));
+    }
+    rules
+}
+
+#[test]
+fn every_rule_has_a_parser_function_with_the_same_body() {
+    let grammar = grammar_rules();
+    let parser = parser_rules();
+    assert!(grammar.len() >= 30, "{grammar:?}");
+    // `Letter` and friends are character classes described in comments
+    for (name, body) in &grammar {
+        let got = parser
+            .get(name)
+            .unwrap_or_else(|| panic!("no parser doc comment for rule `{name}`"));
+        assert_eq!(got, body, "rule `{name}` differs");
+    }
+    for name in parser.keys() {
+        assert!(grammar.contains_key(name), "`{name}` is not in the grammar");
+    }
+}
+
+#[test]
+fn rule_functions_are_named_after_rules() {
+    let src =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/src/parse/mod.rs")).unwrap();
+    for name in grammar_rules().keys() {
+        let needle = format!("fn {name}(");
+        assert!(src.contains(&needle), "no function `{name}`");
+    }
+}
+
+#[test]
+fn placeholders_for_future_statements_are_in_the_grammar() {
+    let src =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/grammar/qd.ebnf")).unwrap();
+    for needle in ["solve", "latex", "load", "[x, y]"] {
+        assert!(src.contains(needle), "{needle}");
+    }
+    // and they are commented out
+    let live = strip_comments(&src);
+    for rule in ["solve_block", "latex_stmt", "load_stmt", "vector"] {
+        assert!(!live.contains(rule), "{rule} should be a placeholder");
+    }
+}

@@ -1,0 +1,352 @@
+//! Property tests: no input makes the parser panic, every error is well
+//! formed, and printing a tree with full parentheses parses back to it.
+
+mod common;
+
+use common::{print_full, print_stmt, stmt_sexpr, strip};
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use proptest::prelude::*;
+use qdot::diag::Diagnostic;
+use qdot::parse::ast::{BinOp, Expr, ExprKind, Ident, Span, Stmt};
+use qdot::parse::{parse_expr, parse_scene};
+
+/// An error must point inside the source, on character boundaries, and
+/// carry a message and a hint.
+fn check_diag(src: &str, d: &Diagnostic) -> Result<(), TestCaseError> {
+    let span = d.span.expect("parse errors have a span");
+    prop_assert!(span.start <= span.end, "{d:?}");
+    prop_assert!(span.end <= src.len(), "{d:?} beyond {}", src.len());
+    prop_assert!(src.is_char_boundary(span.start) && src.is_char_boundary(span.end));
+    prop_assert!(!d.message.is_empty());
+    prop_assert!(
+        d.hint.as_ref().is_some_and(|h| !h.is_empty()),
+        "no hint: {d:?}"
+    );
+    // rendering never panics either
+    let _ = d.render("t.qd", src);
+    Ok(())
+}
+
+fn check_span(src: &str, s: Span) -> Result<(), TestCaseError> {
+    prop_assert!(s.start <= s.end && s.end <= src.len(), "{s:?}");
+    prop_assert!(src.is_char_boundary(s.start) && src.is_char_boundary(s.end));
+    Ok(())
+}
+
+fn check_expr_spans(src: &str, e: &Expr) -> Result<(), TestCaseError> {
+    check_span(src, e.span)?;
+    match &e.kind {
+        ExprKind::Neg(x) | ExprKind::Prime(x, _) => {
+            prop_assert!(e.span.start <= x.span.start && x.span.end <= e.span.end);
+            check_expr_spans(src, x)
+        }
+        ExprKind::Bin(_, a, b) => {
+            prop_assert!(e.span.start <= a.span.start && b.span.end <= e.span.end);
+            check_expr_spans(src, a)?;
+            check_expr_spans(src, b)
+        }
+        ExprKind::Call(f, args) => {
+            check_span(src, f.span)?;
+            prop_assert_eq!(&src[f.span.start..f.span.end], f.name.as_str());
+            args.iter().try_for_each(|a| check_expr_spans(src, a))
+        }
+        ExprKind::Name(n) => {
+            prop_assert_eq!(&src[e.span.start..e.span.end], n.as_str());
+            Ok(())
+        }
+        _ => Ok(()),
+    }
+}
+
+fn check_scene(src: &str) -> Result<Option<Vec<Stmt>>, TestCaseError> {
+    match parse_scene(src) {
+        Ok(stmts) => {
+            for s in &stmts {
+                check_span(src, s.span())?;
+                match s {
+                    Stmt::Def { value, .. }
+                    | Stmt::Role { value, .. }
+                    | Stmt::Force { value, .. } => check_expr_spans(src, value)?,
+                    Stmt::Coordinates(ds, _) | Stmt::Parameters(ds, _) => {
+                        prop_assert!(!ds.is_empty());
+                    }
+                }
+            }
+            Ok(Some(stmts))
+        }
+        Err(d) => {
+            check_diag(src, &d)?;
+            Ok(None)
+        }
+    }
+}
+
+fn check_one_expr(src: &str) -> Result<(), TestCaseError> {
+    match parse_expr(src) {
+        Ok(e) => check_expr_spans(src, &e),
+        Err(d) => check_diag(src, &d),
+    }
+}
+
+// ---------------------------------------------------------------------------
+// (a) arbitrary input
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+    #[test]
+    fn random_bytes_never_panic(bytes in prop::collection::vec(any::<u8>(), 0..200)) {
+        let src = String::from_utf8_lossy(&bytes);
+        check_scene(&src)?;
+        check_one_expr(&src)?;
+    }
+
+    #[test]
+    fn random_strings_never_panic(src in any::<String>()) {
+        check_scene(&src)?;
+        check_one_expr(&src)?;
+    }
+
+    #[test]
+    fn strings_of_language_characters_never_panic(
+        src in "[a-zθε_0-9 +*/^'()=,:;.#°$\n\r\t-]{0,80}"
+    ) {
+        check_scene(&src)?;
+        check_one_expr(&src)?;
+    }
+}
+
+// ---------------------------------------------------------------------------
+// (b) random token sequences
+
+fn token() -> impl Strategy<Value = &'static str> {
+    prop::sample::select(vec![
+        // names and keywords
+        "x",
+        "y1",
+        "θ",
+        "ε_2",
+        "_a",
+        "J2",
+        "e",
+        "deg",
+        "t",
+        "sin",
+        "atan",
+        "kinetic",
+        "potential",
+        "forcefunction",
+        "work",
+        "dissipation",
+        "rayleigh",
+        "force",
+        "coordinates",
+        "parameters",
+        // numbers, good and bad
+        "3",
+        "0",
+        "0.25",
+        "1.5e-3",
+        "2E3",
+        "2e",
+        ".5",
+        "1.2.3",
+        "3.",
+        "30deg",
+        "30°",
+        "°",
+        "1e9999",
+        "007",
+        // operators and punctuation
+        "+",
+        "-",
+        "*",
+        "/",
+        "^",
+        "**",
+        "'",
+        "''",
+        "(",
+        ")",
+        "(",
+        ")",
+        "=",
+        "=",
+        ",",
+        ":",
+        ";",
+        // layout
+        "\n",
+        "\n",
+        "\r\n",
+        "# note",
+        " ",
+        "\t",
+        // junk
+        "$",
+        "²",
+        "\u{0}",
+        "é",
+        "\"",
+    ])
+}
+
+fn token_source() -> impl Strategy<Value = String> {
+    prop::collection::vec((token(), prop::bool::ANY), 0..40).prop_map(|toks| {
+        let mut s = String::new();
+        for (t, space) in toks {
+            s.push_str(t);
+            if space {
+                s.push(' ');
+            }
+        }
+        s
+    })
+}
+
+/// A token sequence shaped like a statement, so that many parse.
+fn statement_source() -> impl Strategy<Value = String> {
+    let head = prop::sample::select(vec![
+        "x = ",
+        "kinetic T = ",
+        "work L = ",
+        "force x: ",
+        "y1=",
+        "work = ",
+    ]);
+    prop::collection::vec((head, prop::collection::vec(token(), 1..12)), 1..5).prop_map(|lines| {
+        lines
+            .into_iter()
+            .map(|(h, toks)| format!("{h}{}", toks.concat()))
+            .collect::<Vec<_>>()
+            .join("\n")
+    })
+}
+
+/// Print a scene back with full parentheses; it must parse to the same
+/// statements (modulo spans).
+fn reprint_roundtrip(stmts: &[Stmt]) -> Result<(), TestCaseError> {
+    let printed = stmts.iter().map(print_stmt).collect::<Vec<_>>().join("\n");
+    let again = parse_scene(&printed)
+        .map_err(|d| TestCaseError::fail(format!("reprint {printed:?} fails: {d}")))?;
+    let a: Vec<String> = stmts.iter().map(stmt_sexpr).collect();
+    let b: Vec<String> = again.iter().map(stmt_sexpr).collect();
+    prop_assert_eq!(a, b, "reprinted as {:?}", printed);
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 1024, ..ProptestConfig::default() })]
+
+    #[test]
+    fn token_sequences_never_panic(src in token_source()) {
+        if let Some(stmts) = check_scene(&src)? {
+            reprint_roundtrip(&stmts)?;
+        }
+        check_one_expr(&src)?;
+    }
+
+    #[test]
+    fn statement_like_sequences_never_panic(src in statement_source()) {
+        if let Some(stmts) = check_scene(&src)? {
+            reprint_roundtrip(&stmts)?;
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------
+// (c) random trees print and parse back
+
+fn num() -> impl Strategy<Value = BigRational> {
+    (0u32..100_000, 0usize..4)
+        .prop_map(|(n, k)| BigRational::new(BigInt::from(n), num_traits::pow(BigInt::from(10), k)))
+}
+
+fn name() -> impl Strategy<Value = String> {
+    prop_oneof![
+        prop::sample::select(vec![
+            "x",
+            "y1",
+            "θ3",
+            "ε",
+            "_a",
+            "J2",
+            "e",
+            "E",
+            "deg",
+            "t",
+            "pi",
+            "kinetic",
+            "work",
+            "force",
+            "coordinates",
+            "degrees",
+        ])
+        .prop_map(str::to_string),
+        "[a-zA-Zα-ω_][a-zA-Z0-9_]{0,5}",
+    ]
+}
+
+fn at(kind: ExprKind) -> Expr {
+    Expr {
+        kind,
+        span: Span::default(),
+    }
+}
+
+fn tree() -> impl Strategy<Value = Expr> {
+    let leaf = prop_oneof![
+        num().prop_map(|r| at(ExprKind::Num(r))),
+        num().prop_map(|r| at(ExprKind::Degrees(r))),
+        name().prop_map(|n| at(ExprKind::Name(n))),
+    ];
+    leaf.prop_recursive(6, 64, 4, |inner| {
+        let op = prop::sample::select(vec![
+            BinOp::Add,
+            BinOp::Sub,
+            BinOp::Mul,
+            BinOp::Div,
+            BinOp::Pow,
+        ]);
+        prop_oneof![
+            inner.clone().prop_map(|e| at(ExprKind::Neg(Box::new(e)))),
+            (op, inner.clone(), inner.clone()).prop_map(|(op, a, b)| at(ExprKind::Bin(
+                op,
+                Box::new(a),
+                Box::new(b)
+            ))),
+            (name(), prop::collection::vec(inner.clone(), 0..4)).prop_map(|(f, args)| at(
+                ExprKind::Call(
+                    Ident {
+                        name: f,
+                        span: Span::default()
+                    },
+                    args
+                )
+            )),
+            (inner, 1u32..4).prop_map(|(e, n)| at(ExprKind::Prime(Box::new(e), n))),
+        ]
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+    #[test]
+    fn printed_trees_parse_back(e in tree()) {
+        let src = print_full(&e);
+        let back = parse_expr(&src)
+            .map_err(|d| TestCaseError::fail(format!("{src:?}: {d}")))?;
+        prop_assert_eq!(strip(&back), strip(&e), "printed as {:?}", src);
+        check_expr_spans(&src, &back)?;
+        // the same inside a scene
+        let scene = format!("kinetic T = {src}\n");
+        let stmts = parse_scene(&scene)
+            .map_err(|d| TestCaseError::fail(format!("{scene:?}: {d}")))?;
+        match &stmts[..] {
+            [Stmt::Role { value, .. }] => prop_assert_eq!(strip(value), strip(&e)),
+            other => prop_assert!(false, "unexpected {:?}", other),
+        }
+    }
+}
