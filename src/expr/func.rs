@@ -105,26 +105,35 @@ fn exact_pi(k: &Q) -> (Expr, Expr) {
     (sin_twelfths(n), sin_twelfths((n + 6) % 24))
 }
 
-/// sin(n·π/12), exactly.
+/// sin(n·π/12), exactly (the 13 values for n = 0…12 are built once).
 fn sin_twelfths(n: i64) -> Expr {
+    static TABLE: std::sync::OnceLock<Vec<Expr>> = std::sync::OnceLock::new();
     let n = n.rem_euclid(24);
-    if n >= 12 {
-        return sin_twelfths(n - 12).neg();
-    }
-    let n = if n > 6 { 12 - n } else { n };
-    let r2 = sqrt_rational(&Q::from_i64(2));
-    let r3 = sqrt_rational(&Q::from_i64(3));
-    let r6 = sqrt_rational(&Q::from_i64(6));
-    let quarter = Q::new(1, 4).unwrap_or_else(Q::one);
-    let half = Q::new(1, 2).unwrap_or_else(Q::one);
-    match n {
-        0 => Expr::zero(),
-        1 => r6.sub(&r2).scale(&quarter),
-        2 => Expr::rational(half),
-        3 => r2.scale(&half),
-        4 => r3.scale(&half),
-        5 => r6.add(&r2).scale(&quarter),
-        _ => Expr::one(),
+    let (n, neg) = if n >= 12 { (n - 12, true) } else { (n, false) };
+    let table = TABLE.get_or_init(|| {
+        let r2 = sqrt_rational(&Q::from_i64(2));
+        let r3 = sqrt_rational(&Q::from_i64(3));
+        let r6 = sqrt_rational(&Q::from_i64(6));
+        let quarter = Q::new(1, 4).unwrap_or_else(Q::one);
+        let half = Q::new(1, 2).unwrap_or_else(Q::one);
+        let first = [
+            Expr::zero(),
+            r6.sub(&r2).scale(&quarter),
+            Expr::rational(half.clone()),
+            r2.scale(&half),
+            r3.scale(&half),
+            r6.add(&r2).scale(&quarter),
+            Expr::one(),
+        ];
+        (0..=12)
+            .map(|k| first[if k > 6 { 12 - k } else { k }].clone())
+            .collect()
+    });
+    let v = table[n as usize].clone();
+    if neg {
+        v.neg()
+    } else {
+        v
     }
 }
 
@@ -246,6 +255,22 @@ fn sqrt_rational(q: &Q) -> Expr {
     if q.is_zero() {
         return Expr::zero();
     }
+    type Cache = std::sync::RwLock<FxHashMap<Q, Expr>>;
+    static CACHE: std::sync::OnceLock<Cache> = std::sync::OnceLock::new();
+    let cache = CACHE.get_or_init(Default::default);
+    if let Some(e) = cache.read().ok().and_then(|c| c.get(q).cloned()) {
+        return e;
+    }
+    let e = sqrt_rational_uncached(q);
+    if let Ok(mut c) = cache.write() {
+        if c.len() < 4096 {
+            c.insert(q.clone(), e.clone());
+        }
+    }
+    e
+}
+
+fn sqrt_rational_uncached(q: &Q) -> Expr {
     // √(a/b) = √(a·b)/b
     let a = q.numer().abs();
     let b = q.denom();

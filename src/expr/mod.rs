@@ -420,6 +420,11 @@ impl Expr {
         if self.is_zero() {
             return Err(MathError::new("division by zero"));
         }
+        if first_radical(&self.0.num).is_none() {
+            // Already reduced and coprime: only the new denominator's
+            // leading coefficient needs normalizing.
+            return Ok(Expr::finish(self.0.den.clone(), self.0.num.clone()));
+        }
         Expr::from_parts(self.0.den.clone(), self.0.num.clone())
     }
 
@@ -502,9 +507,7 @@ impl Expr {
     /// Numeric value with `f` giving each non-constant atom's value.
     pub fn eval_f64(&self, f: &dyn Fn(&Atom) -> Option<f64>) -> Option<f64> {
         let mut ok = true;
-        let val = |v: Var| -> f64 {
-            func::eval_atom(v, f).unwrap_or(f64::NAN)
-        };
+        let val = |v: Var| -> f64 { func::eval_atom(v, f).unwrap_or(f64::NAN) };
         let n = self.0.num.eval_f64(&val);
         let d = self.0.den.eval_f64(&val);
         if n.is_nan() || d.is_nan() {
@@ -541,6 +544,25 @@ fn subs_poly(p: &Poly, map: &rustc_hash::FxHashMap<Var, Expr>) -> Result<Expr, M
 
 /// (gcd, a/gcd, b/gcd).
 fn cofactors(a: &Poly, b: &Poly) -> (Poly, Poly, Poly) {
+    if a.as_constant().is_some() || b.as_constant().is_some() {
+        return (Poly::one(), a.clone(), b.clone());
+    }
+    if a.is_monomial() && b.is_monomial() {
+        // gcd of two terms: the common power product.
+        let (ma, ca) = &a.terms()[0];
+        let (mb, cb) = &b.terms()[0];
+        let g = ma.gcd(mb);
+        if g.0.is_empty() {
+            return (Poly::one(), a.clone(), b.clone());
+        }
+        let da = ma.div(&g).unwrap_or_else(|| ma.clone());
+        let db = mb.div(&g).unwrap_or_else(|| mb.clone());
+        return (
+            Poly::monomial(g, Q::one()),
+            Poly::monomial(da, ca.clone()),
+            Poly::monomial(db, cb.clone()),
+        );
+    }
     let g = a.gcd(b);
     if g.as_constant().is_some() {
         return (Poly::one(), a.clone(), b.clone());

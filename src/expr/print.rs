@@ -304,11 +304,7 @@ fn fraction(num: &Poly, den: &Poly, st: Style) -> String {
     }
     if !pn.is_one() {
         let s = sum_str(&pn, st);
-        top.push(if pn.len() > 1 {
-            format!("({s})")
-        } else {
-            s
-        });
+        top.push(if pn.len() > 1 { format!("({s})") } else { s });
     }
     let mut bottom: Vec<String> = Vec::new();
     if !cden.is_one() {

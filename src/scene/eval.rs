@@ -21,6 +21,8 @@ pub(crate) struct Evaluator<'a> {
     state: Vec<State>,
     /// The chain of definitions being evaluated (for cycle reports).
     stack: Vec<usize>,
+    /// Parameters and coordinates already turned into expressions.
+    atoms: FxHashMap<&'a str, Expr>,
     pub warnings: Vec<Diagnostic>,
 }
 
@@ -46,6 +48,7 @@ impl<'a> Evaluator<'a> {
             defs: defs.iter().map(|(n, e, _)| (*n, Some(*e))).collect(),
             state: vec![State::Todo; defs.len()],
             stack: Vec::new(),
+            atoms: FxHashMap::default(),
             warnings: Vec::new(),
         }
     }
@@ -62,6 +65,7 @@ impl<'a> Evaluator<'a> {
             defs: Vec::new(),
             state: values.into_iter().map(State::Done).collect(),
             stack: Vec::new(),
+            atoms: FxHashMap::default(),
             warnings: Vec::new(),
         }
     }
@@ -153,12 +157,23 @@ impl<'a> Evaluator<'a> {
     }
 
     fn name(&mut self, n: &str, span: Span) -> Result<Expr, Diagnostic> {
-        match self.names.get(n) {
-            Some((Binding::Param, _)) => Ok(Expr::param(n)),
-            Some((Binding::Coord, _)) => Ok(Expr::coord(n, 0)),
-            Some((Binding::Time, _)) => Ok(Expr::time()),
-            Some((Binding::Pi, _)) => Ok(Expr::pi()),
-            Some((Binding::Def(i), _)) => {
+        if let Some(e) = self.atoms.get(n) {
+            return Ok(e.clone());
+        }
+        match self.names.get_key_value(n) {
+            Some((key, (Binding::Param, _))) => {
+                let e = Expr::param(n);
+                self.atoms.insert(key.as_str(), e.clone());
+                Ok(e)
+            }
+            Some((key, (Binding::Coord, _))) => {
+                let e = Expr::coord(n, 0);
+                self.atoms.insert(key.as_str(), e.clone());
+                Ok(e)
+            }
+            Some((_, (Binding::Time, _))) => Ok(Expr::time()),
+            Some((_, (Binding::Pi, _))) => Ok(Expr::pi()),
+            Some((_, (Binding::Def(i), _))) => {
                 let i = *i;
                 if matches!(self.state.get(i), Some(State::Busy)) {
                     let start = self.stack.iter().position(|&j| j == i).unwrap_or(0);
