@@ -141,7 +141,28 @@ fn term_with_coef(c: &Expr, key: &Mono, st: Style) -> (bool, String) {
         }
         return (neg, format!("{body}{mul}{key_s}"));
     }
-    (neg, format!("({body}){mul}{key_s}"))
+    if is_sum(&body) {
+        (neg, format!("({body}){mul}{key_s}"))
+    } else {
+        (neg, format!("{body}{mul}{key_s}"))
+    }
+}
+
+/// Whether a printed expression is a sum at its top level (so it needs
+/// parentheses as a factor).
+fn is_sum(s: &str) -> bool {
+    let mut depth = 0i32;
+    let mut prev = ' ';
+    for (i, ch) in s.char_indices() {
+        match ch {
+            '(' => depth += 1,
+            ')' => depth -= 1,
+            '+' | '-' | '−' if depth == 0 && i > 0 && prev == ' ' => return true,
+            _ => {}
+        }
+        prev = ch;
+    }
+    false
 }
 
 fn mul_sign(st: Style) -> &'static str {
@@ -265,8 +286,25 @@ fn fraction(num: &Poly, den: &Poly, st: Style) -> String {
         if num.len() == 1 {
             return sum_str(num, st);
         }
-        // A sum with fractional coefficients: keep it as a sum.
-        return sum_str(num, st);
+        // A sum with a common power product: `l₁²·(m₁ + m₂)`.
+        let (cn, mn, pn) = split_poly(num);
+        if mn.0.is_empty() {
+            return sum_str(num, st);
+        }
+        let neg = cn.is_negative();
+        let c = cn.abs();
+        let head = mono_str(&mn, st);
+        let body = format!("{}{}({})", head, mul_sign(st), sum_str(&pn, st));
+        let s = if c.is_one() {
+            body
+        } else {
+            coef_times(&c, &body, st)
+        };
+        return match (neg, st) {
+            (false, _) => s,
+            (true, Style::Input) => format!("-{s}"),
+            (true, Style::Unicode) => format!("−{s}"),
+        };
     }
     let (cn, mn, pn) = split_poly(num);
     let (cd, md, pd) = split_poly(den);
