@@ -62,6 +62,10 @@ pub enum Atom {
     Exp(Expr),
     Ln(Expr),
     Atan(Expr),
+    /// A factor that exists only in printed output (`cos(q1 − q2)` folded
+    /// back from its expansion): its input-syntax and Unicode texts. Never
+    /// part of a canonical expression.
+    Shown(Arc<str>, Arc<str>),
 }
 
 struct Entry {

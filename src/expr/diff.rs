@@ -57,7 +57,7 @@ fn compute_atom_derivative(a: Var, wrt: Wrt) -> Option<Expr> {
         (!d.is_zero()).then_some(d)
     };
     match (&at, wrt) {
-        (Atom::Param(_) | Atom::Pi | Atom::Root(_), _) => None,
+        (Atom::Param(_) | Atom::Pi | Atom::Root(_) | Atom::Shown(..), _) => None,
         (Atom::Coord(..) | Atom::Time, Wrt::Var(_)) => None,
         (Atom::Coord(name, k), Wrt::Time) => Some(Expr::var(atom::coord(name, k + 1))),
         (Atom::Time, Wrt::Time) => Some(Expr::one()),

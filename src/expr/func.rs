@@ -471,6 +471,7 @@ pub fn eval_atom(v: Var, f: &dyn Fn(&Atom) -> Option<f64>) -> Option<f64> {
         Atom::Exp(u) => ev(u).map(f64::exp),
         Atom::Ln(u) => ev(u).map(f64::ln),
         Atom::Atan(u) => ev(u).map(f64::atan),
+        Atom::Shown(..) => None,
     }
 }
 

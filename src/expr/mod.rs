@@ -221,6 +221,11 @@ impl Expr {
         }))
     }
 
+    /// num/den as given, without canonicalization (for printing only).
+    pub(crate) fn raw(num: Poly, den: Poly) -> Expr {
+        Expr(Arc::new(Rat { num, den }))
+    }
+
     /// A polynomial, reduced.
     pub fn from_poly(p: Poly) -> Expr {
         Expr::poly(reduced(p))

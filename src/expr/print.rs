@@ -36,6 +36,18 @@ pub fn render(e: &Expr, st: Style) -> String {
     if e.is_zero() {
         return "0".into();
     }
+    let folded_num = fold_trig(e.num());
+    let folded_den = fold_trig(e.den());
+    if folded_num.is_some() || folded_den.is_some() {
+        let n = folded_num.unwrap_or_else(|| e.num().clone());
+        let d = folded_den.unwrap_or_else(|| e.den().clone());
+        return render_parts(&n, &d, st);
+    }
+    render_parts(e.num(), e.den(), st)
+}
+
+fn render_parts(num: &Poly, den: &Poly, st: Style) -> String {
+    let e = &Expr::raw(num.clone(), den.clone());
     // Collect by coordinate monomials when the denominator is free of coordinates.
     let den_has_coord = e.den().vars().into_iter().any(is_dynamic);
     let num_has_coord = e.num().vars().into_iter().any(is_dynamic);
@@ -396,9 +408,12 @@ fn factor_rank(v: Var) -> (u8, u32, String, String) {
         Atom::Pi => (1, 0, name.0, name.1),
         Atom::Root(_) | Atom::SqrtOf(_) => (2, 0, name.0, name.1),
         Atom::Time => (3, 0, name.0, name.1),
-        Atom::Sin(_) | Atom::Cos(_) | Atom::Exp(_) | Atom::Ln(_) | Atom::Atan(_) => {
-            (4, 0, name.0, name.1)
-        }
+        Atom::Sin(_)
+        | Atom::Cos(_)
+        | Atom::Exp(_)
+        | Atom::Ln(_)
+        | Atom::Atan(_)
+        | Atom::Shown(..) => (4, 0, name.0, name.1),
         Atom::Coord(_, k) => (5, k, name.0, name.1),
     }
 }
@@ -454,6 +469,7 @@ fn fn_name(a: &Atom) -> &'static str {
 /// An atom in input syntax.
 pub fn atom_input(a: &Atom) -> String {
     match a {
+        Atom::Shown(i, _) => i.to_string(),
         Atom::Param(n) => n.to_string(),
         Atom::Coord(n, k) => format!("{n}{}", "'".repeat(*k as usize)),
         Atom::Time => "t".into(),
@@ -468,6 +484,7 @@ pub fn atom_input(a: &Atom) -> String {
 
 fn atom_unicode(a: &Atom) -> String {
     match a {
+        Atom::Shown(_, u) => u.to_string(),
         Atom::Param(n) => pretty_name(n, 0),
         Atom::Coord(n, k) => pretty_name(n, *k),
         Atom::Time => "t".into(),
@@ -567,4 +584,137 @@ pub fn pretty_name(name: &str, dots: u32) -> String {
         format!("{base}{}", "′".repeat(dots as usize))
     };
     format!("{base}{}", subscript(digits))
+}
+
+// ---------------------------------------------------------------- folding
+
+/// A trig factor of a monomial: (sin var, is cosine).
+fn trig_factor(v: Var) -> Option<(Var, bool)> {
+    match atom::atom(v) {
+        Atom::Sin(_) => Some((v, false)),
+        Atom::Cos(_) => Some((atom::sin_partner(v), true)),
+        _ => None,
+    }
+}
+
+fn base_angle(sin: Var) -> Option<Expr> {
+    match atom::atom(sin) {
+        Atom::Sin(u) => Some(u),
+        _ => None,
+    }
+}
+
+/// `a ∓ b` as text in both styles, each angle parenthesized when it is a sum.
+fn angle_text(a: &Expr, b: &Expr, minus: bool) -> (String, String) {
+    let wrap = |s: String| if is_sum(&s) { format!("({s})") } else { s };
+    let (ia, ib) = (wrap(input(a)), wrap(input(b)));
+    let (ua, ub) = (wrap(unicode(a)), wrap(unicode(b)));
+    if minus {
+        (format!("{ia} - {ib}"), format!("{ua} − {ub}"))
+    } else {
+        (format!("{ia} + {ib}"), format!("{ua} + {ub}"))
+    }
+}
+
+fn shown(f: &str, angle: (String, String)) -> Var {
+    atom::intern(Atom::Shown(
+        format!("{f}({})", angle.0).into(),
+        format!("{f}({})", angle.1).into(),
+    ))
+}
+
+/// Fold pairs of terms back by the addition theorems, for display only:
+/// `c·X·cos a·cos b ± c·X·sin a·sin b → c·X·cos(a ∓ b)` and
+/// `c·X·sin a·cos b ± c·X·cos a·sin b → c·X·sin(a ± b)`. Returns `None`
+/// when nothing folds.
+fn fold_trig(p: &Poly) -> Option<Poly> {
+    let terms = p.terms();
+    let trig_terms = terms
+        .iter()
+        .filter(|(m, _)| {
+            m.0.iter().any(|&(v, e)| {
+                e == 1 && atom::is_reducible(v) || e == 1 && trig_factor(v).is_some()
+            })
+        })
+        .count();
+    if trig_terms < 2 {
+        return None;
+    }
+    let index: rustc_hash::FxHashMap<&Mono, usize> =
+        terms.iter().enumerate().map(|(i, (m, _))| (m, i)).collect();
+    let mut used = vec![false; terms.len()];
+    let mut out: Vec<(Mono, Q)> = Vec::new();
+    let mut folded = false;
+    for i in 0..terms.len() {
+        if used[i] {
+            continue;
+        }
+        let (m, c) = &terms[i];
+        let trig: Vec<(Var, Var, bool)> =
+            m.0.iter()
+                .filter(|&&(_, e)| e == 1)
+                .filter_map(|&(v, _)| trig_factor(v).map(|(s, is_cos)| (v, s, is_cos)))
+                .collect();
+        'pairs: for x in 0..trig.len() {
+            for y in 0..trig.len() {
+                if x == y || trig[x].1 == trig[y].1 {
+                    continue;
+                }
+                let (vx, sx, cx) = trig[x];
+                let (vy, sy, cy) = trig[y];
+                // Patterns keyed on the first factor: cos·cos (x < y) or sin·cos.
+                let partner = match (cx, cy) {
+                    (true, true) if x < y => (sx, sy),
+                    (false, true) => (atom::cos_partner(sx).unwrap_or(sx), sy),
+                    _ => continue,
+                };
+                let rest = m
+                    .div(&Mono::from_pairs([(vx, 1), (vy, 1)]))
+                    .unwrap_or_default();
+                let pm = rest.mul(&Mono::from_pairs([(partner.0, 1), (partner.1, 1)]));
+                let Some(&j) = index.get(&pm) else { continue };
+                if used[j] || j == i {
+                    continue;
+                }
+                let d = &terms[j].1;
+                let same = d == c;
+                let opposite = *d == -c.clone();
+                if !same && !opposite {
+                    continue;
+                }
+                let (Some(a), Some(b)) = (base_angle(sx), base_angle(sy)) else {
+                    continue;
+                };
+                // Put the earlier angle first; sin(b − a) = −sin(a − b).
+                let a_first = sx < sy;
+                let (var, coef) = if cx {
+                    // cos a cos b (+) sin a sin b = cos(a − b); (−): cos(a + b)
+                    let (p, q) = if a_first { (&a, &b) } else { (&b, &a) };
+                    (shown("cos", angle_text(p, q, same)), c.clone())
+                } else if same {
+                    let (p, q) = if a_first { (&a, &b) } else { (&b, &a) };
+                    (shown("sin", angle_text(p, q, false)), c.clone())
+                } else if a_first {
+                    // sin a cos b − cos a sin b = sin(a − b)
+                    (shown("sin", angle_text(&a, &b, true)), c.clone())
+                } else {
+                    (shown("sin", angle_text(&b, &a, true)), -c.clone())
+                };
+                out.push((rest.mul(&Mono::var(var)), coef));
+                used[i] = true;
+                used[j] = true;
+                folded = true;
+                break 'pairs;
+            }
+        }
+    }
+    if !folded {
+        return None;
+    }
+    for (i, t) in terms.iter().enumerate() {
+        if !used[i] {
+            out.push(t.clone());
+        }
+    }
+    Some(Poly::from_terms(out))
 }
