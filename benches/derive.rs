@@ -7,6 +7,9 @@
 //!   with ../shared/anchors/symengine_npendulum.py (`scripts/anchors.sh`).
 //! * `npendulum/solve/<n>`: the exact accelerations in lowest terms.
 
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use qdot::Scene;
 use std::hint::black_box;

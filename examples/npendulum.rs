@@ -6,6 +6,9 @@
 //! ../shared/anchors/symengine_npendulum.py so the two can be compared
 //! side by side in one run.
 
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 use std::time::Instant;
 
 fn main() -> Result<(), qdot::Diagnostic> {

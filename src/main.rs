@@ -5,6 +5,12 @@ use qdot::output::{self, Format};
 use qdot::{Diagnostic, Scene};
 use std::process::ExitCode;
 
+// Exact arithmetic allocates many small polynomials; mimalloc serves them
+// faster than the system allocator (measured: ~25% of all instructions were
+// glibc malloc/free on the seed problems).
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 #[derive(Parser)]
 #[command(
     name = "qdot",

@@ -65,6 +65,27 @@ struct Rat {
 }
 
 /// A canonical exact expression (cheap to clone: shared).
+///
+/// Expressions can be built in code as well as parsed:
+///
+/// ```
+/// use qdot::expr::{func, Expr};
+/// let (m, l, g) = (Expr::param("m"), Expr::param("l"), Expr::param("g"));
+/// let th = Expr::coord("th", 0);
+/// // E = ½·m·l²·θ̇², V = −m·g·l·cos θ
+/// let half = Expr::rational(qdot::num::Q::new(1, 2).unwrap());
+/// let thd = th.dt();
+/// let e = half.mul(&m).mul(&l.powi(2).unwrap()).mul(&thd.powi(2).unwrap());
+/// let v = m.mul(&g).mul(&l).mul(&func::cos(&th)).neg();
+/// let th_var = qdot::expr::atom::coord("th", 0);
+/// let thd_var = qdot::expr::atom::coord("th", 1);
+/// // d/dt(∂E/∂θ̇) + ∂V/∂θ
+/// let lhs = e.diff(thd_var).dt().add(&v.diff(th_var));
+/// assert_eq!(lhs.to_string(), "l^2*m*th'' + g*l*m*sin(th)");
+/// // sin² + cos² = 1, exactly
+/// let one = func::sin(&th).powi(2).unwrap().add(&func::cos(&th).powi(2).unwrap());
+/// assert!(one.is_one());
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct Expr(Arc<Rat>);
 
@@ -403,8 +424,8 @@ impl Expr {
         // (a/b)(c/d) with cross cancellation.
         let (_, a1, d1) = cofactors(a, d);
         let (_, c1, b1) = cofactors(c, b);
-        let n = &a1 * &c1;
-        let den = &b1 * &d1;
+        let n = pmul(&a1, &c1);
+        let den = pmul(&b1, &d1);
         // Reduction (cos², √2²) can create common factors: renormalize then.
         match (reduce(&n), reduce(&den)) {
             (None, None) => Expr::finish(n, den),
@@ -416,6 +437,12 @@ impl Expr {
     pub fn div(&self, o: &Expr) -> Result<Expr, MathError> {
         if o.is_zero() {
             return Err(MathError::new("division by zero"));
+        }
+        if let Some(q) = o.as_rational() {
+            let inv = Q::one()
+                .checked_div(&q)
+                .ok_or_else(|| MathError::new("division by zero"))?;
+            return Ok(self.scale(&inv));
         }
         Ok(self.mul(&o.recip()?))
     }
@@ -545,6 +572,17 @@ fn subs_poly(p: &Poly, map: &rustc_hash::FxHashMap<Var, Expr>) -> Result<Expr, M
         acc = acc.add(&term);
     }
     Ok(acc)
+}
+
+/// a·b with the cheap cases (a constant factor) done without a full product.
+fn pmul(a: &Poly, b: &Poly) -> Poly {
+    if let Some(k) = a.as_constant() {
+        return if k.is_one() { b.clone() } else { b.scale(k) };
+    }
+    if let Some(k) = b.as_constant() {
+        return if k.is_one() { a.clone() } else { a.scale(k) };
+    }
+    a * b
 }
 
 /// (gcd, a/gcd, b/gcd).
