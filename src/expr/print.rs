@@ -631,11 +631,7 @@ fn fold_trig(p: &Poly) -> Option<Poly> {
     let terms = p.terms();
     let trig_terms = terms
         .iter()
-        .filter(|(m, _)| {
-            m.0.iter().any(|&(v, e)| {
-                e == 1 && atom::is_reducible(v) || e == 1 && trig_factor(v).is_some()
-            })
-        })
+        .filter(|(m, _)| m.0.iter().any(|&(v, e)| e == 1 && trig_factor(v).is_some()))
         .count();
     if trig_terms < 2 {
         return None;
