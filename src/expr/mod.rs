@@ -285,6 +285,12 @@ impl Expr {
 
     // ------------------------------------------------------------ access
 
+    /// The address of the shared representation: equal ids mean the same
+    /// shared value (used to memoize work on shared subexpressions).
+    pub fn id(&self) -> usize {
+        Arc::as_ptr(&self.0) as usize
+    }
+
     pub fn num(&self) -> &Poly {
         &self.0.num
     }

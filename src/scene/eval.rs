@@ -23,6 +23,9 @@ pub(crate) struct Evaluator<'a> {
     stack: Vec<usize>,
     /// Parameters and coordinates already turned into expressions.
     atoms: FxHashMap<&'a str, Expr>,
+    /// Time derivatives already taken, by shared value and order (the
+    /// value is kept alive beside its derivative so its id stays unique).
+    derivatives: FxHashMap<(usize, u32), (Expr, Expr)>,
     pub warnings: Vec<Diagnostic>,
 }
 
@@ -49,6 +52,7 @@ impl<'a> Evaluator<'a> {
             state: vec![State::Todo; defs.len()],
             stack: Vec::new(),
             atoms: FxHashMap::default(),
+            derivatives: FxHashMap::default(),
             warnings: Vec::new(),
         }
     }
@@ -66,6 +70,7 @@ impl<'a> Evaluator<'a> {
             state: values.into_iter().map(State::Done).collect(),
             stack: Vec::new(),
             atoms: FxHashMap::default(),
+            derivatives: FxHashMap::default(),
             warnings: Vec::new(),
         }
     }
@@ -147,11 +152,16 @@ impl<'a> Evaluator<'a> {
                     )
                     .with_hint("`'` is d/dt: it applies to coordinates, `t`, and expressions built from them; declare it in `coordinates` if it moves"));
                 }
-                let mut v = v;
-                for _ in 0..*order {
-                    v = v.dt();
+                let key = (v.id(), *order);
+                if let Some((_, d)) = self.derivatives.get(&key) {
+                    return Ok(d.clone());
                 }
-                Ok(v)
+                let mut d = v.clone();
+                for _ in 0..*order {
+                    d = d.dt();
+                }
+                self.derivatives.insert(key, (v, d.clone()));
+                Ok(d)
             }
         }
     }
