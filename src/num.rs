@@ -433,8 +433,28 @@ impl Q {
     // slow paths
     // -----------------------------------------------------------------------
 
+    /// The integer value (only meaningful when `is_integer()`), borrowed if big.
+    #[inline]
+    fn int_cow(&self) -> std::borrow::Cow<'_, BigInt> {
+        match self {
+            Q::Small(n, _) => std::borrow::Cow::Owned(BigInt::from(*n)),
+            Q::Big(r) => std::borrow::Cow::Borrowed(r.numer()),
+        }
+    }
+
+    /// Big-operand slow path; integer operands avoid `BigRational`'s gcds.
     #[cold]
-    fn big_op(a: &Q, b: &Q, op: fn(&BigRational, &BigRational) -> BigRational) -> Q {
+    fn big_op(
+        a: &Q,
+        b: &Q,
+        op: fn(&BigRational, &BigRational) -> BigRational,
+        iop: Option<fn(&BigInt, &BigInt) -> BigInt>,
+    ) -> Q {
+        if let Some(iop) = iop {
+            if a.is_integer() && b.is_integer() {
+                return Q::from_bigint(iop(&a.int_cow(), &b.int_cow()));
+            }
+        }
         match (a, b) {
             (Q::Big(x), Q::Big(y)) => Q::from_big(op(x, y)),
             (Q::Big(x), _) => Q::from_big(op(x, &b.to_big())),
@@ -459,7 +479,7 @@ impl Q {
             let n = a as i128 * d as i128 + c as i128 * b as i128;
             return Q::from_i128_frac(n, b as i128 * d as i128);
         }
-        Q::big_op(self, other, |x, y| x + y)
+        Q::big_op(self, other, |x, y| x + y, Some(|x, y| x + y))
     }
 
     #[inline]
@@ -478,7 +498,7 @@ impl Q {
             let n = a as i128 * d as i128 - c as i128 * b as i128;
             return Q::from_i128_frac(n, b as i128 * d as i128);
         }
-        Q::big_op(self, other, |x, y| x - y)
+        Q::big_op(self, other, |x, y| x - y, Some(|x, y| x - y))
     }
 
     #[inline]
@@ -503,7 +523,7 @@ impl Q {
         if self.is_zero() || other.is_zero() {
             return Q::zero();
         }
-        Q::big_op(self, other, |x, y| x * y)
+        Q::big_op(self, other, |x, y| x * y, Some(|x, y| x * y))
     }
 
     #[inline]

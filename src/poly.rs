@@ -10,12 +10,26 @@
 //! bits, so integer order is the monomial order) whenever the exponents fit;
 //! otherwise they fall back to working on [`Mono`] directly.
 //!
-//! The GCD ([`Poly::gcd`]) works over Z after clearing denominators and uses
-//! a cascade of reductions (monomial content, variables present in only one
-//! argument, variables that modular images prove absent from the GCD, trial
-//! division), then a heuristic GCD (GCDHEU) for few variables, and a recursive
-//! subresultant PRS as the always-correct fallback. Every candidate is verified
-//! by exact division and certified against modular degree bounds.
+//! The GCD ([`Poly::gcd`]) works over Z after clearing denominators:
+//! 1. trivial cases (zero, constants, monomials, equal inputs);
+//! 2. the monomial gcd is split off;
+//! 3. variables present in only one argument are eliminated by taking the
+//!    gcd with all coefficients with respect to them;
+//! 4. univariate images modulo a 62-bit prime at random points give upper
+//!    bounds on the degree of the gcd in every variable; variables with bound
+//!    0 are eliminated the same way (so coprime inputs are detected cheaply);
+//! 5. trial division when the bounds say one input may divide the other;
+//! 6. for inputs linear in some variable (and more than 3 variables): a
+//!    recursive subresultant PRS (one pseudo-remainder step);
+//! 7. otherwise the heuristic gcd GCDHEU (at most 3 variables) and Zippel's
+//!    sparse modular interpolation (with Brown's leading-coefficient
+//!    normalization), each verified by exact division;
+//! 8. the recursive subresultant PRS as the always-correct fallback.
+//!
+//! A verified common divisor whose degrees meet the bounds of step 4 is
+//! certified to be the gcd; a verified common divisor of smaller degree is
+//! factored out and the gcd of the cofactors computed recursively. The result
+//! is therefore always exact; randomness only affects speed.
 
 use crate::num::Q;
 use num_bigint::BigInt;
@@ -394,96 +408,146 @@ trait Repr {
     fn div_bounded(&self, a: &Self::K, b: &Self::K) -> Option<Self::K>;
 }
 
-/// Packed `u128` keys: one bit field per variable, smallest variable highest.
-struct Packed {
+/// Bit-field layout for packed monomial keys: one field per variable,
+/// smallest variable in the most significant bits of word 0, fields never
+/// straddle words. Key comparison (`[u64; W]` lexicographic) is then the
+/// monomial order, and key addition is monomial multiplication as long as no
+/// field overflows (guaranteed by sizing the fields for the maximum exponent).
+struct Layout {
     vars: SmallVec<[Var; 16]>,
-    shifts: SmallVec<[u32; 16]>,
-    masks: SmallVec<[u128; 16]>,
+    /// (word, shift, mask) per variable
+    fields: SmallVec<[(u8, u8, u64); 16]>,
     /// quotient exponent bounds (for `div_bounded`)
     qbound: SmallVec<[u32; 16]>,
+    words: usize,
+    /// for each word and bit, the index of the field holding that bit
+    bit_field: Vec<[u8; 64]>,
 }
 
-impl Packed {
+impl Layout {
     /// Fields wide enough for the given maximum exponents; `qb` gives the
     /// quotient bounds per variable (same order), if division is needed.
-    fn new(maxdeg: &DegList, qb: Option<&[u32]>) -> Option<Packed> {
-        let mut total = 0u32;
-        let mut widths: SmallVec<[u32; 16]> = SmallVec::new();
-        for &(_, d) in maxdeg.iter() {
+    /// `None` if more than 8 words would be needed.
+    fn new(maxdeg: &DegList, qb: Option<&[u32]>) -> Option<Layout> {
+        if maxdeg.len() > 255 {
+            return None;
+        }
+        let mut fields = SmallVec::new();
+        let mut bit_field = vec![[0u8; 64]];
+        let mut word = 0usize;
+        let mut free = 64u32;
+        for (j, &(_, d)) in maxdeg.iter().enumerate() {
             let w = (32 - d.leading_zeros()).max(1);
-            total += w;
-            if total > 128 {
-                return None;
+            if w > free {
+                word += 1;
+                free = 64;
+                if word >= 8 {
+                    return None;
+                }
+                bit_field.push([0u8; 64]);
             }
-            widths.push(w);
+            free -= w;
+            let mask = if w == 64 { u64::MAX } else { (1u64 << w) - 1 };
+            fields.push((word as u8, free as u8, mask));
+            for b in free..free + w {
+                bit_field[word][b as usize] = j as u8;
+            }
         }
-        let mut shifts = SmallVec::new();
-        let mut masks = SmallVec::new();
-        let mut s = total;
-        for &w in widths.iter() {
-            s -= w;
-            shifts.push(s);
-            masks.push((1u128 << w) - 1);
-        }
-        Some(Packed {
+        Some(Layout {
             vars: maxdeg.iter().map(|p| p.0).collect(),
-            shifts,
-            masks,
+            fields,
             qbound: match qb {
                 Some(q) => q.iter().copied().collect(),
                 None => SmallVec::new(),
             },
+            words: word + 1,
+            bit_field,
         })
     }
 }
 
-impl Repr for Packed {
-    type K = u128;
+/// Packed keys of `W` words.
+struct Packed<'a, const W: usize>(&'a Layout);
+
+impl<const W: usize> Repr for Packed<'_, W> {
+    type K = [u64; W];
 
     #[inline]
-    fn enc(&self, m: &Mono) -> Option<u128> {
-        let mut k = 0u128;
+    fn enc(&self, m: &Mono) -> Option<[u64; W]> {
+        let l = self.0;
+        let mut k = [0u64; W];
         let mut j = 0;
         for &(v, e) in m.0.iter() {
-            while j < self.vars.len() && self.vars[j] < v {
+            while j < l.vars.len() && l.vars[j] < v {
                 j += 1;
             }
-            if j >= self.vars.len() || self.vars[j] != v || (e as u128) > self.masks[j] {
+            if j >= l.vars.len() || l.vars[j] != v {
                 return None;
             }
-            k |= (e as u128) << self.shifts[j];
+            let (w, sh, mask) = l.fields[j];
+            if (e as u64) > mask {
+                return None;
+            }
+            *k.get_mut(w as usize)? |= (e as u64) << sh;
         }
         Some(k)
     }
 
     #[inline]
-    fn dec(&self, k: &u128) -> Mono {
+    fn dec(&self, k: &[u64; W]) -> Mono {
+        // visit only the nonzero fields, highest bits (smallest vars) first
+        let l = self.0;
         let mut out = SmallVec::new();
-        for j in 0..self.vars.len() {
-            let e = (k >> self.shifts[j]) & self.masks[j];
-            if e != 0 {
-                out.push((self.vars[j], e as u32));
+        for (w, table) in l.bit_field.iter().enumerate() {
+            let mut x = k[w];
+            while x != 0 {
+                let j = table[63 - x.leading_zeros() as usize] as usize;
+                let (_, sh, mask) = l.fields[j];
+                out.push((l.vars[j], ((x >> sh) & mask) as u32));
+                x &= !(mask << sh);
             }
         }
         Mono(out)
     }
 
     #[inline]
-    fn mul(&self, a: &u128, b: &u128) -> u128 {
-        a + b
+    fn mul(&self, a: &[u64; W], b: &[u64; W]) -> [u64; W] {
+        let mut r = *a;
+        for i in 0..W {
+            r[i] = r[i].wrapping_add(b[i]);
+        }
+        r
     }
 
     #[inline]
-    fn div_bounded(&self, a: &u128, b: &u128) -> Option<u128> {
-        for j in 0..self.vars.len() {
-            let ea = (a >> self.shifts[j]) & self.masks[j];
-            let eb = (b >> self.shifts[j]) & self.masks[j];
-            if ea < eb || (ea - eb) > self.qbound[j] as u128 {
+    fn div_bounded(&self, a: &[u64; W], b: &[u64; W]) -> Option<[u64; W]> {
+        let l = self.0;
+        for (j, &(w, sh, mask)) in l.fields.iter().enumerate() {
+            let ea = (a[w as usize] >> sh) & mask;
+            let eb = (b[w as usize] >> sh) & mask;
+            if ea < eb || (ea - eb) > l.qbound[j] as u64 {
                 return None;
             }
         }
-        Some(a - b)
+        let mut r = *a;
+        for i in 0..W {
+            r[i] = r[i].wrapping_sub(b[i]);
+        }
+        Some(r)
     }
+}
+
+/// Runs `$f(&repr, args...)` with the smallest packed key width that fits.
+macro_rules! with_packed {
+    ($layout:expr, $f:ident ( $($arg:expr),* )) => {{
+        let l: &Layout = $layout;
+        match l.words {
+            1 => $f(&Packed::<1>(l), $($arg),*),
+            2 => $f(&Packed::<2>(l), $($arg),*),
+            3 | 4 => $f(&Packed::<4>(l), $($arg),*),
+            _ => $f(&Packed::<8>(l), $($arg),*),
+        }
+    }};
 }
 
 /// Plain monomials (fallback when exponents do not pack).
@@ -700,6 +764,12 @@ impl Poly {
         self.terms.is_empty()
     }
 
+    /// No terms, i.e. `self == 0` (same as [`Poly::is_zero`]).
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.terms.is_empty()
+    }
+
     /// `self == 1`.
     #[inline]
     pub fn is_one(&self) -> bool {
@@ -761,6 +831,35 @@ impl Poly {
 
     /// Sorted list of `(var, max exponent)`.
     fn max_degrees(&self) -> DegList {
+        // dense scratch array when the variable ids are small enough
+        let mut max_var = 0u32;
+        let mut pairs = 0usize;
+        for (m, _) in &self.terms {
+            if let Some(&(v, _)) = m.0.last() {
+                max_var = max_var.max(v);
+            }
+            pairs += m.0.len();
+        }
+        if pairs == 0 {
+            return DegList::new();
+        }
+        if (max_var as usize) < 4 * pairs + 64 {
+            let mut dense = vec![0u32; max_var as usize + 1];
+            for (m, _) in &self.terms {
+                for &(v, e) in m.0.iter() {
+                    let d = &mut dense[v as usize];
+                    if *d < e {
+                        *d = e;
+                    }
+                }
+            }
+            return dense
+                .iter()
+                .enumerate()
+                .filter(|p| *p.1 > 0)
+                .map(|(v, &e)| (v as Var, e))
+                .collect();
+        }
         let mut out = DegList::new();
         for (m, _) in &self.terms {
             for &(v, e) in m.0.iter() {
@@ -1168,8 +1267,10 @@ impl Poly {
             return self.mul_mono(&b[0].0, &b[0].1);
         }
         let deg = merge_deglists(&self.max_degrees(), &other.max_degrees(), true);
-        if let Some(pk) = Packed::new(&deg, None) {
-            if let Some(t) = mul_with(&pk, a, b) {
+        // (saturated exponent sums cannot be packed without field overflow)
+        let packable = deg.iter().all(|p| p.1 < u32::MAX);
+        if let Some(layout) = Layout::new(&deg, None).filter(|_| packable) {
+            if let Some(t) = with_packed!(&layout, mul_with(a, b)) {
                 return Poly::from_sorted(t);
             }
         }
@@ -1231,8 +1332,8 @@ impl Poly {
         if j < dd.len() {
             return None;
         }
-        if let Some(pk) = Packed::new(&da, Some(&qb)) {
-            if let Some(res) = div_with(&pk, &self.terms, &d.terms) {
+        if let Some(layout) = Layout::new(&da, Some(&qb)) {
+            if let Some(res) = with_packed!(&layout, div_with(&self.terms, &d.terms)) {
                 return res.map(Poly::from_sorted);
             }
         }
@@ -1248,14 +1349,13 @@ impl Poly {
 
     /// Positive rational gcd of the coefficients (0 for the zero polynomial).
     pub fn content(&self) -> Q {
+        let all_integer = self.terms.iter().all(|t| t.1.is_integer());
         let mut g = Q::zero();
         for (_, c) in &self.terms {
             g = g.gcd(c);
-            if g.is_one() {
-                // can still shrink for fractional coefficients
-                if self.terms.iter().all(|t| t.1.is_integer()) {
-                    return g;
-                }
+            // with fractional coefficients the gcd can still shrink below 1
+            if all_integer && g.is_one() {
+                return g;
             }
         }
         g
@@ -1386,9 +1486,25 @@ fn next_rand() -> u64 {
     })
 }
 
+/// `a * b mod p` for `a, b < p`. The primes used are `2^62 - c` with small
+/// `c`, which allows a division-free reduction; other moduli fall back to
+/// `u128` remainder.
 #[inline]
 fn mulmod(a: u64, b: u64, p: u64) -> u64 {
-    ((a as u128 * b as u128) % p as u128) as u64
+    const MASK: u64 = (1 << 62) - 1;
+    let x = a as u128 * b as u128;
+    if p > (1 << 62) - (1 << 16) && p < (1 << 62) {
+        let c = (1u64 << 62) - p;
+        // x = hi * 2^62 + lo ≡ hi * c + lo
+        let x1 = (x >> 62) * c as u128 + (x as u64 & MASK) as u128;
+        let mut r = ((x1 >> 62) as u64) * c + (x1 as u64 & MASK);
+        while r >= p {
+            r -= p;
+        }
+        r
+    } else {
+        (x % p as u128) as u64
+    }
 }
 
 #[inline]
@@ -1423,8 +1539,21 @@ fn powmod(mut b: u64, mut e: u64, p: u64) -> u64 {
     r
 }
 
+/// Inverse modulo the prime `p` by the extended Euclidean algorithm
+/// (`0` for `a ≡ 0`).
 fn invmod(a: u64, p: u64) -> u64 {
-    powmod(a, p - 2, p)
+    // p < 2^63, so remainders and Bezout coefficients (|s| <= p) fit i64
+    let (mut r0, mut r1) = (p as i64, (a % p) as i64);
+    let (mut s0, mut s1) = (0i64, 1i64);
+    while r1 != 0 {
+        let q = r0 / r1;
+        (r0, r1) = (r1, r0 - q * r1);
+        (s0, s1) = (s1, s0 - q * s1);
+    }
+    if r0 != 1 {
+        return 0;
+    }
+    s0.rem_euclid(p as i64) as u64
 }
 
 /// `c mod p`, `None` if the denominator vanishes mod `p`.
@@ -1459,8 +1588,10 @@ fn trim(v: &mut Vec<u64>) {
     }
 }
 
-/// Degree of the monic gcd of two nonzero dense polynomials over Z_p.
-fn gcd_degree_modp(mut a: Vec<u64>, mut b: Vec<u64>, p: u64) -> usize {
+/// Monic gcd of two dense polynomials over Z_p (index = power).
+fn gcd_modp(mut a: Vec<u64>, mut b: Vec<u64>, p: u64) -> Vec<u64> {
+    trim(&mut a);
+    trim(&mut b);
     if a.len() < b.len() {
         std::mem::swap(&mut a, &mut b);
     }
@@ -1486,7 +1617,18 @@ fn gcd_degree_modp(mut a: Vec<u64>, mut b: Vec<u64>, p: u64) -> usize {
         }
         std::mem::swap(&mut a, &mut b);
     }
-    a.len().saturating_sub(1)
+    if let Some(&l) = a.last() {
+        let inv = invmod(l, p);
+        for x in a.iter_mut() {
+            *x = mulmod(*x, inv, p);
+        }
+    }
+    a
+}
+
+/// Degree of the monic gcd of two nonzero dense polynomials over Z_p.
+fn gcd_degree_modp(a: Vec<u64>, b: Vec<u64>, p: u64) -> usize {
+    gcd_modp(a, b, p).len().saturating_sub(1)
 }
 
 /// For each variable `vars[i]`, the univariate image of `a` in that variable
@@ -1684,16 +1826,36 @@ fn gcd_nomono(a: &Poly, b: &Poly) -> Poly {
     if bounds == da && b.div_exact(a).is_some() {
         return a.clone();
     }
-    // heuristic gcd for few variables
-    if let Some(h) = heu_entry(a, b, &vars, &da, &db) {
-        if !h.is_constant() {
+    // linear in some variable: a single pseudo-remainder step decides
+    if vars.len() > 3 && (0..vars.len()).any(|i| da[i].min(db[i]) <= 1) {
+        return prs_gcd(a, b, &vars, &da, &db, &bounds);
+    }
+    // candidates: heuristic gcd for few variables, then sparse modular gcd
+    let mut candidates = 0;
+    for attempt in 0..4 {
+        let cand = if attempt == 0 {
+            heu_entry(a, b, &vars, &da, &db)
+        } else {
+            zippel_gcd(a, b, &vars, &bounds)
+        };
+
+        if let Some(h) = cand {
             let hd: Vec<u32> = vars.iter().map(|&v| h.degree(v)).collect();
             if hd == bounds {
                 return h;
             }
-            if let (Some(qa), Some(qb)) = (a.div_exact(&h), b.div_exact(&h)) {
-                let rest = gcd_core(&qa, &qb);
-                return (&h * &rest).normalize_z();
+            if !h.is_constant() {
+                // a proper common divisor: recurse on the cofactors
+                if let (Some(qa), Some(qb)) = (a.div_exact(&h), b.div_exact(&h)) {
+                    let rest = gcd_core(&qa, &qb);
+                    return (&h * &rest).normalize_z();
+                }
+            }
+            candidates += 1;
+            if candidates >= 2 {
+                // two verified answers that the (probabilistic) degree bounds
+                // call too small: trust the exact PRS instead
+                break;
             }
         }
     }
@@ -1733,7 +1895,7 @@ fn heu_entry(a: &Poly, b: &Poly, vars: &[Var], da: &[u32], db: &[u32]) -> Option
     let mut order: Vec<usize> = (0..vars.len()).collect();
     order.sort_by_key(|&i| da[i].max(db[i]));
     let ovars: Vec<Var> = order.iter().map(|&i| vars[i]).collect();
-    let h = heu_gcd(a, b, &ovars, 0)?;
+    let h = heu_gcd(a, b, &ovars)?;
     Some(h.normalize_z())
 }
 
@@ -1779,7 +1941,7 @@ fn heu_interpolate(h: &Poly, xi: &BigInt, v: Var) -> Poly {
 }
 
 /// Heuristic gcd in Z[vars] (including the integer content), or `None`.
-fn heu_gcd(a: &Poly, b: &Poly, vars: &[Var], depth: usize) -> Option<Poly> {
+fn heu_gcd(a: &Poly, b: &Poly, vars: &[Var]) -> Option<Poly> {
     if a.is_zero() {
         return Some(b.normalize_z().scale(&b.content()));
     }
@@ -1797,7 +1959,7 @@ fn heu_gcd(a: &Poly, b: &Poly, vars: &[Var], depth: usize) -> Option<Poly> {
         None => return Some(Poly::constant(cg)),
     };
     if !a.contains_var(*v) && !b.contains_var(*v) {
-        return heu_gcd(a, b, rest, depth);
+        return heu_gcd(a, b, rest);
     }
     let ap = a.scale(&ca.recip()?);
     let bp = b.scale(&cb.recip()?);
@@ -1820,7 +1982,7 @@ fn heu_gcd(a: &Poly, b: &Poly, vars: &[Var], depth: usize) -> Option<Poly> {
         let aa = ap.eval_var(*v, &xq);
         let bbv = bp.eval_var(*v, &xq);
         if !aa.is_zero() && !bbv.is_zero() {
-            let h = heu_gcd(&aa, &bbv, rest, depth + 1)?;
+            let h = heu_gcd(&aa, &bbv, rest)?;
             let hh = heu_interpolate(&h, &xi, *v).normalize_z();
             if !hh.is_zero() && ap.div_exact(&hh).is_some() && bp.div_exact(&hh).is_some() {
                 return Some(hh.scale(&cg));
@@ -1842,6 +2004,350 @@ fn heu_gcd(a: &Poly, b: &Poly, vars: &[Var], depth: usize) -> Option<Poly> {
         xi = xi * BigInt::from(73794) * s / BigInt::from(27011);
     }
     None
+}
+
+// ---------------------------------------------------------------------------
+// sparse modular gcd (Zippel)
+// ---------------------------------------------------------------------------
+
+/// Terms of a polynomial mod p as (exponent of the main variable, exponents
+/// of the other variables `ys`, coefficient).
+type ModTerms = Vec<(u32, Vec<u32>, u64)>;
+
+fn to_mod_terms(a: &Poly, x1: Var, ys: &[Var], p: u64) -> Option<ModTerms> {
+    let mut out = Vec::with_capacity(a.len());
+    for (m, c) in &a.terms {
+        let mut e1 = 0;
+        let mut ex = vec![0u32; ys.len()];
+        for &(v, e) in m.0.iter() {
+            if v == x1 {
+                e1 = e;
+            } else {
+                ex[ys.binary_search(&v).ok()?] = e;
+            }
+        }
+        out.push((e1, ex, q_mod(c, p)?));
+    }
+    Some(out)
+}
+
+/// Dense univariate image in the main variable at the point given by the
+/// power tables `pows[i][e] = y_i^e`.
+fn eval_mod_terms(t: &ModTerms, deg1: usize, pows: &[Vec<u64>], p: u64) -> Vec<u64> {
+    let mut out = vec![0u64; deg1 + 1];
+    for (e1, ex, c) in t {
+        let mut v = *c;
+        for (i, &e) in ex.iter().enumerate() {
+            if e > 0 {
+                v = mulmod(v, pows[i][e as usize], p);
+            }
+        }
+        let slot = &mut out[*e1 as usize];
+        *slot = addmod(*slot, v, p);
+    }
+    out
+}
+
+/// Newton interpolation: coefficients (index = power) of the polynomial of
+/// degree < n through `(z[i], v[i])`; `inv[i][j] = 1 / (z[i] - z[j])`.
+fn interp_modp(z: &[u64], v: &[u64], inv: &[Vec<u64>], p: u64) -> Vec<u64> {
+    let n = z.len();
+    let mut dd = v.to_vec();
+    for j in 1..n {
+        for i in (j..n).rev() {
+            dd[i] = mulmod(submod(dd[i], dd[i - 1], p), inv[i][i - j], p);
+        }
+    }
+    let mut poly = vec![dd[n - 1]];
+    for i in (0..n - 1).rev() {
+        // poly = poly * (x - z[i]) + dd[i]
+        let mut next = vec![0u64; poly.len() + 1];
+        for (k, &c) in poly.iter().enumerate() {
+            next[k + 1] = addmod(next[k + 1], c, p);
+            next[k] = submod(next[k], mulmod(c, z[i], p), p);
+        }
+        next[0] = addmod(next[0], dd[i], p);
+        poly = next;
+    }
+    poly
+}
+
+/// Solves the transposed Vandermonde system `sum_i c_i m_i^s = v_s`
+/// (s = 0..t); `None` if the `m_i` are not distinct.
+fn vandermonde_modp(m: &[u64], v: &[u64], p: u64) -> Option<Vec<u64>> {
+    let t = m.len();
+    // master polynomial prod (z - m_i), index = power
+    let mut master = vec![1u64];
+    for &mi in m {
+        let mut next = vec![0u64; master.len() + 1];
+        for (k, &c) in master.iter().enumerate() {
+            next[k + 1] = addmod(next[k + 1], c, p);
+            next[k] = submod(next[k], mulmod(c, mi, p), p);
+        }
+        master = next;
+    }
+    let mut out = Vec::with_capacity(t);
+    let mut q = vec![0u64; t];
+    for &mi in m {
+        // q = master / (z - mi), synthetic division from the top
+        let mut carry = 0u64;
+        for k in (0..t).rev() {
+            carry = addmod(master[k + 1], mulmod(carry, mi, p), p);
+            q[k] = carry;
+        }
+        let mut denom = 0u64;
+        let mut num = 0u64;
+        for k in (0..t).rev() {
+            denom = addmod(mulmod(denom, mi, p), q[k], p);
+        }
+        for (k, &qk) in q.iter().enumerate() {
+            num = addmod(num, mulmod(qk, v[k], p), p);
+        }
+        if denom == 0 {
+            return None;
+        }
+        out.push(mulmod(num, invmod(denom, p), p));
+    }
+    Some(out)
+}
+
+/// Symmetric lift of a residue mod p to an integer.
+fn lift_sym(c: u64, p: u64) -> Q {
+    if c > p / 2 {
+        Q::from_i64(-((p - c) as i64))
+    } else {
+        Q::from_i64(c as i64)
+    }
+}
+
+/// One attempt of Zippel's sparse modular gcd for primitive integer
+/// polynomials with the same variables, no monomial content, and gcd degree
+/// bounds `bounds`. Returns a verified common divisor, primitive with
+/// positive leading coefficient, or `None` (unlucky choices or too large
+/// coefficients; callers fall back).
+fn zippel_gcd(a: &Poly, b: &Poly, vars: &[Var], bounds: &[u32]) -> Option<Poly> {
+    // main variable: largest gcd degree bound
+    let mut i1 = 0;
+    for i in 1..vars.len() {
+        if bounds[i] > bounds[i1] {
+            i1 = i;
+        }
+    }
+    let x1 = vars[i1];
+    let ys: Vec<Var> = vars.iter().copied().filter(|&v| v != x1).collect();
+    // content with respect to the main variable
+    let (conta, pa) = dense_primitive(&a.coeffs_in(x1));
+    let (contb, pb) = dense_primitive(&b.coeffs_in(x1));
+    let cont = if conta.is_one() && contb.is_one() {
+        Poly::one()
+    } else {
+        gcd_core(&conta, &contb)
+    };
+    if pa.len() <= 1 || pb.len() <= 1 {
+        return Some(cont);
+    }
+    // gcd of the leading coefficients over Z (including the integer content),
+    // a multiple of lc(G): H = gamma * G / lc(G) has integer coefficients
+    let (la, lb) = (pa.last()?, pb.last()?);
+    let gamma = gcd_core(la, lb).scale(&la.content().gcd(&lb.content()));
+    let pa_poly = if conta.is_one() {
+        a.clone()
+    } else {
+        Poly::from_coeffs_in(x1, &pa)
+    };
+    let pb_poly = if contb.is_one() {
+        b.clone()
+    } else {
+        Poly::from_coeffs_in(x1, &pb)
+    };
+    let m = ys.len();
+    // degree bounds of H = gamma * G / lc(G) in each y
+    let dh: Vec<usize> = ys
+        .iter()
+        .map(|&y| {
+            let i = vars.binary_search(&y).unwrap_or(0);
+            (bounds[i] + gamma.degree(y)) as usize
+        })
+        .collect();
+    let maxdeg: Vec<usize> = ys
+        .iter()
+        .map(|&y| {
+            pa_poly
+                .degree(y)
+                .max(pb_poly.degree(y))
+                .max(gamma.degree(y)) as usize
+        })
+        .collect();
+    let p = PRIMES[next_rand() as usize % PRIMES.len()];
+    let ta = to_mod_terms(&pa_poly, x1, &ys, p)?;
+    let tb = to_mod_terms(&pb_poly, x1, &ys, p)?;
+    let tg = to_mod_terms(&gamma, x1, &ys, p)?;
+    let (da1, db1) = (pa.len() - 1, pb.len() - 1);
+    let rnd = || 1 + next_rand() % (p - 1);
+    // work budget in term evaluations (beyond it the PRS is likely cheaper)
+    let mut budget: usize = 40_000_000;
+    let per_image = ta.len() + tb.len() + tg.len() + 1;
+    // gamma(pt) * monic gcd of the images at `pt`, or None if unlucky
+    let mut image = |pt: &[u64]| -> Option<Vec<u64>> {
+        budget = budget.checked_sub(per_image)?;
+        let pows: Vec<Vec<u64>> = pt
+            .iter()
+            .zip(maxdeg.iter())
+            .map(|(&x, &d)| {
+                let mut v = Vec::with_capacity(d + 1);
+                let mut acc = 1u64;
+                for _ in 0..=d {
+                    v.push(acc);
+                    acc = mulmod(acc, x, p);
+                }
+                v
+            })
+            .collect();
+        let ia = eval_mod_terms(&ta, da1, &pows, p);
+        let ib = eval_mod_terms(&tb, db1, &pows, p);
+        if ia[da1] == 0 || ib[db1] == 0 {
+            return None;
+        }
+        let g = gcd_modp(ia, ib, p);
+        let gv = eval_mod_terms(&tg, 0, &pows, p)[0];
+        if gv == 0 {
+            return None;
+        }
+        Some(g.into_iter().map(|c| mulmod(c, gv, p)).collect())
+    };
+    let beta: Vec<u64> = (0..m).map(|_| rnd()).collect();
+    let first = image(&beta)?;
+    let d1 = first.len() - 1;
+    if d1 == 0 {
+        // rigorous: the gcd of the primitive parts has degree 0 in x1
+        return Some(cont);
+    }
+    // skeleton: per power j of x1, (exponents over ys, coefficient)
+    let mut skel: Vec<Vec<(Vec<u32>, u64)>> = first
+        .iter()
+        .map(|&c| {
+            if c == 0 {
+                Vec::new()
+            } else {
+                vec![(vec![0u32; m], c)]
+            }
+        })
+        .collect();
+    for k in 0..m {
+        let npts = dh[k] + 1;
+        let mut zs: Vec<u64> = Vec::with_capacity(npts);
+        while zs.len() < npts {
+            let z = rnd();
+            if !zs.contains(&z) {
+                zs.push(z);
+            }
+        }
+        let inv: Vec<Vec<u64>> = (0..npts)
+            .map(|i| {
+                (0..npts)
+                    .map(|j| {
+                        if i == j {
+                            0
+                        } else {
+                            invmod(submod(zs[i], zs[j], p), p)
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        let tmax = skel.iter().map(|s| s.len()).max().unwrap_or(0);
+        let r: Vec<u64> = (0..k).map(|_| rnd()).collect();
+        // values of the skeleton monomials at r
+        let mvals: Vec<Vec<u64>> = skel
+            .iter()
+            .map(|s| {
+                s.iter()
+                    .map(|(ex, _)| {
+                        (0..k).fold(1u64, |acc, t| mulmod(acc, powmod(r[t], ex[t] as u64, p), p))
+                    })
+                    .collect()
+            })
+            .collect();
+        // coefficient values per (j, monomial) at each z
+        let mut vals: Vec<Vec<Vec<u64>>> = skel
+            .iter()
+            .map(|s| vec![Vec::with_capacity(npts); s.len()])
+            .collect();
+        for &z in &zs {
+            let nimg = if k == 0 { 1 } else { tmax };
+            let mut imgs: Vec<Vec<u64>> = Vec::with_capacity(nimg);
+            let mut rp: Vec<u64> = vec![1u64; k];
+            for _ in 0..nimg {
+                let mut pt = Vec::with_capacity(m);
+                pt.extend_from_slice(&rp);
+                pt.push(z);
+                pt.extend_from_slice(&beta[k + 1..]);
+                let img = image(&pt)?;
+                if img.len() != d1 + 1 {
+                    return None;
+                }
+                imgs.push(img);
+                for (x, &rv) in rp.iter_mut().zip(r.iter()) {
+                    *x = mulmod(*x, rv, p);
+                }
+            }
+            for (j, s) in skel.iter().enumerate() {
+                let t = s.len();
+                if t == 0 {
+                    // the coefficient must stay zero
+                    if imgs.iter().any(|img| img[j] != 0) {
+                        return None;
+                    }
+                    continue;
+                }
+                let v: Vec<u64> = imgs.iter().take(t).map(|img| img[j]).collect();
+                let c = if k == 0 {
+                    vec![v[0]]
+                } else {
+                    vandermonde_modp(&mvals[j], &v, p)?
+                };
+                for (l, cl) in c.into_iter().enumerate() {
+                    vals[j][l].push(cl);
+                }
+            }
+        }
+        // interpolate each monomial's coefficient in y_k
+        let mut next: Vec<Vec<(Vec<u32>, u64)>> = Vec::with_capacity(skel.len());
+        for (j, s) in skel.iter().enumerate() {
+            let mut terms = Vec::new();
+            for (l, (ex, _)) in s.iter().enumerate() {
+                let poly = interp_modp(&zs, &vals[j][l], &inv, p);
+                for (e, &c) in poly.iter().enumerate() {
+                    if c != 0 {
+                        let mut ne = ex.clone();
+                        ne[k] = e as u32;
+                        terms.push((ne, c));
+                    }
+                }
+            }
+            next.push(terms);
+        }
+        skel = next;
+    }
+    // lift to Z and rebuild H
+    let mut terms = Vec::new();
+    for (j, s) in skel.iter().enumerate() {
+        for (ex, c) in s {
+            let mono = Mono::from_pairs(
+                std::iter::once((x1, j as u32)).chain(ys.iter().copied().zip(ex.iter().copied())),
+            );
+            terms.push((mono, lift_sym(*c, p)));
+        }
+    }
+    let h = Poly::from_terms(terms);
+    let (_, hp) = dense_primitive(&h.coeffs_in(x1));
+    let g = Poly::from_coeffs_in(x1, &hp).normalize_z();
+    if g.is_zero() {
+        return None;
+    }
+    pa_poly.div_exact(&g)?;
+    pb_poly.div_exact(&g)?;
+    Some((&g * &cont).normalize_z())
 }
 
 // ---------------------------------------------------------------------------
@@ -1908,11 +2414,11 @@ fn dense_primitive(f: &[Poly]) -> (Poly, Vec<Poly>) {
 }
 
 fn prs_gcd(a: &Poly, b: &Poly, vars: &[Var], da: &[u32], db: &[u32], bounds: &[u32]) -> Poly {
-    // main variable: smallest gcd degree bound, then smallest degree
+    // main variable: smallest degree (fewest PRS steps), then smallest bound
     let mut best = 0;
     for i in 1..vars.len() {
-        let key = (bounds[i], da[i].min(db[i]), da[i].max(db[i]));
-        let bk = (bounds[best], da[best].min(db[best]), da[best].max(db[best]));
+        let key = (da[i].min(db[i]), da[i].max(db[i]), bounds[i]);
+        let bk = (da[best].min(db[best]), da[best].max(db[best]), bounds[best]);
         if key < bk {
             best = i;
         }
@@ -2142,6 +2648,24 @@ impl MulAssign<Poly> for Poly {
     }
 }
 
+impl std::iter::Sum for Poly {
+    fn sum<I: Iterator<Item = Poly>>(iter: I) -> Poly {
+        iter.fold(Poly::zero(), |a, b| a + b)
+    }
+}
+
+impl<'a> std::iter::Sum<&'a Poly> for Poly {
+    fn sum<I: Iterator<Item = &'a Poly>>(iter: I) -> Poly {
+        iter.fold(Poly::zero(), |a, b| a + b)
+    }
+}
+
+impl std::iter::Product for Poly {
+    fn product<I: Iterator<Item = Poly>>(iter: I) -> Poly {
+        iter.fold(Poly::one(), |a, b| a * b)
+    }
+}
+
 impl From<Q> for Poly {
     fn from(c: Q) -> Poly {
         Poly::constant(c)
@@ -2175,5 +2699,843 @@ impl fmt::Display for Poly {
             }
         }
         Ok(())
+    }
+}
+
+// ===========================================================================
+// tests
+// ===========================================================================
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn x(v: Var) -> Poly {
+        Poly::var(v)
+    }
+
+    fn c(n: i64) -> Poly {
+        Poly::constant(Q::from_i64(n))
+    }
+
+    fn cq(n: i64, d: i64) -> Poly {
+        Poly::constant(Q::new(n, d).expect("nonzero denominator"))
+    }
+
+    fn m(pairs: &[(Var, u32)]) -> Mono {
+        Mono::from_pairs(pairs.iter().copied())
+    }
+
+    fn is_canonical(p: &Poly) -> bool {
+        p.terms.windows(2).all(|w| w[0].0 > w[1].0)
+            && p.terms.iter().all(|t| !t.1.is_zero())
+            && p.terms.iter().all(|t| {
+                t.0 .0.windows(2).all(|w| w[0].0 < w[1].0) && t.0 .0.iter().all(|e| e.1 > 0)
+            })
+    }
+
+    #[test]
+    fn modular_helpers() {
+        for &p in PRIMES.iter() {
+            let mut st = p;
+            for _ in 0..200 {
+                let a = lcg(&mut st) * lcg(&mut st) % p;
+                let b = (lcg(&mut st) << 31 | lcg(&mut st)) % p;
+                let expect = ((a as u128 * b as u128) % p as u128) as u64;
+                assert_eq!(mulmod(a, b, p), expect);
+                assert_eq!(mulmod(p - 1, p - 1, p), 1);
+                if a != 0 {
+                    assert_eq!(mulmod(a, invmod(a, p), p), 1);
+                }
+            }
+            // Fermat: the moduli are prime (for these witnesses)
+            for w in [2u64, 3, 5, 7, 11, 13] {
+                assert_eq!(powmod(w, p - 1, p), 1);
+            }
+        }
+        assert_eq!(mulmod(10, 10, 7), 2);
+    }
+
+    #[test]
+    fn mono_order() {
+        let a = m(&[(0, 2)]);
+        let b = m(&[(0, 1), (1, 5)]);
+        let cc = m(&[(0, 1)]);
+        let d = m(&[(1, 9)]);
+        let e = Mono::one();
+        assert!(a > b && b > cc && cc > d && d > e);
+        let mut v = vec![e.clone(), cc.clone(), a.clone(), d.clone(), b.clone()];
+        v.sort();
+        assert_eq!(v, vec![e, d, cc, b, a]);
+        assert_eq!(
+            m(&[(0, 1), (2, 3)]).mul(&m(&[(1, 1), (2, 1)])),
+            m(&[(0, 1), (1, 1), (2, 4)])
+        );
+        assert_eq!(
+            m(&[(0, 2), (2, 3)]).div(&m(&[(2, 1)])),
+            Some(m(&[(0, 2), (2, 2)]))
+        );
+        assert_eq!(m(&[(0, 2), (2, 3)]).div(&m(&[(1, 1)])), None);
+        assert_eq!(m(&[(0, 2)]).div(&m(&[(0, 3)])), None);
+        assert_eq!(
+            m(&[(0, 2), (3, 1)]).gcd(&m(&[(0, 1), (1, 4), (3, 2)])),
+            m(&[(0, 1), (3, 1)])
+        );
+        assert_eq!(
+            m(&[(0, 2), (3, 1)]).lcm(&m(&[(0, 1), (1, 4)])),
+            m(&[(0, 2), (1, 4), (3, 1)])
+        );
+        assert!(m(&[(1, 1)]).divides(&m(&[(0, 1), (1, 2)])));
+        assert!(!m(&[(1, 3)]).divides(&m(&[(0, 1), (1, 2)])));
+        assert_eq!(m(&[(3, 2), (1, 1), (3, 1), (0, 0)]), m(&[(1, 1), (3, 3)]));
+        assert_eq!(m(&[(1, 1), (3, 3)]).total_degree(), 4);
+        assert_eq!(m(&[(1, 1), (3, 3)]).degree(3), 3);
+        assert_eq!(m(&[(1, 1), (3, 3)]).to_string(), "x1*x3^3");
+    }
+
+    #[test]
+    fn construction_and_display() {
+        let p = Poly::from_terms(vec![
+            (m(&[(1, 1)]), Q::from_i64(2)),
+            (Mono::one(), Q::from_i64(1)),
+            (m(&[(0, 2)]), Q::from_i64(3)),
+            (m(&[(1, 1)]), Q::from_i64(-2)),
+            (m(&[(0, 1), (1, 1)]), Q::new(-1, 2).expect("q")),
+        ]);
+        assert!(is_canonical(&p));
+        assert_eq!(p.to_string(), "3*x0^2 - 1/2*x0*x1 + 1");
+        assert_eq!(p.len(), 3);
+        assert_eq!(p.leading_coeff(), Some(&Q::from_i64(3)));
+        assert_eq!(p.leading_mono(), Some(&m(&[(0, 2)])));
+        assert_eq!(Poly::zero().as_constant(), Some(&Q::zero()));
+        assert_eq!(c(5).as_constant(), Some(&Q::from_i64(5)));
+        assert_eq!(p.as_constant(), None);
+        assert!(Poly::one().is_one());
+        assert!(x(3).is_monomial());
+        assert_eq!(Poly::zero().to_string(), "0");
+        assert_eq!((-&x(2) + c(1)).to_string(), "-x2 + 1");
+        assert_eq!(p.vars(), vec![0, 1]);
+        assert_eq!(p.degree(0), 2);
+        assert_eq!(p.total_degree(), 2);
+        assert!(p.contains_var(1) && !p.contains_var(2));
+        assert_eq!(p.coeff_of(&m(&[(0, 2)])), Q::from_i64(3));
+        assert_eq!(p.coeff_of(&m(&[(0, 1)])), Q::zero());
+    }
+
+    #[test]
+    fn arithmetic_exact() {
+        let (a, b) = (x(0), x(1));
+        let s = &a + &b;
+        let sq = &s * &s;
+        assert_eq!(sq.to_string(), "x0^2 + 2*x0*x1 + x1^2");
+        assert_eq!(s.pow(3).to_string(), "x0^3 + 3*x0^2*x1 + 3*x0*x1^2 + x1^3");
+        assert_eq!((&sq - &sq), Poly::zero());
+        let d = &a - &b;
+        assert_eq!((&s * &d).to_string(), "x0^2 - x1^2");
+        assert_eq!(
+            s.scale(&Q::new(1, 2).expect("q")).to_string(),
+            "1/2*x0 + 1/2*x1"
+        );
+        assert_eq!(
+            s.mul_mono(&m(&[(1, 2)]), &Q::from_i64(-3)).to_string(),
+            "-3*x0*x1^2 - 3*x1^3"
+        );
+        let mut acc = Poly::zero();
+        acc += &s;
+        acc -= &a;
+        acc *= &b;
+        assert_eq!(acc.to_string(), "x1^2");
+        assert_eq!(s.clone() + d.clone(), a.scale(&Q::from_i64(2)));
+        assert_eq!(s.clone() - d.clone(), b.scale(&Q::from_i64(2)));
+        assert_eq!(&s - d.clone(), b.scale(&Q::from_i64(2)));
+        assert_eq!(s.clone() * &d, &s * &d);
+        assert_eq!(Poly::zero().pow(0), Poly::one());
+        assert_eq!(c(2).pow(10), c(1024));
+        assert_eq!(-(s.clone()), -&s);
+    }
+
+    #[test]
+    fn division() {
+        let s = &(&x(0) + &x(1)) + &c(1);
+        let p3 = s.pow(3);
+        assert_eq!(p3.div_exact(&s), Some(s.pow(2)));
+        assert_eq!(p3.div_exact(&s.pow(3)), Some(Poly::one()));
+        assert_eq!(p3.div_exact(&s.pow(4)), None);
+        let q = &x(0) * &x(0) + c(1);
+        assert_eq!(q.div_exact(&(&x(0) + &c(1))), None);
+        assert_eq!(q.div_exact(&Poly::zero()), None);
+        assert_eq!(Poly::zero().div_exact(&q), Some(Poly::zero()));
+        assert_eq!(q.div_exact(&c(2)), Some(q.scale(&Q::new(1, 2).expect("q"))));
+        assert_eq!(x(0).div_exact(&(&x(0) - &x(1))), None);
+        assert_eq!((&x(0) * &x(1)).div_exact(&x(1)), Some(x(0)));
+        assert_eq!(x(0).div_exact(&x(1)), None);
+        // huge exponents: exercises the unpacked (plain) paths
+        let big: Poly = (0..6)
+            .map(|v| Poly::monomial(Mono::var_pow(v, 1 << 30), Q::one()))
+            .fold(Poly::zero(), |a, b| a + b);
+        let big2 = &big + &c(1);
+        let prod = &big * &big2;
+        assert!(is_canonical(&prod));
+        assert_eq!(prod.div_exact(&big2), Some(big.clone()));
+        assert_eq!(prod.div_exact(&big), Some(big2.clone()));
+        assert_eq!((&prod + &c(1)).div_exact(&big), None);
+    }
+
+    #[test]
+    fn structure_ops() {
+        // p = 3 x0^2 x1 + x0 x2 - 5 x1 + 7
+        let p = Poly::from_terms(vec![
+            (m(&[(0, 2), (1, 1)]), Q::from_i64(3)),
+            (m(&[(0, 1), (2, 1)]), Q::from_i64(1)),
+            (m(&[(1, 1)]), Q::from_i64(-5)),
+            (Mono::one(), Q::from_i64(7)),
+        ]);
+        let cs = p.coeffs_in(0);
+        assert_eq!(cs.len(), 3);
+        assert_eq!(cs[0].to_string(), "-5*x1 + 7");
+        assert_eq!(cs[1].to_string(), "x2");
+        assert_eq!(cs[2].to_string(), "3*x1");
+        assert_eq!(Poly::from_coeffs_in(0, &cs), p);
+        let cs1 = p.coeffs_in(1);
+        assert_eq!(Poly::from_coeffs_in(1, &cs1), p);
+        assert_eq!(p.diff(0).to_string(), "6*x0*x1 + x2");
+        assert_eq!(p.diff(1).to_string(), "3*x0^2 - 5");
+        assert_eq!(p.diff(5), Poly::zero());
+        // subst x0 -> x1 + 1
+        let s = p.subst(0, &(&x(1) + &c(1)));
+        let expect = &(&(&c(3) * &(&x(1) + &c(1)).pow(2)) * &x(1) + &(&(&x(1) + &c(1)) * &x(2)))
+            - &(&c(5) * &x(1))
+            + c(7);
+        assert_eq!(s, expect);
+        let val = p.eval_q(&|v| Some(Q::from_i64(v as i64 + 2)));
+        // x0=2,x1=3,x2=4: 3*4*3 + 2*4 - 15 + 7 = 36
+        assert_eq!(val, Some(Q::from_i64(36)));
+        assert_eq!(
+            p.eval_q(&|v| if v == 2 { None } else { Some(Q::one()) }),
+            None
+        );
+        assert_eq!(p.eval_f64(&|v| v as f64 + 2.0), 36.0);
+        assert_eq!(p.eval_var(0, &Q::from_i64(2)), p.subst(0, &c(2)));
+        let r = p.map_vars(&|v| v + 10);
+        assert_eq!(r.vars(), vec![10, 11, 12]);
+        assert_eq!(r.map_vars(&|v| v - 10), p);
+        // content / primitive / monic
+        let q = Poly::from_terms(vec![
+            (m(&[(0, 1)]), Q::new(3, 4).expect("q")),
+            (Mono::one(), Q::new(-9, 10).expect("q")),
+        ]);
+        assert_eq!(q.content(), Q::new(3, 20).expect("q"));
+        assert_eq!(q.primitive().to_string(), "5*x0 - 6");
+        assert_eq!(q.monic().to_string(), "x0 - 6/5");
+        assert_eq!((-&q).primitive().to_string(), "-5*x0 + 6");
+        assert_eq!(Poly::zero().content(), Q::zero());
+        assert_eq!((&x(0) * &x(1) + x(0).pow(2)).mono_content(), m(&[(0, 1)]));
+    }
+
+    fn check_gcd(a: &Poly, b: &Poly, expect: &Poly) {
+        let g = a.gcd(b);
+        assert_eq!(&g, &expect.monic(), "gcd({a}, {b})");
+        let g2 = b.gcd(a);
+        assert_eq!(&g2, &expect.monic());
+        let (gg, ca, cb) = a.gcd_cofactors(b);
+        assert_eq!(gg, g);
+        assert_eq!(&(&ca * &g), a);
+        assert_eq!(&(&cb * &g), b);
+    }
+
+    #[test]
+    fn gcd_simple() {
+        let (a, b, z) = (x(0), x(1), x(2));
+        check_gcd(&Poly::zero(), &Poly::zero(), &Poly::zero());
+        check_gcd(
+            &Poly::zero(),
+            &(&a.scale(&Q::from_i64(3)) + &c(6)),
+            &(&a + &c(2)),
+        );
+        check_gcd(&c(4), &c(6), &c(1));
+        check_gcd(&(&a * &b), &(&b * &z), &b);
+        check_gcd(
+            &(&a.pow(3) * &b),
+            &(&(&a.pow(2) * &b.pow(2)) + &a.pow(5)),
+            &a.pow(2),
+        );
+        check_gcd(&(&a + &b), &(&a - &b), &c(1));
+        check_gcd(
+            &(&a.pow(2) - &b.pow(2)),
+            &(&(&a + &b) * &(&a + &z)),
+            &(&a + &b),
+        );
+        check_gcd(
+            &(&a.pow(2) - &c(1)),
+            &(&a.pow(2) - &(&c(2) * &a) + c(1)),
+            &(&a - &c(1)),
+        );
+    }
+
+    #[test]
+    fn gcd_hard_cases() {
+        let (xx, yy, zz) = (x(0), x(1), x(2));
+        // (x+y+z)^5 (x-y) and (x+y+z)^3 (x+2z)^2
+        let s = &(&xx + &yy) + &zz;
+        let a = &s.pow(5) * &(&xx - &yy);
+        let b = &s.pow(3) * &(&xx + &zz.scale(&Q::from_i64(2))).pow(2);
+        check_gcd(&a, &b, &s.pow(3));
+        // rational coefficients
+        let f = &xx.scale(&Q::new(1, 2).expect("q")) + &yy.scale(&Q::new(1, 3).expect("q"));
+        let a = &f * &(&xx - &cq(1, 5));
+        let b = &f * &(&yy + &cq(7, 4));
+        check_gcd(&a, &b, &f);
+        // many variables only in one argument
+        let mut big = Poly::zero();
+        for v in 10..40u32 {
+            big += &(&x(v) * &x(v + 1)).scale(&Q::from_i64(v as i64 - 20));
+        }
+        big += &c(3);
+        let common = &xx + &yy;
+        let a = &common * &big;
+        let b = &common * &(&xx - &yy.scale(&Q::from_i64(3)));
+        check_gcd(&a, &b, &common);
+        // univariate degree 20
+        let g: Poly = (0..=10)
+            .map(|i| Poly::monomial(Mono::var_pow(0, i), Q::from_i64((i as i64 * 7) % 5 - 2)))
+            .fold(Poly::zero(), |p, q| p + q);
+        let u1: Poly = (0..=10)
+            .map(|i| Poly::monomial(Mono::var_pow(0, i), Q::from_i64((i as i64 * 3) % 7 - 3)))
+            .fold(Poly::zero(), |p, q| p + q);
+        let u2: Poly = (0..=9)
+            .map(|i| Poly::monomial(Mono::var_pow(0, i), Q::from_i64((i as i64 * 5) % 11 - 5)))
+            .fold(Poly::zero(), |p, q| p + q);
+        let e = &g * &u1.gcd(&u2);
+        check_gcd(&(&g * &u1), &(&g * &u2), &e);
+        // many variables in the gcd itself (PRS path): 8 variables
+        let mut lin = c(1);
+        for v in 0..8u32 {
+            lin += &x(v).scale(&Q::from_i64(v as i64 + 1));
+        }
+        let mut other = c(-2);
+        for v in 0..8u32 {
+            other += &(&x(v) * &x((v + 1) % 8));
+        }
+        let a = &lin * &other;
+        let b = &lin * &(&lin + &x(3).pow(2));
+        check_gcd(&a, &b, &lin);
+        check_gcd(&(&a * &lin), &(&b * &lin), &lin.pow(2));
+    }
+
+    #[test]
+    fn gcd_dense_bivariate_degree_10() {
+        let (xx, yy) = (x(0), x(1));
+        let dense = |seed: i64, dx: u32, dy: u32| -> Poly {
+            let mut t = Vec::new();
+            for i in 0..=dx {
+                for j in 0..=dy {
+                    let cf = ((seed + 3 * i as i64 + 7 * j as i64 + (i * j) as i64) % 9) - 4;
+                    t.push((m(&[(0, i), (1, j)]), Q::from_i64(cf)));
+                }
+            }
+            Poly::from_terms(t)
+        };
+        let g = &dense(1, 5, 5) + &(&xx.pow(5) * &yy.pow(5));
+        let a = &g * &(&dense(2, 5, 5) + &xx.pow(6));
+        let b = &g * &(&dense(5, 5, 5) + &yy.pow(6));
+        let expect = &g * &(&dense(2, 5, 5) + &xx.pow(6)).gcd(&(&dense(5, 5, 5) + &yy.pow(6)));
+        check_gcd(&a, &b, &expect);
+        assert!(a.degree(0) >= 10 && a.degree(1) >= 10);
+    }
+
+    #[test]
+    fn gcd_sparse_many_vars() {
+        // nontrivial gcd of degree 3 in 8 variables (sparse modular path)
+        let t = |c: i64, e: &[(Var, u32)]| Poly::monomial(m(e), Q::from_i64(c));
+        let g = &(&(&t(3, &[(1, 3), (4, 1), (10, 1), (19, 2)])
+            - &t(1, &[(1, 2), (4, 2), (13, 1), (34, 2)]))
+            + &t(8, &[(1, 1), (10, 2), (19, 3), (25, 2)]))
+            - &(&t(8, &[(4, 3), (10, 3), (13, 3), (25, 3), (28, 2), (34, 3)])
+                + &t(1, &[(4, 2), (19, 1), (25, 3), (28, 2), (34, 1)]));
+        let ca = &(&t(2, &[(1, 1), (28, 3), (34, 1)]) - &t(5, &[(4, 2), (13, 1)]))
+            + &t(7, &[(10, 1), (19, 1), (25, 2)]);
+        let cb = &(&t(1, &[(1, 2), (10, 1)]) + &t(4, &[(13, 2), (28, 1), (34, 3)]))
+            - &t(3, &[(4, 1), (19, 2), (25, 1)]);
+        check_gcd(&(&g * &ca), &(&g * &cb), &g);
+        check_gcd(&(&(&g * &ca) * &cb), &(&g * &cb.pow(2)), &(&g * &cb));
+        // the same through the Zippel routine directly
+        let (a, b) = ((&g * &ca).normalize_z(), (&g * &cb).normalize_z());
+        let vars = a.vars();
+        let bounds: Vec<u32> = vars.iter().map(|&v| g.degree(v)).collect();
+        let z = zippel_gcd(&a, &b, &vars, &bounds).expect("zippel succeeds");
+        assert_eq!(z.monic(), g.monic());
+    }
+
+    #[test]
+    fn gcd_pendulum_like() {
+        // trig-polynomial style expressions: s_i, c_i, masses, lengths
+        let n = 6u32;
+        let sv = |i: u32| x(i);
+        let cv = |i: u32| x(10 + i);
+        let mv = |i: u32| x(20 + i);
+        let lv = |i: u32| x(30 + i);
+        let mut mass_sum = Poly::zero();
+        for i in 0..n {
+            mass_sum += &mv(i);
+        }
+        let mut e1 = Poly::zero();
+        for i in 0..n {
+            e1 += &(&(&mv(i) * &lv(i))
+                * &(&(&sv(i) * &cv((i + 1) % n)) - &(&cv(i) * &sv((i + 1) % n))));
+        }
+        let mut e2 = Poly::zero();
+        for i in 0..n {
+            e2 += &(&lv(i).pow(2) * &(&sv(i).pow(2) + &cv(i).pow(2)));
+        }
+        let a = &mass_sum * &e1;
+        let b = &mass_sum * &e2;
+        check_gcd(&a, &b, &mass_sum);
+        check_gcd(&e1, &e2, &c(1));
+        let k = &lv(0) * &mv(1);
+        check_gcd(&(&a * &k), &(&e2 * &(&k * &lv(2))), &k);
+    }
+
+    /// Independent reference gcd: plain recursive primitive PRS, no shortcuts.
+    fn ref_gcd(a: &Poly, b: &Poly) -> Poly {
+        if a.is_zero() {
+            return b.normalize_z();
+        }
+        if b.is_zero() {
+            return a.normalize_z();
+        }
+        let (ma, mb) = (a.mono_content(), b.mono_content());
+        if !ma.is_one() || !mb.is_one() {
+            let g = ref_gcd(
+                &a.div_mono(&ma).expect("mono"),
+                &b.div_mono(&mb).expect("mono"),
+            );
+            return g.mul_mono(&ma.gcd(&mb), &Q::one());
+        }
+        let mut vars = a.vars();
+        vars.extend(b.vars());
+        vars.sort_unstable();
+        vars.dedup();
+        // main variable: smallest total degree in a and b
+        let v = match vars.iter().min_by_key(|&&v| (a.degree(v) + b.degree(v), v)) {
+            Some(v) => *v,
+            None => return Poly::one(),
+        };
+        if !a.contains_var(v) {
+            return b
+                .coeffs_in(v)
+                .iter()
+                .fold(a.normalize_z(), |g, c| ref_gcd(&g, c));
+        }
+        if !b.contains_var(v) {
+            return a
+                .coeffs_in(v)
+                .iter()
+                .fold(b.normalize_z(), |g, c| ref_gcd(&g, c));
+        }
+        let content = |cs: &[Poly]| cs.iter().fold(Poly::zero(), |g, c| ref_gcd(&g, c));
+        let prim = |cs: &[Poly]| -> Vec<Poly> {
+            let ct = content(cs);
+            cs.iter()
+                .map(|c| c.div_exact(&ct).expect("content divides"))
+                .collect()
+        };
+        let (ca, cb) = (a.coeffs_in(v), b.coeffs_in(v));
+        let cont = ref_gcd(&content(&ca), &content(&cb));
+        let (mut u, mut w) = (prim(&ca), prim(&cb));
+        if u.len() < w.len() {
+            std::mem::swap(&mut u, &mut w);
+        }
+        let last = loop {
+            let r = prem(&u, &w);
+            if r.is_empty() {
+                break prim(&w);
+            }
+            if r.len() == 1 {
+                break vec![Poly::one()];
+            }
+            u = w;
+            w = prim(&r);
+        };
+        (&Poly::from_coeffs_in(v, &last) * &cont).normalize_z()
+    }
+
+    fn lcg(state: &mut u64) -> u64 {
+        *state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        *state >> 33
+    }
+
+    fn rand_poly(st: &mut u64, vars: &[Var], maxdeg: u32, nterms: usize, cmax: i64) -> Poly {
+        let mut t = Vec::new();
+        for _ in 0..nterms {
+            let mo = Mono::from_pairs(
+                vars.iter()
+                    .map(|&v| (v, (lcg(st) % (maxdeg as u64 + 1)) as u32)),
+            );
+            let cf = (lcg(st) % (2 * cmax as u64 + 1)) as i64 - cmax;
+            t.push((mo, Q::from_i64(cf)));
+        }
+        Poly::from_terms(t)
+    }
+
+    fn random_gcd_round(seed: u64, rounds: usize, maxvars: usize) {
+        let mut st = seed;
+        let all: Vec<Var> = (0..12).map(|i| i * 3 + 1).collect();
+        for round in 0..rounds {
+            let nv = 1 + (lcg(&mut st) as usize % maxvars);
+            let mut vars: Vec<Var> = Vec::new();
+            while vars.len() < nv {
+                let v = all[lcg(&mut st) as usize % all.len()];
+                if !vars.contains(&v) {
+                    vars.push(v);
+                }
+            }
+            vars.sort_unstable();
+            let pick = |st: &mut u64| -> Vec<Var> {
+                vars.iter()
+                    .copied()
+                    .filter(|_| !lcg(st).is_multiple_of(3))
+                    .collect()
+            };
+            let (va, vb, vg) = (pick(&mut st), pick(&mut st), pick(&mut st));
+            let deg = 1 + (lcg(&mut st) % 3) as u32;
+            let na = 1 + lcg(&mut st) as usize % 5;
+            let a = rand_poly(&mut st, &va, deg, na, 5);
+            let nb = 1 + lcg(&mut st) as usize % 5;
+            let b = rand_poly(&mut st, &vb, deg, nb, 5);
+            let ng = 1 + lcg(&mut st) as usize % 4;
+            let g = rand_poly(&mut st, &vg, deg, ng, 5);
+            let (ag, bg) = (&a * &g, &b * &g);
+            if ag.len() + bg.len() > 24 || ag.total_degree() + bg.total_degree() > 12 {
+                // the naive reference gets too slow
+                continue;
+            }
+            if std::env::var("GCD_TRACE").is_ok() {
+                eprintln!("seed {seed} round {round}: a={ag}\n b={bg}");
+            }
+            let t0 = std::time::Instant::now();
+            let h = ag.gcd(&bg);
+            let t1 = t0.elapsed();
+            let r = ref_gcd(&ag, &bg).monic();
+            let t2 = t0.elapsed() - t1;
+            if t1.as_millis() > 200 || t2.as_millis() > 200 {
+                eprintln!(
+                    "slow round {round}: gcd {t1:?} ref {t2:?} vars {} terms {}/{}",
+                    nv,
+                    ag.len(),
+                    bg.len()
+                );
+            }
+            assert_eq!(h, r, "round {round}: gcd({ag}, {bg})");
+        }
+    }
+
+    #[test]
+    fn gcd_matches_reference() {
+        random_gcd_round(12345, 150, 4);
+    }
+
+    /// Remainder of univariate polynomials in `v` over Q.
+    fn urem(mut a: Poly, b: &Poly, v: Var) -> Poly {
+        let db = b.degree(v);
+        let lb = b.leading_coeff().cloned().unwrap_or_else(Q::one);
+        while !a.is_zero() && a.degree(v) >= db {
+            let k = a.degree(v) - db;
+            let f = a.leading_coeff().cloned().unwrap_or_else(Q::zero) / &lb;
+            a = &a - &b.mul_mono(&Mono::var_pow(v, k), &f);
+        }
+        a
+    }
+
+    /// Independent coprimality proof: for every variable, the univariate
+    /// images (all other variables at random rationals, leading coefficient
+    /// kept) have a constant gcd. `false` means "not proven".
+    fn proven_coprime(a: &Poly, b: &Poly, st: &mut u64) -> bool {
+        if a.is_constant() || b.is_constant() {
+            return !(a.is_zero() && b.is_zero());
+        }
+        let mut vars = a.vars();
+        vars.extend(b.vars());
+        vars.sort_unstable();
+        vars.dedup();
+        'var: for &x in &vars {
+            for _ in 0..8 {
+                let vals: Vec<(Var, Q)> = vars
+                    .iter()
+                    .map(|&w| {
+                        (
+                            w,
+                            Q::new(lcg(st) as i64 % 97 - 48, 1 + lcg(st) as i64 % 5).expect("q"),
+                        )
+                    })
+                    .collect();
+                let sub = |p: &Poly| {
+                    vals.iter()
+                        .filter(|(w, _)| *w != x)
+                        .fold(p.clone(), |p, (w, q)| p.eval_var(*w, q))
+                };
+                let (ua, ub) = (sub(a), sub(b));
+                if ua.degree(x) != a.degree(x)
+                    || ub.degree(x) != b.degree(x)
+                    || ua.is_zero()
+                    || ub.is_zero()
+                {
+                    continue;
+                }
+                let (mut f, mut g) = (ua, ub);
+                while !g.is_zero() {
+                    let r = urem(f, &g, x);
+                    f = g;
+                    g = r;
+                }
+                if f.is_constant() {
+                    continue 'var;
+                }
+                // an unlucky point can only make the image gcd larger: retry
+            }
+            return false;
+        }
+        true
+    }
+
+    fn random_gcd_proof_round(seed: u64, rounds: usize, maxvars: usize, maxdeg: u64) {
+        let mut st = seed;
+        let all: Vec<Var> = (0..12).map(|i| i * 3 + 1).collect();
+        for round in 0..rounds {
+            let nv = 1 + (lcg(&mut st) as usize % maxvars);
+            let mut vars: Vec<Var> = Vec::new();
+            while vars.len() < nv {
+                let v = all[lcg(&mut st) as usize % all.len()];
+                if !vars.contains(&v) {
+                    vars.push(v);
+                }
+            }
+            vars.sort_unstable();
+            let pick = |st: &mut u64| -> Vec<Var> {
+                vars.iter()
+                    .copied()
+                    .filter(|_| !lcg(st).is_multiple_of(4))
+                    .collect()
+            };
+            let (va, vb, vg) = (pick(&mut st), pick(&mut st), pick(&mut st));
+            let deg = 1 + (lcg(&mut st) % maxdeg) as u32;
+            let na = 1 + lcg(&mut st) as usize % 8;
+            let a = rand_poly(&mut st, &va, deg, na, 9);
+            let nb = 1 + lcg(&mut st) as usize % 8;
+            let b = rand_poly(&mut st, &vb, deg, nb, 9);
+            let ng = 1 + lcg(&mut st) as usize % 6;
+            let g = rand_poly(&mut st, &vg, deg, ng, 9);
+            let (ag, bg) = (&a * &g, &b * &g);
+            if std::env::var("GCD_TRACE").is_ok() {
+                eprintln!("seed {seed} round {round}: a={ag}\n b={bg}");
+            }
+            let t0 = std::time::Instant::now();
+            let h = ag.gcd(&bg);
+            let el = t0.elapsed();
+            if el.as_millis() > 500 {
+                eprintln!("slow gcd round {round}: {el:?}\n a={ag}\n b={bg}");
+            }
+            if ag.is_zero() && bg.is_zero() {
+                assert!(h.is_zero());
+                continue;
+            }
+            let ca = ag.div_exact(&h).expect("gcd divides a");
+            let cb = bg.div_exact(&h).expect("gcd divides b");
+            assert!(
+                h.div_exact(&g).is_some() || g.is_zero(),
+                "g does not divide gcd"
+            );
+            assert!(
+                proven_coprime(&ca, &cb, &mut st),
+                "seed {seed} round {round}: cofactors not coprime: gcd({ag}, {bg}) = {h}; cofactors {ca} ; {cb}"
+            );
+        }
+    }
+
+    #[test]
+    fn gcd_cofactors_proven_coprime() {
+        random_gcd_proof_round(777, 60, 5, 3);
+    }
+
+    /// Longer randomized checks (about 3 s in release builds, which CI uses).
+    #[test]
+    fn gcd_long_random_reference() {
+        for seed in 0..10 {
+            let t = std::time::Instant::now();
+            random_gcd_round(seed * 7919 + 1, 300, 3);
+            eprintln!("reference seed {seed}: {:?}", t.elapsed());
+        }
+    }
+
+    #[test]
+    fn gcd_long_random_big() {
+        for seed in 0..10 {
+            let t = std::time::Instant::now();
+            random_gcd_proof_round(seed * 15485863 + 11, 200, 12, 6);
+            eprintln!("big seed {seed}: {:?}", t.elapsed());
+        }
+    }
+
+    #[test]
+    fn gcd_long_random_proof() {
+        for seed in 0..20 {
+            let t = std::time::Instant::now();
+            random_gcd_proof_round(seed * 104729 + 5, 500, 8, 4);
+            eprintln!("proof seed {seed}: {:?}", t.elapsed());
+        }
+    }
+
+    // ------------------------------------------------------------------
+    // property tests
+    // ------------------------------------------------------------------
+
+    const VARS: [Var; 4] = [0, 3, 17, 40];
+
+    fn arb_coeff() -> impl Strategy<Value = Q> {
+        prop_oneof![
+            4 => (-6i64..=6).prop_filter("nonzero", |n| *n != 0).prop_map(Q::from_i64),
+            1 => ((-6i64..=6), (1i64..=5)).prop_filter_map("nonzero", |(n, d)| Q::new(n, d).filter(|q| !q.is_zero())),
+            1 => any::<i32>().prop_map(|n| Q::from_i64(n as i64)),
+        ]
+    }
+
+    fn arb_poly(nvars: usize, maxdeg: u32, maxterms: usize) -> impl Strategy<Value = Poly> {
+        proptest::collection::vec(
+            (proptest::collection::vec(0..=maxdeg, nvars), arb_coeff()),
+            0..=maxterms,
+        )
+        .prop_map(move |ts| {
+            Poly::from_terms(
+                ts.into_iter()
+                    .map(|(es, cf)| (Mono::from_pairs(VARS.iter().copied().zip(es)), cf))
+                    .collect(),
+            )
+        })
+    }
+
+    fn arb_small() -> impl Strategy<Value = Poly> {
+        arb_poly(3, 2, 4).prop_map(|p| {
+            p.map_coeffs(|c| {
+                if c.numer().bits() > 8 {
+                    Q::from_i64(3)
+                } else {
+                    c.clone()
+                }
+            })
+        })
+    }
+
+    fn pt(v: Var) -> Option<Q> {
+        Q::new(v as i64 * 7 + 3, (v as i64 % 5) + 2)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+
+        #[test]
+        fn prop_ring_laws(a in arb_poly(4, 3, 6), b in arb_poly(4, 3, 6), d in arb_poly(4, 3, 6)) {
+            prop_assert!(is_canonical(&a));
+            let ab = &a * &b;
+            prop_assert!(is_canonical(&ab));
+            prop_assert_eq!(&ab, &(&b * &a));
+            prop_assert_eq!(&a * &(&b + &d), &(&a * &b) + &(&a * &d));
+            prop_assert_eq!(&(&a + &b) - &b, a.clone());
+            prop_assert_eq!(&a + &b, &b + &a);
+            prop_assert_eq!(a.clone() + b.clone(), &a + &b);
+            prop_assert_eq!(a.clone() - b.clone(), &a - &b);
+            prop_assert_eq!(&a - b.clone(), &a - &b);
+            prop_assert_eq!(a.clone() - &b, &a - &b);
+            prop_assert_eq!(&a + b.clone(), &a + &b);
+            prop_assert_eq!(&(&a * &b) * &d, &a * &(&b * &d));
+            prop_assert_eq!(ab.eval_q(&pt), Some(a.eval_q(&pt).expect("eval") * b.eval_q(&pt).expect("eval")));
+            prop_assert_eq!((&a + &b).eval_q(&pt), Some(a.eval_q(&pt).expect("eval") + b.eval_q(&pt).expect("eval")));
+            let f = |v: Var| pt(v).map(|q| q.to_f64()).unwrap_or(0.0);
+            let (ef, eq) = (ab.eval_f64(&f), ab.eval_q(&pt).expect("eval").to_f64());
+            prop_assert!((ef - eq).abs() <= 1e-6 * (1.0 + eq.abs()));
+            prop_assert_eq!(a.pow(3), &(&a * &a) * &a);
+            // derivative: product rule
+            prop_assert_eq!(ab.diff(3), &(&a.diff(3) * &b) + &(&a * &b.diff(3)));
+            // coeffs round trip
+            prop_assert_eq!(Poly::from_coeffs_in(17, &a.coeffs_in(17)), a.clone());
+            // substitution is a ring homomorphism
+            let d2 = Poly::from_terms(d.terms().iter().take(2).cloned().collect());
+            prop_assert_eq!(ab.subst(0, &d2), &a.subst(0, &d2) * &b.subst(0, &d2));
+        }
+
+        #[test]
+        fn prop_big_coefficients(
+            a in arb_poly(3, 2, 4),
+            b in arb_poly(3, 2, 4),
+            k in prop_oneof![Just(i64::MAX), Just(i64::MIN), Just(i64::MAX - 1), any::<i64>()],
+        ) {
+            // coefficients near the i64 limits: overflow into BigRational and back
+            let kq = Q::from_i64(k);
+            let ak = a.scale(&kq);
+            let bk = &b + &Poly::constant(kq.clone());
+            let p = &ak * &bk;
+            prop_assert!(is_canonical(&p));
+            prop_assert_eq!(&p, &(&bk * &ak));
+            prop_assert_eq!(p.eval_q(&pt), Some(ak.eval_q(&pt).expect("eval") * bk.eval_q(&pt).expect("eval")));
+            if !bk.is_zero() {
+                prop_assert_eq!(p.div_exact(&bk), Some(ak.clone()));
+            }
+            prop_assert_eq!(&(&p - &(&ak * &b)) - &ak.scale(&kq), Poly::zero());
+            if !ak.is_zero() && !bk.is_zero() {
+                let g = (&ak * &bk).gcd(&ak);
+                prop_assert_eq!(g, ak.monic());
+            }
+        }
+
+        #[test]
+        fn prop_div_exact(a in arb_poly(4, 3, 6), b in arb_poly(4, 3, 6)) {
+            let ab = &a * &b;
+            if !b.is_zero() {
+                prop_assert_eq!(ab.div_exact(&b), Some(a.clone()));
+                let r = &ab + &c(1);
+                if let Some(q) = r.div_exact(&b) {
+                    prop_assert_eq!(&q * &b, r);
+                }
+            } else {
+                prop_assert_eq!(ab.div_exact(&b), None);
+            }
+        }
+
+        #[test]
+        fn prop_gcd(a in arb_small(), b in arb_small(), g in arb_small()) {
+            prop_assume!(!g.is_zero());
+            let ag = &a * &g;
+            let bg = &b * &g;
+            let h = ag.gcd(&bg);
+            prop_assert!(is_canonical(&h));
+            if ag.is_zero() && bg.is_zero() {
+                prop_assert!(h.is_zero());
+                return Ok(());
+            }
+            prop_assert_eq!(h.leading_coeff(), Some(&Q::one()));
+            prop_assert!(h.div_exact(&g).is_some(), "g does not divide gcd: {} / {}", h, g);
+            prop_assert!(ag.div_exact(&h).is_some());
+            prop_assert!(bg.div_exact(&h).is_some());
+            let gab = a.gcd(&b);
+            prop_assert_eq!(&h, &(&g * &gab).monic());
+            prop_assert_eq!(&h, &bg.gcd(&ag));
+            // cofactors are coprime
+            let (_, ca, cb) = ag.gcd_cofactors(&bg);
+            prop_assert!(ca.gcd(&cb).is_one() || (ca.is_zero() || cb.is_zero()));
+        }
+
+        #[test]
+        fn prop_gcd_coprime(a in arb_poly(3, 2, 4), b in arb_poly(3, 2, 4)) {
+            // a*x0 + 1 and b*x3 + x0 + 2 ... constructions that are coprime
+            let p = &(&a * &x(0)) + &c(1);
+            let q = &p + &x(3);
+            // gcd(p, p + x3) = gcd(p, x3) = 1 since p(x3=0) != 0 mod x3 ... p has constant term 1
+            prop_assume!(!p.is_zero());
+            prop_assert!(p.gcd(&q).is_one());
+            let r = &(&b * &x(3)) + &c(2);
+            let pr = &p * &r;
+            prop_assert_eq!(pr.gcd(&p), p.monic());
+        }
     }
 }
