@@ -2,8 +2,15 @@
 //!
 //! The grammar is `grammar/qd.ebnf`; every rule there has one method here,
 //! named after the rule and documented with it. The parser works on `&str`
-//! with nom 8 combinators; spans are byte offsets into the source, computed
-//! from the length of the remaining input.
+//! in nom 8's style (every rule maps the remaining input to an
+//! [`nom::IResult`]); spans are byte offsets into the source, computed from
+//! the length of the remaining input.
+//!
+//! The rules scan their tokens byte by byte (white space, comments, names and
+//! numbers are the hot path), numbers that fit are computed with machine
+//! integers, and nothing but the syntax tree is allocated unless an error is
+//! returned: messages and hints are built only on the error paths, which are
+//! kept out of line.
 //!
 //! Two limits keep hostile input from exhausting the stack:
 //! [`MAX_NESTING`] bounds the recursion of the parser (parentheses, call
@@ -18,14 +25,8 @@ pub mod ast;
 
 use std::cell::Cell;
 
-use nom::branch::alt;
-use nom::bytes::complete::{tag, take_till, take_while, take_while1};
-use nom::character::complete::{char, digit1, one_of, satisfy};
-use nom::combinator::{opt, recognize};
 use nom::error::{ErrorKind, ParseError};
-use nom::multi::many0_count;
-use nom::sequence::preceded;
-use nom::{IResult, Parser};
+use nom::IResult;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Zero};
@@ -142,17 +143,6 @@ fn prime_on_number(at: Span) -> nom::Err<PErr> {
     )
 }
 
-/// An operator character as a static string, for messages.
-fn op_str(c: char) -> &'static str {
-    match c {
-        '+' => "+",
-        '-' => "-",
-        '*' => "*",
-        '/' => "/",
-        _ => "^",
-    }
-}
-
 const HINT_EXPR: &str =
     "an expression is a number, a name, a call like `sin(x)` or an expression in parentheses";
 
@@ -217,13 +207,161 @@ fn first(i: &str) -> Option<char> {
     i.chars().next()
 }
 
+/// Does the input start with a character of `class` (`ident_start` or
+/// `ident_char`)? ASCII is decided on the byte; other characters are decoded.
+#[inline]
+fn starts_with_class(i: &str, class: fn(char) -> bool) -> bool {
+    match i.as_bytes().first() {
+        Some(&b) if b < 0x80 => class(char::from(b)),
+        Some(_) => first(i).is_some_and(class),
+        None => false,
+    }
+}
+
+/// Does an `ident` start here?
+#[inline]
+fn starts_ident(i: &str) -> bool {
+    starts_with_class(i, ident_start)
+}
+
+/// Length in bytes of the `ident` at the start of `i` (0 if there is none).
+#[cfg_attr(not(debug_assertions), inline(always))]
+fn ident_len(i: &str) -> usize {
+    let b = i.as_bytes();
+    match b.first() {
+        Some(&c) if c.is_ascii_alphabetic() || c == b'_' => {}
+        Some(&c) if c >= 0x80 => return ident_len_unicode(i, 0),
+        _ => return 0,
+    }
+    let mut p = 1;
+    while let Some(&c) = b.get(p) {
+        if c.is_ascii_alphanumeric() || c == b'_' {
+            p += 1;
+        } else if c >= 0x80 {
+            return ident_len_unicode(i, p);
+        } else {
+            break;
+        }
+    }
+    p
+}
+
+/// [`ident_len`] from byte `p` on (where `i` has a non-ASCII character or,
+/// for `p == 0`, must start with an `ident_start`), decoding characters.
+#[inline(never)]
+fn ident_len_unicode(i: &str, mut p: usize) -> usize {
+    if p == 0 {
+        match first(i) {
+            Some(c) if ident_start(c) => p = c.len_utf8(),
+            _ => return 0,
+        }
+    }
+    while let Some(c) = first(&i[p..]) {
+        if ident_char(c) {
+            p += c.len_utf8();
+        } else {
+            break;
+        }
+    }
+    p
+}
+
+/// Number of ASCII digits at the start of `i`.
+#[inline]
+fn digits_len(i: &str) -> usize {
+    i.bytes().take_while(u8::is_ascii_digit).count()
+}
+
+/// The number of `\n` bytes in `b` (eight bytes at a time).
+fn count_newlines(b: &[u8]) -> usize {
+    const LOW7: u64 = 0x7f7f_7f7f_7f7f_7f7f;
+    let chunks = b.chunks_exact(8);
+    let tail = chunks.remainder();
+    let mut n = 0;
+    for c in chunks {
+        let x = u64::from_le_bytes(c.try_into().unwrap_or([0; 8])) ^ 0x0a0a_0a0a_0a0a_0a0a;
+        // the high bit of each byte is set iff the byte is not zero
+        let nonzero = (((x & LOW7) + LOW7) | x) & !LOW7;
+        n += 8 - nonzero.count_ones() as usize;
+    }
+    n + tail.iter().filter(|&&c| c == b'\n').count()
+}
+
+/// Skip `( space | comment )*`, and newlines too if `nl` (`ws_nl`).
+#[cfg_attr(not(debug_assertions), inline(always))]
+fn skip_ws(i: &str, nl: bool) -> &str {
+    let b = i.as_bytes();
+    // the common cases: no white space, or a single space before a token
+    match b.first().map(|&c| WS_START[usize::from(c)]) {
+        None | Some(NOT_WS) => i,
+        Some(NEWLINE) if !nl => i,
+        Some(SPACE)
+            if b.get(1)
+                .is_some_and(|&c| WS_START[usize::from(c)] == NOT_WS) =>
+        {
+            &i[1..]
+        }
+        Some(_) => skip_ws_loop(i, nl),
+    }
+}
+
+/// Classes of a first byte for [`skip_ws`].
+const NOT_WS: u8 = 0;
+const SPACE: u8 = 1;
+const NEWLINE: u8 = 2;
+/// Other bytes that may start `space` or `comment` (a non-ASCII byte may
+/// start a Unicode space).
+const OTHER_WS: u8 = 3;
+
+/// The class of each byte as the first byte of white space.
+static WS_START: [u8; 256] = {
+    let mut t = [NOT_WS; 256];
+    let mut b = 0x80;
+    while b < 256 {
+        t[b] = OTHER_WS;
+        b += 1;
+    }
+    t[b' ' as usize] = SPACE;
+    t[b'\n' as usize] = NEWLINE;
+    t[b'\t' as usize] = OTHER_WS;
+    t[b'\r' as usize] = OTHER_WS;
+    t[0x0B] = OTHER_WS;
+    t[0x0C] = OTHER_WS;
+    t[b'#' as usize] = OTHER_WS;
+    t
+};
+
+/// [`skip_ws`] beyond its fast cases.
+fn skip_ws_loop(i: &str, nl: bool) -> &str {
+    let b = i.as_bytes();
+    let mut p = 0;
+    while let Some(&c) = b.get(p) {
+        match c {
+            // the ASCII characters of `space` (`char::is_whitespace` but `\n`)
+            b' ' | b'\t' | b'\r' | 0x0B | 0x0C => p += 1,
+            b'\n' if nl => p += 1,
+            // `comment`: up to (not including) the end of the line
+            b'#' => match P::comment(&i[p..]) {
+                Ok((rest, _)) => p = i.len() - rest.len(),
+                Err(_) => break,
+            },
+            0x80.. => match first(&i[p..]) {
+                Some(c) if is_space(c) => p += c.len_utf8(),
+                _ => break,
+            },
+            _ => break,
+        }
+    }
+    &i[p..]
+}
+
 /// Can an operand (an `atom`) start here? Used to detect `a b`.
+#[inline]
 fn starts_operand(i: &str) -> bool {
-    let mut cs = i.chars();
-    match cs.next() {
-        Some(c) if ident_start(c) || c.is_ascii_digit() || c == '(' => true,
-        Some('.') => cs.next().is_some_and(|c| c.is_ascii_digit()),
-        _ => false,
+    match i.as_bytes() {
+        [c, ..] if c.is_ascii_digit() || *c == b'(' => true,
+        [b'.', d, ..] => d.is_ascii_digit(),
+        _ => starts_ident(i),
     }
 }
 
@@ -241,6 +379,74 @@ fn excerpt(s: &str) -> String {
 /// `10^n`.
 fn pow10(n: usize) -> BigInt {
     num_traits::pow(BigInt::from(10u32), n)
+}
+
+/// A `number` as written: `int.frac` times `10^exp` (the digit strings
+/// are ASCII digits).
+struct Decimal<'s> {
+    int: &'s str,
+    frac: &'s str,
+    exp: i64,
+}
+
+impl Decimal<'_> {
+    /// The exact value, in lowest terms.
+    #[inline]
+    fn value(&self) -> BigRational {
+        exact_value(self.int, self.frac, self.exp)
+    }
+}
+
+/// The exact value of the decimal number `int.frac` times `10^exp` (the
+/// digit strings are ASCII digits), in lowest terms.
+#[cfg_attr(not(debug_assertions), inline(always))]
+fn exact_value(int: &str, frac: &str, exp: i64) -> BigRational {
+    // fast path: the significant digits fit in a u64 (at most 19 digits)
+    if int.len() + frac.len() <= 19 {
+        let mut n = 0u64;
+        for &c in int.as_bytes() {
+            n = n * 10 + u64::from(c - b'0');
+        }
+        for &c in frac.as_bytes() {
+            n = n * 10 + u64::from(c - b'0');
+        }
+        if n == 0 {
+            return BigRational::zero();
+        }
+        let e = exp - frac.len() as i64;
+        if e >= 0 {
+            let m = u32::try_from(e)
+                .ok()
+                .and_then(|e| 10u64.checked_pow(e))
+                .and_then(|p| n.checked_mul(p));
+            if let Some(m) = m {
+                return BigRational::from_integer(BigInt::from(m));
+            }
+        } else if let Some(d) = u32::try_from(-e).ok().and_then(|e| 10u64.checked_pow(e)) {
+            let g = num_integer::gcd(n, d);
+            return BigRational::new_raw(BigInt::from(n / g), BigInt::from(d / g));
+        }
+    }
+    exact_value_big(int, frac, exp)
+}
+
+/// [`exact_value`] for numbers too long for machine integers.
+#[cold]
+#[inline(never)]
+fn exact_value_big(int: &str, frac: &str, exp: i64) -> BigRational {
+    let mut numer: BigInt = format!("{int}{frac}")
+        .parse()
+        .unwrap_or_else(|_| BigInt::zero());
+    let mut denom = pow10(frac.len());
+    if exp >= 0 {
+        numer *= pow10(exp as usize);
+    } else {
+        denom *= pow10(exp.unsigned_abs() as usize);
+    }
+    if denom.is_zero() {
+        denom = BigInt::one();
+    }
+    BigRational::new(numer, denom)
 }
 
 // ---------------------------------------------------------------------------
@@ -444,20 +650,39 @@ impl<'s> P<'s> {
     }
 
     /// Enter one level of recursion; errors past [`MAX_NESTING`].
+    #[inline]
     fn enter(&self, i: &'s str) -> Result<Guard<'_>, nom::Err<PErr>> {
         let n = self.nest.get() + 1;
         if n > MAX_NESTING {
-            let (span, _) = self.token(i);
-            return Err(failure(
-                Diagnostic::error(
-                    span,
-                    format!("expression nested too deeply (more than {MAX_NESTING} levels)"),
-                )
-                .with_hint("split it into several named definitions"),
-            ));
+            return Err(self.too_nested(i));
         }
         self.nest.set(n);
         Ok(Guard(&self.nest))
+    }
+
+    /// [`P::enter`] at the token after the white space at `i`.
+    #[inline]
+    fn enter_ws(&self, i: &'s str) -> Result<Guard<'_>, nom::Err<PErr>> {
+        let n = self.nest.get() + 1;
+        if n > MAX_NESTING {
+            return Err(self.too_nested(self.ws(i)));
+        }
+        self.nest.set(n);
+        Ok(Guard(&self.nest))
+    }
+
+    /// The error past [`MAX_NESTING`], at the token `i`.
+    #[cold]
+    #[inline(never)]
+    fn too_nested(&self, i: &'s str) -> nom::Err<PErr> {
+        let (span, _) = self.token(i);
+        failure(
+            Diagnostic::error(
+                span,
+                format!("expression nested too deeply (more than {MAX_NESTING} levels)"),
+            )
+            .with_hint("split it into several named definitions"),
+        )
     }
 
     /// Note one more open parenthesis until the guard is dropped.
@@ -467,6 +692,7 @@ impl<'s> P<'s> {
     }
 
     /// A leaf node (depth 1).
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn leaf(kind: ExprKind, span: Span) -> Node {
         Node {
             e: Box::new(Expr { kind, span }),
@@ -478,6 +704,7 @@ impl<'s> P<'s> {
     /// Build an inner node of depth `d`, refusing trees deeper than
     /// [`MAX_DEPTH`]; the error points at `at` (the operator or operand that
     /// went too deep).
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn node(&self, kind: ExprKind, span: Span, d: u32, at: Span) -> Result<Node, nom::Err<PErr>> {
         if d > MAX_DEPTH {
             return Err(too_deep(at));
@@ -489,6 +716,7 @@ impl<'s> P<'s> {
         })
     }
 
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn bin(&self, op: BinOp, l: Node, r: Node) -> Result<Node, nom::Err<PErr>> {
         let span = l.outer.to(r.outer);
         let d = l.d.max(r.d) + 1;
@@ -525,46 +753,55 @@ impl<'s> P<'s> {
 
     /// `space ::= ( #x20 | #x09 | #x0D | #xFEFF | OtherWhiteSpace )+`
     fn space(i: &'s str) -> PResult<'s, &'s str> {
-        take_while1(is_space).parse(i)
+        let rest = i.trim_start_matches(is_space);
+        if rest.len() == i.len() {
+            return Err(nom::Err::Error(PErr::At(i.len())));
+        }
+        Ok((rest, &i[..i.len() - rest.len()]))
     }
 
     /// `comment ::= "#" [^#x0A]*`
+    #[inline]
     fn comment(i: &'s str) -> PResult<'s, &'s str> {
-        recognize(preceded(char('#'), take_till(|c| c == '\n'))).parse(i)
+        if !i.starts_with('#') {
+            return Err(nom::Err::Error(PErr::At(i.len())));
+        }
+        let len = i.find('\n').unwrap_or(i.len());
+        Ok((&i[len..], &i[..len]))
     }
 
     /// `newline ::= #x0A`
     fn newline(i: &'s str) -> PResult<'s, &'s str> {
-        tag("\n").parse(i)
+        match i.strip_prefix('\n') {
+            Some(rest) => Ok((rest, &i[..1])),
+            None => Err(nom::Err::Error(PErr::At(i.len()))),
+        }
     }
 
     /// `ws ::= ( space | comment )*` — inside parentheses, `ws_nl`.
+    ///
+    /// Scanned byte by byte (see [`skip_ws`]); this is the hottest rule.
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn ws(&self, i: &'s str) -> &'s str {
-        if self.parens.get() > 0 {
-            return self.ws_nl(i);
-        }
-        match many0_count(alt((Self::space, Self::comment))).parse(i) {
-            Ok((rest, _)) => rest,
-            Err(_) => i,
-        }
+        skip_ws(i, self.parens.get() > 0)
     }
 
     /// `ws_nl ::= ( space | comment | newline )*`
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn ws_nl(&self, i: &'s str) -> &'s str {
-        match many0_count(alt((Self::space, Self::comment, Self::newline))).parse(i) {
-            Ok((rest, _)) => rest,
-            Err(_) => i,
-        }
+        skip_ws(i, true)
     }
 
     // ----- scene structure ---------------------------------------------------
 
     /// `scene ::= line ( newline line )*`
     fn scene(&self, mut i: &'s str) -> PResult<'s, Vec<Stmt>> {
-        let mut out = Vec::new();
+        // room for one statement per line (up to a bound), so that the
+        // vector is not reallocated as it grows
+        let lines = count_newlines(i.as_bytes()) + 1;
+        let mut out = Vec::with_capacity(lines.min(256));
         loop {
-            let (rest, mut stmts) = self.line(i)?;
-            out.append(&mut stmts);
+            let (rest, ()) = self.line(i, &mut out)?;
             if rest.is_empty() {
                 return Ok((rest, out));
             }
@@ -576,12 +813,13 @@ impl<'s> P<'s> {
     }
 
     /// `line ::= ws statement? ( ws ";" ws statement? )* ws`
-    fn line(&self, mut i: &'s str) -> PResult<'s, Vec<Stmt>> {
-        let mut out = Vec::new();
+    ///
+    /// The statements are appended to `out`.
+    fn line(&self, mut i: &'s str, out: &mut Vec<Stmt>) -> PResult<'s, ()> {
         loop {
             i = self.ws(i);
             let start = self.pos(i);
-            if !matches!(first(i), None | Some('\n') | Some(';')) {
+            if !matches!(i.as_bytes().first(), None | Some(b'\n' | b';')) {
                 let (rest, stmt) = match self.statement(i) {
                     Err(nom::Err::Failure(PErr::Diag(d))) => {
                         return Err(failure(self.note_continuation(start, *d)))
@@ -591,9 +829,9 @@ impl<'s> P<'s> {
                 out.push(stmt);
                 i = self.ws(rest);
             }
-            match first(i) {
-                Some(';') => i = &i[1..],
-                None | Some('\n') => return Ok((i, out)),
+            match i.as_bytes().first() {
+                Some(b';') => i = &i[1..],
+                None | Some(b'\n') => return Ok((i, ())),
                 Some(_) => {
                     let d = self.unexpected(i);
                     return Err(failure(self.note_continuation(start, d)));
@@ -653,23 +891,24 @@ impl<'s> P<'s> {
     /// Keywords do not reserve names: the tokens after the first identifier
     /// decide (see the grammar).
     fn statement(&self, i: &'s str) -> PResult<'s, Stmt> {
-        let (after, kw) = match self.ident(i) {
-            Ok(x) => x,
-            Err(nom::Err::Error(_)) => return self.fail(self.statement_start(i)),
-            Err(e) => return Err(e),
-        };
+        // the first identifier, looked at without building an `Ident`
+        let j = self.ws(i);
+        let len = ident_len(j);
+        if len == 0 {
+            return self.fail(self.statement_start(i));
+        }
+        let (word, after) = j.split_at(len);
         let next = self.ws(after);
-        let next_is_ident = first(next).is_some_and(ident_start);
+        let next_is_ident = starts_ident(next);
         let next_is_eq = next.starts_with('=');
-        let at_end = matches!(first(next), None | Some('\n') | Some(';'));
-        let word = kw.name.as_str();
+        let at_end = matches!(next.as_bytes().first(), None | Some(b'\n' | b';'));
         match word {
             "coordinates" | "parameters" if !next_is_eq => {
                 if next_is_ident {
                     self.declaration(i)
                 } else if at_end {
                     self.fail(
-                        Diagnostic::error(kw.span, format!("empty `{word}` list"))
+                        Diagnostic::error(self.span(j, after), format!("empty `{word}` list"))
                             .with_hint(format!("list at least one name: `{word} x, y`")),
                     )
                 } else {
@@ -731,15 +970,21 @@ impl<'s> P<'s> {
     fn declaration(&self, i: &'s str) -> PResult<'s, Stmt> {
         let i = self.ws(i);
         let start = self.pos(i);
-        let (mut i, kw) = alt((tag("coordinates"), tag("parameters"))).parse(i)?;
+        let (mut i, kw) = if let Some(rest) = i.strip_prefix("coordinates") {
+            (rest, "coordinates")
+        } else if let Some(rest) = i.strip_prefix("parameters") {
+            (rest, "parameters")
+        } else {
+            return self.nothing(i);
+        };
         let mut decls = Vec::new();
         let (rest, d) = self.decl(i)?;
         decls.push(d);
         i = rest;
         loop {
             let j = self.ws(i);
-            match char::<_, PErr>(',').parse(j) {
-                Ok((k, _)) => match self.decl(k) {
+            match j.strip_prefix(',') {
+                Some(k) => match self.decl(k) {
                     Ok((rest, d)) => {
                         decls.push(d);
                         i = rest;
@@ -754,7 +999,7 @@ impl<'s> P<'s> {
                     }
                     Err(e) => return Err(e),
                 },
-                Err(_) => {
+                None => {
                     if starts_operand(j) {
                         let (span, shown) = self.token(j);
                         return self.fail(
@@ -794,8 +1039,8 @@ impl<'s> P<'s> {
     fn decl(&self, i: &'s str) -> PResult<'s, Decl> {
         let (i, name) = self.ident(i)?;
         let j = self.ws(i);
-        match char::<_, PErr>(':').parse(j) {
-            Ok((k, _)) => match self.ident(k) {
+        match j.strip_prefix(':') {
+            Some(k) => match self.ident(k) {
                 Ok((rest, dim)) => Ok((
                     rest,
                     Decl {
@@ -811,7 +1056,7 @@ impl<'s> P<'s> {
                 )),
                 Err(e) => Err(e),
             },
-            Err(_) => Ok((
+            None => Ok((
                 i,
                 Decl {
                     name,
@@ -826,8 +1071,14 @@ impl<'s> P<'s> {
         let (rest, role) = self.role(i)?;
         let start = self.pos(self.ws(i));
         let (rest, name) = self.ident(rest)?;
-        let head = format!("{} {}", role.keyword(), name.name);
-        let rest = self.equals(rest, &head, &format!("write `{head} = expression`"))?;
+        let rest = match self.equals(rest) {
+            Ok(k) => k,
+            Err(j) => {
+                let head = format!("{} {}", role.keyword(), name.name);
+                let hint = format!("write `{head} = expression`");
+                return Err(self.equals_error(j, &head, &hint));
+            }
+        };
         let (rest, (value, outer)) = self.rhs(rest, "=")?;
         let span = Span::new(start, outer.end);
         Ok((
@@ -843,9 +1094,13 @@ impl<'s> P<'s> {
 
     /// `role ::= "kinetic" | "potential" | "forcefunction" | "work" | "dissipation" | "rayleigh"`
     fn role(&self, i: &'s str) -> PResult<'s, Role> {
-        let (rest, id) = self.ident(i)?;
-        match Role::from_keyword(&id.name) {
-            Some(r) => Ok((rest, r)),
+        let j = self.ws(i);
+        let len = ident_len(j);
+        if len == 0 {
+            return self.nothing(j);
+        }
+        match Role::from_keyword(&j[..len]) {
+            Some(r) => Ok((&j[len..], r)),
             None => self.nothing(i),
         }
     }
@@ -854,12 +1109,14 @@ impl<'s> P<'s> {
     fn force_stmt(&self, i: &'s str) -> PResult<'s, Stmt> {
         let i = self.ws(i);
         let start = self.pos(i);
-        let (rest, _) = tag("force").parse(i)?;
+        let Some(rest) = i.strip_prefix("force") else {
+            return self.nothing(i);
+        };
         let (rest, coordinate) = self.ident(rest)?;
         let j = self.ws(rest);
-        let rest = match char::<_, PErr>(':').parse(j) {
-            Ok((k, _)) => k,
-            Err(_) => {
+        let rest = match j.strip_prefix(':') {
+            Some(k) => k,
+            None => {
                 let c = &coordinate.name;
                 return self.fail(self.expected(
                     j,
@@ -884,49 +1141,62 @@ impl<'s> P<'s> {
     /// `definition ::= ident ws "=" ws expr`
     fn definition(&self, i: &'s str) -> PResult<'s, Stmt> {
         let (rest, name) = self.ident(i)?;
-        let hint = if rest.starts_with('(') {
-            format!(
-                "functions can't be defined in a scene; define a name instead: `{} = expression`",
-                name.name
-            )
-        } else {
-            format!("a definition is written `{} = expression`", name.name)
+        let rest = match self.equals(rest) {
+            Ok(k) => k,
+            Err(j) => {
+                let hint = if rest.starts_with('(') {
+                    format!(
+                        "functions can't be defined in a scene; define a name instead: `{} = expression`",
+                        name.name
+                    )
+                } else {
+                    format!("a definition is written `{} = expression`", name.name)
+                };
+                return Err(self.equals_error(j, &name.name, &hint));
+            }
         };
-        let rest = self.equals(rest, &name.name, &hint)?;
         let (rest, (value, outer)) = self.rhs(rest, "=")?;
         let span = name.span.to(outer);
         Ok((rest, Stmt::Def { name, value, span }))
     }
 
-    /// The `"="` of a definition or role statement, after `head`.
-    fn equals(&self, i: &'s str, head: &str, hint: &str) -> Result<&'s str, nom::Err<PErr>> {
+    /// The `"="` of a definition or role statement: the input after it, or
+    /// (as the error) the input where it is missing.
+    fn equals(&self, i: &'s str) -> Result<&'s str, &'s str> {
         let j = self.ws(i);
-        match char::<_, PErr>('=').parse(j) {
-            Ok((k, _)) => Ok(k),
-            Err(_) => Err(failure(self.expected(
-                j,
-                &format!("`=` after `{head}`"),
-                hint,
-                None,
-            ))),
-        }
+        j.strip_prefix('=').ok_or(j)
+    }
+
+    /// The error for a missing `"="` at `j`, after `head`.
+    #[cold]
+    #[inline(never)]
+    fn equals_error(&self, j: &'s str, head: &str, hint: &str) -> nom::Err<PErr> {
+        failure(self.expected(j, &format!("`=` after `{head}`"), hint, None))
     }
 
     /// The expression after `=` or `:` that ends a statement, with the
     /// source span it came from (including enclosing parentheses).
     fn rhs(&self, i: &'s str, after: &str) -> PResult<'s, (Expr, Span)> {
-        let at = self.ws(i);
-        let op_span = Span::new(self.pos(i) - after.len(), self.pos(i));
         match self.expr(i) {
             Ok((rest, node)) => Ok((rest, (*node.e, node.outer))),
-            Err(nom::Err::Error(_)) => self.fail(self.expected(
-                at,
-                &format!("an expression after `{after}`"),
-                HINT_EXPR,
-                Some(op_span),
-            )),
-            Err(e) => Err(e),
+            Err(e) => Err(self.rhs_error(e, i, after)),
         }
+    }
+
+    /// The error for a missing expression at `i`, after `after`.
+    #[cold]
+    #[inline(never)]
+    fn rhs_error(&self, e: nom::Err<PErr>, i: &'s str, after: &str) -> nom::Err<PErr> {
+        if !matches!(e, nom::Err::Error(_)) {
+            return e;
+        }
+        let op_span = Span::new(self.pos(i) - after.len(), self.pos(i));
+        failure(self.expected(
+            self.ws(i),
+            &format!("an expression after `{after}`"),
+            HINT_EXPR,
+            Some(op_span),
+        ))
     }
 
     // ----- expressions -------------------------------------------------------
@@ -944,8 +1214,9 @@ impl<'s> P<'s> {
     }
 
     /// `expr ::= sum`
+    #[inline(never)]
     fn expr(&self, i: &'s str) -> PResult<'s, Node> {
-        let _g = self.enter(self.ws(i))?;
+        let _g = self.enter_ws(i)?;
         self.sum(i)
     }
 
@@ -954,16 +1225,18 @@ impl<'s> P<'s> {
         let (mut i, mut lhs) = self.product(i)?;
         loop {
             let j = self.ws(i);
-            let Ok((k, op)) = one_of::<_, _, PErr>("+-").parse(j) else {
-                break;
+            let (op, op_str) = match j.as_bytes().first() {
+                Some(b'+') => (BinOp::Add, "+"),
+                Some(b'-') => (BinOp::Sub, "-"),
+                _ => break,
             };
+            let k = &j[1..];
             let op_span = self.span(j, k);
             let k = self.ws_nl(k);
             let (rest, rhs) = match self.product(k) {
                 Ok(x) => x,
-                Err(e) => return Err(self.op_error(e, k, op_str(op), op_span)),
+                Err(e) => return Err(self.op_error(e, k, op_str, op_span)),
             };
-            let op = if op == '+' { BinOp::Add } else { BinOp::Sub };
             lhs = self.bin(op, lhs, rhs)?;
             i = rest;
         }
@@ -971,6 +1244,7 @@ impl<'s> P<'s> {
     }
 
     /// `product ::= unary ( ws ( "*" | "/" ) ws_nl unary | implicit_factor )*`
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn product(&self, i: &'s str) -> PResult<'s, Node> {
         let (mut i, mut lhs) = self.unary(i)?;
         let mut last = lhs.outer;
@@ -985,35 +1259,39 @@ impl<'s> P<'s> {
                 continue;
             }
             let j = self.ws(i);
-            let Ok((k, op)) = one_of::<_, _, PErr>("*/").parse(j) else {
-                break;
+            let (op, op_str) = match j.as_bytes().first() {
+                Some(b'*') => (BinOp::Mul, "*"),
+                Some(b'/') => (BinOp::Div, "/"),
+                _ => {
+                    self.side_by_side(j, last, last_is_name)?;
+                    return Ok((i, lhs));
+                }
             };
+            let k = &j[1..];
             let op_span = self.span(j, k);
-            if op == '*' && k.starts_with('*') {
+            if op == BinOp::Mul && k.starts_with('*') {
                 return Err(star_star(op_span));
             }
             let k = self.ws_nl(k);
             let (rest, rhs) = match self.unary(k) {
                 Ok(x) => x,
-                Err(e) => return Err(self.op_error(e, k, op_str(op), op_span)),
+                Err(e) => return Err(self.op_error(e, k, op_str, op_span)),
             };
             last = rhs.outer;
             last_is_name = matches!(rhs.e.kind, ExprKind::Name(_));
-            let op = if op == '*' { BinOp::Mul } else { BinOp::Div };
             lhs = self.bin(op, lhs, rhs)?;
             i = rest;
         }
-        self.side_by_side(i, last, last_is_name)?;
-        Ok((i, lhs))
     }
 
     /// Is an implicit product allowed at `i` (directly after a number or `)`)?
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn implicit_here(&self, i: &str) -> bool {
         let p = self.pos(i);
-        let prev = self.src[..p].chars().next_back();
-        match (prev, first(i)) {
-            (Some(d), Some(n)) if d.is_ascii_digit() => ident_start(n) || n == '(',
-            (Some(')'), Some('(')) => true,
+        // a non-ASCII character never ends in an ASCII byte
+        match self.src.as_bytes()[..p].last() {
+            Some(d) if d.is_ascii_digit() => i.starts_with('(') || starts_ident(i),
+            Some(b')') => i.starts_with('('),
             _ => false,
         }
     }
@@ -1023,21 +1301,29 @@ impl<'s> P<'s> {
         self.power(i)
     }
 
-    /// Reject two operands side by side (`a b`) with a helpful hint.
+    /// Reject two operands side by side (`a b`) with a helpful hint; `j` is
+    /// after the white space following the left operand.
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn side_by_side(
         &self,
-        i: &'s str,
+        j: &'s str,
         left: Span,
         left_is_name: bool,
     ) -> Result<(), nom::Err<PErr>> {
-        let j = self.ws(i);
         if !starts_operand(j) {
             return Ok(());
         }
+        Err(self.side_by_side_error(j, left, left_is_name))
+    }
+
+    /// The error for an operand at `j` right after the operand at `left`.
+    #[cold]
+    #[inline(never)]
+    fn side_by_side_error(&self, j: &'s str, left: Span, left_is_name: bool) -> nom::Err<PErr> {
         let right = match self.power(j) {
             Ok((_, r)) => r.outer,
             Err(nom::Err::Error(_)) => self.token(j).0,
-            Err(e) => return Err(e),
+            Err(e) => return e,
         };
         let l = excerpt(&self.src[left.start..left.end]);
         let r = excerpt(&self.src[right.start..right.end]);
@@ -1054,25 +1340,32 @@ impl<'s> P<'s> {
         if self.src[left.end..right.start].contains('\n') {
             hint.push_str(" (or is a `)` missing before the line break?)");
         }
-        Err(failure(
-            Diagnostic::error(right, "two expressions side by side").with_hint(hint),
-        ))
+        failure(Diagnostic::error(right, "two expressions side by side").with_hint(hint))
     }
 
     /// `unary ::= ws ( "-" | "+" ) unary | power`
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn unary(&self, i: &'s str) -> PResult<'s, Node> {
         let j = self.ws(i);
-        let Ok((k, sign)) = one_of::<_, _, PErr>("+-").parse(j) else {
-            return self.power(j);
-        };
+        match j.as_bytes().first() {
+            Some(b'-') => self.signed(j, "-"),
+            Some(b'+') => self.signed(j, "+"),
+            _ => self.power(j),
+        }
+    }
+
+    /// The first alternative of `unary`: `sign` at `j`, then a `unary`.
+    #[inline(never)]
+    fn signed(&self, j: &'s str, sign: &'static str) -> PResult<'s, Node> {
+        let k = &j[1..];
         let _g = self.enter(j)?;
         let sign_span = self.span(j, k);
         let (rest, inner) = match self.unary(k) {
             Ok(x) => x,
-            Err(e) => return Err(self.op_error(e, k, op_str(sign), sign_span)),
+            Err(e) => return Err(self.op_error(e, k, sign, sign_span)),
         };
         let span = sign_span.to(inner.outer);
-        if sign == '-' {
+        if sign == "-" {
             let node = self.node(ExprKind::Neg(inner.e), span, inner.d + 1, sign_span)?;
             Ok((rest, node))
         } else {
@@ -1084,10 +1377,11 @@ impl<'s> P<'s> {
     }
 
     /// `power ::= postfix ( ws "^" ws_nl exponent )?`
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn power(&self, i: &'s str) -> PResult<'s, Node> {
         let (i, base) = self.postfix(i)?;
         let j = self.ws(i);
-        let Ok((k, _)) = char::<_, PErr>('^').parse(j) else {
+        let Some(k) = j.strip_prefix('^') else {
             return Ok((i, base));
         };
         let op_span = self.span(j, k);
@@ -1103,16 +1397,19 @@ impl<'s> P<'s> {
     fn exponent(&self, i: &'s str) -> PResult<'s, Node> {
         let j = self.ws(i);
         let _g = self.enter(j)?;
-        let Ok((k, sign)) = one_of::<_, _, PErr>("+-").parse(j) else {
-            return self.power(j);
+        let sign = match j.as_bytes().first() {
+            Some(b'-') => "-",
+            Some(b'+') => "+",
+            _ => return self.power(j),
         };
+        let k = &j[1..];
         let sign_span = self.span(j, k);
         let (rest, inner) = match self.exponent(k) {
             Ok(x) => x,
-            Err(e) => return Err(self.op_error(e, k, op_str(sign), sign_span)),
+            Err(e) => return Err(self.op_error(e, k, sign, sign_span)),
         };
         let span = sign_span.to(inner.outer);
-        if sign == '-' {
+        if sign == "-" {
             let node = self.node(ExprKind::Neg(inner.e), span, inner.d + 1, sign_span)?;
             Ok((rest, node))
         } else {
@@ -1124,20 +1421,23 @@ impl<'s> P<'s> {
     }
 
     /// `postfix ::= atom ( ws "'" )*`
+    ///
+    /// `i` is after white space: [`P::power`] is only called there.
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn postfix(&self, i: &'s str) -> PResult<'s, Node> {
-        let start = self.ws(i);
+        let start = i;
         let (mut i, a) = self.atom(start)?;
         let mut order: u32 = 0;
         let mut first_prime = None;
         loop {
             let j = self.ws(i);
-            match char::<_, PErr>('\'').parse(j) {
-                Ok((k, _)) => {
+            match j.strip_prefix('\'') {
+                Some(k) => {
                     first_prime.get_or_insert(self.span(j, k));
                     order = order.saturating_add(1);
                     i = k;
                 }
-                Err(_) => break,
+                None => break,
             }
         }
         let Some(prime_span) = first_prime else {
@@ -1159,33 +1459,34 @@ impl<'s> P<'s> {
     }
 
     /// `atom ::= literal | call | name | group`
+    ///
+    /// `i` is after white space (see [`P::postfix`]).
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn atom(&self, i: &'s str) -> PResult<'s, Node> {
-        let i = self.ws(i);
-        match first(i) {
-            Some(c) if c.is_ascii_digit() || (c == '.' && starts_operand(i)) => self.literal(i),
-            Some(c) if ident_start(c) => {
-                let (rest, _) = self.ident(i)?;
-                if rest.starts_with('(') {
-                    self.call(i)
-                } else {
-                    self.name(i)
-                }
-            }
-            Some('(') => self.group(i),
-            _ => self.nothing(i),
+        match i.as_bytes().first() {
+            Some(c) if c.is_ascii_digit() => self.literal(i),
+            Some(b'.') if starts_operand(i) => self.literal(i),
+            Some(b'(') => self.group(i),
+            _ => match ident_len(i) {
+                0 => self.nothing(i),
+                len if i[len..].starts_with('(') => self.call(i),
+                len => self.name(i, len),
+            },
         }
     }
 
     /// `call ::= ident "(" ws_nl ( expr ( ws_nl "," ws_nl expr )* ws_nl )? ")"`
     fn call(&self, i: &'s str) -> PResult<'s, Node> {
         let (rest, name) = self.ident(i)?;
-        let (mut k, _) = char('(').parse(rest)?;
+        let Some(mut k) = rest.strip_prefix('(') else {
+            return self.nothing(rest);
+        };
         let open = self.pos(rest);
         let _p = self.open_paren();
         let mut args = Vec::new();
         let mut d = 0;
         let j = self.ws(k);
-        if let Ok((after, _)) = char::<_, PErr>(')').parse(j) {
+        if let Some(after) = j.strip_prefix(')') {
             k = after;
         } else {
             loop {
@@ -1196,9 +1497,9 @@ impl<'s> P<'s> {
                 d = d.max(arg.d);
                 args.push(*arg.e);
                 let j = self.ws(rest);
-                match first(j) {
-                    Some(',') => k = &j[1..],
-                    Some(')') => {
+                match j.as_bytes().first() {
+                    Some(b',') => k = &j[1..],
+                    Some(b')') => {
                         k = &j[1..];
                         break;
                     }
@@ -1262,14 +1563,24 @@ impl<'s> P<'s> {
     }
 
     /// `name ::= ident`
-    fn name(&self, i: &'s str) -> PResult<'s, Node> {
-        let (rest, id) = self.ident(i)?;
-        Ok((rest, Self::leaf(ExprKind::Name(id.name), id.span)))
+    ///
+    /// `i` is after white space and starts with an `ident` of `len` bytes
+    /// (scanned by [`P::atom`]).
+    #[cfg_attr(not(debug_assertions), inline(always))]
+    fn name(&self, i: &'s str, len: usize) -> PResult<'s, Node> {
+        let start = self.pos(i);
+        let span = Span::new(start, start + len);
+        Ok((
+            &i[len..],
+            Self::leaf(ExprKind::Name(i[..len].to_string()), span),
+        ))
     }
 
     /// `group ::= "(" ws_nl expr ws_nl ")"`
     fn group(&self, i: &'s str) -> PResult<'s, Node> {
-        let (k, _) = char('(').parse(i)?;
+        let Some(k) = i.strip_prefix('(') else {
+            return self.nothing(i);
+        };
         let open = self.pos(i);
         let _p = self.open_paren();
         let (rest, mut inner) = match self.expr(k) {
@@ -1277,12 +1588,12 @@ impl<'s> P<'s> {
             Err(e) => return Err(self.group_error(e, k, open)),
         };
         let j = self.ws(rest);
-        match char::<_, PErr>(')').parse(j) {
-            Ok((after, _)) => {
+        match j.strip_prefix(')') {
+            Some(after) => {
                 inner.outer = Span::new(open, self.pos(after));
                 Ok((after, inner))
             }
-            Err(_) => Err(failure(self.close_expected(j, open, "`)`"))),
+            None => Err(failure(self.close_expected(j, open, "`)`"))),
         }
     }
 
@@ -1309,59 +1620,65 @@ impl<'s> P<'s> {
     // ----- tokens ------------------------------------------------------------
 
     /// `literal ::= number angle_unit?`
+    ///
+    /// `i` is after white space (see [`P::atom`]).
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn literal(&self, i: &'s str) -> PResult<'s, Node> {
-        let i = self.ws(i);
-        let (rest, value) = self.number(i)?;
-        match self.angle_unit(rest) {
-            Ok((rest, _)) => {
-                let span = self.span(i, rest);
-                Ok((rest, Self::leaf(ExprKind::Degrees(value), span)))
-            }
-            Err(_) => {
-                let span = self.span(i, rest);
-                Ok((rest, Self::leaf(ExprKind::Num(value), span)))
-            }
-        }
+        let (rest, number) = self.number(i)?;
+        // the value is built last, in place (it is large to move)
+        let (rest, degrees) = match self.angle_unit(rest) {
+            Ok((rest, _)) => (rest, true),
+            Err(_) => (rest, false),
+        };
+        let span = self.span(i, rest);
+        let kind = if degrees {
+            ExprKind::Degrees(number.value())
+        } else {
+            ExprKind::Num(number.value())
+        };
+        Ok((rest, Self::leaf(kind, span)))
     }
 
     /// `angle_unit ::= "deg" | space? "°"` — `deg` not followed by an `ident_char`.
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn angle_unit(&self, i: &'s str) -> PResult<'s, &'s str> {
-        if let Ok((rest, d)) = tag::<_, _, PErr>("deg").parse(i) {
-            if !first(rest).is_some_and(ident_char) {
-                return Ok((rest, d));
+        if let Some(rest) = i.strip_prefix("deg") {
+            if !starts_with_class(rest, ident_char) {
+                return Ok((rest, &i[..3]));
             }
             return self.nothing(i);
         }
-        preceded(opt(Self::space), tag("°")).parse(i)
+        let j = match Self::space(i) {
+            Ok((rest, _)) => rest,
+            Err(_) => i,
+        };
+        match j.strip_prefix('°') {
+            Some(rest) => Ok((rest, &j[..j.len() - rest.len()])),
+            None => self.nothing(j),
+        }
     }
 
     /// `number ::= digits ( "." digits )? sci_exponent?`
-    fn number(&self, i: &'s str) -> PResult<'s, BigRational> {
-        if let Ok((rest, _)) = char::<_, PErr>('.').parse(i) {
-            if let Ok((rest, frac)) = Self::digits(rest) {
-                return self.fail(
-                    Diagnostic::error(
-                        self.span(i, rest),
-                        "a number can't start with a decimal point",
-                    )
-                    .with_hint(format!("write `0.{frac}`")),
-                );
-            }
+    ///
+    /// Scanned on bytes; the value is computed with machine integers when
+    /// it fits (see [`exact_value`]).
+    #[cfg_attr(not(debug_assertions), inline(always))]
+    fn number(&self, i: &'s str) -> PResult<'s, Decimal<'s>> {
+        if let Some(after_dot) = i.strip_prefix('.') {
+            return match Self::digits(after_dot) {
+                Ok((rest, frac)) => Err(self.leading_dot(i, rest, frac)),
+                Err(_) => self.nothing(i),
+            };
         }
         let (mut rest, int) = Self::digits(i)?;
         let mut frac = "";
-        if let Ok((after_dot, _)) = char::<_, PErr>('.').parse(rest) {
+        if let Some(after_dot) = rest.strip_prefix('.') {
             match Self::digits(after_dot) {
                 Ok((after, f)) => {
                     frac = f;
                     rest = after;
                 }
-                Err(_) => {
-                    return self.fail(
-                        Diagnostic::error(self.span(i, after_dot), format!("malformed number `{int}.`"))
-                            .with_hint(format!("a decimal point must be followed by digits: write `{int}.0` or `{int}`")),
-                    );
-                }
+                Err(_) => return Err(self.trailing_dot(i, after_dot, int)),
             }
         }
         let (rest, exp) = match self.sci_exponent(rest) {
@@ -1370,38 +1687,71 @@ impl<'s> P<'s> {
             Err(e) => return Err(e),
         };
         if rest.starts_with('.') {
-            let end = rest
-                .find(|c: char| !(c.is_ascii_digit() || c == '.'))
-                .unwrap_or(rest.len());
-            let span = Span::new(self.pos(i), self.pos(rest) + end);
-            return self.fail(
-                Diagnostic::error(
-                    span,
-                    format!("malformed number `{}`", &self.src[span.start..span.end]),
-                )
-                .with_hint(
-                    "a number has at most one decimal point, before any exponent: `1.25`, `1.5e-3`",
-                ),
-            );
+            return Err(self.second_dot(i, rest));
         }
-        let mut numer: BigInt = format!("{int}{frac}")
-            .parse()
-            .unwrap_or_else(|_| BigInt::zero());
-        let mut denom = pow10(frac.len());
-        if exp >= 0 {
-            numer *= pow10(exp as usize);
-        } else {
-            denom *= pow10(exp.unsigned_abs() as usize);
-        }
-        if denom.is_zero() {
-            denom = BigInt::one();
-        }
-        Ok((rest, BigRational::new(numer, denom)))
+        Ok((rest, Decimal { int, frac, exp }))
+    }
+
+    /// The error for `.5`.
+    #[cold]
+    #[inline(never)]
+    fn leading_dot(&self, i: &'s str, rest: &'s str, frac: &str) -> nom::Err<PErr> {
+        failure(
+            Diagnostic::error(
+                self.span(i, rest),
+                "a number can't start with a decimal point",
+            )
+            .with_hint(format!("write `0.{frac}`")),
+        )
+    }
+
+    /// The error for `3.`.
+    #[cold]
+    #[inline(never)]
+    fn trailing_dot(&self, i: &'s str, after_dot: &'s str, int: &str) -> nom::Err<PErr> {
+        failure(
+            Diagnostic::error(
+                self.span(i, after_dot),
+                format!("malformed number `{int}.`"),
+            )
+            .with_hint(format!(
+                "a decimal point must be followed by digits: write `{int}.0` or `{int}`"
+            )),
+        )
+    }
+
+    /// The error for `1.2.3` or `1e3.5` (a `.` at `rest`, after the number).
+    #[cold]
+    #[inline(never)]
+    fn second_dot(&self, i: &'s str, rest: &'s str) -> nom::Err<PErr> {
+        let end = rest
+            .find(|c: char| !(c.is_ascii_digit() || c == '.'))
+            .unwrap_or(rest.len());
+        let span = Span::new(self.pos(i), self.pos(rest) + end);
+        failure(
+            Diagnostic::error(
+                span,
+                format!("malformed number `{}`", &self.src[span.start..span.end]),
+            )
+            .with_hint(
+                "a number has at most one decimal point, before any exponent: `1.25`, `1.5e-3`",
+            ),
+        )
     }
 
     /// `sci_exponent ::= [eE] [+-]? digits` — taken only when a digit follows.
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sci_exponent(&self, i: &'s str) -> PResult<'s, i64> {
-        let (rest, (_, sign, digits)) = (one_of("eE"), opt(one_of("+-")), Self::digits).parse(i)?;
+        let b = i.as_bytes();
+        if !matches!(b.first(), Some(b'e' | b'E')) {
+            return self.nothing(i);
+        }
+        let (negative, at) = match b.get(1) {
+            Some(b'-') => (true, 2),
+            Some(b'+') => (false, 2),
+            _ => (false, 1),
+        };
+        let (rest, digits) = Self::digits(&i[at..])?;
         let significant = digits.trim_start_matches('0');
         let n: u32 = if significant.len() > 6 {
             u32::MAX
@@ -1409,29 +1759,43 @@ impl<'s> P<'s> {
             significant.parse().unwrap_or(0)
         };
         if n > MAX_EXPONENT {
-            return self.fail(
-                Diagnostic::error(self.span(i, rest), "exponent out of range")
-                    .with_hint(format!("exponents up to {MAX_EXPONENT} are accepted")),
-            );
+            return Err(self.exponent_out_of_range(i, rest));
         }
         let n = i64::from(n);
-        Ok((rest, if sign == Some('-') { -n } else { n }))
+        Ok((rest, if negative { -n } else { n }))
+    }
+
+    /// The error for an exponent beyond [`MAX_EXPONENT`].
+    #[cold]
+    #[inline(never)]
+    fn exponent_out_of_range(&self, i: &'s str, rest: &'s str) -> nom::Err<PErr> {
+        failure(
+            Diagnostic::error(self.span(i, rest), "exponent out of range")
+                .with_hint(format!("exponents up to {MAX_EXPONENT} are accepted")),
+        )
     }
 
     /// `digits ::= [0-9]+`
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn digits(i: &'s str) -> PResult<'s, &'s str> {
-        digit1(i)
+        match digits_len(i) {
+            0 => Err(nom::Err::Error(PErr::At(i.len()))),
+            n => Ok((&i[n..], &i[..n])),
+        }
     }
 
     /// `ident ::= ident_start ident_char*`
     fn ident(&self, i: &'s str) -> PResult<'s, Ident> {
         let i = self.ws(i);
-        let (rest, name) = recognize((satisfy(ident_start), take_while(ident_char))).parse(i)?;
+        let len = ident_len(i);
+        if len == 0 {
+            return self.nothing(i);
+        }
         Ok((
-            rest,
+            &i[len..],
             Ident {
-                name: name.to_string(),
-                span: self.span(i, rest),
+                name: i[..len].to_string(),
+                span: Span::new(self.pos(i), self.pos(i) + len),
             },
         ))
     }
