@@ -14,19 +14,9 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use qdot::Scene;
 use std::hint::black_box;
 
-const SEEDS: &[&str] = &[
-    "seed_21_1",
-    "seed_21_2",
-    "seed_22_2",
-    "seed_23_2",
-    "seed_23_3",
-    "seed_23_4",
-    "seed_24_1",
-];
-
 fn seeds(c: &mut Criterion) {
     let mut g = c.benchmark_group("seed");
-    for name in SEEDS {
+    for name in qdot::gallery::SEED_EXAMPLES {
         let path = format!("{}/examples/{name}.qd", env!("CARGO_MANIFEST_DIR"));
         let src = std::fs::read_to_string(&path).expect("example exists");
         g.bench_function(*name, |b| {

@@ -8,19 +8,9 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use std::hint::black_box;
 
-const SEEDS: &[&str] = &[
-    "seed_21_1",
-    "seed_21_2",
-    "seed_22_2",
-    "seed_23_2",
-    "seed_23_3",
-    "seed_23_4",
-    "seed_24_1",
-];
-
 fn parse(c: &mut Criterion) {
     let mut g = c.benchmark_group("parse");
-    for name in SEEDS {
+    for name in qdot::gallery::SEED_EXAMPLES {
         let path = format!("{}/examples/{name}.qd", env!("CARGO_MANIFEST_DIR"));
         let src = std::fs::read_to_string(&path).expect("example exists");
         g.throughput(Throughput::Bytes(src.len() as u64));

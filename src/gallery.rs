@@ -1,5 +1,17 @@
 //! Scene generators for families of systems (used by the benchmarks, the
-//! tests and the book): the n-link planar pendulum of ../shared/anchors.
+//! tests and the book): the n-link planar pendulum of ../shared/anchors,
+//! and the list of bundled seed examples.
+
+/// The seed problems bundled as `examples/NAME.qd` (../shared/problems.md).
+pub const SEED_EXAMPLES: &[&str] = &[
+    "seed_21_1",
+    "seed_21_2",
+    "seed_22_2",
+    "seed_23_2",
+    "seed_23_3",
+    "seed_23_4",
+    "seed_24_1",
+];
 
 /// The n-link planar pendulum chain with equal masses `m` and lengths `l`,
 /// coordinates `q1 … qn` (angles from the downward vertical), written with

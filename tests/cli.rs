@@ -33,15 +33,7 @@ fn readme_command_prints_the_accelerations() {
 
 #[test]
 fn json_contract_and_reparse() {
-    for name in [
-        "seed_21_1",
-        "seed_21_2",
-        "seed_22_2",
-        "seed_23_2",
-        "seed_23_3",
-        "seed_23_4",
-        "seed_24_1",
-    ] {
+    for name in qdot::gallery::SEED_EXAMPLES {
         let path = format!("examples/{name}.qd");
         let (code, out, err) = qdot(&["solve", &path, "--format", "json"]);
         assert_eq!(code, 0, "{err}");
