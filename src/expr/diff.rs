@@ -108,6 +108,12 @@ pub fn atom_depends_on(a: Var, v: Var) -> bool {
     }
 }
 
+/// Whether an expression with atoms `vars` depends on `v`, directly or
+/// through an atom's argument.
+pub fn vars_depend_on(vars: &[Var], v: Var) -> bool {
+    vars.iter().any(|&a| atom_depends_on(a, v))
+}
+
 /// Whether atom `a` depends on any key of `map`.
 pub fn atom_depends_on_any(a: Var, map: &FxHashMap<Var, Expr>) -> bool {
     map.keys().any(|&v| atom_depends_on(a, v))

@@ -67,20 +67,37 @@ pub fn sin_cos(u: &Expr) -> (Expr, Expr) {
             rest.push((m.clone(), coef.clone()));
             continue;
         };
-        let ns = s.mul(&tc).add(&c.mul(&ts));
-        let nc = c.mul(&tc).sub(&s.mul(&ts));
-        s = ns;
-        c = nc;
+        (s, c) = add_angles(&s, &c, &ts, &tc);
     }
     if !rest.is_empty() {
         let r = Expr::poly(Poly::from_terms(rest));
         let (ts, tc) = base_sin_cos_signed(&r);
-        let ns = s.mul(&tc).add(&c.mul(&ts));
-        let nc = c.mul(&tc).sub(&s.mul(&ts));
-        s = ns;
-        c = nc;
+        (s, c) = add_angles(&s, &c, &ts, &tc);
     }
     (s, c)
+}
+
+/// sin and cos of a + b from those of a and b (the addition theorems).
+fn add_angles(sa: &Expr, ca: &Expr, sb: &Expr, cb: &Expr) -> (Expr, Expr) {
+    (sa.mul(cb).add(&ca.mul(sb)), ca.mul(cb).sub(&sa.mul(sb)))
+}
+
+/// Split a coefficient c = p/q of a term c·m into a base coefficient and a
+/// multiple: (1/q, p) when |p| ≤ MAX_MULTIPLE and `multiples` allows it,
+/// else (|c|, ±1). So sin(3θ/2) uses the base angle θ/2, three times.
+fn split_multiple(c: &Q, multiples: bool) -> (Q, i64) {
+    let p = c.numer();
+    if multiples && p.abs() <= BigInt::from(MAX_MULTIPLE) {
+        let base = Q::one()
+            .checked_div(&Q::from_bigint(c.denom()))
+            .unwrap_or_else(Q::one);
+        return (base, p.to_i64().unwrap_or(1));
+    }
+    if c.is_negative() {
+        (-c.clone(), -1)
+    } else {
+        (c.clone(), 1)
+    }
 }
 
 pub fn sin(u: &Expr) -> Expr {
@@ -140,21 +157,7 @@ fn sin_twelfths(n: i64) -> Expr {
 /// sin, cos of one term `coef·m` of a polynomial argument.
 fn term_sin_cos(m: &Mono, coef: &Q) -> (Expr, Expr) {
     // coef = p/q; base angle m/q, multiple p (when small).
-    let p = coef.numer();
-    let q = coef.denom();
-    let small = p.abs() <= BigInt::from(MAX_MULTIPLE) && !m.0.is_empty();
-    let (base_coef, mult) = if small {
-        (
-            Q::from_bigint(BigInt::one())
-                .checked_div(&Q::from_bigint(q))
-                .unwrap_or_else(Q::one),
-            p.to_i64().unwrap_or(1),
-        )
-    } else if coef.is_negative() {
-        (-coef.clone(), -1)
-    } else {
-        (coef.clone(), 1)
-    };
+    let (base_coef, mult) = split_multiple(coef, !m.0.is_empty());
     let base = Expr::poly(Poly::monomial(m.clone(), base_coef));
     let (s1, c1) = intern_base(&base);
     multiple(&s1, &c1, mult)
@@ -172,10 +175,7 @@ fn multiple(s1: &Expr, c1: &Expr, n: i64) -> (Expr, Expr) {
     let mut k = n;
     while k > 0 {
         if k & 1 == 1 {
-            let ns = s.mul(&bc).add(&c.mul(&bs));
-            let nc = c.mul(&bc).sub(&s.mul(&bs));
-            s = ns;
-            c = nc;
+            (s, c) = add_angles(&s, &c, &bs, &bc);
         }
         k >>= 1;
         if k > 0 {
@@ -399,20 +399,7 @@ pub fn exp(u: &Expr) -> Expr {
     // exp(Σ c·m) = Π exp(m/q)^p for c = p/q: products and powers of base atoms.
     let mut out = Expr::one();
     for (m, c) in u.num().terms() {
-        let p = c.numer();
-        let small = p.abs() <= BigInt::from(MAX_MULTIPLE);
-        let (base_coef, mult) = if small {
-            (
-                Q::one()
-                    .checked_div(&Q::from_bigint(c.denom()))
-                    .unwrap_or_else(Q::one),
-                p.to_i64().unwrap_or(1),
-            )
-        } else if c.is_negative() {
-            (-c.clone(), -1)
-        } else {
-            (c.clone(), 1)
-        };
+        let (base_coef, mult) = split_multiple(c, true);
         let base = exp_atom(&Expr::poly(Poly::monomial(m.clone(), base_coef)));
         if let Ok(f) = base.powi(mult) {
             out = out.mul(&f);

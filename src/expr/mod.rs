@@ -91,15 +91,19 @@ pub struct Expr(Arc<Rat>);
 
 // ---------------------------------------------------------------- reduction
 
+/// Whether some reducible atom appears squared (checked from the kind bits,
+/// without touching the atom table).
+fn needs_reduction(p: &Poly) -> bool {
+    p.terms()
+        .iter()
+        .any(|(m, _)| m.0.iter().any(|&(v, e)| e >= 2 && atom::is_reducible(v)))
+}
+
 /// Rewrite every `r^e` (r reducible, e ≥ 2) as `P^(e div 2) · r^(e mod 2)`.
 /// Returns `None` when `p` is already reduced (the common case, checked
 /// without touching the atom table).
 fn reduce(p: &Poly) -> Option<Poly> {
-    let needs = p
-        .terms()
-        .iter()
-        .any(|(m, _)| m.0.iter().any(|&(v, e)| e >= 2 && atom::is_reducible(v)));
-    if !needs {
+    if !needs_reduction(p) {
         return None;
     }
     let mut out = p.clone();
@@ -127,14 +131,7 @@ fn reduce(p: &Poly) -> Option<Poly> {
             acc = &acc + &factor.mul_mono(&rest, &Q::one());
         }
         out = acc;
-        if !changed {
-            return Some(out);
-        }
-        let again = out
-            .terms()
-            .iter()
-            .any(|(m, _)| m.0.iter().any(|&(v, e)| e >= 2 && atom::is_reducible(v)));
-        if !again {
+        if !changed || !needs_reduction(&out) {
             return Some(out);
         }
     }
@@ -338,9 +335,7 @@ impl Expr {
     }
     /// Whether `v` occurs, directly or inside another atom's argument.
     pub fn depends_on(&self, v: Var) -> bool {
-        self.vars()
-            .into_iter()
-            .any(|a| a == v || diff::atom_depends_on(a, v))
+        diff::vars_depend_on(&self.vars(), v)
     }
 
     /// Exact equality, also for denominators with `cos` atoms.
@@ -544,14 +539,10 @@ impl Expr {
 
     /// Numeric value with `f` giving each non-constant atom's value.
     pub fn eval_f64(&self, f: &dyn Fn(&Atom) -> Option<f64>) -> Option<f64> {
-        let mut ok = true;
         let val = |v: Var| -> f64 { func::eval_atom(v, f).unwrap_or(f64::NAN) };
         let n = self.0.num.eval_f64(&val);
         let d = self.0.den.eval_f64(&val);
-        if n.is_nan() || d.is_nan() {
-            ok = false;
-        }
-        ok.then_some(n / d)
+        (!n.is_nan() && !d.is_nan()).then_some(n / d)
     }
 }
 

@@ -367,11 +367,6 @@ fn fraction(num: &Poly, den: &Poly, st: Style) -> String {
         let s = sum_str(&pd, st);
         bottom.push(if pd.len() > 1 { format!("({s})") } else { s });
     }
-    // A lone parenthesized numerator doesn't need its parentheses.
-    if top.len() == 1 && top[0].starts_with('(') && pn.len() > 1 {
-        let inner = top[0][1..top[0].len() - 1].to_string();
-        top[0] = format!("({inner})");
-    }
     let t = if top.is_empty() {
         "1".to_string()
     } else {

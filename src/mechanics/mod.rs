@@ -78,11 +78,7 @@ impl Lagrange {
             Expr::zero()
         };
         let e_vars = e.vars();
-        let mentions = |x: &Expr, vars: &[Var], v: Var| -> bool {
-            let _ = x;
-            vars.iter()
-                .any(|&a| a == v || crate::expr::diff::atom_depends_on(a, v))
-        };
+        let mentions = crate::expr::diff::vars_depend_on;
         let v_vars = v.vars();
         let l_vars = l.vars();
         let d_vars = d.vars();
@@ -91,23 +87,23 @@ impl Lagrange {
         let mut mass = vec![vec![Expr::zero(); n]; n];
         let mut forcing = Vec::with_capacity(n);
         for k in 0..n {
-            let p = if mentions(&e, &e_vars, qd[k]) {
+            let p = if mentions(&e_vars, qd[k]) {
                 e.diff(qd[k])
             } else {
                 Expr::zero()
             };
             let mut lhs = p.dt();
-            if mentions(&e, &e_vars, q[k]) {
+            if mentions(&e_vars, q[k]) {
                 lhs = lhs.sub(&e.diff(q[k]));
             }
             let mut rhs = Expr::zero();
-            if mentions(&v, &v_vars, q[k]) {
+            if mentions(&v_vars, q[k]) {
                 rhs = rhs.sub(&v.diff(q[k]));
             }
-            if mentions(&l, &l_vars, q[k]) {
+            if mentions(&l_vars, q[k]) {
                 rhs = rhs.add(&l.diff(q[k]));
             }
-            if mentions(&d, &d_vars, qd[k]) {
+            if mentions(&d_vars, qd[k]) {
                 rhs = rhs.add(&d.diff(qd[k]));
             }
             for f in scene.forces.iter().filter(|f| f.coordinate == k) {

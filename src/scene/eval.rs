@@ -15,7 +15,6 @@ enum State {
 }
 
 pub(crate) struct Evaluator<'a> {
-    src: &'a str,
     names: &'a FxHashMap<String, (Binding, Span)>,
     defs: Vec<(&'a ast::Ident, Option<&'a ast::Expr>)>,
     state: Vec<State>,
@@ -41,12 +40,10 @@ const FUNCTIONS: &[(&str, usize)] = &[
 
 impl<'a> Evaluator<'a> {
     pub fn new(
-        src: &'a str,
         names: &'a FxHashMap<String, (Binding, Span)>,
         defs: &'a [(&'a ast::Ident, &'a ast::Expr, Option<Role>)],
     ) -> Evaluator<'a> {
         Evaluator {
-            src,
             names,
             defs: defs.iter().map(|(n, e, _)| (*n, Some(*e))).collect(),
             state: vec![State::Todo; defs.len()],
@@ -59,12 +56,10 @@ impl<'a> Evaluator<'a> {
 
     /// An evaluator whose definitions are already known.
     pub fn with_values(
-        src: &'a str,
         names: &'a FxHashMap<String, (Binding, Span)>,
         values: Vec<Expr>,
     ) -> Evaluator<'a> {
         Evaluator {
-            src,
             names,
             defs: Vec::new(),
             state: values.into_iter().map(State::Done).collect(),
@@ -99,7 +94,6 @@ impl<'a> Evaluator<'a> {
     }
 
     fn err(&self, span: Span, e: MathError) -> Diagnostic {
-        let _ = self.src;
         let d = Diagnostic::error(span, e.message);
         match e.hint {
             Some(h) => d.with_hint(h),

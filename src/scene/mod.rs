@@ -170,7 +170,7 @@ impl Scene {
             }
         }
 
-        let mut ev = eval::Evaluator::new(src, &names, &def_asts);
+        let mut ev = eval::Evaluator::new(&names, &def_asts);
         let mut definitions = Vec::with_capacity(def_asts.len());
         for (i, (name, _, role)) in def_asts.iter().enumerate() {
             let value = ev.definition(i)?;
@@ -239,7 +239,7 @@ impl Scene {
         names.insert("t".into(), (Binding::Time, Span::default()));
         names.insert("pi".into(), (Binding::Pi, Span::default()));
         let values: Vec<Expr> = self.definitions.iter().map(|d| d.value.clone()).collect();
-        let mut ev = eval::Evaluator::with_values(src, &names, values);
+        let mut ev = eval::Evaluator::with_values(&names, values);
         ev.expr(&e)
     }
 

@@ -77,14 +77,6 @@ pub fn solve(a: &[Vec<Expr>], b: &[Expr]) -> Result<Vec<Expr>, SolveError> {
         };
         m.swap(k, p);
         for i in k + 1..n {
-            if m[i][k].is_zero() {
-                // Row i still needs scaling by the pivot ratio for the identity.
-                for j in k + 1..=n {
-                    let t = &m[k][k] * &m[i][j];
-                    m[i][j] = exact(&t, &prev)?;
-                }
-                continue;
-            }
             for j in k + 1..=n {
                 let t = &(&m[k][k] * &m[i][j]) - &(&m[i][k] * &m[k][j]);
                 m[i][j] = exact(&t, &prev)?;
