@@ -3180,19 +3180,25 @@ mod tests {
         Poly::from_terms(t)
     }
 
+    /// 1…maxvars distinct variables out of twelve, sorted.
+    fn random_vars(st: &mut u64, maxvars: usize) -> Vec<Var> {
+        let all: Vec<Var> = (0..12).map(|i| i * 3 + 1).collect();
+        let nv = 1 + (lcg(st) as usize % maxvars);
+        let mut vars: Vec<Var> = Vec::new();
+        while vars.len() < nv {
+            let v = all[lcg(st) as usize % all.len()];
+            if !vars.contains(&v) {
+                vars.push(v);
+            }
+        }
+        vars.sort_unstable();
+        vars
+    }
+
     fn random_gcd_round(seed: u64, rounds: usize, maxvars: usize) {
         let mut st = seed;
-        let all: Vec<Var> = (0..12).map(|i| i * 3 + 1).collect();
         for round in 0..rounds {
-            let nv = 1 + (lcg(&mut st) as usize % maxvars);
-            let mut vars: Vec<Var> = Vec::new();
-            while vars.len() < nv {
-                let v = all[lcg(&mut st) as usize % all.len()];
-                if !vars.contains(&v) {
-                    vars.push(v);
-                }
-            }
-            vars.sort_unstable();
+            let vars = random_vars(&mut st, maxvars);
             let pick = |st: &mut u64| -> Vec<Var> {
                 vars.iter()
                     .copied()
@@ -3223,7 +3229,7 @@ mod tests {
             if t1.as_millis() > 200 || t2.as_millis() > 200 {
                 eprintln!(
                     "slow round {round}: gcd {t1:?} ref {t2:?} vars {} terms {}/{}",
-                    nv,
+                    vars.len(),
                     ag.len(),
                     bg.len()
                 );
@@ -3302,17 +3308,8 @@ mod tests {
 
     fn random_gcd_proof_round(seed: u64, rounds: usize, maxvars: usize, maxdeg: u64) {
         let mut st = seed;
-        let all: Vec<Var> = (0..12).map(|i| i * 3 + 1).collect();
         for round in 0..rounds {
-            let nv = 1 + (lcg(&mut st) as usize % maxvars);
-            let mut vars: Vec<Var> = Vec::new();
-            while vars.len() < nv {
-                let v = all[lcg(&mut st) as usize % all.len()];
-                if !vars.contains(&v) {
-                    vars.push(v);
-                }
-            }
-            vars.sort_unstable();
+            let vars = random_vars(&mut st, maxvars);
             let pick = |st: &mut u64| -> Vec<Var> {
                 vars.iter()
                     .copied()
