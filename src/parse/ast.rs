@@ -101,13 +101,43 @@ pub enum Stmt {
         value: Expr,
         span: Span,
     },
+    /// `load F at P` — a force F (vector or scalar) applied at the point P
+    /// (a position vector, or a scalar displacement along F's line).
+    Load { force: Expr, point: Expr, span: Span },
+    /// `torque M on phi` — a moment M doing work on the angle phi.
+    Torque { moment: Expr, angle: Expr, span: Span },
+    /// `solve a, b { lhs = rhs … }` — a system of equations for the unknowns.
+    Solve(SolveBlock),
+}
+
+/// `solve a3, T1 { … }`: unknowns and the equations that determine them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SolveBlock {
+    pub unknowns: Vec<Ident>,
+    pub equations: Vec<Equation>,
+    /// From `solve` to the closing `}`.
+    pub span: Span,
+}
+
+/// `lhs = rhs`, one equation of a `solve` block.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Equation {
+    pub lhs: Expr,
+    pub rhs: Expr,
+    /// From the start of `lhs` to the end of `rhs`.
+    pub span: Span,
 }
 
 impl Stmt {
     pub fn span(&self) -> Span {
         match self {
             Stmt::Coordinates(_, s) | Stmt::Parameters(_, s) => *s,
-            Stmt::Def { span, .. } | Stmt::Role { span, .. } | Stmt::Force { span, .. } => *span,
+            Stmt::Def { span, .. }
+            | Stmt::Role { span, .. }
+            | Stmt::Force { span, .. }
+            | Stmt::Load { span, .. }
+            | Stmt::Torque { span, .. } => *span,
+            Stmt::Solve(b) => b.span,
         }
     }
 }
@@ -145,4 +175,6 @@ pub enum ExprKind {
     Call(Ident, Vec<Expr>),
     /// `x'` (order 1), `x''` (order 2), …: the total time derivative.
     Prime(Box<Expr>, u32),
+    /// `[x, y]` or `[x, y, z]`: a vector literal (at least one component).
+    Vector(Vec<Expr>),
 }

@@ -133,6 +133,7 @@ impl<'a> Evaluator<'a> {
                 }
             }
             ExprKind::Call(f, args) => self.call(f, args, e.span),
+            ExprKind::Vector(_) => Err(Diagnostic::error(e.span, "vectors are not evaluated yet")),
             ExprKind::Prime(x, order) => {
                 let v = self.expr(x)?;
                 if !v.is_time_dependent() {

@@ -158,6 +158,7 @@ impl Scene {
                 Stmt::Force {
                     coordinate, value, ..
                 } => force_asts.push((coordinate, value)),
+                Stmt::Load { .. } | Stmt::Torque { .. } | Stmt::Solve(_) => {}
             }
         }
         names.insert("t".into(), (Binding::Time, Span::default()));
