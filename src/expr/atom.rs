@@ -45,6 +45,8 @@ pub fn is_radical(v: Var) -> bool {
 pub enum Atom {
     /// A constant symbol (real, positive).
     Param(Arc<str>),
+    /// An unknown of a `solve` block: a real constant with no sign assumed.
+    Unknown(Arc<str>),
     /// A generalized coordinate's `order`-th time derivative.
     Coord(Arc<str>, u32),
     /// Time `t`.
@@ -62,6 +64,10 @@ pub enum Atom {
     Exp(Expr),
     Ln(Expr),
     Atan(Expr),
+    /// asin(u), principal value in [−π/2, π/2].
+    Asin(Expr),
+    /// acos(u), principal value in [0, π].
+    Acos(Expr),
     /// A factor that exists only in printed output (`cos(q1 − q2)` folded
     /// back from its expansion): its input-syntax and Unicode texts. Never
     /// part of a canonical expression.
@@ -178,6 +184,9 @@ pub fn square_of(v: Var) -> Option<Poly> {
 /// Shorthands.
 pub fn param(name: &str) -> Var {
     intern(Atom::Param(Arc::from(name)))
+}
+pub fn unknown(name: &str) -> Var {
+    intern(Atom::Unknown(Arc::from(name)))
 }
 pub fn coord(name: &str, order: u32) -> Var {
     intern(Atom::Coord(Arc::from(name), order))

@@ -57,7 +57,7 @@ fn compute_atom_derivative(a: Var, wrt: Wrt) -> Option<Expr> {
         (!d.is_zero()).then_some(d)
     };
     match (&at, wrt) {
-        (Atom::Param(_) | Atom::Pi | Atom::Root(_) | Atom::Shown(..), _) => None,
+        (Atom::Param(_) | Atom::Unknown(_) | Atom::Pi | Atom::Root(_) | Atom::Shown(..), _) => None,
         (Atom::Coord(..) | Atom::Time, Wrt::Var(_)) => None,
         (Atom::Coord(name, k), Wrt::Time) => Some(Expr::var(atom::coord(name, k + 1))),
         (Atom::Time, Wrt::Time) => Some(Expr::one()),
@@ -89,6 +89,13 @@ fn compute_atom_derivative(a: Var, wrt: Wrt) -> Option<Expr> {
             let du = inner_d(u)?;
             du.div(&Expr::one().add(&u.mul(u))).ok()
         }
+        (Atom::Asin(u) | Atom::Acos(u), _) => {
+            // d asin u = du/√(1 − u²), d acos u = −du/√(1 − u²)
+            let du = inner_d(u)?;
+            let r = super::func::sqrt(&Expr::one().sub(&u.mul(u))).ok()?;
+            let d = du.div(&r).ok()?;
+            Some(if matches!(at, Atom::Acos(_)) { d.neg() } else { d })
+        }
     }
 }
 
@@ -103,7 +110,9 @@ pub fn atom_depends_on(a: Var, v: Var) -> bool {
         | Atom::Cos(u)
         | Atom::Exp(u)
         | Atom::Ln(u)
-        | Atom::Atan(u) => u.depends_on(v),
+        | Atom::Atan(u)
+        | Atom::Asin(u)
+        | Atom::Acos(u) => u.depends_on(v),
         _ => false,
     }
 }
@@ -185,7 +194,9 @@ fn atom_time_dependent(a: Var) -> bool {
         | Atom::Cos(u)
         | Atom::Exp(u)
         | Atom::Ln(u)
-        | Atom::Atan(u) => u.is_time_dependent(),
+        | Atom::Atan(u)
+        | Atom::Asin(u)
+        | Atom::Acos(u) => u.is_time_dependent(),
         _ => false,
     }
 }

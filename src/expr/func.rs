@@ -8,8 +8,12 @@
 //! * `sqrt` of a rational is a product of prime radicals `√p`
 //!   (`√12 = 2√3`); of a polynomial, positive-parameter square factors come
 //!   out (`√(k·m²) = m·√k`) and the rest is a radical atom `√P`.
-//! * `exp`, `ln`, `atan` are atoms, with `exp(0) = 1`, `ln(1) = 0`,
-//!   `ln(exp(x)) = x`, `atan(0) = 0`.
+//! * `exp`, `ln`, `atan`, `asin`, `acos` are atoms, with `exp(0) = 1`,
+//!   `ln(1) = 0`, `ln(exp(x)) = x`, `atan(0) = asin(0) = 0`, `acos(0) = π/2`,
+//!   and sin/cos of them algebraic: `sin(atan x) = x/√(1 + x²)`,
+//!   `cos(asin x) = √(1 − x²)`, `sin(acos x) = √(1 − x²)`.
+//!   An inverse-trig atom (to the first power) is a simple term of an
+//!   argument, so `sin(atan x + π)` and `cos(2·asin x)` expand.
 
 use super::atom::{self, Atom};
 use super::{Expr, MathError};
@@ -30,12 +34,38 @@ const MAX_EXPANDED_TERMS: usize = 6;
 /// Whether a term of an argument is expanded on its own: a power product of
 /// parameters, coordinates, t and π (θ1, Ω·t, π/6), not of functions.
 fn is_simple_term(m: &Mono) -> bool {
+    if let [(v, 1)] = m.0.as_slice() {
+        if inverse_trig(*v).is_some() {
+            return true;
+        }
+    }
     m.0.iter().all(|&(v, _)| {
         matches!(
             atom::atom(v),
-            Atom::Param(_) | Atom::Coord(..) | Atom::Time | Atom::Pi
+            Atom::Param(_) | Atom::Unknown(_) | Atom::Coord(..) | Atom::Time | Atom::Pi
         )
     })
+}
+
+/// sin and cos of an inverse-trig atom, algebraically: (sin, cos) of
+/// atan x = (x, 1)/√(1 + x²), of asin x = (x, √(1 − x²)), of acos x =
+/// (√(1 − x²), x). None for any other atom (or a root that can't be taken).
+fn inverse_trig(v: Var) -> Option<(Expr, Expr)> {
+    match atom::atom(v) {
+        Atom::Atan(x) => {
+            let r = sqrt(&Expr::one().add(&x.mul(&x))).ok()?;
+            Some((x.div(&r).ok()?, r.recip().ok()?))
+        }
+        Atom::Asin(x) => {
+            let r = sqrt(&Expr::one().sub(&x.mul(&x))).ok()?;
+            Some((x, r))
+        }
+        Atom::Acos(x) => {
+            let r = sqrt(&Expr::one().sub(&x.mul(&x))).ok()?;
+            Some((r, x))
+        }
+        _ => None,
+    }
 }
 
 /// sin and cos of an expression, expanded into base-angle atoms.
@@ -200,6 +230,11 @@ fn base_sin_cos_signed(u: &Expr) -> (Expr, Expr) {
 }
 
 fn intern_base(u: &Expr) -> (Expr, Expr) {
+    if let Some(v) = u.as_var() {
+        if let Some(sc) = inverse_trig(v) {
+            return sc;
+        }
+    }
     let (s, c) = atom::intern_trig(u);
     (Expr::var(s), Expr::var(c))
 }
@@ -442,6 +477,44 @@ pub fn atan(u: &Expr) -> Expr {
     Expr::var(atom::intern(Atom::Atan(u.clone())))
 }
 
+/// asin u (principal value); an error for a rational |u| > 1.
+pub fn asin(u: &Expr) -> Result<Expr, MathError> {
+    if u.is_zero() {
+        return Ok(Expr::zero());
+    }
+    if u.num().leading_coeff().is_some_and(|c| c.is_negative()) {
+        return Ok(asin(&u.neg())?.neg());
+    }
+    if let Some(q) = u.as_rational() {
+        if q > Q::one() {
+            return Err(MathError::new(format!("asin({q}) is not real: |x| > 1")));
+        }
+        if q.is_one() {
+            return Ok(Expr::pi().scale(&Q::new(1, 2).unwrap_or_else(Q::one)));
+        }
+    }
+    Ok(Expr::var(atom::intern(Atom::Asin(u.clone()))))
+}
+
+/// acos u = π/2 − asin u, kept as its own atom (principal value in [0, π]).
+pub fn acos(u: &Expr) -> Result<Expr, MathError> {
+    if let Some(q) = u.as_rational() {
+        if q.abs() > Q::one() {
+            return Err(MathError::new(format!("acos({q}) is not real: |x| > 1")));
+        }
+        if q.is_zero() || q.abs().is_one() {
+            let half = Q::new(1, 2).unwrap_or_else(Q::one);
+            let k = if q.is_zero() { half } else if q.is_one() { Q::zero() } else { Q::one() };
+            return Ok(Expr::pi().scale(&k));
+        }
+    }
+    if u.num().leading_coeff().is_some_and(|c| c.is_negative()) {
+        // acos(−x) = π − acos x
+        return Ok(Expr::pi().sub(&acos(&u.neg())?));
+    }
+    Ok(Expr::var(atom::intern(Atom::Acos(u.clone()))))
+}
+
 // ---------------------------------------------------------------- evaluation, substitution
 
 /// The numeric value of an atom, with `f` giving parameters, coordinates and time.
@@ -449,7 +522,7 @@ pub fn eval_atom(v: Var, f: &dyn Fn(&Atom) -> Option<f64>) -> Option<f64> {
     let a = atom::atom(v);
     let ev = |e: &Expr| e.eval_f64(f);
     match &a {
-        Atom::Param(_) | Atom::Coord(..) | Atom::Time => f(&a),
+        Atom::Param(_) | Atom::Unknown(_) | Atom::Coord(..) | Atom::Time => f(&a),
         Atom::Pi => Some(std::f64::consts::PI),
         Atom::Root(n) => n.parse::<f64>().ok().map(f64::sqrt),
         Atom::SqrtOf(u) => ev(u).map(f64::sqrt),
@@ -458,6 +531,8 @@ pub fn eval_atom(v: Var, f: &dyn Fn(&Atom) -> Option<f64>) -> Option<f64> {
         Atom::Exp(u) => ev(u).map(f64::exp),
         Atom::Ln(u) => ev(u).map(f64::ln),
         Atom::Atan(u) => ev(u).map(f64::atan),
+        Atom::Asin(u) => ev(u).map(f64::asin),
+        Atom::Acos(u) => ev(u).map(f64::acos),
         Atom::Shown(..) => None,
     }
 }
@@ -474,7 +549,9 @@ pub fn subs_atom(v: Var, map: &FxHashMap<Var, Expr>) -> Result<Option<Expr>, Mat
         | Atom::Cos(u)
         | Atom::Exp(u)
         | Atom::Ln(u)
-        | Atom::Atan(u) => u,
+        | Atom::Atan(u)
+        | Atom::Asin(u)
+        | Atom::Acos(u) => u,
         _ => return Ok(None),
     };
     if !inner
@@ -491,6 +568,8 @@ pub fn subs_atom(v: Var, map: &FxHashMap<Var, Expr>) -> Result<Option<Expr>, Mat
         Atom::Cos(_) => cos(&u),
         Atom::Exp(_) => exp(&u),
         Atom::Ln(_) => ln(&u)?,
+        Atom::Asin(_) => asin(&u)?,
+        Atom::Acos(_) => acos(&u)?,
         _ => atan(&u),
     }))
 }

@@ -269,6 +269,10 @@ impl Expr {
     pub fn param(name: &str) -> Expr {
         Expr::var(atom::param(name))
     }
+    /// An unknown of a `solve` block (a symbol with no sign assumed).
+    pub fn unknown(name: &str) -> Expr {
+        Expr::var(atom::unknown(name))
+    }
     /// The `order`-th time derivative of coordinate `name`.
     pub fn coord(name: &str, order: u32) -> Expr {
         Expr::var(atom::coord(name, order))

@@ -102,7 +102,7 @@ fn render_parts(num: &Poly, den: &Poly, st: Style) -> String {
 fn is_dynamic(v: Var) -> bool {
     match atom::atom(v) {
         Atom::Coord(..) | Atom::Time => true,
-        Atom::Param(_) | Atom::Pi | Atom::Root(_) => false,
+        Atom::Param(_) | Atom::Unknown(_) | Atom::Pi | Atom::Root(_) => false,
         _ => Expr::var(v).is_time_dependent(),
     }
 }
@@ -399,7 +399,7 @@ fn factor_rank(v: Var) -> (u8, u32, String, String) {
     let name = atom_input(&a);
     let name = (name.to_lowercase(), name);
     match a {
-        Atom::Param(_) => (0, 0, name.0, name.1),
+        Atom::Param(_) | Atom::Unknown(_) => (0, 0, name.0, name.1),
         Atom::Pi => (1, 0, name.0, name.1),
         Atom::Root(_) | Atom::SqrtOf(_) => (2, 0, name.0, name.1),
         Atom::Time => (3, 0, name.0, name.1),
@@ -408,6 +408,8 @@ fn factor_rank(v: Var) -> (u8, u32, String, String) {
         | Atom::Exp(_)
         | Atom::Ln(_)
         | Atom::Atan(_)
+        | Atom::Asin(_)
+        | Atom::Acos(_)
         | Atom::Shown(..) => (4, 0, name.0, name.1),
         Atom::Coord(_, k) => (5, k, name.0, name.1),
     }
@@ -440,7 +442,13 @@ fn power_str(v: Var, e: u32, st: Style) -> String {
             }
             let sup = superscript(e);
             match &a {
-                Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) | Atom::Atan(u) => {
+                Atom::Sin(u)
+                | Atom::Cos(u)
+                | Atom::Exp(u)
+                | Atom::Ln(u)
+                | Atom::Atan(u)
+                | Atom::Asin(u)
+                | Atom::Acos(u) => {
                     let f = fn_name(&a);
                     format!("{f}{sup}({})", unicode(u))
                 }
@@ -457,6 +465,8 @@ fn fn_name(a: &Atom) -> &'static str {
         Atom::Exp(_) => "exp",
         Atom::Ln(_) => "ln",
         Atom::Atan(_) => "atan",
+        Atom::Asin(_) => "asin",
+        Atom::Acos(_) => "acos",
         _ => "",
     }
 }
@@ -465,13 +475,19 @@ fn fn_name(a: &Atom) -> &'static str {
 pub fn atom_input(a: &Atom) -> String {
     match a {
         Atom::Shown(i, _) => i.to_string(),
-        Atom::Param(n) => n.to_string(),
+        Atom::Param(n) | Atom::Unknown(n) => n.to_string(),
         Atom::Coord(n, k) => format!("{n}{}", "'".repeat(*k as usize)),
         Atom::Time => "t".into(),
         Atom::Pi => "pi".into(),
         Atom::Root(n) => format!("sqrt({n})"),
         Atom::SqrtOf(u) => format!("sqrt({})", input(u)),
-        Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) | Atom::Atan(u) => {
+        Atom::Sin(u)
+        | Atom::Cos(u)
+        | Atom::Exp(u)
+        | Atom::Ln(u)
+        | Atom::Atan(u)
+        | Atom::Asin(u)
+        | Atom::Acos(u) => {
             format!("{}({})", fn_name(a), input(u))
         }
     }
@@ -480,7 +496,7 @@ pub fn atom_input(a: &Atom) -> String {
 fn atom_unicode(a: &Atom) -> String {
     match a {
         Atom::Shown(_, u) => u.to_string(),
-        Atom::Param(n) => pretty_name(n, 0),
+        Atom::Param(n) | Atom::Unknown(n) => pretty_name(n, 0),
         Atom::Coord(n, k) => pretty_name(n, *k),
         Atom::Time => "t".into(),
         Atom::Pi => "π".into(),
@@ -492,7 +508,13 @@ fn atom_unicode(a: &Atom) -> String {
 
 fn unicode_arg(a: &Atom) -> String {
     match a {
-        Atom::Sin(u) | Atom::Cos(u) | Atom::Exp(u) | Atom::Ln(u) | Atom::Atan(u) => unicode(u),
+        Atom::Sin(u)
+        | Atom::Cos(u)
+        | Atom::Exp(u)
+        | Atom::Ln(u)
+        | Atom::Atan(u)
+        | Atom::Asin(u)
+        | Atom::Acos(u) => unicode(u),
         _ => String::new(),
     }
 }

@@ -5,10 +5,14 @@
 //! ```text
 //! d/dt(∂E/∂q̇_k) − ∂E/∂q_k = Q_k,
 //! Q_k = −∂V/∂q_k + ∂U/∂q_k + ∂L/∂q_k + ∂D/∂q̇_k − ∂R/∂q̇_k + (force on q_k)
+//!       + Σ F·∂P/∂q_k (loads, eq. 23.8) + Σ M·∂φ/∂q_k (torques, eq. 22.28)
 //! ```
 //!
-//! and the split M(q,t)·q̈ = f(q,q̇,t) with M_ij = ∂²E/∂q̇_i∂q̇_j, read off
-//! the left-hand sides as the coefficients of q̈_j (they are linear in q̈).
+//! and the split M(q,t)·q̈ = f(q,q̇,t), read off `lhs − Q` as the
+//! coefficients of q̈_j (the equations are linear in q̈). Without loads that
+//! carry inertia, M_ij = ∂²E/∂q̇_i∂q̇_j; a scene in D'Alembert's form puts
+//! inertia forces `inertia(m, x)` among its loads (E may then be absent),
+//! and their q̈ terms join M.
 
 use crate::diag::Diagnostic;
 use crate::expr::{atom, Expr};
@@ -49,9 +53,9 @@ impl Lagrange {
             )
             .with_hint("declare the generalized coordinates with `coordinates q1, q2, …`"));
         }
-        if !scene.has_role(Role::Kinetic) {
+        if !scene.has_dynamics() {
             return Err(Diagnostic::global("the scene has no kinetic energy")
-                .with_hint("add `kinetic E = …` (several `kinetic` lines add up)"));
+                .with_hint("add `kinetic E = …` (several `kinetic` lines add up), or write the inertia forces as loads: `load -inertia(m, x) at x`"));
         }
         let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
         let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();
@@ -59,34 +63,14 @@ impl Lagrange {
         let qdd: Vec<Var> = names.iter().map(|c| atom::coord(c, 2)).collect();
 
         let e = scene.role_sum(Role::Kinetic);
-        // V − U as one potential; L; D − R as one (book-sign) dissipation.
-        let has_v = scene.has_role(Role::Potential) || scene.has_role(Role::ForceFunction);
-        let v = if has_v {
-            scene
-                .role_sum(Role::Potential)
-                .sub(&scene.role_sum(Role::ForceFunction))
-        } else {
-            Expr::zero()
-        };
-        let l = scene.role_sum(Role::Work);
-        let has_d = scene.has_role(Role::Dissipation) || scene.has_role(Role::Rayleigh);
-        let d = if has_d {
-            scene
-                .role_sum(Role::Dissipation)
-                .sub(&scene.role_sum(Role::Rayleigh))
-        } else {
-            Expr::zero()
-        };
         let e_vars = e.vars();
         let mentions = crate::expr::diff::vars_depend_on;
-        let v_vars = v.vars();
-        let l_vars = l.vars();
-        let d_vars = d.vars();
+        let forces = generalized_forces(scene);
 
         let mut equations = Vec::with_capacity(n);
         let mut mass = vec![vec![Expr::zero(); n]; n];
         let mut forcing = Vec::with_capacity(n);
-        for k in 0..n {
+        for (k, rhs) in forces.into_iter().enumerate() {
             let p = if mentions(&e_vars, qd[k]) {
                 e.diff(qd[k])
             } else {
@@ -96,30 +80,23 @@ impl Lagrange {
             if mentions(&e_vars, q[k]) {
                 lhs = lhs.sub(&e.diff(q[k]));
             }
-            let mut rhs = Expr::zero();
-            if mentions(&v_vars, q[k]) {
-                rhs = rhs.sub(&v.diff(q[k]));
-            }
-            if mentions(&l_vars, q[k]) {
-                rhs = rhs.add(&l.diff(q[k]));
-            }
-            if mentions(&d_vars, qd[k]) {
-                rhs = rhs.add(&d.diff(qd[k]));
-            }
-            for f in scene.forces.iter().filter(|f| f.coordinate == k) {
-                rhs = rhs.add(&f.value);
-            }
-            // Mass-matrix row and the rest of the left-hand side.
-            let (row, rest) = split_linear(&lhs, &qdd);
+            // Mass-matrix row and the rest: lhs − Q = M_k·q̈ − f_k.
+            let (row, rest) = split_linear(&lhs.sub(&rhs), &qdd);
             for (j, m) in row.into_iter().enumerate() {
                 mass[k][j] = m;
             }
-            forcing.push(rhs.sub(&rest));
+            forcing.push(rest.neg());
             equations.push(Equation {
                 coordinate: names[k].clone(),
                 lhs,
                 rhs,
             });
+        }
+        if mass.iter().flatten().all(Expr::is_zero) {
+            return Err(Diagnostic::global(
+                "the equations have no accelerations: the kinetic energy is zero and no load carries an inertia force",
+            )
+            .with_hint("add `kinetic E = …`, or inertia forces as loads: `load G - inertia(m, y) at y`"));
         }
         Ok(Lagrange {
             coordinates: names,
@@ -150,6 +127,79 @@ impl Lagrange {
         })?;
         Ok(self.coordinates.iter().cloned().zip(sol).collect())
     }
+}
+
+/// The generalized forces Q_k, one per coordinate in declaration order: the
+/// right-hand sides of Lagrange's equations (see the module docs). The
+/// virtual work of the scene is δL = Σ Q_k·δq_k.
+pub fn generalized_forces(scene: &Scene) -> Vec<Expr> {
+    let names: Vec<&str> = scene.coordinates.iter().map(|c| c.name.as_str()).collect();
+    let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();
+    let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
+    // V − U as one potential; L; D − R as one (book-sign) dissipation.
+    let has_v = scene.has_role(Role::Potential) || scene.has_role(Role::ForceFunction);
+    let v = if has_v {
+        scene
+            .role_sum(Role::Potential)
+            .sub(&scene.role_sum(Role::ForceFunction))
+    } else {
+        Expr::zero()
+    };
+    let l = scene.role_sum(Role::Work);
+    let has_d = scene.has_role(Role::Dissipation) || scene.has_role(Role::Rayleigh);
+    let d = if has_d {
+        scene
+            .role_sum(Role::Dissipation)
+            .sub(&scene.role_sum(Role::Rayleigh))
+    } else {
+        Expr::zero()
+    };
+    let mentions = crate::expr::diff::vars_depend_on;
+    let v_vars = v.vars();
+    let l_vars = l.vars();
+    let d_vars = d.vars();
+    let points: Vec<Vec<Vec<Var>>> = scene
+        .loads
+        .iter()
+        .map(|ld| ld.point.components().iter().map(|c| c.vars()).collect())
+        .collect();
+    let angles: Vec<Vec<Var>> = scene.torques.iter().map(|t| t.angle.vars()).collect();
+    let mut out = Vec::with_capacity(q.len());
+    for k in 0..q.len() {
+        let mut rhs = Expr::zero();
+        if mentions(&v_vars, q[k]) {
+            rhs = rhs.sub(&v.diff(q[k]));
+        }
+        if mentions(&l_vars, q[k]) {
+            rhs = rhs.add(&l.diff(q[k]));
+        }
+        if mentions(&d_vars, qd[k]) {
+            rhs = rhs.add(&d.diff(qd[k]));
+        }
+        for f in scene.forces.iter().filter(|f| f.coordinate == k) {
+            rhs = rhs.add(&f.value);
+        }
+        for (ld, vars) in scene.loads.iter().zip(&points) {
+            for ((f, p), pv) in ld
+                .force
+                .components()
+                .iter()
+                .zip(ld.point.components())
+                .zip(vars)
+            {
+                if mentions(pv, q[k]) {
+                    rhs = rhs.add(&f.mul(&p.diff(q[k])));
+                }
+            }
+        }
+        for (t, vars) in scene.torques.iter().zip(&angles) {
+            if mentions(vars, q[k]) {
+                rhs = rhs.add(&t.moment.mul(&t.angle.diff(q[k])));
+            }
+        }
+        out.push(rhs);
+    }
+    out
 }
 
 /// Split `e` (linear in the variables `vs`) as Σ coef_j·vs_j + rest.

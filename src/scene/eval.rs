@@ -1,6 +1,6 @@
 //! Evaluation of syntax trees into canonical expressions.
 
-use super::Binding;
+use super::{Binding, Value};
 use crate::diag::Diagnostic;
 use crate::expr::{func, Expr, MathError};
 use crate::num::Q;
@@ -11,7 +11,7 @@ use rustc_hash::FxHashMap;
 enum State {
     Todo,
     Busy,
-    Done(Expr),
+    Done(Value),
 }
 
 pub(crate) struct Evaluator<'a> {
@@ -28,6 +28,7 @@ pub(crate) struct Evaluator<'a> {
     pub warnings: Vec<Diagnostic>,
 }
 
+/// The functions of the language and their numbers of arguments.
 const FUNCTIONS: &[(&str, usize)] = &[
     ("sin", 1),
     ("cos", 1),
@@ -36,7 +37,17 @@ const FUNCTIONS: &[(&str, usize)] = &[
     ("exp", 1),
     ("ln", 1),
     ("atan", 1),
+    ("asin", 1),
+    ("acos", 1),
+    ("dot", 2),
+    ("cross", 2),
+    ("norm", 1),
+    ("inertia", 2),
 ];
+
+/// Hint for a vector where a number is needed.
+const HINT_VECTOR: &str =
+    "vectors combine with + and -, scale by numbers, and reduce with dot(a, b), cross(a, b) or norm(a)";
 
 impl<'a> Evaluator<'a> {
     pub fn new(
@@ -57,7 +68,7 @@ impl<'a> Evaluator<'a> {
     /// An evaluator whose definitions are already known.
     pub fn with_values(
         names: &'a FxHashMap<String, (Binding, Span)>,
-        values: Vec<Expr>,
+        values: Vec<Value>,
     ) -> Evaluator<'a> {
         Evaluator {
             names,
@@ -71,7 +82,7 @@ impl<'a> Evaluator<'a> {
     }
 
     /// The value of definition `i`, evaluating it (and what it needs) first.
-    pub fn definition(&mut self, i: usize) -> Result<Expr, Diagnostic> {
+    pub fn definition(&mut self, i: usize) -> Result<Value, Diagnostic> {
         match &self.state[i] {
             State::Done(e) => return Ok(e.clone()),
             State::Busy => {
@@ -86,7 +97,7 @@ impl<'a> Evaluator<'a> {
         };
         self.state[i] = State::Busy;
         self.stack.push(i);
-        let v = self.expr(body);
+        let v = self.value(body);
         self.stack.pop();
         let v = v?;
         self.state[i] = State::Done(v.clone());
@@ -101,42 +112,79 @@ impl<'a> Evaluator<'a> {
         }
     }
 
+    /// A scalar expression: a vector here is an error.
     pub fn expr(&mut self, e: &ast::Expr) -> Result<Expr, Diagnostic> {
+        let v = self.value(e)?;
+        self.scalar(v, e.span, "a number")
+    }
+
+    /// `v` as a scalar, or an error at `span` saying a vector is not `what`.
+    fn scalar(&self, v: Value, span: Span, what: &str) -> Result<Expr, Diagnostic> {
+        match v {
+            Value::Scalar(x) => Ok(x),
+            Value::Vector(c) => Err(Diagnostic::error(
+                span,
+                format!(
+                    "expected {what}, found a vector with {} components",
+                    c.len()
+                ),
+            )
+            .with_hint(HINT_VECTOR)),
+        }
+    }
+
+    /// A scalar or a vector.
+    pub fn value(&mut self, e: &ast::Expr) -> Result<Value, Diagnostic> {
         match &e.kind {
-            ExprKind::Num(r) => Ok(Expr::rational(Q::from_big(r.clone()))),
+            ExprKind::Num(r) => Ok(Value::Scalar(Expr::rational(Q::from_big(r.clone())))),
             ExprKind::Degrees(r) => {
                 let q = Q::from_big(r.clone());
                 let k = q.checked_div(&Q::from_i64(180)).unwrap_or_else(Q::zero);
-                Ok(Expr::pi().scale(&k))
+                Ok(Value::Scalar(Expr::pi().scale(&k)))
             }
             ExprKind::Name(n) => self.name(n, e.span),
-            ExprKind::Neg(x) => Ok(self.expr(x)?.neg()),
+            ExprKind::Neg(x) => Ok(self.value(x)?.map(|c| c.neg())),
             ExprKind::Bin(op, a, b) => {
-                let x = self.expr(a)?;
-                match op {
-                    BinOp::Pow => self.pow(&x, b, e.span),
-                    _ => {
-                        let y = self.expr(b)?;
-                        match op {
-                            BinOp::Add => Ok(x.add(&y)),
-                            BinOp::Sub => Ok(x.sub(&y)),
-                            BinOp::Mul => Ok(x.mul(&y)),
-                            _ => x.div(&y).map_err(|_| {
-                                Diagnostic::error(
-                                    b.span,
-                                    "division by zero: this divisor is exactly 0",
-                                )
-                                .with_hint("check the definitions it uses")
-                            }),
+                let x = self.value(a)?;
+                if *op == BinOp::Pow {
+                    let x = match x {
+                        Value::Scalar(x) => x,
+                        Value::Vector(_) => {
+                            return Err(Diagnostic::error(
+                                a.span,
+                                "a vector can't be raised to a power",
+                            )
+                            .with_hint("for the squared length of a vector v write dot(v, v)"))
                         }
-                    }
+                    };
+                    return Ok(Value::Scalar(self.pow(&x, b, e.span)?));
                 }
+                let y = self.value(b)?;
+                self.binary(*op, x, y, a, b)
             }
             ExprKind::Call(f, args) => self.call(f, args, e.span),
-            ExprKind::Vector(_) => Err(Diagnostic::error(e.span, "vectors are not evaluated yet")),
+            ExprKind::Vector(items) => {
+                if !(2..=3).contains(&items.len()) {
+                    return Err(Diagnostic::error(
+                        e.span,
+                        format!("a vector has 2 or 3 components, this one has {}", items.len()),
+                    )
+                    .with_hint("write a plane vector [x, y] or a space vector [x, y, z]"));
+                }
+                let mut out = Vec::with_capacity(items.len());
+                for it in items {
+                    let v = self.value(it)?;
+                    out.push(self.scalar(v, it.span, "a number as a vector component")?);
+                }
+                Ok(Value::Vector(out))
+            }
             ExprKind::Prime(x, order) => {
-                let v = self.expr(x)?;
-                if !v.is_time_dependent() {
+                let v = self.value(x)?;
+                let moving = match &v {
+                    Value::Scalar(s) => s.is_time_dependent(),
+                    Value::Vector(c) => c.iter().any(|s| s.is_time_dependent()),
+                };
+                if !moving {
                     let what = match &x.kind {
                         ExprKind::Name(n) => format!("`{n}`"),
                         _ => "this expression".to_string(),
@@ -147,37 +195,118 @@ impl<'a> Evaluator<'a> {
                     )
                     .with_hint("`'` is d/dt: it applies to coordinates, `t`, and expressions built from them; declare it in `coordinates` if it moves"));
                 }
-                let key = (v.id(), *order);
-                if let Some((_, d)) = self.derivatives.get(&key) {
-                    return Ok(d.clone());
-                }
-                let mut d = v.clone();
-                for _ in 0..*order {
-                    d = d.dt();
-                }
-                self.derivatives.insert(key, (v, d.clone()));
-                Ok(d)
+                Ok(v.map(|c| self.dt(c, *order)))
             }
         }
     }
 
-    fn name(&mut self, n: &str, span: Span) -> Result<Expr, Diagnostic> {
+    /// The `order`-th time derivative, memoized by the shared value.
+    fn dt(&mut self, v: &Expr, order: u32) -> Expr {
+        let key = (v.id(), order);
+        if let Some((_, d)) = self.derivatives.get(&key) {
+            return d.clone();
+        }
+        let mut d = v.clone();
+        for _ in 0..order {
+            d = d.dt();
+        }
+        self.derivatives.insert(key, (v.clone(), d.clone()));
+        d
+    }
+
+    /// `x op y` for + − * / on scalars and vectors.
+    fn binary(
+        &self,
+        op: BinOp,
+        x: Value,
+        y: Value,
+        a: &ast::Expr,
+        b: &ast::Expr,
+    ) -> Result<Value, Diagnostic> {
+        let span = a.span.to(b.span);
+        let div = |x: &Expr, y: &Expr| {
+            x.div(y).map_err(|_| {
+                Diagnostic::error(b.span, "division by zero: this divisor is exactly 0")
+                    .with_hint("check the definitions it uses")
+            })
+        };
+        match (op, x, y) {
+            (BinOp::Add, Value::Scalar(x), Value::Scalar(y)) => Ok(Value::Scalar(x.add(&y))),
+            (BinOp::Sub, Value::Scalar(x), Value::Scalar(y)) => Ok(Value::Scalar(x.sub(&y))),
+            (BinOp::Mul, Value::Scalar(x), Value::Scalar(y)) => Ok(Value::Scalar(x.mul(&y))),
+            (BinOp::Div, Value::Scalar(x), Value::Scalar(y)) => Ok(Value::Scalar(div(&x, &y)?)),
+            (BinOp::Add | BinOp::Sub, Value::Vector(u), Value::Vector(w)) => {
+                if u.len() != w.len() {
+                    return Err(Diagnostic::error(
+                        span,
+                        format!(
+                            "vectors of different sizes: {} and {} components",
+                            u.len(),
+                            w.len()
+                        ),
+                    )
+                    .with_hint("write plane vectors as [x, y, 0] to combine them with space vectors"));
+                }
+                let f = if op == BinOp::Add { Expr::add } else { Expr::sub };
+                Ok(Value::Vector(u.iter().zip(&w).map(|(p, q)| f(p, q)).collect()))
+            }
+            (BinOp::Add | BinOp::Sub, x, _) => {
+                let sign = if op == BinOp::Add { "add" } else { "subtract" };
+                let sides = if matches!(x, Value::Vector(_)) {
+                    "the left side is a vector and the right side a number"
+                } else {
+                    "the left side is a number and the right side a vector"
+                };
+                Err(Diagnostic::error(span, format!("can't {sign} a vector and a number"))
+                    .with_hint(format!("{sides}; both sides of + and - must be numbers, or vectors of the same size")))
+            }
+            (BinOp::Mul, Value::Scalar(k), Value::Vector(u))
+            | (BinOp::Mul, Value::Vector(u), Value::Scalar(k)) => {
+                Ok(Value::Vector(u.iter().map(|c| c.mul(&k)).collect()))
+            }
+            (BinOp::Mul, Value::Vector(_), Value::Vector(_)) => Err(Diagnostic::error(
+                span,
+                "two vectors can't be multiplied with `*`",
+            )
+            .with_hint("write dot(a, b) for the scalar product or cross(a, b) for the vector product")),
+            (BinOp::Div, Value::Vector(u), Value::Scalar(k)) => {
+                let mut out = Vec::with_capacity(u.len());
+                for c in &u {
+                    out.push(div(c, &k)?);
+                }
+                Ok(Value::Vector(out))
+            }
+            (BinOp::Div, _, Value::Vector(_)) => Err(Diagnostic::error(
+                b.span,
+                "can't divide by a vector",
+            )
+            .with_hint("divide by a number, such as norm(v)")),
+            (BinOp::Pow, ..) => Err(Diagnostic::global("internal: power on a vector")),
+        }
+    }
+
+    fn name(&mut self, n: &str, span: Span) -> Result<Value, Diagnostic> {
         if let Some(e) = self.atoms.get(n) {
-            return Ok(e.clone());
+            return Ok(Value::Scalar(e.clone()));
         }
         match self.names.get_key_value(n) {
             Some((key, (Binding::Param, _))) => {
                 let e = Expr::param(n);
                 self.atoms.insert(key.as_str(), e.clone());
-                Ok(e)
+                Ok(Value::Scalar(e))
+            }
+            Some((key, (Binding::Unknown, _))) => {
+                let e = Expr::unknown(n);
+                self.atoms.insert(key.as_str(), e.clone());
+                Ok(Value::Scalar(e))
             }
             Some((key, (Binding::Coord, _))) => {
                 let e = Expr::coord(n, 0);
                 self.atoms.insert(key.as_str(), e.clone());
-                Ok(e)
+                Ok(Value::Scalar(e))
             }
-            Some((_, (Binding::Time, _))) => Ok(Expr::time()),
-            Some((_, (Binding::Pi, _))) => Ok(Expr::pi()),
+            Some((_, (Binding::Time, _))) => Ok(Value::Scalar(Expr::time())),
+            Some((_, (Binding::Pi, _))) => Ok(Value::Scalar(Expr::pi())),
             Some((_, (Binding::Def(i), _))) => {
                 let i = *i;
                 if matches!(self.state.get(i), Some(State::Busy)) {
@@ -250,7 +379,7 @@ impl<'a> Evaluator<'a> {
         .with_hint("qdot keeps results exact; square roots are supported, other roots are not yet"))
     }
 
-    fn call(&mut self, f: &ast::Ident, args: &[ast::Expr], span: Span) -> Result<Expr, Diagnostic> {
+    fn call(&mut self, f: &ast::Ident, args: &[ast::Expr], span: Span) -> Result<Value, Diagnostic> {
         let Some(&(_, arity)) = FUNCTIONS.iter().find(|(n, _)| *n == f.name) else {
             let list: Vec<&str> = FUNCTIONS.iter().map(|(n, _)| *n).collect();
             let hint = if self.names.contains_key(&f.name) {
@@ -266,15 +395,48 @@ impl<'a> Evaluator<'a> {
             );
         };
         if args.len() != arity {
+            let n = if arity == 1 { "argument" } else { "arguments" };
             return Err(Diagnostic::error(
                 span,
-                format!("`{}` takes {arity} argument, not {}", f.name, args.len()),
+                format!("`{}` takes {arity} {n}, not {}", f.name, args.len()),
             )
-            .with_hint(if f.name == "atan" {
-                "atan(y/x) is the arctangent of one ratio"
-            } else {
-                "one argument, in parentheses"
+            .with_hint(match f.name.as_str() {
+                "atan" => "atan(y/x) is the arctangent of one ratio",
+                "dot" | "cross" => "two vectors: dot(a, b), cross(a, b)",
+                "inertia" => "inertia(m, x) is m·x'' for a mass m (or moment of inertia) and a coordinate or point x",
+                _ => "one argument, in parentheses",
             }));
+        }
+        match f.name.as_str() {
+            "dot" | "cross" => return self.vector_product(f, args, span),
+            "norm" => {
+                let v = self.value(&args[0])?;
+                let Value::Vector(c) = v else {
+                    return Err(Diagnostic::error(args[0].span, "norm needs a vector, found a number")
+                        .with_hint("the absolute value of a number is not exact-friendly; write sqrt(x^2) for a positive x"));
+                };
+                let sq = c.iter().fold(Expr::zero(), |acc, x| acc.add(&x.mul(x)));
+                return func::sqrt(&sq)
+                    .map(Value::Scalar)
+                    .map_err(|m| self.err(span, m));
+            }
+            "inertia" => {
+                let m = self.expr(&args[0])?;
+                let x = self.value(&args[1])?;
+                let moving = match &x {
+                    Value::Scalar(s) => s.is_time_dependent(),
+                    Value::Vector(c) => c.iter().any(|s| s.is_time_dependent()),
+                };
+                if !moving {
+                    return Err(Diagnostic::error(
+                        args[1].span,
+                        "this does not move, so it has no inertia force",
+                    )
+                    .with_hint("inertia(m, x) is m·x'': x must depend on the coordinates or on t"));
+                }
+                return Ok(x.map(|c| self.dt(c, 2).mul(&m)));
+            }
+            _ => {}
         }
         let x = self.expr(&args[0])?;
         let r = match f.name.as_str() {
@@ -284,9 +446,60 @@ impl<'a> Evaluator<'a> {
             "sqrt" => func::sqrt(&x),
             "exp" => Ok(func::exp(&x)),
             "ln" => func::ln(&x),
+            "asin" => func::asin(&x),
+            "acos" => func::acos(&x),
             _ => Ok(func::atan(&x)),
         };
-        r.map_err(|m| self.err(span, m))
+        r.map(Value::Scalar).map_err(|m| self.err(span, m))
+    }
+
+    /// dot(a, b) and cross(a, b); a plane cross product is the scalar
+    /// a_x·b_y − a_y·b_x (the z component, as in the seed's eq. 21.71).
+    fn vector_product(
+        &mut self,
+        f: &ast::Ident,
+        args: &[ast::Expr],
+        span: Span,
+    ) -> Result<Value, Diagnostic> {
+        let mut vs = Vec::with_capacity(2);
+        for a in args {
+            match self.value(a)? {
+                Value::Vector(c) => vs.push(c),
+                Value::Scalar(_) => {
+                    return Err(Diagnostic::error(
+                        a.span,
+                        format!("`{}` needs two vectors, and this is a number", f.name),
+                    )
+                    .with_hint("write vectors as [x, y] or [x, y, z]"))
+                }
+            }
+        }
+        let (u, w) = (&vs[0], &vs[1]);
+        if u.len() != w.len() {
+            return Err(Diagnostic::error(
+                span,
+                format!(
+                    "`{}` of vectors of different sizes: {} and {} components",
+                    f.name,
+                    u.len(),
+                    w.len()
+                ),
+            )
+            .with_hint("write plane vectors as [x, y, 0] to combine them with space vectors"));
+        }
+        if f.name == "dot" {
+            let s = u
+                .iter()
+                .zip(w)
+                .fold(Expr::zero(), |acc, (p, q)| acc.add(&p.mul(q)));
+            return Ok(Value::Scalar(s));
+        }
+        let c = |i: usize, j: usize| u[i].mul(&w[j]).sub(&u[j].mul(&w[i]));
+        Ok(if u.len() == 2 {
+            Value::Scalar(c(0, 1))
+        } else {
+            Value::Vector(vec![c(1, 2), c(2, 0), c(0, 1)])
+        })
     }
 }
 

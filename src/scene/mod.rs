@@ -3,8 +3,9 @@
 //! [`Scene::parse`] runs the parser, checks the declarations (no name
 //! declared twice, `t` and `pi` reserved), evaluates every definition lazily
 //! in dependency order (forward references allowed, cycles reported with
-//! the whole cycle), and collects the role statements. Every error is a
-//! [`Diagnostic`] pointing into the source.
+//! the whole cycle), and collects the role statements, loads, torques and
+//! `solve` blocks. Values are scalars or vectors ([`Value`]). Every error is
+//! a [`Diagnostic`] pointing into the source.
 
 mod eval;
 
@@ -29,11 +30,50 @@ pub struct Parameter {
     pub dimension: Option<String>,
 }
 
+/// The value of a definition: a scalar expression or a vector of them.
+#[derive(Clone, Debug)]
+pub enum Value {
+    Scalar(Expr),
+    /// A plane (2) or space (3) vector.
+    Vector(Vec<Expr>),
+}
+
+impl Value {
+    /// The scalar, if this is one.
+    pub fn as_scalar(&self) -> Option<&Expr> {
+        match self {
+            Value::Scalar(e) => Some(e),
+            Value::Vector(_) => None,
+        }
+    }
+    /// The components: one for a scalar.
+    pub fn components(&self) -> &[Expr] {
+        match self {
+            Value::Scalar(e) => std::slice::from_ref(e),
+            Value::Vector(c) => c,
+        }
+    }
+    /// Apply `f` to every component.
+    pub fn map(&self, mut f: impl FnMut(&Expr) -> Expr) -> Value {
+        match self {
+            Value::Scalar(e) => Value::Scalar(f(e)),
+            Value::Vector(c) => Value::Vector(c.iter().map(f).collect()),
+        }
+    }
+    /// "a number" / "a vector with 2 components", for messages.
+    pub fn describe(&self) -> String {
+        match self {
+            Value::Scalar(_) => "a number".into(),
+            Value::Vector(c) => format!("a vector with {} components", c.len()),
+        }
+    }
+}
+
 /// A named expression.
 #[derive(Clone, Debug)]
 pub struct Definition {
     pub name: String,
-    pub value: Expr,
+    pub value: Value,
     pub span: Span,
     /// The role, for `kinetic E1 = …` and the like.
     pub role: Option<Role>,
@@ -47,6 +87,40 @@ pub struct Force {
     pub span: Span,
 }
 
+/// `load F at P`: a force applied at a point (both vectors of one size,
+/// or both scalars: a force along the line of a scalar displacement).
+#[derive(Clone, Debug)]
+pub struct Load {
+    pub force: Value,
+    pub point: Value,
+    pub span: Span,
+}
+
+/// `torque M on phi`: a moment doing work on an angle.
+#[derive(Clone, Debug)]
+pub struct Torque {
+    pub moment: Expr,
+    pub angle: Expr,
+    pub span: Span,
+}
+
+/// One scalar equation of a `solve` block, as `lhs − rhs = 0`.
+#[derive(Clone, Debug)]
+pub struct SystemEquation {
+    pub residual: Expr,
+    pub span: Span,
+    /// For a vector equation, which component (0-based) this is.
+    pub component: Option<usize>,
+}
+
+/// A `solve` block: unknowns and the equations that determine them.
+#[derive(Clone, Debug)]
+pub struct System {
+    pub unknowns: Vec<Parameter>,
+    pub equations: Vec<SystemEquation>,
+    pub span: Span,
+}
+
 /// A resolved scene.
 #[derive(Clone, Debug)]
 pub struct Scene {
@@ -56,6 +130,10 @@ pub struct Scene {
     /// Definitions (including role statements) in source order.
     pub definitions: Vec<Definition>,
     pub forces: Vec<Force>,
+    pub loads: Vec<Load>,
+    pub torques: Vec<Torque>,
+    /// The `solve` blocks, in source order.
+    pub systems: Vec<System>,
     /// Things worth a look that do not stop the computation.
     pub warnings: Vec<Diagnostic>,
 }
@@ -64,6 +142,7 @@ pub struct Scene {
 #[derive(Clone, Debug)]
 pub(crate) enum Binding {
     Param,
+    Unknown,
     Coord,
     Def(usize),
     Time,
@@ -89,6 +168,7 @@ impl Scene {
         let mut parameters = Vec::new();
         let mut def_asts: Vec<(&ast::Ident, &ast::Expr, Option<Role>)> = Vec::new();
         let mut force_asts = Vec::new();
+        let mut unknowns: Vec<Vec<Parameter>> = Vec::new();
 
         let mut declare = |name: &ast::Ident, b: Binding| -> Result<(), Diagnostic> {
             if name.name == "t" || name.name == "pi" {
@@ -103,12 +183,26 @@ impl Scene {
                 )
                 .with_hint("choose another name"));
             }
-            if let Some((prev, _)) = names.get(&name.name) {
+            if let Some((prev, prev_span)) = names.get(&name.name) {
                 let what = match prev {
                     Binding::Param => "a parameter",
                     Binding::Coord => "a coordinate",
+                    Binding::Unknown => "an unknown of a `solve` block",
                     _ => "defined",
                 };
+                let (line, _) = Diagnostic::line_col(src, prev_span.start);
+                if matches!(b, Binding::Unknown) {
+                    let hint = match prev {
+                        Binding::Param => format!("a `solve` unknown is a new name that the equations determine; remove `{}` from `parameters` (line {line}) or solve for another name", name.name),
+                        Binding::Unknown => "each unknown belongs to one `solve` block".to_string(),
+                        _ => format!("`{}` already has a value (line {line}); solve for a new name", name.name),
+                    };
+                    return Err(Diagnostic::error(
+                        name.span,
+                        format!("the unknown `{}` is already {what}", name.name),
+                    )
+                    .with_hint(hint));
+                }
                 let again = match (&b, prev) {
                     (Binding::Coord, Binding::Coord) => "coordinate declared twice",
                     (Binding::Param, Binding::Param) => "parameter declared twice",
@@ -158,7 +252,19 @@ impl Scene {
                 Stmt::Force {
                     coordinate, value, ..
                 } => force_asts.push((coordinate, value)),
-                Stmt::Load { .. } | Stmt::Torque { .. } | Stmt::Solve(_) => {}
+                Stmt::Load { .. } | Stmt::Torque { .. } => {}
+                Stmt::Solve(block) => {
+                    let mut us = Vec::with_capacity(block.unknowns.len());
+                    for u in &block.unknowns {
+                        declare(u, Binding::Unknown)?;
+                        us.push(Parameter {
+                            name: u.name.clone(),
+                            span: u.span,
+                            dimension: None,
+                        });
+                    }
+                    unknowns.push(us);
+                }
             }
         }
         names.insert("t".into(), (Binding::Time, Span::default()));
@@ -173,8 +279,36 @@ impl Scene {
 
         let mut ev = eval::Evaluator::new(&names, &def_asts);
         let mut definitions = Vec::with_capacity(def_asts.len());
-        for (i, (name, _, role)) in def_asts.iter().enumerate() {
+        for (i, (name, body, role)) in def_asts.iter().enumerate() {
             let value = ev.definition(i)?;
+            if let (Some(role), Value::Vector(c)) = (role, &value) {
+                return Err(Diagnostic::error(
+                    body.span,
+                    format!(
+                        "`{} {}` must be a number, but this is a vector with {} components",
+                        role.keyword(),
+                        name.name,
+                        c.len()
+                    ),
+                )
+                .with_hint(match role {
+                    Role::Kinetic => "the kinetic energy of a point with velocity v is 1/2*m*dot(v, v)",
+                    _ => "energies, work and dissipation are numbers; use dot(F, r) for the work of a force",
+                }));
+            }
+            if let (Some(role), Value::Scalar(e)) = (role, &value) {
+                if let Some(u) = first_unknown(e) {
+                    return Err(Diagnostic::error(
+                        body.span,
+                        format!(
+                            "`{} {}` uses `{u}`, an unknown of a `solve` block",
+                            role.keyword(),
+                            name.name
+                        ),
+                    )
+                    .with_hint("energies are functions of the coordinates and parameters; unknowns belong in `solve` equations"));
+                }
+            }
             definitions.push(Definition {
                 name: name.name.clone(),
                 value,
@@ -207,7 +341,140 @@ impl Scene {
                 span: value.span,
             });
         }
-        let mut warnings = ev.warnings;
+        let coord_vars: Vec<crate::poly::Var> = coordinates
+            .iter()
+            .map(|c| crate::expr::atom::coord(&c.name, 0))
+            .collect();
+        let moves = |e: &Expr| coord_vars.iter().any(|&q| e.depends_on(q));
+        let mut loads = Vec::new();
+        let mut torques = Vec::new();
+        let mut systems = Vec::new();
+        let mut warnings = Vec::new();
+        let mut blocks = unknowns.into_iter();
+        for st in stmts {
+            match st {
+                Stmt::Load { force, point, span } => {
+                    let f = ev.value(force)?;
+                    let p = ev.value(point)?;
+                    match (&f, &p) {
+                        (Value::Vector(a), Value::Vector(b)) if a.len() != b.len() => {
+                            return Err(Diagnostic::error(
+                                *span,
+                                format!(
+                                    "the force has {} components and the point {}",
+                                    a.len(),
+                                    b.len()
+                                ),
+                            )
+                            .with_hint("write both in the plane [x, y] or both in space [x, y, z]"))
+                        }
+                        (Value::Scalar(_), Value::Vector(_))
+                        | (Value::Vector(_), Value::Scalar(_)) => {
+                            return Err(Diagnostic::error(
+                                *span,
+                                format!(
+                                    "the force is {} but the point is {}",
+                                    f.describe(),
+                                    p.describe()
+                                ),
+                            )
+                            .with_hint("a vector force needs a position vector `load [Fx, Fy] at [x, y]`; a number needs a displacement along its line `load G at y1`"))
+                        }
+                        _ => {}
+                    }
+                    if !p.components().iter().any(&moves) {
+                        warnings.push(
+                            Diagnostic::warning(point.span, "this load does no virtual work: its point does not move with any coordinate")
+                                .with_hint("a force at a fixed point (a reaction of a support) does not enter the generalized forces; check the point's definition"),
+                        );
+                    }
+                    loads.push(Load {
+                        force: f,
+                        point: p,
+                        span: *span,
+                    });
+                }
+                Stmt::Torque { moment, angle, span } => {
+                    let m = ev.value(moment)?;
+                    let m = match m {
+                        Value::Scalar(m) => m,
+                        Value::Vector(_) => {
+                            return Err(Diagnostic::error(
+                                moment.span,
+                                format!("a torque is a number (the moment about the axis of its angle), found {}", m.describe()),
+                            )
+                            .with_hint("in the plane write the moment's z component, e.g. cross(r, F) of plane vectors"))
+                        }
+                    };
+                    let a = ev.value(angle)?;
+                    let a = match a {
+                        Value::Scalar(a) => a,
+                        Value::Vector(_) => {
+                            return Err(Diagnostic::error(
+                                angle.span,
+                                format!("a torque acts on an angle (a number), found {}", a.describe()),
+                            )
+                            .with_hint("write `torque M on theta` with theta an angle of the scene"))
+                        }
+                    };
+                    if !moves(&a) {
+                        warnings.push(
+                            Diagnostic::warning(angle.span, "this torque does no virtual work: its angle does not change with any coordinate")
+                                .with_hint("check the angle's definition"),
+                        );
+                    }
+                    torques.push(Torque {
+                        moment: m,
+                        angle: a,
+                        span: *span,
+                    });
+                }
+                Stmt::Solve(block) => {
+                    let us = blocks.next().unwrap_or_default();
+                    let mut equations = Vec::new();
+                    for eq in &block.equations {
+                        let l = ev.value(&eq.lhs)?;
+                        let r = ev.value(&eq.rhs)?;
+                        let comps = match (&l, &r) {
+                            (Value::Scalar(a), Value::Scalar(b)) => {
+                                equations.push(SystemEquation {
+                                    residual: a.sub(b),
+                                    span: eq.span,
+                                    component: None,
+                                });
+                                continue;
+                            }
+                            (Value::Vector(a), Value::Vector(b)) if a.len() == b.len() => (a, b),
+                            _ => {
+                                return Err(Diagnostic::error(
+                                    eq.span,
+                                    format!(
+                                        "the left side is {} and the right side {}",
+                                        l.describe(),
+                                        r.describe()
+                                    ),
+                                )
+                                .with_hint("a vector equation needs vectors of one size on both sides, e.g. `[Fx, Fy] = m*a`; write `[0, 0]` for the zero vector"))
+                            }
+                        };
+                        for (k, (a, b)) in comps.0.iter().zip(comps.1).enumerate() {
+                            equations.push(SystemEquation {
+                                residual: a.sub(b),
+                                span: eq.span,
+                                component: Some(k),
+                            });
+                        }
+                    }
+                    systems.push(System {
+                        unknowns: us,
+                        equations,
+                        span: block.span,
+                    });
+                }
+                _ => {}
+            }
+        }
+        warnings.extend(ev.warnings);
         if coordinates.is_empty() && definitions.iter().any(|d| d.role.is_some()) {
             warnings.push(Diagnostic::global(
                 "the scene has energies but no `coordinates`: there are no equations to derive",
@@ -219,6 +486,9 @@ impl Scene {
             parameters,
             definitions,
             forces,
+            loads,
+            torques,
+            systems,
             warnings,
         })
     }
@@ -226,6 +496,17 @@ impl Scene {
     /// Evaluate an expression written in the scene's names (its parameters,
     /// coordinates with primes, definitions, `t`, `pi`).
     pub fn expr(&self, src: &str) -> Result<Expr, Diagnostic> {
+        match self.value_of(src)? {
+            Value::Scalar(e) => Ok(e),
+            v => Err(Diagnostic::global(format!(
+                "expected a number, found {}",
+                v.describe()
+            ))),
+        }
+    }
+
+    /// Like [`Scene::expr`], for an expression that may be a vector.
+    pub fn value_of(&self, src: &str) -> Result<Value, Diagnostic> {
         let e = crate::parse::parse_expr(src)?;
         let mut names: FxHashMap<String, (Binding, Span)> = FxHashMap::default();
         for c in &self.coordinates {
@@ -239,9 +520,14 @@ impl Scene {
         }
         names.insert("t".into(), (Binding::Time, Span::default()));
         names.insert("pi".into(), (Binding::Pi, Span::default()));
-        let values: Vec<Expr> = self.definitions.iter().map(|d| d.value.clone()).collect();
+        for sys in &self.systems {
+            for u in &sys.unknowns {
+                names.insert(u.name.clone(), (Binding::Unknown, u.span));
+            }
+        }
+        let values: Vec<Value> = self.definitions.iter().map(|d| d.value.clone()).collect();
         let mut ev = eval::Evaluator::with_values(&names, values);
-        ev.expr(&e)
+        ev.value(&e)
     }
 
     /// The definitions playing `role`, in source order.
@@ -253,8 +539,11 @@ impl Scene {
 
     /// The sum of all definitions playing `role` (zero if none).
     pub fn role_sum(&self, role: Role) -> Expr {
-        self.role(role)
-            .fold(Expr::zero(), |acc, d| acc.add(&d.value))
+        self.role(role).fold(Expr::zero(), |acc, d| match &d.value {
+            Value::Scalar(e) => acc.add(e),
+            // role statements are checked to be scalars when the scene is built
+            Value::Vector(_) => acc,
+        })
     }
 
     /// Whether any statement plays `role`.
@@ -262,11 +551,51 @@ impl Scene {
         self.role(role).next().is_some()
     }
 
-    /// The value of a definition by name.
+    /// The value of a scalar definition by name.
     pub fn definition(&self, name: &str) -> Option<&Expr> {
+        self.value(name).and_then(Value::as_scalar)
+    }
+
+    /// The value of a definition (scalar or vector) by name.
+    pub fn value(&self, name: &str) -> Option<&Value> {
         self.definitions
             .iter()
             .find(|d| d.name == name)
             .map(|d| &d.value)
     }
+
+    /// Whether the scene has anything for Lagrange's equations: a kinetic
+    /// energy, or loads (a scene in D'Alembert's form, with inertia forces
+    /// among its loads).
+    pub fn has_dynamics(&self) -> bool {
+        !self.coordinates.is_empty()
+            && (self.has_role(Role::Kinetic) || !self.loads.is_empty() || !self.torques.is_empty())
+    }
+}
+
+/// The name of the first `solve` unknown an expression uses, if any.
+pub fn first_unknown(e: &Expr) -> Option<String> {
+    use crate::expr::atom::{self, Atom};
+    fn walk(e: &Expr) -> Option<String> {
+        for v in e.vars() {
+            match atom::atom(v) {
+                Atom::Unknown(n) => return Some(n.to_string()),
+                Atom::SqrtOf(u)
+                | Atom::Sin(u)
+                | Atom::Cos(u)
+                | Atom::Exp(u)
+                | Atom::Ln(u)
+                | Atom::Atan(u)
+                | Atom::Asin(u)
+                | Atom::Acos(u) => {
+                    if let Some(n) = walk(&u) {
+                        return Some(n);
+                    }
+                }
+                _ => {}
+            }
+        }
+        None
+    }
+    walk(e)
 }
