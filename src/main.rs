@@ -2,7 +2,6 @@
 
 use clap::{Parser, Subcommand, ValueEnum};
 use qdot::output::{self, Format};
-use qdot::{Diagnostic, Scene};
 use std::process::ExitCode;
 
 // Exact arithmetic allocates many small polynomials; mimalloc serves them
@@ -37,23 +36,50 @@ enum Command {
         #[arg(long, value_enum, default_value = "text")]
         format: Fmt,
     },
-    /// Derive, then solve exactly for the accelerations.
+    /// Solve exactly: the accelerations of Lagrange's equations, and the
+    /// scene's `solve` blocks (reactions, kinetostatic systems).
     Solve {
         file: String,
         #[arg(long, value_enum, default_value = "text")]
         format: Fmt,
     },
+    /// The generalized forces Q_k (virtual work δL = Σ Q_k·δq_k).
+    Forces {
+        file: String,
+        #[arg(long, value_enum, default_value = "text")]
+        format: Fmt,
+    },
+    /// Equilibrium positions (Q_k = 0) and their stability.
+    Equilibrium {
+        file: String,
+        #[arg(long, value_enum, default_value = "text")]
+        format: Fmt,
+        /// Parameter values for numeric roots and sign decisions: m=1,g=9.81
+        #[arg(long)]
+        set: Option<String>,
+    },
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let (file, fmt, solve) = match &cli.command {
-        Command::Derive { file, format } => (file, *format, false),
-        Command::Solve { file, format } => (file, *format, true),
+    let (cmd, file, fmt, set) = match &cli.command {
+        Command::Derive { file, format } => (output::Command::Derive, file, *format, None),
+        Command::Solve { file, format } => (output::Command::Solve, file, *format, None),
+        Command::Forces { file, format } => (output::Command::Forces, file, *format, None),
+        Command::Equilibrium { file, format, set } => {
+            (output::Command::Equilibrium, file, *format, set.as_deref())
+        }
     };
     let fmt = match fmt {
         Fmt::Text => Format::Text,
         Fmt::Json => Format::Json,
+    };
+    let set = match set.map(output::parse_set).transpose() {
+        Ok(s) => s.unwrap_or_default(),
+        Err(d) => {
+            eprint!("{}", d.render(file, ""));
+            return ExitCode::from(1);
+        }
     };
     let src = match std::fs::read_to_string(file) {
         Ok(s) => s,
@@ -62,7 +88,7 @@ fn main() -> ExitCode {
             return ExitCode::from(1);
         }
     };
-    match run(&src, fmt, solve) {
+    match output::run(cmd, &src, fmt, &set) {
         Ok((out, warnings)) => {
             for w in warnings {
                 eprint!("{}", w.render(file, &src));
@@ -75,28 +101,4 @@ fn main() -> ExitCode {
             ExitCode::from(1)
         }
     }
-}
-
-fn run(src: &str, fmt: Format, solve: bool) -> Result<(String, Vec<Diagnostic>), Diagnostic> {
-    let scene = Scene::parse(src)?;
-    let lag = scene.lagrange()?;
-    let out = if solve {
-        let acc = lag.accelerations()?;
-        match fmt {
-            Format::Text => output::solve_text(&lag, &acc),
-            Format::Json => json(output::solve_json(&lag, &acc)),
-        }
-    } else {
-        match fmt {
-            Format::Text => output::derive_text(&lag),
-            Format::Json => json(output::derive_json(&lag)),
-        }
-    };
-    Ok((out, scene.warnings.clone()))
-}
-
-fn json(m: serde_json::Map<String, serde_json::Value>) -> String {
-    let mut s = serde_json::to_string_pretty(&serde_json::Value::Object(m)).unwrap_or_default();
-    s.push('\n');
-    s
 }

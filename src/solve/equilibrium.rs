@@ -1,0 +1,952 @@
+//! Equilibria: the configurations where the generalized forces vanish
+//! (the seed's eq. 23.10, Q_1 = … = Q_h = 0), solved in closed form where
+//! possible, numerically otherwise, and classified by the Hessian of the
+//! potential.
+//!
+//! The condition is taken at rest, q̇ = q̈ = 0, from the full equations:
+//! F_k = Q_k − (d/dt ∂E/∂q̇_k − ∂E/∂q_k), so a kinetic energy that depends on
+//! q at rest (a bead on a spinning hoop) contributes its centrifugal terms
+//! (relative equilibria). Without such terms F_k = Q_k.
+//!
+//! Exact solving works coordinate by coordinate: an equation in one
+//! coordinate q is solved in closed form when it is
+//! * polynomial in q of degree ≤ 2 after taking out q^k (roots 0, −b/a,
+//!   the quadratic formula with exact radicals);
+//! * polynomial in sin q and cos q: factors sin q (q = 0, π) and cos q
+//!   (q = ±π/2) come out, then `a·sin q + b·cos q = 0` gives
+//!   q = atan(−b/a) and that ± π (the seed's tan θ = 2P/(3G)), `a·sin q + d = 0`
+//!   gives asin, `b·cos q + d = 0` gives ±acos, and anything else of degree ≤ 2
+//!   in tan(q/2) (Weierstrass) gives q = 2·atan(t);
+//!
+//! and the solutions are substituted into the other equations; equations
+//! linear in all remaining coordinates are solved together. What is left
+//! (coupled transcendental equations) is solved numerically, by Newton's
+//! method with deflation ([`super::numeric`]), given parameter values.
+//!
+//! Stability (Lagrange–Dirichlet): K = −∂F/∂q at the equilibrium, the Hessian
+//! of the potential for conservative forces. Positive definite (all leading
+//! minors > 0, decided exactly: a polynomial in positive parameters with
+//! coefficients of one sign has that sign) is stable; a negative eigenvalue
+//! (a sign change among the minors, Jacobi's rule) is unstable, except that
+//! an even number of them may be stabilized by gyroscopic terms. For one
+//! coordinate with K = 0 the first non-vanishing derivative decides.
+
+use super::numeric::{find_roots, RootOptions};
+use crate::diag::Diagnostic;
+use crate::expr::atom::{self, Atom};
+use crate::expr::{func, Expr};
+use crate::num::Q;
+use crate::poly::{Poly, Var};
+use crate::scene::Scene;
+use rustc_hash::FxHashMap;
+
+/// How stable an equilibrium is.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Stability {
+    Stable,
+    Unstable,
+    /// Not decided, with the reason.
+    Undecided(String),
+}
+
+impl Stability {
+    /// "stable", "unstable" or "undecided".
+    pub fn word(&self) -> &'static str {
+        match self {
+            Stability::Stable => "stable",
+            Stability::Unstable => "unstable",
+            Stability::Undecided(_) => "undecided",
+        }
+    }
+}
+
+/// The coordinates of one equilibrium.
+#[derive(Clone, Debug)]
+pub enum Position {
+    /// Exact values, one per coordinate; a coordinate that every value of
+    /// satisfies (neutral) is its own symbol (see [`Equilibrium::free`]).
+    Exact(Vec<Expr>),
+    /// Numeric values (from `--set` parameter values).
+    Numeric(Vec<f64>),
+}
+
+/// One equilibrium.
+#[derive(Clone, Debug)]
+pub struct Equilibrium {
+    pub position: Position,
+    /// Coordinates left free (indifferent equilibrium along them).
+    pub free: Vec<usize>,
+    /// Conditions for the equilibrium to exist (|x| ≤ 1 under asin/acos).
+    pub conditions: Vec<String>,
+    /// The numeric values of an exact position, given parameter values.
+    pub approx: Option<Vec<f64>>,
+    pub stability: Stability,
+}
+
+/// The equilibria of a scene.
+#[derive(Clone, Debug)]
+pub struct Equilibria {
+    pub coordinates: Vec<String>,
+    /// Q_k at rest.
+    pub forces: Vec<Expr>,
+    /// F_k: the equilibrium conditions F_k = 0 (Q_k, plus the kinetic
+    /// energy's terms at rest when it has any).
+    pub conditions: Vec<Expr>,
+    /// Whether the kinetic energy contributes terms at rest.
+    pub kinetic_terms: bool,
+    pub equilibria: Vec<Equilibrium>,
+    /// True when the positions were found in closed form.
+    pub exact: bool,
+}
+
+/// Parameter values for numeric work (`--set m=1,g=9.81`).
+pub type Values = FxHashMap<String, f64>;
+
+/// Find and classify the equilibria of a scene.
+pub fn equilibria(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic> {
+    let n = scene.coordinates.len();
+    if n == 0 {
+        return Err(Diagnostic::global(
+            "the scene declares no coordinates, so there is no equilibrium to find",
+        )
+        .with_hint("declare the generalized coordinates with `coordinates q1, q2, …`"));
+    }
+    let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
+    let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();
+    let mut rest: FxHashMap<Var, Expr> = FxHashMap::default();
+    for c in &names {
+        rest.insert(atom::coord(c, 1), Expr::zero());
+        rest.insert(atom::coord(c, 2), Expr::zero());
+    }
+    let at_rest = |e: &Expr| e.subs_many(&rest).map_err(|m| Diagnostic::global(m.message));
+    let mut forces = Vec::with_capacity(n);
+    for f in crate::mechanics::generalized_forces(scene) {
+        forces.push(at_rest(&f)?);
+    }
+    let mut conditions = forces.clone();
+    let mut kinetic_terms = false;
+    if scene.has_role(crate::parse::ast::Role::Kinetic) {
+        let l = scene.lagrange()?;
+        for (k, eq) in l.equations.iter().enumerate() {
+            let lhs = at_rest(&eq.lhs)?;
+            if !lhs.is_zero() {
+                kinetic_terms = true;
+                conditions[k] = conditions[k].sub(&lhs);
+            }
+        }
+    }
+    let t = atom::time();
+    for (k, f) in conditions.iter().enumerate() {
+        if f.depends_on(t) {
+            return Err(Diagnostic::global(format!(
+                "the force on `{}` depends on time, so there is no static equilibrium",
+                names[k]
+            ))
+            .with_hint("equilibria need time-independent forces; remove driving terms in t to study the system at rest"));
+        }
+    }
+    // K = −∂F/∂q, symbolic.
+    let jac: Vec<Vec<Expr>> = conditions
+        .iter()
+        .map(|f| q.iter().map(|&v| f.diff(v).neg()).collect())
+        .collect();
+    let gyroscopic = has_gyroscopic_terms(scene, &names);
+
+    let mut found = Vec::new();
+    let exact = match solve_exact(&conditions, &q) {
+        Some(sols) => {
+            let all_set = !set.is_empty()
+                && scene.parameters.iter().all(|p| set.contains_key(&p.name));
+            for (vals, free, conds) in sols {
+                let approx = numeric_values(&vals, set);
+                if all_set && approx.is_none() {
+                    continue; // does not exist for these parameter values (|x| > 1)
+                }
+                let stability = if free.is_empty() {
+                    classify_exact(&conditions, &jac, &q, &vals, set, gyroscopic)
+                } else {
+                    Stability::Undecided("neutral: a coordinate is free".into())
+                };
+                found.push(Equilibrium {
+                    position: Position::Exact(vals),
+                    free,
+                    conditions: if approx.is_some() { Vec::new() } else { conds },
+                    approx,
+                    stability,
+                });
+            }
+            true
+        }
+        None => {
+            let missing: Vec<&str> = scene
+                .parameters
+                .iter()
+                .map(|p| p.name.as_str())
+                .filter(|p| !set.contains_key(*p))
+                .collect();
+            if !missing.is_empty() {
+                return Err(Diagnostic::global(
+                    "no closed form for these equilibrium equations; they can be solved numerically given parameter values",
+                )
+                .with_hint(format!(
+                    "give values for {} with `--set {}`",
+                    missing.join(", "),
+                    missing
+                        .iter()
+                        .map(|p| format!("{p}=…"))
+                        .collect::<Vec<_>>()
+                        .join(",")
+                )));
+            }
+            found = solve_numeric(&conditions, &jac, &q, set, gyroscopic);
+            false
+        }
+    };
+    Ok(Equilibria {
+        coordinates: names,
+        forces,
+        conditions,
+        kinetic_terms,
+        equilibria: found,
+        exact,
+    })
+}
+
+/// Whether E has terms linear in the velocities (gyroscopic coupling).
+fn has_gyroscopic_terms(scene: &Scene, names: &[String]) -> bool {
+    let e = scene.role_sum(crate::parse::ast::Role::Kinetic);
+    let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
+    e.num().terms().iter().any(|(m, _)| {
+        m.0.iter()
+            .filter(|(v, _)| qd.contains(v))
+            .map(|(_, k)| k)
+            .sum::<u32>()
+            % 2
+            == 1
+    })
+}
+
+// ---------------------------------------------------------------- exact solving
+
+type Solution = (Vec<Expr>, Vec<usize>, Vec<String>);
+
+/// All equilibria in closed form, or None if some equation has none.
+fn solve_exact(eqs: &[Expr], q: &[Var]) -> Option<Vec<Solution>> {
+    let mut out = Vec::new();
+    let mut assigned: Vec<Option<Expr>> = vec![None; q.len()];
+    let mut conds = Vec::new();
+    rec(eqs.to_vec(), q, &mut assigned, &mut conds, &mut out)?;
+    // de-duplicate
+    let mut uniq: Vec<Solution> = Vec::new();
+    for s in out {
+        if !uniq
+            .iter()
+            .any(|u| u.0.iter().zip(&s.0).all(|(a, b)| a.equals(b)))
+        {
+            uniq.push(s);
+        }
+    }
+    Some(uniq)
+}
+
+fn rec(
+    eqs: Vec<Expr>,
+    q: &[Var],
+    assigned: &mut Vec<Option<Expr>>,
+    conds: &mut Vec<String>,
+    out: &mut Vec<Solution>,
+) -> Option<()> {
+    let eqs: Vec<Expr> = eqs.into_iter().filter(|e| !e.is_zero()).collect();
+    let open: Vec<usize> = (0..q.len()).filter(|&k| assigned[k].is_none()).collect();
+    let uses = |e: &Expr, k: usize| e.depends_on(q[k]);
+    if eqs.iter().any(|e| !open.iter().any(|&k| uses(e, k))) {
+        return Some(()); // a nonzero constant: no equilibrium on this branch
+    }
+    if eqs.is_empty() {
+        let free: Vec<usize> = open.clone();
+        let vals = (0..q.len())
+            .map(|k| assigned[k].clone().unwrap_or_else(|| Expr::var(q[k])))
+            .collect();
+        out.push((vals, free, conds.clone()));
+        return Some(());
+    }
+    // Linear in all open coordinates together?
+    let open_vars: Vec<Var> = open.iter().map(|&k| q[k]).collect();
+    if eqs.iter().all(|e| is_linear_in(e, &open_vars)) {
+        let mut a = Vec::new();
+        let mut b = Vec::new();
+        for e in &eqs {
+            let (coefs, r) = crate::mechanics::split_linear(e, &open_vars);
+            a.push(coefs);
+            b.push(r.neg());
+        }
+        let symbols: Vec<Expr> = open_vars.iter().map(|&v| Expr::var(v)).collect();
+        let sol = super::system::solve_rect(&a, &b, &symbols).ok()?;
+        if sol.residuals.iter().any(|(_, r)| !r.is_zero()) {
+            return Some(()); // inconsistent: none
+        }
+        let mut vals: Vec<Expr> = (0..q.len())
+            .map(|k| assigned[k].clone().unwrap_or_else(|| Expr::var(q[k])))
+            .collect();
+        for (j, &k) in open.iter().enumerate() {
+            vals[k] = sol.values[j].clone();
+        }
+        let free = sol.shape.free.iter().map(|&j| open[j]).collect();
+        out.push((vals, free, conds.clone()));
+        return Some(());
+    }
+    // An equation in a single open coordinate, the smallest first.
+    let (i, k) = eqs
+        .iter()
+        .enumerate()
+        .filter_map(|(i, e)| {
+            let ks: Vec<usize> = open.iter().copied().filter(|&k| uses(e, k)).collect();
+            (ks.len() == 1).then(|| (i, ks[0]))
+        })
+        .min_by_key(|&(i, _)| eqs[i].num().len())?;
+    let roots = univariate(&eqs[i], q[k])?;
+    for (root, cond) in roots {
+        let mut next = Vec::with_capacity(eqs.len());
+        let mut ok = true;
+        for (j, e) in eqs.iter().enumerate() {
+            if j == i {
+                continue;
+            }
+            match e.subs(q[k], &root) {
+                Ok(x) => next.push(x),
+                Err(_) => {
+                    ok = false; // a denominator vanishes here
+                    break;
+                }
+            }
+        }
+        if !ok {
+            continue;
+        }
+        assigned[k] = Some(root);
+        let n = conds.len();
+        conds.extend(cond);
+        let r = rec(next, q, assigned, conds, out);
+        conds.truncate(n);
+        assigned[k] = None;
+        r?;
+    }
+    Some(())
+}
+
+/// Degree ≤ 1 jointly in `vs`, none inside a function or a denominator.
+fn is_linear_in(e: &Expr, vs: &[Var]) -> bool {
+    let plain = |v: Var| vs.contains(&v) || !vs.iter().any(|&x| Expr::var(v).depends_on(x));
+    if e.den().vars().iter().any(|&v| !plain(v) || vs.contains(&v)) {
+        return false;
+    }
+    e.num().terms().iter().all(|(m, _)| {
+        m.0.iter().all(|&(v, _)| plain(v))
+            && m.0
+                .iter()
+                .filter(|(v, _)| vs.contains(v))
+                .map(|(_, k)| k)
+                .sum::<u32>()
+                <= 1
+    })
+}
+
+/// A root with the conditions for it to exist.
+type Root = (Expr, Vec<String>);
+
+/// The real roots of `e = 0` in the one coordinate `q`, in closed form.
+fn univariate(e: &Expr, q: Var) -> Option<Vec<Root>> {
+    let qe = Expr::var(q);
+    let (s, c) = atom::intern_trig(&qe);
+    let num = e.num();
+    let mut has_q = false;
+    let mut has_trig = false;
+    for v in num.vars() {
+        if v == q {
+            has_q = true;
+        } else if v == s || v == c {
+            has_trig = true;
+        } else if Expr::var(v).depends_on(q) {
+            return None; // q inside another function
+        }
+    }
+    let mut roots: Vec<Root> = match (has_q, has_trig) {
+        (true, false) => poly_roots(num, q)?,
+        (false, true) => trig_roots(num, s, c)?,
+        _ => return None,
+    };
+    // Keep the roots where e is defined and vanishes.
+    roots.retain(|(r, _)| {
+        let den = Expr::from_poly(e.den().clone());
+        matches!(den.subs(q, r), Ok(d) if !d.is_zero())
+            && matches!(e.subs(q, r), Ok(v) if vanishes(&v))
+    });
+    Some(roots)
+}
+
+/// Zero exactly, or (when the canonical form misses an identity between
+/// radicals) zero at random positive parameter values.
+fn vanishes(v: &Expr) -> bool {
+    if v.is_zero() {
+        return true;
+    }
+    for seed in [0.7316, 1.4142, 2.2361] {
+        let f = |a: &Atom| match a {
+            Atom::Param(n) | Atom::Unknown(n) => {
+                let h = n.bytes().fold(seed, |h, b| (h * 31.0 + b as f64) % 7.0);
+                Some(0.5 + h)
+            }
+            _ => None,
+        };
+        match v.eval_f64(&f) {
+            Some(x) if x.abs() < 1e-9 => {}
+            _ => return false,
+        }
+    }
+    true
+}
+
+/// Roots of a polynomial in q of degree ≤ 2 after taking out q^k.
+fn poly_roots(p: &Poly, q: Var) -> Option<Vec<Root>> {
+    let cs = p.coeffs_in(q);
+    let mut k = 0;
+    while k < cs.len() && cs[k].is_zero() {
+        k += 1;
+    }
+    let mut out: Vec<Root> = Vec::new();
+    if k > 0 {
+        out.push((Expr::zero(), Vec::new()));
+    }
+    let cs: Vec<Expr> = cs[k..].iter().map(|c| Expr::from_poly(c.clone())).collect();
+    out.extend(quadratic(&cs)?);
+    Some(out)
+}
+
+/// Roots of c0 + c1·x + c2·x² (c2 may be zero; degree ≤ 2 only).
+fn quadratic(cs: &[Expr]) -> Option<Vec<Root>> {
+    match cs.len() {
+        0 | 1 => Some(Vec::new()),
+        2 => Some(vec![(cs[0].neg().div(&cs[1]).ok()?, Vec::new())]),
+        3 => {
+            let (c0, c1, c2) = (&cs[0], &cs[1], &cs[2]);
+            let disc = c1.mul(c1).sub(&c0.mul(c2).scale(&Q::from_i64(4)));
+            let two_a = c2.scale(&Q::from_i64(2));
+            if disc.is_zero() {
+                return Some(vec![(c1.neg().div(&two_a).ok()?, Vec::new())]);
+            }
+            let cond = match sign_exact(&disc) {
+                Some(x) if x < 0 => return Some(Vec::new()),
+                Some(_) => Vec::new(),
+                None => vec![format!("{} ≥ 0", crate::expr::print::unicode(&disc))],
+            };
+            let r = func::sqrt(&disc).ok()?;
+            Some(vec![
+                (c1.neg().sub(&r).div(&two_a).ok()?, cond.clone()),
+                (c1.neg().add(&r).div(&two_a).ok()?, cond),
+            ])
+        }
+        _ => None,
+    }
+}
+
+/// Roots of a polynomial in s = sin q, c = cos q.
+fn trig_roots(p: &Poly, s: Var, c: Var) -> Option<Vec<Root>> {
+    let pi = Expr::pi();
+    let half = Q::new(1, 2).unwrap_or_else(Q::one);
+    let mut out: Vec<Root> = Vec::new();
+    let mut p = p.clone();
+    // sin q as a factor: q = 0, π.
+    let cs = p.coeffs_in(s);
+    if cs.first().is_some_and(|c0| c0.is_zero()) {
+        out.push((Expr::zero(), Vec::new()));
+        out.push((pi.clone(), Vec::new()));
+        let k = cs.iter().take_while(|c| c.is_zero()).count();
+        p = Poly::zero();
+        for (i, ci) in cs.iter().enumerate().skip(k) {
+            p = &p + &(ci * &Poly::var(s).pow((i - k) as u32));
+        }
+    }
+    // cos q as a factor (c² is reduced, so: every term has c¹).
+    let cc = p.coeffs_in(c);
+    if cc.first().is_some_and(|c0| c0.is_zero()) && cc.len() == 2 {
+        out.push((pi.scale(&half), Vec::new()));
+        out.push((pi.scale(&half).neg(), Vec::new()));
+        p = cc[1].clone();
+    }
+    if !p.contains_var(s) && !p.contains_var(c) {
+        return Some(out);
+    }
+    let cc = p.coeffs_in(c);
+    let a = cc.first().cloned().unwrap_or_default(); // A(s)
+    let b = cc.get(1).cloned().unwrap_or_default(); // B(s)
+    let sa = a.coeffs_in(s);
+    let sb = b.coeffs_in(s);
+    let ex = |p: &Poly| Expr::from_poly(p.clone());
+    if sa.len() <= 2 && sb.len() <= 1 {
+        let a0 = ex(sa.first().unwrap_or(&Poly::zero()));
+        let a1 = ex(sa.get(1).unwrap_or(&Poly::zero()));
+        let b0 = ex(sb.first().unwrap_or(&Poly::zero()));
+        if a0.is_zero() && !a1.is_zero() && !b0.is_zero() {
+            // a1·sin q + b0·cos q = 0: tan q = −b0/a1
+            let x = b0.neg().div(&a1).ok()?;
+            let r = func::atan(&x);
+            let other = match sign_exact(&x) {
+                Some(sg) if sg > 0 => r.sub(&pi),
+                _ => r.add(&pi),
+            };
+            out.push((r, Vec::new()));
+            out.push((other, Vec::new()));
+            return Some(out);
+        }
+        if b0.is_zero() && !a1.is_zero() {
+            // a1·sin q + a0 = 0
+            let x = a0.neg().div(&a1).ok()?;
+            out.extend(asin_roots(&x)?);
+            return Some(out);
+        }
+        if a1.is_zero() && !b0.is_zero() {
+            // b0·cos q + a0 = 0
+            let x = a0.neg().div(&b0).ok()?;
+            out.extend(acos_roots(&x)?);
+            return Some(out);
+        }
+    }
+    if b.is_zero() && sa.len() == 3 {
+        // quadratic in sin q
+        let cs: Vec<Expr> = sa.iter().map(ex).collect();
+        for (x, mut cond) in quadratic(&cs)? {
+            for (r, c2) in asin_roots(&x)? {
+                cond.extend(c2);
+                out.push((r, cond.clone()));
+            }
+        }
+        return Some(out);
+    }
+    out.extend(weierstrass(&p, s, c)?);
+    Some(out)
+}
+
+/// q = asin x and π − asin x (when |x| ≤ 1).
+fn asin_roots(x: &Expr) -> Option<Vec<Root>> {
+    let pi = Expr::pi();
+    if let Some(v) = x.as_rational() {
+        if v.abs() > Q::one() {
+            return Some(Vec::new());
+        }
+        if v.abs().is_one() {
+            return Some(vec![(func::asin(x).ok()?, Vec::new())]);
+        }
+    }
+    let cond = abs_condition(x);
+    let r = func::asin(x).ok()?;
+    Some(vec![(r.clone(), cond.clone()), (pi.sub(&r), cond)])
+}
+
+/// q = ±acos x (when |x| ≤ 1).
+fn acos_roots(x: &Expr) -> Option<Vec<Root>> {
+    if let Some(v) = x.as_rational() {
+        if v.abs() > Q::one() {
+            return Some(Vec::new());
+        }
+        if v.abs().is_one() {
+            return Some(vec![(func::acos(x).ok()?, Vec::new())]);
+        }
+    }
+    let cond = abs_condition(x);
+    let r = func::acos(x).ok()?;
+    Some(vec![(r.clone(), cond.clone()), (r.neg(), cond)])
+}
+
+fn abs_condition(x: &Expr) -> Vec<String> {
+    if x.as_rational().is_some() {
+        return Vec::new();
+    }
+    vec![format!("|{}| ≤ 1", crate::expr::print::unicode(x))]
+}
+
+/// The general case by t = tan(q/2): sin q = 2t/(1 + t²), cos q = (1 − t²)/(1 + t²).
+fn weierstrass(p: &Poly, s: Var, c: Var) -> Option<Vec<Root>> {
+    let tv = atom::unknown("tan(q/2)");
+    let t = Expr::var(tv);
+    let one = Expr::one();
+    let d = one.add(&t.mul(&t));
+    let mut map = FxHashMap::default();
+    map.insert(s, t.scale(&Q::from_i64(2)).div(&d).ok()?);
+    map.insert(c, one.sub(&t.mul(&t)).div(&d).ok()?);
+    let e = Expr::from_poly(p.clone()).subs_many(&map).ok()?;
+    let cs: Vec<Expr> = e
+        .num()
+        .coeffs_in(tv)
+        .into_iter()
+        .map(Expr::from_poly)
+        .collect();
+    let mut out = Vec::new();
+    // q = π is t = ∞: the leading coefficient drops when p(0, −1) = 0.
+    let at_pi = Expr::from_poly(p.clone())
+        .subs_many(&[(s, Expr::zero()), (c, one.neg())].into_iter().collect())
+        .ok()?;
+    if at_pi.is_zero() {
+        out.push((Expr::pi(), Vec::new()));
+    }
+    for (r, cond) in poly_like_roots(&cs)? {
+        out.push((func::atan(&r).scale(&Q::from_i64(2)), cond));
+    }
+    Some(out)
+}
+
+/// Roots of Σ cs[i]·x^i with x^k taken out, degree ≤ 2.
+fn poly_like_roots(cs: &[Expr]) -> Option<Vec<Root>> {
+    let k = cs.iter().take_while(|c| c.is_zero()).count();
+    let mut out = Vec::new();
+    if k > 0 && k < cs.len() {
+        out.push((Expr::zero(), Vec::new()));
+    }
+    let mut rest: Vec<Expr> = cs[k.min(cs.len())..].to_vec();
+    while rest.last().is_some_and(|c| c.is_zero()) {
+        rest.pop();
+    }
+    out.extend(quadratic(&rest)?);
+    Some(out)
+}
+
+// ---------------------------------------------------------------- signs
+
+/// +1, −1 or 0 when decided exactly (parameters are positive).
+pub fn sign_exact(e: &Expr) -> Option<i32> {
+    if let Some(q) = e.as_rational() {
+        return Some(if q.is_zero() {
+            0
+        } else if q.is_negative() {
+            -1
+        } else {
+            1
+        });
+    }
+    let n = definite(e.num())?;
+    let d = definite(e.den())?;
+    Some(n * d)
+}
+
+/// The sign of a polynomial whose atoms are all positive and whose
+/// coefficients all have one sign.
+fn definite(p: &Poly) -> Option<i32> {
+    let positive = |v: Var| {
+        matches!(
+            atom::atom(v),
+            Atom::Param(_) | Atom::Pi | Atom::Root(_) | Atom::SqrtOf(_) | Atom::Exp(_)
+        )
+    };
+    let mut sign = 0;
+    for (m, c) in p.terms() {
+        if !m.0.iter().all(|&(v, k)| k % 2 == 0 || positive(v)) {
+            return None;
+        }
+        let sg = if c.is_negative() { -1 } else { 1 };
+        if sign != 0 && sg != sign {
+            return None;
+        }
+        sign = sg;
+    }
+    Some(sign)
+}
+
+/// The sign, exactly or at the given parameter values.
+fn sign_of(e: &Expr, set: &Values) -> Option<i32> {
+    if let Some(s) = sign_exact(e) {
+        return Some(s);
+    }
+    let at = |a: &Atom| match a {
+        Atom::Param(n) => set.get(&**n).copied(),
+        _ => None,
+    };
+    let num = Expr::from_poly(e.num().clone());
+    let v = num.eval_f64(&at)?;
+    let den = Expr::from_poly(e.den().clone()).eval_f64(&at)?;
+    if !v.is_finite() || !den.is_finite() || den == 0.0 {
+        return None;
+    }
+    // zero relative to the size of the numerator's terms
+    let scale = e
+        .num()
+        .terms()
+        .iter()
+        .filter_map(|(m, c)| {
+            Expr::from_poly(Poly::monomial(m.clone(), c.clone()))
+                .eval_f64(&at)
+                .map(f64::abs)
+        })
+        .fold(0.0, f64::max);
+    if v.abs() <= 1e-12 * scale {
+        return Some(0);
+    }
+    Some(if (v > 0.0) == (den > 0.0) { 1 } else { -1 })
+}
+
+/// The numeric values of exact positions at `set`, if every parameter is given.
+fn numeric_values(vals: &[Expr], set: &Values) -> Option<Vec<f64>> {
+    if set.is_empty() {
+        return None;
+    }
+    vals.iter()
+        .map(|v| {
+            v.eval_f64(&|a: &Atom| match a {
+                Atom::Param(n) => set.get(&**n).copied(),
+                _ => None,
+            })
+        })
+        .map(|x| x.filter(|v| v.is_finite()))
+        .collect::<Option<Vec<f64>>>()
+}
+
+// ---------------------------------------------------------------- stability
+
+/// det of a small matrix of expressions (Gaussian elimination with exact
+/// zero tests).
+fn det(mut m: Vec<Vec<Expr>>) -> Option<Expr> {
+    let n = m.len();
+    let mut d = Expr::one();
+    for k in 0..n {
+        let p = (k..n).find(|&r| !m[r][k].is_zero());
+        let Some(p) = p else {
+            return Some(Expr::zero());
+        };
+        if p != k {
+            m.swap(p, k);
+            d = d.neg();
+        }
+        let piv = m[k][k].clone();
+        d = d.mul(&piv);
+        for r in k + 1..n {
+            if m[r][k].is_zero() {
+                continue;
+            }
+            let f = m[r][k].div(&piv).ok()?;
+            for c in k..n {
+                let x = m[r][c].sub(&f.mul(&m[k][c]));
+                m[r][c] = x;
+            }
+        }
+    }
+    Some(d)
+}
+
+fn classify_exact(
+    conditions: &[Expr],
+    jac: &[Vec<Expr>],
+    q: &[Var],
+    vals: &[Expr],
+    set: &Values,
+    gyroscopic: bool,
+) -> Stability {
+    let map: FxHashMap<Var, Expr> = q.iter().copied().zip(vals.iter().cloned()).collect();
+    let mut k = Vec::with_capacity(q.len());
+    for row in jac {
+        let mut r = Vec::with_capacity(row.len());
+        for x in row {
+            match x.subs_many(&map) {
+                Ok(v) => r.push(v),
+                Err(_) => return Stability::Undecided("the Hessian is undefined here".into()),
+            }
+        }
+        k.push(r);
+    }
+    let n = q.len();
+    for i in 0..n {
+        for j in i + 1..n {
+            if !k[i][j].equals(&k[j][i]) {
+                return Stability::Undecided(
+                    "the forces are not conservative here (∂Q_i/∂q_j ≠ ∂Q_j/∂q_i)".into(),
+                );
+            }
+        }
+    }
+    let mut signs = Vec::with_capacity(n);
+    for m in 1..=n {
+        let sub: Vec<Vec<Expr>> = k[..m].iter().map(|r| r[..m].to_vec()).collect();
+        let Some(d) = det(sub) else {
+            return Stability::Undecided("the Hessian could not be evaluated".into());
+        };
+        signs.push(sign_of(&d, set));
+    }
+    if n == 1 && signs[0] == Some(0) {
+        return higher_order(&conditions[0], q[0], &vals[0], set);
+    }
+    if n == 1 && signs[0].is_none() {
+        return Stability::Undecided(format!(
+            "stable when {} > 0, unstable when < 0; give values with --set",
+            crate::expr::print::unicode(&k[0][0])
+        ));
+    }
+    jacobi(&signs, gyroscopic)
+}
+
+/// Stable / unstable from the signs of the leading minors.
+fn jacobi(signs: &[Option<i32>], gyroscopic: bool) -> Stability {
+    if signs.iter().all(|s| *s == Some(1)) {
+        return Stability::Stable;
+    }
+    if signs.iter().any(|s| s.is_none()) {
+        return Stability::Undecided(
+            "the sign of the Hessian's minors depends on the parameters; give values with --set"
+                .into(),
+        );
+    }
+    if signs.contains(&Some(0)) {
+        return Stability::Undecided(
+            "the Hessian is singular here: higher-order terms decide".into(),
+        );
+    }
+    let mut prev = 1;
+    let mut negative = 0;
+    for s in signs.iter().flatten() {
+        if *s != prev {
+            negative += 1;
+        }
+        prev = *s;
+    }
+    if gyroscopic && negative % 2 == 0 {
+        return Stability::Undecided(format!(
+            "the potential has {negative} negative directions; gyroscopic terms may stabilize an even number"
+        ));
+    }
+    Stability::Unstable
+}
+
+/// One coordinate with V'' = 0: the first non-vanishing derivative decides.
+fn higher_order(f: &Expr, q: Var, at: &Expr, set: &Values) -> Stability {
+    let mut d = f.diff(q); // F' = −V''
+    for order in 3..=8 {
+        d = d.diff(q); // F^(order−1) = −V^(order)
+        let Ok(v) = d.subs(q, at) else {
+            break;
+        };
+        match sign_of(&v.neg(), set) {
+            Some(0) => continue,
+            Some(s) if order % 2 == 0 && s > 0 => return Stability::Stable,
+            Some(_) => return Stability::Unstable,
+            None => break,
+        }
+    }
+    Stability::Undecided("V'' = 0 here and higher derivatives do not decide".into())
+}
+
+// ---------------------------------------------------------------- numeric
+
+fn solve_numeric(
+    conditions: &[Expr],
+    jac: &[Vec<Expr>],
+    q: &[Var],
+    set: &Values,
+    gyroscopic: bool,
+) -> Vec<Equilibrium> {
+    let eval = |e: &Expr, x: &[f64]| -> Option<f64> {
+        e.eval_f64(&|a: &Atom| match a {
+            Atom::Param(name) => set.get(&**name).copied(),
+            Atom::Coord(name, 0) => q
+                .iter()
+                .position(|&v| matches!(atom::atom(v), Atom::Coord(ref m, 0) if m == name))
+                .map(|i| x[i]),
+            _ => None,
+        })
+        .filter(|v| v.is_finite())
+    };
+    let f = |x: &[f64]| -> Option<Vec<f64>> { conditions.iter().map(|e| eval(e, x)).collect() };
+    // K = −∂F/∂q, so ∂F/∂q = −K.
+    let j = |x: &[f64]| -> Option<Vec<Vec<f64>>> {
+        jac.iter()
+            .map(|row| row.iter().map(|e| eval(e, x).map(|v| -v)).collect())
+            .collect()
+    };
+    let periodic: Vec<bool> = q
+        .iter()
+        .map(|&v| {
+            let (s, c) = atom::intern_trig(&Expr::var(v));
+            conditions
+                .iter()
+                .any(|e| e.num().contains_var(s) || e.num().contains_var(c))
+                && !conditions.iter().any(|e| e.num().contains_var(v))
+        })
+        .collect();
+    let opts = RootOptions {
+        periodic,
+        ..RootOptions::default()
+    };
+    let roots = find_roots(&f, &j, &opts);
+    roots
+        .into_iter()
+        .map(|r| {
+            let k = j(&r.x).map(|m| {
+                m.into_iter()
+                    .map(|row| row.into_iter().map(|v| -v).collect::<Vec<f64>>())
+                    .collect::<Vec<_>>()
+            });
+            let stability = match k {
+                Some(k) => classify_numeric(&k, gyroscopic),
+                None => Stability::Undecided("the Hessian is undefined here".into()),
+            };
+            Equilibrium {
+                position: Position::Numeric(r.x),
+                free: Vec::new(),
+                conditions: Vec::new(),
+                approx: None,
+                stability,
+            }
+        })
+        .collect()
+}
+
+fn classify_numeric(k: &[Vec<f64>], gyroscopic: bool) -> Stability {
+    let n = k.len();
+    let scale = k
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, v| m.max(v.abs()))
+        .max(f64::MIN_POSITIVE);
+    for i in 0..n {
+        for j in i + 1..n {
+            if (k[i][j] - k[j][i]).abs() > 1e-8 * scale {
+                return Stability::Undecided(
+                    "the forces are not conservative here (∂Q_i/∂q_j ≠ ∂Q_j/∂q_i)".into(),
+                );
+            }
+        }
+    }
+    let mut signs = Vec::with_capacity(n);
+    for m in 1..=n {
+        let d = det_f64(k[..m].iter().map(|r| r[..m].to_vec()).collect());
+        let tol = 1e-9 * scale.powi(m as i32);
+        signs.push(Some(if d.abs() <= tol {
+            0
+        } else if d > 0.0 {
+            1
+        } else {
+            -1
+        }));
+    }
+    jacobi(&signs, gyroscopic)
+}
+
+fn det_f64(mut m: Vec<Vec<f64>>) -> f64 {
+    let n = m.len();
+    let mut d = 1.0;
+    for k in 0..n {
+        let p = (k..n)
+            .max_by(|&a, &b| m[a][k].abs().total_cmp(&m[b][k].abs()))
+            .unwrap_or(k);
+        if m[p][k] == 0.0 {
+            return 0.0;
+        }
+        if p != k {
+            m.swap(p, k);
+            d = -d;
+        }
+        d *= m[k][k];
+        for r in k + 1..n {
+            let f = m[r][k] / m[k][k];
+            for c in k..n {
+                m[r][c] -= f * m[k][c];
+            }
+        }
+    }
+    d
+}

@@ -1,0 +1,447 @@
+//! `solve` blocks: linear systems of any shape, solved exactly.
+//!
+//! A block's equations are linear in its unknowns with coefficients that are
+//! rational functions (with radicals, trig atoms, …) of everything else. The
+//! elimination ([`echelon`]) is fraction-free, like [`super::linear::solve`],
+//! but rectangular: a column with no pivot is a *free* unknown, and a row left
+//! without a pivot is an equation implied by the others: a *check* that either
+//! holds (the seed's kinetostatic systems of 22.2 have one more equation than
+//! unknowns, and the extra one verifies the rest) or contradicts them.
+//!
+//! Accelerations q̈ in a block of a scene with dynamics are replaced by the
+//! exact accelerations of Lagrange's equations, so a kinetostatic follow-up
+//! (reactions once the accelerations are known) is written as in the book.
+
+use super::linear::SolveError;
+use crate::diag::Diagnostic;
+use crate::expr::atom::{self, Atom};
+use crate::expr::{Expr, MathError};
+use crate::poly::{Poly, Var};
+use crate::scene::{Scene, System};
+use rustc_hash::FxHashMap;
+
+/// The row echelon form of `[A | b]` and what it says about the system.
+#[derive(Clone, Debug)]
+pub struct Echelon {
+    /// Columns (unknowns) with a pivot, in order.
+    pub pivots: Vec<usize>,
+    /// Columns without a pivot: free unknowns.
+    pub free: Vec<usize>,
+    /// Rows (equations, original indices) used as pivot rows, one per pivot.
+    pub pivot_rows: Vec<usize>,
+    /// Rows left over: equations implied by the pivot rows if consistent.
+    pub dependent_rows: Vec<usize>,
+}
+
+/// `x` for a rectangular system, with the free unknowns as given symbols.
+#[derive(Clone, Debug)]
+pub struct RectSolution {
+    pub shape: Echelon,
+    /// One value per unknown; a free unknown's value is its symbol.
+    pub values: Vec<Expr>,
+    /// For each dependent row: b_i − A_i·x (zero when the equation holds).
+    pub residuals: Vec<(usize, Expr)>,
+}
+
+fn lcm(a: &Poly, b: &Poly) -> Poly {
+    if b.is_one() {
+        return a.clone();
+    }
+    if a.is_one() {
+        return b.clone();
+    }
+    let g = a.gcd(b);
+    match b.div_exact(&g) {
+        Some(q) => a * &q,
+        None => a * b,
+    }
+}
+
+fn exact(t: &Poly, d: &Poly) -> Result<Poly, MathError> {
+    if d.is_one() {
+        return Ok(t.clone());
+    }
+    t.div_exact(d).ok_or_else(|| {
+        MathError::new("internal error: a fraction-free elimination step did not divide exactly")
+    })
+}
+
+fn nonzero(p: &Poly) -> bool {
+    !p.is_zero() && !crate::expr::reduce_poly(p).is_zero()
+}
+
+/// Solve `a·x = b` for `a` of any shape (m equations, n unknowns).
+///
+/// `symbols[j]` stands for unknown j if it turns out free. Pivot rows are
+/// taken in equation order (the first equation with a nonzero entry), so an
+/// equation reported as dependent is the *last* of a dependent set, as a
+/// reader checks a system.
+pub fn solve_rect(a: &[Vec<Expr>], b: &[Expr], symbols: &[Expr]) -> Result<RectSolution, SolveError> {
+    let m = a.len();
+    let n = symbols.len();
+    // Rows cleared of denominators: [A | b] over polynomials.
+    let mut rows: Vec<Vec<Poly>> = Vec::with_capacity(m);
+    for i in 0..m {
+        let row: Vec<&Expr> = a[i].iter().chain(std::iter::once(&b[i])).collect();
+        let mut l = Poly::one();
+        for e in &row {
+            l = lcm(&l, e.den());
+        }
+        rows.push(
+            row.iter()
+                .map(|e| {
+                    if e.den().is_one() {
+                        e.num() * &l
+                    } else {
+                        let f = l.div_exact(e.den()).unwrap_or_else(|| l.clone());
+                        e.num() * &f
+                    }
+                })
+                .collect(),
+        );
+    }
+    let mut orig: Vec<usize> = (0..m).collect();
+    let mut prev = Poly::one();
+    let mut r = 0;
+    let mut pivots = Vec::new();
+    let mut free = Vec::new();
+    for c in 0..n {
+        let Some(p) = (r..m).filter(|&i| nonzero(&rows[i][c])).min_by_key(|&i| orig[i]) else {
+            // no pivot: the entries left are zero (modulo sin² + cos² = 1)
+            for row in rows.iter_mut().skip(r) {
+                row[c] = Poly::zero();
+            }
+            free.push(c);
+            continue;
+        };
+        rows.swap(r, p);
+        orig.swap(r, p);
+        for i in r + 1..m {
+            for j in c + 1..=n {
+                let t = &(&rows[r][c] * &rows[i][j]) - &(&rows[i][c] * &rows[r][j]);
+                rows[i][j] = exact(&t, &prev).map_err(SolveError::Math)?;
+            }
+            rows[i][c] = Poly::zero();
+        }
+        prev = rows[r][c].clone();
+        pivots.push(c);
+        r += 1;
+    }
+    // Back-substitution over canonical expressions: x_c = (b − Σ a·x)/a_cc,
+    // with free unknowns as symbols.
+    let mut values: Vec<Option<Expr>> = vec![None; n];
+    for &f in &free {
+        values[f] = Some(symbols[f].clone());
+    }
+    for k in (0..r).rev() {
+        let c = pivots[k];
+        let mut t = Expr::from_poly(rows[k][n].clone());
+        for j in c + 1..n {
+            if rows[k][j].is_zero() {
+                continue;
+            }
+            let x = values[j].clone().unwrap_or_else(Expr::zero);
+            t = t.sub(&Expr::from_poly(rows[k][j].clone()).mul(&x));
+        }
+        let x = t
+            .div(&Expr::from_poly(rows[k][c].clone()))
+            .map_err(SolveError::Math)?;
+        values[c] = Some(x);
+    }
+    let values: Vec<Expr> = values.into_iter().map(|v| v.unwrap_or_else(Expr::zero)).collect();
+    // Each dependent equation, checked on the original row.
+    let mut residuals = Vec::new();
+    for &i in &orig[r..] {
+        let mut res = b[i].clone();
+        for (aij, x) in a[i].iter().zip(&values) {
+            if !aij.is_zero() {
+                res = res.sub(&aij.mul(x));
+            }
+        }
+        residuals.push((i, res));
+    }
+    let shape = Echelon {
+        pivots,
+        free,
+        pivot_rows: orig[..r].to_vec(),
+        dependent_rows: orig[r..].to_vec(),
+    };
+    Ok(RectSolution {
+        shape,
+        values,
+        residuals,
+    })
+}
+
+/// The solution of one `solve` block.
+#[derive(Clone, Debug)]
+pub struct BlockSolution {
+    /// Every unknown with its value (a free unknown's value is itself).
+    pub values: Vec<(String, Expr)>,
+    /// Unknowns the equations leave free.
+    pub free: Vec<String>,
+    /// Equations (indices into the block's equations) implied by the others
+    /// and verified to hold.
+    pub checks: Vec<usize>,
+    /// Whether the exact accelerations of Lagrange's equations were put in
+    /// for q̈ in the equations.
+    pub used_accelerations: bool,
+}
+
+/// The 1-based number of the source equation that scalar equation `i` of
+/// `sys` comes from (a vector equation gives several scalar ones).
+pub fn equation_number(sys: &System, i: usize) -> usize {
+    let mut n = 0;
+    let mut last = None;
+    for e in &sys.equations[..=i.min(sys.equations.len().saturating_sub(1))] {
+        if last != Some(e.span) {
+            n += 1;
+            last = Some(e.span);
+        }
+    }
+    n
+}
+
+/// Where equation `i` of `sys` is, for messages: "equation 3" or
+/// "equation 3 (component y)".
+pub fn equation_label(sys: &System, i: usize) -> String {
+    let eq = &sys.equations[i];
+    let n = equation_number(sys, i);
+    match eq.component {
+        Some(k) => format!("equation {n} (component {})", ["x", "y", "z"][k.min(2)]),
+        None => format!("equation {n}"),
+    }
+}
+
+/// Solve every `solve` block of a scene, in order; a block may use the
+/// unknowns of earlier blocks, whose solutions are put in.
+pub fn solve_scene(scene: &Scene) -> Result<Vec<BlockSolution>, Diagnostic> {
+    let mut known: FxHashMap<Var, Expr> = FxHashMap::default();
+    let mut acc: Option<FxHashMap<Var, Expr>> = None;
+    let mut out = Vec::with_capacity(scene.systems.len());
+    for sys in &scene.systems {
+        let sol = solve_block(scene, sys, &known, &mut acc)?;
+        for (name, v) in &sol.values {
+            known.insert(atom::unknown(name), v.clone());
+        }
+        out.push(sol);
+    }
+    Ok(out)
+}
+
+/// Whether `e` mentions any q̈ of the scene's coordinates.
+fn mentions_any(e: &Expr, vs: &[Var]) -> bool {
+    let vars = e.vars();
+    vs.iter()
+        .any(|&v| crate::expr::diff::vars_depend_on(&vars, v))
+}
+
+fn solve_block(
+    scene: &Scene,
+    sys: &System,
+    known: &FxHashMap<Var, Expr>,
+    acc: &mut Option<FxHashMap<Var, Expr>>,
+) -> Result<BlockSolution, Diagnostic> {
+    let unknowns: Vec<Var> = sys.unknowns.iter().map(|u| atom::unknown(&u.name)).collect();
+    let qdd: Vec<Var> = scene
+        .coordinates
+        .iter()
+        .map(|c| atom::coord(&c.name, 2))
+        .collect();
+    let mut used_accelerations = false;
+    let mut residuals = Vec::with_capacity(sys.equations.len());
+    for (i, eq) in sys.equations.iter().enumerate() {
+        let mut r = eq.residual.clone();
+        if !known.is_empty() {
+            r = r.subs_many(known).map_err(|m| math(eq.span, m))?;
+        }
+        if scene.has_dynamics() && mentions_any(&r, &qdd) {
+            if acc.is_none() {
+                let l = scene.lagrange()?;
+                let a = l.accelerations()?;
+                *acc = Some(
+                    a.into_iter()
+                        .map(|(name, v)| (atom::coord(&name, 2), v))
+                        .collect(),
+                );
+            }
+            if let Some(a) = acc.as_ref() {
+                r = r.subs_many(a).map_err(|m| math(eq.span, m))?;
+                used_accelerations = true;
+            }
+        }
+        check_linear(&r, &unknowns).map_err(|why| {
+            Diagnostic::error(
+                eq.span,
+                format!("{} is not linear in the unknowns: {why}", equation_label(sys, i)),
+            )
+            .with_hint("a `solve` block solves linear equations exactly; move nonlinear relations into definitions, or solve for other unknowns")
+        })?;
+        residuals.push(r);
+    }
+    // residual = Σ a_j·x_j + rest = 0  →  A·x = −rest
+    let mut a = Vec::with_capacity(residuals.len());
+    let mut b = Vec::with_capacity(residuals.len());
+    for r in &residuals {
+        let (coefs, rest) = crate::mechanics::split_linear(r, &unknowns);
+        a.push(coefs);
+        b.push(rest.neg());
+    }
+    let symbols: Vec<Expr> = unknowns.iter().map(|&v| Expr::var(v)).collect();
+    let sol = solve_rect(&a, &b, &symbols).map_err(|e| match e {
+        SolveError::Math(m) => math(sys.span, m),
+        SolveError::Singular { .. } => Diagnostic::error(sys.span, "the system is singular"),
+    })?;
+    let mut checks = Vec::new();
+    for (i, res) in &sol.residuals {
+        if !res.is_zero() {
+            let eq = &sys.equations[*i];
+            return Err(Diagnostic::error(
+                eq.span,
+                format!(
+                    "{} contradicts the others: with their solution it reads 0 = {}",
+                    equation_label(sys, *i),
+                    crate::expr::print::unicode(res)
+                ),
+            )
+            .with_hint(if sys.equations.len() > sys.unknowns.len() {
+                "the block has more equations than unknowns, and this one does not follow from the rest; check its signs and data"
+            } else {
+                "the equations are dependent on the left but not on the right; check signs and data"
+            }));
+        }
+        checks.push(*i);
+    }
+    checks.sort_unstable();
+    let values = sys
+        .unknowns
+        .iter()
+        .map(|u| u.name.clone())
+        .zip(sol.values)
+        .collect();
+    let free = sol
+        .shape
+        .free
+        .iter()
+        .map(|&j| sys.unknowns[j].name.clone())
+        .collect();
+    Ok(BlockSolution {
+        values,
+        free,
+        checks,
+        used_accelerations,
+    })
+}
+
+fn math(span: crate::parse::ast::Span, m: MathError) -> Diagnostic {
+    let d = Diagnostic::error(span, m.message);
+    match m.hint {
+        Some(h) => d.with_hint(h),
+        None => d,
+    }
+}
+
+/// Ok if `e` is linear in `xs` (degree ≤ 1 jointly, none in a denominator
+/// or inside a function); otherwise what is wrong.
+fn check_linear(e: &Expr, xs: &[Var]) -> Result<(), String> {
+    let name = |v: Var| crate::expr::print::atom_input(&atom::atom(v));
+    for &v in e.den().vars().iter() {
+        if xs.contains(&v) {
+            return Err(format!("`{}` divides", name(v)));
+        }
+        if let Some(u) = inside_function(v, xs) {
+            return Err(format!("`{}` appears inside a function", name(u)));
+        }
+    }
+    for (m, _) in e.num().terms() {
+        let mut deg = 0;
+        let mut seen = Vec::new();
+        for &(v, k) in m.0.iter() {
+            if xs.contains(&v) {
+                deg += k;
+                seen.push(name(v));
+            } else if let Some(u) = inside_function(v, xs) {
+                return Err(format!("`{}` appears inside a function", name(u)));
+            }
+        }
+        if deg > 1 {
+            return Err(format!("the term has {}", seen.join("·")));
+        }
+    }
+    Ok(())
+}
+
+/// The unknown of `xs` that function atom `v` has in its argument, if any.
+fn inside_function(v: Var, xs: &[Var]) -> Option<Var> {
+    match atom::atom(v) {
+        Atom::SqrtOf(u)
+        | Atom::Sin(u)
+        | Atom::Cos(u)
+        | Atom::Exp(u)
+        | Atom::Ln(u)
+        | Atom::Atan(u)
+        | Atom::Asin(u)
+        | Atom::Acos(u) => xs.iter().copied().find(|&x| u.depends_on(x)),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn e(s: &str) -> Expr {
+        let scene = Scene::parse("parameters a, b, c").expect("scene");
+        scene.expr(s).expect("expr")
+    }
+
+    fn syms(n: usize) -> Vec<Expr> {
+        (0..n).map(|i| Expr::unknown(&format!("x{i}"))).collect()
+    }
+
+    #[test]
+    fn square_system() {
+        // a·x0 + x1 = b, x0 − x1 = c
+        let a = vec![vec![e("a"), e("1")], vec![e("1"), e("-1")]];
+        let b = vec![e("b"), e("c")];
+        let s = solve_rect(&a, &b, &syms(2)).expect("solve");
+        assert!(s.values[0].equals(&e("(b + c)/(a + 1)")));
+        assert!(s.values[1].equals(&e("(b - a*c)/(a + 1)")));
+        assert!(s.shape.free.is_empty() && s.residuals.is_empty());
+    }
+
+    #[test]
+    fn overdetermined_consistent_and_not() {
+        // x0 = a, x1 = b, x0 + x1 = a + b (a check that holds)
+        let a = vec![
+            vec![e("1"), e("0")],
+            vec![e("0"), e("1")],
+            vec![e("1"), e("1")],
+        ];
+        let s = solve_rect(&a, &[e("a"), e("b"), e("a + b")], &syms(2)).expect("solve");
+        assert_eq!(s.shape.dependent_rows, vec![2]);
+        assert!(s.residuals[0].1.is_zero());
+        let s = solve_rect(&a, &[e("a"), e("b"), e("a + c")], &syms(2)).expect("solve");
+        assert!(s.residuals[0].1.equals(&e("c - b")));
+    }
+
+    #[test]
+    fn underdetermined_has_free_unknowns() {
+        // x0 + x1 + x2 = a, x1 − x2 = b: x2 free
+        let a = vec![vec![e("1"), e("1"), e("1")], vec![e("0"), e("1"), e("-1")]];
+        let s = solve_rect(&a, &[e("a"), e("b")], &syms(3)).expect("solve");
+        assert_eq!(s.shape.free, vec![2]);
+        let x2 = Expr::unknown("x2");
+        assert!(s.values[1].equals(&e("b").add(&x2)));
+        assert!(s.values[0].equals(&e("a - b").sub(&x2.scale(&crate::num::Q::from_i64(2)))));
+    }
+
+    #[test]
+    fn a_zero_column_is_free() {
+        // 0·x0 + x1 = a: x0 is free
+        let a = vec![vec![Expr::zero(), e("1")]];
+        let s = solve_rect(&a, &[e("a")], &syms(2)).expect("solve");
+        assert_eq!(s.shape.free, vec![0]);
+        assert!(s.values[1].equals(&e("a")));
+    }
+}
