@@ -5,8 +5,14 @@
 /// The seed problems bundled as `examples/NAME.qd` (../shared/problems.md).
 pub const SEED_EXAMPLES: &[&str] = &[
     "seed_21_1",
+    "seed_21_1_kinetostatic",
     "seed_21_2",
+    "seed_21_2_kinetostatic",
     "seed_22_2",
+    "seed_22_2_kinetostatic",
+    "seed_22_2_lagrange",
+    "seed_22_3",
+    "seed_23_1",
     "seed_23_2",
     "seed_23_3",
     "seed_23_4",

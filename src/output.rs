@@ -140,8 +140,10 @@ pub fn parse_set(s: &str) -> Result<Values, Diagnostic> {
     let mut out = Values::default();
     for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
         let Some((k, v)) = part.split_once('=') else {
-            return Err(Diagnostic::global(format!("`--set {part}`: expected name=value"))
-                .with_hint("for example --set m=1,g=9.81,l=0.5"));
+            return Err(
+                Diagnostic::global(format!("`--set {part}`: expected name=value"))
+                    .with_hint("for example --set m=1,g=9.81,l=0.5"),
+            );
         };
         let v: f64 = match v.trim().parse() {
             Ok(x) if f64::is_finite(x) => x,
@@ -299,11 +301,7 @@ pub fn forces_text(names: &[String], q: &[Expr]) -> String {
         .max()
         .unwrap_or(1);
     for (c, e) in names.iter().zip(q) {
-        out.push_str(&format!(
-            "  Q_{:<width$} = {}\n",
-            pretty_name(c, 0),
-            u(e)
-        ));
+        out.push_str(&format!("  Q_{:<width$} = {}\n", pretty_name(c, 0), u(e)));
     }
     out
 }
@@ -344,7 +342,7 @@ pub fn solutions_text(scene: &Scene, blocks: &[BlockSolution]) -> String {
             ));
         }
         if sol.used_accelerations {
-            out.push_str("  (q̈ taken from the accelerations of Lagrange's equations)\n");
+            out.push_str("  (q̈ taken from the accelerations above)\n");
         }
     }
     out
@@ -371,12 +369,22 @@ pub fn solutions_json(scene: &Scene, blocks: &[BlockSolution], m: &mut Map<Strin
     m.insert("checks".into(), Value::Array(checks));
 }
 
-fn position_strings(eq: &Equilibria, e: &equilibrium::Equilibrium, st: fn(&Expr) -> String) -> Vec<String> {
+fn position_strings(
+    eq: &Equilibria,
+    e: &equilibrium::Equilibrium,
+    st: fn(&Expr) -> String,
+) -> Vec<String> {
     match &e.position {
         Position::Exact(vals) => vals
             .iter()
             .enumerate()
-            .map(|(k, v)| if e.free.contains(&k) { "any".to_string() } else { st(v) })
+            .map(|(k, v)| {
+                if e.free.contains(&k) {
+                    "any".to_string()
+                } else {
+                    st(v)
+                }
+            })
             .collect::<Vec<String>>(),
         Position::Numeric(xs) => xs.iter().map(|x| format!("{x:.10}")).collect(),
     }
@@ -431,7 +439,10 @@ pub fn equilibrium_text(eq: &Equilibria) -> String {
 pub fn equilibrium_json(eq: &Equilibria) -> Map<String, Value> {
     let mut m = Map::new();
     m.insert("coordinates".into(), json!(eq.coordinates));
-    m.insert("generalized_forces".into(), named(&eq.coordinates, &eq.forces));
+    m.insert(
+        "generalized_forces".into(),
+        named(&eq.coordinates, &eq.forces),
+    );
     m.insert("conditions".into(), named(&eq.coordinates, &eq.conditions));
     m.insert("exact".into(), json!(eq.exact));
     let mut list = Vec::new();
@@ -453,7 +464,11 @@ pub fn equilibrium_json(eq: &Equilibria) -> Map<String, Value> {
         }
         list.push(Value::Object(o));
         stab.push(json!(e.stability.word()));
-        let mut n: Vec<String> = e.conditions.iter().map(|c| format!("exists when {c}")).collect();
+        let mut n: Vec<String> = e
+            .conditions
+            .iter()
+            .map(|c| format!("exists when {c}"))
+            .collect();
         if let equilibrium::Stability::Undecided(why) = &e.stability {
             n.push(why.clone());
         }

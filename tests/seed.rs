@@ -194,8 +194,19 @@ fn seed_22_2_virtual_work_and_reactions_with_a_check() {
             })
             .unwrap()
     };
-    for (n, book) in [("T1", 0.720), ("T2", 0.906), ("T3", 1.252), ("H", 1.441), ("V", 4.085), ("Ff", 0.243)] {
-        assert!((val(n) - book).abs() < 1.5e-3, "{n}: {} vs book {book}", val(n));
+    for (n, book) in [
+        ("T1", 0.720),
+        ("T2", 0.906),
+        ("T3", 1.252),
+        ("H", 1.441),
+        ("V", 4.085),
+        ("Ff", 0.243),
+    ] {
+        assert!(
+            (val(n) - book).abs() < 1.5e-3,
+            "{n}: {} vs book {book}",
+            val(n)
+        );
     }
     assert!((val("T4") - 1.664).abs() < 1e-3);
 }
@@ -216,7 +227,11 @@ fn seed_22_3_virtual_work_two_dof() {
 fn seed_23_1_equilibrium_by_generalized_forces() {
     let s = scene("seed_23_1");
     let q = qdot::mechanics::generalized_forces(&s);
-    assert_exact(&s, &q[0], "-G*l*sin(theta1) - 2*G*l*sin(theta1) + 2*P*l*cos(theta1)");
+    assert_exact(
+        &s,
+        &q[0],
+        "-G*l*sin(theta1) - 2*G*l*sin(theta1) + 2*P*l*cos(theta1)",
+    );
     assert_exact(&s, &q[1], "-G*l*sin(theta2) + 2*P*l*cos(theta2)");
     let eq = qdot::solve::equilibrium::equilibria(&s, &Default::default()).unwrap();
     assert!(eq.exact);

@@ -94,7 +94,11 @@ fn compute_atom_derivative(a: Var, wrt: Wrt) -> Option<Expr> {
             let du = inner_d(u)?;
             let r = super::func::sqrt(&Expr::one().sub(&u.mul(u))).ok()?;
             let d = du.div(&r).ok()?;
-            Some(if matches!(at, Atom::Acos(_)) { d.neg() } else { d })
+            Some(if matches!(at, Atom::Acos(_)) {
+                d.neg()
+            } else {
+                d
+            })
         }
     }
 }

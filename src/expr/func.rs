@@ -504,7 +504,13 @@ pub fn acos(u: &Expr) -> Result<Expr, MathError> {
         }
         if q.is_zero() || q.abs().is_one() {
             let half = Q::new(1, 2).unwrap_or_else(Q::one);
-            let k = if q.is_zero() { half } else if q.is_one() { Q::zero() } else { Q::one() };
+            let k = if q.is_zero() {
+                half
+            } else if q.is_one() {
+                Q::zero()
+            } else {
+                Q::one()
+            };
             return Ok(Expr::pi().scale(&k));
         }
     }

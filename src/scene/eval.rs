@@ -167,7 +167,10 @@ impl<'a> Evaluator<'a> {
                 if !(2..=3).contains(&items.len()) {
                     return Err(Diagnostic::error(
                         e.span,
-                        format!("a vector has 2 or 3 components, this one has {}", items.len()),
+                        format!(
+                            "a vector has 2 or 3 components, this one has {}",
+                            items.len()
+                        ),
                     )
                     .with_hint("write a plane vector [x, y] or a space vector [x, y, z]"));
                 }
@@ -245,10 +248,18 @@ impl<'a> Evaluator<'a> {
                             w.len()
                         ),
                     )
-                    .with_hint("write plane vectors as [x, y, 0] to combine them with space vectors"));
+                    .with_hint(
+                        "write plane vectors as [x, y, 0] to combine them with space vectors",
+                    ));
                 }
-                let f = if op == BinOp::Add { Expr::add } else { Expr::sub };
-                Ok(Value::Vector(u.iter().zip(&w).map(|(p, q)| f(p, q)).collect()))
+                let f = if op == BinOp::Add {
+                    Expr::add
+                } else {
+                    Expr::sub
+                };
+                Ok(Value::Vector(
+                    u.iter().zip(&w).map(|(p, q)| f(p, q)).collect(),
+                ))
             }
             (BinOp::Add | BinOp::Sub, x, _) => {
                 let sign = if op == BinOp::Add { "add" } else { "subtract" };
@@ -268,7 +279,9 @@ impl<'a> Evaluator<'a> {
                 span,
                 "two vectors can't be multiplied with `*`",
             )
-            .with_hint("write dot(a, b) for the scalar product or cross(a, b) for the vector product")),
+            .with_hint(
+                "write dot(a, b) for the scalar product or cross(a, b) for the vector product",
+            )),
             (BinOp::Div, Value::Vector(u), Value::Scalar(k)) => {
                 let mut out = Vec::with_capacity(u.len());
                 for c in &u {
@@ -276,11 +289,10 @@ impl<'a> Evaluator<'a> {
                 }
                 Ok(Value::Vector(out))
             }
-            (BinOp::Div, _, Value::Vector(_)) => Err(Diagnostic::error(
-                b.span,
-                "can't divide by a vector",
-            )
-            .with_hint("divide by a number, such as norm(v)")),
+            (BinOp::Div, _, Value::Vector(_)) => {
+                Err(Diagnostic::error(b.span, "can't divide by a vector")
+                    .with_hint("divide by a number, such as norm(v)"))
+            }
             (BinOp::Pow, ..) => Err(Diagnostic::global("internal: power on a vector")),
         }
     }
@@ -379,7 +391,12 @@ impl<'a> Evaluator<'a> {
         .with_hint("qdot keeps results exact; square roots are supported, other roots are not yet"))
     }
 
-    fn call(&mut self, f: &ast::Ident, args: &[ast::Expr], span: Span) -> Result<Value, Diagnostic> {
+    fn call(
+        &mut self,
+        f: &ast::Ident,
+        args: &[ast::Expr],
+        span: Span,
+    ) -> Result<Value, Diagnostic> {
         let Some(&(_, arity)) = FUNCTIONS.iter().find(|(n, _)| *n == f.name) else {
             let list: Vec<&str> = FUNCTIONS.iter().map(|(n, _)| *n).collect();
             let hint = if self.names.contains_key(&f.name) {
@@ -432,7 +449,9 @@ impl<'a> Evaluator<'a> {
                         args[1].span,
                         "this does not move, so it has no inertia force",
                     )
-                    .with_hint("inertia(m, x) is m·x'': x must depend on the coordinates or on t"));
+                    .with_hint(
+                        "inertia(m, x) is m·x'': x must depend on the coordinates or on t",
+                    ));
                 }
                 return Ok(x.map(|c| self.dt(c, 2).mul(&m)));
             }

@@ -394,7 +394,11 @@ impl Scene {
                         span: *span,
                     });
                 }
-                Stmt::Torque { moment, angle, span } => {
+                Stmt::Torque {
+                    moment,
+                    angle,
+                    span,
+                } => {
                     let m = ev.value(moment)?;
                     let m = match m {
                         Value::Scalar(m) => m,
@@ -412,9 +416,14 @@ impl Scene {
                         Value::Vector(_) => {
                             return Err(Diagnostic::error(
                                 angle.span,
-                                format!("a torque acts on an angle (a number), found {}", a.describe()),
+                                format!(
+                                    "a torque acts on an angle (a number), found {}",
+                                    a.describe()
+                                ),
                             )
-                            .with_hint("write `torque M on theta` with theta an angle of the scene"))
+                            .with_hint(
+                                "write `torque M on theta` with theta an angle of the scene",
+                            ))
                         }
                     };
                     if !moves(&a) {

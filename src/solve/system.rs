@@ -76,7 +76,11 @@ fn nonzero(p: &Poly) -> bool {
 /// taken in equation order (the first equation with a nonzero entry), so an
 /// equation reported as dependent is the *last* of a dependent set, as a
 /// reader checks a system.
-pub fn solve_rect(a: &[Vec<Expr>], b: &[Expr], symbols: &[Expr]) -> Result<RectSolution, SolveError> {
+pub fn solve_rect(
+    a: &[Vec<Expr>],
+    b: &[Expr],
+    symbols: &[Expr],
+) -> Result<RectSolution, SolveError> {
     let m = a.len();
     let n = symbols.len();
     // Rows cleared of denominators: [A | b] over polynomials.
@@ -106,7 +110,10 @@ pub fn solve_rect(a: &[Vec<Expr>], b: &[Expr], symbols: &[Expr]) -> Result<RectS
     let mut pivots = Vec::new();
     let mut free = Vec::new();
     for c in 0..n {
-        let Some(p) = (r..m).filter(|&i| nonzero(&rows[i][c])).min_by_key(|&i| orig[i]) else {
+        let Some(p) = (r..m)
+            .filter(|&i| nonzero(&rows[i][c]))
+            .min_by_key(|&i| orig[i])
+        else {
             // no pivot: the entries left are zero (modulo sin² + cos² = 1)
             for row in rows.iter_mut().skip(r) {
                 row[c] = Poly::zero();
@@ -148,7 +155,10 @@ pub fn solve_rect(a: &[Vec<Expr>], b: &[Expr], symbols: &[Expr]) -> Result<RectS
             .map_err(SolveError::Math)?;
         values[c] = Some(x);
     }
-    let values: Vec<Expr> = values.into_iter().map(|v| v.unwrap_or_else(Expr::zero)).collect();
+    let values: Vec<Expr> = values
+        .into_iter()
+        .map(|v| v.unwrap_or_else(Expr::zero))
+        .collect();
     // Each dependent equation, checked on the original row.
     let mut residuals = Vec::new();
     for &i in &orig[r..] {
@@ -242,7 +252,11 @@ fn solve_block(
     known: &FxHashMap<Var, Expr>,
     acc: &mut Option<FxHashMap<Var, Expr>>,
 ) -> Result<BlockSolution, Diagnostic> {
-    let unknowns: Vec<Var> = sys.unknowns.iter().map(|u| atom::unknown(&u.name)).collect();
+    let unknowns: Vec<Var> = sys
+        .unknowns
+        .iter()
+        .map(|u| atom::unknown(&u.name))
+        .collect();
     let qdd: Vec<Var> = scene
         .coordinates
         .iter()
