@@ -1,7 +1,10 @@
 //! Criterion benchmarks of the exact core.
 //!
-//! * `seed/<problem>`: parse + derive + exact solve of each seed example
-//!   (target: under 100 µs each).
+//! * `seed/<problem>`: parse + derive + exact solve of each seed example:
+//!   accelerations and `solve` blocks (target: under 100 µs each for the
+//!   Lagrange scenes) — the kinetostatic ones side by side with SymPy's
+//!   `linsolve` on the same system (`scripts/anchor_kinetostatic.py`).
+//! * `equilibrium/<problem>`: closed-form equilibria and their stability.
 //! * `npendulum/derive/<n>`: parse + derive (equations, mass matrix,
 //!   forcing) of the n-link pendulum chain, n = 2…12 — measured side by side
 //!   with ../shared/anchors/symengine_npendulum.py (`scripts/anchors.sh`).
@@ -22,8 +25,30 @@ fn seeds(c: &mut Criterion) {
         g.bench_function(*name, |b| {
             b.iter(|| {
                 let s = Scene::parse(black_box(&src)).expect("parses");
-                let l = s.lagrange().expect("derives");
-                black_box(l.accelerations().expect("solves"))
+                if s.has_dynamics() {
+                    let l = s.lagrange().expect("derives");
+                    black_box(l.accelerations().expect("solves"));
+                }
+                black_box(qdot::solve::system::solve_scene(&s).expect("blocks solve"))
+            })
+        });
+    }
+    g.finish();
+}
+
+fn equilibria(c: &mut Criterion) {
+    let mut g = c.benchmark_group("equilibrium");
+    let scenes = [
+        ("seed_23_1", std::fs::read_to_string(format!("{}/examples/seed_23_1.qd", env!("CARGO_MANIFEST_DIR"))).expect("example exists")),
+        ("hoop", "coordinates th\nparameters m, g, r, W\nkinetic E = 1/2*m*r^2*(th'^2 + W^2*sin(th)^2)\npotential V = -m*g*r*cos(th)\n".to_string()),
+    ];
+    for (name, src) in &scenes {
+        g.bench_function(*name, |b| {
+            b.iter(|| {
+                let s = Scene::parse(black_box(src)).expect("parses");
+                black_box(
+                    qdot::solve::equilibrium::equilibria(&s, &Default::default()).expect("solves"),
+                )
             })
         });
     }
@@ -62,5 +87,5 @@ fn npendulum(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, seeds, npendulum);
+criterion_group!(benches, seeds, equilibria, npendulum);
 criterion_main!(benches);

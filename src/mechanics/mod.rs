@@ -54,8 +54,14 @@ impl Lagrange {
             .with_hint("declare the generalized coordinates with `coordinates q1, q2, …`"));
         }
         if !scene.has_dynamics() {
+            if !scene.loads.is_empty() || !scene.torques.is_empty() {
+                return Err(Diagnostic::global(
+                    "the scene is static: it has loads but no kinetic energy and no inertia forces, so there are no accelerations",
+                )
+                .with_hint("`qdot forces` prints its generalized forces and `qdot equilibrium` its equilibria; for motion add `kinetic E = …` or inertia forces `load G - inertia(m, y) at y`"));
+            }
             return Err(Diagnostic::global("the scene has no kinetic energy")
-                .with_hint("add `kinetic E = …` (several `kinetic` lines add up), or write the inertia forces as loads: `load -inertia(m, x) at x`"));
+                .with_hint("add `kinetic E = …` (several `kinetic` lines add up), or write the inertia forces as loads: `load G - inertia(m, y) at y`"));
         }
         let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
         let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();

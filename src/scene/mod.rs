@@ -573,12 +573,29 @@ impl Scene {
             .map(|d| &d.value)
     }
 
-    /// Whether the scene has anything for Lagrange's equations: a kinetic
-    /// energy, or loads (a scene in D'Alembert's form, with inertia forces
-    /// among its loads).
+    /// Whether the scene has equations of motion: coordinates, and a kinetic
+    /// energy or inertia forces (terms in q̈) among its loads, torques or
+    /// forces — a scene in D'Alembert's form. A scene with coordinates and
+    /// only static loads (seed 23.1) has generalized forces and equilibria
+    /// but no accelerations.
     pub fn has_dynamics(&self) -> bool {
-        !self.coordinates.is_empty()
-            && (self.has_role(Role::Kinetic) || !self.loads.is_empty() || !self.torques.is_empty())
+        if self.coordinates.is_empty() {
+            return false;
+        }
+        if self.has_role(Role::Kinetic) {
+            return true;
+        }
+        let qdd: Vec<crate::poly::Var> = self
+            .coordinates
+            .iter()
+            .map(|c| crate::expr::atom::coord(&c.name, 2))
+            .collect();
+        let inertial = |e: &Expr| qdd.iter().any(|&v| e.depends_on(v));
+        self.loads
+            .iter()
+            .any(|l| l.force.components().iter().any(inertial))
+            || self.torques.iter().any(|t| inertial(&t.moment))
+            || self.forces.iter().any(|f| inertial(&f.value))
     }
 }
 
