@@ -73,10 +73,12 @@ fn eval_ast(e: &Ast, env: &dyn Fn(&str) -> f64) -> f64 {
                 "exp" => x.exp(),
                 "ln" => x.ln(),
                 "atan" => x.atan(),
+                "asin" => x.asin(),
+                "acos" => x.acos(),
                 _ => f64::NAN,
             }
         }
-        ExprKind::Prime(..) => f64::NAN,
+        ExprKind::Prime(..) | ExprKind::Vector(_) => f64::NAN,
     }
 }
 
@@ -257,4 +259,47 @@ fn ill_conditioned_points_are_explained_by_the_condition_number() {
     );
     let (got, fd) = (eval_expr(&d, good), fd_at(good));
     assert!(close(got, fd, 1e-5), "{got} vs {fd}");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// sin and cos of inverse trig atoms are algebraic and exact:
+    /// tan(atan x) = x, sin(asin x) = x, cos(acos x) = x, and
+    /// sin² + cos² = 1 for each, for rational x and for x = p/q·a/b with
+    /// parameters; plus agreement with f64 at the rational points.
+    #[test]
+    fn inverse_trig_identities(p in -40i64..40, q in 1i64..40, sym in any::<bool>()) {
+        let s = qdot::Scene::parse("parameters a, b").unwrap();
+        let x = if sym {
+            s.expr(&format!("{p}/{q}*a/b")).unwrap()
+        } else {
+            s.expr(&format!("{p}/{q}")).unwrap()
+        };
+        use qdot::expr::func;
+        let one = qdot::Expr::one();
+        let t = func::atan(&x);
+        prop_assert!(func::tan(&t).unwrap().equals(&x));
+        let (st, ct) = func::sin_cos(&t);
+        prop_assert!(st.mul(&st).add(&ct.mul(&ct)).equals(&one));
+        // asin/acos only inside [−1, 1] for rationals
+        if sym || p.abs() <= q {
+            let y = func::asin(&x).unwrap();
+            prop_assert!(func::sin(&y).equals(&x));
+            let z = func::acos(&x).unwrap();
+            prop_assert!(func::cos(&z).equals(&x));
+            let (sz, cz) = func::sin_cos(&z);
+            prop_assert!(sz.mul(&sz).add(&cz.mul(&cz)).equals(&one));
+            if !sym {
+                let xf = p as f64 / q as f64;
+                let v = y.eval_f64(&|_| None).unwrap();
+                prop_assert!((v - xf.asin()).abs() < 1e-12);
+                let w = z.eval_f64(&|_| None).unwrap();
+                prop_assert!((w - xf.acos()).abs() < 1e-12);
+            }
+        } else {
+            prop_assert!(func::asin(&x).is_err());
+            prop_assert!(func::acos(&x).is_err());
+        }
+    }
 }

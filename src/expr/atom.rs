@@ -74,6 +74,24 @@ pub enum Atom {
     Shown(Arc<str>, Arc<str>),
 }
 
+impl Atom {
+    /// The argument of a function atom (√P, sin, cos, exp, ln, atan, asin,
+    /// acos); None for symbols, π and √n.
+    pub fn argument(&self) -> Option<&Expr> {
+        match self {
+            Atom::SqrtOf(u)
+            | Atom::Sin(u)
+            | Atom::Cos(u)
+            | Atom::Exp(u)
+            | Atom::Ln(u)
+            | Atom::Atan(u)
+            | Atom::Asin(u)
+            | Atom::Acos(u) => Some(u),
+            _ => None,
+        }
+    }
+}
+
 struct Entry {
     atom: Atom,
     /// For reducible atoms: the polynomial P with atom² = P.

@@ -108,17 +108,7 @@ pub fn atom_depends_on(a: Var, v: Var) -> bool {
     if a == v {
         return true;
     }
-    match atom::atom(a) {
-        Atom::SqrtOf(u)
-        | Atom::Sin(u)
-        | Atom::Cos(u)
-        | Atom::Exp(u)
-        | Atom::Ln(u)
-        | Atom::Atan(u)
-        | Atom::Asin(u)
-        | Atom::Acos(u) => u.depends_on(v),
-        _ => false,
-    }
+    atom::atom(a).argument().is_some_and(|u| u.depends_on(v))
 }
 
 /// Whether an expression with atoms `vars` depends on `v`, directly or
@@ -193,14 +183,6 @@ impl Expr {
 fn atom_time_dependent(a: Var) -> bool {
     match atom::atom(a) {
         Atom::Coord(..) | Atom::Time => true,
-        Atom::SqrtOf(u)
-        | Atom::Sin(u)
-        | Atom::Cos(u)
-        | Atom::Exp(u)
-        | Atom::Ln(u)
-        | Atom::Atan(u)
-        | Atom::Asin(u)
-        | Atom::Acos(u) => u.is_time_dependent(),
-        _ => false,
+        a => a.argument().is_some_and(|u| u.is_time_dependent()),
     }
 }

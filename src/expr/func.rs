@@ -549,16 +549,8 @@ pub fn subs_atom(v: Var, map: &FxHashMap<Var, Expr>) -> Result<Option<Expr>, Mat
         return Ok(Some(x.clone()));
     }
     let a = atom::atom(v);
-    let inner = match &a {
-        Atom::SqrtOf(u)
-        | Atom::Sin(u)
-        | Atom::Cos(u)
-        | Atom::Exp(u)
-        | Atom::Ln(u)
-        | Atom::Atan(u)
-        | Atom::Asin(u)
-        | Atom::Acos(u) => u,
-        _ => return Ok(None),
+    let Some(inner) = a.argument() else {
+        return Ok(None);
     };
     if !inner
         .vars()

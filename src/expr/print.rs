@@ -507,16 +507,7 @@ fn atom_unicode(a: &Atom) -> String {
 }
 
 fn unicode_arg(a: &Atom) -> String {
-    match a {
-        Atom::Sin(u)
-        | Atom::Cos(u)
-        | Atom::Exp(u)
-        | Atom::Ln(u)
-        | Atom::Atan(u)
-        | Atom::Asin(u)
-        | Atom::Acos(u) => unicode(u),
-        _ => String::new(),
-    }
+    a.argument().map(unicode).unwrap_or_default()
 }
 
 fn superscript(e: u32) -> String {

@@ -32,7 +32,7 @@ use num_rational::BigRational;
 use num_traits::{One, Zero};
 
 use crate::diag::Diagnostic;
-use ast::{BinOp, Decl, Expr, ExprKind, Ident, Role, Span, Stmt};
+use ast::{BinOp, Decl, Equation, Expr, ExprKind, Ident, Role, SolveBlock, Span, Stmt};
 
 /// Deepest recursion of the parser: parentheses, call arguments, unary signs
 /// and `^` chains each count one level.
@@ -143,8 +143,27 @@ fn prime_on_number(at: Span) -> nom::Err<PErr> {
     )
 }
 
+#[cold]
+#[inline(never)]
+fn unclosed_bracket(open: usize) -> nom::Err<PErr> {
+    failure(
+        Diagnostic::error(Span::new(open, open + 1), "unclosed `[`")
+            .with_hint("add the matching `]`"),
+    )
+}
+
+#[cold]
+#[inline(never)]
+fn unclosed_block(open: usize) -> nom::Err<PErr> {
+    failure(
+        Diagnostic::error(Span::new(open, open + 1), "unclosed `{`").with_hint(HINT_UNCLOSED_BLOCK),
+    )
+}
+
 const HINT_EXPR: &str =
     "an expression is a number, a name, a call like `sin(x)` or an expression in parentheses";
+
+const HINT_UNCLOSED_BLOCK: &str = "add the matching `}` after the last equation of the solve block";
 
 /// An expression together with the depth of its tree. The expression is
 /// boxed so that parse results stay small on the stack (the recursive rules
@@ -190,7 +209,7 @@ fn is_space(c: char) -> bool {
 
 /// Characters that have a meaning somewhere in the language.
 fn is_known(c: char) -> bool {
-    ident_char(c) || is_space(c) || "\n#+-*/^'()=,:;.°".contains(c)
+    ident_char(c) || is_space(c) || "\n#+-*/^'()[]{}=,:;.°".contains(c)
 }
 
 /// A character for a message: control characters escaped.
@@ -356,14 +375,49 @@ fn skip_ws_loop(i: &str, nl: bool) -> &str {
 }
 
 /// Can an operand (an `atom`) start here? Used to detect `a b`.
+///
+/// Decided by a table on the first byte (this runs after every operand);
+/// only `.` and non-ASCII characters look further.
 #[inline]
 fn starts_operand(i: &str) -> bool {
+    match i.as_bytes().first().map(|&b| OPERAND_START[usize::from(b)]) {
+        None | Some(OPERAND_NO) => false,
+        Some(OPERAND_YES) => true,
+        Some(_) => starts_operand_slow(i),
+    }
+}
+
+/// [`starts_operand`] for `.` and non-ASCII characters.
+#[inline(never)]
+fn starts_operand_slow(i: &str) -> bool {
     match i.as_bytes() {
-        [c, ..] if c.is_ascii_digit() || *c == b'(' => true,
         [b'.', d, ..] => d.is_ascii_digit(),
         _ => starts_ident(i),
     }
 }
+
+/// Classes of a first byte for [`starts_operand`].
+const OPERAND_NO: u8 = 0;
+const OPERAND_YES: u8 = 1;
+/// `.` (a number if a digit follows) and the bytes of non-ASCII characters.
+const OPERAND_MAYBE: u8 = 2;
+
+/// The class of each byte as the first byte of an operand: digits, ASCII
+/// letters, `_`, `(` and `[` start one.
+static OPERAND_START: [u8; 256] = {
+    let mut t = [OPERAND_NO; 256];
+    let mut b = 0;
+    while b < 256 {
+        let c = b as u8;
+        if c.is_ascii_alphanumeric() || c == b'_' || c == b'(' || c == b'[' {
+            t[b] = OPERAND_YES;
+        } else if c == b'.' || c >= 0x80 {
+            t[b] = OPERAND_MAYBE;
+        }
+        b += 1;
+    }
+    t
+};
 
 /// Show a piece of source in a message, shortened if long.
 fn excerpt(s: &str) -> String {
@@ -449,15 +503,59 @@ fn exact_value_big(int: &str, frac: &str, exp: i64) -> BigRational {
     BigRational::new(numer, denom)
 }
 
+/// The words of a `load` or `torque` statement, for parsing and messages.
+struct Applied {
+    keyword: &'static str,
+    separator: &'static str,
+    /// "a force": what comes after the keyword.
+    first: &'static str,
+    /// "force": the first expression in "`at` after the force".
+    first_noun: &'static str,
+    /// "a point": what comes after the separator.
+    second: &'static str,
+    /// "a load": the statement.
+    what: &'static str,
+    form: &'static str,
+    parts: &'static str,
+    example: &'static str,
+}
+
+const LOAD: Applied = Applied {
+    keyword: "load",
+    separator: "at",
+    first: "a force",
+    first_noun: "force",
+    second: "a point",
+    what: "a load",
+    form: "load F at P",
+    parts: "the force F, then `at` and the point P it acts on",
+    example: "load [0, -m*g] at [x, y]",
+};
+
+const TORQUE: Applied = Applied {
+    keyword: "torque",
+    separator: "on",
+    first: "a moment",
+    first_noun: "moment",
+    second: "an angle",
+    what: "a torque",
+    form: "torque M on phi",
+    parts: "the moment M, then `on` and the angle phi it turns",
+    example: "torque -c*phi' on phi",
+};
+
 // ---------------------------------------------------------------------------
 // The parser
 
-/// Parser state: the source (for offsets), the recursion depth and the
-/// number of open parentheses (inside them a newline is white space).
+/// Parser state: the source (for offsets), the recursion depth, the
+/// number of open parentheses and brackets (inside them a newline is white
+/// space), and whether a stop word (`at`, `on`) ends the expression being
+/// parsed (the first expression of a `load` or `torque` statement).
 struct P<'s> {
     src: &'s str,
     nest: Cell<u32>,
     parens: Cell<u32>,
+    stop: Cell<bool>,
 }
 
 impl<'s> P<'s> {
@@ -466,6 +564,7 @@ impl<'s> P<'s> {
             src,
             nest: Cell::new(0),
             parens: Cell::new(0),
+            stop: Cell::new(false),
         }
     }
 
@@ -590,9 +689,21 @@ impl<'s> P<'s> {
                 "unknown character `\"`".into(),
                 "strings are not part of scenes (yet)".into(),
             ),
-            '[' | ']' | '{' | '}' => (
-                format!("unknown character `{c}`"),
-                "group expressions with `(` and `)`".into(),
+            '[' => (
+                "unexpected `[`".into(),
+                "a vector like `[x, y]` stands where an expression is expected".into(),
+            ),
+            ']' => (
+                "unmatched `]`".into(),
+                "remove it, or add the matching `[` before it".into(),
+            ),
+            '{' => (
+                "unexpected `{`".into(),
+                "braces hold the equations of a solve block: `solve x, y { … }`; group expressions with `(` and `)`".into(),
+            ),
+            '}' => (
+                "unmatched `}`".into(),
+                "remove it, or open a solve block before it: `solve x, y { … }`".into(),
             ),
             _ if !is_known(c) => (
                 format!("unknown character `{}`", show_char(c)),
@@ -685,10 +796,18 @@ impl<'s> P<'s> {
         )
     }
 
-    /// Note one more open parenthesis until the guard is dropped.
+    /// Note one more open parenthesis (or bracket) until the guard is
+    /// dropped.
     fn open_paren(&self) -> Guard<'_> {
         self.parens.set(self.parens.get() + 1);
         Guard(&self.parens)
+    }
+
+    /// Is a stop word active here: in the first expression of a `load` or
+    /// `torque` statement, outside parentheses, brackets and calls?
+    #[inline]
+    fn stopping(&self) -> bool {
+        self.stop.get() && self.parens.get() == 0
     }
 
     /// A leaf node (depth 1).
@@ -724,9 +843,10 @@ impl<'s> P<'s> {
         self.node(ExprKind::Bin(op, l.e, r.e), span, d, at)
     }
 
-    /// Final conversion of a parse error into a diagnostic. If a `(` left
-    /// open before the error swallowed a line break (or the file ended
-    /// inside it), the open `(` is the real problem and is reported instead.
+    /// Final conversion of a parse error into a diagnostic. If a `(`, `[`
+    /// or `{` left open before the error swallowed a line break (or the file
+    /// ended inside it), the open bracket is the real problem and is reported
+    /// instead.
     fn finish(&self, e: nom::Err<PErr>) -> Diagnostic {
         let d = match e {
             nom::Err::Error(PErr::At(n)) | nom::Err::Failure(PErr::At(n)) => {
@@ -737,13 +857,17 @@ impl<'s> P<'s> {
             nom::Err::Incomplete(_) => Diagnostic::global("incomplete input"),
         };
         let Some(span) = d.span else { return d };
-        if let Some(open) = unclosed_paren_before(self.src, span.start) {
+        if let Some((open, c)) = unclosed_before(self.src, span.start) {
             let swallowed = self.src[open..span.start.min(self.src.len())].contains('\n')
                 || span.start >= self.src.len();
-            if swallowed && d.message != "unclosed `(`" {
-                return Diagnostic::error(Span::new(open, open + 1), "unclosed `(`").with_hint(
-                    "add the matching `)`; inside parentheses a line break does not end the statement",
-                );
+            if swallowed && !d.message.starts_with("unclosed `") {
+                let hint = match c {
+                    b'(' => "add the matching `)`; inside parentheses a line break does not end the statement",
+                    b'[' => "add the matching `]`; inside brackets a line break does not end the statement",
+                    _ => HINT_UNCLOSED_BLOCK,
+                };
+                let msg = format!("unclosed `{}`", char::from(c));
+                return Diagnostic::error(Span::new(open, open + 1), msg).with_hint(hint);
             }
         }
         d
@@ -841,8 +965,10 @@ impl<'s> P<'s> {
     }
 
     /// If the statement starting at `start` ran over a line break outside
-    /// parentheses before the error, a line ended in an operator: that
-    /// trailing operator is the likely mistake, so the hint says so.
+    /// parentheses and brackets before the error because a line ended in an
+    /// operator, that trailing operator is the likely mistake, so the hint
+    /// says so. (Inside a solve block a line break also ends an equation; a
+    /// line that ends in anything else forgets an earlier operator.)
     fn note_continuation(&self, start: usize, d: Diagnostic) -> Diagnostic {
         let Some(span) = d.span else { return d };
         let end = span.start.min(self.src.len());
@@ -855,8 +981,12 @@ impl<'s> P<'s> {
                 '\n' => {
                     in_comment = false;
                     if depth <= 0 {
-                        if let Some(op) = last {
-                            continued = Some((start + p, op));
+                        match last {
+                            Some(op @ ('+' | '-' | '*' | '/' | '^')) => {
+                                continued = Some((start + p, op))
+                            }
+                            Some(_) => continued = None,
+                            None => {}
                         }
                     }
                     last = None;
@@ -866,8 +996,8 @@ impl<'s> P<'s> {
                 c if is_space(c) => {}
                 c => {
                     match c {
-                        '(' => depth += 1,
-                        ')' => depth -= 1,
+                        '(' | '[' => depth += 1,
+                        ')' | ']' => depth -= 1,
                         _ => {}
                     }
                     last = Some(c);
@@ -886,7 +1016,7 @@ impl<'s> P<'s> {
         }
     }
 
-    /// `statement ::= declaration | role_stmt | force_stmt | definition`
+    /// `statement ::= declaration | role_stmt | force_stmt | load_stmt | torque_stmt | solve_block | definition`
     ///
     /// Keywords do not reserve names: the tokens after the first identifier
     /// decide (see the grammar).
@@ -932,6 +1062,9 @@ impl<'s> P<'s> {
                     ))
                 }
             }
+            "load" if !next_is_eq => self.load_stmt(i),
+            "torque" if !next_is_eq => self.torque_stmt(i),
+            "solve" if !next_is_eq => self.solve_block(i),
             _ if !next_is_eq && Role::from_keyword(word).is_some() => {
                 if next_is_ident {
                     self.role_stmt(i)
@@ -952,7 +1085,7 @@ impl<'s> P<'s> {
     fn statement_start(&self, i: &'s str) -> Diagnostic {
         let (span, shown) = self.token(i);
         match first(i) {
-            Some(c) if c.is_ascii_digit() || c == '(' || c == '.' => Diagnostic::error(
+            Some(c) if c.is_ascii_digit() || c == '(' || c == '[' || c == '.' => Diagnostic::error(
                 span,
                 format!("a statement must start with a name or a keyword, found {shown}"),
             )
@@ -1138,6 +1271,397 @@ impl<'s> P<'s> {
         ))
     }
 
+    /// `load_stmt ::= "load" ws expr ws "at" ws expr`
+    ///
+    /// The force ends at the stop word `at` (see the grammar). (Not inlined,
+    /// like the other new statements and [`P::vector`]: they are rare, and
+    /// inlined they would make the hot paths larger.)
+    #[inline(never)]
+    fn load_stmt(&self, i: &'s str) -> PResult<'s, Stmt> {
+        let (rest, (force, point, span)) = self.applied(i, &LOAD)?;
+        Ok((rest, Stmt::Load { force, point, span }))
+    }
+
+    /// `torque_stmt ::= "torque" ws expr ws "on" ws expr`
+    ///
+    /// The moment ends at the stop word `on` (see the grammar).
+    #[inline(never)]
+    fn torque_stmt(&self, i: &'s str) -> PResult<'s, Stmt> {
+        let (rest, (moment, angle, span)) = self.applied(i, &TORQUE)?;
+        Ok((
+            rest,
+            Stmt::Torque {
+                moment,
+                angle,
+                span,
+            },
+        ))
+    }
+
+    /// `KEYWORD ws expr ws SEPARATOR ws expr` (a `load_stmt` or a
+    /// `torque_stmt`): both expressions and the statement's span.
+    fn applied(&self, i: &'s str, w: &Applied) -> PResult<'s, (Expr, Expr, Span)> {
+        let i = self.ws(i);
+        let start = self.pos(i);
+        let Some(rest) = i.strip_prefix(w.keyword) else {
+            return self.nothing(i);
+        };
+        let kw_span = self.span(i, rest);
+        // the first expression, ended by the stop word
+        self.stop.set(true);
+        let first = self.expr(rest);
+        self.stop.set(false);
+        let (rest, first) = match first {
+            Ok((rest, node)) => (rest, node),
+            Err(e) => return Err(self.applied_error(e, rest, w, kw_span, true)),
+        };
+        let j = self.ws(rest);
+        let len = w.separator.len();
+        let sep = j
+            .strip_prefix(w.separator)
+            .filter(|k| !starts_with_class(k, ident_char) && !k.starts_with('('));
+        let Some(k) = sep else {
+            return Err(self.separator_error(j, w, &first));
+        };
+        let sep_span = Span::new(self.pos(j), self.pos(j) + len);
+        let (rest, second) = match self.expr(k) {
+            Ok(x) => x,
+            Err(e) => return Err(self.applied_error(e, k, w, sep_span, false)),
+        };
+        let span = Span::new(start, second.outer.end);
+        Ok((rest, (*first.e, *second.e, span)))
+    }
+
+    /// The error for a missing first (`first`) or second expression at `k`
+    /// of a `load` or `torque` statement, after the token at `after`.
+    #[cold]
+    #[inline(never)]
+    fn applied_error(
+        &self,
+        e: nom::Err<PErr>,
+        k: &'s str,
+        w: &Applied,
+        after: Span,
+        first: bool,
+    ) -> nom::Err<PErr> {
+        if !matches!(e, nom::Err::Error(_)) {
+            return e;
+        }
+        let j = self.ws(k);
+        let (what, after_word) = if first {
+            (w.first, w.keyword)
+        } else {
+            (w.second, w.separator)
+        };
+        let mut hint = format!("{} is written `{}`, like `{}`", w.what, w.form, w.example);
+        if first {
+            hint.push_str(&format!(
+                "; to define a name `{0}`, write `{0} = expression`",
+                w.keyword
+            ));
+        }
+        failure(self.expected(
+            j,
+            &format!("{what} after `{after_word}`"),
+            &hint,
+            Some(after),
+        ))
+    }
+
+    /// The error when the separator (`at`, `on`) is missing at `j`, after
+    /// the first expression `first`.
+    #[cold]
+    #[inline(never)]
+    fn separator_error(&self, j: &'s str, w: &Applied, first: &Node) -> nom::Err<PErr> {
+        let sep = w.separator;
+        // `load at P`: the "force" is the bare word `at` (as written, not
+        // parenthesized), so the force is missing
+        if matches!(&first.e.kind, ExprKind::Name(n) if n == sep) && first.outer == first.e.span {
+            let at = &self.src[first.outer.start..];
+            let hint = format!(
+                "{} is written `{}`, like `{}`; the {} is missing before `{sep}` (for a name `{sep}`, write `({sep})`)",
+                w.what, w.form, w.example, w.first_noun
+            );
+            return failure(self.expected(
+                at,
+                &format!("{} after `{}`", w.first, w.keyword),
+                &hint,
+                None,
+            ));
+        }
+        let mut hint = format!("{} is written `{}`: {}", w.what, w.form, w.parts);
+        let text = &self.src[first.outer.start..first.outer.end];
+        let number = text
+            .strip_suffix(sep)
+            .map(|head| head.trim_end_matches(|c: char| c.is_ascii_digit() || c == '.'))
+            .filter(|n| n.len() + sep.len() < text.len() && !n.ends_with(ident_char));
+        if let Some(n) = number {
+            // `load 2at P`: the number and `at` form an implicit product
+            let glued = &text[n.len()..];
+            hint.push_str(&format!(
+                "; `{glued}` is an implicit product, write a space before `{sep}`"
+            ));
+        } else if j.starts_with(sep) && j[sep.len()..].starts_with('(') {
+            hint = format!(
+                "directly before `(`, `{0}` is a call: write a space, `{0} (…)`",
+                w.separator
+            );
+        } else if j.starts_with('=') {
+            hint.push_str(&format!(
+                "; to define a name `{0}`, write `{0} = expression`",
+                w.keyword
+            ));
+        }
+        failure(self.expected(
+            j,
+            &format!(
+                "`{}` after the {} in `{}`",
+                w.separator, w.first_noun, w.form
+            ),
+            &hint,
+            None,
+        ))
+    }
+
+    /// `solve_block ::= "solve" ws ident ( ws "," ws ident )* ws "{" block_ws equation ( ws ( ";" | newline ) block_ws equation )* block_ws "}"`
+    #[inline(never)]
+    fn solve_block(&self, i: &'s str) -> PResult<'s, Stmt> {
+        let i = self.ws(i);
+        let start = self.pos(i);
+        let Some(rest) = i.strip_prefix("solve") else {
+            return self.nothing(i);
+        };
+        // the unknowns
+        let mut unknowns = Vec::new();
+        let (mut rest, first) = match self.ident(rest) {
+            Ok(x) => x,
+            Err(nom::Err::Error(_)) => {
+                return self.fail(self.expected(
+                    self.ws(rest),
+                    "the unknowns after `solve`",
+                    "name the unknowns before the equations: `solve x, y { … }`; to define a name `solve`, write `solve = expression`",
+                    None,
+                ))
+            }
+            Err(e) => return Err(e),
+        };
+        unknowns.push(first);
+        loop {
+            let j = self.ws(rest);
+            let Some(k) = j.strip_prefix(',') else {
+                rest = j;
+                break;
+            };
+            match self.ident(k) {
+                Ok((after, name)) => {
+                    unknowns.push(name);
+                    rest = after;
+                }
+                Err(nom::Err::Error(_)) => {
+                    return self.fail(self.expected(
+                        self.ws(k),
+                        "a name after `,`",
+                        "list the unknowns separated by commas: `solve x, y { … }`",
+                        None,
+                    ))
+                }
+                Err(e) => return Err(e),
+            }
+        }
+        // `{`, on this line
+        let Some(body) = rest.strip_prefix('{') else {
+            return Err(self.open_brace_error(rest));
+        };
+        let open = self.pos(rest);
+        let mut equations = Vec::new();
+        let mut k = self.block_ws(body);
+        loop {
+            match k.as_bytes().first() {
+                Some(b'}') if equations.is_empty() => return Err(self.empty_block(open, k)),
+                Some(b'}') => break,
+                None => return Err(unclosed_block(open)),
+                _ => {}
+            }
+            let (rest, eq) = self.equation(k)?;
+            equations.push(eq);
+            let j = self.ws(rest);
+            k = match j.as_bytes().first() {
+                Some(b';' | b'\n') => self.block_ws(&j[1..]),
+                Some(b'}') => j,
+                None => return Err(unclosed_block(open)),
+                Some(b'=') => return Err(self.second_equals(j)),
+                Some(_) => return Err(self.after_equation(j)),
+            };
+        }
+        let after = &k[1..];
+        let span = Span::new(start, self.pos(after));
+        let j = self.ws(after);
+        if !matches!(j.as_bytes().first(), None | Some(b'\n' | b';')) {
+            return Err(self.after_block(j));
+        }
+        Ok((
+            after,
+            Stmt::Solve(SolveBlock {
+                unknowns,
+                equations,
+                span,
+            }),
+        ))
+    }
+
+    /// The error when the `{` of a solve block is missing at `j`.
+    #[cold]
+    #[inline(never)]
+    fn open_brace_error(&self, j: &'s str) -> nom::Err<PErr> {
+        if starts_operand(j) {
+            let (span, shown) = self.token(j);
+            return failure(
+                Diagnostic::error(span, format!("expected `,` before {shown}"))
+                    .with_hint("separate the unknowns with commas: `solve x, y { … }`"),
+            );
+        }
+        failure(self.expected(
+            j,
+            "`{` after the unknowns of `solve`",
+            "the equations follow in braces that open on the `solve` line: `solve x, y { … }`",
+            None,
+        ))
+    }
+
+    /// The error for a solve block without equations (`{` at `open`, `}` at
+    /// `close`).
+    #[cold]
+    #[inline(never)]
+    fn empty_block(&self, open: usize, close: &'s str) -> nom::Err<PErr> {
+        let end = self.pos(close) + 1;
+        // the whole `{ … }` if it is on one line, else the `{`
+        let end = if self.src[open..end].contains('\n') {
+            open + 1
+        } else {
+            end
+        };
+        failure(
+            Diagnostic::error(Span::new(open, end), "empty solve block").with_hint(
+                "write the equations inside the braces, one per line or separated by `;`: `solve x { a*x = b }`",
+            ),
+        )
+    }
+
+    /// The error for the token at `j` after an equation (not `;`, a line
+    /// break, `}` or `=`).
+    #[cold]
+    #[inline(never)]
+    fn after_equation(&self, j: &'s str) -> nom::Err<PErr> {
+        if matches!(j.as_bytes().first(), Some(b')' | b']')) {
+            return failure(self.unexpected(j));
+        }
+        failure(self.expected(
+            j,
+            "`;`, a line break or `}` after the equation",
+            "put each equation on its own line or separate them with `;`",
+            None,
+        ))
+    }
+
+    /// The error for the token at `j` after the `}` of a solve block.
+    #[cold]
+    #[inline(never)]
+    fn after_block(&self, j: &'s str) -> nom::Err<PErr> {
+        if matches!(j.as_bytes().first(), Some(b')' | b']' | b'}')) {
+            return failure(self.unexpected(j));
+        }
+        failure(self.expected(
+            j,
+            "the end of the line after `}`",
+            "a solve block ends its statement: start the next statement on a new line, or after `;`",
+            None,
+        ))
+    }
+
+    /// The error for a second `=` at `j` in one equation.
+    #[cold]
+    #[inline(never)]
+    fn second_equals(&self, j: &'s str) -> nom::Err<PErr> {
+        failure(
+            Diagnostic::error(self.token(j).0, "an equation has exactly one `=`").with_hint(
+                "write each equation on its own line or separate them with `;`: `a = b; b = c`",
+            ),
+        )
+    }
+
+    /// `block_ws ::= ( space | comment | newline | ";" )*`
+    fn block_ws(&self, mut i: &'s str) -> &'s str {
+        loop {
+            i = self.ws_nl(i);
+            match i.strip_prefix(';') {
+                Some(rest) => i = rest,
+                None => return i,
+            }
+        }
+    }
+
+    /// `equation ::= expr ws "=" ws expr`
+    fn equation(&self, i: &'s str) -> PResult<'s, Equation> {
+        let (rest, lhs) = match self.expr(i) {
+            Ok(x) => x,
+            Err(e) => return Err(self.equation_error(e, i)),
+        };
+        let j = self.ws(rest);
+        let Some(k) = j.strip_prefix('=') else {
+            return Err(self.no_equals(j, lhs.outer));
+        };
+        let (rest, (rhs, outer)) = self.rhs(k, "=")?;
+        let span = lhs.outer.to(outer);
+        Ok((
+            rest,
+            Equation {
+                lhs: *lhs.e,
+                rhs,
+                span,
+            },
+        ))
+    }
+
+    /// The error for a missing left side at `i` of an equation.
+    #[cold]
+    #[inline(never)]
+    fn equation_error(&self, e: nom::Err<PErr>, i: &'s str) -> nom::Err<PErr> {
+        if !matches!(e, nom::Err::Error(_)) {
+            return e;
+        }
+        let what = if i.starts_with('=') {
+            "an expression before `=`"
+        } else {
+            "an equation"
+        };
+        failure(self.expected(
+            i,
+            what,
+            "an equation is written `lhs = rhs`, one per line or separated by `;`",
+            None,
+        ))
+    }
+
+    /// The error when no `=` follows (at `j`) the left side `lhs` of an
+    /// equation.
+    #[cold]
+    #[inline(never)]
+    fn no_equals(&self, j: &'s str, lhs: Span) -> nom::Err<PErr> {
+        if matches!(j.as_bytes().first(), None | Some(b'\n' | b';' | b'}')) {
+            let l = excerpt(&self.src[lhs.start..lhs.end]);
+            return failure(
+                Diagnostic::error(lhs, "an equation needs `=`")
+                    .with_hint(format!("write it as `lhs = rhs`, like `{l} = 0`")),
+            );
+        }
+        failure(self.expected(
+            j,
+            "`=` after the left side of the equation",
+            "an equation is written `lhs = rhs`",
+            None,
+        ))
+    }
+
     /// `definition ::= ident ws "=" ws expr`
     fn definition(&self, i: &'s str) -> PResult<'s, Stmt> {
         let (rest, name) = self.ident(i)?;
@@ -1302,7 +1826,9 @@ impl<'s> P<'s> {
     }
 
     /// Reject two operands side by side (`a b`) with a helpful hint; `j` is
-    /// after the white space following the left operand.
+    /// after the white space following the left operand. Where a stop word
+    /// is active (the first expression of `load` or `torque`), the
+    /// expression ends instead: the statement then expects its keyword.
     #[cfg_attr(not(debug_assertions), inline(always))]
     fn side_by_side(
         &self,
@@ -1310,7 +1836,7 @@ impl<'s> P<'s> {
         left: Span,
         left_is_name: bool,
     ) -> Result<(), nom::Err<PErr>> {
-        if !starts_operand(j) {
+        if !starts_operand(j) || self.stopping() {
             return Ok(());
         }
         Err(self.side_by_side_error(j, left, left_is_name))
@@ -1458,7 +1984,7 @@ impl<'s> P<'s> {
         ))
     }
 
-    /// `atom ::= literal | call | name | group`
+    /// `atom ::= literal | call | name | group | vector`
     ///
     /// `i` is after white space (see [`P::postfix`]).
     #[cfg_attr(not(debug_assertions), inline(always))]
@@ -1468,7 +1994,9 @@ impl<'s> P<'s> {
             Some(b'.') if starts_operand(i) => self.literal(i),
             Some(b'(') => self.group(i),
             _ => match ident_len(i) {
-                0 => self.nothing(i),
+                // `[` is tested last (a vector is rare; the hot path of
+                // names stays as short as it was)
+                0 => self.vector(i),
                 len if i[len..].starts_with('(') => self.call(i),
                 len => self.name(i, len),
             },
@@ -1615,6 +2143,92 @@ impl<'s> P<'s> {
             return failure(self.close_expected(at, open, ""));
         }
         failure(self.expected(at, "an expression after `(`", HINT_EXPR, None))
+    }
+
+    /// `vector ::= "[" ws_nl expr ( ws_nl "," ws_nl expr )* ws_nl "]"`
+    ///
+    /// "Nothing here" unless `i` starts with `[`.
+    #[inline(never)]
+    fn vector(&self, i: &'s str) -> PResult<'s, Node> {
+        let Some(mut k) = i.strip_prefix('[') else {
+            return self.nothing(i);
+        };
+        let open = self.pos(i);
+        let _p = self.open_paren();
+        let mut components = Vec::new();
+        let mut d = 0;
+        loop {
+            let (rest, c) = match self.expr(k) {
+                Ok(x) => x,
+                Err(e) => return Err(self.component_error(e, k, open, components.is_empty())),
+            };
+            d = d.max(c.d);
+            components.push(*c.e);
+            let j = self.ws(rest);
+            match j.as_bytes().first() {
+                Some(b',') => k = &j[1..],
+                Some(b']') => {
+                    k = &j[1..];
+                    break;
+                }
+                _ => return Err(self.vector_unclosed(j, open)),
+            }
+        }
+        let span = Span::new(open, self.pos(k));
+        let at = Span::new(open, open + 1);
+        Ok((k, self.node(ExprKind::Vector(components), span, d + 1, at)?))
+    }
+
+    /// The error for a missing component at `k` of the vector opened at
+    /// `open` (`first`: no component yet).
+    #[cold]
+    #[inline(never)]
+    fn component_error(
+        &self,
+        e: nom::Err<PErr>,
+        k: &'s str,
+        open: usize,
+        first: bool,
+    ) -> nom::Err<PErr> {
+        if !matches!(e, nom::Err::Error(_)) {
+            return e;
+        }
+        let at = self.ws(k);
+        if at.is_empty() {
+            return unclosed_bracket(open);
+        }
+        let closes = at.starts_with(']');
+        let d = if first && closes {
+            Diagnostic::error(
+                Span::new(open, self.pos(at) + 1),
+                "a vector needs at least one component",
+            )
+            .with_hint("write its components separated by commas, like `[x, y]`")
+        } else if first {
+            self.expected(at, "an expression after `[`", HINT_EXPR, None)
+        } else if closes {
+            self.expected(at, "a component after `,`", "remove the trailing `,`", None)
+        } else {
+            self.expected(at, "a component after `,`", HINT_EXPR, None)
+        };
+        failure(d)
+    }
+
+    /// The error when neither `,` nor `]` follows (at `j`) a component of
+    /// the vector opened at `open`.
+    #[cold]
+    #[inline(never)]
+    fn vector_unclosed(&self, j: &'s str, open: usize) -> nom::Err<PErr> {
+        if j.is_empty() {
+            return unclosed_bracket(open);
+        }
+        let (line, col) = Diagnostic::line_col(self.src, open);
+        failure(self.expected(
+            j,
+            "`,` or `]` after a component of the vector",
+            &format!("the `[` at line {line}, column {col} is still open"),
+            None,
+        ))
     }
 
     // ----- tokens ------------------------------------------------------------
@@ -1801,22 +2415,30 @@ impl<'s> P<'s> {
     }
 }
 
-/// The innermost `(` that is still open at the end of `src` and starts before
-/// `limit` (comments are skipped).
-fn unclosed_paren_before(src: &str, limit: usize) -> Option<usize> {
-    let mut stack = Vec::new();
+/// The innermost bracket (`(`, `[` or `{`, with its offset) that is still
+/// open at the end of `src` and starts before `limit` (comments are skipped).
+/// `)` and `]` close the last open `(` or `[`; `}` closes the last open `{`.
+fn unclosed_before(src: &str, limit: usize) -> Option<(usize, u8)> {
+    let mut parens = Vec::new();
+    let mut braces = Vec::new();
     let mut in_comment = false;
-    for (p, c) in src.char_indices() {
+    for (p, c) in src.bytes().enumerate() {
         match c {
-            '\n' => in_comment = false,
+            b'\n' => in_comment = false,
             _ if in_comment => {}
-            '#' => in_comment = true,
-            '(' => stack.push(p),
-            ')' => {
-                stack.pop();
+            b'#' => in_comment = true,
+            b'(' | b'[' => parens.push((p, c)),
+            b')' | b']' => {
+                parens.pop();
+            }
+            b'{' => braces.push((p, c)),
+            b'}' => {
+                braces.pop();
             }
             _ => {}
         }
     }
-    stack.into_iter().rev().find(|&p| p < limit)
+    let paren = parens.into_iter().rev().find(|&(p, _)| p < limit);
+    let brace = braces.into_iter().rev().find(|&(p, _)| p < limit);
+    paren.max(brace)
 }

@@ -604,21 +604,12 @@ pub fn first_unknown(e: &Expr) -> Option<String> {
     use crate::expr::atom::{self, Atom};
     fn walk(e: &Expr) -> Option<String> {
         for v in e.vars() {
-            match atom::atom(v) {
-                Atom::Unknown(n) => return Some(n.to_string()),
-                Atom::SqrtOf(u)
-                | Atom::Sin(u)
-                | Atom::Cos(u)
-                | Atom::Exp(u)
-                | Atom::Ln(u)
-                | Atom::Atan(u)
-                | Atom::Asin(u)
-                | Atom::Acos(u) => {
-                    if let Some(n) = walk(&u) {
-                        return Some(n);
-                    }
-                }
-                _ => {}
+            let a = atom::atom(v);
+            if let Atom::Unknown(n) = &a {
+                return Some(n.to_string());
+            }
+            if let Some(n) = a.argument().and_then(walk) {
+                return Some(n);
             }
         }
         None

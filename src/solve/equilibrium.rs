@@ -448,12 +448,15 @@ fn univariate(e: &Expr, q: Var) -> Option<Vec<Root>> {
 }
 
 /// Zero exactly, or (when the canonical form misses an identity between
-/// radicals) zero at random positive parameter values.
+/// radicals) zero at sample positive parameter values: at least one sample
+/// where it is defined, and ≈ 0 at every such sample (a root under asin or
+/// acos is undefined where its argument leaves [−1, 1]).
 fn vanishes(v: &Expr) -> bool {
     if v.is_zero() {
         return true;
     }
-    for seed in [0.7316, 1.3719, 2.0457] {
+    let mut defined = 0;
+    for seed in [0.7316, 1.3719, 2.0457, 0.1234, 3.3301, 5.0107] {
         let f = |a: &Atom| match a {
             Atom::Param(n) | Atom::Unknown(n) => {
                 let h = n.bytes().fold(seed, |h, b| (h * 31.0 + b as f64) % 7.0);
@@ -462,11 +465,16 @@ fn vanishes(v: &Expr) -> bool {
             _ => None,
         };
         match v.eval_f64(&f) {
-            Some(x) if x.abs() < 1e-9 => {}
-            _ => return false,
+            Some(x) if x.is_finite() => {
+                if x.abs() > 1e-9 {
+                    return false;
+                }
+                defined += 1;
+            }
+            _ => {}
         }
     }
-    true
+    defined > 0
 }
 
 /// Roots of a polynomial in q of degree ≤ 2 after taking out q^k.

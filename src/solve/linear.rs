@@ -25,7 +25,8 @@ pub enum SolveError {
     Math(MathError),
 }
 
-fn lcm(a: &Poly, b: &Poly) -> Poly {
+/// lcm of two polynomials (by their gcd).
+pub(crate) fn lcm(a: &Poly, b: &Poly) -> Poly {
     if b.is_one() {
         return a.clone();
     }
@@ -45,25 +46,7 @@ pub fn solve(a: &[Vec<Expr>], b: &[Expr]) -> Result<Vec<Expr>, SolveError> {
     if n == 0 {
         return Ok(Vec::new());
     }
-    // Rows cleared of denominators: [A | b] over polynomials.
-    let mut m: Vec<Vec<Poly>> = Vec::with_capacity(n);
-    for i in 0..n {
-        let row: Vec<&Expr> = a[i].iter().chain(std::iter::once(&b[i])).collect();
-        let mut l = Poly::one();
-        for e in &row {
-            l = lcm(&l, e.den());
-        }
-        let mut out = Vec::with_capacity(n + 1);
-        for e in &row {
-            if e.den().is_one() {
-                out.push(e.num() * &l);
-            } else {
-                let f = l.div_exact(e.den()).unwrap_or_else(|| l.clone());
-                out.push(e.num() * &f);
-            }
-        }
-        m.push(out);
-    }
+    let mut m = cleared_rows(a, b);
     let mut prev = Poly::one();
     for k in 0..n {
         // Pivot: the nonzero (also modulo sin² + cos² = 1) entry with fewest terms.
@@ -109,7 +92,30 @@ pub fn solve(a: &[Vec<Expr>], b: &[Expr]) -> Result<Vec<Expr>, SolveError> {
         .collect()
 }
 
-fn exact(t: &Poly, d: &Poly) -> Result<Poly, SolveError> {
+/// The rows of `[A | b]`, each multiplied by the lcm of its denominators:
+/// polynomials, for fraction-free elimination.
+pub(crate) fn cleared_rows(a: &[Vec<Expr>], b: &[Expr]) -> Vec<Vec<Poly>> {
+    a.iter()
+        .zip(b)
+        .map(|(ai, bi)| {
+            let row: Vec<&Expr> = ai.iter().chain(std::iter::once(bi)).collect();
+            let l = row.iter().fold(Poly::one(), |l, e| lcm(&l, e.den()));
+            row.iter()
+                .map(|e| {
+                    if e.den().is_one() {
+                        e.num() * &l
+                    } else {
+                        let f = l.div_exact(e.den()).unwrap_or_else(|| l.clone());
+                        e.num() * &f
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// t / d, which fraction-free elimination guarantees to be exact.
+pub(crate) fn exact(t: &Poly, d: &Poly) -> Result<Poly, SolveError> {
     if d.is_one() {
         return Ok(t.clone());
     }

@@ -14,9 +14,10 @@
 
 use super::linear::SolveError;
 use crate::diag::Diagnostic;
-use crate::expr::atom::{self, Atom};
+use crate::expr::atom;
 use crate::expr::{Expr, MathError};
 use crate::poly::{Poly, Var};
+
 use crate::scene::{Scene, System};
 use rustc_hash::FxHashMap;
 
@@ -43,29 +44,6 @@ pub struct RectSolution {
     pub residuals: Vec<(usize, Expr)>,
 }
 
-fn lcm(a: &Poly, b: &Poly) -> Poly {
-    if b.is_one() {
-        return a.clone();
-    }
-    if a.is_one() {
-        return b.clone();
-    }
-    let g = a.gcd(b);
-    match b.div_exact(&g) {
-        Some(q) => a * &q,
-        None => a * b,
-    }
-}
-
-fn exact(t: &Poly, d: &Poly) -> Result<Poly, MathError> {
-    if d.is_one() {
-        return Ok(t.clone());
-    }
-    t.div_exact(d).ok_or_else(|| {
-        MathError::new("internal error: a fraction-free elimination step did not divide exactly")
-    })
-}
-
 fn nonzero(p: &Poly) -> bool {
     !p.is_zero() && !crate::expr::reduce_poly(p).is_zero()
 }
@@ -83,27 +61,7 @@ pub fn solve_rect(
 ) -> Result<RectSolution, SolveError> {
     let m = a.len();
     let n = symbols.len();
-    // Rows cleared of denominators: [A | b] over polynomials.
-    let mut rows: Vec<Vec<Poly>> = Vec::with_capacity(m);
-    for i in 0..m {
-        let row: Vec<&Expr> = a[i].iter().chain(std::iter::once(&b[i])).collect();
-        let mut l = Poly::one();
-        for e in &row {
-            l = lcm(&l, e.den());
-        }
-        rows.push(
-            row.iter()
-                .map(|e| {
-                    if e.den().is_one() {
-                        e.num() * &l
-                    } else {
-                        let f = l.div_exact(e.den()).unwrap_or_else(|| l.clone());
-                        e.num() * &f
-                    }
-                })
-                .collect(),
-        );
-    }
+    let mut rows = super::linear::cleared_rows(a, b);
     let mut orig: Vec<usize> = (0..m).collect();
     let mut prev = Poly::one();
     let mut r = 0;
@@ -126,7 +84,7 @@ pub fn solve_rect(
         for i in r + 1..m {
             for j in c + 1..=n {
                 let t = &(&rows[r][c] * &rows[i][j]) - &(&rows[i][c] * &rows[r][j]);
-                rows[i][j] = exact(&t, &prev).map_err(SolveError::Math)?;
+                rows[i][j] = super::linear::exact(&t, &prev)?;
             }
             rows[i][c] = Poly::zero();
         }
@@ -387,17 +345,9 @@ fn check_linear(e: &Expr, xs: &[Var]) -> Result<(), String> {
 
 /// The unknown of `xs` that function atom `v` has in its argument, if any.
 fn inside_function(v: Var, xs: &[Var]) -> Option<Var> {
-    match atom::atom(v) {
-        Atom::SqrtOf(u)
-        | Atom::Sin(u)
-        | Atom::Cos(u)
-        | Atom::Exp(u)
-        | Atom::Ln(u)
-        | Atom::Atan(u)
-        | Atom::Asin(u)
-        | Atom::Acos(u) => xs.iter().copied().find(|&x| u.depends_on(x)),
-        _ => None,
-    }
+    let a = atom::atom(v);
+    let u = a.argument()?;
+    xs.iter().copied().find(|&x| u.depends_on(x))
 }
 
 #[cfg(test)]
