@@ -28,6 +28,13 @@ const TOKENS: &[&str] = &[
     "dissipation",
     "rayleigh",
     "force",
+    "load",
+    "torque",
+    "solve",
+    " at ",
+    " on ",
+    "at",
+    "on",
     "x",
     "y",
     "a",
@@ -69,6 +76,9 @@ const TOKENS: &[&str] = &[
     ";",
     "[",
     "]",
+    "[",
+    "]",
+    ",",
     "{",
     "}",
     "\"",
@@ -83,6 +93,34 @@ fn near_scene() -> impl Strategy<Value = String> {
     (token_soup(), token_soup()).prop_map(|(a, b)| {
         format!("coordinates x, y\nparameters a, b\nkinetic E = 1/2*a*x'^2 + 1/2*b*y'^2 + {a}\npotential V = {b}\n")
     })
+}
+
+/// Small well-formed scalar expressions in the scene's names.
+fn fragment() -> impl Strategy<Value = &'static str> {
+    prop::sample::select(vec![
+        "a", "b", "x", "y", "0", "1", "2", "-a*x", "sin(x)", "x'", "a + b", "b*y'", "cos(y)",
+    ])
+}
+
+/// Well-formed scenes with random loads, torques and solve blocks (and,
+/// now and then, a token soup in one place).
+fn near_scene_with_new_statements() -> impl Strategy<Value = String> {
+    (
+        prop::collection::vec(fragment(), 6),
+        token_soup(),
+        0usize..7,
+        prop::bool::weighted(0.2),
+    )
+        .prop_map(|(f, soup, at, spoil)| {
+            let mut f: Vec<String> = f.into_iter().map(String::from).collect();
+            if spoil {
+                f[at.min(5)] = soup;
+            }
+            format!(
+                "coordinates x, y\nparameters a, b\nkinetic E = 1/2*a*x'^2 + 1/2*b*y'^2\nload [{}, -a] at [x, {}]\ntorque {} on y\nload {} at x\nsolve u {{ a*u = {} }}\npotential V = {}\n",
+                f[0], f[1], f[2], f[3], f[4], f[5]
+            )
+        })
 }
 
 proptest! {
@@ -101,6 +139,11 @@ proptest! {
 
     #[test]
     fn random_scenes_never_panic(src in near_scene()) {
+        pipeline(&src);
+    }
+
+    #[test]
+    fn random_scenes_with_loads_and_blocks_never_panic(src in near_scene_with_new_statements()) {
         pipeline(&src);
     }
 }

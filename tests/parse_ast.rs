@@ -372,3 +372,220 @@ fn parentheses_widen_parent_spans_only() {
     };
     assert_eq!(x.span, Span::new(5, 6));
 }
+
+#[test]
+fn vectors() {
+    assert_eq!(def("[x, y]"), "[x y]");
+    assert_eq!(def("[x]"), "[x]");
+    assert_eq!(def("[1, 0, 0]"), "[1 0 0]");
+    assert_eq!(def("[ a+b , -c*d ]"), "[(+ a b) (* (- c) d)]");
+    assert_eq!(def("[sin(q), atan(y, x)]"), "[(sin q) (atan y x)]");
+    // nested, primed, and inside other expressions
+    assert_eq!(def("[[a, b], [c, d]]"), "[[a b] [c d]]");
+    assert_eq!(def("[x, y]'"), "(' [x y] 1)");
+    assert_eq!(def("[x, y]''"), "(' [x y] 2)");
+    assert_eq!(def("[x', y'']"), "[(' x 1) (' y 2)]");
+    assert_eq!(def("2*[x, y] + [1, 0]"), "(+ (* 2 [x y]) [1 0])");
+    assert_eq!(def("-[x, y]"), "(- [x y])");
+    assert_eq!(def("[x, y]/2"), "(/ [x y] 2)");
+    assert_eq!(def("dot([a, b], [c, d])"), "(dot [a b] [c d])");
+    assert_eq!(def("([a, b])"), "[a b]");
+    // a newline inside brackets is white space, comments included
+    assert_eq!(
+        scene("r = [\n  l*sin(q),   # x\n  -l*cos(q)   # y\n]\nm = 1"),
+        "(def r [(* l (sin q)) (* (- l) (cos q))])\n(def m 1)"
+    );
+    assert_eq!(scene("r = [a\n, b]"), "(def r [a b])");
+    assert_eq!(scene("r = [a,\r\n b]\r\n"), "(def r [a b])");
+    assert_eq!(ex("[a,\n b]"), "[a b]");
+}
+
+#[test]
+fn vector_spans() {
+    let src = "r = [x, 2*y]' + [a]";
+    let stmts = parse_scene(src).unwrap();
+    let text = |s: Span| &src[s.start..s.end];
+    let Stmt::Def { value, span, .. } = &stmts[0] else {
+        panic!()
+    };
+    assert_eq!(text(*span), src);
+    let ExprKind::Bin(_, l, r) = &value.kind else {
+        panic!()
+    };
+    assert_eq!(text(l.span), "[x, 2*y]'");
+    assert_eq!(text(r.span), "[a]");
+    let ExprKind::Prime(v, 1) = &l.kind else {
+        panic!()
+    };
+    assert_eq!(text(v.span), "[x, 2*y]");
+    let ExprKind::Vector(cs) = &v.kind else {
+        panic!()
+    };
+    assert_eq!(text(cs[0].span), "x");
+    assert_eq!(text(cs[1].span), "2*y");
+}
+
+#[test]
+fn loads_and_torques() {
+    assert_eq!(
+        scene("load [0, -m*g] at [x, y]"),
+        "(load [0 (* (- m) g)] [x y])"
+    );
+    // a scalar force at a scalar displacement along it
+    assert_eq!(scene("load -m*g at y"), "(load (* (- m) g) y)");
+    assert_eq!(scene("load F at P"), "(load F P)");
+    assert_eq!(
+        scene("load F1 + F2*cos(t) at [x + r*cos(q), y]'"),
+        "(load (+ F1 (* F2 (cos t))) (' [(+ x (* r (cos q))) y] 1))"
+    );
+    assert_eq!(
+        scene("torque -c*phi' on phi"),
+        "(torque (* (- c) (' phi 1)) phi)"
+    );
+    assert_eq!(
+        scene("torque M0*cos(Omega*t) on theta3"),
+        "(torque (* M0 (cos (* Omega t))) theta3)"
+    );
+    // no space needed around brackets and parentheses
+    assert_eq!(scene("load[0, -g] at[x, y]"), "(load [0 (- g)] [x y])");
+    assert_eq!(scene("load (a) at (b)"), "(load a b)");
+    // the force continues after an operator at the end of a line
+    assert_eq!(scene("load F +\n  G at P"), "(load (+ F G) P)");
+    // several statements, comments
+    assert_eq!(
+        scene("load F at P; torque M on q # moments\nx = 1"),
+        "(load F P)\n(torque M q)\n(def x 1)"
+    );
+}
+
+#[test]
+fn stop_words_end_the_first_expression_only() {
+    // `at`/`on` stay ordinary names everywhere else
+    assert_eq!(
+        scene("at = 1\non = 2\nx = at + on"),
+        "(def at 1)\n(def on 2)\n(def x (+ at on))"
+    );
+    assert_eq!(scene("load F at at"), "(load F at)");
+    assert_eq!(scene("torque M on on"), "(torque M on)");
+    assert_eq!(scene("load on at P"), "(load on P)");
+    assert_eq!(scene("torque at on P"), "(torque at P)");
+    // as an operand, the stop word is a name: it ends the force only where
+    // an operator could follow
+    assert_eq!(scene("load at at P"), "(load at P)");
+    assert_eq!(scene("torque on on q"), "(torque on q)");
+    assert_eq!(scene("load F*at at P"), "(load (* F at) P)");
+    assert_eq!(scene("load -at' at P"), "(load (- (' at 1)) P)");
+    assert_eq!(scene("load F +\n  at at P"), "(load (+ F at) P)");
+    // an implicit product after a number takes it too (no space)
+    assert_eq!(scene("load 2at at P"), "(load (* 2 at) P)");
+    assert_eq!(scene("load 2 at P"), "(load 2 P)");
+    // inside parentheses, brackets and calls it is a name
+    assert_eq!(scene("load (at) at P"), "(load at P)");
+    assert_eq!(scene("load [at, 0] at P"), "(load [at 0] P)");
+    assert_eq!(scene("load f(at) at P"), "(load (f at) P)");
+    assert_eq!(scene("load (F*at)' at P"), "(load (' (* F at) 1) P)");
+    // directly before `(` it is a call; longer names are names
+    assert_eq!(scene("load at(x) at P"), "(load (at x) P)");
+    assert_eq!(scene("load atx + at_2 at P"), "(load (+ atx at_2) P)");
+    assert_eq!(scene("load F at (P)"), "(load F P)");
+    // after the statement, `at` is a name again
+    assert_eq!(
+        scene("load F at P\nx = a*at"),
+        "(load F P)\n(def x (* a at))"
+    );
+}
+
+#[test]
+fn load_torque_and_solve_are_not_reserved() {
+    assert_eq!(
+        scene("load = 3\ntorque = 2\nsolve = 1\nx = load*torque + solve"),
+        "(def load 3)\n(def torque 2)\n(def solve 1)\n(def x (+ (* load torque) solve))"
+    );
+    assert_eq!(
+        scene("parameters load, torque, solve\nkinetic load = solve"),
+        "(parameters load torque solve)\n(kinetic load solve)"
+    );
+    assert_eq!(scene("load load at torque"), "(load load torque)");
+    assert_eq!(scene("torque solve on load"), "(torque solve load)");
+    assert_eq!(
+        scene("solve load { load = solve }"),
+        "(solve (load) (= load solve))"
+    );
+}
+
+#[test]
+fn solve_blocks() {
+    assert_eq!(
+        scene("solve a3, T1 { m*a3 = T1 - m*g; J*a3/r = -T1*r }"),
+        "(solve (a3 T1) (= (* m a3) (- T1 (* m g))) (= (/ (* J a3) r) (* (- T1) r)))"
+    );
+    assert_eq!(scene("solve x { x = 1 }"), "(solve (x) (= x 1))");
+    assert_eq!(scene("solve x {x=1}"), "(solve (x) (= x 1))");
+    assert_eq!(scene("solve x{x=1}"), "(solve (x) (= x 1))");
+    // one equation per line; `}` on its own line or after the last equation
+    let multi = "solve a, b {\n  a + b = 1\n  a - b = 0\n}\nx = a";
+    assert_eq!(
+        scene(multi),
+        "(solve (a b) (= (+ a b) 1) (= (- a b) 0))\n(def x a)"
+    );
+    assert_eq!(
+        scene("solve a, b {\n  a + b = 1\n  a - b = 0 }\nx = a"),
+        "(solve (a b) (= (+ a b) 1) (= (- a b) 0))\n(def x a)"
+    );
+    // blank lines, comments, extra `;`, CRLF
+    let messy = "solve a, b {   # the unknowns\r\n\r\n  # first\r\n  a = 1;;\r\n  ; b = 2 ; # second\r\n\r\n}   # done\r\ny = 1";
+    assert_eq!(scene(messy), "(solve (a b) (= a 1) (= b 2))\n(def y 1)");
+    // a newline inside an equation: after an operator, in parentheses or brackets
+    assert_eq!(
+        scene("solve x {\n  x = a +\n      b\n  [x, y] = [\n    1, 2]\n  (x\n  ) = 3\n}"),
+        "(solve (x) (= x (+ a b)) (= [x y] [1 2]) (= x 3))"
+    );
+    // vectors, primes and calls in equations
+    assert_eq!(
+        scene("solve F { m*[x, y]'' = F + [0, -m*g] }"),
+        "(solve (F) (= (* m (' [x y] 2)) (+ F [0 (* (- m) g)])))"
+    );
+    // statements on the same line before and after `;`
+    assert_eq!(
+        scene("a = 1; solve x { x = a }; b = 2"),
+        "(def a 1)\n(solve (x) (= x a))\n(def b 2)"
+    );
+}
+
+#[test]
+fn spans_of_new_statements() {
+    let src =
+        "load [0, -g] at [x, y] # c\ntorque -c*q' on q\nsolve a, b {\n  a = 1  # one\n  b = (a)\n}";
+    let stmts = parse_scene(src).unwrap();
+    let text = |s: Span| &src[s.start..s.end];
+    let Stmt::Load { force, point, span } = &stmts[0] else {
+        panic!()
+    };
+    assert_eq!(text(*span), "load [0, -g] at [x, y]");
+    assert_eq!(text(force.span), "[0, -g]");
+    assert_eq!(text(point.span), "[x, y]");
+    let Stmt::Torque {
+        moment,
+        angle,
+        span,
+    } = &stmts[1]
+    else {
+        panic!()
+    };
+    assert_eq!(text(*span), "torque -c*q' on q");
+    assert_eq!(text(moment.span), "-c*q'");
+    assert_eq!(text(angle.span), "q");
+    let Stmt::Solve(b) = &stmts[2] else { panic!() };
+    assert_eq!(text(b.span), "solve a, b {\n  a = 1  # one\n  b = (a)\n}");
+    assert_eq!(stmts[2].span(), b.span);
+    assert_eq!(text(b.unknowns[0].span), "a");
+    assert_eq!(text(b.unknowns[1].span), "b");
+    assert_eq!(text(b.equations[0].span), "a = 1");
+    // the equation's span includes the parentheses of its right side
+    assert_eq!(text(b.equations[1].span), "b = (a)");
+    assert_eq!(text(b.equations[1].lhs.span), "b");
+    assert_eq!(text(b.equations[1].rhs.span), "a");
+    // a load ends with the parentheses of its point
+    let src = "load (F) at (P)";
+    assert_eq!(parse_scene(src).unwrap()[0].span(), Span::new(0, src.len()));
+}

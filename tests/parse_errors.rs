@@ -79,7 +79,7 @@ fn unknown_characters() {
         "unknown character `\\u{1}`",
         "not part",
     );
-    check("x = [a]", 1, 5, 1, "unknown character `[`", "`(` and `)`");
+    check("x = a ¦ b", 1, 7, 1, "unknown character `¦`", "not part");
     check("θ = ε $", 1, 7, 1, "unknown character `$`", "not part");
 }
 
@@ -822,4 +822,637 @@ fn rendered_error() {
     );
     let at = locate(src, &d);
     assert_eq!((at.line, at.col), (2, 7));
+}
+
+#[test]
+fn vectors() {
+    check(
+        "x = []",
+        1,
+        5,
+        2,
+        "a vector needs at least one component",
+        "like `[x, y]`",
+    );
+    check(
+        "x = [ # nothing\n ]",
+        1,
+        5,
+        14,
+        "a vector needs at least one component",
+        "like `[x, y]`",
+    );
+    check(
+        "x = [a,]",
+        1,
+        8,
+        1,
+        "expected a component after `,`, found `]`",
+        "remove the trailing `,`",
+    );
+    check(
+        "x = [a,\n]",
+        2,
+        1,
+        1,
+        "expected a component after `,`, found `]`",
+        "remove the trailing `,`",
+    );
+    check(
+        "x = [a,,b]",
+        1,
+        8,
+        1,
+        "expected a component after `,`, found `,`",
+        "a number",
+    );
+    check(
+        "x = [,a]",
+        1,
+        6,
+        1,
+        "expected an expression after `[`, found `,`",
+        "a number",
+    );
+    check("x = [a", 1, 5, 1, "unclosed `[`", "add the matching `]`");
+    check("x = [a,", 1, 5, 1, "unclosed `[`", "add the matching `]`");
+    check(
+        "x = [a,\n  b\ny = 3",
+        1,
+        5,
+        1,
+        "unclosed `[`",
+        "inside brackets a line break does not end the statement",
+    );
+    check(
+        "x = [a; b]",
+        1,
+        7,
+        1,
+        "expected `,` or `]` after a component of the vector, found `;`",
+        "the `[` at line 1, column 5 is still open",
+    );
+    check(
+        "x = [a)",
+        1,
+        7,
+        1,
+        "expected `,` or `]` after a component of the vector, found `)`",
+        "column 5 is still open",
+    );
+    check(
+        "x = (a]",
+        1,
+        7,
+        1,
+        "expected `)`, found `]`",
+        "the `(` at line 1, column 5 is still open",
+    );
+    check("x = a]", 1, 6, 1, "unmatched `]`", "add the matching `[`");
+    check("x = [a]]", 1, 8, 1, "unmatched `]`", "add the matching `[`");
+    check(
+        "x = [a b]",
+        1,
+        8,
+        1,
+        "two expressions side by side",
+        "did you mean `a*b`?",
+    );
+    check(
+        "x = f[1]",
+        1,
+        6,
+        3,
+        "two expressions side by side",
+        "did you mean `f*[1]`?",
+    );
+    check(
+        "x = 2[a]",
+        1,
+        6,
+        3,
+        "two expressions side by side",
+        "did you mean `2*[a]`?",
+    );
+    check(
+        "[a] = 3",
+        1,
+        1,
+        1,
+        "a statement must start with a name or a keyword, found `[`",
+        "`NAME = expression`",
+    );
+    check(
+        "x = [a, b\n  c]",
+        2,
+        3,
+        1,
+        "two expressions side by side",
+        "is a `)` missing",
+    );
+    check_expr("[a", 1, 1, 1, "unclosed `[`", "matching `]`");
+    check_expr(
+        "[]",
+        1,
+        1,
+        2,
+        "a vector needs at least one component",
+        "`[x, y]`",
+    );
+}
+
+#[test]
+fn braces_outside_solve_blocks() {
+    check(
+        "x = {a}",
+        1,
+        5,
+        1,
+        "expected an expression after `=`, found `{`",
+        "a number",
+    );
+    check("x = 1 {", 1, 7, 1, "unexpected `{`", "`solve x, y { … }`");
+    check("{ x = 1 }", 1, 1, 1, "unexpected `{`", "solve block");
+    check("x = 1 }", 1, 7, 1, "unmatched `}`", "open a solve block");
+    check("x = 1\n}", 2, 1, 1, "unmatched `}`", "open a solve block");
+    check_expr("a }", 1, 3, 1, "unmatched `}`", "solve block");
+}
+
+#[test]
+fn loads_and_torques() {
+    check(
+        "load at P",
+        1,
+        6,
+        2,
+        "expected a force after `load`, found `at`",
+        "the force is missing before `at` (for a name `at`, write `(at)`)",
+    );
+    check(
+        "load at",
+        1,
+        6,
+        2,
+        "expected a force after `load`, found `at`",
+        "the force is missing before `at`",
+    );
+    check(
+        "load 2at P",
+        1,
+        10,
+        1,
+        "expected `at` after the force in `load F at P`, found `P`",
+        "`2at` is an implicit product, write a space before `at`",
+    );
+    check(
+        "load F + 1.5at P",
+        1,
+        16,
+        1,
+        "expected `at` after the force in `load F at P`, found `P`",
+        "`1.5at` is an implicit product",
+    );
+    check(
+        "load",
+        1,
+        1,
+        4,
+        "expected a force after `load`, but the file ends",
+        "to define a name `load`, write `load = expression`",
+    );
+    check(
+        "load\nx = 1",
+        1,
+        5,
+        0,
+        "expected a force after `load`, but the line ends",
+        "`load [0, -m*g] at [x, y]`",
+    );
+    check(
+        "load; x = 1",
+        1,
+        5,
+        1,
+        "expected a force after `load`, found `;`",
+        "`load F at P`",
+    );
+    check(
+        "load F P",
+        1,
+        8,
+        1,
+        "expected `at` after the force in `load F at P`, found `P`",
+        "the force F, then `at` and the point P it acts on",
+    );
+    check(
+        "load F",
+        1,
+        7,
+        0,
+        "expected `at` after the force in `load F at P`, but the file ends",
+        "then `at`",
+    );
+    check(
+        "load F\n  at P",
+        1,
+        7,
+        0,
+        "expected `at` after the force in `load F at P`, but the line ends",
+        "then `at`",
+    );
+    check(
+        "load [0, -g] [x, y]",
+        1,
+        14,
+        1,
+        "expected `at` after the force in `load F at P`, found `[`",
+        "then `at`",
+    );
+    check(
+        "load(x) = 3",
+        1,
+        9,
+        1,
+        "expected `at` after the force in `load F at P`, found `=`",
+        "to define a name `load`, write `load = expression`",
+    );
+    check(
+        "load F at(P)",
+        1,
+        8,
+        2,
+        "expected `at` after the force in `load F at P`, found `at`",
+        "directly before `(`, `at` is a call: write a space, `at (…)`",
+    );
+    check(
+        "load F at",
+        1,
+        8,
+        2,
+        "expected a point after `at`, but the file ends",
+        "`load [0, -m*g] at [x, y]`",
+    );
+    check(
+        "load F at # where?\nx = 1",
+        1,
+        19,
+        0,
+        "expected a point after `at`, but the line ends",
+        "`load F at P`",
+    );
+    check(
+        "load F at = 3",
+        1,
+        11,
+        1,
+        "expected a point after `at`, found `=`",
+        "`load F at P`",
+    );
+    check(
+        "load F at P at Q",
+        1,
+        13,
+        2,
+        "two expressions side by side",
+        "`P*at`",
+    );
+    // inside brackets `at` is a name
+    check(
+        "load [F at P]",
+        1,
+        9,
+        2,
+        "two expressions side by side",
+        "`F*at`",
+    );
+    check(
+        "torque on q",
+        1,
+        8,
+        2,
+        "expected a moment after `torque`, found `on`",
+        "the moment is missing before `on`",
+    );
+    check(
+        "torque",
+        1,
+        1,
+        6,
+        "expected a moment after `torque`, but the file ends",
+        "to define a name `torque`, write `torque = expression`",
+    );
+    check(
+        "torque M at q",
+        1,
+        10,
+        2,
+        "expected `on` after the moment in `torque M on phi`, found `at`",
+        "the moment M, then `on` and the angle phi it turns",
+    );
+    check(
+        "torque M",
+        1,
+        9,
+        0,
+        "expected `on` after the moment in `torque M on phi`, but the file ends",
+        "then `on`",
+    );
+    check(
+        "torque M on",
+        1,
+        10,
+        2,
+        "expected an angle after `on`, but the file ends",
+        "`torque -c*phi' on phi`",
+    );
+}
+
+#[test]
+fn solve_blocks() {
+    check(
+        "solve x { }",
+        1,
+        9,
+        3,
+        "empty solve block",
+        "write the equations inside the braces",
+    );
+    check(
+        "solve x {}",
+        1,
+        9,
+        2,
+        "empty solve block",
+        "`solve x { a*x = b }`",
+    );
+    check(
+        "solve x { ;; }",
+        1,
+        9,
+        6,
+        "empty solve block",
+        "separated by `;`",
+    );
+    check(
+        "solve x {\n  # nothing yet\n}",
+        1,
+        9,
+        1,
+        "empty solve block",
+        "one per line",
+    );
+    check(
+        "solve x {\n  a = b",
+        1,
+        9,
+        1,
+        "unclosed `{`",
+        "add the matching `}` after the last equation",
+    );
+    check("solve x { a = b", 1, 9, 1, "unclosed `{`", "matching `}`");
+    check("solve x {", 1, 9, 1, "unclosed `{`", "matching `}`");
+    check("solve x {\n\n", 1, 9, 1, "unclosed `{`", "matching `}`");
+    // the open block swallowed the following statements
+    check(
+        "solve x {\n  a = b\nkinetic T = 3",
+        1,
+        9,
+        1,
+        "unclosed `{`",
+        "matching `}`",
+    );
+    check(
+        "m = 1\nsolve x {\n  x = 1\nsolve y {\n  y = 2\n}",
+        2,
+        9,
+        1,
+        "unclosed `{`",
+        "matching `}`",
+    );
+    // an unclosed `(` inside a closed block is the `(`
+    check(
+        "solve x {\n  a = (b\n}",
+        2,
+        7,
+        1,
+        "unclosed `(`",
+        "matching `)`",
+    );
+    check(
+        "solve x { a + b }",
+        1,
+        11,
+        5,
+        "an equation needs `=`",
+        "write it as `lhs = rhs`, like `a + b = 0`",
+    );
+    check(
+        "solve x {\n  m*x'' + k*x\n}",
+        2,
+        3,
+        11,
+        "an equation needs `=`",
+        "like `m*x'' + k*x = 0`",
+    );
+    check(
+        "solve x { a = 1; b }",
+        1,
+        18,
+        1,
+        "an equation needs `=`",
+        "like `b = 0`",
+    );
+    check(
+        "solve x { a = b = c }",
+        1,
+        17,
+        1,
+        "an equation has exactly one `=`",
+        "separate them with `;`",
+    );
+    check(
+        "solve x { a : b }",
+        1,
+        13,
+        1,
+        "expected `=` after the left side of the equation, found `:`",
+        "`lhs = rhs`",
+    );
+    check(
+        "solve x { = 3 }",
+        1,
+        11,
+        1,
+        "expected an expression before `=`, found `=`",
+        "`lhs = rhs`",
+    );
+    check(
+        "solve x { * 3 = 1 }",
+        1,
+        11,
+        1,
+        "expected an equation, found `*`",
+        "`lhs = rhs`",
+    );
+    check(
+        "solve x { a = }",
+        1,
+        15,
+        1,
+        "expected an expression after `=`, found `}`",
+        "a number",
+    );
+    check(
+        "solve x { a = 1, b = 2 }",
+        1,
+        16,
+        1,
+        "expected `;`, a line break or `}` after the equation, found `,`",
+        "separate them with `;`",
+    );
+    check(
+        "solve x { a = 1) }",
+        1,
+        16,
+        1,
+        "unmatched `)`",
+        "matching `(`",
+    );
+    check(
+        "solve x {\n  a = b +\n}",
+        3,
+        1,
+        1,
+        "expected an expression after `+`, found `}`",
+        "line 2 ends with `+`",
+    );
+    check(
+        "solve { x = 1 }",
+        1,
+        7,
+        1,
+        "expected the unknowns after `solve`, found `{`",
+        "`solve x, y { … }`",
+    );
+    check(
+        "solve",
+        1,
+        6,
+        0,
+        "expected the unknowns after `solve`, but the file ends",
+        "to define a name `solve`, write `solve = expression`",
+    );
+    check(
+        "solve 3 { x = 1 }",
+        1,
+        7,
+        1,
+        "expected the unknowns after `solve`, found `3`",
+        "name the unknowns",
+    );
+    check(
+        "solve x",
+        1,
+        8,
+        0,
+        "expected `{` after the unknowns of `solve`, but the file ends",
+        "braces that open on the `solve` line",
+    );
+    check(
+        "solve x\n{ x = 1 }",
+        1,
+        8,
+        0,
+        "expected `{` after the unknowns of `solve`, but the line ends",
+        "braces that open on the `solve` line",
+    );
+    check(
+        "solve x = 3",
+        1,
+        9,
+        1,
+        "expected `{` after the unknowns of `solve`, found `=`",
+        "`solve x, y { … }`",
+    );
+    check(
+        "solve x y { x = 1 }",
+        1,
+        9,
+        1,
+        "expected `,` before `y`",
+        "separate the unknowns with commas",
+    );
+    check(
+        "solve x, { x = 1 }",
+        1,
+        10,
+        1,
+        "expected a name after `,`, found `{`",
+        "list the unknowns separated by commas",
+    );
+    check(
+        "solve x { x = 1 } y = 2",
+        1,
+        19,
+        1,
+        "expected the end of the line after `}`, found `y`",
+        "start the next statement on a new line",
+    );
+    check(
+        "solve x { x = 1 }}",
+        1,
+        18,
+        1,
+        "unmatched `}`",
+        "open a solve block",
+    );
+    check(
+        "solve x { x = 1 }\n}",
+        2,
+        1,
+        1,
+        "unmatched `}`",
+        "open a solve block",
+    );
+}
+
+#[test]
+fn nesting_limits_of_vectors() {
+    let n = MAX_NESTING as usize;
+    let ok = format!("x = {}1{}", "[".repeat(n - 1), "]".repeat(n - 1));
+    assert!(parse_scene(&ok).is_ok());
+    let deep = format!("x = {}1{}", "[".repeat(n), "]".repeat(n));
+    check(
+        &deep,
+        1,
+        5 + n,
+        1,
+        "expression nested too deeply (more than 200 levels)",
+        "split it",
+    );
+    let huge = format!("x = {}1{}", "[".repeat(100_000), "]".repeat(100_000));
+    check(
+        &huge,
+        1,
+        5 + n,
+        1,
+        "expression nested too deeply (more than 200 levels)",
+        "split it",
+    );
+    let mixed = format!("x = {}1{}", "[(".repeat(50_000), ")]".repeat(50_000));
+    assert_eq!(
+        scene_err(&mixed).message,
+        "expression nested too deeply (more than 200 levels)"
+    );
+    let unclosed = "[".repeat(100_000);
+    assert!(parse_expr(&unclosed).is_err());
+    assert!(parse_scene(&format!("x = {unclosed}")).is_err());
+    assert!(parse_scene(&format!("load {unclosed}")).is_err());
+    assert!(parse_scene(&format!("solve x {{ {unclosed}")).is_err());
+    // long vectors are flat: many components are one level
+    let long = format!("x = [{}]", vec!["a"; 10_000].join(", "));
+    assert!(parse_scene(&long).is_ok());
+    // many equations are fine too
+    let eqs = format!("solve x {{\n{}}}", "x = 1\n".repeat(10_000));
+    assert!(parse_scene(&eqs).is_ok());
 }

@@ -8,7 +8,7 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use proptest::prelude::*;
 use qdot::diag::Diagnostic;
-use qdot::parse::ast::{BinOp, Expr, ExprKind, Ident, Span, Stmt};
+use qdot::parse::ast::{BinOp, Equation, Expr, ExprKind, Ident, SolveBlock, Span, Stmt};
 use qdot::parse::{parse_expr, parse_scene};
 
 /// An error must point inside the source, on character boundaries, and
@@ -55,6 +55,16 @@ fn check_expr_spans(src: &str, e: &Expr) -> Result<(), TestCaseError> {
             prop_assert_eq!(&src[e.span.start..e.span.end], n.as_str());
             Ok(())
         }
+        ExprKind::Vector(cs) => {
+            prop_assert!(!cs.is_empty());
+            prop_assert!(src[e.span.start..].starts_with('['));
+            prop_assert!(src[..e.span.end].ends_with(']'));
+            for c in cs {
+                prop_assert!(e.span.start < c.span.start && c.span.end < e.span.end);
+                check_expr_spans(src, c)?;
+            }
+            Ok(())
+        }
         _ => Ok(()),
     }
 }
@@ -70,6 +80,40 @@ fn check_scene(src: &str) -> Result<Option<Vec<Stmt>>, TestCaseError> {
                     | Stmt::Force { value, .. } => check_expr_spans(src, value)?,
                     Stmt::Coordinates(ds, _) | Stmt::Parameters(ds, _) => {
                         prop_assert!(!ds.is_empty());
+                    }
+                    Stmt::Load {
+                        force: a,
+                        point: b,
+                        span,
+                    }
+                    | Stmt::Torque {
+                        moment: a,
+                        angle: b,
+                        span,
+                    } => {
+                        prop_assert!(span.start < a.span.start && a.span.end < b.span.start);
+                        prop_assert!(b.span.end <= span.end);
+                        check_expr_spans(src, a)?;
+                        check_expr_spans(src, b)?;
+                    }
+                    Stmt::Solve(b) => {
+                        prop_assert!(!b.unknowns.is_empty() && !b.equations.is_empty());
+                        prop_assert!(src[b.span.start..].starts_with("solve"));
+                        let closes = src[..b.span.end].ends_with('}');
+                        prop_assert!(closes, "{:?}", b.span);
+                        for u in &b.unknowns {
+                            check_span(src, u.span)?;
+                            prop_assert_eq!(&src[u.span.start..u.span.end], u.name.as_str());
+                        }
+                        for eq in &b.equations {
+                            check_span(src, eq.span)?;
+                            prop_assert!(b.span.start < eq.span.start && eq.span.end < b.span.end);
+                            prop_assert!(eq.span.start <= eq.lhs.span.start);
+                            prop_assert!(eq.lhs.span.end < eq.rhs.span.start);
+                            prop_assert!(eq.rhs.span.end <= eq.span.end);
+                            check_expr_spans(src, &eq.lhs)?;
+                            check_expr_spans(src, &eq.rhs)?;
+                        }
                     }
                 }
             }
@@ -110,7 +154,7 @@ proptest! {
 
     #[test]
     fn strings_of_language_characters_never_panic(
-        src in "[a-zθε_0-9 +*/^'()=,:;.#°$\n\r\t-]{0,80}"
+        src in "[a-zθε_0-9 +*/^'()\\[\\]{}=,:;.#°$\n\r\t-]{0,80}"
     ) {
         check_scene(&src)?;
         check_one_expr(&src)?;
@@ -143,6 +187,13 @@ fn token() -> impl Strategy<Value = &'static str> {
         "force",
         "coordinates",
         "parameters",
+        "load",
+        "torque",
+        "solve",
+        "at",
+        "on",
+        "at",
+        "on",
         // numbers, good and bad
         "3",
         "0",
@@ -176,6 +227,13 @@ fn token() -> impl Strategy<Value = &'static str> {
         ",",
         ":",
         ";",
+        "[",
+        "]",
+        "[",
+        "]",
+        ",",
+        "{",
+        "}",
         // layout
         "\n",
         "\n",
@@ -214,6 +272,12 @@ fn statement_source() -> impl Strategy<Value = String> {
         "force x: ",
         "y1=",
         "work = ",
+        "load ",
+        "load [",
+        "torque ",
+        "solve x { ",
+        "solve x, y {\n",
+        "at = ",
     ]);
     prop::collection::vec((head, prop::collection::vec(token(), 1..12)), 1..5).prop_map(|lines| {
         lines
@@ -282,6 +346,11 @@ fn name() -> impl Strategy<Value = String> {
             "force",
             "coordinates",
             "degrees",
+            "load",
+            "torque",
+            "solve",
+            "at",
+            "on",
         ])
         .prop_map(str::to_string),
         "[a-zA-Zα-ω_][a-zA-Z0-9_]{0,5}",
@@ -325,7 +394,8 @@ fn tree() -> impl Strategy<Value = Expr> {
                     args
                 )
             )),
-            (inner, 1u32..4).prop_map(|(e, n)| at(ExprKind::Prime(Box::new(e), n))),
+            (inner.clone(), 1u32..4).prop_map(|(e, n)| at(ExprKind::Prime(Box::new(e), n))),
+            prop::collection::vec(inner, 1..4).prop_map(|cs| at(ExprKind::Vector(cs))),
         ]
     })
 }
@@ -348,5 +418,76 @@ proptest! {
             [Stmt::Role { value, .. }] => prop_assert_eq!(strip(value), strip(&e)),
             other => prop_assert!(false, "unexpected {:?}", other),
         }
+    }
+}
+
+fn ident(n: String) -> Ident {
+    Ident {
+        name: n,
+        span: Span::default(),
+    }
+}
+
+/// Random `load`, `torque` and `solve` statements (spans zeroed).
+fn new_statement() -> impl Strategy<Value = Stmt> {
+    let s = Span::default();
+    prop_oneof![
+        (tree(), tree()).prop_map(move |(force, point)| Stmt::Load {
+            force,
+            point,
+            span: s
+        }),
+        (tree(), tree()).prop_map(move |(moment, angle)| Stmt::Torque {
+            moment,
+            angle,
+            span: s
+        }),
+        (
+            prop::collection::vec(name(), 1..4),
+            prop::collection::vec((tree(), tree()), 1..4)
+        )
+            .prop_map(move |(us, eqs)| Stmt::Solve(SolveBlock {
+                unknowns: us.into_iter().map(ident).collect(),
+                equations: eqs
+                    .into_iter()
+                    .map(|(lhs, rhs)| Equation { lhs, rhs, span: s })
+                    .collect(),
+                span: s,
+            })),
+    ]
+}
+
+/// The layouts a printed solve block may take: one line with `;`, one
+/// equation per line with the `}` on its own line, or with blank lines and
+/// comments.
+fn layout(printed: &str, style: u8) -> String {
+    let Some((head, rest)) = printed.split_once(" { ") else {
+        return printed.to_string();
+    };
+    let body = rest.strip_suffix(" }").expect("printed block ends in ` }`");
+    match style {
+        0 => printed.to_string(),
+        1 => format!("{head} {{\n  {}\n}}", body.replace("; ", "\n  ")),
+        _ => format!(
+            "{head} {{ # the equations\n\n  {} ;\n\n  # end\n  }}",
+            body.replace("; ", " # note\n\n  ")
+        ),
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+    #[test]
+    fn printed_statements_parse_back(st in new_statement(), style in 0u8..3) {
+        let src = layout(&print_stmt(&st), style);
+        let scene = format!("x = 1\n{src}\ny = 2");
+        let stmts = parse_scene(&scene)
+            .map_err(|d| TestCaseError::fail(format!("{scene:?}: {d}")))?;
+        prop_assert_eq!(stmts.len(), 3, "{:?}", scene);
+        prop_assert_eq!(stmt_sexpr(&stmts[1]), stmt_sexpr(&st), "printed as {:?}", src);
+        check_scene(&scene)?;
+        let span = stmts[1].span();
+        prop_assert_eq!(&scene[span.start..span.end], src.as_str());
     }
 }

@@ -363,8 +363,11 @@ fn fraction(num: &Poly, den: &Poly, st: Style) -> String {
     if !md.0.is_empty() {
         bottom.push(mono_str(&md, st));
     }
+    // a lone parenthesized sum needs no second pair of parentheses
+    let mut grouped = false;
     if !pd.is_one() {
         let s = sum_str(&pd, st);
+        grouped = pd.len() > 1 && bottom.is_empty();
         bottom.push(if pd.len() > 1 { format!("({s})") } else { s });
     }
     let t = if top.is_empty() {
@@ -375,7 +378,7 @@ fn fraction(num: &Poly, den: &Poly, st: Style) -> String {
     let s = if bottom.is_empty() {
         t
     } else {
-        let b = if bottom.len() == 1 && !bottom[0].contains(mul) {
+        let b = if bottom.len() == 1 && (grouped || !bottom[0].contains(mul)) {
             bottom.remove(0)
         } else {
             format!("({})", bottom.join(mul))

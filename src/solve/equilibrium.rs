@@ -154,6 +154,7 @@ pub fn equilibria(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic>
         .map(|f| q.iter().map(|&v| f.diff(v).neg()).collect())
         .collect();
     let gyroscopic = has_gyroscopic_terms(scene, &names);
+    let periodic = periodic_coordinates(&conditions, &q);
 
     let mut found = Vec::new();
     let exact = match solve_exact(&conditions, &q) {
@@ -164,6 +165,15 @@ pub fn equilibria(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic>
                 let approx = numeric_values(&vals, set);
                 if all_set && approx.is_none() {
                     continue; // does not exist for these parameter values (|x| > 1)
+                }
+                // two closed forms can coincide at the given values (a double root)
+                if let Some(a) = &approx {
+                    let same = found.iter().any(|e: &Equilibrium| {
+                        e.approx.as_ref().is_some_and(|b| close(a, b, &periodic))
+                    });
+                    if same {
+                        continue;
+                    }
                 }
                 let stability = if free.is_empty() {
                     classify_exact(&conditions, &jac, &q, &vals, set, gyroscopic)
@@ -722,9 +732,30 @@ fn definite(p: &Poly) -> Option<i32> {
 }
 
 /// The sign, exactly or at the given parameter values.
+///
+/// With parameter values, the numeric sign comes first: an exact sign is a
+/// claim for all positive parameters, and a radical in it (a discriminant)
+/// can vanish at particular values, where two equilibria merge.
 fn sign_of(e: &Expr, set: &Values) -> Option<i32> {
-    if let Some(s) = sign_exact(e) {
+    if let Some(s) = sign_numeric(e, set) {
         return Some(s);
+    }
+    sign_exact(e)
+}
+
+/// The sign at the given parameter values, if they determine it.
+fn sign_numeric(e: &Expr, set: &Values) -> Option<i32> {
+    if let Some(q) = e.as_rational() {
+        return Some(if q.is_zero() {
+            0
+        } else if q.is_negative() {
+            -1
+        } else {
+            1
+        });
+    }
+    if set.is_empty() {
+        return None;
     }
     let at = |a: &Atom| match a {
         Atom::Param(n) => set.get(&**n).copied(),
@@ -751,6 +782,35 @@ fn sign_of(e: &Expr, set: &Values) -> Option<i32> {
         return Some(0);
     }
     Some(if (v > 0.0) == (den > 0.0) { 1 } else { -1 })
+}
+
+/// Which coordinates are angles: they appear in sin/cos and never bare.
+fn periodic_coordinates(conditions: &[Expr], q: &[Var]) -> Vec<bool> {
+    q.iter()
+        .map(|&v| {
+            let (s, c) = atom::intern_trig(&Expr::var(v));
+            conditions
+                .iter()
+                .any(|e| e.num().contains_var(s) || e.num().contains_var(c))
+                && !conditions.iter().any(|e| e.num().contains_var(v))
+        })
+        .collect()
+}
+
+/// Whether two positions are the same point (angles modulo 2π).
+fn close(a: &[f64], b: &[f64], periodic: &[bool]) -> bool {
+    close_within(a, b, periodic, 1e-9)
+}
+
+fn close_within(a: &[f64], b: &[f64], periodic: &[bool], tol: f64) -> bool {
+    a.iter().zip(b).zip(periodic).all(|((x, y), &p)| {
+        let mut d = (x - y).abs();
+        if p {
+            d = d.rem_euclid(2.0 * std::f64::consts::PI);
+            d = d.min(2.0 * std::f64::consts::PI - d);
+        }
+        d <= tol * (1.0 + x.abs().max(y.abs()))
+    })
 }
 
 /// The numeric values of exact positions at `set`, if every parameter is given.
@@ -930,33 +990,51 @@ fn solve_numeric(
             .map(|row| row.iter().map(|e| eval(e, x).map(|v| -v)).collect())
             .collect()
     };
-    let periodic: Vec<bool> = q
-        .iter()
-        .map(|&v| {
-            let (s, c) = atom::intern_trig(&Expr::var(v));
-            conditions
-                .iter()
-                .any(|e| e.num().contains_var(s) || e.num().contains_var(c))
-                && !conditions.iter().any(|e| e.num().contains_var(v))
-        })
-        .collect();
+    let periodic = periodic_coordinates(conditions, q);
     let opts = RootOptions {
         periodic,
         ..RootOptions::default()
     };
-    let roots = find_roots(&f, &j, &opts);
-    roots
-        .into_iter()
+    let mut roots = find_roots(&f, &j, &opts);
+    // A multiple root draws Newton's iterates into a cluster of
+    // near-roots; keep the best of each cluster.
+    roots.sort_by(|a, b| a.residual.total_cmp(&b.residual));
+    let mut kept: Vec<super::numeric::Root> = Vec::new();
+    for r in roots {
+        if !kept.iter().any(|k| close_within(&k.x, &r.x, &opts.periodic, 1e-3)) {
+            kept.push(r);
+        }
+    }
+    kept.sort_by(|a, b| {
+        a.x.iter()
+            .zip(&b.x)
+            .map(|(p, q)| p.total_cmp(q))
+            .find(|o| o.is_ne())
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    kept.into_iter()
         .map(|r| {
             let k = j(&r.x).map(|m| {
                 m.into_iter()
                     .map(|row| row.into_iter().map(|v| -v).collect::<Vec<f64>>())
                     .collect::<Vec<_>>()
             });
-            let stability = match k {
+            let mut stability = match k {
                 Some(k) => classify_numeric(&k, gyroscopic),
                 None => Stability::Undecided("the Hessian is undefined here".into()),
             };
+            if r.x.len() == 1 && matches!(stability, Stability::Undecided(_)) {
+                // one coordinate, flat: a restoring force on both sides is stable
+                let h = 1e-3 * (1.0 + r.x[0].abs());
+                let side = |x: f64| f(&[x]).map(|v| v[0]);
+                if let (Some(lo), Some(hi)) = (side(r.x[0] - h), side(r.x[0] + h)) {
+                    stability = if lo > 0.0 && hi < 0.0 {
+                        Stability::Stable
+                    } else {
+                        Stability::Unstable
+                    };
+                }
+            }
             Equilibrium {
                 position: Position::Numeric(r.x),
                 free: Vec::new(),

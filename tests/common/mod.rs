@@ -17,7 +17,7 @@ fn op_str(op: BinOp) -> &'static str {
 }
 
 /// `(* 2 r)`, `(^ (' y1 1) 2)`, `(- x)` (unary minus), `(sin x)` (a call),
-/// `(f)` (a call without arguments), `1/4`, `30deg`.
+/// `(f)` (a call without arguments), `1/4`, `30deg`, `[x y]` (a vector).
 pub fn sexpr(e: &Expr) -> String {
     match &e.kind {
         ExprKind::Num(r) => r.to_string(),
@@ -35,6 +35,7 @@ pub fn sexpr(e: &Expr) -> String {
             s
         }
         ExprKind::Prime(x, n) => format!("(' {} {n})", sexpr(x)),
+        ExprKind::Vector(cs) => format!("[{}]", cs.iter().map(sexpr).collect::<Vec<_>>().join(" ")),
     }
 }
 
@@ -59,6 +60,25 @@ pub fn stmt_sexpr(s: &Stmt) -> String {
         Stmt::Force {
             coordinate, value, ..
         } => format!("(force {} {})", coordinate.name, sexpr(value)),
+        Stmt::Load { force, point, .. } => format!("(load {} {})", sexpr(force), sexpr(point)),
+        Stmt::Torque { moment, angle, .. } => {
+            format!("(torque {} {})", sexpr(moment), sexpr(angle))
+        }
+        Stmt::Solve(b) => {
+            let mut s = format!(
+                "(solve ({})",
+                b.unknowns
+                    .iter()
+                    .map(|u| u.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            );
+            for eq in &b.equations {
+                s.push_str(&format!(" (= {} {})", sexpr(&eq.lhs), sexpr(&eq.rhs)));
+            }
+            s.push(')');
+            s
+        }
     }
 }
 
@@ -142,6 +162,7 @@ pub fn strip(e: &Expr) -> Expr {
             args.iter().map(strip).collect(),
         ),
         ExprKind::Prime(x, n) => ExprKind::Prime(Box::new(strip(x)), *n),
+        ExprKind::Vector(cs) => ExprKind::Vector(cs.iter().map(strip).collect()),
         k => k.clone(),
     };
     Expr {
@@ -196,11 +217,15 @@ pub fn print_full(e: &Expr) -> String {
         ),
         ExprKind::Prime(x, n) => {
             let inner = match &x.kind {
-                ExprKind::Name(_) | ExprKind::Call(..) => print_full(x),
+                ExprKind::Name(_) | ExprKind::Call(..) | ExprKind::Vector(_) => print_full(x),
                 _ => format!("({})", print_full(x)),
             };
             format!("{inner}{}", "'".repeat(*n as usize))
         }
+        ExprKind::Vector(cs) => format!(
+            "[{}]",
+            cs.iter().map(print_full).collect::<Vec<_>>().join(", ")
+        ),
     }
 }
 
@@ -225,5 +250,26 @@ pub fn print_stmt(s: &Stmt) -> String {
         Stmt::Force {
             coordinate, value, ..
         } => format!("force {}: {}", coordinate.name, print_full(value)),
+        Stmt::Load { force, point, .. } => {
+            format!("load {} at {}", print_full(force), print_full(point))
+        }
+        Stmt::Torque { moment, angle, .. } => {
+            format!("torque {} on {}", print_full(moment), print_full(angle))
+        }
+        Stmt::Solve(b) => {
+            let names = b
+                .unknowns
+                .iter()
+                .map(|u| u.name.as_str())
+                .collect::<Vec<_>>()
+                .join(", ");
+            let eqs = b
+                .equations
+                .iter()
+                .map(|eq| format!("{} = {}", print_full(&eq.lhs), print_full(&eq.rhs)))
+                .collect::<Vec<_>>()
+                .join("; ");
+            format!("solve {names} {{ {eqs} }}")
+        }
     }
 }
