@@ -12,7 +12,9 @@
 //!   `exact`, `equilibria` (a list of coordinate → value objects, "any" for
 //!   a free coordinate; numeric values as numbers), `stability` (parallel
 //!   to `equilibria`: "stable", "unstable", "undecided"), `notes` (parallel:
-//!   the reason when undecided, existence conditions).
+//!   the reason when undecided, existence conditions), `approx` (parallel:
+//!   the numeric values of an exact position under `--set`, else null).
+//!   A check of a vector equation also has `component` ("x", "y", "z").
 //!
 //! Every expression string is in qdot's input syntax and re-parses to the
 //! same expression.
@@ -139,12 +141,17 @@ pub fn run(
 pub fn parse_set(s: &str) -> Result<Values, Diagnostic> {
     let mut out = Values::default();
     for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
-        let Some((k, v)) = part.split_once('=') else {
+        let Some((k, v)) = part.split_once('=').filter(|(k, _)| !k.trim().is_empty()) else {
             return Err(
                 Diagnostic::global(format!("`--set {part}`: expected name=value"))
                     .with_hint("for example --set m=1,g=9.81,l=0.5"),
             );
         };
+        let k = k.trim();
+        if out.contains_key(k) {
+            return Err(Diagnostic::global(format!("`--set`: `{k}` is given twice"))
+                .with_hint("give each parameter one value"));
+        }
         let v: f64 = match v.trim().parse() {
             Ok(x) if f64::is_finite(x) => x,
             _ => {
@@ -161,7 +168,7 @@ pub fn parse_set(s: &str) -> Result<Values, Diagnostic> {
             ))
             .with_hint("qdot takes every parameter to be positive; write a negative quantity as −p in the scene"));
         }
-        out.insert(k.trim().to_string(), v);
+        out.insert(k.to_string(), v);
     }
     Ok(out)
 }
@@ -314,6 +321,7 @@ pub fn solutions_text(scene: &Scene, blocks: &[BlockSolution]) -> String {
         if b > 0 {
             out.push('\n');
         }
+        let names: Vec<String> = names.iter().map(|n| pretty_name(n, 0)).collect();
         out.push_str(&format!("Solutions  (solve {})\n", names.join(", ")));
         let width = sol
             .values
@@ -361,7 +369,11 @@ pub fn solutions_json(scene: &Scene, blocks: &[BlockSolution], m: &mut Map<Strin
         }
         free.extend(sol.free.iter().cloned());
         for &i in &sol.checks {
-            checks.push(json!({"block": b + 1, "equation": system::equation_number(sys, i)}));
+            let mut c = json!({"block": b + 1, "equation": system::equation_number(sys, i)});
+            if let Some(k) = sys.equations[i].component {
+                c["component"] = json!(["x", "y", "z"][k.min(2)]);
+            }
+            checks.push(c);
         }
     }
     m.insert("solutions".into(), Value::Object(sols));
@@ -386,7 +398,7 @@ fn position_strings(
                 }
             })
             .collect::<Vec<String>>(),
-        Position::Numeric(xs) => xs.iter().map(|x| format!("{x:.10}")).collect(),
+        Position::Numeric(xs) => xs.iter().map(|x| minus(format!("{x:.10}"))).collect(),
     }
     .into_iter()
     .take(eq.coordinates.len())
@@ -420,7 +432,7 @@ pub fn equilibrium_text(eq: &Equilibria) -> String {
             .collect();
         out.push_str(&format!("  {}. {}", i + 1, parts.join(", ")));
         if let Some(a) = &e.approx {
-            let nums: Vec<String> = a.iter().map(|x| format!("{x:.6}")).collect();
+            let nums: Vec<String> = a.iter().map(|x| minus(format!("{x:.6}"))).collect();
             out.push_str(&format!("  ≈ ({})", nums.join(", ")));
         }
         out.push_str(&format!("  — {}", e.stability.word()));
@@ -433,6 +445,14 @@ pub fn equilibrium_text(eq: &Equilibria) -> String {
         }
     }
     out
+}
+
+/// A number with the typographic minus of the text output.
+fn minus(s: String) -> String {
+    match s.strip_prefix('-') {
+        Some(r) => format!("−{r}"),
+        None => s,
+    }
 }
 
 /// The JSON of `qdot equilibrium`.
@@ -448,7 +468,12 @@ pub fn equilibrium_json(eq: &Equilibria) -> Map<String, Value> {
     let mut list = Vec::new();
     let mut stab = Vec::new();
     let mut notes = Vec::new();
+    let mut approx = Vec::new();
     for e in &eq.equilibria {
+        approx.push(match &e.approx {
+            Some(a) => json!(a),
+            None => Value::Null,
+        });
         let mut o = Map::new();
         match &e.position {
             Position::Numeric(xs) => {
@@ -477,5 +502,6 @@ pub fn equilibrium_json(eq: &Equilibria) -> Map<String, Value> {
     m.insert("equilibria".into(), Value::Array(list));
     m.insert("stability".into(), Value::Array(stab));
     m.insert("notes".into(), Value::Array(notes));
+    m.insert("approx".into(), Value::Array(approx));
     m
 }

@@ -212,7 +212,8 @@ fn json_contract_and_reparse() {
                 "exact",
                 "equilibria",
                 "stability",
-                "notes"
+                "notes",
+                "approx"
             ],
             "{name}"
         );

@@ -112,7 +112,8 @@ fn equilibrium_json(tag: &str, src: &str, set: &str) -> serde_json::Value {
             "exact",
             "equilibria",
             "stability",
-            "notes"
+            "notes",
+            "approx"
         ]
     );
     let s = parse(src);
@@ -761,7 +762,7 @@ fn numeric_roots_of_a_sin_theta_minus_b_theta() {
     assert_eq!(code, 0);
     assert!(
         out.ends_with(
-            "\nEquilibria (numeric: no closed form)\n  1. θ = -2.2788626601  — stable\n  \
+            "\nEquilibria (numeric: no closed form)\n  1. θ = −2.2788626601  — stable\n  \
              2. θ = 0.0000000000  — unstable\n  3. θ = 2.2788626601  — stable\n"
         ),
         "{out}"

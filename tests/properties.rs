@@ -303,3 +303,41 @@ proptest! {
         }
     }
 }
+
+/// atan, asin and acos at the points of the π/12 table are exact angles.
+#[test]
+fn inverse_trig_exact_values() {
+    let s = Scene::parse("parameters a").unwrap();
+    for (src, want) in [
+        ("atan(1)", "pi/4"),
+        ("atan(sqrt(3))", "pi/3"),
+        ("atan(sqrt(3)/3)", "pi/6"),
+        ("atan(2 - sqrt(3))", "pi/12"),
+        ("atan(sqrt(3) - 2)", "-pi/12"),
+        ("asin(1/2)", "pi/6"),
+        ("asin(-sqrt(2)/2)", "-pi/4"),
+        ("asin(1)", "pi/2"),
+        ("acos(sqrt(3)/2)", "pi/6"),
+        ("acos(-1/2)", "2*pi/3"),
+        ("acos(-sqrt(3)/2)", "5*pi/6"),
+        ("acos(0)", "pi/2"),
+        ("acos(-1)", "pi"),
+    ] {
+        let got = s.expr(src).unwrap();
+        let want = s.expr(want).unwrap();
+        assert_eq!(got, want, "{src}");
+    }
+    // not at a table point: stays an atom
+    assert_eq!(s.expr("atan(2)").unwrap().to_string(), "atan(2)");
+    assert!(s.expr("asin(3/2)").is_err());
+}
+
+/// Found by the print → parse property: a coordinate-free part whose
+/// denominator cancels (x/(a + 1) − (a + 1)²/(a + 1)) printed one sign.
+#[test]
+fn print_parse_regression_cancelled_denominator() {
+    let s = Scene::parse("coordinates x\nparameters a").unwrap();
+    let e = s.expr("x/(a + 1) - (a + 1)").unwrap();
+    let printed = qdot::expr::print::input(&e);
+    assert_eq!(s.expr(&printed).unwrap(), e, "{printed}");
+}

@@ -217,14 +217,15 @@ fn a_contradiction_points_at_its_equation() {
     let err = block_error("parameters a, b\nsolve x {\n  x = a\n  a = b\n}\n");
     assert_starts(
         &err,
-        "error: equation 2 contradicts the others: with their solution it reads 0 = −a + b\n\
+        "error: equation 2 involves none of the unknowns and does not hold: it reads 0 = −a + b\n\
          \x20--> scene.qd:4:3\n",
     );
+    assert!(err.contains("should mention its unknowns"), "{err}");
     // An unknown that cancels: x − x = a is 0 = a
     let err = block_error("parameters a\nsolve x {\n  x - x = a\n}\n");
     assert_starts(
         &err,
-        "error: equation 1 contradicts the others: with their solution it reads 0 = a\n",
+        "error: equation 1 involves none of the unknowns and does not hold: it reads 0 = a\n",
     );
 }
 
@@ -343,13 +344,13 @@ fn an_unknown_must_be_a_new_name() {
         ),
         (
             "parameters a\nsolve x { x = a }\nsolve y, x { x = y }\n",
-            "error: the unknown `x` is already an unknown of a `solve` block\n --> scene.qd:3:10\n",
-            "each unknown belongs to one `solve` block",
+            "error: the unknown `x` is listed twice\n --> scene.qd:3:10\n",
+            "list each unknown once, in one `solve` block (`x` is first at line 2)",
         ),
         (
             "parameters a\nsolve x, x { x = a }\n",
-            "error: the unknown `x` is already an unknown of a `solve` block\n --> scene.qd:2:10\n",
-            "",
+            "error: the unknown `x` is listed twice\n --> scene.qd:2:10\n",
+            "(`x` is first at line 2)",
         ),
         (
             "parameters a\nsolve t { t = a }\n",
@@ -719,4 +720,31 @@ fn a_statics_scene_with_loads_and_a_block_solves() {
     let (code, out, err) = run("statics-load", with_load, &["solve", "--format", "json"]);
     assert_eq!(code, 0, "{err}");
     assert_eq!(keys(&json(&out)), ["solutions", "free_unknowns", "checks"]);
+}
+
+/// Messages for an equation without unknowns and a repeated unknown.
+#[test]
+fn equation_without_unknowns_and_repeated_unknown() {
+    let s = qdot::Scene::parse("parameters a\nsolve x { x - x = a }\n").unwrap();
+    let e = qdot::solve::system::solve_scene(&s).unwrap_err();
+    assert!(
+        e.message.starts_with(
+            "equation 1 involves none of the unknowns and does not hold: it reads 0 = a"
+        ),
+        "{}",
+        e.message
+    );
+    let e = qdot::Scene::parse("parameters a\nsolve x, x { x = a }\n").unwrap_err();
+    assert_eq!(e.message, "the unknown `x` is listed twice");
+    // a load may not use an unknown
+    let e = qdot::Scene::parse(
+        "coordinates y\nparameters m\nkinetic E = m*y'^2/2\nload T at y\nsolve T { T = m }\n",
+    )
+    .unwrap_err();
+    assert!(
+        e.message
+            .starts_with("a load uses `T`, an unknown of a `solve` block"),
+        "{}",
+        e.message
+    );
 }

@@ -474,7 +474,38 @@ pub fn atan(u: &Expr) -> Expr {
     if u.num().leading_coeff().is_some_and(|c| c.is_negative()) {
         return atan(&u.neg()).neg();
     }
+    if let Some(k) = exact_angle(u, -5..=5, tan_twelfths) {
+        return k;
+    }
     Expr::var(atom::intern(Atom::Atan(u.clone())))
+}
+
+/// tan(n·π/12) for n = 1…5.
+fn tan_twelfths(n: i64) -> Expr {
+    sin_twelfths(n)
+        .div(&sin_twelfths(n + 6))
+        .unwrap_or_else(|_| Expr::zero())
+}
+
+/// The angle n·π/12 (n in `range`) whose `f` value is `u`, if any: the
+/// exact values of atan, asin and acos at the table's points (atan 1 = π/4,
+/// asin(1/2) = π/6, acos(−√3/2) = 5π/6, atan(√3 − 2) = −π/12).
+fn exact_angle(
+    u: &Expr,
+    range: std::ops::RangeInclusive<i64>,
+    f: impl Fn(i64) -> Expr,
+) -> Option<Expr> {
+    if !u
+        .vars()
+        .iter()
+        .all(|&v| matches!(atom::atom(v), Atom::Root(_)))
+    {
+        return None;
+    }
+    range
+        .filter(|&n| n != 0)
+        .find(|&n| f(n).equals(u))
+        .map(|n| Expr::pi().scale(&Q::new(n, 12).unwrap_or_else(Q::one)))
 }
 
 /// asin u (principal value); an error for a rational |u| > 1.
@@ -489,9 +520,9 @@ pub fn asin(u: &Expr) -> Result<Expr, MathError> {
         if q > Q::one() {
             return Err(MathError::new(format!("asin({q}) is not real: |x| > 1")));
         }
-        if q.is_one() {
-            return Ok(Expr::pi().scale(&Q::new(1, 2).unwrap_or_else(Q::one)));
-        }
+    }
+    if let Some(k) = exact_angle(u, -6..=6, sin_twelfths) {
+        return Ok(k);
     }
     Ok(Expr::var(atom::intern(Atom::Asin(u.clone()))))
 }
@@ -517,6 +548,9 @@ pub fn acos(u: &Expr) -> Result<Expr, MathError> {
     if u.num().leading_coeff().is_some_and(|c| c.is_negative()) {
         // acos(−x) = π − acos x
         return Ok(Expr::pi().sub(&acos(&u.neg())?));
+    }
+    if let Some(k) = exact_angle(u, 1..=11, |n| sin_twelfths(n + 6)) {
+        return Ok(k);
     }
     Ok(Expr::var(atom::intern(Atom::Acos(u.clone()))))
 }

@@ -77,16 +77,17 @@ fn render_parts(num: &Poly, den: &Poly, st: Style) -> String {
     }
     let mut items: Vec<(Mono, String, bool)> = Vec::new();
     for (key, coef) in groups {
-        if key.0.is_empty() && e.den().is_one() {
-            // The terms free of coordinates, one by one.
-            for (m, q) in sorted_terms(&coef) {
-                let c = Expr::from_poly(Poly::monomial(m, q));
-                let (neg, body) = term_with_coef(&c, &key, st);
+        let c = Expr::from_parts(coef, e.den().clone()).unwrap_or_else(|_| Expr::zero());
+        if key.0.is_empty() && c.den().is_one() {
+            // The terms free of coordinates, one by one (the denominator
+            // may cancel: x/(a + 1) − (a + 1)² /(a + 1) gives −a − 1).
+            for (m, q) in sorted_terms(c.num()) {
+                let t = Expr::from_poly(Poly::monomial(m, q));
+                let (neg, body) = term_with_coef(&t, &key, st);
                 items.push((key.clone(), body, neg));
             }
             continue;
         }
-        let c = Expr::from_parts(coef, e.den().clone()).unwrap_or_else(|_| Expr::zero());
         let (neg, body) = term_with_coef(&c, &key, st);
         items.push((key, body, neg));
     }

@@ -194,14 +194,15 @@ impl Scene {
                 if matches!(b, Binding::Unknown) {
                     let hint = match prev {
                         Binding::Param => format!("a `solve` unknown is a new name that the equations determine; remove `{}` from `parameters` (line {line}) or solve for another name", name.name),
-                        Binding::Unknown => "each unknown belongs to one `solve` block".to_string(),
+                        Binding::Unknown => format!("list each unknown once, in one `solve` block (`{}` is first at line {line})", name.name),
                         _ => format!("`{}` already has a value (line {line}); solve for a new name", name.name),
                     };
-                    return Err(Diagnostic::error(
-                        name.span,
-                        format!("the unknown `{}` is already {what}", name.name),
-                    )
-                    .with_hint(hint));
+                    let message = if matches!(prev, Binding::Unknown) {
+                        format!("the unknown `{}` is listed twice", name.name)
+                    } else {
+                        format!("the unknown `{}` is already {what}", name.name)
+                    };
+                    return Err(Diagnostic::error(name.span, message).with_hint(hint));
                 }
                 let again = match (&b, prev) {
                     (Binding::Coord, Binding::Coord) => "coordinate declared twice",
@@ -335,6 +336,7 @@ impl Scene {
                 return Err(d);
             };
             let v = ev.expr(value)?;
+            no_unknowns(std::slice::from_ref(&v), value.span, "a generalized force")?;
             forces.push(Force {
                 coordinate: k,
                 value: v,
@@ -382,6 +384,8 @@ impl Scene {
                         }
                         _ => {}
                     }
+                    no_unknowns(f.components(), force.span, "a load")?;
+                    no_unknowns(p.components(), point.span, "a load's point")?;
                     if !p.components().iter().any(&moves) {
                         warnings.push(
                             Diagnostic::warning(point.span, "this load does no virtual work: its point does not move with any coordinate")
@@ -426,6 +430,8 @@ impl Scene {
                             ))
                         }
                     };
+                    no_unknowns(std::slice::from_ref(&m), moment.span, "a torque")?;
+                    no_unknowns(std::slice::from_ref(&a), angle.span, "a torque's angle")?;
                     if !moves(&a) {
                         warnings.push(
                             Diagnostic::warning(angle.span, "this torque does no virtual work: its angle does not change with any coordinate")
@@ -596,6 +602,19 @@ impl Scene {
             .any(|l| l.force.components().iter().any(inertial))
             || self.torques.iter().any(|t| inertial(&t.moment))
             || self.forces.iter().any(|f| inertial(&f.value))
+    }
+}
+
+/// An error if any of `es` uses a `solve` unknown: forces enter Lagrange's
+/// equations, which are solved before any block.
+fn no_unknowns(es: &[Expr], span: Span, what: &str) -> Result<(), Diagnostic> {
+    match es.iter().find_map(first_unknown) {
+        Some(u) => Err(Diagnostic::error(
+            span,
+            format!("{what} uses `{u}`, an unknown of a `solve` block"),
+        )
+        .with_hint("loads, torques and forces enter the equations of motion, which are solved before the blocks; a reaction found by a block can't drive the motion")),
+        None => Ok(()),
     }
 }
 

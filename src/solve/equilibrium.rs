@@ -1001,7 +1001,10 @@ fn solve_numeric(
     roots.sort_by(|a, b| a.residual.total_cmp(&b.residual));
     let mut kept: Vec<super::numeric::Root> = Vec::new();
     for r in roots {
-        if !kept.iter().any(|k| close_within(&k.x, &r.x, &opts.periodic, 1e-3)) {
+        if !kept
+            .iter()
+            .any(|k| close_within(&k.x, &r.x, &opts.periodic, 1e-3))
+        {
             kept.push(r);
         }
     }

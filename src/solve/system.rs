@@ -268,15 +268,23 @@ fn solve_block(
     for (i, res) in &sol.residuals {
         if !res.is_zero() {
             let eq = &sys.equations[*i];
-            return Err(Diagnostic::error(
-                eq.span,
+            let message = if a[*i].iter().all(Expr::is_zero) {
+                format!(
+                    "{} involves none of the unknowns and does not hold: it reads 0 = {}",
+                    equation_label(sys, *i),
+                    crate::expr::print::unicode(res)
+                )
+            } else {
                 format!(
                     "{} contradicts the others: with their solution it reads 0 = {}",
                     equation_label(sys, *i),
                     crate::expr::print::unicode(res)
-                ),
-            )
-            .with_hint(if sys.equations.len() > sys.unknowns.len() {
+                )
+            };
+            return Err(Diagnostic::error(eq.span, message)
+            .with_hint(if a[*i].iter().all(Expr::is_zero) {
+                "an equation of a `solve` block should mention its unknowns; check the names and the data"
+            } else if sys.equations.len() > sys.unknowns.len() {
                 "the block has more equations than unknowns, and this one does not follow from the rest; check its signs and data"
             } else {
                 "the equations are dependent on the left but not on the right; check signs and data"
