@@ -4,21 +4,10 @@
 //! the library's result), error rendering with file:line:column, a caret
 //! and a hint, exit code 1, and warnings on stderr with exit code 0.
 
-use qdot::Scene;
-use std::process::Command;
+mod common;
 
-fn qdot(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_qdot"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("qdot runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use common::run::qdot;
+use qdot::Scene;
 
 #[test]
 fn readme_command_prints_the_accelerations() {

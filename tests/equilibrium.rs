@@ -4,9 +4,11 @@
 //! value is derived by hand in a comment; numeric roots are checked against
 //! f64 evaluation of the equations and a sign-change count.
 
+mod common;
+
+use common::run::qdot_on;
 use qdot::solve::equilibrium::{equilibria, Equilibria, Equilibrium, Position, Stability};
 use qdot::{Expr, Scene};
-use std::process::Command;
 
 fn parse(src: &str) -> Scene {
     match Scene::parse(src) {
@@ -65,30 +67,9 @@ fn at<'a>(s: &Scene, e: &'a Equilibria, want: &[&str]) -> &'a Equilibrium {
     found[0]
 }
 
-fn qdot(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_qdot"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("qdot runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
 /// `qdot equilibrium FILE ARGS…` on a scene in a temporary file.
 fn run(tag: &str, src: &str, args: &[&str]) -> (i32, String, String) {
-    let dir = std::env::temp_dir().join(format!("qdot-equilibrium-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(format!("{tag}.qd"));
-    std::fs::write(&path, src).unwrap();
-    let p = path.to_str().unwrap().to_string();
-    let mut all = vec!["equilibrium", p.as_str()];
-    all.extend_from_slice(args);
-    let (code, out, err) = qdot(&all);
-    (code, out, err.replace(&p, "scene.qd"))
+    qdot_on("equilibrium", tag, src, "equilibrium", args)
 }
 
 /// The JSON of `qdot equilibrium --format json [--set …]`, checked against

@@ -5,10 +5,12 @@
 //! Lagrange's accelerations, and the `qdot solve` output of all that.
 //! Every expected value is derived by hand in a comment.
 
+mod common;
+
+use common::run::qdot_on;
 use qdot::solve::system::{equation_label, solve_scene, BlockSolution};
 use qdot::{Expr, Scene};
 use std::collections::BTreeMap;
-use std::process::Command;
 
 fn parse(src: &str) -> Scene {
     match Scene::parse(src) {
@@ -60,31 +62,10 @@ fn assert_starts(got: &str, want: &str) {
     );
 }
 
-fn qdot(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_qdot"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("qdot runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
 /// Run `qdot ARGS FILE` on a scene written to a temporary file; the file
 /// name in messages is replaced by `scene.qd`.
 fn run(tag: &str, src: &str, args: &[&str]) -> (i32, String, String) {
-    let dir = std::env::temp_dir().join(format!("qdot-solve-blocks-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(format!("{tag}.qd"));
-    std::fs::write(&path, src).unwrap();
-    let p = path.to_str().unwrap().to_string();
-    let mut all: Vec<&str> = vec![args[0], &p];
-    all.extend_from_slice(&args[1..]);
-    let (code, out, err) = qdot(&all);
-    (code, out, err.replace(&p, "scene.qd"))
+    qdot_on("solve-blocks", tag, src, args[0], &args[1..])
 }
 
 fn json(out: &str) -> serde_json::Value {

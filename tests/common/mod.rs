@@ -2,6 +2,8 @@
 //! fully parenthesized source printer, span stripping, and error locations.
 #![allow(dead_code)]
 
+pub mod run;
+
 use qdot::diag::Diagnostic;
 use qdot::parse::ast::{BinOp, Expr, ExprKind, Ident, Span, Stmt};
 use qdot::parse::{parse_expr, parse_scene};
