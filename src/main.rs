@@ -49,6 +49,22 @@ enum Command {
         #[arg(long, value_enum, default_value = "text")]
         format: Fmt,
     },
+    /// Small oscillations about an equilibrium: M, C, K, det(K − ω²M),
+    /// the natural frequencies, the modes, and the responses.
+    Modes {
+        file: String,
+        #[arg(long, value_enum, default_value = "text")]
+        format: Fmt,
+        /// The equilibrium to linearize about (default: every q = 0), e.g. th=pi
+        #[arg(long)]
+        at: Option<String>,
+        /// Initial conditions for the free response: y1=1/10,y1'=0
+        #[arg(long)]
+        init: Option<String>,
+        /// Parameter values for numeric frequencies and sign decisions
+        #[arg(long)]
+        set: Option<String>,
+    },
     /// Equilibrium positions (Q_k = 0) and their stability.
     Equilibrium {
         file: String,
@@ -62,12 +78,24 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    let mut opts = output::Options::default();
     let (cmd, file, fmt, set) = match &cli.command {
         Command::Derive { file, format } => (output::Command::Derive, file, *format, None),
         Command::Solve { file, format } => (output::Command::Solve, file, *format, None),
         Command::Forces { file, format } => (output::Command::Forces, file, *format, None),
         Command::Equilibrium { file, format, set } => {
             (output::Command::Equilibrium, file, *format, set.as_deref())
+        }
+        Command::Modes {
+            file,
+            format,
+            at,
+            init,
+            set,
+        } => {
+            opts.at = at.clone();
+            opts.init = init.clone();
+            (output::Command::Modes, file, *format, set.as_deref())
         }
     };
     let fmt = match fmt {
@@ -88,7 +116,8 @@ fn main() -> ExitCode {
             return ExitCode::from(1);
         }
     };
-    match output::run(cmd, &src, fmt, &set) {
+    opts.set = set;
+    match output::run_with(cmd, &src, fmt, &opts) {
         Ok((out, warnings)) => {
             for w in warnings {
                 eprint!("{}", w.render(file, &src));

@@ -35,6 +35,18 @@ pub enum Command {
     Solve,
     Forces,
     Equilibrium,
+    Modes,
+}
+
+/// Options of the commands beyond the file and the format.
+#[derive(Clone, Debug, Default)]
+pub struct Options {
+    /// `--set`: parameter values.
+    pub set: Values,
+    /// `modes --at q=value,…`: the equilibrium (expressions in the scene).
+    pub at: Option<String>,
+    /// `modes --init q=…,q'=…`: initial conditions.
+    pub init: Option<String>,
 }
 
 /// Run `cmd` on the scene source `src`: the output, and the warnings to show.
@@ -44,6 +56,21 @@ pub fn run(
     fmt: Format,
     set: &Values,
 ) -> Result<(String, Vec<Diagnostic>), Diagnostic> {
+    let opts = Options {
+        set: set.clone(),
+        ..Options::default()
+    };
+    run_with(cmd, src, fmt, &opts)
+}
+
+/// [`run`] with every option.
+pub fn run_with(
+    cmd: Command,
+    src: &str,
+    fmt: Format,
+    opts: &Options,
+) -> Result<(String, Vec<Diagnostic>), Diagnostic> {
+    let set = &opts.set;
     let scene = Scene::parse(src)?;
     let out = match cmd {
         Command::Derive => {
@@ -112,21 +139,29 @@ pub fn run(
                 }
             }
         }
-        Command::Equilibrium => {
-            for name in set.keys() {
-                if !scene.parameters.iter().any(|p| &p.name == name) {
-                    let list: Vec<&str> =
-                        scene.parameters.iter().map(|p| p.name.as_str()).collect();
-                    return Err(Diagnostic::global(format!(
-                        "`--set {name}=…`: `{name}` is not a parameter of the scene"
-                    ))
-                    .with_hint(if list.is_empty() {
-                        "the scene has no parameters".to_string()
-                    } else {
-                        format!("the parameters are {}", list.join(", "))
-                    }));
+        Command::Modes => {
+            check_set(&scene, set)?;
+            let at = match &opts.at {
+                Some(a) => Some(assignments(&scene, a)?),
+                None => None,
+            };
+            let md = crate::mechanics::oscillations::modes(&scene, at.as_deref(), set)?;
+            let free = match &opts.init {
+                Some(i) => {
+                    let (q0, v0) = initial_conditions(&scene, i)?;
+                    Some(crate::mechanics::oscillations::free_response(
+                        &md, &q0, &v0,
+                    )?)
                 }
+                None => None,
+            };
+            match fmt {
+                Format::Text => modes_text(&md, set, free.as_deref()),
+                Format::Json => json_string(modes_json(&md, set, free.as_deref())),
             }
+        }
+        Command::Equilibrium => {
+            check_set(&scene, set)?;
             let eq = equilibrium::equilibria(&scene, set)?;
             match fmt {
                 Format::Text => equilibrium_text(&eq),
@@ -135,6 +170,88 @@ pub fn run(
         }
     };
     Ok((out, scene.warnings.clone()))
+}
+
+/// `--set` names must be parameters of the scene.
+fn check_set(scene: &Scene, set: &Values) -> Result<(), Diagnostic> {
+    for name in set.keys() {
+        if !scene.parameters.iter().any(|p| &p.name == name) {
+            let list: Vec<&str> = scene.parameters.iter().map(|p| p.name.as_str()).collect();
+            return Err(Diagnostic::global(format!(
+                "`--set {name}=…`: `{name}` is not a parameter of the scene"
+            ))
+            .with_hint(if list.is_empty() {
+                "the scene has no parameters".to_string()
+            } else {
+                format!("the parameters are {}", list.join(", "))
+            }));
+        }
+    }
+    Ok(())
+}
+
+/// `q1=expr,q2=expr`: values per name, each an exact expression in the
+/// scene's names.
+fn parse_assignments(
+    scene: &Scene,
+    s: &str,
+    what: &str,
+) -> Result<Vec<(String, Expr)>, Diagnostic> {
+    let mut out = Vec::new();
+    for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+        let Some((k, v)) = part.split_once('=') else {
+            return Err(
+                Diagnostic::global(format!("`{what} {part}`: expected name=value"))
+                    .with_hint("for example --at th=pi, --init y1=1/10,y1'=0"),
+            );
+        };
+        let e = scene.expr(v.trim()).map_err(|d| {
+            Diagnostic::global(format!("`{what} {part}`: {}", d.message))
+                .with_hint("values are exact expressions in the scene's parameters: 1/10, pi, 2*r")
+        })?;
+        out.push((k.trim().to_string(), e));
+    }
+    Ok(out)
+}
+
+/// `--at q=value,…`: one value per coordinate (0 where not given).
+fn assignments(scene: &Scene, s: &str) -> Result<Vec<Expr>, Diagnostic> {
+    let mut vals = vec![Expr::zero(); scene.coordinates.len()];
+    for (k, e) in parse_assignments(scene, s, "--at")? {
+        let Some(i) = scene.coordinates.iter().position(|c| c.name == k) else {
+            return Err(coordinate_error(scene, "--at", &k));
+        };
+        vals[i] = e;
+    }
+    Ok(vals)
+}
+
+fn coordinate_error(scene: &Scene, what: &str, k: &str) -> Diagnostic {
+    let list: Vec<&str> = scene.coordinates.iter().map(|c| c.name.as_str()).collect();
+    Diagnostic::global(format!("`{what}`: `{k}` is not a coordinate of the scene"))
+        .with_hint(format!("the coordinates are {}", list.join(", ")))
+}
+
+/// `--init q=…,q'=…`: positions and velocities (0 where not given).
+fn initial_conditions(scene: &Scene, s: &str) -> Result<(Vec<Expr>, Vec<Expr>), Diagnostic> {
+    let n = scene.coordinates.len();
+    let mut q0 = vec![Expr::zero(); n];
+    let mut v0 = vec![Expr::zero(); n];
+    for (k, e) in parse_assignments(scene, s, "--init")? {
+        let (name, vel) = match k.strip_suffix('\'') {
+            Some(b) => (b, true),
+            None => (k.as_str(), false),
+        };
+        let Some(i) = scene.coordinates.iter().position(|c| c.name == name) else {
+            return Err(coordinate_error(scene, "--init", name));
+        };
+        if vel {
+            v0[i] = e;
+        } else {
+            q0[i] = e;
+        }
+    }
+    Ok((q0, v0))
 }
 
 /// Parse `--set m=1,g=9.81` into parameter values.
@@ -503,5 +620,340 @@ pub fn equilibrium_json(eq: &Equilibria) -> Map<String, Value> {
     m.insert("stability".into(), Value::Array(stab));
     m.insert("notes".into(), Value::Array(notes));
     m.insert("approx".into(), Value::Array(approx));
+    m
+}
+
+fn matrix_text(out: &mut String, title: &str, m: &[Vec<Expr>]) {
+    out.push_str(title);
+    out.push('\n');
+    let cells: Vec<Vec<String>> = m.iter().map(|r| r.iter().map(u).collect()).collect();
+    let n = cells.first().map(|r| r.len()).unwrap_or(0);
+    let widths: Vec<usize> = (0..n)
+        .map(|j| {
+            cells
+                .iter()
+                .map(|r| r[j].chars().count())
+                .max()
+                .unwrap_or(1)
+        })
+        .collect();
+    for r in &cells {
+        let row: Vec<String> = r
+            .iter()
+            .enumerate()
+            .map(|(j, c)| format!("{c:<w$}", w = widths[j]))
+            .collect();
+        out.push_str(&format!("  [ {} ]\n", row.join("   ")));
+    }
+}
+
+/// Numeric ω² from the generalized symmetric eigenproblem at `set`.
+fn numeric_omega_squared(
+    md: &crate::mechanics::oscillations::Modes,
+    set: &Values,
+) -> Option<Vec<f64>> {
+    if set.is_empty() {
+        return None;
+    }
+    let at = |a: &crate::expr::atom::Atom| match a {
+        crate::expr::atom::Atom::Param(n) => set.get(&**n).copied(),
+        _ => None,
+    };
+    let num = |m: &[Vec<Expr>]| -> Option<Vec<Vec<f64>>> {
+        m.iter()
+            .map(|r| r.iter().map(|e| e.eval_f64(&at)).collect())
+            .collect()
+    };
+    let k = num(&md.stiffness)?;
+    let m = num(&md.mass)?;
+    crate::solve::eigen::generalized_symmetric(&k, &m)
+        .ok()
+        .map(|g| g.values)
+}
+
+/// The text of `qdot modes`.
+pub fn modes_text(
+    md: &crate::mechanics::oscillations::Modes,
+    set: &Values,
+    free: Option<&[Expr]>,
+) -> String {
+    let names: Vec<String> = md.coordinates.iter().map(|c| pretty_name(c, 0)).collect();
+    let at: Vec<String> = names
+        .iter()
+        .zip(&md.at)
+        .map(|(c, v)| format!("{c} = {}", u(v)))
+        .collect();
+    let mut out = format!(
+        "Linearized about {}   M·q̈ + C·q̇ + K·q = f(t)\n",
+        at.join(", ")
+    );
+    matrix_text(&mut out, "Mass matrix M", &md.mass);
+    if md.damping.iter().flatten().any(|e| !e.is_zero()) {
+        matrix_text(&mut out, "Damping matrix C", &md.damping);
+    }
+    matrix_text(&mut out, "Stiffness matrix K", &md.stiffness);
+    if md.forcing.iter().any(|e| !e.is_zero()) {
+        out.push_str("Forcing f(t)\n");
+        for (c, f) in names.iter().zip(&md.forcing) {
+            out.push_str(&format!("  {c}  {}\n", u(f)));
+        }
+    }
+    if let Some(sf) = crate::mechanics::oscillations::standard_form(md, set) {
+        let q = &md.coordinates[0];
+        out.push_str("\nStandard form  ÿ + 2α·ẏ + ω²·y = f(t)/M\n");
+        let mut lhs = pretty_name(q, 2);
+        if !sf.alpha.is_zero() {
+            lhs.push_str(&format!(
+                " + {}·{}",
+                paren_str(&expanded(&sf.alpha.scale(&crate::num::Q::from_i64(2)))),
+                pretty_name(q, 1)
+            ));
+        }
+        lhs.push_str(&format!(
+            " + {}·{}",
+            paren_str(&expanded(&sf.omega_squared)),
+            pretty_name(q, 0)
+        ));
+        out.push_str(&format!("  {lhs} = {}\n", u(&sf.forcing)));
+        out.push_str(&format!("  ω² = {}\n", expanded(&sf.omega_squared)));
+        let w = crate::expr::func::sqrt(&sf.omega_squared).ok().filter(|w| {
+            w.num().len() == 1
+                && w.den().len() == 1
+                && !w.vars().iter().any(|&v| {
+                    matches!(
+                        crate::expr::atom::atom(v),
+                        crate::expr::atom::Atom::SqrtOf(_)
+                    )
+                })
+        });
+        let ws = match &w {
+            Some(w) => u(w),
+            None => format!("√({})", expanded(&sf.omega_squared)),
+        };
+        out.push_str(&format!("  ω = {ws}   T = 2π/ω   f = ω/(2π)\n"));
+        if !sf.alpha.is_zero() {
+            out.push_str(&format!("  α = {}", expanded(&sf.alpha)));
+            match (&sf.zeta, &w) {
+                (Some(z), Some(_)) => out.push_str(&format!("   ζ = α/ω = {}", u(z))),
+                _ => out.push_str("   ζ = α/ω"),
+            }
+            out.push('\n');
+        }
+        out.push_str(&format!("  regime: {}\n", sf.regime));
+    }
+    out.push_str("\nCharacteristic equation  det(K − λ·M) = 0,  λ = ω²\n");
+    let lv = crate::expr::atom::unknown(crate::mechanics::oscillations::LAMBDA);
+    // the equation is "= 0": constant factors are left out
+    let shown: Vec<&Expr> = md.factors.iter().filter(|f| f.depends_on(lv)).collect();
+    let factors: Vec<String> = shown
+        .iter()
+        .map(|f| {
+            let s = lambda_poly(f);
+            if shown.len() > 1 && (s.contains(" + ") || s.contains(" − ")) {
+                format!("({s})")
+            } else {
+                s
+            }
+        })
+        .collect();
+    if factors.is_empty() {
+        out.push_str(&format!("  {} = 0\n", lambda_poly(&md.characteristic)));
+    } else {
+        out.push_str(&format!("  {} = 0\n", factors.join("·")));
+    }
+    if md.omega_squared.is_empty() {
+        out.push_str("  (no closed form for its roots)\n");
+    } else {
+        out.push_str(
+            "\nNatural frequencies and modes  (distribution coefficients μ_j = x_j/x_1)\n",
+        );
+        for (i, (w2, mode)) in md.omega_squared.iter().zip(&md.modes).enumerate() {
+            let m: Vec<String> = mode.iter().map(u).collect();
+            out.push_str(&format!(
+                "  ω{}² = {}    mode ({})\n",
+                subscript(i + 1),
+                expanded(w2),
+                m.join(", ")
+            ));
+        }
+    }
+    if let Some(vals) = numeric_omega_squared(md, set) {
+        let v: Vec<String> = vals.iter().map(|x| minus(format!("{x:.10}"))).collect();
+        out.push_str(&format!("  numeric ω² (eigen-solver): {}\n", v.join(", ")));
+    }
+    out.push_str(&format!(
+        "\nStability of the equilibrium: {}",
+        md.stability.word()
+    ));
+    if let crate::mechanics::oscillations::Stability::Undecided(why) = &md.stability {
+        out.push_str(&format!(" ({why})"));
+    }
+    out.push('\n');
+    if md.coordinates.len() > 1 && md.damping.iter().flatten().any(|e| !e.is_zero()) {
+        out.push_str("  (the modes are those of the undamped system)\n");
+    }
+    if let Some(free) = free {
+        out.push_str("\nFree response (undamped) from the initial conditions\n");
+        for (c, q) in names.iter().zip(free) {
+            out.push_str(&format!("  {c}(t) = {}\n", u(q)));
+        }
+    }
+    if let Some((p, x)) = crate::mechanics::oscillations::forced_amplitudes(md) {
+        if md.damping.iter().flatten().all(|e| e.is_zero()) || md.coordinates.len() == 1 {
+            out.push_str(&format!(
+                "\nSteady state under f = F·cos(p·t), p = {}  (undamped amplitudes; resonance at p² = ωᵢ²)\n",
+                u(&p)
+            ));
+            for (c, a) in names.iter().zip(&x) {
+                out.push_str(&format!("  {c}: {}·cos(p·t)\n", paren(a)));
+            }
+        }
+    }
+    out
+}
+
+fn expanded(e: &Expr) -> String {
+    print::expanded(e)
+}
+
+/// A polynomial in λ in ascending powers: k − 6·m·λ, 2·k² − 4·k·m·λ + m²·λ².
+fn lambda_poly(f: &Expr) -> String {
+    let lv = crate::expr::atom::unknown(crate::mechanics::oscillations::LAMBDA);
+    if !f.den().is_one() || !f.num().contains_var(lv) {
+        return u(f);
+    }
+    let mut out = String::new();
+    for (i, c) in f.num().coeffs_in(lv).into_iter().enumerate() {
+        if c.is_zero() {
+            continue;
+        }
+        let c = Expr::from_poly(c);
+        let mut cs = expanded(&c);
+        let sum = cs.contains(" + ") || cs.contains(" − ");
+        let neg = !sum && cs.starts_with('−');
+        if neg {
+            cs = cs.trim_start_matches('−').to_string();
+        }
+        if sum {
+            cs = format!("({cs})");
+        }
+        let pow = match i {
+            0 => String::new(),
+            1 => "λ".to_string(),
+            k => format!("λ{}", superscript_digits(k)),
+        };
+        let term = match (i, cs.as_str()) {
+            (0, _) => cs.clone(),
+            (_, "1") => pow,
+            _ => format!("{cs}·{pow}"),
+        };
+        out.push_str(match (out.is_empty(), neg) {
+            (true, false) => "",
+            (true, true) => "−",
+            (false, false) => " + ",
+            (false, true) => " − ",
+        });
+        out.push_str(&term);
+    }
+    out
+}
+
+fn superscript_digits(n: usize) -> String {
+    const SUP: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    n.to_string()
+        .chars()
+        .map(|c| SUP[c.to_digit(10).unwrap_or(0) as usize])
+        .collect()
+}
+
+fn paren(e: &Expr) -> String {
+    paren_str(&u(e))
+}
+
+fn paren_str(s: &str) -> String {
+    if s.contains(" + ") || s.contains(" − ") || s.starts_with('−') {
+        format!("({s})")
+    } else {
+        s.to_string()
+    }
+}
+
+fn subscript(n: usize) -> String {
+    n.to_string()
+        .chars()
+        .map(|c| char::from_u32(0x2080 + c.to_digit(10).unwrap_or(0)).unwrap_or(c))
+        .collect()
+}
+
+/// The JSON of `qdot modes`.
+pub fn modes_json(
+    md: &crate::mechanics::oscillations::Modes,
+    set: &Values,
+    free: Option<&[Expr]>,
+) -> Map<String, Value> {
+    let mat = |m: &[Vec<Expr>]| {
+        json!(m
+            .iter()
+            .map(|r| r.iter().map(s).collect::<Vec<_>>())
+            .collect::<Vec<_>>())
+    };
+    let mut m = Map::new();
+    m.insert("coordinates".into(), json!(md.coordinates));
+    m.insert("at".into(), named(&md.coordinates, &md.at));
+    m.insert("mass_matrix".into(), mat(&md.mass));
+    m.insert("stiffness_matrix".into(), mat(&md.stiffness));
+    m.insert("damping_matrix".into(), mat(&md.damping));
+    m.insert(
+        "forcing".into(),
+        json!(md.forcing.iter().map(s).collect::<Vec<_>>()),
+    );
+    m.insert(
+        "characteristic_polynomial".into(),
+        json!(s(&md.characteristic)),
+    );
+    m.insert(
+        "characteristic_factors".into(),
+        json!(md.factors.iter().map(s).collect::<Vec<_>>()),
+    );
+    m.insert(
+        "omega_squared".into(),
+        json!(md.omega_squared.iter().map(s).collect::<Vec<_>>()),
+    );
+    m.insert(
+        "modes".into(),
+        json!(md
+            .modes
+            .iter()
+            .map(|v| v.iter().map(s).collect::<Vec<_>>())
+            .collect::<Vec<_>>()),
+    );
+    m.insert("stability".into(), json!(md.stability.word()));
+    let sf = crate::mechanics::oscillations::standard_form(md, set).map(|sf| {
+        json!({
+            "omega_squared": s(&sf.omega_squared),
+            "alpha": s(&sf.alpha),
+            "zeta": sf.zeta.as_ref().map(s),
+            "forcing": s(&sf.forcing),
+            "regime": sf.regime,
+        })
+    });
+    m.insert("standard_form".into(), sf.unwrap_or(Value::Null));
+    m.insert(
+        "numeric_omega_squared".into(),
+        numeric_omega_squared(md, set)
+            .map(|v| json!(v))
+            .unwrap_or(Value::Null),
+    );
+    m.insert(
+        "free_response".into(),
+        free.map(|f| named(&md.coordinates, f))
+            .unwrap_or(Value::Null),
+    );
+    m.insert(
+        "forced_response".into(),
+        crate::mechanics::oscillations::forced_amplitudes(md)
+            .map(|(p, x)| json!({"p": s(&p), "amplitudes": named(&md.coordinates, &x)}))
+            .unwrap_or(Value::Null),
+    );
     m
 }

@@ -32,6 +32,34 @@ pub fn unicode(e: &Expr) -> String {
     render(e, Style::Unicode)
 }
 
+/// Unicode, with a fraction over a monomial denominator shown term by
+/// term, as the seed writes it: 16/81·k/m − g/(9·r) rather than
+/// (16·k·r − 9·g·m)/(81·m·r). Display only.
+pub fn expanded(e: &Expr) -> String {
+    if e.den().len() != 1 || e.num().len() < 2 {
+        return unicode(e);
+    }
+    let den = Expr::from_poly(e.den().clone());
+    let mut out = String::new();
+    // a positive term first: 16/81·k/m − g/(9·r)
+    let mut terms = sorted_terms(e.num());
+    terms.sort_by_key(|(_, c)| c.is_negative());
+    for (m, c) in terms {
+        let t = Expr::from_poly(Poly::monomial(m, c));
+        let Ok(t) = t.div(&den) else {
+            return unicode(e);
+        };
+        let ts = unicode(&t);
+        match ts.strip_prefix('−') {
+            Some(rest) if out.is_empty() => out.push_str(&format!("−{rest}")),
+            Some(rest) => out.push_str(&format!(" − {rest}")),
+            None if out.is_empty() => out.push_str(&ts),
+            None => out.push_str(&format!(" + {ts}")),
+        }
+    }
+    out
+}
+
 pub fn render(e: &Expr, st: Style) -> String {
     if e.is_zero() {
         return "0".into();

@@ -14,6 +14,8 @@
 //! inertia forces `inertia(m, x)` among its loads (E may then be absent),
 //! and their q̈ terms join M.
 
+pub mod oscillations;
+
 use crate::diag::Diagnostic;
 use crate::expr::{atom, Expr};
 use crate::parse::ast::Role;

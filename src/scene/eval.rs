@@ -43,6 +43,8 @@ const FUNCTIONS: &[(&str, usize)] = &[
     ("cross", 2),
     ("norm", 1),
     ("inertia", 2),
+    ("series", 0),
+    ("parallel", 0),
 ];
 
 /// Hint for a vector where a number is needed.
@@ -411,6 +413,38 @@ impl<'a> Evaluator<'a> {
                 Diagnostic::error(f.span, format!("unknown function `{}`", f.name)).with_hint(hint),
             );
         };
+        if arity == 0 {
+            // series(k1, k2, …) = 1/Σ(1/k_i), parallel(k1, k2, …) = Σ k_i
+            if args.len() < 2 {
+                return Err(Diagnostic::error(
+                    span,
+                    format!("`{}` combines two or more springs", f.name),
+                )
+                .with_hint(format!(
+                    "write {}(k1, k2) or {}(k1, k2, k3)",
+                    f.name, f.name
+                )));
+            }
+            let mut acc = Expr::zero();
+            for a in args {
+                let k = self.expr(a)?;
+                acc = acc.add(&if f.name == "series" {
+                    k.recip().map_err(|_| {
+                        Diagnostic::error(a.span, "a spring of stiffness 0 in series")
+                            .with_hint("series(k1, k2) = k1·k2/(k1 + k2) needs nonzero stiffnesses")
+                    })?
+                } else {
+                    k
+                });
+            }
+            return if f.name == "series" {
+                acc.recip().map(Value::Scalar).map_err(|_| {
+                    Diagnostic::error(span, "the series stiffness is undefined: Σ 1/k_i = 0")
+                })
+            } else {
+                Ok(Value::Scalar(acc))
+            };
+        }
         if args.len() != arity {
             let n = if arity == 1 { "argument" } else { "arguments" };
             return Err(Diagnostic::error(

@@ -425,7 +425,7 @@ fn is_linear_in(e: &Expr, vs: &[Var]) -> bool {
 }
 
 /// A root with the conditions for it to exist.
-type Root = (Expr, Vec<String>);
+pub(crate) type Root = (Expr, Vec<String>);
 
 /// The real roots of `e = 0` in the one coordinate `q`, in closed form.
 fn univariate(e: &Expr, q: Var) -> Option<Vec<Root>> {
@@ -504,7 +504,7 @@ fn poly_roots(p: &Poly, q: Var) -> Option<Vec<Root>> {
 }
 
 /// Roots of c0 + c1·x + c2·x² (c2 may be zero; degree ≤ 2 only).
-fn quadratic(cs: &[Expr]) -> Option<Vec<Root>> {
+pub(crate) fn quadratic(cs: &[Expr]) -> Option<Vec<Root>> {
     match cs.len() {
         0 | 1 => Some(Vec::new()),
         2 => Some(vec![(cs[0].neg().div(&cs[1]).ok()?, Vec::new())]),
@@ -709,8 +709,54 @@ pub fn sign_exact(e: &Expr) -> Option<i32> {
 }
 
 /// The sign of a polynomial whose atoms are all positive and whose
-/// coefficients all have one sign.
+/// coefficients all have one sign, or which is a positive monomial times
+/// a real number built from radicals (2·g − √2·g = g·(2 − √2)).
 fn definite(p: &Poly) -> Option<i32> {
+    one_signed(p).or_else(|| radical_number(p))
+}
+
+/// p = (monomial in positive atoms) × (a combination of √n): the sign of
+/// the number, which is nonzero (p is canonical and not zero) and is
+/// evaluated in f64 only when far from 0.
+fn radical_number(p: &Poly) -> Option<i32> {
+    let mut terms = p.terms().iter();
+    let first = terms.next()?.0.clone();
+    let g = terms.fold(first, |g, (m, _)| g.gcd(m));
+    let rest = p.div_mono(&g)?;
+    if !rest
+        .vars()
+        .iter()
+        .all(|&v| matches!(atom::atom(v), Atom::Root(_)))
+    {
+        return None;
+    }
+    let positive_part = g.0.iter().all(|&(v, k)| {
+        k % 2 == 0
+            || matches!(
+                atom::atom(v),
+                Atom::Param(_) | Atom::Pi | Atom::Root(_) | Atom::SqrtOf(_) | Atom::Exp(_)
+            )
+    });
+    if !positive_part {
+        return None;
+    }
+    let v = Expr::from_poly(rest.clone()).eval_f64(&|_| None)?;
+    let scale = rest
+        .terms()
+        .iter()
+        .filter_map(|(m, c)| {
+            Expr::from_poly(Poly::monomial(m.clone(), c.clone()))
+                .eval_f64(&|_| None)
+                .map(f64::abs)
+        })
+        .fold(0.0, f64::max);
+    if !v.is_finite() || v.abs() <= 1e-9 * scale {
+        return None;
+    }
+    Some(if v > 0.0 { 1 } else { -1 })
+}
+
+fn one_signed(p: &Poly) -> Option<i32> {
     let positive = |v: Var| {
         matches!(
             atom::atom(v),
@@ -736,7 +782,7 @@ fn definite(p: &Poly) -> Option<i32> {
 /// With parameter values, the numeric sign comes first: an exact sign is a
 /// claim for all positive parameters, and a radical in it (a discriminant)
 /// can vanish at particular values, where two equilibria merge.
-fn sign_of(e: &Expr, set: &Values) -> Option<i32> {
+pub(crate) fn sign_of(e: &Expr, set: &Values) -> Option<i32> {
     if let Some(s) = sign_numeric(e, set) {
         return Some(s);
     }
@@ -834,7 +880,7 @@ fn numeric_values(vals: &[Expr], set: &Values) -> Option<Vec<f64>> {
 /// det of a small matrix of expressions (Gaussian elimination with exact
 /// zero tests).
 #[allow(clippy::needless_range_loop)] // matrix indices read best as indices
-fn det(mut m: Vec<Vec<Expr>>) -> Option<Expr> {
+pub(crate) fn det(mut m: Vec<Vec<Expr>>) -> Option<Expr> {
     let n = m.len();
     let mut d = Expr::one();
     for k in 0..n {

@@ -1,0 +1,572 @@
+//! Small oscillations about an equilibrium (the seed's chapter 24).
+//!
+//! Lagrange's equations R_k(q, q̇, q̈, t) = lhs_k − Q_k = 0 are expanded to
+//! first order about q = q0, q̇ = 0, q̈ = 0 — the same as expanding E, U/V
+//! and D/R to second order (sin θ ≈ θ, 1 − cos θ ≈ θ²/2):
+//!
+//! ```text
+//! M·q̈ + C·q̇ + K·q = f(t),   M = ∂R/∂q̈, C = ∂R/∂q̇, K = ∂R/∂q at (q0, 0, 0),
+//!                           f(t) = −R(q0, 0, 0, t)
+//! ```
+//!
+//! f must have no constant part (q0 must be an equilibrium). Then
+//! det(K − λ·M) = 0 with λ = ω² is solved exactly: by degree (linear,
+//! quadratic with radicals) and, for higher degrees, by scaling λ = x·s with
+//! s = −c_{n−1}/c_n to a polynomial with rational coefficients whose rational
+//! roots (rational root theorem) split it down to a quadratic. The modes are
+//! the null vectors of K − λᵢ·M normalized to the first coordinate (the
+//! seed's distribution coefficients), computed exactly.
+
+use crate::diag::Diagnostic;
+use crate::expr::atom::{self, Atom};
+use crate::expr::{func, Expr};
+use crate::num::Q;
+use crate::poly::{Poly, Var};
+use crate::scene::Scene;
+use crate::solve::equilibrium::{det, quadratic, sign_of, Values};
+use rustc_hash::FxHashMap;
+
+/// The variable of the characteristic polynomial, λ = ω².
+pub const LAMBDA: &str = "lambda";
+
+/// The linearized system and its modes.
+#[derive(Clone, Debug)]
+pub struct Modes {
+    pub coordinates: Vec<String>,
+    /// The equilibrium q0.
+    pub at: Vec<Expr>,
+    pub mass: Vec<Vec<Expr>>,
+    pub damping: Vec<Vec<Expr>>,
+    pub stiffness: Vec<Vec<Expr>>,
+    /// f(t) of M·q̈ + C·q̇ + K·q = f(t).
+    pub forcing: Vec<Expr>,
+    /// det(K − λ·M), expanded.
+    pub characteristic: Expr,
+    /// The factors of det(K − λ·M) over the rationals (with the constant
+    /// content as a factor of degree 0).
+    pub factors: Vec<Expr>,
+    /// ω², ascending where the order can be decided; empty if no closed form.
+    pub omega_squared: Vec<Expr>,
+    /// For each ω²: the mode normalized to the first coordinate (the
+    /// distribution coefficients μ = x_j/x_1), or to the first nonzero one.
+    pub modes: Vec<Vec<Expr>>,
+    /// Stable (all ω² > 0), unstable (some ω² < 0), or undecided.
+    pub stability: Stability,
+}
+
+/// The verdict on the linearized system.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Stability {
+    Stable,
+    Unstable,
+    Undecided(String),
+}
+
+impl Stability {
+    pub fn word(&self) -> &'static str {
+        match self {
+            Stability::Stable => "stable",
+            Stability::Unstable => "unstable",
+            Stability::Undecided(_) => "undecided",
+        }
+    }
+}
+
+/// One degree of freedom in the standard form ÿ + 2α·ẏ + ω²·y = f(t)/M.
+#[derive(Clone, Debug)]
+pub struct StandardForm {
+    pub omega_squared: Expr,
+    pub alpha: Expr,
+    /// f(t)/M.
+    pub forcing: Expr,
+    /// ζ = α/ω (present when ω² is not zero).
+    pub zeta: Option<Expr>,
+    /// "undamped", "underdamped", "critically damped", "overdamped", or
+    /// "undecided" when the sign of α² − ω² depends on the parameters.
+    pub regime: String,
+}
+
+fn math(m: crate::expr::MathError) -> Diagnostic {
+    let d = Diagnostic::global(m.message);
+    match m.hint {
+        Some(h) => d.with_hint(h),
+        None => d,
+    }
+}
+
+/// Linearize about `at` (default q = 0) and find the modes.
+pub fn modes(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Modes, Diagnostic> {
+    let l = scene.lagrange()?;
+    let names = l.coordinates.clone();
+    let n = names.len();
+    let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();
+    let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
+    let qdd: Vec<Var> = names.iter().map(|c| atom::coord(c, 2)).collect();
+    let q0: Vec<Expr> = match at {
+        Some(v) => v.to_vec(),
+        None => vec![Expr::zero(); n],
+    };
+    let mut point: FxHashMap<Var, Expr> = FxHashMap::default();
+    for k in 0..n {
+        point.insert(q[k], q0[k].clone());
+        point.insert(qd[k], Expr::zero());
+        point.insert(qdd[k], Expr::zero());
+    }
+    let at_point = |e: &Expr| e.subs_many(&point).map_err(math);
+    let residuals: Vec<Expr> = l.equations.iter().map(|e| e.lhs.sub(&e.rhs)).collect();
+    let mut mass = vec![vec![Expr::zero(); n]; n];
+    let mut damping = vec![vec![Expr::zero(); n]; n];
+    let mut stiffness = vec![vec![Expr::zero(); n]; n];
+    let mut forcing = Vec::with_capacity(n);
+    let t = atom::time();
+    for (k, r) in residuals.iter().enumerate() {
+        for j in 0..n {
+            mass[k][j] = at_point(&r.diff(qdd[j]))?;
+            damping[k][j] = at_point(&r.diff(qd[j]))?;
+            stiffness[k][j] = at_point(&r.diff(q[j]))?;
+            if stiffness[k][j].depends_on(t) || mass[k][j].depends_on(t) {
+                return Err(Diagnostic::global(format!(
+                    "the linearized coefficients of `{}` depend on time (parametric excitation)",
+                    names[k]
+                ))
+                .with_hint("small oscillations need constant M, C and K"));
+            }
+        }
+        let f = at_point(r)?.neg();
+        let (static_part, _) = split_time(&f, t);
+        if !static_part.is_zero() {
+            let q0s: Vec<String> = names
+                .iter()
+                .zip(&q0)
+                .map(|(c, v)| format!("{c} = {}", crate::expr::print::input(v)))
+                .collect();
+            return Err(Diagnostic::global(format!(
+                "{} is not an equilibrium: the force on `{}` there is {} ≠ 0",
+                q0s.join(", "),
+                names[k],
+                crate::expr::print::unicode(&static_part)
+            ))
+            .with_hint(
+                "`qdot equilibrium` finds the equilibria; linearize about one with --at q=value",
+            ));
+        }
+        forcing.push(f);
+    }
+    let lambda = Expr::var(atom::unknown(LAMBDA));
+    let a: Vec<Vec<Expr>> = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| stiffness[i][j].sub(&lambda.mul(&mass[i][j])))
+                .collect()
+        })
+        .collect();
+    let characteristic = det(a).ok_or_else(|| Diagnostic::global("det(K − λ·M) failed"))?;
+    let lv = atom::unknown(LAMBDA);
+    let (mut roots, factors) = lambda_roots(&characteristic, lv).unwrap_or_default();
+    sort_ascending(&mut roots, set);
+    let mut modes = Vec::with_capacity(roots.len());
+    for r in &roots {
+        modes.push(mode(&stiffness, &mass, r)?);
+    }
+    let stability = if roots.is_empty() {
+        Stability::Undecided("no closed form for the frequencies; see the numeric values".into())
+    } else {
+        let signs: Vec<Option<i32>> = roots.iter().map(|r| sign_of(r, set)).collect();
+        if signs.iter().all(|s| *s == Some(1)) {
+            Stability::Stable
+        } else if signs.contains(&Some(-1)) {
+            Stability::Unstable
+        } else if signs.contains(&Some(0)) {
+            Stability::Undecided("a zero frequency: higher-order terms decide".into())
+        } else {
+            let undecided: Vec<String> = roots
+                .iter()
+                .zip(&signs)
+                .filter(|(_, s)| s.is_none())
+                .map(|(r, _)| format!("{} > 0", crate::expr::print::expanded(r)))
+                .collect();
+            Stability::Undecided(format!(
+                "stable when {}; give values with --set",
+                undecided.join(" and ")
+            ))
+        }
+    };
+    Ok(Modes {
+        coordinates: names,
+        at: q0,
+        mass,
+        damping,
+        stiffness,
+        forcing,
+        characteristic,
+        factors,
+        omega_squared: roots,
+        modes,
+        stability,
+    })
+}
+
+/// Split e into (terms free of t, terms with t) over its denominator.
+fn split_time(e: &Expr, t: Var) -> (Expr, Expr) {
+    let mut fixed = Poly::zero();
+    let mut moving = Poly::zero();
+    for (m, c) in e.num().terms() {
+        let term = Poly::monomial(m.clone(), c.clone());
+        if m.0.iter().any(|&(v, _)| Expr::var(v).depends_on(t)) {
+            moving = &moving + &term;
+        } else {
+            fixed = &fixed + &term;
+        }
+    }
+    let den = e.den().clone();
+    (
+        Expr::from_parts(fixed, den.clone()).unwrap_or_else(|_| Expr::zero()),
+        Expr::from_parts(moving, den).unwrap_or_else(|_| Expr::zero()),
+    )
+}
+
+/// The roots λ of a polynomial in `lv` and its factors over the rationals.
+fn lambda_roots(p: &Expr, lv: Var) -> Option<(Vec<Expr>, Vec<Expr>)> {
+    let den = Expr::from_poly(p.den().clone());
+    let cs: Vec<Expr> = p
+        .num()
+        .coeffs_in(lv)
+        .into_iter()
+        .map(|c| {
+            Expr::from_poly(c)
+                .div(&den)
+                .unwrap_or_else(|_| Expr::zero())
+        })
+        .collect();
+    let lam = Expr::var(lv);
+    let mut roots = Vec::new();
+    let mut factors = Vec::new();
+    let mut rest = cs;
+    // take out λ = 0 roots
+    while rest.len() > 1 && rest[0].is_zero() {
+        roots.push(Expr::zero());
+        factors.push(lam.clone());
+        rest.remove(0);
+    }
+    // rational roots of the scaled polynomial (degree ≥ 3)
+    if rest.len() > 3 {
+        let n = rest.len() - 1;
+        let s = rest[n - 1].neg().div(&rest[n]).ok()?;
+        if s.is_zero() {
+            return None;
+        }
+        // p(x·s)/(c_n·s^n): rational coefficients?
+        let mut xs: Vec<Q> = Vec::with_capacity(n + 1);
+        for (i, c) in rest.iter().enumerate() {
+            let v = c
+                .mul(&s.powi(i as i64 - n as i64).ok()?)
+                .div(&rest[n])
+                .ok()?;
+            xs.push(v.as_rational()?);
+        }
+        for x in rational_roots(&xs) {
+            // divide by (x·s − λ) in λ: synthetic division of rest by λ − r
+            let r = s.scale(&x);
+            rest = deflate(&rest, &r)?;
+            roots.push(r.clone());
+            factors.push(linear_factor(&lam, &r));
+            if rest.len() <= 3 {
+                break;
+            }
+        }
+        if rest.len() > 3 {
+            return None;
+        }
+    }
+    let quad = quadratic(&rest)?;
+    let irrational = quad.len() == 2
+        && quad[0]
+            .0
+            .vars()
+            .iter()
+            .any(|&v| matches!(atom::atom(v), Atom::Root(_) | Atom::SqrtOf(_)));
+    if irrational {
+        // keep the quadratic factor whole (factored over the rationals)
+        let lead = rest[2].clone();
+        let monic = rest[0]
+            .div(&lead)
+            .ok()?
+            .add(&rest[1].div(&lead).ok()?.mul(&lam))
+            .add(&lam.mul(&lam));
+        factors.push(clear(&monic));
+    } else {
+        for (r, _) in &quad {
+            factors.push(linear_factor(&lam, r));
+        }
+    }
+    roots.extend(quad.into_iter().map(|(r, _)| r));
+    // the constant content: det = content · Π factors
+    let mut prod = Expr::one();
+    for f in &factors {
+        prod = prod.mul(f);
+    }
+    if let Ok(content) = p.div(&prod) {
+        if !content.is_one() {
+            factors.insert(0, content);
+        }
+    }
+    Some((roots, factors))
+}
+
+/// (b·λ − a) for a root a/b, with the sign making the λ term negative when
+/// the root is a ratio (k − m·λ), as the seed writes (24.2).
+fn linear_factor(lam: &Expr, r: &Expr) -> Expr {
+    // a/b with integer coefficients: k/(6·m) → (k, 6·m)
+    let l = r
+        .num()
+        .terms()
+        .iter()
+        .chain(r.den().terms())
+        .fold(num_bigint::BigInt::from(1), |l, (_, c)| {
+            num_integer::Integer::lcm(&l, &c.denom())
+        });
+    let lq = Q::from_bigint(l);
+    let a = Expr::from_poly(r.num().clone()).scale(&lq);
+    let b = Expr::from_poly(r.den().clone()).scale(&lq);
+    a.sub(&b.mul(lam))
+}
+
+/// A polynomial in λ with its denominators cleared (a monic quadratic
+/// times the lcm of its coefficients' denominators).
+fn clear(e: &Expr) -> Expr {
+    Expr::from_poly(e.num().clone())
+}
+
+/// Divide Σ cs[i]·λ^i by (λ − r) (r a root): the quotient's coefficients.
+fn deflate(cs: &[Expr], r: &Expr) -> Option<Vec<Expr>> {
+    let n = cs.len() - 1;
+    let mut out = vec![Expr::zero(); n];
+    let mut carry = Expr::zero();
+    for i in (0..=n).rev() {
+        let v = cs[i].add(&carry.mul(r));
+        if i == 0 {
+            if !v.is_zero() {
+                return None; // not a root
+            }
+        } else {
+            out[i - 1] = v.clone();
+            carry = v;
+        }
+    }
+    Some(out)
+}
+
+/// Rational roots of Σ xs[i]·x^i (rational root theorem), with small
+/// numerators and denominators; multiplicities not repeated.
+fn rational_roots(xs: &[Q]) -> Vec<Q> {
+    use num_traits::ToPrimitive;
+    // integer coefficients
+    let mut l = num_bigint::BigInt::from(1);
+    for x in xs {
+        let d = x.denom();
+        l = num_integer::Integer::lcm(&l, &d);
+    }
+    let ints: Vec<i64> = xs
+        .iter()
+        .filter_map(|x| (x * &Q::from_bigint(l.clone())).numer().to_i64())
+        .collect();
+    if ints.len() != xs.len() || ints[0] == 0 {
+        return Vec::new();
+    }
+    let divisors = |n: i64| -> Vec<i64> {
+        let n = n.unsigned_abs().min(1_000_000) as i64;
+        (1..=n).filter(|d| n % d == 0).take(64).collect()
+    };
+    let lead = ints[ints.len() - 1];
+    let mut out = Vec::new();
+    for p in divisors(ints[0]) {
+        for qd in divisors(lead) {
+            for sign in [1, -1] {
+                let Some(cand) = Q::new(sign * p, qd) else {
+                    continue;
+                };
+                if out.contains(&cand) {
+                    continue;
+                }
+                let mut v = Q::zero();
+                for c in xs.iter().rev() {
+                    v = &(&v * &cand) + c;
+                }
+                if v.is_zero() {
+                    out.push(cand);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Sort ω² ascending where differences have a decided sign.
+fn sort_ascending(roots: &mut [Expr], set: &Values) {
+    // insertion sort with a partial comparison
+    for i in 1..roots.len() {
+        let mut j = i;
+        while j > 0 && sign_of(&roots[j - 1].sub(&roots[j]), set) == Some(1) {
+            roots.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+}
+
+/// The mode of ω² = λ: x with (K − λ·M)·x = 0, x_1 = 1 (or the first
+/// coordinate that can be 1).
+fn mode(k: &[Vec<Expr>], m: &[Vec<Expr>], lambda: &Expr) -> Result<Vec<Expr>, Diagnostic> {
+    let n = k.len();
+    let a: Vec<Vec<Expr>> = (0..n)
+        .map(|i| (0..n).map(|j| k[i][j].sub(&lambda.mul(&m[i][j]))).collect())
+        .collect();
+    for pin in 0..n {
+        let others: Vec<usize> = (0..n).filter(|&j| j != pin).collect();
+        let rows: Vec<Vec<Expr>> = a
+            .iter()
+            .map(|r| others.iter().map(|&j| r[j].clone()).collect())
+            .collect();
+        let rhs: Vec<Expr> = a.iter().map(|r| r[pin].neg()).collect();
+        let syms: Vec<Expr> = others
+            .iter()
+            .map(|j| Expr::unknown(&format!("x{}", j + 1)))
+            .collect();
+        let Ok(sol) = crate::solve::system::solve_rect(&rows, &rhs, &syms) else {
+            continue;
+        };
+        if sol.residuals.iter().any(|(_, r)| !r.is_zero()) {
+            continue;
+        }
+        let mut x = vec![Expr::zero(); n];
+        x[pin] = Expr::one();
+        for (idx, &j) in others.iter().enumerate() {
+            // a free coordinate (a repeated ω²) is set to zero in this mode
+            x[j] = if sol.shape.free.contains(&idx) {
+                Expr::zero()
+            } else {
+                sol.values[idx].clone()
+            };
+        }
+        return Ok(x);
+    }
+    Err(Diagnostic::global(
+        "internal error: no mode found for an exact root of det(K − λ·M)",
+    ))
+}
+
+/// One coordinate: ÿ + 2α·ẏ + ω²·y = f/M.
+pub fn standard_form(md: &Modes, set: &Values) -> Option<StandardForm> {
+    if md.coordinates.len() != 1 {
+        return None;
+    }
+    let m = &md.mass[0][0];
+    let w2 = md.stiffness[0][0].div(m).ok()?;
+    let two_alpha = md.damping[0][0].div(m).ok()?;
+    let alpha = two_alpha.scale(&Q::new(1, 2).unwrap_or_else(Q::one));
+    let forcing = md.forcing[0].div(m).ok()?;
+    let zeta = if w2.is_zero() {
+        None
+    } else {
+        func::sqrt(&w2).ok().and_then(|w| alpha.div(&w).ok())
+    };
+    let regime = if alpha.is_zero() {
+        "undamped".to_string()
+    } else {
+        match sign_of(&alpha.mul(&alpha).sub(&w2), set) {
+            Some(-1) => "underdamped".into(),
+            Some(0) => "critically damped".into(),
+            Some(_) => "overdamped".into(),
+            None => "underdamped when α² < ω², overdamped when α² > ω²".to_string(),
+        }
+    };
+    Some(StandardForm {
+        omega_squared: w2,
+        alpha,
+        forcing,
+        zeta,
+        regime,
+    })
+}
+
+/// The free response from initial positions and velocities (undamped):
+/// q(t) = Σ_i u_i·(a_i·cos ω_i t + b_i·sin ω_i t). Returns q(t) per
+/// coordinate, exactly.
+pub fn free_response(md: &Modes, q0: &[Expr], v0: &[Expr]) -> Result<Vec<Expr>, Diagnostic> {
+    let n = md.coordinates.len();
+    if md.omega_squared.len() != n {
+        return Err(Diagnostic::global(
+            "the free response needs every frequency in closed form",
+        ));
+    }
+    // U·a = q0, U·(ω∘b) = v0 with U's columns the modes
+    let u: Vec<Vec<Expr>> = (0..n)
+        .map(|j| (0..n).map(|i| md.modes[i][j].clone()).collect())
+        .collect();
+    let a = crate::solve::linear::solve(&u, q0)
+        .map_err(|_| Diagnostic::global("the modes are not independent"))?;
+    let wb = crate::solve::linear::solve(&u, v0)
+        .map_err(|_| Diagnostic::global("the modes are not independent"))?;
+    let t = Expr::time();
+    let mut out = vec![Expr::zero(); n];
+    for i in 0..n {
+        let w = func::sqrt(&md.omega_squared[i]).map_err(math)?;
+        let (s, c) = func::sin_cos(&w.mul(&t));
+        let b = if w.is_zero() {
+            Expr::zero()
+        } else {
+            wb[i].div(&w).map_err(math)?
+        };
+        let term = if w.is_zero() {
+            a[i].add(&wb[i].mul(&t))
+        } else {
+            a[i].mul(&c).add(&b.mul(&s))
+        };
+        for (o, u) in out.iter_mut().zip(&md.modes[i]) {
+            *o = o.add(&u.mul(&term));
+        }
+    }
+    Ok(out)
+}
+
+/// Steady-state amplitudes X of an undamped system under f(t) = F·cos(p·t):
+/// (K − p²·M)·X = F. `p` and the amplitude vector are read off f.
+pub fn forced_amplitudes(md: &Modes) -> Option<(Expr, Vec<Expr>)> {
+    let t = atom::time();
+    let n = md.coordinates.len();
+    // find the driving angle u (cos u with u depending on t)
+    let mut angle: Option<Expr> = None;
+    for f in &md.forcing {
+        for v in f.num().vars() {
+            if let Atom::Cos(u) | Atom::Sin(u) = atom::atom(v) {
+                if u.depends_on(t) {
+                    angle = Some(u.clone());
+                }
+            }
+        }
+    }
+    let u = angle?;
+    let p = u.diff(t);
+    if p.depends_on(t) {
+        return None;
+    }
+    let (_, cv) = atom::intern_trig(&u);
+    let mut amp = Vec::with_capacity(n);
+    for f in &md.forcing {
+        let cs = f.num().coeffs_in(cv);
+        if cs.len() > 2 || cs.first().is_some_and(|c| !c.is_zero()) {
+            return None; // not a pure cos(p·t) load
+        }
+        let c1 = cs.get(1).cloned().unwrap_or_default();
+        amp.push(Expr::from_parts(c1, f.den().clone()).ok()?);
+    }
+    let p2 = p.mul(&p);
+    let a: Vec<Vec<Expr>> = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| md.stiffness[i][j].sub(&p2.mul(&md.mass[i][j])))
+                .collect()
+        })
+        .collect();
+    let x = crate::solve::linear::solve(&a, &amp).ok()?;
+    Some((p, x))
+}
