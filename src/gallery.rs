@@ -17,6 +17,7 @@ pub const SEED_EXAMPLES: &[&str] = &[
     "seed_23_3",
     "seed_23_4",
     "seed_24_1",
+    "seed_24_2",
 ];
 
 /// The n-link planar pendulum chain with equal masses `m` and lengths `l`,

@@ -647,11 +647,11 @@ fn matrix_text(out: &mut String, title: &str, m: &[Vec<Expr>]) {
     }
 }
 
-/// Numeric ω² from the generalized symmetric eigenproblem at `set`.
-fn numeric_omega_squared(
+/// The generalized symmetric eigenproblem K·v = ω²·M·v at `set`.
+fn numeric_eigen(
     md: &crate::mechanics::oscillations::Modes,
     set: &Values,
-) -> Option<Vec<f64>> {
+) -> Option<crate::solve::eigen::GeneralizedEigen> {
     if set.is_empty() {
         return None;
     }
@@ -664,11 +664,7 @@ fn numeric_omega_squared(
             .map(|r| r.iter().map(|e| e.eval_f64(&at)).collect())
             .collect()
     };
-    let k = num(&md.stiffness)?;
-    let m = num(&md.mass)?;
-    crate::solve::eigen::generalized_symmetric(&k, &m)
-        .ok()
-        .map(|g| g.values)
+    crate::solve::eigen::generalized_symmetric(&num(&md.stiffness)?, &num(&md.mass)?).ok()
 }
 
 /// The text of `qdot modes`.
@@ -777,9 +773,46 @@ pub fn modes_text(
             ));
         }
     }
-    if let Some(vals) = numeric_omega_squared(md, set) {
-        let v: Vec<String> = vals.iter().map(|x| minus(format!("{x:.10}"))).collect();
+    if let Some(g) = numeric_eigen(md, set) {
+        let v: Vec<String> = g.values.iter().map(|x| minus(format!("{x:.10}"))).collect();
         out.push_str(&format!("  numeric ω² (eigen-solver): {}\n", v.join(", ")));
+        out.push_str("  mass-normalized modes (numeric, vᵀ·M·v = 1):\n");
+        for v in &g.vectors {
+            let c: Vec<String> = v.iter().map(|x| minus(format!("{x:.8}"))).collect();
+            out.push_str(&format!("    ({})\n", c.join(", ")));
+        }
+    }
+    if !md.omega_squared.is_empty() && md.omega_squared.len() == md.coordinates.len() {
+        out.push_str("\nGeneral solution (undamped)  q(t) = Σ Cᵢ·uᵢ·cos(ωᵢ·t + φᵢ)\n");
+        for (j, c) in names.iter().enumerate() {
+            let mut line = String::new();
+            for (i, mode) in md.modes.iter().enumerate() {
+                let mu = &mode[j];
+                if mu.is_zero() {
+                    continue;
+                }
+                let i1 = subscript(i + 1);
+                let wave = format!("C{i1}·cos(ω{i1}·t + φ{i1})");
+                let ms = u(mu);
+                let (neg, body) = match ms.strip_prefix('−') {
+                    Some(r) if !(r.contains(" + ") || r.contains(" − ")) => (true, r.to_string()),
+                    _ => (false, paren_str(&ms)),
+                };
+                let term = if body == "1" {
+                    wave
+                } else {
+                    format!("{body}·{wave}")
+                };
+                line.push_str(match (line.is_empty(), neg) {
+                    (true, false) => "",
+                    (true, true) => "−",
+                    (false, false) => " + ",
+                    (false, true) => " − ",
+                });
+                line.push_str(&term);
+            }
+            out.push_str(&format!("  {c} = {line}\n"));
+        }
     }
     out.push_str(&format!(
         "\nStability of the equilibrium: {}",
@@ -797,9 +830,46 @@ pub fn modes_text(
         for (c, q) in names.iter().zip(free) {
             out.push_str(&format!("  {c}(t) = {}\n", u(q)));
         }
+        if md.coordinates.len() == 1 && md.omega_squared.len() == 1 {
+            // the seed's form y = A·sin(ω·t + φ)
+            let q = &free[0];
+            let t = crate::expr::atom::time();
+            let zero: rustc_hash::FxHashMap<_, _> = [(t, Expr::zero())].into_iter().collect();
+            let y0 = q.subs_many(&zero).ok();
+            let v0 = q.diff(t).subs_many(&zero).ok();
+            if let (Some(y0), Some(v0)) = (y0, v0) {
+                if let Some((a, phi)) =
+                    crate::mechanics::oscillations::amplitude_phase(&md.omega_squared[0], &y0, &v0)
+                {
+                    out.push_str(&format!(
+                        "  = A·sin(ω·t + φ),  A = √(y₀² + (v₀/ω)²) = {},  φ = atan(y₀·ω/v₀) = {}\n",
+                        u(&a),
+                        u(&phi)
+                    ));
+                }
+            }
+        }
+    }
+    if let Some(sf) = crate::mechanics::oscillations::standard_form(md, set) {
+        if !sf.alpha.is_zero() {
+            if let Some((p, _, tan_psi)) =
+                crate::mechanics::oscillations::damped_steady_state(md, &sf)
+            {
+                // X is exact in the JSON; the formula reads better here
+                out.push_str(&format!(
+                    "\nSteady state under F·cos(p·t), p = {}:  y = X·cos(p·t − ψ)\n  X = (F/M)/√((ω² − p²)² + 4α²p²),  F/M = {}\n  tan ψ = 2αp/(ω² − p²) = {}\n",
+                    u(&p),
+                    crate::mechanics::oscillations::harmonic_load(md)
+                        .and_then(|(_, f)| f[0].div(&md.mass[0][0]).ok())
+                        .map(|a| u(&a))
+                        .unwrap_or_default(),
+                    u(&tan_psi)
+                ));
+            }
+        }
     }
     if let Some((p, x)) = crate::mechanics::oscillations::forced_amplitudes(md) {
-        if md.damping.iter().flatten().all(|e| e.is_zero()) || md.coordinates.len() == 1 {
+        if md.damping.iter().flatten().all(|e| e.is_zero()) {
             out.push_str(&format!(
                 "\nSteady state under f = F·cos(p·t), p = {}  (undamped amplitudes; resonance at p² = ωᵢ²)\n",
                 u(&p)
@@ -885,6 +955,22 @@ fn subscript(n: usize) -> String {
         .collect()
 }
 
+/// `forced_response`: for f = F·cos(p·t), the undamped amplitudes
+/// (K − p²M)⁻¹·F, or for one damped coordinate X and tan ψ.
+fn forced_json(md: &crate::mechanics::oscillations::Modes, set: &Values) -> Value {
+    use crate::mechanics::oscillations as osc;
+    let damped = md.damping.iter().flatten().any(|e| !e.is_zero());
+    if !damped {
+        return osc::forced_amplitudes(md)
+            .map(|(p, x)| json!({"p": s(&p), "amplitudes": named(&md.coordinates, &x)}))
+            .unwrap_or(Value::Null);
+    }
+    osc::standard_form(md, set)
+        .and_then(|sf| osc::damped_steady_state(md, &sf))
+        .map(|(p, x, t)| json!({"p": s(&p), "amplitude": s(&x), "tan_psi": s(&t)}))
+        .unwrap_or(Value::Null)
+}
+
 /// The JSON of `qdot modes`.
 pub fn modes_json(
     md: &crate::mechanics::oscillations::Modes,
@@ -940,8 +1026,14 @@ pub fn modes_json(
     m.insert("standard_form".into(), sf.unwrap_or(Value::Null));
     m.insert(
         "numeric_omega_squared".into(),
-        numeric_omega_squared(md, set)
-            .map(|v| json!(v))
+        numeric_eigen(md, set)
+            .map(|g| json!(g.values))
+            .unwrap_or(Value::Null),
+    );
+    m.insert(
+        "numeric_modes".into(),
+        numeric_eigen(md, set)
+            .map(|g| json!(g.vectors))
             .unwrap_or(Value::Null),
     );
     m.insert(
@@ -949,11 +1041,6 @@ pub fn modes_json(
         free.map(|f| named(&md.coordinates, f))
             .unwrap_or(Value::Null),
     );
-    m.insert(
-        "forced_response".into(),
-        crate::mechanics::oscillations::forced_amplitudes(md)
-            .map(|(p, x)| json!({"p": s(&p), "amplitudes": named(&md.coordinates, &x)}))
-            .unwrap_or(Value::Null),
-    );
+    m.insert("forced_response".into(), forced_json(md, set));
     m
 }

@@ -528,12 +528,10 @@ pub fn free_response(md: &Modes, q0: &[Expr], v0: &[Expr]) -> Result<Vec<Expr>, 
     Ok(out)
 }
 
-/// Steady-state amplitudes X of an undamped system under f(t) = F·cos(p·t):
-/// (K − p²·M)·X = F. `p` and the amplitude vector are read off f.
-pub fn forced_amplitudes(md: &Modes) -> Option<(Expr, Vec<Expr>)> {
+/// A harmonic load f(t) = F·cos(p·t): (p, F), read off the forcing.
+pub fn harmonic_load(md: &Modes) -> Option<(Expr, Vec<Expr>)> {
     let t = atom::time();
-    let n = md.coordinates.len();
-    // find the driving angle u (cos u with u depending on t)
+    // the driving angle u (cos u with u depending on t)
     let mut angle: Option<Expr> = None;
     for f in &md.forcing {
         for v in f.num().vars() {
@@ -550,7 +548,7 @@ pub fn forced_amplitudes(md: &Modes) -> Option<(Expr, Vec<Expr>)> {
         return None;
     }
     let (_, cv) = atom::intern_trig(&u);
-    let mut amp = Vec::with_capacity(n);
+    let mut amp = Vec::with_capacity(md.forcing.len());
     for f in &md.forcing {
         let cs = f.num().coeffs_in(cv);
         if cs.len() > 2 || cs.first().is_some_and(|c| !c.is_zero()) {
@@ -559,6 +557,14 @@ pub fn forced_amplitudes(md: &Modes) -> Option<(Expr, Vec<Expr>)> {
         let c1 = cs.get(1).cloned().unwrap_or_default();
         amp.push(Expr::from_parts(c1, f.den().clone()).ok()?);
     }
+    Some((p, amp))
+}
+
+/// Steady-state amplitudes X of an undamped system under f(t) = F·cos(p·t):
+/// (K − p²·M)·X = F.
+pub fn forced_amplitudes(md: &Modes) -> Option<(Expr, Vec<Expr>)> {
+    let n = md.coordinates.len();
+    let (p, amp) = harmonic_load(md)?;
     let p2 = p.mul(&p);
     let a: Vec<Vec<Expr>> = (0..n)
         .map(|i| {
@@ -569,4 +575,37 @@ pub fn forced_amplitudes(md: &Modes) -> Option<(Expr, Vec<Expr>)> {
         .collect();
     let x = crate::solve::linear::solve(&a, &amp).ok()?;
     Some((p, x))
+}
+
+/// One coordinate with damping, f = F·cos(p·t): the steady state
+/// y = X·cos(p·t − ψ) with X = (F/M)/√((ω² − p²)² + 4α²p²) and
+/// tan ψ = 2αp/(ω² − p²) (the seed's 24.3). Returns (p, X, tan ψ).
+pub fn damped_steady_state(md: &Modes, sf: &StandardForm) -> Option<(Expr, Expr, Expr)> {
+    let (p, f) = harmonic_load(md)?;
+    let q = f[0].div(&md.mass[0][0]).ok()?;
+    let p2 = p.mul(&p);
+    let d = sf.omega_squared.sub(&p2);
+    let two_ap = sf.alpha.mul(&p).scale(&Q::from_i64(2));
+    let den = func::sqrt(&d.mul(&d).add(&two_ap.mul(&two_ap))).ok()?;
+    let x = q.div(&den).ok()?;
+    let tan_psi = two_ap.div(&d).ok()?;
+    Some((p, x, tan_psi))
+}
+
+/// One coordinate, undamped: y = A·sin(ω·t + φ) from y(0) = y0, ẏ(0) = v0
+/// (the seed's 24.46–24.47): A = √(y0² + (v0/ω)²), φ = atan(y0·ω/v0)
+/// (φ = ±π/2 when v0 = 0). Returns (A, φ).
+pub fn amplitude_phase(omega_squared: &Expr, y0: &Expr, v0: &Expr) -> Option<(Expr, Expr)> {
+    let w = func::sqrt(omega_squared).ok()?;
+    let a = func::sqrt(&y0.mul(y0).add(&v0.div(&w).ok()?.powi(2).ok()?)).ok()?;
+    let phi = if v0.is_zero() {
+        let half_pi = Expr::pi().scale(&Q::new(1, 2).unwrap_or_else(Q::one));
+        match crate::solve::equilibrium::sign_exact(y0) {
+            Some(s) if s < 0 => half_pi.neg(),
+            _ => half_pi,
+        }
+    } else {
+        func::atan(&y0.mul(&w).div(v0).ok()?)
+    };
+    Some((a, phi))
 }
