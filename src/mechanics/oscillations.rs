@@ -164,9 +164,22 @@ pub fn modes(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Modes, 
     let lv = atom::unknown(LAMBDA);
     let (mut roots, factors) = lambda_roots(&characteristic, lv).unwrap_or_default();
     sort_ascending(&mut roots, set);
-    let mut modes = Vec::with_capacity(roots.len());
-    for r in &roots {
-        modes.push(mode(&stiffness, &mass, r)?);
+    let mut modes: Vec<Vec<Expr>> = Vec::with_capacity(roots.len());
+    let mut i = 0;
+    while i < roots.len() {
+        // equal roots share one null space: take its basis
+        let same = roots[i..]
+            .iter()
+            .take_while(|r| r.equals(&roots[i]))
+            .count();
+        let basis = null_basis(&stiffness, &mass, &roots[i])?;
+        if basis.len() < same {
+            return Err(Diagnostic::global(
+                "internal error: fewer modes than the multiplicity of a root of det(K − λ·M)",
+            ));
+        }
+        modes.extend(basis.into_iter().take(same));
+        i += same;
     }
     let stability = if roots.is_empty() {
         Stability::Undecided("no closed form for the frequencies; see the numeric values".into())
@@ -278,7 +291,11 @@ fn lambda_roots(p: &Expr, lv: Var) -> Option<(Vec<Expr>, Vec<Expr>)> {
             return None;
         }
     }
-    let quad = quadratic(&rest)?;
+    let mut quad = quadratic(&rest)?;
+    if rest.len() == 3 && quad.len() == 1 {
+        // a double root: two modes share the frequency
+        quad.push(quad[0].clone());
+    }
     let irrational = quad.len() == 2
         && quad[0]
             .0
@@ -413,45 +430,50 @@ fn sort_ascending(roots: &mut [Expr], set: &Values) {
     }
 }
 
-/// The mode of ω² = λ: x with (K − λ·M)·x = 0, x_1 = 1 (or the first
-/// coordinate that can be 1).
-fn mode(k: &[Vec<Expr>], m: &[Vec<Expr>], lambda: &Expr) -> Result<Vec<Expr>, Diagnostic> {
+/// A basis of the null space of K − λ·M, each vector normalized so that
+/// its first nonzero coordinate is 1 (the distribution coefficients).
+fn null_basis(
+    k: &[Vec<Expr>],
+    m: &[Vec<Expr>],
+    lambda: &Expr,
+) -> Result<Vec<Vec<Expr>>, Diagnostic> {
     let n = k.len();
     let a: Vec<Vec<Expr>> = (0..n)
         .map(|i| (0..n).map(|j| k[i][j].sub(&lambda.mul(&m[i][j]))).collect())
         .collect();
-    for pin in 0..n {
-        let others: Vec<usize> = (0..n).filter(|&j| j != pin).collect();
-        let rows: Vec<Vec<Expr>> = a
+    let syms: Vec<Expr> = (0..n)
+        .map(|j| Expr::unknown(&format!("mode{}", j + 1)))
+        .collect();
+    let zero = vec![Expr::zero(); n];
+    let sol = crate::solve::system::solve_rect(&a, &zero, &syms)
+        .map_err(|_| Diagnostic::global("internal error: the mode equations failed"))?;
+    let mut out = Vec::new();
+    for &f in &sol.shape.free {
+        let map: FxHashMap<Var, Expr> = sol
+            .shape
+            .free
             .iter()
-            .map(|r| others.iter().map(|&j| r[j].clone()).collect())
+            .map(|&g| {
+                let v = atom::unknown(&format!("mode{}", g + 1));
+                (v, if g == f { Expr::one() } else { Expr::zero() })
+            })
             .collect();
-        let rhs: Vec<Expr> = a.iter().map(|r| r[pin].neg()).collect();
-        let syms: Vec<Expr> = others
-            .iter()
-            .map(|j| Expr::unknown(&format!("x{}", j + 1)))
-            .collect();
-        let Ok(sol) = crate::solve::system::solve_rect(&rows, &rhs, &syms) else {
-            continue;
-        };
-        if sol.residuals.iter().any(|(_, r)| !r.is_zero()) {
-            continue;
+        let mut x = Vec::with_capacity(n);
+        for v in &sol.values {
+            x.push(v.subs_many(&map).map_err(math)?);
         }
-        let mut x = vec![Expr::zero(); n];
-        x[pin] = Expr::one();
-        for (idx, &j) in others.iter().enumerate() {
-            // a free coordinate (a repeated ω²) is set to zero in this mode
-            x[j] = if sol.shape.free.contains(&idx) {
-                Expr::zero()
-            } else {
-                sol.values[idx].clone()
-            };
+        if let Some(p) = x.iter().position(|e| !e.is_zero()) {
+            let pivot = x[p].clone();
+            for e in x.iter_mut() {
+                *e = e.div(&pivot).map_err(math)?;
+            }
         }
-        return Ok(x);
+        out.push(x);
     }
-    Err(Diagnostic::global(
-        "internal error: no mode found for an exact root of det(K − λ·M)",
-    ))
+    // the first coordinate leads where it can: combine so that a vector
+    // with x1 ≠ 0 comes first
+    out.sort_by_key(|x| x.iter().position(|e| !e.is_zero()));
+    Ok(out)
 }
 
 /// One coordinate: ÿ + 2α·ẏ + ω²·y = f/M.
