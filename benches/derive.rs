@@ -5,6 +5,8 @@
 //!   Lagrange scenes) — the kinetostatic ones side by side with SymPy's
 //!   `linsolve` on the same system (`scripts/anchor_kinetostatic.py`).
 //! * `equilibrium/<problem>`: closed-form equilibria and their stability.
+//! * `modes/<scene>`: linearization, det(K − λM) factored, exact ω² and
+//!   modes — side by side with SymPy (`scripts/anchor_kinetostatic.py`).
 //! * `npendulum/derive/<n>`: parse + derive (equations, mass matrix,
 //!   forcing) of the n-link pendulum chain, n = 2…12 — measured side by side
 //!   with ../shared/anchors/symengine_npendulum.py (`scripts/anchors.sh`).
@@ -55,6 +57,31 @@ fn equilibria(c: &mut Criterion) {
     g.finish();
 }
 
+fn modes(c: &mut Criterion) {
+    let mut g = c.benchmark_group("modes");
+    let chain = "coordinates x1, x2, x3\nparameters m, k\n\
+        kinetic E = 1/2*m*(x1'^2 + x2'^2 + x3'^2)\n\
+        potential V = 1/2*k*(x1^2 + (x2 - x1)^2 + (x3 - x2)^2 + x3^2)\n"
+        .to_string();
+    let seed = std::fs::read_to_string(format!(
+        "{}/examples/seed_24_2.qd",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .expect("example exists");
+    for (name, src) in [("seed_24_2", seed), ("chain3", chain)] {
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                let s = Scene::parse(black_box(&src)).expect("parses");
+                black_box(
+                    qdot::mechanics::oscillations::modes(&s, None, &Default::default())
+                        .expect("modes"),
+                )
+            })
+        });
+    }
+    g.finish();
+}
+
 fn npendulum(c: &mut Criterion) {
     let mut g = c.benchmark_group("npendulum/derive");
     g.sample_size(20);
@@ -87,5 +114,5 @@ fn npendulum(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, seeds, equilibria, npendulum);
+criterion_group!(benches, seeds, equilibria, modes, npendulum);
 criterion_main!(benches);

@@ -84,6 +84,28 @@ def equilibrium_23_1():
     return sp.solve(Q, [t1, t2], dict=True)
 
 
+def modes_chain3():
+    """The three-mass chain: M, K, det(K - lam*M), its roots and the
+    eigenvectors, like `modes/chain3`."""
+    m, k, lam = sp.symbols("m k lam", positive=True)
+    M = sp.diag(m, m, m)
+    K = sp.Matrix([[2 * k, -k, 0], [-k, 2 * k, -k], [0, -k, 2 * k]])
+    p = sp.factor((K - lam * M).det())
+    roots = sp.solve(p, lam)
+    vecs = [(K - r * M).nullspace() for r in roots]
+    return p, roots, vecs
+
+
+def modes_24_2():
+    m, k, lam = sp.symbols("m k lam", positive=True)
+    M = sp.diag(4 * m, sp.Rational(3, 2) * m)
+    K = sp.Matrix([[2 * k, -k], [-k, k]])
+    p = sp.factor((K - lam * M).det())
+    roots = sp.solve(p, lam)
+    vecs = [(K - r * M).nullspace() for r in roots]
+    return p, roots, vecs
+
+
 def run(build):
     eqs, unknowns = build()
     (sol,) = sp.linsolve(eqs, unknowns)
@@ -109,3 +131,10 @@ if __name__ == "__main__":
         sols = equilibrium_23_1()
         t.append(time.perf_counter() - t0)
     print("equilibrium_23_1", min(t), len(sols), sols[:1])
+    for name, f in [("modes_seed_24_2", modes_24_2), ("modes_chain3", modes_chain3)]:
+        t = []
+        for _ in range(n):
+            t0 = time.perf_counter()
+            out = f()
+            t.append(time.perf_counter() - t0)
+        print(name, min(t), out[0], out[1])

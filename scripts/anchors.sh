@@ -25,7 +25,7 @@ join <(awk '{print $1, $2}' /tmp/qdot_np.txt) <(awk '{print $1, $2}' /tmp/symeng
   | awk '{ se = $3/$2; sp = ($4 == "" ? "—" : $4); r = ($4 == "" ? "—" : sprintf("%.0f×", $4/$2)); printf "| %d | %.6f | %.4f | %.1f× | %s | %s |\n", $1, $2, $3, se, sp, r }'
 
 echo
-echo "# Kinetostatic solve blocks and equilibria: qdot (criterion) and SymPy, same run"
-cargo bench -q --bench derive -- "seed/seed_2[12]_[12]_kinetostatic|equilibrium/seed_23_1" \
+echo "# Kinetostatic solve blocks, equilibria and modes: qdot (criterion) and SymPy, same run"
+cargo bench -q --bench derive -- "seed/seed_2[12]_[12]_kinetostatic|equilibrium/seed_23_1|modes/" \
   --warm-up-time 1 --measurement-time 4 2>&1 | grep -E "time:" -B1 | grep -vE "^--|Warming|Collecting|Analyzing"
 "$PY" scripts/anchor_kinetostatic.py 10
