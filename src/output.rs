@@ -375,30 +375,8 @@ pub fn derive_text(l: &Lagrange) -> String {
             u(&e.rhs)
         ));
     }
-    out.push_str("\nMass matrix M  (M·q̈ = f)\n");
-    let cells: Vec<Vec<String>> = l
-        .mass_matrix
-        .iter()
-        .map(|r| r.iter().map(u).collect())
-        .collect();
-    let n = l.coordinates.len();
-    let widths: Vec<usize> = (0..n)
-        .map(|j| {
-            cells
-                .iter()
-                .map(|r| r[j].chars().count())
-                .max()
-                .unwrap_or(1)
-        })
-        .collect();
-    for r in &cells {
-        let row: Vec<String> = r
-            .iter()
-            .enumerate()
-            .map(|(j, c)| format!("{c:<w$}", w = widths[j]))
-            .collect();
-        out.push_str(&format!("  [ {} ]\n", row.join("   ")));
-    }
+    out.push('\n');
+    matrix_text(&mut out, "Mass matrix M  (M·q̈ = f)", &l.mass_matrix);
     out.push_str("\nForcing f\n");
     for (c, f) in l.coordinates.iter().zip(&l.forcing) {
         out.push_str(&format!("  {:<width$}  {}\n", pretty_name(c, 0), u(f)));

@@ -23,6 +23,8 @@ use crate::expr::{func, Expr};
 use crate::num::Q;
 use crate::poly::{Poly, Var};
 use crate::scene::Scene;
+/// The verdict on the linearized system (the same as for equilibria).
+pub use crate::solve::equilibrium::Stability;
 use crate::solve::equilibrium::{det, quadratic, sign_of, Values};
 use rustc_hash::FxHashMap;
 
@@ -52,24 +54,6 @@ pub struct Modes {
     pub modes: Vec<Vec<Expr>>,
     /// Stable (all ω² > 0), unstable (some ω² < 0), or undecided.
     pub stability: Stability,
-}
-
-/// The verdict on the linearized system.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Stability {
-    Stable,
-    Unstable,
-    Undecided(String),
-}
-
-impl Stability {
-    pub fn word(&self) -> &'static str {
-        match self {
-            Stability::Stable => "stable",
-            Stability::Unstable => "unstable",
-            Stability::Undecided(_) => "undecided",
-        }
-    }
 }
 
 /// One degree of freedom in the standard form ÿ + 2α·ẏ + ω²·y = f(t)/M.
