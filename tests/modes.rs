@@ -1490,3 +1490,20 @@ fn json_contract_other_scenes() {
         assert_eq!(code, 0, "{tag}: {err}");
     }
 }
+
+/// The cart with a pendulum on a spring is stable for every positive
+/// parameter: ω₁² = (A − √D)/(2·l·M0) with A = g·M0 + g·m + k·l and
+/// A² − D = 4·g·k·l·M0 > 0, decided exactly (no --set).
+#[test]
+fn cart_pendulum_is_stable_exactly() {
+    let src = "coordinates x, th\nparameters M0, m, l, g, k\n\
+        px = x + l*sin(th); py = -l*cos(th)\n\
+        kinetic E = 1/2*M0*x'^2 + 1/2*m*(px'^2 + py'^2)\n\
+        potential V = 1/2*k*x^2 + m*g*py\n";
+    let s = Scene::parse(src).unwrap();
+    let md = qdot::mechanics::oscillations::modes(&s, None, &Default::default()).unwrap();
+    assert_eq!(md.stability, qdot::solve::equilibrium::Stability::Stable);
+    for w2 in &md.omega_squared {
+        assert_eq!(qdot::solve::equilibrium::sign_exact(w2), Some(1), "{w2}");
+    }
+}

@@ -750,9 +750,46 @@ pub fn sign_exact(e: &Expr) -> Option<i32> {
 
 /// The sign of a polynomial whose atoms are all positive and whose
 /// coefficients all have one sign, or which is a positive monomial times
-/// a real number built from radicals (2·g − √2·g = g·(2 − √2)).
+/// a real number built from radicals (2·g − √2·g = g·(2 − √2)), or
+/// A + B·√P with A and B definite (the roots of a quadratic in ω²).
 fn definite(p: &Poly) -> Option<i32> {
-    one_signed(p).or_else(|| radical_number(p))
+    one_signed(p)
+        .or_else(|| radical_number(p))
+        .or_else(|| with_one_root(p))
+}
+
+/// p = A + B·√P with one radical atom √P (degree 1) and A, B of decided
+/// signs: if they agree, that sign; otherwise A − B·√P has A's sign and
+/// (A + B√P)(A − B√P) = A² − B²·P, so the sign is sign(A)·sign(A² − B²P).
+fn with_one_root(p: &Poly) -> Option<i32> {
+    let roots: Vec<Var> = p
+        .vars()
+        .into_iter()
+        .filter(|&v| matches!(atom::atom(v), Atom::SqrtOf(_)))
+        .collect();
+    let [r] = roots.as_slice() else {
+        return None;
+    };
+    let cs = p.coeffs_in(*r);
+    if cs.len() != 2 {
+        return None;
+    }
+    let (a, b) = (&cs[0], &cs[1]);
+    let sb = definite(b)?;
+    if a.is_zero() {
+        return Some(sb);
+    }
+    let sa = definite(a)?;
+    if sa == sb {
+        return Some(sa);
+    }
+    let square = atom::square_of(*r)?;
+    let diff = &(a * a) - &(&(b * b) * &square);
+    if diff.is_zero() {
+        return None;
+    }
+    let sd = definite(&crate::expr::reduce_poly(&diff))?;
+    Some(sa * sd)
 }
 
 /// p = (monomial in positive atoms) × (a combination of √n): the sign of
