@@ -39,12 +39,14 @@ enum Command {
     /// Solve exactly: the accelerations of Lagrange's equations, and the
     /// scene's `solve` blocks (reactions, kinetostatic systems).
     Solve {
+        /// The scene file (.qd).
         file: String,
         #[arg(long, value_enum, default_value = "text")]
         format: Fmt,
     },
     /// The generalized forces Q_k (virtual work δL = Σ Q_k·δq_k).
     Forces {
+        /// The scene file (.qd).
         file: String,
         #[arg(long, value_enum, default_value = "text")]
         format: Fmt,
@@ -52,6 +54,7 @@ enum Command {
     /// Small oscillations about an equilibrium: M, C, K, det(K − ω²M),
     /// the natural frequencies, the modes, and the responses.
     Modes {
+        /// The scene file (.qd).
         file: String,
         #[arg(long, value_enum, default_value = "text")]
         format: Fmt,
@@ -67,6 +70,7 @@ enum Command {
     },
     /// Equilibrium positions (Q_k = 0) and their stability.
     Equilibrium {
+        /// The scene file (.qd).
         file: String,
         #[arg(long, value_enum, default_value = "text")]
         format: Fmt,
