@@ -745,7 +745,7 @@ pub fn modes_text(
             let m: Vec<String> = mode.iter().map(u).collect();
             out.push_str(&format!(
                 "  ω{}² = {}    mode ({})\n",
-                subscript(i + 1),
+                print::subscript(&(i + 1).to_string()),
                 expanded(w2),
                 m.join(", ")
             ));
@@ -763,32 +763,25 @@ pub fn modes_text(
     if !md.omega_squared.is_empty() && md.omega_squared.len() == md.coordinates.len() {
         out.push_str("\nGeneral solution (undamped)  q(t) = Σ Cᵢ·uᵢ·cos(ωᵢ·t + φᵢ)\n");
         for (j, c) in names.iter().enumerate() {
-            let mut line = String::new();
+            let mut terms = Vec::new();
             for (i, mode) in md.modes.iter().enumerate() {
                 let mu = &mode[j];
                 if mu.is_zero() {
                     continue;
                 }
-                let i1 = subscript(i + 1);
+                let i1 = print::subscript(&(i + 1).to_string());
                 let wave = format!("C{i1}·cos(ω{i1}·t + φ{i1})");
-                let ms = u(mu);
-                let (neg, body) = match ms.strip_prefix('−') {
-                    Some(r) if !(r.contains(" + ") || r.contains(" − ")) => (true, r.to_string()),
-                    _ => (false, paren_str(&ms)),
-                };
-                let term = if body == "1" {
-                    wave
-                } else {
-                    format!("{body}·{wave}")
-                };
-                line.push_str(match (line.is_empty(), neg) {
-                    (true, false) => "",
-                    (true, true) => "−",
-                    (false, false) => " + ",
-                    (false, true) => " − ",
-                });
-                line.push_str(&term);
+                let (neg, body) = signed_coefficient(&u(mu));
+                terms.push((
+                    neg,
+                    if body == "1" {
+                        wave
+                    } else {
+                        format!("{body}·{wave}")
+                    },
+                ));
             }
+            let line = print::join_terms(terms.into_iter(), print::Style::Unicode);
             out.push_str(&format!("  {c} = {line}\n"));
         }
     }
@@ -870,48 +863,37 @@ fn lambda_poly(f: &Expr) -> String {
     if !f.den().is_one() || !f.num().contains_var(lv) {
         return u(f);
     }
-    let mut out = String::new();
+    let mut terms = Vec::new();
     for (i, c) in f.num().coeffs_in(lv).into_iter().enumerate() {
         if c.is_zero() {
             continue;
         }
-        let c = Expr::from_poly(c);
-        let mut cs = expanded(&c);
-        let sum = cs.contains(" + ") || cs.contains(" − ");
-        let neg = !sum && cs.starts_with('−');
-        if neg {
-            cs = cs.trim_start_matches('−').to_string();
-        }
-        if sum {
-            cs = format!("({cs})");
-        }
+        let (neg, cs) = signed_coefficient(&expanded(&Expr::from_poly(c)));
         let pow = match i {
             0 => String::new(),
             1 => "λ".to_string(),
-            k => format!("λ{}", superscript_digits(k)),
+            k => format!("λ{}", print::superscript(k as u32)),
         };
         let term = match (i, cs.as_str()) {
             (0, _) => cs.clone(),
             (_, "1") => pow,
             _ => format!("{cs}·{pow}"),
         };
-        out.push_str(match (out.is_empty(), neg) {
-            (true, false) => "",
-            (true, true) => "−",
-            (false, false) => " + ",
-            (false, true) => " − ",
-        });
-        out.push_str(&term);
+        terms.push((neg, term));
     }
-    out
+    print::join_terms(terms.into_iter(), print::Style::Unicode)
 }
 
-fn superscript_digits(n: usize) -> String {
-    const SUP: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
-    n.to_string()
-        .chars()
-        .map(|c| SUP[c.to_digit(10).unwrap_or(0) as usize])
-        .collect()
+/// A printed coefficient as (sign outside, body): `−a` → (true, `a`), a
+/// sum → (false, `(a − b)`), else (false, itself).
+fn signed_coefficient(s: &str) -> (bool, String) {
+    if s.contains(" + ") || s.contains(" − ") {
+        return (false, format!("({s})"));
+    }
+    match s.strip_prefix('−') {
+        Some(r) => (true, r.to_string()),
+        None => (false, s.to_string()),
+    }
 }
 
 fn paren(e: &Expr) -> String {
@@ -924,13 +906,6 @@ fn paren_str(s: &str) -> String {
     } else {
         s.to_string()
     }
-}
-
-fn subscript(n: usize) -> String {
-    n.to_string()
-        .chars()
-        .map(|c| char::from_u32(0x2080 + c.to_digit(10).unwrap_or(0)).unwrap_or(c))
-        .collect()
 }
 
 /// `forced_response`: for f = F·cos(p·t), the undamped amplitudes

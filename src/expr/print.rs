@@ -40,24 +40,18 @@ pub fn expanded(e: &Expr) -> String {
         return unicode(e);
     }
     let den = Expr::from_poly(e.den().clone());
-    let mut out = String::new();
     // a positive term first: 16/81·k/m − g/(9·r)
     let mut terms = sorted_terms(e.num());
     terms.sort_by_key(|(_, c)| c.is_negative());
+    let mut items = Vec::with_capacity(terms.len());
     for (m, c) in terms {
-        let t = Expr::from_poly(Poly::monomial(m, c));
+        let t = Expr::from_poly(Poly::monomial(m, c.abs()));
         let Ok(t) = t.div(&den) else {
             return unicode(e);
         };
-        let ts = unicode(&t);
-        match ts.strip_prefix('−') {
-            Some(rest) if out.is_empty() => out.push_str(&format!("−{rest}")),
-            Some(rest) => out.push_str(&format!(" − {rest}")),
-            None if out.is_empty() => out.push_str(&ts),
-            None => out.push_str(&format!(" + {ts}")),
-        }
+        items.push((c.is_negative(), unicode(&t)));
     }
-    out
+    join_terms(items.into_iter(), Style::Unicode)
 }
 
 pub fn render(e: &Expr, st: Style) -> String {
@@ -240,7 +234,8 @@ fn coef_times(q: &Q, x: &str, st: Style) -> String {
     }
 }
 
-fn join_terms(items: impl Iterator<Item = (bool, String)>, st: Style) -> String {
+/// Terms with their signs outside: `a + b − c`, `−a + b`.
+pub fn join_terms(items: impl Iterator<Item = (bool, String)>, st: Style) -> String {
     let (plus, minus, lead_minus) = match st {
         Style::Input => (" + ", " - ", "-"),
         Style::Unicode => (" + ", " − ", "−"),
@@ -542,7 +537,8 @@ fn unicode_arg(a: &Atom) -> String {
     a.argument().map(unicode).unwrap_or_default()
 }
 
-fn superscript(e: u32) -> String {
+/// `²`, `¹²`: a number in superscript digits.
+pub fn superscript(e: u32) -> String {
     const S: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
     e.to_string()
         .chars()
@@ -550,7 +546,8 @@ fn superscript(e: u32) -> String {
         .collect()
 }
 
-fn subscript(s: &str) -> String {
+/// `₁₂`: the digits of `s` in subscript.
+pub fn subscript(s: &str) -> String {
     const S: [char; 10] = ['₀', '₁', '₂', '₃', '₄', '₅', '₆', '₇', '₈', '₉'];
     s.chars()
         .map(|c| c.to_digit(10).map(|d| S[d as usize]).unwrap_or(c))
