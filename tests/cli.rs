@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::run::qdot;
+use common::run::{json, keys, qdot, BLOCK_KEYS, DYNAMICS_KEYS, EQUILIBRIUM_KEYS};
 use qdot::Scene;
 
 #[test]
@@ -20,15 +20,6 @@ fn readme_command_prints_the_accelerations() {
         out.contains("13/2·G/g·y\u{308}₃ + G·r/g·θ\u{308}₃ = 39/8·G"),
         "{out}"
     );
-}
-
-/// Parse a JSON output, or fail showing it.
-fn json(out: &str) -> serde_json::Value {
-    serde_json::from_str(out).unwrap_or_else(|e| panic!("invalid JSON ({e}):\n{out}"))
-}
-
-fn keys(v: &serde_json::Value) -> Vec<&str> {
-    v.as_object().unwrap().keys().map(|k| k.as_str()).collect()
 }
 
 /// `s` re-parsed in the scene's names, or a panic naming the example.
@@ -114,15 +105,6 @@ fn check_blocks(name: &str, scene: &Scene, v: &serde_json::Value) {
     assert_eq!(v["checks"], serde_json::json!(checks), "{name}");
 }
 
-const DYNAMICS_KEYS: [&str; 5] = [
-    "coordinates",
-    "equations",
-    "mass_matrix",
-    "forcing",
-    "accelerations",
-];
-const BLOCK_KEYS: [&str; 3] = ["solutions", "free_unknowns", "checks"];
-
 #[test]
 fn json_contract_and_reparse() {
     let mut kinds = std::collections::BTreeSet::new();
@@ -192,20 +174,7 @@ fn json_contract_and_reparse() {
         let (code, out, err) = qdot(&["equilibrium", &path, "--format", "json"]);
         assert_eq!(code, 0, "{name}: {err}");
         let v = json(&out);
-        assert_eq!(
-            keys(&v),
-            [
-                "coordinates",
-                "generalized_forces",
-                "conditions",
-                "exact",
-                "equilibria",
-                "stability",
-                "notes",
-                "approx"
-            ],
-            "{name}"
-        );
+        assert_eq!(keys(&v), EQUILIBRIUM_KEYS, "{name}");
         for (k, c) in names.iter().enumerate() {
             let got = reparse(&scene, name, "Q", &v["generalized_forces"][c]);
             assert_eq!(got, eq.forces[k], "{name}: Q_{c}");

@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::run::qdot_on;
+use common::run::{qdot_on, EQUILIBRIUM_KEYS};
 use qdot::solve::equilibrium::{equilibria, Equilibria, Equilibrium, Position, Stability};
 use qdot::{Expr, Scene};
 
@@ -84,19 +84,7 @@ fn equilibrium_json(tag: &str, src: &str, set: &str) -> serde_json::Value {
     assert_eq!(code, 0, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).expect("valid JSON");
     let keys: Vec<&str> = v.as_object().unwrap().keys().map(|k| k.as_str()).collect();
-    assert_eq!(
-        keys,
-        [
-            "coordinates",
-            "generalized_forces",
-            "conditions",
-            "exact",
-            "equilibria",
-            "stability",
-            "notes",
-            "approx"
-        ]
-    );
+    assert_eq!(keys, EQUILIBRIUM_KEYS);
     let s = parse(src);
     let e = eq(&s, set);
     let names: Vec<&str> = s.coordinates.iter().map(|c| c.name.as_str()).collect();

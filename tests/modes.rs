@@ -8,7 +8,7 @@
 
 mod common;
 
-use common::run::{qdot, qdot_on};
+use common::run::{json, keys, qdot, qdot_on};
 use proptest::test_runner::{Config, TestRunner};
 use qdot::expr::atom::{self, Atom};
 use qdot::mechanics::oscillations::{
@@ -1202,23 +1202,11 @@ const KEYS: [&str; 16] = [
     "forced_response",
 ];
 
-fn json(out: &str) -> Value {
-    serde_json::from_str(out).unwrap_or_else(|e| panic!("invalid JSON ({e}):\n{out}"))
-}
-
 /// `qdot ARGS` must succeed with JSON on stdout.
 fn json_of(args: &[&str]) -> Value {
     let (code, out, err) = qdot(args);
     assert_eq!(code, 0, "{args:?}: {err}");
     json(&out)
-}
-
-fn keys(v: &Value) -> Vec<&str> {
-    v.as_object()
-        .unwrap_or_else(|| panic!("not an object: {v}"))
-        .keys()
-        .map(String::as_str)
-        .collect()
 }
 
 #[track_caller]

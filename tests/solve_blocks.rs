@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::run::qdot_on;
+use common::run::{json, keys, qdot_on, BLOCK_KEYS, DYNAMICS_KEYS};
 use qdot::solve::system::{equation_label, solve_scene, BlockSolution};
 use qdot::{Expr, Scene};
 use std::collections::BTreeMap;
@@ -66,14 +66,6 @@ fn assert_starts(got: &str, want: &str) {
 /// name in messages is replaced by `scene.qd`.
 fn run(tag: &str, src: &str, args: &[&str]) -> (i32, String, String) {
     qdot_on("solve-blocks", tag, src, args[0], &args[1..])
-}
-
-fn json(out: &str) -> serde_json::Value {
-    serde_json::from_str(out).unwrap_or_else(|e| panic!("invalid JSON ({e}):\n{out}"))
-}
-
-fn keys(v: &serde_json::Value) -> Vec<String> {
-    v.as_object().unwrap().keys().cloned().collect()
 }
 
 // ---------------------------------------------------------------- square
@@ -515,19 +507,8 @@ fn accelerations_are_put_in_for_qddot() {
     let (code, out, err) = run("pendulum-blocks", &src, &["solve", "--format", "json"]);
     assert_eq!(code, 0, "{err}");
     let v = json(&out);
-    assert_eq!(
-        keys(&v),
-        [
-            "coordinates",
-            "equations",
-            "mass_matrix",
-            "forcing",
-            "accelerations",
-            "solutions",
-            "free_unknowns",
-            "checks"
-        ]
-    );
+    let want: Vec<&str> = DYNAMICS_KEYS.iter().chain(&BLOCK_KEYS).copied().collect();
+    assert_eq!(keys(&v), want);
     assert_eq!(v["accelerations"]["th"], "-g*sin(th)/l");
     for (n, e) in v["solutions"].as_object().unwrap() {
         assert_eq!(s.expr(e.as_str().unwrap()).unwrap(), sol[n], "{n}: {e}");

@@ -2,6 +2,30 @@
 
 use std::process::Command;
 
+/// The JSON keys of `qdot solve` for a scene with dynamics, in order.
+pub const DYNAMICS_KEYS: [&str; 5] = [
+    "coordinates",
+    "equations",
+    "mass_matrix",
+    "forcing",
+    "accelerations",
+];
+
+/// The JSON keys `qdot solve` adds for `solve` blocks, in order.
+pub const BLOCK_KEYS: [&str; 3] = ["solutions", "free_unknowns", "checks"];
+
+/// The JSON keys of `qdot equilibrium`, in order.
+pub const EQUILIBRIUM_KEYS: [&str; 8] = [
+    "coordinates",
+    "generalized_forces",
+    "conditions",
+    "exact",
+    "equilibria",
+    "stability",
+    "notes",
+    "approx",
+];
+
 /// `qdot ARGS` from the repository root: exit code, stdout, stderr.
 pub fn qdot(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_qdot"))
@@ -34,4 +58,18 @@ pub fn qdot_on(
     all.extend_from_slice(rest);
     let (code, out, err) = qdot(&all);
     (code, out, err.replace(&p, "scene.qd"))
+}
+
+/// Parse JSON output, or panic showing it.
+pub fn json(out: &str) -> serde_json::Value {
+    serde_json::from_str(out).unwrap_or_else(|e| panic!("invalid JSON ({e}):\n{out}"))
+}
+
+/// The keys of a JSON object, in order.
+pub fn keys(v: &serde_json::Value) -> Vec<&str> {
+    v.as_object()
+        .unwrap_or_else(|| panic!("not an object: {v}"))
+        .keys()
+        .map(String::as_str)
+        .collect()
 }
