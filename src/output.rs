@@ -652,6 +652,7 @@ pub fn modes_text(
     free: Option<&[Expr]>,
 ) -> String {
     let names: Vec<String> = md.coordinates.iter().map(|c| pretty_name(c, 0)).collect();
+    let standard = crate::mechanics::oscillations::standard_form(md, set);
     let at: Vec<String> = names
         .iter()
         .zip(&md.at)
@@ -672,7 +673,7 @@ pub fn modes_text(
             out.push_str(&format!("  {c}  {}\n", u(f)));
         }
     }
-    if let Some(sf) = crate::mechanics::oscillations::standard_form(md, set) {
+    if let Some(sf) = &standard {
         let q = &md.coordinates[0];
         out.push_str("\nStandard form  ÿ + 2α·ẏ + ω²·y = f(t)/M\n");
         let mut lhs = pretty_name(q, 2);
@@ -821,10 +822,10 @@ pub fn modes_text(
             }
         }
     }
-    if let Some(sf) = crate::mechanics::oscillations::standard_form(md, set) {
+    if let Some(sf) = &standard {
         if !sf.alpha.is_zero() {
             if let Some((p, _, tan_psi)) =
-                crate::mechanics::oscillations::damped_steady_state(md, &sf)
+                crate::mechanics::oscillations::damped_steady_state(md, sf)
             {
                 // X is exact in the JSON; the formula reads better here
                 out.push_str(&format!(
@@ -910,7 +911,10 @@ fn paren_str(s: &str) -> String {
 
 /// `forced_response`: for f = F·cos(p·t), the undamped amplitudes
 /// (K − p²M)⁻¹·F, or for one damped coordinate X and tan ψ.
-fn forced_json(md: &crate::mechanics::oscillations::Modes, set: &Values) -> Value {
+fn forced_json(
+    md: &crate::mechanics::oscillations::Modes,
+    sf: Option<&crate::mechanics::oscillations::StandardForm>,
+) -> Value {
     use crate::mechanics::oscillations as osc;
     let damped = md.damping.iter().flatten().any(|e| !e.is_zero());
     if !damped {
@@ -918,8 +922,7 @@ fn forced_json(md: &crate::mechanics::oscillations::Modes, set: &Values) -> Valu
             .map(|(p, x)| json!({"p": s(&p), "amplitudes": named(&md.coordinates, &x)}))
             .unwrap_or(Value::Null);
     }
-    osc::standard_form(md, set)
-        .and_then(|sf| osc::damped_steady_state(md, &sf))
+    sf.and_then(|sf| osc::damped_steady_state(md, sf))
         .map(|(p, x, t)| json!({"p": s(&p), "amplitude": s(&x), "tan_psi": s(&t)}))
         .unwrap_or(Value::Null)
 }
@@ -967,7 +970,8 @@ pub fn modes_json(
             .collect::<Vec<_>>()),
     );
     m.insert("stability".into(), json!(md.stability.word()));
-    let sf = crate::mechanics::oscillations::standard_form(md, set).map(|sf| {
+    let standard = crate::mechanics::oscillations::standard_form(md, set);
+    let sf = standard.as_ref().map(|sf| {
         json!({
             "omega_squared": s(&sf.omega_squared),
             "alpha": s(&sf.alpha),
@@ -977,15 +981,18 @@ pub fn modes_json(
         })
     });
     m.insert("standard_form".into(), sf.unwrap_or(Value::Null));
+    let eigen = numeric_eigen(md, set);
     m.insert(
         "numeric_omega_squared".into(),
-        numeric_eigen(md, set)
+        eigen
+            .as_ref()
             .map(|g| json!(g.values))
             .unwrap_or(Value::Null),
     );
     m.insert(
         "numeric_modes".into(),
-        numeric_eigen(md, set)
+        eigen
+            .as_ref()
             .map(|g| json!(g.vectors))
             .unwrap_or(Value::Null),
     );
@@ -994,6 +1001,6 @@ pub fn modes_json(
         free.map(|f| named(&md.coordinates, f))
             .unwrap_or(Value::Null),
     );
-    m.insert("forced_response".into(), forced_json(md, set));
+    m.insert("forced_response".into(), forced_json(md, standard.as_ref()));
     m
 }

@@ -211,7 +211,7 @@ pub fn equilibria(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic>
                         .join(",")
                 )));
             }
-            found = solve_numeric(&conditions, &jac, &q, set, gyroscopic);
+            found = solve_numeric(&conditions, &jac, &q, &periodic, set, gyroscopic);
             false
         }
     };
@@ -735,17 +735,22 @@ fn poly_like_roots(cs: &[Expr]) -> Option<Vec<Root>> {
 /// +1, −1 or 0 when decided exactly (parameters are positive).
 pub fn sign_exact(e: &Expr) -> Option<i32> {
     if let Some(q) = e.as_rational() {
-        return Some(if q.is_zero() {
-            0
-        } else if q.is_negative() {
-            -1
-        } else {
-            1
-        });
+        return Some(rational_sign(&q));
     }
     let n = definite(e.num())?;
     let d = definite(e.den())?;
     Some(n * d)
+}
+
+/// −1, 0 or +1.
+fn rational_sign(q: &Q) -> i32 {
+    if q.is_zero() {
+        0
+    } else if q.is_negative() {
+        -1
+    } else {
+        1
+    }
 }
 
 /// The sign of a polynomial whose atoms are all positive and whose
@@ -869,13 +874,7 @@ pub(crate) fn sign_of(e: &Expr, set: &Values) -> Option<i32> {
 /// The sign at the given parameter values, if they determine it.
 fn sign_numeric(e: &Expr, set: &Values) -> Option<i32> {
     if let Some(q) = e.as_rational() {
-        return Some(if q.is_zero() {
-            0
-        } else if q.is_negative() {
-            -1
-        } else {
-            1
-        });
+        return Some(rational_sign(&q));
     }
     if set.is_empty() {
         return None;
@@ -1092,6 +1091,7 @@ fn solve_numeric(
     conditions: &[Expr],
     jac: &[Vec<Expr>],
     q: &[Var],
+    periodic: &[bool],
     set: &Values,
     gyroscopic: bool,
 ) -> Vec<Equilibrium> {
@@ -1113,9 +1113,8 @@ fn solve_numeric(
             .map(|row| row.iter().map(|e| eval(e, x).map(|v| -v)).collect())
             .collect()
     };
-    let periodic = periodic_coordinates(conditions, q);
     let opts = RootOptions {
-        periodic,
+        periodic: periodic.to_vec(),
         ..RootOptions::default()
     };
     let mut roots = find_roots(&f, &j, &opts);

@@ -51,7 +51,7 @@ pub fn solve(a: &[Vec<Expr>], b: &[Expr]) -> Result<Vec<Expr>, SolveError> {
     for k in 0..n {
         // Pivot: the nonzero (also modulo sin² + cos² = 1) entry with fewest terms.
         let piv = (k..n)
-            .filter(|&r| !m[r][k].is_zero() && !crate::expr::reduce_poly(&m[r][k]).is_zero())
+            .filter(|&r| nonzero(&m[r][k]))
             .min_by_key(|&r| m[r][k].len());
         let Some(p) = piv else {
             return Err(SolveError::Singular {
@@ -112,6 +112,12 @@ pub(crate) fn cleared_rows(a: &[Vec<Expr>], b: &[Expr]) -> Vec<Vec<Poly>> {
                 .collect()
         })
         .collect()
+}
+
+/// Nonzero also modulo sin² + cos² = 1 (the elimination runs in the free
+/// ring, so a pivot must be tested after reduction).
+pub(crate) fn nonzero(p: &Poly) -> bool {
+    !p.is_zero() && !crate::expr::reduce_poly(p).is_zero()
 }
 
 /// t / d, which fraction-free elimination guarantees to be exact.

@@ -44,10 +44,6 @@ pub struct RectSolution {
     pub residuals: Vec<(usize, Expr)>,
 }
 
-fn nonzero(p: &Poly) -> bool {
-    !p.is_zero() && !crate::expr::reduce_poly(p).is_zero()
-}
-
 /// Solve `a·x = b` for `a` of any shape (m equations, n unknowns).
 ///
 /// `symbols[j]` stands for unknown j if it turns out free. Pivot rows are
@@ -69,7 +65,7 @@ pub fn solve_rect(
     let mut free = Vec::new();
     for c in 0..n {
         let Some(p) = (r..m)
-            .filter(|&i| nonzero(&rows[i][c]))
+            .filter(|&i| super::linear::nonzero(&rows[i][c]))
             .min_by_key(|&i| orig[i])
         else {
             // no pivot: the entries left are zero (modulo sin² + cos² = 1)
@@ -220,6 +216,7 @@ fn solve_block(
         .iter()
         .map(|c| atom::coord(&c.name, 2))
         .collect();
+    let dynamics = scene.has_dynamics();
     let mut used_accelerations = false;
     let mut residuals = Vec::with_capacity(sys.equations.len());
     for (i, eq) in sys.equations.iter().enumerate() {
@@ -227,7 +224,7 @@ fn solve_block(
         if !known.is_empty() {
             r = r.subs_many(known).map_err(|m| math(eq.span, m))?;
         }
-        if scene.has_dynamics() && mentions_any(&r, &qdd) {
+        if dynamics && mentions_any(&r, &qdd) {
             if acc.is_none() {
                 let l = scene.lagrange()?;
                 let a = l.accelerations()?;
