@@ -69,9 +69,20 @@ pub enum Atom {
     /// acos(u), principal value in [0, π].
     Acos(Expr),
     /// A factor that exists only in printed output (`cos(q1 − q2)` folded
-    /// back from its expansion): its input-syntax and Unicode texts. Never
-    /// part of a canonical expression.
-    Shown(Arc<str>, Arc<str>),
+    /// back from its expansion). Never part of a canonical expression.
+    Shown(Arc<Folded>),
+}
+
+/// `cos(a ∓ b)` or `sin(a ± b)`, folded back by the addition theorems for
+/// display ([`Atom::Shown`]).
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Folded {
+    /// Cosine (else sine).
+    pub cos: bool,
+    pub a: Expr,
+    pub b: Expr,
+    /// `a − b` (else `a + b`).
+    pub minus: bool,
 }
 
 impl Atom {

@@ -501,7 +501,7 @@ fn fn_name(a: &Atom) -> &'static str {
 /// An atom in input syntax.
 pub fn atom_input(a: &Atom) -> String {
     match a {
-        Atom::Shown(i, _) => i.to_string(),
+        Atom::Shown(f) => folded_text(f, Style::Input),
         Atom::Param(n) | Atom::Unknown(n) => n.to_string(),
         Atom::Coord(n, k) => format!("{n}{}", "'".repeat(*k as usize)),
         Atom::Time => "t".into(),
@@ -522,7 +522,7 @@ pub fn atom_input(a: &Atom) -> String {
 
 fn atom_unicode(a: &Atom) -> String {
     match a {
-        Atom::Shown(_, u) => u.to_string(),
+        Atom::Shown(f) => folded_text(f, Style::Unicode),
         Atom::Param(n) | Atom::Unknown(n) => pretty_name(n, 0),
         Atom::Coord(n, k) => pretty_name(n, *k),
         Atom::Time => "t".into(),
@@ -641,23 +641,31 @@ fn base_angle(sin: Var) -> Option<Expr> {
     }
 }
 
-/// `a ∓ b` as text in both styles, each angle parenthesized when it is a sum.
-fn angle_text(a: &Expr, b: &Expr, minus: bool) -> (String, String) {
+/// `a ∓ b` as text, each angle parenthesized when it is a sum.
+fn angle_text(f: &atom::Folded, st: Style) -> String {
     let wrap = |s: String| if is_sum(&s) { format!("({s})") } else { s };
-    let (ia, ib) = (wrap(input(a)), wrap(input(b)));
-    let (ua, ub) = (wrap(unicode(a)), wrap(unicode(b)));
-    if minus {
-        (format!("{ia} - {ib}"), format!("{ua} − {ub}"))
-    } else {
-        (format!("{ia} + {ib}"), format!("{ua} + {ub}"))
-    }
+    let (a, b) = (wrap(render(&f.a, st)), wrap(render(&f.b, st)));
+    let op = match (f.minus, st) {
+        (false, _) => "+",
+        (true, Style::Input) => "-",
+        (true, Style::Unicode) => "−",
+    };
+    format!("{a} {op} {b}")
 }
 
-fn shown(f: &str, angle: (String, String)) -> Var {
-    atom::intern(Atom::Shown(
-        format!("{f}({})", angle.0).into(),
-        format!("{f}({})", angle.1).into(),
-    ))
+/// The text of a folded factor: `cos(a - b)`.
+fn folded_text(f: &atom::Folded, st: Style) -> String {
+    let name = if f.cos { "cos" } else { "sin" };
+    format!("{name}({})", angle_text(f, st))
+}
+
+fn shown(cos: bool, a: &Expr, b: &Expr, minus: bool) -> Var {
+    atom::intern(Atom::Shown(std::sync::Arc::new(atom::Folded {
+        cos,
+        a: a.clone(),
+        b: b.clone(),
+        minus,
+    })))
 }
 
 /// Fold pairs of terms back by the addition theorems, for display only:
@@ -723,15 +731,15 @@ fn fold_trig(p: &Poly) -> Option<Poly> {
                 let (var, coef) = if cx {
                     // cos a cos b (+) sin a sin b = cos(a − b); (−): cos(a + b)
                     let (p, q) = if a_first { (&a, &b) } else { (&b, &a) };
-                    (shown("cos", angle_text(p, q, same)), c.clone())
+                    (shown(true, p, q, same), c.clone())
                 } else if same {
                     let (p, q) = if a_first { (&a, &b) } else { (&b, &a) };
-                    (shown("sin", angle_text(p, q, false)), c.clone())
+                    (shown(false, p, q, false), c.clone())
                 } else if a_first {
                     // sin a cos b − cos a sin b = sin(a − b)
-                    (shown("sin", angle_text(&a, &b, true)), c.clone())
+                    (shown(false, &a, &b, true), c.clone())
                 } else {
-                    (shown("sin", angle_text(&b, &a, true)), -c.clone())
+                    (shown(false, &b, &a, true), -c.clone())
                 };
                 out.push((rest.mul(&Mono::var(var)), coef));
                 used[i] = true;
