@@ -25,6 +25,8 @@ struct Cli {
 enum Fmt {
     Text,
     Json,
+    /// amsmath LaTeX, a fragment to \input
+    Latex,
 }
 
 #[derive(Subcommand)]
@@ -68,6 +70,22 @@ enum Command {
         #[arg(long)]
         set: Option<String>,
     },
+    /// LaTeX for lecture notes: the equations and the solution (amsmath).
+    Latex {
+        /// The scene file (.qd).
+        file: String,
+        /// Write the derivation line by line: the kinetic energy per body,
+        /// ∂E/∂q̇, d/dt(∂E/∂q̇), ∂E/∂q, each Q_k, the equations, the solution
+        #[arg(long)]
+        steps: bool,
+        /// A whole `article` document that compiles with pdflatex (without
+        /// it, a fragment to \input)
+        #[arg(long)]
+        standalone: bool,
+        /// Parameter values, for scenes whose equilibria need them: m=1,g=9.81
+        #[arg(long)]
+        set: Option<String>,
+    },
     /// Equilibrium positions (Q_k = 0) and their stability.
     Equilibrium {
         /// The scene file (.qd).
@@ -90,6 +108,17 @@ fn main() -> ExitCode {
         Command::Equilibrium { file, format, set } => {
             (output::Command::Equilibrium, file, *format, set.as_deref())
         }
+        Command::Latex {
+            file,
+            steps,
+            standalone,
+            set,
+        } => {
+            opts.steps = *steps;
+            opts.standalone = *standalone;
+            opts.title = file.clone();
+            (output::Command::Latex, file, Fmt::Latex, set.as_deref())
+        }
         Command::Modes {
             file,
             format,
@@ -105,6 +134,7 @@ fn main() -> ExitCode {
     let fmt = match fmt {
         Fmt::Text => Format::Text,
         Fmt::Json => Format::Json,
+        Fmt::Latex => Format::Latex,
     };
     let set = match set.map(output::parse_set).transpose() {
         Ok(s) => s.unwrap_or_default(),

@@ -23,6 +23,7 @@
 pub mod atom;
 pub mod diff;
 pub mod func;
+pub mod latex;
 pub mod print;
 
 use crate::num::Q;
@@ -237,11 +238,6 @@ impl Expr {
             num: p,
             den: Poly::one(),
         }))
-    }
-
-    /// num/den as given, without canonicalization (for printing only).
-    pub(crate) fn raw(num: Poly, den: Poly) -> Expr {
-        Expr(Arc::new(Rat { num, den }))
     }
 
     /// A polynomial, reduced.

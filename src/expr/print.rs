@@ -69,16 +69,38 @@ pub fn render(e: &Expr, st: Style) -> String {
 }
 
 fn render_parts(num: &Poly, den: &Poly, st: Style) -> String {
-    let e = &Expr::raw(num.clone(), den.clone());
-    // Collect by coordinate monomials when the denominator is free of coordinates.
-    let den_has_coord = e.den().vars().into_iter().any(is_dynamic);
-    let num_has_coord = e.num().vars().into_iter().any(is_dynamic);
+    let Some(groups) = collect(num, den) else {
+        return fraction(num, den, st);
+    };
+    let mut items: Vec<(Mono, String, bool)> = groups
+        .into_iter()
+        .map(|(key, c)| {
+            let (neg, body) = term_with_coef(&c, &key, st);
+            (key, body, neg)
+        })
+        .collect();
+    items.sort_by(|a, b| {
+        display_order(&a.0, &b.0)
+            .then_with(|| b.0.cmp(&a.0))
+            .then_with(|| a.1.cmp(&b.1))
+    });
+    join_terms(items.into_iter().map(|(_, s, n)| (n, s)), st)
+}
+
+/// The layout of num/den as a person writes it: `None` for one fraction
+/// (the denominator has coordinates, or the numerator has none), else the
+/// terms collected by their coordinate monomials, as (monomial, coefficient)
+/// pairs in no particular order; the terms free of coordinates come one
+/// by one.
+pub(crate) fn collect(num: &Poly, den: &Poly) -> Option<Vec<(Mono, Expr)>> {
+    let den_has_coord = den.vars().into_iter().any(is_dynamic);
+    let num_has_coord = num.vars().into_iter().any(is_dynamic);
     if den_has_coord || !num_has_coord {
-        return fraction(e.num(), e.den(), st);
+        return None;
     }
     // Split num into Σ key·coef with key a monomial in dynamic atoms.
     let mut groups: Vec<(Mono, Poly)> = Vec::new();
-    for (m, c) in e.num().terms() {
+    for (m, c) in num.terms() {
         let mut key = Mono::default();
         let mut rest = Mono::default();
         for &(v, x) in m.0.iter() {
@@ -95,30 +117,22 @@ fn render_parts(num: &Poly, den: &Poly, st: Style) -> String {
         }
     }
     if groups.len() == 1 && groups[0].0 .0.is_empty() {
-        return fraction(e.num(), e.den(), st);
+        return None;
     }
-    let mut items: Vec<(Mono, String, bool)> = Vec::new();
+    let mut out = Vec::with_capacity(groups.len());
     for (key, coef) in groups {
-        let c = Expr::from_parts(coef, e.den().clone()).unwrap_or_else(|_| Expr::zero());
+        let c = Expr::from_parts(coef, den.clone()).unwrap_or_else(|_| Expr::zero());
         if key.0.is_empty() && c.den().is_one() {
             // The terms free of coordinates, one by one (the denominator
             // may cancel: x/(a + 1) − (a + 1)² /(a + 1) gives −a − 1).
             for (m, q) in sorted_terms(c.num()) {
-                let t = Expr::from_poly(Poly::monomial(m, q));
-                let (neg, body) = term_with_coef(&t, &key, st);
-                items.push((key.clone(), body, neg));
+                out.push((key.clone(), Expr::from_poly(Poly::monomial(m, q))));
             }
             continue;
         }
-        let (neg, body) = term_with_coef(&c, &key, st);
-        items.push((key, body, neg));
+        out.push((key, c));
     }
-    items.sort_by(|a, b| {
-        display_order(&a.0, &b.0)
-            .then_with(|| b.0.cmp(&a.0))
-            .then_with(|| a.1.cmp(&b.1))
-    });
-    join_terms(items.into_iter().map(|(_, s, n)| (n, s)), st)
+    Some(out)
 }
 
 /// Coordinates, their derivatives, time and anything built on them.
@@ -132,7 +146,7 @@ fn is_dynamic(v: Var) -> bool {
 
 /// Sort key: highest derivative order first, then higher degree, then
 /// coordinates before functions of them.
-fn display_order(a: &Mono, b: &Mono) -> Ordering {
+pub(crate) fn display_order(a: &Mono, b: &Mono) -> Ordering {
     let key = |m: &Mono| {
         let mut order = -1i64;
         let mut deg = 0i64;
@@ -185,7 +199,7 @@ fn term_with_coef(c: &Expr, key: &Mono, st: Style) -> (bool, String) {
 
 /// Whether a printed expression is a sum at its top level (so it needs
 /// parentheses as a factor).
-fn is_sum(s: &str) -> bool {
+pub(crate) fn is_sum(s: &str) -> bool {
     let mut depth = 0i32;
     let mut prev = ' ';
     for (i, ch) in s.char_indices() {
@@ -256,7 +270,7 @@ pub fn join_terms(items: impl Iterator<Item = (bool, String)>, st: Style) -> Str
 
 /// (signed rational content, monomial gcd, primitive integer polynomial
 /// whose first displayed term is positive).
-fn split_poly(p: &Poly) -> (Q, Mono, Poly) {
+pub(crate) fn split_poly(p: &Poly) -> (Q, Mono, Poly) {
     let mut g: Option<Mono> = None;
     for (m, _) in p.terms() {
         g = Some(match g {
@@ -284,7 +298,7 @@ fn split_poly(p: &Poly) -> (Q, Mono, Poly) {
 }
 
 /// Terms in display order.
-fn sorted_terms(p: &Poly) -> Vec<(Mono, Q)> {
+pub(crate) fn sorted_terms(p: &Poly) -> Vec<(Mono, Q)> {
     let mut t: Vec<(Mono, Q, String)> = p
         .terms()
         .iter()
@@ -421,7 +435,7 @@ fn fraction(num: &Poly, den: &Poly, st: Style) -> String {
 
 /// Factor order inside a monomial: parameters, π, radicals, t, functions,
 /// then coordinates by derivative order.
-fn factor_rank(v: Var) -> (u8, u32, String, String) {
+pub(crate) fn factor_rank(v: Var) -> (u8, u32, String, String) {
     let a = atom::atom(v);
     let name = atom_input(&a);
     let name = (name.to_lowercase(), name);
@@ -672,7 +686,7 @@ fn shown(cos: bool, a: &Expr, b: &Expr, minus: bool) -> Var {
 /// `c·X·cos a·cos b ± c·X·sin a·sin b → c·X·cos(a ∓ b)` and
 /// `c·X·sin a·cos b ± c·X·cos a·sin b → c·X·sin(a ± b)`. Returns `None`
 /// when nothing folds.
-fn fold_trig(p: &Poly) -> Option<Poly> {
+pub(crate) fn fold_trig(p: &Poly) -> Option<Poly> {
     let terms = p.terms();
     let trig_terms = terms
         .iter()

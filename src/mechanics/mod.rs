@@ -141,6 +141,39 @@ impl Lagrange {
 /// right-hand sides of Lagrange's equations (see the module docs). The
 /// virtual work of the scene is δL = Σ Q_k·δq_k.
 pub fn generalized_forces(scene: &Scene) -> Vec<Expr> {
+    generalized_force_terms(scene)
+        .into_iter()
+        .map(|terms| terms.iter().fold(Expr::zero(), |q, t| q.add(&t.value)))
+        .collect()
+}
+
+/// Where a term of a generalized force comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Source {
+    /// −∂(V − U)/∂q_k: the potential and the force function together.
+    Potential,
+    /// ∂L/∂q_k: the work of the non-conservative forces.
+    Work,
+    /// ∂(D − R)/∂q̇_k: the dissipation and Rayleigh functions together.
+    Dissipation,
+    /// The `force` statements on q_k.
+    Force,
+    /// F·∂P/∂q_k for the i-th load (0-based, in source order).
+    Load(usize),
+    /// M·∂φ/∂q_k for the i-th torque.
+    Torque(usize),
+}
+
+/// One nonzero contribution to a generalized force.
+#[derive(Clone, Debug)]
+pub struct ForceTerm {
+    pub source: Source,
+    pub value: Expr,
+}
+
+/// The contributions to each Q_k, per coordinate in declaration order, in
+/// the order of the module docs; only the sources that mention q_k.
+pub fn generalized_force_terms(scene: &Scene) -> Vec<Vec<ForceTerm>> {
     let names: Vec<&str> = scene.coordinates.iter().map(|c| c.name.as_str()).collect();
     let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();
     let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
@@ -174,20 +207,29 @@ pub fn generalized_forces(scene: &Scene) -> Vec<Expr> {
     let angles: Vec<Vec<Var>> = scene.torques.iter().map(|t| t.angle.vars()).collect();
     let mut out = Vec::with_capacity(q.len());
     for k in 0..q.len() {
-        let mut rhs = Expr::zero();
+        let mut terms = Vec::new();
+        let mut push = |source, value: Expr| {
+            if !value.is_zero() {
+                terms.push(ForceTerm { source, value });
+            }
+        };
         if mentions(&v_vars, q[k]) {
-            rhs = rhs.sub(&v.diff(q[k]));
+            push(Source::Potential, v.diff(q[k]).neg());
         }
         if mentions(&l_vars, q[k]) {
-            rhs = rhs.add(&l.diff(q[k]));
+            push(Source::Work, l.diff(q[k]));
         }
         if mentions(&d_vars, qd[k]) {
-            rhs = rhs.add(&d.diff(qd[k]));
+            push(Source::Dissipation, d.diff(qd[k]));
         }
-        for f in scene.forces.iter().filter(|f| f.coordinate == k) {
-            rhs = rhs.add(&f.value);
-        }
-        for (ld, vars) in scene.loads.iter().zip(&points) {
+        let force = scene
+            .forces
+            .iter()
+            .filter(|f| f.coordinate == k)
+            .fold(Expr::zero(), |s, f| s.add(&f.value));
+        push(Source::Force, force);
+        for (i, (ld, vars)) in scene.loads.iter().zip(&points).enumerate() {
+            let mut w = Expr::zero();
             for ((f, p), pv) in ld
                 .force
                 .components()
@@ -196,16 +238,17 @@ pub fn generalized_forces(scene: &Scene) -> Vec<Expr> {
                 .zip(vars)
             {
                 if mentions(pv, q[k]) {
-                    rhs = rhs.add(&f.mul(&p.diff(q[k])));
+                    w = w.add(&f.mul(&p.diff(q[k])));
                 }
             }
+            push(Source::Load(i), w);
         }
-        for (t, vars) in scene.torques.iter().zip(&angles) {
+        for (i, (t, vars)) in scene.torques.iter().zip(&angles).enumerate() {
             if mentions(vars, q[k]) {
-                rhs = rhs.add(&t.moment.mul(&t.angle.diff(q[k])));
+                push(Source::Torque(i), t.moment.mul(&t.angle.diff(q[k])));
             }
         }
-        out.push(rhs);
+        out.push(terms);
     }
     out
 }

@@ -28,6 +28,8 @@ use crate::solve::equilibrium::{self, Equilibria, Position, Values};
 use crate::solve::system::{self, BlockSolution};
 use serde_json::{json, Map, Value};
 
+pub mod latex;
+
 /// The commands of the CLI.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Command {
@@ -36,6 +38,8 @@ pub enum Command {
     Forces,
     Equilibrium,
     Modes,
+    /// LaTeX of the scene's main result (see [`latex::document`]).
+    Latex,
 }
 
 /// Options of the commands beyond the file and the format.
@@ -47,6 +51,12 @@ pub struct Options {
     pub at: Option<String>,
     /// `modes --init q=…,q'=…`: initial conditions.
     pub init: Option<String>,
+    /// `latex --steps`: the derivation line by line.
+    pub steps: bool,
+    /// `latex --standalone`: a whole document, not a fragment.
+    pub standalone: bool,
+    /// The title of a standalone document (the file name).
+    pub title: String,
 }
 
 /// Run `cmd` on the scene source `src`: the output, and the warnings to show.
@@ -78,6 +88,11 @@ pub fn run_with(
             match fmt {
                 Format::Text => derive_text(&lag),
                 Format::Json => json_string(derive_json(&lag)),
+                Format::Latex => {
+                    let mut w = latex::Writer::new(&scene);
+                    w.derive(&lag);
+                    w.finish()
+                }
             }
         }
         Command::Solve => {
@@ -108,6 +123,15 @@ pub fn run_with(
                     }
                     out
                 }
+                Format::Latex => {
+                    let mut w = latex::Writer::new(&scene);
+                    if let Some((l, acc)) = &lag {
+                        w.equations(l);
+                        w.accelerations(acc);
+                    }
+                    w.blocks(&scene, &blocks);
+                    w.finish()
+                }
                 Format::Json => {
                     let mut m = match &lag {
                         Some((l, acc)) => solve_json(l, acc),
@@ -131,6 +155,11 @@ pub fn run_with(
             let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
             match fmt {
                 Format::Text => forces_text(&names, &q),
+                Format::Latex => {
+                    let mut w = latex::Writer::new(&scene);
+                    w.forces(&names, &q);
+                    w.finish()
+                }
                 Format::Json => {
                     let mut m = Map::new();
                     m.insert("coordinates".into(), json!(names));
@@ -158,6 +187,11 @@ pub fn run_with(
             match fmt {
                 Format::Text => modes_text(&md, set, free.as_deref()),
                 Format::Json => json_string(modes_json(&md, set, free.as_deref())),
+                Format::Latex => {
+                    let mut w = latex::Writer::new(&scene);
+                    w.modes(&md);
+                    w.finish()
+                }
             }
         }
         Command::Equilibrium => {
@@ -166,7 +200,16 @@ pub fn run_with(
             match fmt {
                 Format::Text => equilibrium_text(&eq),
                 Format::Json => json_string(equilibrium_json(&eq)),
+                Format::Latex => {
+                    let mut w = latex::Writer::new(&scene);
+                    w.equilibrium(&eq);
+                    w.finish()
+                }
             }
+        }
+        Command::Latex => {
+            check_set(&scene, set)?;
+            latex::document(&scene, opts)?
         }
     };
     Ok((out, scene.warnings.clone()))
@@ -309,6 +352,8 @@ fn named(names: &[String], es: &[Expr]) -> Value {
 pub enum Format {
     Text,
     Json,
+    /// amsmath LaTeX (see [`latex`]).
+    Latex,
 }
 
 fn s(e: &Expr) -> String {
@@ -479,7 +524,7 @@ pub fn solutions_json(scene: &Scene, blocks: &[BlockSolution], m: &mut Map<Strin
 fn position_strings(
     eq: &Equilibria,
     e: &equilibrium::Equilibrium,
-    st: fn(&Expr) -> String,
+    st: &dyn Fn(&Expr) -> String,
 ) -> Vec<String> {
     match &e.position {
         Position::Exact(vals) => vals
@@ -518,7 +563,7 @@ pub fn equilibrium_text(eq: &Equilibria) -> String {
         out.push_str("  none\n");
     }
     for (i, e) in eq.equilibria.iter().enumerate() {
-        let vals = position_strings(eq, e, u);
+        let vals = position_strings(eq, e, &u);
         let parts: Vec<String> = eq
             .coordinates
             .iter()
@@ -577,7 +622,7 @@ pub fn equilibrium_json(eq: &Equilibria) -> Map<String, Value> {
                 }
             }
             Position::Exact(_) => {
-                for (c, v) in eq.coordinates.iter().zip(position_strings(eq, e, s)) {
+                for (c, v) in eq.coordinates.iter().zip(position_strings(eq, e, &s)) {
                     o.insert(c.clone(), Value::String(v));
                 }
             }

@@ -1,0 +1,601 @@
+//! LaTeX, as a careful lecturer types it: `\frac{13 G}{2 g} \ddot{y}_{3}`,
+//! `\sqrt{3}`, `\sin^{2}\theta_{3}`, `\dot{\theta}_{3}`.
+//!
+//! The layout is the text printer's ([`super::print`]): terms collected by
+//! their coordinate monomials, q̈ first, then q̇, then q, then the rest, in
+//! the same order as the Unicode output; coefficients in lowest terms with
+//! their contents pulled out. What changes is the notation:
+//!
+//! * fractions are `\frac{…}{…}`, the sign outside;
+//! * products have no `\cdot` (a space only) unless two numbers meet;
+//! * functions go last in a product, so `\sin\theta_{3}` needs no
+//!   parentheses (`m g l \sin\theta`); an argument that is more than one
+//!   symbol is parenthesized: `\cos(\theta_{1} - \theta_{2})`;
+//! * names become notation ([`Names`]): `theta3` → `\theta_{3}`, `eps3` →
+//!   `\varepsilon_{3}`, `J2` → `J_{2}`, `y3''` → `\ddot{y}_{3}`, `θ3` →
+//!   `\theta_{3}`, and a scene's `latex NAME = "…"` overrides any of them.
+
+use super::atom::{self, Atom};
+use super::print;
+use super::Expr;
+use crate::num::Q;
+use crate::poly::{Mono, Poly, Var};
+use rustc_hash::FxHashMap;
+
+/// Notation for names: the defaults of [`Names::symbol`] and a scene's
+/// overrides.
+#[derive(Clone, Debug, Default)]
+pub struct Names {
+    overrides: FxHashMap<String, String>,
+}
+
+impl Names {
+    pub fn new() -> Names {
+        Names::default()
+    }
+
+    /// Set the LaTeX of `name` (a later call for one name wins).
+    pub fn set(&mut self, name: &str, tex: &str) {
+        self.overrides.insert(name.to_string(), tex.to_string());
+    }
+
+    /// The notation of `name` with `dots` time derivatives:
+    /// `symbol("theta3", 2)` = `\ddot{\theta}_{3}`.
+    pub fn symbol(&self, name: &str, dots: u32) -> String {
+        if let Some(tex) = self.overrides.get(name) {
+            // Dot the head only: `\vartheta_3` → `\dot{\vartheta}_3`.
+            let (head, tail) = split_subscript(tex);
+            return format!("{}{tail}", dotted(head, dots));
+        }
+        let (base, sub) = split_name(name);
+        let head = base_tex(base);
+        let s = dotted(&head, dots);
+        match sub {
+            None => s,
+            Some(sub) => format!("{s}_{{{}}}", sub_tex(sub)),
+        }
+    }
+}
+
+/// `\vartheta_3` → (`\vartheta`, `_3`); the split is at the first `_`
+/// outside braces.
+fn split_subscript(tex: &str) -> (&str, &str) {
+    let mut depth = 0i32;
+    for (i, c) in tex.char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' => depth -= 1,
+            '_' if depth == 0 && i > 0 => return tex.split_at(i),
+            _ => {}
+        }
+    }
+    (tex, "")
+}
+
+/// `theta3` → (`theta`, `3`); `y_1` → (`y`, `1`); `F_max` → (`F`, `max`).
+fn split_name(name: &str) -> (&str, Option<&str>) {
+    if let Some(i) = name.find('_') {
+        if i > 0 && i + 1 < name.len() {
+            return (&name[..i], Some(&name[i + 1..]));
+        }
+    }
+    let split = name
+        .char_indices()
+        .rev()
+        .take_while(|(_, c)| c.is_ascii_digit())
+        .last()
+        .map(|(i, _)| i);
+    match split {
+        Some(i) if i > 0 => (&name[..i], Some(&name[i..])),
+        _ => (name, None),
+    }
+}
+
+/// A subscript: digits as they are, one letter italic, a word upright.
+fn sub_tex(sub: &str) -> String {
+    if sub.chars().all(|c| c.is_ascii_digit()) {
+        return sub.to_string();
+    }
+    let (base, more) = split_name(sub);
+    let head = if base.chars().count() > 1 && greek(base).is_none() {
+        format!("\\mathrm{{{}}}", escape(base))
+    } else {
+        base_tex(base)
+    };
+    match more {
+        None => head,
+        Some(m) => format!("{head}{}", sub_tex(m)),
+    }
+}
+
+/// Greek letters by name, ASCII and Unicode. `eps`/`epsilon`/`ε` and
+/// `phi`/`φ` are the curly forms the seed prints (`\varepsilon`,
+/// `\varphi`); `ϵ` and `ϕ` are the straight ones.
+const GREEK: &[(&str, &str, &str)] = &[
+    ("alpha", "α", "\\alpha"),
+    ("beta", "β", "\\beta"),
+    ("gamma", "γ", "\\gamma"),
+    ("delta", "δ", "\\delta"),
+    ("epsilon", "ε", "\\varepsilon"),
+    ("eps", "ϵ", "\\epsilon"),
+    ("zeta", "ζ", "\\zeta"),
+    ("eta", "η", "\\eta"),
+    ("theta", "θ", "\\theta"),
+    ("th", "ϑ", "\\vartheta"),
+    ("iota", "ι", "\\iota"),
+    ("kappa", "κ", "\\kappa"),
+    ("lambda", "λ", "\\lambda"),
+    ("mu", "μ", "\\mu"),
+    ("nu", "ν", "\\nu"),
+    ("xi", "ξ", "\\xi"),
+    ("pi", "π", "\\pi"),
+    ("rho", "ρ", "\\rho"),
+    ("sigma", "σ", "\\sigma"),
+    ("tau", "τ", "\\tau"),
+    ("upsilon", "υ", "\\upsilon"),
+    ("phi", "φ", "\\varphi"),
+    ("chi", "χ", "\\chi"),
+    ("psi", "ψ", "\\psi"),
+    ("omega", "ω", "\\omega"),
+    ("Gamma", "Γ", "\\Gamma"),
+    ("Delta", "Δ", "\\Delta"),
+    ("Theta", "Θ", "\\Theta"),
+    ("Lambda", "Λ", "\\Lambda"),
+    ("Xi", "Ξ", "\\Xi"),
+    ("Pi", "Π", "\\Pi"),
+    ("Sigma", "Σ", "\\Sigma"),
+    ("Upsilon", "Υ", "\\Upsilon"),
+    ("Phi", "Φ", "\\Phi"),
+    ("Psi", "Ψ", "\\Psi"),
+    ("Omega", "Ω", "\\Omega"),
+];
+
+/// The LaTeX of a Greek name or letter. The ASCII spellings are the
+/// names; `eps` is `\varepsilon` like `epsilon` (the seed's ε) and `th`
+/// is `\theta` (the Unicode column pairs each command with its letter).
+fn greek(base: &str) -> Option<&'static str> {
+    match base {
+        "eps" => return Some("\\varepsilon"),
+        "th" => return Some("\\theta"),
+        "ϕ" => return Some("\\phi"),
+        _ => {}
+    }
+    GREEK
+        .iter()
+        .find(|(name, letter, _)| *name == base || *letter == base)
+        .map(|(_, _, tex)| *tex)
+}
+
+/// The head of a name: a Greek command, one letter, or a word in italics.
+fn base_tex(base: &str) -> String {
+    if let Some(g) = greek(base) {
+        return g.to_string();
+    }
+    if base.chars().count() == 1 {
+        return escape(base);
+    }
+    format!("\\mathit{{{}}}", escape(base))
+}
+
+/// Characters special to TeX in a name (`_` never reaches here).
+fn escape(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '_' => out.push_str("\\_"),
+            c if c.is_ascii() => out.push(c),
+            c => match GREEK.iter().find(|(_, l, _)| l.starts_with(c)) {
+                // a Greek letter inside a longer name: `θx`
+                Some((_, _, tex)) => {
+                    out.push_str(tex);
+                    out.push(' ');
+                }
+                None => out.push(c),
+            },
+        }
+    }
+    out.trim_end().to_string()
+}
+
+/// `\dot{x}`, `\ddot{x}`, `\dddot{x}`, `\ddddot{x}`, then `x^{(5)}`.
+fn dotted(head: &str, dots: u32) -> String {
+    match dots {
+        0 => head.to_string(),
+        1 => format!("\\dot{{{head}}}"),
+        2 => format!("\\ddot{{{head}}}"),
+        3 => format!("\\dddot{{{head}}}"),
+        4 => format!("\\ddddot{{{head}}}"),
+        k => format!("{{{head}}}^{{({k})}}"),
+    }
+}
+
+/// LaTeX of an expression with the default notation.
+pub fn latex(e: &Expr) -> String {
+    latex_with(e, &Names::default())
+}
+
+/// LaTeX of an expression with a scene's notation.
+pub fn latex_with(e: &Expr, names: &Names) -> String {
+    Tex { names }.expr(e)
+}
+
+/// The terms of an expression in display order, each (is negative, text
+/// without the sign), for breaking long equations.
+pub fn terms_with(e: &Expr, names: &Names) -> Vec<(bool, String)> {
+    Tex { names }.terms(e)
+}
+
+/// LaTeX with a fraction over a monomial denominator shown term by term
+/// (`\frac{16 k}{81 m} - \frac{g}{9 r}`), like [`print::expanded`].
+pub fn latex_expanded(e: &Expr, names: &Names) -> String {
+    let tex = Tex { names };
+    if e.den().len() != 1 || e.num().len() < 2 {
+        return tex.expr(e);
+    }
+    let den = Expr::from_poly(e.den().clone());
+    let mut terms = print::sorted_terms(e.num());
+    terms.sort_by_key(|(_, c)| c.is_negative());
+    let mut items = Vec::with_capacity(terms.len());
+    for (m, c) in terms {
+        let t = Expr::from_poly(Poly::monomial(m, c.abs()));
+        let Ok(t) = t.div(&den) else {
+            return tex.expr(e);
+        };
+        items.push((c.is_negative(), tex.expr(&t)));
+    }
+    join(items)
+}
+
+/// A rational number: `3`, `\frac{3}{2}`, `-\frac{1}{2}`.
+pub fn rational(q: &Q) -> String {
+    let sign = if q.is_negative() { "-" } else { "" };
+    let q = q.abs();
+    if q.denom() == num_bigint::BigInt::from(1) {
+        format!("{sign}{}", q.numer())
+    } else {
+        format!("{sign}\\frac{{{}}}{{{}}}", q.numer(), q.denom())
+    }
+}
+
+/// Terms with their signs outside: `a + b - c`, `-a + b`.
+pub fn join(items: impl IntoIterator<Item = (bool, String)>) -> String {
+    let mut out = String::new();
+    for (i, (neg, s)) in items.into_iter().enumerate() {
+        match (i, neg) {
+            (0, true) => out.push('-'),
+            (0, false) => {}
+            (_, true) => out.push_str(" - "),
+            (_, false) => out.push_str(" + "),
+        }
+        out.push_str(&s);
+    }
+    out
+}
+
+/// What a factor is, for joining factors into a product.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Kind {
+    /// A number (`3`, `\frac{3}{2}`).
+    Num,
+    /// A symbol, power, radical or fraction: safe anywhere in a product.
+    Plain,
+    /// A sum: parenthesized when it is not alone.
+    Sum,
+    /// A function with its argument (`\sin\theta`): last in a product.
+    Func,
+}
+
+struct Factor {
+    tex: String,
+    kind: Kind,
+}
+
+impl Factor {
+    fn new(tex: String, kind: Kind) -> Factor {
+        Factor { tex, kind }
+    }
+}
+
+/// Parentheses that grow around tall content.
+fn parens(s: &str) -> String {
+    if s.contains("\\frac") {
+        format!("\\left({s}\\right)")
+    } else {
+        format!("({s})")
+    }
+}
+
+/// Factors side by side: functions last, sums parenthesized unless alone,
+/// `\cdot` only between two numbers.
+fn product(mut fs: Vec<Factor>) -> String {
+    if fs.is_empty() {
+        return "1".into();
+    }
+    if fs.len() == 1 {
+        return fs.remove(0).tex;
+    }
+    fs.sort_by_key(|f| f.kind == Kind::Func);
+    let mut out = String::new();
+    let mut prev: Option<Kind> = None;
+    for f in fs {
+        let tex = if f.kind == Kind::Sum {
+            parens(&f.tex)
+        } else {
+            f.tex
+        };
+        if let Some(p) = prev {
+            let digit_next = tex.starts_with(|c: char| c.is_ascii_digit());
+            if p == Kind::Num && (f.kind == Kind::Num || digit_next) {
+                out.push_str(" \\cdot ");
+            } else {
+                out.push(' ');
+            }
+        }
+        out.push_str(&tex);
+        prev = Some(f.kind);
+    }
+    out
+}
+
+struct Tex<'a> {
+    names: &'a Names,
+}
+
+impl Tex<'_> {
+    fn expr(&self, e: &Expr) -> String {
+        join(self.terms(e))
+    }
+
+    /// The terms of `e` in display order, each (is negative, text).
+    fn terms(&self, e: &Expr) -> Vec<(bool, String)> {
+        if e.is_zero() {
+            return vec![(false, "0".into())];
+        }
+        let num = print::fold_trig(e.num()).unwrap_or_else(|| e.num().clone());
+        let den = print::fold_trig(e.den()).unwrap_or_else(|| e.den().clone());
+        let Some(groups) = print::collect(&num, &den) else {
+            let (neg, fs) = self.fraction(&num, &den);
+            if !neg && fs.len() == 1 && fs[0].kind == Kind::Sum {
+                // a bare sum: its own terms
+                return print::sorted_terms(&num)
+                    .into_iter()
+                    .map(|(m, c)| (c.is_negative(), self.sum(&Poly::monomial(m, c.abs()))))
+                    .collect();
+            }
+            return vec![(neg, product(fs))];
+        };
+        // The text printer's order: by monomial, then by the Unicode text.
+        let mut items: Vec<(Mono, String, bool, String)> = groups
+            .into_iter()
+            .map(|(key, c)| {
+                let order = print::unicode(&c.mul(&Expr::from_poly(Poly::monomial(
+                    key.clone(),
+                    Q::one(),
+                ))));
+                let (neg, body) = self.term(&c, &key);
+                (key, order, neg, body)
+            })
+            .collect();
+        items.sort_by(|a, b| {
+            print::display_order(&a.0, &b.0)
+                .then_with(|| b.0.cmp(&a.0))
+                .then_with(|| a.1.trim_start_matches('−').cmp(b.1.trim_start_matches('−')))
+        });
+        items.into_iter().map(|(_, _, n, s)| (n, s)).collect()
+    }
+
+    /// `coef·key`: (is negative, text without the sign).
+    fn term(&self, c: &Expr, key: &Mono) -> (bool, String) {
+        let neg = print::sorted_terms(c.num())
+            .first()
+            .is_some_and(|(_, q)| q.is_negative());
+        let c = if neg { c.neg() } else { c.clone() };
+        let (_, mut fs) = self.fraction(c.num(), c.den());
+        if fs.len() == 1 && fs[0].tex == "1" {
+            fs.clear();
+        }
+        fs.extend(self.mono(key));
+        (neg, product(fs))
+    }
+
+    /// num/den as factors, the sign apart: a polynomial gives its content,
+    /// its monomial gcd and its primitive sum; a quotient one `\frac`.
+    fn fraction(&self, num: &Poly, den: &Poly) -> (bool, Vec<Factor>) {
+        let (cn, mn, pn) = print::split_poly(num);
+        if den.is_one() {
+            if num.len() == 1 && mn.0.is_empty() {
+                return (cn.is_negative(), vec![Factor::new(rational(&cn.abs()), Kind::Num)]);
+            }
+            if mn.0.is_empty() {
+                // a sum with no common power product, signs as they are
+                return (false, vec![Factor::new(self.sum(num), Kind::Sum)]);
+            }
+            let mut fs = Vec::new();
+            if !cn.abs().is_one() {
+                fs.push(Factor::new(rational(&cn.abs()), Kind::Num));
+            }
+            fs.extend(self.mono(&mn));
+            if !pn.is_one() {
+                fs.push(Factor::new(self.sum(&pn), Kind::Sum));
+            }
+            return (cn.is_negative(), fs);
+        }
+        let (cd, md, pd) = print::split_poly(den);
+        let c = cn.checked_div(&cd).unwrap_or_else(Q::one);
+        let neg = c.is_negative();
+        let c = c.abs();
+        let side = |n: num_bigint::BigInt, m: &Mono, p: &Poly| {
+            let mut fs = Vec::new();
+            let q = Q::from_bigint(n);
+            if !q.is_one() {
+                fs.push(Factor::new(q.to_string(), Kind::Num));
+            }
+            fs.extend(self.mono(m));
+            if !p.is_one() {
+                fs.push(Factor::new(self.sum(p), Kind::Sum));
+            }
+            product(fs)
+        };
+        let top = side(c.numer(), &mn, &pn);
+        let bottom = side(c.denom(), &md, &pd);
+        (
+            neg,
+            vec![Factor::new(
+                format!("\\frac{{{top}}}{{{bottom}}}"),
+                Kind::Plain,
+            )],
+        )
+    }
+
+    /// A polynomial as a sum, terms in display order.
+    fn sum(&self, p: &Poly) -> String {
+        join(print::sorted_terms(p).into_iter().map(|(m, c)| {
+            let neg = c.is_negative();
+            let c = c.abs();
+            let mut fs = Vec::new();
+            if !c.is_one() || m.0.is_empty() {
+                fs.push(Factor::new(rational(&c), Kind::Num));
+            }
+            fs.extend(self.mono(&m));
+            (neg, product(fs))
+        }))
+    }
+
+    /// The factors of a monomial, in the text printer's order.
+    fn mono(&self, m: &Mono) -> Vec<Factor> {
+        let mut fs: Vec<(Var, u32)> = m.0.iter().copied().collect();
+        fs.sort_by_key(|&(v, _)| print::factor_rank(v));
+        fs.into_iter().map(|(v, e)| self.power(v, e)).collect()
+    }
+
+    fn power(&self, v: Var, e: u32) -> Factor {
+        let a = atom::atom(v);
+        let sup = if e == 1 {
+            String::new()
+        } else {
+            format!("^{{{e}}}")
+        };
+        let func = |name: &str, arg: &Expr| {
+            Factor::new(format!("{name}{sup}{}", self.argument(arg)), Kind::Func)
+        };
+        match &a {
+            Atom::Sin(u) => func("\\sin", u),
+            Atom::Cos(u) => func("\\cos", u),
+            Atom::Ln(u) => func("\\ln", u),
+            // \arctan^{2} reads badly: a power of an inverse function is
+            // written as a power of its parenthesized value
+            Atom::Atan(u) | Atom::Asin(u) | Atom::Acos(u) => {
+                let name = match a {
+                    Atom::Atan(_) => "\\arctan",
+                    Atom::Asin(_) => "\\arcsin",
+                    _ => "\\arccos",
+                };
+                if e == 1 {
+                    func(name, u)
+                } else {
+                    Factor::new(
+                        format!("\\left({name}{}\\right){sup}", self.argument(u)),
+                        Kind::Plain,
+                    )
+                }
+            }
+            Atom::Exp(u) => {
+                let x = u.scale(&Q::from_i64(e as i64));
+                Factor::new(format!("e^{{{}}}", self.expr(&x)), Kind::Plain)
+            }
+            Atom::Shown(f) => {
+                let name = if f.cos { "\\cos" } else { "\\sin" };
+                let op = if f.minus { "-" } else { "+" };
+                let wrap = |x: &Expr| {
+                    let s = self.expr(x);
+                    if print::is_sum(&s) {
+                        parens(&s)
+                    } else {
+                        s
+                    }
+                };
+                let angle = format!("{} {op} {}", wrap(&f.a), wrap(&f.b));
+                Factor::new(format!("{name}{sup}{}", parens(&angle)), Kind::Func)
+            }
+            Atom::Root(n) => {
+                let s = format!("\\sqrt{{{n}}}");
+                self.raised(s, e)
+            }
+            Atom::SqrtOf(u) => {
+                let s = format!("\\sqrt{{{}}}", self.expr(u));
+                self.raised(s, e)
+            }
+            Atom::Pi => Factor::new(format!("\\pi{sup}"), Kind::Plain),
+            Atom::Time => Factor::new(format!("t{sup}"), Kind::Plain),
+            Atom::Param(n) | Atom::Unknown(n) => {
+                Factor::new(format!("{}{sup}", self.names.symbol(n, 0)), Kind::Plain)
+            }
+            Atom::Coord(n, k) => {
+                Factor::new(format!("{}{sup}", self.names.symbol(n, *k)), Kind::Plain)
+            }
+        }
+    }
+
+    /// `\sqrt{3}^{2}` is ambiguous to read: parenthesize a raised radical.
+    fn raised(&self, s: String, e: u32) -> Factor {
+        if e == 1 {
+            Factor::new(s, Kind::Plain)
+        } else {
+            Factor::new(format!("\\left({s}\\right)^{{{e}}}"), Kind::Plain)
+        }
+    }
+
+    /// A function's argument: bare when it is one symbol (`\sin\theta_{3}`),
+    /// else in parentheses (`\sin(\omega t)`).
+    fn argument(&self, u: &Expr) -> String {
+        let s = self.expr(u);
+        let simple = u.as_var().is_some_and(|v| {
+            matches!(
+                atom::atom(v),
+                Atom::Param(_) | Atom::Unknown(_) | Atom::Coord(..) | Atom::Time | Atom::Pi
+            )
+        });
+        if simple {
+            if s.starts_with('\\') {
+                s
+            } else {
+                format!(" {s}")
+            }
+        } else {
+            parens(&s)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_become_notation() {
+        let n = Names::new();
+        assert_eq!(n.symbol("theta3", 0), "\\theta_{3}");
+        assert_eq!(n.symbol("eps3", 0), "\\varepsilon_{3}");
+        assert_eq!(n.symbol("omega", 0), "\\omega");
+        assert_eq!(n.symbol("mu", 0), "\\mu");
+        assert_eq!(n.symbol("J2", 0), "J_{2}");
+        assert_eq!(n.symbol("F0", 0), "F_{0}");
+        assert_eq!(n.symbol("y3", 1), "\\dot{y}_{3}");
+        assert_eq!(n.symbol("y3", 2), "\\ddot{y}_{3}");
+        assert_eq!(n.symbol("θ3", 0), "\\theta_{3}");
+        assert_eq!(n.symbol("φ", 1), "\\dot{\\varphi}");
+        assert_eq!(n.symbol("y_1", 0), "y_{1}");
+        assert_eq!(n.symbol("F_max", 0), "F_{\\mathrm{max}}");
+        assert_eq!(n.symbol("mass", 0), "\\mathit{mass}");
+        assert_eq!(n.symbol("Omega", 0), "\\Omega");
+        assert_eq!(n.symbol("x", 5), "{x}^{(5)}");
+    }
+
+    #[test]
+    fn overrides_win_and_dot_their_head() {
+        let mut n = Names::new();
+        n.set("theta3", "\\vartheta_3");
+        assert_eq!(n.symbol("theta3", 0), "\\vartheta_3");
+        assert_eq!(n.symbol("theta3", 2), "\\ddot{\\vartheta}_3");
+    }
+}

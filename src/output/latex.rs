@@ -1,0 +1,831 @@
+//! LaTeX for lecture notes: `qdot latex` and `--format latex`.
+//!
+//! The output is amsmath: every Lagrange equation a numbered line of an
+//! `align`, results in `align*`, matrices as `pmatrix`. Long equations are
+//! broken before a `+` or `−` (continuation lines indented by `\quad`, the
+//! number on the last line) so that an `article` page holds them. Without
+//! `--standalone` the output is a fragment to `\input`; with it, a whole
+//! document that compiles with `pdflatex`.
+//!
+//! `--steps` writes the derivation as the seed does (§23.5): the kinetic
+//! energy body by body and in total; the force function, potential, work
+//! and dissipation; for every coordinate ∂E/∂q̇_k, its time derivative,
+//! ∂E/∂q_k and Q_k term by term; the equation; then the solution.
+
+use super::position_strings;
+use crate::expr::latex::{latex_expanded, latex_with, Names};
+use crate::diag::Diagnostic;
+use crate::expr::Expr;
+use crate::mechanics::oscillations::Modes;
+use crate::mechanics::{generalized_force_terms, Lagrange, Source};
+use crate::parse::ast::Role;
+use crate::scene::Scene;
+use crate::solve::equilibrium::{Equilibria, Stability};
+use crate::solve::system::{self, BlockSolution};
+
+/// The widest line, in the units of [`width`] (about one italic letter):
+/// an `article` at 10pt with 2.5 cm margins holds about 70 letters of
+/// mathematics beside an equation number.
+const LINE: f64 = 56.0;
+
+/// `qdot latex`: the scene's main result — with dynamics, Lagrange's
+/// equations and the accelerations; its `solve` blocks and their
+/// solutions; without either, the generalized forces and the equilibria —
+/// with the derivation first under `--steps`, and as a whole document
+/// under `--standalone`.
+pub fn document(scene: &Scene, opts: &super::Options) -> Result<String, Diagnostic> {
+    let mut w = Writer::new(scene);
+    let dynamics = scene.has_dynamics();
+    if dynamics {
+        let lag = scene.lagrange()?;
+        let acc = lag.accelerations()?;
+        if opts.steps {
+            w.steps(scene, &lag);
+            w.para("Solution.", "The equations are linear in the accelerations.");
+        } else {
+            w.equations(&lag);
+        }
+        w.accelerations(&acc);
+    }
+    if !scene.systems.is_empty() {
+        let blocks = system::solve_scene(scene)?;
+        w.blocks(scene, &blocks);
+    }
+    if !dynamics && scene.systems.is_empty() {
+        if scene.coordinates.is_empty() {
+            // the usual error for a scene with nothing to derive
+            scene.lagrange()?;
+        }
+        let eq = crate::solve::equilibrium::equilibria(scene, &opts.set)?;
+        if opts.steps {
+            w.forces_steps(scene);
+        }
+        w.equilibrium(&eq);
+    }
+    let body = w.finish();
+    Ok(if opts.standalone {
+        standalone(&opts.title, &body)
+    } else {
+        body
+    })
+}
+
+/// A LaTeX writer with a scene's notation.
+pub struct Writer {
+    names: Names,
+    out: String,
+}
+
+impl Writer {
+    /// A writer with the notation of `scene` (its `latex` statements).
+    pub fn new(scene: &Scene) -> Writer {
+        let names = Names::new();
+        let _ = scene; // the scene's `latex` statements: see the parser
+        Writer {
+            names,
+            out: String::new(),
+        }
+    }
+
+    pub fn finish(self) -> String {
+        self.out
+    }
+
+    fn tex(&self, e: &Expr) -> String {
+        latex_with(e, &self.names)
+    }
+
+    /// The terms of an expression, signs apart, for line breaking.
+    fn terms(&self, e: &Expr) -> Vec<(bool, String)> {
+        crate::expr::latex::terms_with(e, &self.names)
+    }
+
+    fn sym(&self, name: &str, dots: u32) -> String {
+        self.names.symbol(name, dots)
+    }
+
+    /// `Q_{y_{3}}`: a quantity indexed by a coordinate.
+    fn indexed(&self, head: &str, coord: &str) -> String {
+        format!("{head}_{{{}}}", self.sym(coord, 0))
+    }
+
+    fn para(&mut self, title: &str, text: &str) {
+        self.out.push_str(&format!("\\paragraph{{{title}}}"));
+        if !text.is_empty() {
+            self.out.push(' ');
+            self.out.push_str(text);
+        }
+        self.out.push('\n');
+    }
+
+    fn line(&mut self, text: &str) {
+        self.out.push_str(text);
+        self.out.push('\n');
+    }
+
+    /// An `align` (numbered) or `align*` of rows, each a chain
+    /// `side₀ = side₁ = …` of signed terms.
+    fn align(&mut self, numbered: bool, rows: &[Vec<Vec<(bool, String)>>]) {
+        if rows.is_empty() {
+            return;
+        }
+        let env = if numbered { "align" } else { "align*" };
+        self.out.push_str(&format!("\\begin{{{env}}}\n"));
+        let last = rows.len() - 1;
+        for (i, row) in rows.iter().enumerate() {
+            let lines = layout(row);
+            let n = lines.len();
+            for (j, l) in lines.iter().enumerate() {
+                self.out.push_str("  ");
+                self.out.push_str(l);
+                if j + 1 < n {
+                    if numbered {
+                        self.out.push_str(" \\nonumber");
+                    }
+                    self.out.push_str(" \\\\\n");
+                } else if i < last {
+                    self.out.push_str(" \\\\\n");
+                } else {
+                    self.out.push('\n');
+                }
+            }
+        }
+        self.out.push_str(&format!("\\end{{{env}}}\n"));
+    }
+
+    /// A matrix `name = (…)` in `equation*`.
+    fn matrix(&mut self, name: &str, m: &[Vec<Expr>]) {
+        let rows: Vec<String> = m
+            .iter()
+            .map(|r| r.iter().map(|e| self.tex(e)).collect::<Vec<_>>().join(" & "))
+            .collect();
+        self.out.push_str(&format!(
+            "\\begin{{equation*}}\n  {name} = \\begin{{pmatrix}}\n    {}\n  \\end{{pmatrix}}\n\\end{{equation*}}\n",
+            rows.join(" \\\\\n    ")
+        ));
+    }
+
+    /// A column vector `name = (…)` in `equation*`.
+    fn column(&mut self, name: &str, v: &[Expr]) {
+        let m: Vec<Vec<Expr>> = v.iter().map(|e| vec![e.clone()]).collect();
+        self.matrix(name, &m);
+    }
+
+    fn one(&self, s: String) -> Vec<(bool, String)> {
+        vec![(false, s)]
+    }
+
+    // ------------------------------------------------------------ results
+
+    /// Lagrange's equations, numbered.
+    pub fn equations(&mut self, lag: &Lagrange) {
+        self.line("Lagrange's equations, $\\frac{d}{dt}\\frac{\\partial E}{\\partial \\dot{q}_{k}} - \\frac{\\partial E}{\\partial q_{k}} = Q_{k}$:");
+        let rows: Vec<_> = lag
+            .equations
+            .iter()
+            .map(|eq| vec![self.terms(&eq.lhs), self.terms(&eq.rhs)])
+            .collect();
+        self.align(true, &rows);
+    }
+
+    /// `qdot derive`: the equations, the mass matrix and the forcing.
+    pub fn derive(&mut self, lag: &Lagrange) {
+        self.equations(lag);
+        self.line("The mass matrix and the forcing, $M \\ddot{q} = f$:");
+        self.matrix("M", &lag.mass_matrix);
+        self.column("f", &lag.forcing);
+    }
+
+    /// The exact accelerations.
+    pub fn accelerations(&mut self, acc: &[(String, Expr)]) {
+        self.line("The accelerations:");
+        let rows: Vec<_> = acc
+            .iter()
+            .map(|(q, a)| vec![self.one(self.sym(q, 2)), self.terms(a)])
+            .collect();
+        self.align(false, &rows);
+    }
+
+    /// The `solve` blocks: their equations (numbered) and solutions.
+    pub fn blocks(&mut self, scene: &Scene, blocks: &[BlockSolution]) {
+        for (b, (sys, sol)) in scene.systems.iter().zip(blocks).enumerate() {
+            let unknowns: Vec<String> = sys.unknowns.iter().map(|u| self.sym(&u.name, 0)).collect();
+            let which = if scene.systems.len() > 1 {
+                format!(" {}", b + 1)
+            } else {
+                String::new()
+            };
+            self.line(&format!(
+                "The system{which} for ${}$:",
+                unknowns.join(", ")
+            ));
+            let rows: Vec<_> = sys
+                .equations
+                .iter()
+                .map(|e| vec![self.terms(&e.residual), self.one("0".into())])
+                .collect();
+            self.align(true, &rows);
+            if sol.used_accelerations {
+                self.line("With the accelerations of Lagrange's equations put in, its solution:");
+            } else {
+                self.line("Its solution:");
+            }
+            let rows: Vec<_> = sol
+                .values
+                .iter()
+                .filter(|(n, _)| !sol.free.contains(n))
+                .map(|(n, v)| vec![self.one(self.sym(n, 0)), self.terms(v)])
+                .collect();
+            self.align(false, &rows);
+            if !sol.free.is_empty() {
+                let f: Vec<String> = sol.free.iter().map(|n| format!("${}$", self.sym(n, 0))).collect();
+                self.line(&format!("The equations leave {} free.", f.join(", ")));
+            }
+            if !sol.checks.is_empty() {
+                let c: Vec<String> = sol
+                    .checks
+                    .iter()
+                    .map(|&i| system::equation_number(sys, i).to_string())
+                    .collect();
+                self.line(&format!(
+                    "Equations {} follow from the others and hold.",
+                    c.join(", ")
+                ));
+            }
+        }
+    }
+
+    /// `qdot forces`: Q_k.
+    pub fn forces(&mut self, coords: &[String], q: &[Expr]) {
+        self.line("The generalized forces, $\\delta L = \\sum_{k} Q_{k}\\,\\delta q_{k}$:");
+        let rows: Vec<_> = coords
+            .iter()
+            .zip(q)
+            .map(|(c, e)| vec![self.one(self.indexed("Q", c)), self.terms(e)])
+            .collect();
+        self.align(false, &rows);
+    }
+
+    /// `qdot equilibrium`: the conditions and the positions.
+    pub fn equilibrium(&mut self, eq: &Equilibria) {
+        self.forces(&eq.coordinates, &eq.forces);
+        self.line("The equilibrium conditions:");
+        let rows: Vec<_> = eq
+            .conditions
+            .iter()
+            .map(|f| vec![self.terms(f), self.one("0".into())])
+            .collect();
+        self.align(true, &rows);
+        if eq.equilibria.is_empty() {
+            self.line("There is no equilibrium.");
+            return;
+        }
+        self.line(if eq.exact {
+            "The equilibria:"
+        } else {
+            "The equilibria (numeric, at the given parameter values):"
+        });
+        self.out.push_str("\\begin{enumerate}\n");
+        for e in &eq.equilibria {
+            let tex = |x: &Expr| latex_with(x, &self.names);
+            let vals = match &e.position {
+                crate::solve::equilibrium::Position::Exact(_) => position_strings(eq, e, &tex),
+                crate::solve::equilibrium::Position::Numeric(_) => {
+                    position_strings(eq, e, &|x: &Expr| crate::expr::print::input(x))
+                }
+            };
+            let parts: Vec<String> = eq
+                .coordinates
+                .iter()
+                .zip(&vals)
+                .map(|(c, v)| {
+                    let v = if v == "any" { "\\text{any}".to_string() } else { v.clone() };
+                    format!("{} = {v}", self.sym(c, 0))
+                })
+                .collect();
+            let why = match &e.stability {
+                Stability::Undecided(_) => " (undecided)".to_string(),
+                s => format!(": {}", s.word()),
+            };
+            self.out.push_str(&format!(
+                "  \\item ${}${why}\n",
+                parts.join(",\\quad ")
+            ));
+        }
+        self.out.push_str("\\end{enumerate}\n");
+    }
+
+    /// `qdot modes`: M, C, K, the characteristic equation, ω², the modes.
+    pub fn modes(&mut self, md: &Modes) {
+        let q: Vec<String> = md.coordinates.iter().map(|c| self.sym(c, 0)).collect();
+        self.line(&format!(
+            "Small oscillations in ${}$, $M \\ddot{{q}} + C \\dot{{q}} + K q = f(t)$:",
+            q.join(", ")
+        ));
+        self.matrix("M", &md.mass);
+        if md.damping.iter().flatten().any(|e| !e.is_zero()) {
+            self.matrix("C", &md.damping);
+        }
+        self.matrix("K", &md.stiffness);
+        let lambda = crate::expr::atom::unknown(crate::mechanics::oscillations::LAMBDA);
+        let w2 = Expr::var(crate::expr::atom::param("omega")).powi(2);
+        let subst = |e: &Expr| w2.as_ref().ok().and_then(|w| e.subs(lambda, w).ok());
+        let factored: Vec<String> = md
+            .factors
+            .iter()
+            .filter_map(|f| subst(f))
+            .map(|f| {
+                let s = self.tex(&f);
+                if md.factors.len() > 1 && crate::expr::print::is_sum(&s) {
+                    format!("({s})")
+                } else {
+                    s
+                }
+            })
+            .collect();
+        self.line("The characteristic equation:");
+        let mut chain = vec![self.one("\\det(K - \\omega^{2} M)".into())];
+        if let Some(c) = subst(&md.characteristic) {
+            chain.push(self.terms(&c));
+        }
+        if md.factors.len() > 1 {
+            chain.push(self.one(factored.join(" ")));
+        }
+        chain.push(self.one("0".into()));
+        self.align(true, &[chain]);
+        if md.omega_squared.is_empty() {
+            self.line("It has no closed-form roots.");
+            return;
+        }
+        self.line("The natural frequencies and the modes (normalized to the first coordinate):");
+        let mut rows = Vec::new();
+        for (i, (w, mode)) in md.omega_squared.iter().zip(&md.modes).enumerate() {
+            let k = i + 1;
+            rows.push(vec![
+                self.one(format!("\\omega_{{{k}}}^{{2}}")),
+                self.one(latex_expanded(w, &self.names)),
+            ]);
+            let v: Vec<String> = mode.iter().map(|x| self.tex(x)).collect();
+            rows.push(vec![
+                self.one(format!("v_{{{k}}}")),
+                self.one(format!("\\begin{{pmatrix}} {} \\end{{pmatrix}}", v.join(" \\\\ "))),
+            ]);
+        }
+        self.align(false, &rows);
+        let st = match &md.stability {
+            Stability::Stable => "stable (every $\\omega^{2} > 0$)",
+            Stability::Unstable => "unstable (some $\\omega^{2} < 0$)",
+            Stability::Undecided(_) => "undecided",
+        };
+        self.line(&format!("The equilibrium is {st}."));
+    }
+
+    // -------------------------------------------------------------- steps
+
+    /// The derivation, line by line (§23.5 of the seed).
+    pub fn steps(&mut self, scene: &Scene, lag: &Lagrange) {
+        let coords: Vec<String> = lag.coordinates.iter().map(|c| self.sym(c, 0)).collect();
+        let bodies: Vec<(String, Expr)> = scene
+            .role(Role::Kinetic)
+            .map(|d| (d.name.clone(), d.value.as_scalar().cloned().unwrap_or_else(Expr::zero)))
+            .collect();
+        let e_name = match bodies.as_slice() {
+            [(n, _)] => self.sym(n, 0),
+            _ => "E".to_string(),
+        };
+        if !bodies.is_empty() {
+            let what = if bodies.len() > 1 { "body by body, " } else { "" };
+            self.para(
+                "Kinetic energy.",
+                &format!("In the coordinates ${}$, {what}the kinetic energy is", coords.join(", ")),
+            );
+            let mut rows: Vec<_> = Vec::new();
+            if bodies.len() > 1 {
+                for (n, e) in &bodies {
+                    rows.push(vec![self.one(self.sym(n, 0)), self.terms(e)]);
+                }
+                let names: Vec<String> = bodies.iter().map(|(n, _)| self.sym(n, 0)).collect();
+                rows.push(vec![
+                    self.one("E".into()),
+                    vec![(false, names.join(" + "))],
+                    self.terms(&lag.kinetic),
+                ]);
+            } else {
+                rows.push(vec![self.one(e_name.clone()), self.terms(&lag.kinetic)]);
+            }
+            self.align(false, &rows);
+        }
+        self.forces_steps(scene);
+        let terms = generalized_force_terms(scene);
+        for (k, eq) in lag.equations.iter().enumerate() {
+            let c = &eq.coordinate;
+            let q = self.sym(c, 0);
+            let qd = self.sym(c, 1);
+            self.para(&format!("The coordinate ${q}$."), "");
+            let e_var = |order: u32| crate::expr::atom::coord(c, order);
+            let e = &lag.kinetic;
+            let p = e.diff(e_var(1));
+            let mut rows = Vec::new();
+            if !bodies.is_empty() {
+                let dq = format!("\\frac{{\\partial {e_name}}}{{\\partial {qd}}}");
+                rows.push(vec![self.one(dq.clone()), self.terms(&p)]);
+                rows.push(vec![
+                    self.one(format!("\\frac{{d}}{{dt}} {dq}")),
+                    self.terms(&p.dt()),
+                ]);
+                rows.push(vec![
+                    self.one(format!("\\frac{{\\partial {e_name}}}{{\\partial {q}}}")),
+                    self.terms(&e.diff(e_var(0))),
+                ]);
+            }
+            let parts = terms.get(k).map(Vec::as_slice).unwrap_or(&[]);
+            let mut chain = vec![self.one(self.indexed("Q", c))];
+            if !parts.is_empty() {
+                let formulas: Vec<(bool, String)> = parts
+                    .iter()
+                    .flat_map(|t| self.source(scene, t.source, c))
+                    .collect();
+                chain.push(formulas);
+                if parts.len() > 1 {
+                    chain.push(
+                        parts
+                            .iter()
+                            .enumerate()
+                            .map(|(i, t)| {
+                                let s = self.tex(&t.value);
+                                let (neg, body) = match s.strip_prefix('-') {
+                                    Some(b) if !crate::expr::print::is_sum(&s) => (true, b.to_string()),
+                                    _ if crate::expr::print::is_sum(&s) && i > 0 => {
+                                        (false, format!("({s})"))
+                                    }
+                                    _ => (false, s),
+                                };
+                                (neg, body)
+                            })
+                            .collect(),
+                    );
+                }
+            }
+            chain.push(self.terms(&eq.rhs));
+            rows.push(chain);
+            self.align(false, &rows);
+            self.line("and Lagrange's equation");
+            self.align(true, &[vec![self.terms(&eq.lhs), self.terms(&eq.rhs)]]);
+        }
+    }
+
+    /// The force function, potential, work, dissipation and the loads.
+    fn forces_steps(&mut self, scene: &Scene) {
+        let roles = [
+            (Role::ForceFunction, "the force function"),
+            (Role::Potential, "the potential energy"),
+            (Role::Work, "the work of the non-conservative forces"),
+            (Role::Dissipation, "the dissipation function"),
+            (Role::Rayleigh, "Rayleigh's dissipation function"),
+        ];
+        let mut rows = Vec::new();
+        let mut what = Vec::new();
+        for (role, text) in roles {
+            for d in scene.role(role) {
+                if let Some(v) = d.value.as_scalar() {
+                    rows.push(vec![self.one(self.sym(&d.name, 0)), self.terms(v)]);
+                    if !what.contains(&text) {
+                        what.push(text);
+                    }
+                }
+            }
+        }
+        if rows.is_empty() && scene.loads.is_empty() && scene.torques.is_empty() && scene.forces.is_empty() {
+            return;
+        }
+        let intro = if what.is_empty() {
+            String::new()
+        } else {
+            format!("{}:", sentence(&what))
+        };
+        self.para("Forces.", &capitalize(&intro));
+        self.align(false, &rows);
+        if !scene.loads.is_empty() {
+            self.line("The loads, each a force $\\mathbf{F}_{i}$ at a point $\\mathbf{r}_{i}$:");
+            let mut lrows = Vec::new();
+            for (i, ld) in scene.loads.iter().enumerate() {
+                let k = i + 1;
+                lrows.push(vec![
+                    self.one(format!("\\mathbf{{F}}_{{{k}}}")),
+                    self.one(self.value(&ld.force)),
+                ]);
+                lrows.push(vec![
+                    self.one(format!("\\mathbf{{r}}_{{{k}}}")),
+                    self.one(self.value(&ld.point)),
+                ]);
+            }
+            self.align(false, &lrows);
+        }
+        if !scene.torques.is_empty() {
+            self.line("The torques, each a moment $M_{i}$ on an angle $\\varphi_{i}$:");
+            let mut trows = Vec::new();
+            for (i, t) in scene.torques.iter().enumerate() {
+                let k = i + 1;
+                trows.push(vec![
+                    self.one(format!("M_{{{k}}}")),
+                    self.terms(&t.moment),
+                ]);
+                trows.push(vec![
+                    self.one(format!("\\varphi_{{{k}}}")),
+                    self.terms(&t.angle),
+                ]);
+            }
+            self.align(false, &trows);
+        }
+    }
+
+    fn value(&self, v: &crate::scene::Value) -> String {
+        match v {
+            crate::scene::Value::Scalar(e) => self.tex(e),
+            crate::scene::Value::Vector(c) => {
+                let parts: Vec<String> = c.iter().map(|e| self.tex(e)).collect();
+                format!("\\begin{{pmatrix}} {} \\end{{pmatrix}}", parts.join(" \\\\ "))
+            }
+        }
+    }
+
+    /// The formula of one source of Q_k: `\frac{\partial U}{\partial y_{3}}`.
+    fn source(&self, scene: &Scene, s: Source, c: &str) -> Vec<(bool, String)> {
+        let q = self.sym(c, 0);
+        let qd = self.sym(c, 1);
+        let d = |f: &str, x: &str| format!("\\frac{{\\partial {f}}}{{\\partial {x}}}");
+        let name = |role: Role, default: &str| {
+            let mut it = scene.role(role);
+            match (it.next(), it.next()) {
+                (Some(one), None) => self.sym(&one.name, 0),
+                _ => default.to_string(),
+            }
+        };
+        match s {
+            Source::Potential => {
+                let mut v = Vec::new();
+                if scene.has_role(Role::ForceFunction) {
+                    v.push((false, d(&name(Role::ForceFunction, "U"), &q)));
+                }
+                if scene.has_role(Role::Potential) {
+                    v.push((true, d(&name(Role::Potential, "V"), &q)));
+                }
+                v
+            }
+            Source::Work => vec![(false, d(&name(Role::Work, "L"), &q))],
+            Source::Dissipation => {
+                let mut v = Vec::new();
+                if scene.has_role(Role::Dissipation) {
+                    v.push((false, d(&name(Role::Dissipation, "D"), &qd)));
+                }
+                if scene.has_role(Role::Rayleigh) {
+                    v.push((true, d(&name(Role::Rayleigh, "R"), &qd)));
+                }
+                v
+            }
+            Source::Force => vec![(false, format!("Q^{{*}}_{{{q}}}"))],
+            Source::Load(i) => {
+                let k = i + 1;
+                vec![(
+                    false,
+                    format!("\\mathbf{{F}}_{{{k}}} \\cdot {}", d(&format!("\\mathbf{{r}}_{{{k}}}"), &q)),
+                )]
+            }
+            Source::Torque(i) => {
+                let k = i + 1;
+                vec![(false, format!("M_{{{k}}} {}", d(&format!("\\varphi_{{{k}}}"), &q)))]
+            }
+        }
+    }
+}
+
+/// `a`, `a and b`, `a, b and c`.
+fn sentence(items: &[&str]) -> String {
+    match items {
+        [] => String::new(),
+        [a] => a.to_string(),
+        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+    }
+}
+
+fn capitalize(s: &str) -> String {
+    let mut c = s.chars();
+    match c.next() {
+        Some(f) => f.to_uppercase().chain(c).collect(),
+        None => String::new(),
+    }
+}
+
+/// Lines of one aligned row `side₀ = side₁ = …`, broken before a term
+/// where a line would grow past [`LINE`].
+fn layout(sides: &[Vec<(bool, String)>]) -> Vec<String> {
+    // pieces: (starts a side after the first, text with its sign)
+    let mut pieces: Vec<(bool, String, f64)> = Vec::new();
+    for (i, side) in sides.iter().enumerate() {
+        let side: Vec<(bool, String)> = if side.is_empty() {
+            vec![(false, "0".into())]
+        } else {
+            side.clone()
+        };
+        for (j, (neg, t)) in side.iter().enumerate() {
+            let text = match (i > 0, j == 0, neg) {
+                (true, true, false) => format!("= {t}"),
+                (true, true, true) => format!("= -{t}"),
+                (false, true, true) => format!("-{t}"),
+                (false, true, false) => t.clone(),
+                (_, false, true) => format!("- {t}"),
+                (_, false, false) => format!("+ {t}"),
+            };
+            let w = width(&text);
+            pieces.push((i > 0 && j == 0, text, w));
+        }
+    }
+    let total: f64 = pieces.iter().map(|p| p.2).sum();
+    let lhs_end = pieces.iter().position(|p| p.0).unwrap_or(pieces.len());
+    let lhs_width: f64 = pieces[..lhs_end].iter().map(|p| p.2).sum();
+    let concat = |ps: &[(bool, String, f64)]| {
+        ps.iter().map(|p| p.1.as_str()).collect::<Vec<_>>().join(" ")
+    };
+    if total <= LINE {
+        if lhs_end == pieces.len() {
+            return vec![concat(&pieces)];
+        }
+        return vec![format!(
+            "{} &{}",
+            concat(&pieces[..lhs_end]),
+            concat(&pieces[lhs_end..])
+        )];
+    }
+    // The left side on the first line when it fits, aligned at its `=`.
+    let lhs_fits = lhs_width <= LINE * 0.6 && lhs_end < pieces.len();
+    let mut lines: Vec<String> = Vec::new();
+    let mut cur = String::new();
+    let mut cur_w = 0.0;
+    let start = if lhs_fits {
+        cur = format!("{} &", concat(&pieces[..lhs_end]));
+        cur_w = lhs_width;
+        lhs_end
+    } else {
+        cur.push('&');
+        0
+    };
+    let mut first_on_line = !lhs_fits;
+    for (k, (is_eq, text, w)) in pieces[start..].iter().enumerate() {
+        let avail = if lines.is_empty() { LINE } else { LINE - 2.0 };
+        if cur_w + w > avail && !first_on_line && k > 0 || (*is_eq && !lines.is_empty() && !first_on_line && !lhs_fits) {
+            lines.push(cur);
+            cur = if *is_eq {
+                "&".to_string()
+            } else {
+                "&\\quad".to_string()
+            };
+            cur_w = if *is_eq { 0.0 } else { 2.0 };
+        }
+        if !(cur.ends_with('&') && text.starts_with('=')) {
+            cur.push(' ');
+        }
+        cur.push_str(text);
+        cur_w += w;
+        first_on_line = false;
+    }
+    lines.push(cur);
+    lines
+}
+
+/// The printed width of mathematics in letters, roughly: a fraction as
+/// wide as its wider part, scripts at 70 %, commands by what they show.
+pub fn width(tex: &str) -> f64 {
+    let b = tex.as_bytes();
+    let mut i = 0;
+    let mut w = 0.0;
+    // the brace group starting at j (b[j] == '{'): (content, index after)
+    let group = |j: usize| -> (&str, usize) {
+        if j >= b.len() || b[j] != b'{' {
+            return ("", j);
+        }
+        let mut depth = 0;
+        for (k, &c) in b.iter().enumerate().skip(j) {
+            if c == b'{' {
+                depth += 1;
+            } else if c == b'}' {
+                depth -= 1;
+                if depth == 0 {
+                    return (&tex[j + 1..k], k + 1);
+                }
+            }
+        }
+        (&tex[j + 1..], b.len())
+    };
+    while i < b.len() {
+        let c = b[i];
+        match c {
+            b'\\' => {
+                let mut j = i + 1;
+                while j < b.len() && b[j].is_ascii_alphabetic() {
+                    j += 1;
+                }
+                if j == i + 1 {
+                    j += 1; // \\ \, \; \{
+                }
+                let cmd = &tex[i + 1..j.min(tex.len())];
+                match cmd {
+                    "frac" => {
+                        let (a, k) = group(j);
+                        let (d, k2) = group(k);
+                        w += width(a).max(width(d)) * 0.85 + 0.5;
+                        i = k2;
+                        continue;
+                    }
+                    "sqrt" => {
+                        let (a, k) = group(j);
+                        w += width(a) + 1.0;
+                        i = k;
+                        continue;
+                    }
+                    "dot" | "ddot" | "dddot" | "ddddot" | "mathbf" | "mathrm" | "text" => {
+                        let (a, k) = group(j);
+                        w += width(a);
+                        i = k;
+                        continue;
+                    }
+                    "mathit" => {
+                        let (a, k) = group(j);
+                        w += width(a) * 0.9;
+                        i = k;
+                        continue;
+                    }
+                    "left" | "right" | "nonumber" | "begin" | "end" => {}
+                    "sin" | "cos" | "det" => w += 2.2,
+                    "ln" => w += 1.4,
+                    "arctan" | "arcsin" | "arccos" => w += 4.0,
+                    "quad" => w += 2.0,
+                    "qquad" => w += 4.0,
+                    "cdot" => w += 1.2,
+                    "partial" => w += 1.0,
+                    "," | ";" => w += 0.3,
+                    "\\" => {}
+                    _ => w += 1.0, // a Greek letter
+                }
+                i = j;
+            }
+            b'^' | b'_' => {
+                let (a, k) = if i + 1 < b.len() && b[i + 1] == b'{' {
+                    group(i + 1)
+                } else {
+                    (&tex[i + 1..(i + 2).min(tex.len())], i + 2)
+                };
+                w += width(a) * 0.7;
+                i = k;
+            }
+            b'{' | b'}' | b' ' | b'&' => i += 1,
+            b'+' | b'-' | b'=' => {
+                w += 1.8;
+                i += 1;
+            }
+            b'(' | b')' => {
+                w += 0.5;
+                i += 1;
+            }
+            _ => {
+                w += 1.0;
+                i += 1;
+            }
+        }
+    }
+    w
+}
+
+/// A whole `article` around a body.
+pub fn standalone(title: &str, body: &str) -> String {
+    format!(
+        "\\documentclass[10pt]{{article}}\n\
+         \\usepackage[T1]{{fontenc}}\n\
+         \\usepackage{{amsmath}}\n\
+         \\usepackage[margin=2.5cm]{{geometry}}\n\
+         \\setlength{{\\parindent}}{{0pt}}\n\
+         \\setlength{{\\parskip}}{{0.5ex}}\n\
+         \\begin{{document}}\n\
+         \\section*{{{}}}\n\
+         {body}\
+         \\end{{document}}\n",
+        escape_text(title)
+    )
+}
+
+/// Text (not mathematics) with TeX's special characters escaped.
+pub fn escape_text(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '\\' => out.push_str("\\textbackslash{}"),
+            '_' | '%' | '$' | '#' | '&' | '{' | '}' => {
+                out.push('\\');
+                out.push(c);
+            }
+            '~' => out.push_str("\\textasciitilde{}"),
+            '^' => out.push_str("\\textasciicircum{}"),
+            c => out.push(c),
+        }
+    }
+    out
+}
