@@ -225,6 +225,36 @@ pub fn terms_with(e: &Expr, names: &Names) -> Vec<(bool, String)> {
     Tex { names }.terms(e)
 }
 
+/// A quotient N/D with a sum N as (is negative, D, the terms of N), for
+/// writing a long quotient as `\frac{1}{D} \bigl(N\bigr)` over several
+/// lines; `None` when `e` is not one quotient of a sum.
+pub fn quotient_terms(e: &Expr, names: &Names) -> Option<(bool, String, Vec<(bool, String)>)> {
+    let tex = Tex { names };
+    let num = print::fold_trig(e.num()).unwrap_or_else(|| e.num().clone());
+    let den = print::fold_trig(e.den()).unwrap_or_else(|| e.den().clone());
+    if den.is_one() || num.len() < 2 || print::collect(&num, &den).is_some() {
+        return None;
+    }
+    // D without its rational content, which joins the numerator
+    let (cd, md, pd) = print::split_poly(&den);
+    let num = num.scale(&Q::one().checked_div(&cd)?);
+    // sign outside, the numerator's first displayed term positive
+    let neg = print::sorted_terms(&num)
+        .first()
+        .is_some_and(|(_, q)| q.is_negative());
+    let num = if neg { -&num } else { num };
+    let mut fs = tex.mono(&md);
+    if !pd.is_one() {
+        fs.push(Factor::new(tex.sum(&pd), Kind::Sum));
+    }
+    let inner = product(fs);
+    let terms = print::sorted_terms(&num)
+        .into_iter()
+        .map(|(m, c)| (c.is_negative(), tex.sum(&Poly::monomial(m, c.abs()))))
+        .collect();
+    Some((neg, inner, terms))
+}
+
 /// LaTeX with a fraction over a monomial denominator shown term by term
 /// (`\frac{16 k}{81 m} - \frac{g}{9 r}`), like [`print::expanded`].
 pub fn latex_expanded(e: &Expr, names: &Names) -> String {

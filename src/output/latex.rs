@@ -97,7 +97,19 @@ impl Writer {
 
     /// The terms of an expression, signs apart, for line breaking.
     fn terms(&self, e: &Expr) -> Vec<(bool, String)> {
-        crate::expr::latex::terms_with(e, &self.names)
+        let t = crate::expr::latex::terms_with(e, &self.names);
+        if t.len() == 1 && width(&t[0].1) > LINE {
+            // a long quotient: 1/D times its numerator's terms, in brackets
+            if let Some((neg, d, mut n)) = crate::expr::latex::quotient_terms(e, &self.names) {
+                let last = n.len() - 1;
+                n[last].1.push_str(" \\bigr)");
+                let (n0, t0) = n[0].clone();
+                let sign = if n0 { "-" } else { "" };
+                n[0] = (neg, format!("\\frac{{1}}{{{d}}} \\bigl({sign}{t0}"));
+                return n;
+            }
+        }
+        t
     }
 
     fn sym(&self, name: &str, dots: u32) -> String {
