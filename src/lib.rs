@@ -44,3 +44,7 @@ impl Scene {
         Lagrange::derive(self)
     }
 }
+
+#[cfg(doctest)]
+#[doc = include_str!("../book/src/library.md")]
+pub struct BookLibraryChapter;
