@@ -440,11 +440,8 @@ impl Tex<'_> {
                 // a sum with no common power product, signs as they are
                 return (false, vec![Factor::new(self.sum(num), Kind::Sum)]);
             }
-            let mut fs = Vec::new();
-            if !cn.abs().is_one() {
-                fs.push(Factor::new(rational(&cn.abs()), Kind::Num));
-            }
-            fs.extend(self.mono(&mn));
+            let mut fs = self.mono(&mn);
+            self.content(&cn.abs(), &mut fs);
             if !pn.is_one() {
                 fs.push(Factor::new(self.sum(&pn), Kind::Sum));
             }
@@ -454,7 +451,24 @@ impl Tex<'_> {
         let c = cn.checked_div(&cd).unwrap_or_else(Q::one);
         let neg = c.is_negative();
         let c = c.abs();
-        let side = |n: num_bigint::BigInt, m: &Mono, p: &Poly| {
+        // exponentials in the denominator go up with a negative exponent:
+        // x e^{-\alpha t}, not x/e^{\alpha t}
+        let (ups, md): (Vec<(Var, u32)>, Vec<(Var, u32)>) = md
+            .0
+            .iter()
+            .partition(|&&(v, _)| matches!(atom::atom(v), Atom::Exp(_)));
+        let md = Mono(md.into_iter().collect());
+        let up: Vec<Factor> = ups
+            .into_iter()
+            .filter_map(|(v, e)| match atom::atom(v) {
+                Atom::Exp(u) => Some(Factor::new(
+                    format!("e^{{{}}}", self.expr(&u.scale(&Q::from_i64(-(e as i64))))),
+                    Kind::Plain,
+                )),
+                _ => None,
+            })
+            .collect();
+        let side = |n: num_bigint::BigInt, m: &Mono, p: &Poly, extra: Vec<Factor>| {
             let mut fs = Vec::new();
             let q = Q::from_bigint(n);
             if !q.is_one() {
@@ -464,10 +478,21 @@ impl Tex<'_> {
             if !p.is_one() {
                 fs.push(Factor::new(self.sum(p), Kind::Sum));
             }
-            product(fs)
+            fs.extend(extra);
+            fs
         };
-        let top = side(c.numer(), &mn, &pn);
-        let bottom = side(c.denom(), &md, &pd);
+        let bottom = side(c.denom(), &md, &pd, Vec::new());
+        if bottom.is_empty() {
+            let mut fs = self.mono(&mn);
+            self.content(&Q::from_bigint(c.numer()), &mut fs);
+            if !pn.is_one() {
+                fs.push(Factor::new(self.sum(&pn), Kind::Sum));
+            }
+            fs.extend(up);
+            return (neg, fs);
+        }
+        let top = product(side(c.numer(), &mn, &pn, up));
+        let bottom = product(bottom);
         (
             neg,
             vec![Factor::new(
@@ -482,20 +507,45 @@ impl Tex<'_> {
         join(print::sorted_terms(p).into_iter().map(|(m, c)| {
             let neg = c.is_negative();
             let c = c.abs();
-            let mut fs = Vec::new();
-            if !c.is_one() || m.0.is_empty() {
-                fs.push(Factor::new(rational(&c), Kind::Num));
+            if m.0.is_empty() {
+                return (neg, rational(&c));
             }
-            fs.extend(self.mono(&m));
+            let mut fs = self.mono(&m);
+            self.content(&c, &mut fs);
             (neg, product(fs))
         }))
     }
 
-    /// The factors of a monomial, in the text printer's order.
+    /// The factors of a monomial, in the text printer's order but with
+    /// radicals of numbers first, as numbers are: `2 \sqrt{3} G`.
     fn mono(&self, m: &Mono) -> Vec<Factor> {
         let mut fs: Vec<(Var, u32)> = m.0.iter().copied().collect();
-        fs.sort_by_key(|&(v, _)| print::factor_rank(v));
+        fs.sort_by_key(|&(v, _)| {
+            let rank = print::factor_rank(v);
+            (!matches!(atom::atom(v), Atom::Root(_)), rank)
+        });
         fs.into_iter().map(|(v, e)| self.power(v, e)).collect()
+    }
+
+    /// A rational content with a numeric radical after it joins it:
+    /// `\frac{1}{2} \sqrt{3}` → `\frac{\sqrt{3}}{2}`, `\frac{3}{2} \sqrt{3}` →
+    /// `\frac{3 \sqrt{3}}{2}`.
+    fn content(&self, c: &Q, fs: &mut Vec<Factor>) {
+        let one = num_bigint::BigInt::from(1);
+        let root = fs
+            .first()
+            .is_some_and(|f| f.tex.starts_with("\\sqrt{") && !f.tex.contains('^'));
+        if root && c.denom() != one {
+            let r = fs.remove(0).tex;
+            let top = if c.numer() == one {
+                r
+            } else {
+                format!("{} {r}", c.numer())
+            };
+            fs.insert(0, Factor::new(format!("\\frac{{{top}}}{{{}}}", c.denom()), Kind::Plain));
+        } else if !c.is_one() {
+            fs.insert(0, Factor::new(rational(c), Kind::Num));
+        }
     }
 
     fn power(&self, v: Var, e: u32) -> Factor {

@@ -13,7 +13,7 @@
 //! ∂E/∂q_k and Q_k term by term; the equation; then the solution.
 
 use super::position_strings;
-use crate::expr::latex::{latex_expanded, latex_with, Names};
+use crate::expr::latex::{join, latex_expanded, latex_with, Names};
 use crate::diag::Diagnostic;
 use crate::expr::Expr;
 use crate::mechanics::oscillations::Modes;
@@ -339,15 +339,24 @@ impl Writer {
             self.matrix("C", &md.damping);
         }
         self.matrix("K", &md.stiffness);
+        // λ = ω², with ω printed as a coordinate so that the terms are
+        // collected by its powers
         let lambda = crate::expr::atom::unknown(crate::mechanics::oscillations::LAMBDA);
-        let w2 = Expr::var(crate::expr::atom::param("omega")).powi(2);
+        let w2 = Expr::coord("omega", 0).powi(2);
         let subst = |e: &Expr| w2.as_ref().ok().and_then(|w| e.subs(lambda, w).ok());
+        // each factor with a positive first term, the signs gathered in front
+        let mut negative = false;
         let factored: Vec<String> = md
             .factors
             .iter()
             .filter_map(|f| subst(f))
             .map(|f| {
-                let s = self.tex(&f);
+                let mut t = self.terms(&f);
+                if t.first().is_some_and(|x| x.0) {
+                    negative = !negative;
+                    t = self.terms(&f.neg());
+                }
+                let s = join(t);
                 if md.factors.len() > 1 && crate::expr::print::is_sum(&s) {
                     format!("({s})")
                 } else {
@@ -361,7 +370,8 @@ impl Writer {
             chain.push(self.terms(&c));
         }
         if md.factors.len() > 1 {
-            chain.push(self.one(factored.join(" ")));
+            let sign = if negative { "-" } else { "" };
+            chain.push(self.one(format!("{sign}{}", factored.join(" "))));
         }
         chain.push(self.one("0".into()));
         self.align(true, &[chain]);
@@ -387,7 +397,7 @@ impl Writer {
         let st = match &md.stability {
             Stability::Stable => "stable (every $\\omega^{2} > 0$)",
             Stability::Unstable => "unstable (some $\\omega^{2} < 0$)",
-            Stability::Undecided(_) => "undecided",
+            Stability::Undecided(_) => "undecided without values of the parameters",
         };
         self.line(&format!("The equilibrium is {st}."));
     }
@@ -811,7 +821,6 @@ pub fn width(tex: &str) -> f64 {
 pub fn standalone(title: &str, body: &str) -> String {
     format!(
         "\\documentclass[10pt]{{article}}\n\
-         \\usepackage[T1]{{fontenc}}\n\
          \\usepackage{{amsmath}}\n\
          \\usepackage[margin=2.5cm]{{geometry}}\n\
          \\setlength{{\\parindent}}{{0pt}}\n\

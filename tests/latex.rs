@@ -1,0 +1,202 @@
+//! Golden tests of the LaTeX output: one per construct, exact strings.
+//!
+//! The expected strings are insta snapshots under `tests/snapshots/`;
+//! each was read and checked by hand when it was accepted. To review a
+//! change: `INSTA_UPDATE=always cargo test --release --test latex`, then
+//! `git diff tests/snapshots`.
+
+mod common;
+
+use insta::assert_snapshot;
+use qdot::expr::latex::{latex, latex_with, Names};
+use qdot::Scene;
+
+/// `qdot ARGS`'s standard output; it must succeed.
+fn qdot(args: &[&str]) -> String {
+    let (code, out, err) = common::run::qdot(args);
+    assert_eq!(code, 0, "qdot {args:?} failed: {err}");
+    out
+}
+
+/// A scene with the names the constructs below use.
+fn scene() -> Scene {
+    Scene::parse(
+        "coordinates y3, theta3, x, phi, a, b, eps3
+         parameters G, g, r, m, k, c, l, omega, Omega, mu, J2, F0, M0, p, alpha
+         ",
+    )
+    .expect("scene parses")
+}
+
+fn tex(src: &str) -> String {
+    let e = scene().expr(src).expect("expression parses");
+    latex(&e)
+}
+
+#[test]
+fn fractions() {
+    assert_snapshot!("fraction_rational", tex("343/460*g"));
+    assert_snapshot!("fraction_symbolic", tex("13*g/(460*r)"));
+    assert_snapshot!("fraction_coefficients", tex("13/2*G/g*y3'' + G*r/g*theta3''"));
+    assert_snapshot!(
+        "fraction_of_sums",
+        tex("g*r*(G*r - p*l)/(G*r^2 + J2*g + p*l^2)")
+    );
+    assert_snapshot!("fraction_unit_numerator", tex("1/(2*m)"));
+    assert_snapshot!("fraction_half", tex("1/2*m*x'^2"));
+}
+
+#[test]
+fn radicals() {
+    assert_snapshot!("radical_number", tex("sqrt(3)"));
+    assert_snapshot!("radical_half", tex("sqrt(3)/2*G"));
+    assert_snapshot!("radical_times_integer", tex("2*sqrt(3)*G"));
+    assert_snapshot!("radical_fraction", tex("30*sqrt(3)/23*G"));
+    assert_snapshot!("radical_of_expression", tex("sqrt(k/m)"));
+    assert_snapshot!("radical_of_sum", tex("sqrt(k + m)"));
+}
+
+#[test]
+fn dots() {
+    assert_snapshot!("dot_velocity", tex("y3'"));
+    assert_snapshot!("dot_acceleration", tex("theta3''"));
+    assert_snapshot!("dot_third", tex("x'''"));
+    assert_snapshot!("dot_squared", tex("y3'^2"));
+    assert_snapshot!("dot_product", tex("y3'*theta3'"));
+}
+
+#[test]
+fn greek_names() {
+    assert_snapshot!("greek_indexed", tex("theta3 + eps3 + omega + mu"));
+    assert_snapshot!("greek_capital", tex("Omega*t"));
+    assert_snapshot!("greek_phi_dot", tex("phi'"));
+    assert_snapshot!("subscripts", tex("J2 + F0 + M0"));
+    let unicode = Scene::parse("coordinates θ3\nparameters ω").expect("scene");
+    assert_snapshot!(
+        "greek_unicode",
+        latex(&unicode.expr("ω*θ3''").expect("expression"))
+    );
+}
+
+#[test]
+fn nested_powers_and_functions() {
+    assert_snapshot!("sin_squared", tex("sin(theta3)^2"));
+    assert_snapshot!("sin_cubed_of_product", tex("sin(Omega*t)^3"));
+    assert_snapshot!("function_of_product", tex("M0*cos(Omega*t)"));
+    assert_snapshot!("function_last", tex("m*g*l*sin(phi)"));
+    assert_snapshot!("function_times_acceleration", tex("m*l^2*cos(a - b)*b''"));
+    assert_snapshot!("power_of_power", tex("(x^2)^3"));
+    assert_snapshot!("exponential", tex("exp(-alpha*t)*x"));
+    assert_snapshot!("exponential_over", tex("exp(-alpha*t)*x/m"));
+    assert_snapshot!("exponential_squared", tex("exp(alpha*t)^2"));
+    assert_snapshot!("logarithm", tex("ln(k)"));
+    assert_snapshot!("inverse_trig", tex("atan(k/m) + asin(1/3)"));
+    assert_snapshot!("pi", tex("2*pi*sqrt(m/k)"));
+}
+
+#[test]
+fn signs() {
+    assert_snapshot!("negative_leading_term", tex("-k*x/m + g"));
+    assert_snapshot!("negative_fraction", tex("-1/8*G*y3"));
+    assert_snapshot!("negative_quotient", tex("-k/(m + c)"));
+    assert_snapshot!("negative_sum_coefficient", tex("(c - k)*x'' + x"));
+    assert_snapshot!("zero", tex("x - x"));
+}
+
+#[test]
+fn folded_angles() {
+    // cos(a)cos(b) + sin(a)sin(b) folds back to cos(a − b)
+    assert_snapshot!(
+        "folded_difference",
+        tex("l^2*m*(cos(a)*cos(b) + sin(a)*sin(b))*b''")
+    );
+}
+
+#[test]
+fn names_can_be_overridden() {
+    let mut names = Names::new();
+    names.set("theta3", "\\vartheta_3");
+    let e = scene().expr("theta3'' + sin(theta3)").expect("expression");
+    assert_snapshot!("override", latex_with(&e, &names));
+}
+
+#[test]
+fn matrices_m_and_k() {
+    assert_snapshot!(
+        "modes_24_2",
+        qdot(&["modes", "examples/seed_24_2.qd", "--format", "latex"])
+    );
+}
+
+#[test]
+fn equations_and_accelerations() {
+    assert_snapshot!("latex_23_4", qdot(&["latex", "examples/seed_23_4.qd"]));
+    assert_snapshot!(
+        "derive_23_2",
+        qdot(&["derive", "examples/seed_23_2.qd", "--format", "latex"])
+    );
+}
+
+#[test]
+fn steps_follow_the_seed() {
+    assert_snapshot!(
+        "steps_23_4",
+        qdot(&["latex", "--steps", "examples/seed_23_4.qd"])
+    );
+}
+
+#[test]
+fn standalone_is_a_document() {
+    let doc = qdot(&["latex", "--standalone", "examples/seed_22_2.qd"]);
+    assert!(doc.starts_with("\\documentclass[10pt]{article}\n"));
+    assert!(doc.contains("\\usepackage{amsmath}"));
+    assert!(doc.contains("\\section*{examples/seed\\_22\\_2.qd}"));
+    assert!(doc.ends_with("\\end{document}\n"));
+    // the fragment is the document's body
+    let body = qdot(&["latex", "examples/seed_22_2.qd"]);
+    assert!(doc.contains(&body));
+}
+
+#[test]
+fn kinetostatic_and_equilibrium_scenes() {
+    assert_snapshot!(
+        "latex_21_2_kinetostatic",
+        qdot(&["latex", "examples/seed_21_2_kinetostatic.qd"])
+    );
+    assert_snapshot!("latex_23_1", qdot(&["latex", "examples/seed_23_1.qd"]));
+    assert_snapshot!(
+        "forces_23_3",
+        qdot(&["forces", "examples/seed_23_3.qd", "--format", "latex"])
+    );
+}
+
+/// Long equations break before a sign; the number stays on the last line.
+#[test]
+fn long_equations_break() {
+    let src = qdot::gallery::pendulum_chain(3);
+    let dir = std::env::temp_dir().join(format!("qdot-latex-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let file = dir.join("chain3.qd");
+    std::fs::write(&file, src).expect("write scene");
+    let out = qdot(&["derive", file.to_str().expect("path"), "--format", "latex"]);
+    let eqs: Vec<&str> = out
+        .split("\\begin{align}\n")
+        .nth(1)
+        .expect("an align")
+        .split("\\end{align}")
+        .next()
+        .expect("its end")
+        .lines()
+        .collect();
+    assert!(eqs.len() > 3, "the equations were broken: {eqs:?}");
+    for l in &eqs {
+        let w = qdot::output::latex::width(l);
+        assert!(w < 60.0, "line too wide ({w}): {l}");
+    }
+    assert!(eqs.iter().any(|l| l.starts_with("  &\\quad - ") || l.starts_with("  &\\quad + ")));
+    assert_eq!(
+        eqs.iter().filter(|l| !l.contains("\\nonumber")).count(),
+        3,
+        "one number per equation"
+    );
+}
