@@ -1,7 +1,10 @@
-//! The book shows qdot's real output: every ```text block preceded by a
-//! `<!-- qdot ARGS -->` comment must equal what `qdot ARGS` prints (run
-//! from the repository root). `QDOT_BLESS=1 cargo test --test book` rewrites
-//! the blocks from the current output.
+//! The book shows qdot's real output: every ```text (or ```latex) block
+//! preceded by a `<!-- qdot ARGS -->` comment must equal what `qdot ARGS`
+//! prints (run from the repository root), and the text between
+//! `<!-- qdot-math ARGS -->` and `<!-- /qdot-math -->` must be qdot's LaTeX
+//! output made into Markdown that MathJax renders ([`mathjax`]).
+//! `QDOT_BLESS=1 cargo test --test book` rewrites the blocks from the
+//! current output.
 
 use std::process::Command;
 
@@ -22,9 +25,10 @@ fn run(args: &str) -> String {
 /// The page with every marked block replaced by the current output, and
 /// the number of blocks.
 fn regenerate(page: &str) -> (String, usize) {
+    let (page, n) = regenerate_math(page);
     let mut out = String::with_capacity(page.len());
-    let mut rest = page;
-    let mut n = 0;
+    let mut rest = page.as_str();
+    let mut n = n;
     while let Some(at) = rest.find("<!-- qdot ") {
         let end = rest[at..]
             .find("-->")
@@ -32,10 +36,19 @@ fn regenerate(page: &str) -> (String, usize) {
             .expect("marker closed");
         let args = rest[at + "<!-- qdot ".len()..end].trim();
         let fence = rest[end..]
-            .find("```text\n")
+            .find("```")
             .map(|f| end + f)
-            .expect("a text block follows the marker");
-        let body = fence + "```text\n".len();
+            .expect("a code block follows the marker");
+        let info_end = rest[fence..]
+            .find('\n')
+            .map(|e| fence + e)
+            .expect("fence line");
+        let info = &rest[fence + 3..info_end];
+        assert!(
+            info == "text" || info == "latex",
+            "the block after `qdot {args}` must be ```text or ```latex, not ```{info}"
+        );
+        let body = info_end + 1;
         let close = rest[body..]
             .find("```")
             .map(|c| body + c)
@@ -47,6 +60,125 @@ fn regenerate(page: &str) -> (String, usize) {
     }
     out.push_str(rest);
     (out, n)
+}
+
+/// The `<!-- qdot-math ARGS -->` regions, regenerated.
+fn regenerate_math(page: &str) -> (String, usize) {
+    const OPEN: &str = "<!-- qdot-math ";
+    const CLOSE: &str = "<!-- /qdot-math -->";
+    let mut out = String::with_capacity(page.len());
+    let mut rest = page;
+    let mut n = 0;
+    while let Some(at) = rest.find(OPEN) {
+        let end = rest[at..]
+            .find("-->")
+            .map(|e| at + e)
+            .expect("marker closed");
+        let args = rest[at + OPEN.len()..end].trim();
+        let close = rest[end..]
+            .find(CLOSE)
+            .map(|c| end + c)
+            .expect("region closed");
+        out.push_str(&rest[..end + 3]);
+        out.push_str("\n\n");
+        out.push_str(&mathjax(&run(args)));
+        out.push('\n');
+        rest = &rest[close..];
+        n += 1;
+    }
+    out.push_str(rest);
+    (out, n)
+}
+
+/// qdot's LaTeX as Markdown for mdBook's MathJax: display environments
+/// become `\\[\begin{aligned}…\end{aligned}\\]`, `$…$` becomes `\\(…\\)`,
+/// `\paragraph{X}` bold text, `enumerate` a list; inside mathematics the
+/// characters Markdown would eat are escaped (`\\` → `\\\\`, `_` → `\_`).
+fn mathjax(tex: &str) -> String {
+    fn math(s: &str) -> String {
+        let mut o = String::with_capacity(s.len() + 8);
+        let mut chars = s.chars().peekable();
+        while let Some(c) = chars.next() {
+            match c {
+                '\\' => match chars.peek() {
+                    Some(&d) if d.is_ascii_punctuation() => {
+                        // `\\` gives `\`, then `\d` gives d
+                        o.push_str("\\\\\\");
+                        o.push(d);
+                        chars.next();
+                    }
+                    _ => o.push('\\'),
+                },
+                '_' | '*' => {
+                    o.push('\\');
+                    o.push(c);
+                }
+                c => o.push(c),
+            }
+        }
+        o
+    }
+    fn inline(line: &str) -> String {
+        // $…$ → \\(…\\)
+        let mut o = String::new();
+        let mut parts = line.split('$');
+        if let Some(first) = parts.next() {
+            o.push_str(first);
+        }
+        for (i, p) in parts.enumerate() {
+            if i % 2 == 0 {
+                o.push_str("\\\\(");
+                o.push_str(&math(p));
+                o.push_str("\\\\)");
+            } else {
+                o.push_str(p);
+            }
+        }
+        o
+    }
+    let mut out = String::new();
+    let mut display: Option<String> = None;
+    for line in tex.lines() {
+        if let Some(buf) = display.as_mut() {
+            if line.starts_with("\\end{") {
+                let body = buf.replace(" \\nonumber", "");
+                let env = if line.contains("align") {
+                    "aligned"
+                } else {
+                    ""
+                };
+                out.push_str("\\\\[");
+                if env.is_empty() {
+                    out.push_str(&math(body.trim()));
+                } else {
+                    out.push_str(&format!(
+                        "\\begin{{aligned}}\n{}\\end{{aligned}}",
+                        math(&body)
+                    ));
+                }
+                out.push_str("\\\\]\n\n");
+                display = None;
+            } else {
+                buf.push_str(line);
+                buf.push('\n');
+            }
+            continue;
+        }
+        if line.starts_with("\\begin{align") || line.starts_with("\\begin{equation") {
+            display = Some(String::new());
+        } else if line == "\\begin{enumerate}" || line == "\\end{enumerate}" {
+            out.push('\n');
+        } else if let Some(item) = line.trim_start().strip_prefix("\\item ") {
+            out.push_str(&format!("1. {}\n", inline(item)));
+        } else if let Some(p) = line.strip_prefix("\\paragraph{") {
+            let (title, text) = p.split_once('}').unwrap_or((p, ""));
+            out.push_str(&format!("**{}**{}\n\n", inline(title), inline(text)));
+        } else {
+            out.push_str(&inline(line));
+            out.push_str("\n\n");
+        }
+    }
+    out
 }
 
 #[test]

@@ -37,7 +37,10 @@ fn tex(src: &str) -> String {
 fn fractions() {
     assert_snapshot!("fraction_rational", tex("343/460*g"));
     assert_snapshot!("fraction_symbolic", tex("13*g/(460*r)"));
-    assert_snapshot!("fraction_coefficients", tex("13/2*G/g*y3'' + G*r/g*theta3''"));
+    assert_snapshot!(
+        "fraction_coefficients",
+        tex("13/2*G/g*y3'' + G*r/g*theta3''")
+    );
     assert_snapshot!(
         "fraction_of_sums",
         tex("g*r*(G*r - p*l)/(G*r^2 + J2*g + p*l^2)")
@@ -193,7 +196,9 @@ fn long_equations_break() {
         let w = qdot::output::latex::width(l);
         assert!(w < 60.0, "line too wide ({w}): {l}");
     }
-    assert!(eqs.iter().any(|l| l.starts_with("  &\\quad - ") || l.starts_with("  &\\quad + ")));
+    assert!(eqs
+        .iter()
+        .any(|l| l.starts_with("  &\\quad - ") || l.starts_with("  &\\quad + ")));
     assert_eq!(
         eqs.iter().filter(|l| !l.contains("\\nonumber")).count(),
         3,

@@ -40,7 +40,9 @@ fn every_seed_example_compiles_with_pdflatex() {
             std::env::var_os("QDOT_REQUIRE_TEX").is_none(),
             "pdflatex is required (QDOT_REQUIRE_TEX is set) but not installed: apt-get install texlive-latex-base"
         );
-        eprintln!("pdflatex not found: the LaTeX compile test checks nothing here (CI installs it)");
+        eprintln!(
+            "pdflatex not found: the LaTeX compile test checks nothing here (CI installs it)"
+        );
         return;
     }
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -61,8 +63,7 @@ fn every_seed_example_compiles_with_pdflatex() {
     for path in &examples {
         let rel = path.strip_prefix(root).expect("under the root");
         let rel = rel.to_str().expect("utf-8 path");
-        let (code, tex, err) =
-            common::run::qdot(&["latex", "--standalone", "--steps", rel]);
+        let (code, tex, err) = common::run::qdot(&["latex", "--standalone", "--steps", rel]);
         assert_eq!(code, 0, "qdot latex {rel}: {err}");
         let stem = path.file_stem().and_then(|s| s.to_str()).expect("stem");
         std::fs::write(dir.join(format!("{stem}.tex")), &tex).expect("write .tex");

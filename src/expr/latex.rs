@@ -398,10 +398,8 @@ impl Tex<'_> {
         let mut items: Vec<(Mono, String, bool, String)> = groups
             .into_iter()
             .map(|(key, c)| {
-                let order = print::unicode(&c.mul(&Expr::from_poly(Poly::monomial(
-                    key.clone(),
-                    Q::one(),
-                ))));
+                let order =
+                    print::unicode(&c.mul(&Expr::from_poly(Poly::monomial(key.clone(), Q::one()))));
                 let (neg, body) = self.term(&c, &key);
                 (key, order, neg, body)
             })
@@ -434,7 +432,10 @@ impl Tex<'_> {
         let (cn, mn, pn) = print::split_poly(num);
         if den.is_one() {
             if num.len() == 1 && mn.0.is_empty() {
-                return (cn.is_negative(), vec![Factor::new(rational(&cn.abs()), Kind::Num)]);
+                return (
+                    cn.is_negative(),
+                    vec![Factor::new(rational(&cn.abs()), Kind::Num)],
+                );
             }
             if mn.0.is_empty() {
                 // a sum with no common power product, signs as they are
@@ -453,10 +454,9 @@ impl Tex<'_> {
         let c = c.abs();
         // exponentials in the denominator go up with a negative exponent:
         // x e^{-\alpha t}, not x/e^{\alpha t}
-        let (ups, md): (Vec<(Var, u32)>, Vec<(Var, u32)>) = md
-            .0
-            .iter()
-            .partition(|&&(v, _)| matches!(atom::atom(v), Atom::Exp(_)));
+        let (ups, md): (Vec<(Var, u32)>, Vec<(Var, u32)>) =
+            md.0.iter()
+                .partition(|&&(v, _)| matches!(atom::atom(v), Atom::Exp(_)));
         let md = Mono(md.into_iter().collect());
         let up: Vec<Factor> = ups
             .into_iter()
@@ -542,7 +542,10 @@ impl Tex<'_> {
             } else {
                 format!("{} {r}", c.numer())
             };
-            fs.insert(0, Factor::new(format!("\\frac{{{top}}}{{{}}}", c.denom()), Kind::Plain));
+            fs.insert(
+                0,
+                Factor::new(format!("\\frac{{{top}}}{{{}}}", c.denom()), Kind::Plain),
+            );
         } else if !c.is_one() {
             fs.insert(0, Factor::new(rational(c), Kind::Num));
         }

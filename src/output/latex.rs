@@ -13,8 +13,8 @@
 //! ∂E/∂q_k and Q_k term by term; the equation; then the solution.
 
 use super::position_strings;
-use crate::expr::latex::{join, latex_expanded, latex_with, Names};
 use crate::diag::Diagnostic;
+use crate::expr::latex::{join, latex_expanded, latex_with, Names};
 use crate::expr::Expr;
 use crate::mechanics::oscillations::Modes;
 use crate::mechanics::{generalized_force_terms, Lagrange, Source};
@@ -41,7 +41,10 @@ pub fn document(scene: &Scene, opts: &super::Options) -> Result<String, Diagnost
         let acc = lag.accelerations()?;
         if opts.steps {
             w.steps(scene, &lag);
-            w.para("Solution.", "The equations are linear in the accelerations.");
+            w.para(
+                "Solution.",
+                "The equations are linear in the accelerations.",
+            );
         } else {
             w.equations(&lag);
         }
@@ -169,7 +172,12 @@ impl Writer {
     fn matrix(&mut self, name: &str, m: &[Vec<Expr>]) {
         let rows: Vec<String> = m
             .iter()
-            .map(|r| r.iter().map(|e| self.tex(e)).collect::<Vec<_>>().join(" & "))
+            .map(|r| {
+                r.iter()
+                    .map(|e| self.tex(e))
+                    .collect::<Vec<_>>()
+                    .join(" & ")
+            })
             .collect();
         self.out.push_str(&format!(
             "\\begin{{equation*}}\n  {name} = \\begin{{pmatrix}}\n    {}\n  \\end{{pmatrix}}\n\\end{{equation*}}\n",
@@ -227,10 +235,7 @@ impl Writer {
             } else {
                 String::new()
             };
-            self.line(&format!(
-                "The system{which} for ${}$:",
-                unknowns.join(", ")
-            ));
+            self.line(&format!("The system{which} for ${}$:", unknowns.join(", ")));
             let rows: Vec<_> = sys
                 .equations
                 .iter()
@@ -250,7 +255,11 @@ impl Writer {
                 .collect();
             self.align(false, &rows);
             if !sol.free.is_empty() {
-                let f: Vec<String> = sol.free.iter().map(|n| format!("${}$", self.sym(n, 0))).collect();
+                let f: Vec<String> = sol
+                    .free
+                    .iter()
+                    .map(|n| format!("${}$", self.sym(n, 0)))
+                    .collect();
                 self.line(&format!("The equations leave {} free.", f.join(", ")));
             }
             if !sol.checks.is_empty() {
@@ -311,7 +320,11 @@ impl Writer {
                 .iter()
                 .zip(&vals)
                 .map(|(c, v)| {
-                    let v = if v == "any" { "\\text{any}".to_string() } else { v.clone() };
+                    let v = if v == "any" {
+                        "\\text{any}".to_string()
+                    } else {
+                        v.clone()
+                    };
                     format!("{} = {v}", self.sym(c, 0))
                 })
                 .collect();
@@ -319,10 +332,8 @@ impl Writer {
                 Stability::Undecided(_) => " (undecided)".to_string(),
                 s => format!(": {}", s.word()),
             };
-            self.out.push_str(&format!(
-                "  \\item ${}${why}\n",
-                parts.join(",\\quad ")
-            ));
+            self.out
+                .push_str(&format!("  \\item ${}${why}\n", parts.join(",\\quad ")));
         }
         self.out.push_str("\\end{enumerate}\n");
     }
@@ -390,7 +401,10 @@ impl Writer {
             let v: Vec<String> = mode.iter().map(|x| self.tex(x)).collect();
             rows.push(vec![
                 self.one(format!("v_{{{k}}}")),
-                self.one(format!("\\begin{{pmatrix}} {} \\end{{pmatrix}}", v.join(" \\\\ "))),
+                self.one(format!(
+                    "\\begin{{pmatrix}} {} \\end{{pmatrix}}",
+                    v.join(" \\\\ ")
+                )),
             ]);
         }
         self.align(false, &rows);
@@ -409,17 +423,29 @@ impl Writer {
         let coords: Vec<String> = lag.coordinates.iter().map(|c| self.sym(c, 0)).collect();
         let bodies: Vec<(String, Expr)> = scene
             .role(Role::Kinetic)
-            .map(|d| (d.name.clone(), d.value.as_scalar().cloned().unwrap_or_else(Expr::zero)))
+            .map(|d| {
+                (
+                    d.name.clone(),
+                    d.value.as_scalar().cloned().unwrap_or_else(Expr::zero),
+                )
+            })
             .collect();
         let e_name = match bodies.as_slice() {
             [(n, _)] => self.sym(n, 0),
             _ => "E".to_string(),
         };
         if !bodies.is_empty() {
-            let what = if bodies.len() > 1 { "body by body, " } else { "" };
+            let what = if bodies.len() > 1 {
+                "body by body, "
+            } else {
+                ""
+            };
             self.para(
                 "Kinetic energy.",
-                &format!("In the coordinates ${}$, {what}the kinetic energy is", coords.join(", ")),
+                &format!(
+                    "In the coordinates ${}$, {what}the kinetic energy is",
+                    coords.join(", ")
+                ),
             );
             let mut rows: Vec<_> = Vec::new();
             if bodies.len() > 1 {
@@ -476,7 +502,9 @@ impl Writer {
                             .map(|(i, t)| {
                                 let s = self.tex(&t.value);
                                 let (neg, body) = match s.strip_prefix('-') {
-                                    Some(b) if !crate::expr::print::is_sum(&s) => (true, b.to_string()),
+                                    Some(b) if !crate::expr::print::is_sum(&s) => {
+                                        (true, b.to_string())
+                                    }
                                     _ if crate::expr::print::is_sum(&s) && i > 0 => {
                                         (false, format!("({s})"))
                                     }
@@ -517,7 +545,11 @@ impl Writer {
                 }
             }
         }
-        if rows.is_empty() && scene.loads.is_empty() && scene.torques.is_empty() && scene.forces.is_empty() {
+        if rows.is_empty()
+            && scene.loads.is_empty()
+            && scene.torques.is_empty()
+            && scene.forces.is_empty()
+        {
             return;
         }
         let intro = if what.is_empty() {
@@ -548,10 +580,7 @@ impl Writer {
             let mut trows = Vec::new();
             for (i, t) in scene.torques.iter().enumerate() {
                 let k = i + 1;
-                trows.push(vec![
-                    self.one(format!("M_{{{k}}}")),
-                    self.terms(&t.moment),
-                ]);
+                trows.push(vec![self.one(format!("M_{{{k}}}")), self.terms(&t.moment)]);
                 trows.push(vec![
                     self.one(format!("\\varphi_{{{k}}}")),
                     self.terms(&t.angle),
@@ -566,7 +595,10 @@ impl Writer {
             crate::scene::Value::Scalar(e) => self.tex(e),
             crate::scene::Value::Vector(c) => {
                 let parts: Vec<String> = c.iter().map(|e| self.tex(e)).collect();
-                format!("\\begin{{pmatrix}} {} \\end{{pmatrix}}", parts.join(" \\\\ "))
+                format!(
+                    "\\begin{{pmatrix}} {} \\end{{pmatrix}}",
+                    parts.join(" \\\\ ")
+                )
             }
         }
     }
@@ -610,12 +642,18 @@ impl Writer {
                 let k = i + 1;
                 vec![(
                     false,
-                    format!("\\mathbf{{F}}_{{{k}}} \\cdot {}", d(&format!("\\mathbf{{r}}_{{{k}}}"), &q)),
+                    format!(
+                        "\\mathbf{{F}}_{{{k}}} \\cdot {}",
+                        d(&format!("\\mathbf{{r}}_{{{k}}}"), &q)
+                    ),
                 )]
             }
             Source::Torque(i) => {
                 let k = i + 1;
-                vec![(false, format!("M_{{{k}}} {}", d(&format!("\\varphi_{{{k}}}"), &q)))]
+                vec![(
+                    false,
+                    format!("M_{{{k}}} {}", d(&format!("\\varphi_{{{k}}}"), &q)),
+                )]
             }
         }
     }
@@ -666,7 +704,10 @@ fn layout(sides: &[Vec<(bool, String)>]) -> Vec<String> {
     let lhs_end = pieces.iter().position(|p| p.0).unwrap_or(pieces.len());
     let lhs_width: f64 = pieces[..lhs_end].iter().map(|p| p.2).sum();
     let concat = |ps: &[(bool, String, f64)]| {
-        ps.iter().map(|p| p.1.as_str()).collect::<Vec<_>>().join(" ")
+        ps.iter()
+            .map(|p| p.1.as_str())
+            .collect::<Vec<_>>()
+            .join(" ")
     };
     if total <= LINE {
         if lhs_end == pieces.len() {
@@ -694,7 +735,9 @@ fn layout(sides: &[Vec<(bool, String)>]) -> Vec<String> {
     let mut first_on_line = !lhs_fits;
     for (k, (is_eq, text, w)) in pieces[start..].iter().enumerate() {
         let avail = if lines.is_empty() { LINE } else { LINE - 2.0 };
-        if cur_w + w > avail && !first_on_line && k > 0 || (*is_eq && !lines.is_empty() && !first_on_line && !lhs_fits) {
+        if cur_w + w > avail && !first_on_line && k > 0
+            || (*is_eq && !lines.is_empty() && !first_on_line && !lhs_fits)
+        {
             lines.push(cur);
             cur = if *is_eq {
                 "&".to_string()
