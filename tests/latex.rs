@@ -205,3 +205,42 @@ fn long_equations_break() {
         "one number per equation"
     );
 }
+
+/// `latex NAME = "…"` in a scene changes the notation in every output.
+#[test]
+fn scene_notation_overrides() {
+    let scene = Scene::parse(
+        "coordinates theta3\nparameters m, g, l\nlatex theta3 = \"\\vartheta_{3}\"\nlatex l = \"\\ell\"\n\
+         kinetic E = 1/2*m*l^2*theta3'^2\npotential V = -m*g*l*cos(theta3)",
+    )
+    .expect("scene");
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    assert_eq!(scene.latex_names.len(), 2);
+    let (out, _) = qdot::output::run(
+        qdot::output::Command::Derive,
+        &scene.source,
+        qdot::output::Format::Latex,
+        &Default::default(),
+    )
+    .expect("derive");
+    assert_snapshot!("scene_overrides", out);
+}
+
+#[test]
+fn undeclared_or_repeated_notation_warns() {
+    let scene = Scene::parse("parameters m\nlatex mm = \"M\"\nlatex m = \"a\"\nlatex m = \"b\"")
+        .expect("scene");
+    let w: Vec<&str> = scene.warnings.iter().map(|d| d.message.as_str()).collect();
+    assert_eq!(
+        w,
+        [
+            "`latex` gives notation for `mm`, which the scene never declares",
+            "`m` is given LaTeX notation twice"
+        ]
+    );
+    let mut names = Names::new();
+    for n in &scene.latex_names {
+        names.set(&n.name, &n.tex);
+    }
+    assert_eq!(names.symbol("m", 0), "b", "the later statement wins");
+}

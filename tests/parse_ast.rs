@@ -589,3 +589,48 @@ fn spans_of_new_statements() {
     let src = "load (F) at (P)";
     assert_eq!(parse_scene(src).unwrap()[0].span(), Span::new(0, src.len()));
 }
+
+// ---------------------------------------------------------------- latex
+
+fn latex_of(src: &str) -> (String, String) {
+    let stmts = qdot::parse::parse_scene(src).expect("parses");
+    match &stmts[0] {
+        Stmt::Latex { name, tex, span } => {
+            assert_eq!(
+                &src[span.start..span.end],
+                src.trim_end().split(';').next().unwrap().trim()
+            );
+            (name.name.clone(), tex.clone())
+        }
+        other => panic!("not a latex statement: {other:?}"),
+    }
+}
+
+#[test]
+fn latex_statement_keeps_backslashes_braces_and_hashes() {
+    assert_eq!(
+        latex_of("latex theta3 = \"\\vartheta_{3}\""),
+        ("theta3".to_string(), "\\vartheta_{3}".to_string())
+    );
+    assert_eq!(
+        latex_of("latex x = \"\\dot{x}_{\\mathrm{rel}} # not a comment\""),
+        (
+            "x".to_string(),
+            "\\dot{x}_{\\mathrm{rel}} # not a comment".to_string()
+        )
+    );
+    // `latex` may itself be the name
+    assert_eq!(
+        latex_of("latex latex = \"L\""),
+        ("latex".to_string(), "L".to_string())
+    );
+}
+
+#[test]
+fn latex_is_not_reserved() {
+    let stmts = qdot::parse::parse_scene("latex = 3").expect("parses");
+    assert!(matches!(&stmts[0], Stmt::Def { name, .. } if name.name == "latex"));
+    // a statement may follow on the line
+    let stmts = qdot::parse::parse_scene("latex x = \"X\"; y = 2").expect("parses");
+    assert_eq!(stmts.len(), 2);
+}

@@ -1456,3 +1456,48 @@ fn nesting_limits_of_vectors() {
     let eqs = format!("solve x {{\n{}}}", "x = 1\n".repeat(10_000));
     assert!(parse_scene(&eqs).is_ok());
 }
+
+// ---------------------------------------------------------------- latex
+
+fn latex_error(src: &str) -> (String, usize, usize, String) {
+    let d = qdot::parse::parse_scene(src).expect_err("an error");
+    let span = d.span.expect("a position");
+    let (line, col) = qdot::Diagnostic::line_col(src, span.start);
+    (d.message, line, col, d.hint.unwrap_or_default())
+}
+
+#[test]
+fn latex_statement_errors() {
+    let (m, l, c, h) = latex_error("latex x = 3");
+    assert_eq!(
+        (m.as_str(), l, c),
+        ("expected a string in double quotes, found `3`", 1, 11)
+    );
+    assert_eq!(
+        h,
+        "write the notation in double quotes: `latex x = \"\\vartheta_{3}\"`"
+    );
+    let (m, l, c, h) = latex_error("latex x = \"abc\ny = 1");
+    assert_eq!(
+        (m.as_str(), l, c),
+        ("this string is not closed on its line", 1, 11)
+    );
+    assert_eq!(h, "end the string with `\"` before the end of the line");
+    let (m, _, c, _) = latex_error("latex x = \"abc");
+    assert_eq!(
+        (m.as_str(), c),
+        ("this string is not closed on its line", 11)
+    );
+    let (m, _, c, _) = latex_error("latex x = \"\"");
+    assert_eq!((m.as_str(), c), ("empty LaTeX notation", 11));
+    let (m, _, c, _) = latex_error("latex 3");
+    assert_eq!(
+        (m.as_str(), c),
+        ("expected a name after `latex`, found `3`", 7)
+    );
+    let (m, _, c, _) = latex_error("latex x");
+    assert_eq!(c, 8);
+    assert!(m.starts_with("expected `=` after `latex x`"), "{m}");
+    let (m, _, _, _) = latex_error("latex x = \"X\" y");
+    assert!(!m.is_empty());
+}

@@ -81,6 +81,12 @@ fn check_scene(src: &str) -> Result<Option<Vec<Stmt>>, TestCaseError> {
                     Stmt::Coordinates(ds, _) | Stmt::Parameters(ds, _) => {
                         prop_assert!(!ds.is_empty());
                     }
+                    Stmt::Latex { name, tex, span } => {
+                        prop_assert!(src[span.start..].starts_with("latex"));
+                        prop_assert!(src[..span.end].ends_with('"'));
+                        prop_assert!(!tex.is_empty() && !tex.contains('"'));
+                        check_span(src, name.span)?;
+                    }
                     Stmt::Load {
                         force: a,
                         point: b,

@@ -82,8 +82,10 @@ pub struct Writer {
 impl Writer {
     /// A writer with the notation of `scene` (its `latex` statements).
     pub fn new(scene: &Scene) -> Writer {
-        let names = Names::new();
-        let _ = scene; // the scene's `latex` statements: see the parser
+        let mut names = Names::new();
+        for n in &scene.latex_names {
+            names.set(&n.name, &n.tex);
+        }
         Writer {
             names,
             out: String::new(),

@@ -108,6 +108,8 @@ pub enum Stmt {
     Torque { moment: Expr, angle: Expr, span: Span },
     /// `solve a, b { lhs = rhs … }` — a system of equations for the unknowns.
     Solve(SolveBlock),
+    /// `latex theta3 = "\vartheta_{3}"` — the LaTeX notation of a name.
+    Latex { name: Ident, tex: String, span: Span },
 }
 
 /// `solve a3, T1 { … }`: unknowns and the equations that determine them.
@@ -136,7 +138,8 @@ impl Stmt {
             | Stmt::Role { span, .. }
             | Stmt::Force { span, .. }
             | Stmt::Load { span, .. }
-            | Stmt::Torque { span, .. } => *span,
+            | Stmt::Torque { span, .. }
+            | Stmt::Latex { span, .. } => *span,
             Stmt::Solve(b) => b.span,
         }
     }

@@ -687,7 +687,7 @@ impl<'s> P<'s> {
             ),
             '"' => (
                 "unknown character `\"`".into(),
-                "strings are not part of scenes (yet)".into(),
+                "a string is only the notation of `latex NAME = \"…\"`".into(),
             ),
             '[' => (
                 "unexpected `[`".into(),
@@ -1016,7 +1016,7 @@ impl<'s> P<'s> {
         }
     }
 
-    /// `statement ::= declaration | role_stmt | force_stmt | load_stmt | torque_stmt | solve_block | definition`
+    /// `statement ::= declaration | role_stmt | force_stmt | load_stmt | torque_stmt | solve_block | latex_stmt | definition`
     ///
     /// Keywords do not reserve names: the tokens after the first identifier
     /// decide (see the grammar).
@@ -1065,6 +1065,18 @@ impl<'s> P<'s> {
             "load" if !next_is_eq => self.load_stmt(i),
             "torque" if !next_is_eq => self.torque_stmt(i),
             "solve" if !next_is_eq => self.solve_block(i),
+            "latex" if !next_is_eq => {
+                if next_is_ident {
+                    self.latex_stmt(i)
+                } else {
+                    self.fail(self.expected(
+                        next,
+                        "a name after `latex`",
+                        "give a name its LaTeX like `latex theta3 = \"\\vartheta_{3}\"`; to define a name `latex`, write `latex = expression`",
+                        None,
+                    ))
+                }
+            }
             _ if !next_is_eq && Role::from_keyword(word).is_some() => {
                 if next_is_ident {
                     self.role_stmt(i)
@@ -1269,6 +1281,60 @@ impl<'s> P<'s> {
                 span,
             },
         ))
+    }
+
+    /// `latex_stmt ::= "latex" ws ident ws "=" ws string`
+    #[inline(never)]
+    fn latex_stmt(&self, i: &'s str) -> PResult<'s, Stmt> {
+        let i = self.ws(i);
+        let start = self.pos(i);
+        let Some(rest) = i.strip_prefix("latex") else {
+            return self.nothing(i);
+        };
+        let (rest, name) = self.ident(rest)?;
+        let hint = format!(
+            "write the notation in double quotes: `latex {} = \"\\vartheta_{{3}}\"`",
+            name.name
+        );
+        let rest = match self.equals(rest) {
+            Ok(k) => k,
+            Err(j) => {
+                return Err(self.equals_error(j, &format!("latex {}", name.name), &hint));
+            }
+        };
+        let j = self.ws(rest);
+        let (rest, tex) = match self.string(j) {
+            Ok(x) => x,
+            Err(nom::Err::Error(_)) => {
+                return self.fail(self.expected(j, "a string in double quotes", &hint, None));
+            }
+            Err(e) => return Err(e),
+        };
+        let span = Span::new(start, self.pos(rest));
+        Ok((rest, Stmt::Latex { name, tex, span }))
+    }
+
+    /// `string ::= '"' [^"#x0A]* '"'` (not empty; no escapes: a backslash
+    /// is itself)
+    fn string(&self, i: &'s str) -> PResult<'s, String> {
+        let Some(body) = i.strip_prefix('"') else {
+            return self.nothing(i);
+        };
+        let end = body.find(['"', '\n']).unwrap_or(body.len());
+        if !body[end..].starts_with('"') {
+            let open = Span::new(self.pos(i), self.pos(i) + 1);
+            return self.fail(
+                Diagnostic::error(open, "this string is not closed on its line")
+                    .with_hint("end the string with `\"` before the end of the line"),
+            );
+        }
+        if end == 0 {
+            return self.fail(
+                Diagnostic::error(self.span(i, &body[1..]), "empty LaTeX notation")
+                    .with_hint("write the notation between the quotes, e.g. `\"\\vartheta_{3}\"`"),
+            );
+        }
+        Ok((&body[end + 1..], body[..end].to_string()))
     }
 
     /// `load_stmt ::= "load" ws expr ws "at" ws expr`

@@ -136,6 +136,64 @@ pub struct Scene {
     pub systems: Vec<System>,
     /// Things worth a look that do not stop the computation.
     pub warnings: Vec<Diagnostic>,
+    /// The `latex NAME = "…"` statements, in source order (a later one for
+    /// the same name wins).
+    pub latex_names: Vec<LatexName>,
+}
+
+/// `latex theta3 = "\vartheta_{3}"`: the LaTeX notation of a name.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LatexName {
+    pub name: String,
+    pub tex: String,
+    pub span: Span,
+}
+
+/// The `latex` statements, with a warning for a name the scene never
+/// declares and for a name given notation twice.
+fn latex_names(
+    stmts: &[Stmt],
+    coordinates: &[Coordinate],
+    parameters: &[Parameter],
+    definitions: &[Definition],
+    systems: &[System],
+    warnings: &mut Vec<Diagnostic>,
+) -> Vec<LatexName> {
+    let mut out: Vec<LatexName> = Vec::new();
+    for st in stmts {
+        let Stmt::Latex { name, tex, span } = st else {
+            continue;
+        };
+        let n = name.name.as_str();
+        let declared = coordinates.iter().any(|c| c.name == n)
+            || parameters.iter().any(|p| p.name == n)
+            || definitions.iter().any(|d| d.name == n)
+            || systems
+                .iter()
+                .flat_map(|s| &s.unknowns)
+                .any(|u| u.name == n);
+        if !declared {
+            warnings.push(
+                Diagnostic::warning(
+                    name.span,
+                    format!("`latex` gives notation for `{n}`, which the scene never declares"),
+                )
+                .with_hint("check the spelling: notation applies to coordinates, parameters, definitions and `solve` unknowns"),
+            );
+        }
+        if out.iter().any(|l| l.name == n) {
+            warnings.push(
+                Diagnostic::warning(name.span, format!("`{n}` is given LaTeX notation twice"))
+                    .with_hint("the later `latex` statement wins; remove the other"),
+            );
+        }
+        out.push(LatexName {
+            name: n.to_string(),
+            tex: tex.clone(),
+            span: *span,
+        });
+    }
+    out
 }
 
 /// What a name means.
@@ -253,7 +311,7 @@ impl Scene {
                 Stmt::Force {
                     coordinate, value, ..
                 } => force_asts.push((coordinate, value)),
-                Stmt::Load { .. } | Stmt::Torque { .. } => {}
+                Stmt::Load { .. } | Stmt::Torque { .. } | Stmt::Latex { .. } => {}
                 Stmt::Solve(block) => {
                     let mut us = Vec::with_capacity(block.unknowns.len());
                     for u in &block.unknowns {
@@ -490,6 +548,14 @@ impl Scene {
             }
         }
         warnings.extend(ev.warnings);
+        let latex_names = latex_names(
+            stmts,
+            &coordinates,
+            &parameters,
+            &definitions,
+            &systems,
+            &mut warnings,
+        );
         if coordinates.is_empty() && definitions.iter().any(|d| d.role.is_some()) {
             warnings.push(Diagnostic::global(
                 "the scene has energies but no `coordinates`: there are no equations to derive",
@@ -505,6 +571,7 @@ impl Scene {
             torques,
             systems,
             warnings,
+            latex_names,
         })
     }
 

@@ -53,6 +53,7 @@ fn decls(ds: &[qdot::parse::ast::Decl]) -> String {
 
 pub fn stmt_sexpr(s: &Stmt) -> String {
     match s {
+        Stmt::Latex { name, tex, .. } => format!("(latex {} {tex:?})", name.name),
         Stmt::Coordinates(ds, _) => format!("(coordinates {})", decls(ds)),
         Stmt::Parameters(ds, _) => format!("(parameters {})", decls(ds)),
         Stmt::Def { name, value, .. } => format!("(def {} {})", name.name, sexpr(value)),
@@ -243,6 +244,7 @@ pub fn print_stmt(s: &Stmt) -> String {
             .join(", ")
     };
     match s {
+        Stmt::Latex { name, tex, .. } => format!("latex {} = \"{tex}\"", name.name),
         Stmt::Coordinates(d, _) => format!("coordinates {}", ds(d)),
         Stmt::Parameters(d, _) => format!("parameters {}", ds(d)),
         Stmt::Def { name, value, .. } => format!("{} = {}", name.name, print_full(value)),
