@@ -225,10 +225,13 @@ pub fn terms_with(e: &Expr, names: &Names) -> Vec<(bool, String)> {
     Tex { names }.terms(e)
 }
 
+/// (is negative, D, the signed terms of N): see [`quotient_terms`].
+pub type Quotient = (bool, String, Vec<(bool, String)>);
+
 /// A quotient N/D with a sum N as (is negative, D, the terms of N), for
 /// writing a long quotient as `\frac{1}{D} \bigl(N\bigr)` over several
 /// lines; `None` when `e` is not one quotient of a sum.
-pub fn quotient_terms(e: &Expr, names: &Names) -> Option<(bool, String, Vec<(bool, String)>)> {
+pub fn quotient_terms(e: &Expr, names: &Names) -> Option<Quotient> {
     let tex = Tex { names };
     let num = print::fold_trig(e.num()).unwrap_or_else(|| e.num().clone());
     let den = print::fold_trig(e.den()).unwrap_or_else(|| e.den().clone());
@@ -454,7 +457,8 @@ impl Tex<'_> {
         let c = c.abs();
         // exponentials in the denominator go up with a negative exponent:
         // x e^{-\alpha t}, not x/e^{\alpha t}
-        let (ups, md): (Vec<(Var, u32)>, Vec<(Var, u32)>) =
+        type Factors = Vec<(Var, u32)>;
+        let (ups, md): (Factors, Factors) =
             md.0.iter()
                 .partition(|&&(v, _)| matches!(atom::atom(v), Atom::Exp(_)));
         let md = Mono(md.into_iter().collect());

@@ -362,7 +362,7 @@ impl Writer {
         let factored: Vec<String> = md
             .factors
             .iter()
-            .filter_map(|f| subst(f))
+            .filter_map(&subst)
             .map(|f| {
                 let mut t = self.terms(&f);
                 if t.first().is_some_and(|x| x.0) {
