@@ -171,7 +171,20 @@ fn mathjax(tex: &str) -> String {
         } else if let Some(item) = line.trim_start().strip_prefix("\\item ") {
             out.push_str(&format!("1. {}\n", inline(item)));
         } else if let Some(p) = line.strip_prefix("\\paragraph{") {
-            let (title, text) = p.split_once('}').unwrap_or((p, ""));
+            // the `}` that closes `\paragraph{`, braces inside counted
+            let mut depth = 0i32;
+            let close = p
+                .char_indices()
+                .find(|&(_, c)| {
+                    depth += match c {
+                        '{' => 1,
+                        '}' => -1,
+                        _ => 0,
+                    };
+                    depth < 0
+                })
+                .map_or(p.len(), |(i, _)| i);
+            let (title, text) = (&p[..close], p.get(close + 1..).unwrap_or(""));
             out.push_str(&format!("**{}**{}\n\n", inline(title), inline(text)));
         } else {
             out.push_str(&inline(line));
