@@ -262,21 +262,10 @@ pub fn quotient_terms(e: &Expr, names: &Names) -> Option<Quotient> {
 /// (`\frac{16 k}{81 m} - \frac{g}{9 r}`), like [`print::expanded`].
 pub fn latex_expanded(e: &Expr, names: &Names) -> String {
     let tex = Tex { names };
-    if e.den().len() != 1 || e.num().len() < 2 {
-        return tex.expr(e);
+    match print::expanded_terms(e) {
+        Some(items) => join(items.into_iter().map(|(neg, t)| (neg, tex.expr(&t)))),
+        None => tex.expr(e),
     }
-    let den = Expr::from_poly(e.den().clone());
-    let mut terms = print::sorted_terms(e.num());
-    terms.sort_by_key(|(_, c)| c.is_negative());
-    let mut items = Vec::with_capacity(terms.len());
-    for (m, c) in terms {
-        let t = Expr::from_poly(Poly::monomial(m, c.abs()));
-        let Ok(t) = t.div(&den) else {
-            return tex.expr(e);
-        };
-        items.push((c.is_negative(), tex.expr(&t)));
-    }
-    join(items)
 }
 
 /// A rational number: `3`, `\frac{3}{2}`, `-\frac{1}{2}`.
@@ -397,22 +386,15 @@ impl Tex<'_> {
             }
             return vec![(neg, product(fs))];
         };
-        // The text printer's order: by monomial, then by the Unicode text.
-        let mut items: Vec<(Mono, String, bool, String)> = groups
-            .into_iter()
-            .map(|(key, c)| {
-                let order =
-                    print::unicode(&c.mul(&Expr::from_poly(Poly::monomial(key.clone(), Q::one()))));
-                let (neg, body) = self.term(&c, &key);
-                (key, order, neg, body)
-            })
-            .collect();
-        items.sort_by(|a, b| {
+        // The text printer's order: by monomial, then (only terms free of
+        // coordinates share a monomial) by the Unicode text of the term.
+        let mut groups = groups;
+        groups.sort_by(|a, b| {
             print::display_order(&a.0, &b.0)
                 .then_with(|| b.0.cmp(&a.0))
-                .then_with(|| a.1.trim_start_matches('−').cmp(b.1.trim_start_matches('−')))
+                .then_with(|| print::unicode_term(&a.1, &a.0).cmp(&print::unicode_term(&b.1, &b.0)))
         });
-        items.into_iter().map(|(_, _, n, s)| (n, s)).collect()
+        groups.iter().map(|(key, c)| self.term(c, key)).collect()
     }
 
     /// `coef·key`: (is negative, text without the sign).

@@ -36,22 +36,33 @@ pub fn unicode(e: &Expr) -> String {
 /// term, as the seed writes it: 16/81·k/m − g/(9·r) rather than
 /// (16·k·r − 9·g·m)/(81·m·r). Display only.
 pub fn expanded(e: &Expr) -> String {
+    match expanded_terms(e) {
+        Some(items) => join_terms(
+            items.into_iter().map(|(neg, t)| (neg, unicode(&t))),
+            Style::Unicode,
+        ),
+        None => unicode(e),
+    }
+}
+
+/// The terms of a fraction over a monomial denominator, each (is negative,
+/// its absolute value over the denominator), a positive term first; `None`
+/// when `e` is not such a fraction of several terms.
+pub(crate) fn expanded_terms(e: &Expr) -> Option<Vec<(bool, Expr)>> {
     if e.den().len() != 1 || e.num().len() < 2 {
-        return unicode(e);
+        return None;
     }
     let den = Expr::from_poly(e.den().clone());
     // a positive term first: 16/81·k/m − g/(9·r)
     let mut terms = sorted_terms(e.num());
     terms.sort_by_key(|(_, c)| c.is_negative());
-    let mut items = Vec::with_capacity(terms.len());
-    for (m, c) in terms {
-        let t = Expr::from_poly(Poly::monomial(m, c.abs()));
-        let Ok(t) = t.div(&den) else {
-            return unicode(e);
-        };
-        items.push((c.is_negative(), unicode(&t)));
-    }
-    join_terms(items.into_iter(), Style::Unicode)
+    terms
+        .into_iter()
+        .map(|(m, c)| {
+            let t = Expr::from_poly(Poly::monomial(m, c.abs()));
+            t.div(&den).ok().map(|t| (c.is_negative(), t))
+        })
+        .collect()
 }
 
 pub fn render(e: &Expr, st: Style) -> String {
@@ -160,6 +171,12 @@ pub(crate) fn display_order(a: &Mono, b: &Mono) -> Ordering {
     };
     let (ka, kb) = (key(a), key(b));
     kb.cmp(&ka)
+}
+
+/// The Unicode text of `coef·key` without its sign: the text printer's
+/// order of terms with one monomial.
+pub(crate) fn unicode_term(c: &Expr, key: &Mono) -> String {
+    term_with_coef(c, key, Style::Unicode).1
 }
 
 /// `coef·key`, returning (is negative, text without the sign).
