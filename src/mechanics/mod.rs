@@ -30,6 +30,8 @@ pub struct Equation {
     pub lhs: Expr,
     /// The generalized force Q_k.
     pub rhs: Expr,
+    /// Q_k term by term, by source (their sum is `rhs`).
+    pub rhs_terms: Vec<ForceTerm>,
 }
 
 /// Lagrange's equations of a scene, with the mass matrix and forcing.
@@ -73,12 +75,13 @@ impl Lagrange {
         let e = scene.role_sum(Role::Kinetic);
         let e_vars = e.vars();
         let mentions = crate::expr::diff::vars_depend_on;
-        let forces = generalized_forces(scene);
+        let forces = generalized_force_terms(scene);
 
         let mut equations = Vec::with_capacity(n);
         let mut mass = vec![vec![Expr::zero(); n]; n];
         let mut forcing = Vec::with_capacity(n);
-        for (k, rhs) in forces.into_iter().enumerate() {
+        for (k, rhs_terms) in forces.into_iter().enumerate() {
+            let rhs = sum_terms(&rhs_terms);
             let p = if mentions(&e_vars, qd[k]) {
                 e.diff(qd[k])
             } else {
@@ -98,6 +101,7 @@ impl Lagrange {
                 coordinate: names[k].clone(),
                 lhs,
                 rhs,
+                rhs_terms,
             });
         }
         if mass.iter().flatten().all(Expr::is_zero) {
@@ -142,9 +146,14 @@ impl Lagrange {
 /// virtual work of the scene is δL = Σ Q_k·δq_k.
 pub fn generalized_forces(scene: &Scene) -> Vec<Expr> {
     generalized_force_terms(scene)
-        .into_iter()
-        .map(|terms| terms.iter().fold(Expr::zero(), |q, t| q.add(&t.value)))
+        .iter()
+        .map(|terms| sum_terms(terms))
         .collect()
+}
+
+/// Q_k from its terms.
+fn sum_terms(terms: &[ForceTerm]) -> Expr {
+    terms.iter().fold(Expr::zero(), |q, t| q.add(&t.value))
 }
 
 /// Where a term of a generalized force comes from.

@@ -17,7 +17,7 @@ use crate::diag::Diagnostic;
 use crate::expr::latex::{join, latex_expanded, latex_with, Names};
 use crate::expr::Expr;
 use crate::mechanics::oscillations::Modes;
-use crate::mechanics::{generalized_force_terms, Lagrange, Source};
+use crate::mechanics::{Lagrange, Source};
 use crate::parse::ast::Role;
 use crate::scene::Scene;
 use crate::solve::equilibrium::{Equilibria, Stability};
@@ -466,8 +466,7 @@ impl Writer {
             self.align(false, &rows);
         }
         self.forces_steps(scene);
-        let terms = generalized_force_terms(scene);
-        for (k, eq) in lag.equations.iter().enumerate() {
+        for eq in &lag.equations {
             let c = &eq.coordinate;
             let q = self.sym(c, 0);
             let qd = self.sym(c, 1);
@@ -488,7 +487,7 @@ impl Writer {
                     self.terms(&e.diff(e_var(0))),
                 ]);
             }
-            let parts = terms.get(k).map(Vec::as_slice).unwrap_or(&[]);
+            let parts = eq.rhs_terms.as_slice();
             let mut chain = vec![self.one(self.indexed("Q", c))];
             if !parts.is_empty() {
                 let formulas: Vec<(bool, String)> = parts
