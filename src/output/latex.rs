@@ -73,6 +73,13 @@ pub fn document(scene: &Scene, opts: &super::Options) -> Result<String, Diagnost
     })
 }
 
+/// What `f` writes with the notation of `scene`.
+pub fn write(scene: &Scene, f: impl FnOnce(&mut Writer)) -> String {
+    let mut w = Writer::new(scene);
+    f(&mut w);
+    w.finish()
+}
+
 /// A LaTeX writer with a scene's notation.
 pub struct Writer {
     names: Names,
@@ -616,28 +623,18 @@ impl Writer {
                 _ => default.to_string(),
             }
         };
+        // +∂A/∂x − ∂B/∂x for the roles the scene has: U and V, D and R
+        let pair = |plus: (Role, &str), minus: (Role, &str), x: &str| {
+            [(false, plus), (true, minus)]
+                .into_iter()
+                .filter(|(_, (role, _))| scene.has_role(*role))
+                .map(|(neg, (role, letter))| (neg, d(&name(role, letter), x)))
+                .collect::<Vec<_>>()
+        };
         match s {
-            Source::Potential => {
-                let mut v = Vec::new();
-                if scene.has_role(Role::ForceFunction) {
-                    v.push((false, d(&name(Role::ForceFunction, "U"), &q)));
-                }
-                if scene.has_role(Role::Potential) {
-                    v.push((true, d(&name(Role::Potential, "V"), &q)));
-                }
-                v
-            }
+            Source::Potential => pair((Role::ForceFunction, "U"), (Role::Potential, "V"), &q),
             Source::Work => vec![(false, d(&name(Role::Work, "L"), &q))],
-            Source::Dissipation => {
-                let mut v = Vec::new();
-                if scene.has_role(Role::Dissipation) {
-                    v.push((false, d(&name(Role::Dissipation, "D"), &qd)));
-                }
-                if scene.has_role(Role::Rayleigh) {
-                    v.push((true, d(&name(Role::Rayleigh, "R"), &qd)));
-                }
-                v
-            }
+            Source::Dissipation => pair((Role::Dissipation, "D"), (Role::Rayleigh, "R"), &qd),
             Source::Force => vec![(false, format!("Q^{{*}}_{{{q}}}"))],
             Source::Load(i) => {
                 let k = i + 1;

@@ -88,11 +88,7 @@ pub fn run_with(
             match fmt {
                 Format::Text => derive_text(&lag),
                 Format::Json => json_string(derive_json(&lag)),
-                Format::Latex => {
-                    let mut w = latex::Writer::new(&scene);
-                    w.derive(&lag);
-                    w.finish()
-                }
+                Format::Latex => latex::write(&scene, |w| w.derive(&lag)),
             }
         }
         Command::Solve => {
@@ -123,15 +119,13 @@ pub fn run_with(
                     }
                     out
                 }
-                Format::Latex => {
-                    let mut w = latex::Writer::new(&scene);
+                Format::Latex => latex::write(&scene, |w| {
                     if let Some((l, acc)) = &lag {
                         w.equations(l);
                         w.accelerations(acc);
                     }
                     w.blocks(&scene, &blocks);
-                    w.finish()
-                }
+                }),
                 Format::Json => {
                     let mut m = match &lag {
                         Some((l, acc)) => solve_json(l, acc),
@@ -155,11 +149,7 @@ pub fn run_with(
             let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
             match fmt {
                 Format::Text => forces_text(&names, &q),
-                Format::Latex => {
-                    let mut w = latex::Writer::new(&scene);
-                    w.forces(&names, &q);
-                    w.finish()
-                }
+                Format::Latex => latex::write(&scene, |w| w.forces(&names, &q)),
                 Format::Json => {
                     let mut m = Map::new();
                     m.insert("coordinates".into(), json!(names));
@@ -187,11 +177,7 @@ pub fn run_with(
             match fmt {
                 Format::Text => modes_text(&md, set, free.as_deref()),
                 Format::Json => json_string(modes_json(&md, set, free.as_deref())),
-                Format::Latex => {
-                    let mut w = latex::Writer::new(&scene);
-                    w.modes(&md);
-                    w.finish()
-                }
+                Format::Latex => latex::write(&scene, |w| w.modes(&md)),
             }
         }
         Command::Equilibrium => {
@@ -200,11 +186,7 @@ pub fn run_with(
             match fmt {
                 Format::Text => equilibrium_text(&eq),
                 Format::Json => json_string(equilibrium_json(&eq)),
-                Format::Latex => {
-                    let mut w = latex::Writer::new(&scene);
-                    w.equilibrium(&eq);
-                    w.finish()
-                }
+                Format::Latex => latex::write(&scene, |w| w.equilibrium(&eq)),
             }
         }
         Command::Latex => {
