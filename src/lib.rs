@@ -31,6 +31,7 @@ pub mod output;
 pub mod parse;
 pub mod poly;
 pub mod scene;
+pub mod simulate;
 pub mod solve;
 
 pub use diag::Diagnostic;
