@@ -22,6 +22,7 @@
 //! expressions over [`poly`] and [`num`]) → [`mechanics`] → [`solve`] →
 //! [`output`].
 
+pub mod cancel;
 pub mod diag;
 pub mod expr;
 pub mod gallery;
@@ -30,6 +31,7 @@ pub mod num;
 pub mod output;
 pub mod parse;
 pub mod poly;
+pub mod repl;
 pub mod scene;
 pub mod simulate;
 pub mod solve;

@@ -17,8 +17,9 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
     about = "Exact analytical mechanics: Lagrange's equations, derived and solved exactly"
 )]
 struct Cli {
+    /// Without a command, qdot starts the REPL.
     #[command(subcommand)]
-    command: Command,
+    command: Option<Command>,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -31,6 +32,13 @@ enum Fmt {
 
 #[derive(Subcommand)]
 enum Command {
+    /// The interactive session: build a scene line by line, ask for
+    /// results (:help lists the commands). Reads entries from stdin
+    /// without prompts when stdin is not a terminal.
+    Repl {
+        /// A scene file (.qd) to start from.
+        file: Option<String>,
+    },
     /// Derive Lagrange's equations, the mass matrix and the forcing.
     Derive {
         /// The scene file (.qd).
@@ -100,8 +108,14 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    let command = match cli.command {
+        None => return repl(None),
+        Some(Command::Repl { file }) => return repl(file.as_deref()),
+        Some(c) => c,
+    };
     let mut opts = output::Options::default();
-    let (cmd, file, fmt, set) = match &cli.command {
+    let (cmd, file, fmt, set) = match &command {
+        Command::Repl { .. } => return repl(None),
         Command::Derive { file, format } => (output::Command::Derive, file, *format, None),
         Command::Solve { file, format } => (output::Command::Solve, file, *format, None),
         Command::Forces { file, format } => (output::Command::Forces, file, *format, None),
@@ -163,5 +177,12 @@ fn main() -> ExitCode {
             eprint!("{}", d.render(file, &src));
             ExitCode::from(1)
         }
+    }
+}
+
+fn repl(file: Option<&str>) -> ExitCode {
+    match qdot::repl::terminal::run(file) {
+        0 => ExitCode::SUCCESS,
+        _ => ExitCode::from(1),
     }
 }

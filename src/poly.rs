@@ -1425,6 +1425,7 @@ impl Poly {
     /// Greatest common divisor over Q, monic (leading coefficient 1);
     /// `gcd(0, 0) == 0`, `gcd(0, p) == p.monic()`.
     pub fn gcd(&self, other: &Poly) -> Poly {
+        crate::cancel::check();
         if self.is_zero() {
             return other.monic();
         }
@@ -2526,6 +2527,7 @@ impl Sub<&Poly> for &Poly {
 impl Mul<&Poly> for &Poly {
     type Output = Poly;
     fn mul(self, rhs: &Poly) -> Poly {
+        crate::cancel::check();
         self.mul_impl(rhs)
     }
 }

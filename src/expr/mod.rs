@@ -168,6 +168,7 @@ impl Expr {
     /// The canonical form of `num / den`. Fails only when `den` is zero
     /// (after reduction: `den` may be a disguised zero such as `√2² − 2`).
     pub fn from_parts(num: Poly, den: Poly) -> Result<Expr, MathError> {
+        crate::cancel::check();
         let mut num = reduced(num);
         let mut den = reduced(den);
         if den.is_zero() {

@@ -180,4 +180,7 @@ pub enum ExprKind {
     Prime(Box<Expr>, u32),
     /// `[x, y]` or `[x, y, z]`: a vector literal (at least one component).
     Vector(Vec<Expr>),
+    /// `x = value`: a call argument that names a value (`subs(E, x = 0)`,
+    /// `taylor(f, x = a, 3)`); only inside call arguments.
+    Assign(Box<Expr>, Box<Expr>),
 }

@@ -2069,7 +2069,7 @@ impl<'s> P<'s> {
         }
     }
 
-    /// `call ::= ident "(" ws_nl ( expr ( ws_nl "," ws_nl expr )* ws_nl )? ")"`
+    /// `call ::= ident "(" ws_nl ( arg ( ws_nl "," ws_nl arg )* ws_nl )? ")"`
     fn call(&self, i: &'s str) -> PResult<'s, Node> {
         let (rest, name) = self.ident(i)?;
         let Some(mut k) = rest.strip_prefix('(') else {
@@ -2084,7 +2084,7 @@ impl<'s> P<'s> {
             k = after;
         } else {
             loop {
-                let (rest, arg) = match self.expr(k) {
+                let (rest, arg) = match self.arg(k) {
                     Ok(x) => x,
                     Err(e) => return Err(self.arg_error(e, k, &name, args.is_empty())),
                 };
@@ -2104,6 +2104,34 @@ impl<'s> P<'s> {
         let span = Span::new(name.span.start, self.pos(k));
         let at = name.span;
         Ok((k, self.node(ExprKind::Call(name, args), span, d + 1, at)?))
+    }
+
+    /// `arg ::= expr ( ws_nl "=" ws_nl expr )?`
+    fn arg(&self, i: &'s str) -> PResult<'s, Node> {
+        let (rest, arg) = self.expr(i)?;
+        let j = self.ws(rest);
+        let Some(after) = j.strip_prefix('=') else {
+            return Ok((rest, arg));
+        };
+        let (rest, value) = match self.expr(after) {
+            Ok(x) => x,
+            Err(nom::Err::Error(_)) => {
+                return Err(failure(self.expected(
+                    self.ws(after),
+                    "a value after `=`",
+                    "a named argument is written `x = value`, as in subs(E, x = 0)",
+                    None,
+                )))
+            }
+            Err(e) => return Err(e),
+        };
+        let span = arg.outer.to(value.outer);
+        let d = arg.d.max(value.d) + 1;
+        let at = value.outer;
+        Ok((
+            rest,
+            self.node(ExprKind::Assign(arg.e, value.e), span, d, at)?,
+        ))
     }
 
     /// The error for a missing argument at `k` of the call of `name`.

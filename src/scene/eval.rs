@@ -2,9 +2,11 @@
 
 use super::{Binding, Value};
 use crate::diag::Diagnostic;
+use crate::expr::atom::{self, Atom};
 use crate::expr::{func, Expr, MathError};
 use crate::num::Q;
 use crate::parse::ast::{self, BinOp, ExprKind, Role, Span};
+use crate::poly::Var;
 use rustc_hash::FxHashMap;
 
 #[derive(Clone)]
@@ -45,7 +47,16 @@ const FUNCTIONS: &[(&str, usize)] = &[
     ("inertia", 2),
     ("series", 0),
     ("parallel", 0),
+    ("diff", 2),
+    ("dt", 1),
+    ("subs", 0),
+    ("expand", 1),
+    ("factor", 1),
+    ("taylor", 3),
 ];
+
+/// The highest order `taylor` expands to.
+const MAX_TAYLOR_ORDER: i64 = 30;
 
 /// Hint for a vector where a number is needed.
 const HINT_VECTOR: &str =
@@ -165,6 +176,11 @@ impl<'a> Evaluator<'a> {
                 self.binary(*op, x, y, a, b)
             }
             ExprKind::Call(f, args) => self.call(f, args, e.span),
+            ExprKind::Assign(..) => Err(Diagnostic::error(
+                e.span,
+                "`x = value` is a named argument, and only subs, taylor and series take one",
+            )
+            .with_hint("write subs(E, x = 0), taylor(f, x = a, 3); a definition `x = …` stands on a line of its own")),
             ExprKind::Vector(items) => {
                 if !(2..=3).contains(&items.len()) {
                     return Err(Diagnostic::error(
@@ -413,6 +429,20 @@ impl<'a> Evaluator<'a> {
                 Diagnostic::error(f.span, format!("unknown function `{}`", f.name)).with_hint(hint),
             );
         };
+        match f.name.as_str() {
+            "subs" => return self.subs(f, args, span),
+            "series" if self.is_taylor_call(args) => return self.taylor(args, span),
+            "series" if args.len() == 3 && self.looks_like_taylor(args) => {
+                self.warnings.push(
+                    Diagnostic::warning(
+                        span,
+                        "series(a, b, n) combines three springs in series here",
+                    )
+                    .with_hint("for a Taylor series in a parameter write taylor(f, x, n) or series(f, x = 0, n)"),
+                );
+            }
+            _ => {}
+        }
         if arity == 0 {
             // series(k1, k2, …) = 1/Σ(1/k_i), parallel(k1, k2, …) = Σ k_i
             if args.len() < 2 {
@@ -455,6 +485,8 @@ impl<'a> Evaluator<'a> {
                 "atan" => "atan(y/x) is the arctangent of one ratio",
                 "dot" | "cross" => "two vectors: dot(a, b), cross(a, b)",
                 "inertia" => "inertia(m, x) is m·x'' for a mass m (or moment of inertia) and a coordinate or point x",
+                "diff" => "diff(f, x) is ∂f/∂x for a coordinate, a velocity (x'), a parameter or t",
+                "taylor" => "taylor(f, x, n) expands f about x = 0 to the power n; taylor(f, x = a, n) about a",
                 _ => "one argument, in parentheses",
             }));
         }
@@ -471,6 +503,15 @@ impl<'a> Evaluator<'a> {
                     .map(Value::Scalar)
                     .map_err(|m| self.err(span, m));
             }
+            "diff" => {
+                let v = self.variable(&args[1], "diff")?;
+                return Ok(self.value(&args[0])?.map(|c| c.diff(v)));
+            }
+            "dt" => return Ok(self.value(&args[0])?.map(|c| c.dt())),
+            // The value is the canonical form itself; the REPL shows the
+            // outermost expand/factor as a layout.
+            "expand" | "factor" => return self.value(&args[0]),
+            "taylor" => return self.taylor(args, span),
             "inertia" => {
                 let m = self.expr(&args[0])?;
                 let x = self.value(&args[1])?;
@@ -504,6 +545,154 @@ impl<'a> Evaluator<'a> {
             _ => Ok(func::atan(&x)),
         };
         r.map(Value::Scalar).map_err(|m| self.err(span, m))
+    }
+
+    /// The variable of `diff`, `subs` and `taylor`: a coordinate or one of
+    /// its derivatives, a parameter, a `solve` unknown, or `t`.
+    fn variable(&mut self, a: &ast::Expr, what: &str) -> Result<Var, Diagnostic> {
+        let v = self.expr(a)?;
+        let var = v.as_var().filter(|&x| {
+            matches!(
+                atom::atom(x),
+                Atom::Param(_) | Atom::Unknown(_) | Atom::Coord(..) | Atom::Time
+            )
+        });
+        var.ok_or_else(|| {
+            Diagnostic::error(
+                a.span,
+                format!("`{what}` needs a variable here: a coordinate, a velocity, a parameter or t"),
+            )
+            .with_hint(match &a.kind {
+                ExprKind::Name(n) => format!("`{n}` is a definition, not a variable; use the coordinate or parameter it is made of"),
+                _ => "write a name such as theta, theta' or m".to_string(),
+            })
+        })
+    }
+
+    /// `subs(f, x = a, y = b, …)`: every `x` replaced by `a` at once (also
+    /// inside functions); `x'` is a variable of its own.
+    fn subs(
+        &mut self,
+        f: &ast::Ident,
+        args: &[ast::Expr],
+        span: Span,
+    ) -> Result<Value, Diagnostic> {
+        if args.len() < 2 {
+            return Err(Diagnostic::error(
+                span,
+                format!(
+                    "`{}` needs an expression and at least one `x = value`",
+                    f.name
+                ),
+            )
+            .with_hint("write subs(E, x = 0) or subs(E, x = 0, m = 2)"));
+        }
+        let mut map: FxHashMap<Var, Expr> = FxHashMap::default();
+        for a in &args[1..] {
+            let ExprKind::Assign(x, value) = &a.kind else {
+                return Err(Diagnostic::error(a.span, "expected `x = value` here")
+                    .with_hint("write subs(E, x = 0): each replacement names its variable"));
+            };
+            let v = self.variable(x, "subs")?;
+            let value = self.expr(value)?;
+            if map.insert(v, value).is_some() {
+                return Err(Diagnostic::error(x.span, "this variable is replaced twice")
+                    .with_hint("give each variable one value"));
+            }
+        }
+        let target = self.value(&args[0])?;
+        let mut out = Vec::with_capacity(target.components().len());
+        for c in target.components() {
+            out.push(c.subs_many(&map).map_err(|m| self.err(span, m))?);
+        }
+        Ok(match target {
+            Value::Scalar(_) => Value::Scalar(out.remove(0)),
+            Value::Vector(_) => Value::Vector(out),
+        })
+    }
+
+    /// `taylor(f, x, n)` / `taylor(f, x = a, n)` (also spelled `series` with
+    /// a named point): Σ_{k ≤ n} f⁽ᵏ⁾(a)/k!·(x − a)ᵏ.
+    fn taylor(&mut self, args: &[ast::Expr], span: Span) -> Result<Value, Diagnostic> {
+        if args.len() != 3 {
+            return Err(Diagnostic::error(
+                span,
+                format!("a Taylor series takes 3 arguments, not {}", args.len()),
+            )
+            .with_hint("write taylor(f, x, n) or taylor(f, x = a, n)"));
+        }
+        let (x, at) = match &args[1].kind {
+            ExprKind::Assign(x, a) => (&**x, Some(&**a)),
+            _ => (&args[1], None),
+        };
+        let v = self.variable(x, "taylor")?;
+        let a = match at {
+            Some(a) => self.expr(a)?,
+            None => Expr::zero(),
+        };
+        let n = self.expr(&args[2])?;
+        let n = n
+            .as_rational()
+            .filter(|q| q.is_integer())
+            .and_then(|q| q.as_i64())
+            .filter(|k| (0..=MAX_TAYLOR_ORDER).contains(k))
+            .ok_or_else(|| {
+                Diagnostic::error(
+                    args[2].span,
+                    format!("the order must be a whole number from 0 to {MAX_TAYLOR_ORDER}"),
+                )
+                .with_hint("taylor(sin(x), x, 5) keeps the powers x⁰ … x⁵")
+            })?;
+        let f = self.value(&args[0])?;
+        let dx = Expr::var(v).sub(&a);
+        let mut out = Vec::with_capacity(f.components().len());
+        for c in f.components() {
+            let mut d = c.clone();
+            let mut sum = Expr::zero();
+            let mut power = Expr::one();
+            let mut fact = Q::one();
+            for k in 0..=n {
+                if k > 0 {
+                    d = d.diff(v);
+                    power = power.mul(&dx);
+                    fact = &fact * &Q::from_i64(k);
+                }
+                if d.is_zero() {
+                    break;
+                }
+                let at_a = d.subs(v, &a).map_err(|m| self.err(span, m))?;
+                let coef = at_a.scale(&fact.recip().unwrap_or_else(Q::zero));
+                sum = sum.add(&coef.mul(&power));
+            }
+            out.push(sum);
+        }
+        Ok(match f {
+            Value::Scalar(_) => Value::Scalar(out.remove(0)),
+            Value::Vector(_) => Value::Vector(out),
+        })
+    }
+
+    /// `series(f, x = a, n)`, or `series(f, q, n)` with `q` a coordinate, a
+    /// velocity or `t` (never a stiffness): the Taylor series, not springs.
+    fn is_taylor_call(&self, args: &[ast::Expr]) -> bool {
+        if args.len() != 3 {
+            return false;
+        }
+        match &args[1].kind {
+            ExprKind::Assign(..) | ExprKind::Prime(..) => true,
+            ExprKind::Name(n) => matches!(
+                self.names.get(n.as_str()),
+                Some((Binding::Coord | Binding::Time, _))
+            ),
+            _ => false,
+        }
+    }
+
+    /// `series(a, b, n)` with a name `b` and a whole number `n`: what a
+    /// Taylor series would look like (three springs are meant otherwise).
+    fn looks_like_taylor(&self, args: &[ast::Expr]) -> bool {
+        matches!(args[1].kind, ExprKind::Name(_))
+            && matches!(&args[2].kind, ExprKind::Num(r) if r.is_integer())
     }
 
     /// dot(a, b) and cross(a, b); a plane cross product is the scalar

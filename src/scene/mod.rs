@@ -590,6 +590,17 @@ impl Scene {
     /// Like [`Scene::expr`], for an expression that may be a vector.
     pub fn value_of(&self, src: &str) -> Result<Value, Diagnostic> {
         let e = crate::parse::parse_expr(src)?;
+        Ok(self.evaluate(&e, &[])?.0)
+    }
+
+    /// Evaluate a parsed expression in the scene's names, with `extra`
+    /// names bound to values (the REPL's `_`): the value and the warnings
+    /// (spans point into the text `e` was parsed from).
+    pub fn evaluate(
+        &self,
+        e: &ast::Expr,
+        extra: &[(&str, Value)],
+    ) -> Result<(Value, Vec<Diagnostic>), Diagnostic> {
         let mut names: FxHashMap<String, (Binding, Span)> = FxHashMap::default();
         for c in &self.coordinates {
             names.insert(c.name.clone(), (Binding::Coord, c.span));
@@ -607,9 +618,17 @@ impl Scene {
                 names.insert(u.name.clone(), (Binding::Unknown, u.span));
             }
         }
-        let values: Vec<Value> = self.definitions.iter().map(|d| d.value.clone()).collect();
+        let mut values: Vec<Value> = self.definitions.iter().map(|d| d.value.clone()).collect();
+        for (name, v) in extra {
+            names.insert(
+                (*name).to_string(),
+                (Binding::Def(values.len()), Span::default()),
+            );
+            values.push(v.clone());
+        }
         let mut ev = eval::Evaluator::with_values(&names, values);
-        ev.value(&e)
+        let v = ev.value(e)?;
+        Ok((v, std::mem::take(&mut ev.warnings)))
     }
 
     /// The definitions playing `role`, in source order.

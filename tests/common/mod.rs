@@ -38,6 +38,7 @@ pub fn sexpr(e: &Expr) -> String {
         }
         ExprKind::Prime(x, n) => format!("(' {} {n})", sexpr(x)),
         ExprKind::Vector(cs) => format!("[{}]", cs.iter().map(sexpr).collect::<Vec<_>>().join(" ")),
+        ExprKind::Assign(a, b) => format!("(= {} {})", sexpr(a), sexpr(b)),
     }
 }
 
@@ -166,6 +167,7 @@ pub fn strip(e: &Expr) -> Expr {
         ),
         ExprKind::Prime(x, n) => ExprKind::Prime(Box::new(strip(x)), *n),
         ExprKind::Vector(cs) => ExprKind::Vector(cs.iter().map(strip).collect()),
+        ExprKind::Assign(a, b) => ExprKind::Assign(Box::new(strip(a)), Box::new(strip(b))),
         k => k.clone(),
     };
     Expr {
@@ -229,6 +231,7 @@ pub fn print_full(e: &Expr) -> String {
             "[{}]",
             cs.iter().map(print_full).collect::<Vec<_>>().join(", ")
         ),
+        ExprKind::Assign(a, b) => format!("{} = {}", print_full(a), print_full(b)),
     }
 }
 

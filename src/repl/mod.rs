@@ -1,0 +1,1038 @@
+//! The REPL: a scene built line by line, with results on demand.
+//!
+//! [`Session`] is the engine, independent of any terminal: it takes one
+//! complete *entry* at a time (a statement, several statements, a bare
+//! expression or a `:command`) and answers with a [`Response`]. The scene
+//! is kept as the list of its statements' texts, re-resolved by
+//! [`Scene::parse`] after every change, so a statement that fails leaves
+//! the session exactly as it was, `:scene` prints a file `qdot solve`
+//! accepts, and `:undo` restores the previous list. [`terminal`] puts a
+//! line editor, history, completion and Ctrl-C around it.
+//!
+//! ```
+//! use qdot::repl::Session;
+//! let mut s = Session::new();
+//! for line in ["coordinates x", "parameters m, k", "kinetic E = 1/2*m*x'^2",
+//!              "potential V = 1/2*k*x^2"] {
+//!     assert!(!s.execute(line).failed);
+//! }
+//! assert_eq!(s.execute("diff(E, x')").out, "m·ẋ\n");
+//! assert!(s.execute(":solve").out.contains("ẍ = −k·x/m"));
+//! ```
+
+pub mod terminal;
+
+use crate::diag::Diagnostic;
+use crate::expr::latex::{self as tex, Names};
+use crate::expr::print::{self, Style};
+use crate::expr::Expr;
+use crate::output::{self, Command, Format, Options};
+use crate::parse::ast::{ExprKind, Stmt};
+use crate::poly::Poly;
+use crate::scene::{Scene, Value};
+
+/// The label of the REPL's own input in error messages.
+pub const INPUT: &str = "input";
+
+/// What an entry produced: text for stdout, text for stderr (errors and
+/// warnings, already rendered), whether it failed, and whether the user
+/// asked to quit.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Response {
+    pub out: String,
+    pub err: String,
+    pub failed: bool,
+    pub quit: bool,
+}
+
+impl Response {
+    fn out(s: impl Into<String>) -> Response {
+        let mut out: String = s.into();
+        if !out.is_empty() && !out.ends_with('\n') {
+            out.push('\n');
+        }
+        Response {
+            out,
+            ..Response::default()
+        }
+    }
+    fn error(s: impl Into<String>) -> Response {
+        let mut err: String = s.into();
+        if !err.ends_with('\n') {
+            err.push('\n');
+        }
+        Response {
+            err,
+            failed: true,
+            ..Response::default()
+        }
+    }
+}
+
+/// One statement of the scene, as the user wrote it.
+#[derive(Clone, Debug, PartialEq)]
+struct Statement {
+    text: String,
+    /// The name a definition or role statement gives a value to.
+    defines: Option<String>,
+}
+
+/// The state the user can go back to with `:undo`.
+#[derive(Clone, Debug)]
+struct Snapshot {
+    statements: Vec<Statement>,
+    last: Option<Value>,
+}
+
+/// A REPL session: the scene so far, the last result, the output format.
+#[derive(Clone, Debug)]
+pub struct Session {
+    statements: Vec<Statement>,
+    scene: Scene,
+    last: Option<Value>,
+    undo: Vec<Snapshot>,
+    /// How results are printed (`:format`).
+    pub format: Format,
+}
+
+impl Default for Session {
+    fn default() -> Self {
+        Session::new()
+    }
+}
+
+/// The commands, for `:help` and completion: (name, arguments, what it does).
+pub const COMMANDS: &[(&str, &str, &str)] = &[
+    (
+        ":equations",
+        "",
+        "Lagrange's equations, the mass matrix and the forcing",
+    ),
+    (
+        ":solve",
+        "",
+        "the exact accelerations and the solve blocks' solutions",
+    ),
+    (":forces", "", "the generalized forces Q_k"),
+    (
+        ":equilibrium",
+        "[--set m=1,g=9.81]",
+        "the equilibria and their stability",
+    ),
+    (
+        ":modes",
+        "[--at q=…] [--init q=…,q'=…] [--set …]",
+        "small oscillations: frequencies and modes",
+    ),
+    (
+        ":latex",
+        "[steps]",
+        "LaTeX of the last result, or of the whole derivation",
+    ),
+    (
+        ":show",
+        "NAME",
+        "what a name is: its value, role or declaration",
+    ),
+    (":scene", "", "the scene so far, as a .qd file"),
+    (":load", "FILE", "run a .qd file's statements"),
+    (":save", "FILE", "write the scene to a .qd file"),
+    (":undo", "", "take back the last change"),
+    (":reset", "", "start from an empty scene"),
+    (":format", "text|latex|json", "how results are printed"),
+    (":help", "", "this list"),
+    (":quit", "", "leave (Ctrl-D does too)"),
+];
+
+/// The functions of the expression language, for completion and `:help`.
+pub const FUNCTIONS: &[&str] = &[
+    "sin", "cos", "tan", "sqrt", "exp", "ln", "atan", "asin", "acos", "dot", "cross", "norm",
+    "inertia", "series", "parallel", "diff", "dt", "subs", "expand", "factor", "taylor",
+];
+
+/// The statement keywords, for completion and highlighting.
+pub const KEYWORDS: &[&str] = &[
+    "coordinates",
+    "parameters",
+    "kinetic",
+    "potential",
+    "forcefunction",
+    "work",
+    "dissipation",
+    "rayleigh",
+    "force",
+    "load",
+    "at",
+    "torque",
+    "on",
+    "solve",
+    "latex",
+];
+
+const HELP: &str = "\
+Type statements as in a .qd file, one per line:
+  coordinates y3, theta3        parameters G, g, r
+  m = G/g                       kinetic E = 1/2*m*y3'^2
+  forcefunction U = G*y3        solve a, T { … }  (over several lines)
+A definition typed again replaces the earlier one.
+Type an expression to see it simplified; `_` is the last result:
+  diff(E, y3')   ∂E/∂ẏ₃          dt(x)            the total time derivative
+  subs(E, x = 0, m = 2)           taylor(f, x, n)  or taylor(f, x = a, n);
+  expand(f)      every term        series(f, x, n) when x is a coordinate
+  factor(f)      over the rationals";
+
+impl Session {
+    /// An empty session.
+    pub fn new() -> Session {
+        Session {
+            statements: Vec::new(),
+            scene: empty_scene(),
+            last: None,
+            undo: Vec::new(),
+            format: Format::Text,
+        }
+    }
+
+    /// The scene so far.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The last result (`_`).
+    pub fn last(&self) -> Option<&Value> {
+        self.last.as_ref()
+    }
+
+    /// The names worth completing: coordinates (with `'`), parameters,
+    /// definitions, `solve` unknowns.
+    pub fn names(&self) -> Vec<String> {
+        let s = &self.scene;
+        let mut out: Vec<String> = s.coordinates.iter().map(|c| c.name.clone()).collect();
+        out.extend(s.parameters.iter().map(|p| p.name.clone()));
+        out.extend(s.definitions.iter().map(|d| d.name.clone()));
+        out.extend(
+            s.systems
+                .iter()
+                .flat_map(|b| b.unknowns.iter().map(|u| u.name.clone())),
+        );
+        out
+    }
+
+    /// The scene as a `.qd` file.
+    pub fn scene_text(&self) -> String {
+        let mut out = String::from("# qdot scene, written by the REPL\n");
+        for s in &self.statements {
+            out.push_str(&s.text);
+            out.push('\n');
+        }
+        out
+    }
+
+    /// Run one complete entry (see [`is_complete`]).
+    pub fn execute(&mut self, entry: &str) -> Response {
+        let trimmed = entry.trim();
+        if trimmed.is_empty() {
+            return Response::default();
+        }
+        if let Some(cmd) = trimmed.strip_prefix(':') {
+            return self.command(cmd);
+        }
+        let expr_try = crate::parse::parse_expr(entry);
+        match expr_try {
+            Ok(e) => self.expression(entry, &e),
+            Err(expr_err) => match crate::parse::parse_scene(entry) {
+                Ok(stmts) => self.statements(entry, &stmts),
+                Err(stmt_err) => {
+                    let d = if looks_like_statement(entry) {
+                        stmt_err
+                    } else {
+                        expr_err
+                    };
+                    Response::error(d.render(INPUT, entry))
+                }
+            },
+        }
+    }
+
+    // ------------------------------------------------------------ statements
+
+    fn statements(&mut self, entry: &str, stmts: &[Stmt]) -> Response {
+        if stmts.is_empty() {
+            return Response::default();
+        }
+        // `_` in a statement stands for the last result's value.
+        if mentions_last(entry) {
+            let Some(last) = &self.last else {
+                return Response::error(
+                    "error: `_` is the last result, and there is none yet\n  = hint: type an expression first\n",
+                );
+            };
+            let replaced = replace_last(entry, &value_input(last));
+            return match crate::parse::parse_scene(&replaced) {
+                Ok(s) => self.statements(&replaced, &s),
+                Err(d) => Response::error(d.render(INPUT, &replaced)),
+            };
+        }
+        let mut list = self.statements.clone();
+        // where each new statement sits in `list`, and its span in `entry`
+        let mut placed: Vec<(usize, usize)> = Vec::new();
+        let mut notes = String::new();
+        for st in stmts {
+            let span = st.span();
+            let text = entry[span.start..span.end].trim_end().to_string();
+            let defines = match st {
+                Stmt::Def { name, .. } | Stmt::Role { name, .. } => Some(name.name.clone()),
+                _ => None,
+            };
+            let previous = defines
+                .as_ref()
+                .and_then(|n| list.iter().position(|s| s.defines.as_ref() == Some(n)));
+            let item = Statement { text, defines };
+            match previous {
+                Some(i) if !placed.iter().any(|&(j, _)| j == i) => {
+                    notes.push_str(&format!(
+                        "(replaces the earlier `{}`)\n",
+                        list[i].text.lines().next().unwrap_or("")
+                    ));
+                    list[i] = item;
+                    placed.push((i, span.start));
+                }
+                _ => {
+                    list.push(item);
+                    placed.push((list.len() - 1, span.start));
+                }
+            }
+        }
+        let (src, offsets) = join(&list);
+        let scene = match Scene::parse(&src) {
+            Ok(s) => s,
+            Err(d) => return Response::error(self.locate(&d, &src, &offsets, &placed, entry)),
+        };
+        // show the warnings about the new statements only
+        let mut err = String::new();
+        for w in &scene.warnings {
+            if let Some(span) = w.span {
+                if let Some(d) = shift(w, span.start, &offsets, &placed) {
+                    err.push_str(&d.render(INPUT, entry));
+                }
+            }
+        }
+        self.push_undo();
+        self.statements = list;
+        self.scene = scene;
+        let mut out = notes;
+        for st in stmts {
+            if let Stmt::Def { name, .. } | Stmt::Role { name, .. } = st {
+                if let Some(v) = self.scene.value(&name.name) {
+                    out.push_str(&self.show_value(Some(&name.name), v, Layout::Plain));
+                }
+            }
+        }
+        Response {
+            out,
+            err,
+            ..Response::default()
+        }
+    }
+
+    /// A diagnostic of the whole scene, rendered against the entry when it
+    /// points into one of the entry's statements.
+    fn locate(
+        &self,
+        d: &Diagnostic,
+        src: &str,
+        offsets: &[usize],
+        placed: &[(usize, usize)],
+        entry: &str,
+    ) -> String {
+        match d.span {
+            Some(span) => match shift(d, span.start, offsets, placed) {
+                Some(e) => e.render(INPUT, entry),
+                None => d.render("scene", src),
+            },
+            None => d.render(INPUT, entry),
+        }
+    }
+
+    fn push_undo(&mut self) {
+        self.undo.push(Snapshot {
+            statements: self.statements.clone(),
+            last: self.last.clone(),
+        });
+    }
+
+    // ------------------------------------------------------------ expressions
+
+    fn expression(&mut self, entry: &str, e: &crate::parse::ast::Expr) -> Response {
+        let extra: Vec<(&str, Value)> = self.last.iter().map(|v| ("_", v.clone())).collect();
+        let (value, warnings) = match self.scene.evaluate(e, &extra) {
+            Ok(x) => x,
+            Err(d) => {
+                let d = if d.message.starts_with("unknown name `_`") {
+                    Diagnostic {
+                        message: "`_` is the last result, and there is none yet".into(),
+                        hint: Some("type an expression first".into()),
+                        ..d
+                    }
+                } else {
+                    d
+                };
+                return Response::error(d.render(INPUT, entry));
+            }
+        };
+        let layout = match &e.kind {
+            ExprKind::Call(f, _) if f.name == "expand" => Layout::Expanded,
+            ExprKind::Call(f, _) if f.name == "factor" => Layout::Factored,
+            _ => Layout::Plain,
+        };
+        let out = self.show_value(None, &value, layout);
+        let err: String = warnings.iter().map(|w| w.render(INPUT, entry)).collect();
+        self.push_undo();
+        self.last = Some(value);
+        Response {
+            out,
+            err,
+            ..Response::default()
+        }
+    }
+
+    fn names_tex(&self) -> Names {
+        let mut n = Names::new();
+        for l in &self.scene.latex_names {
+            n.set(&l.name, &l.tex);
+        }
+        n
+    }
+
+    /// A value (with its name, for definitions) in the current format.
+    fn show_value(&self, name: Option<&str>, v: &Value, layout: Layout) -> String {
+        match self.format {
+            Format::Text => {
+                let body = match v {
+                    Value::Scalar(e) => layout.text(e),
+                    Value::Vector(c) => format!(
+                        "[{}]",
+                        c.iter()
+                            .map(|e| layout.text(e))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                };
+                match name {
+                    Some(n) => format!("{} = {body}\n", print::pretty_name(n, 0)),
+                    None => format!("{body}\n"),
+                }
+            }
+            Format::Latex => {
+                let names = self.names_tex();
+                let body = match v {
+                    Value::Scalar(e) => layout.latex(e, &names),
+                    Value::Vector(c) => format!(
+                        "\\begin{{pmatrix}} {} \\end{{pmatrix}}",
+                        c.iter()
+                            .map(|e| layout.latex(e, &names))
+                            .collect::<Vec<_>>()
+                            .join(" \\\\ ")
+                    ),
+                };
+                match name {
+                    Some(n) => format!("{} = {body}\n", names.symbol(n, 0)),
+                    None => format!("{body}\n"),
+                }
+            }
+            Format::Json => {
+                let value = match v {
+                    Value::Scalar(e) => serde_json::Value::String(print::input(e)),
+                    Value::Vector(c) => serde_json::Value::Array(
+                        c.iter()
+                            .map(|e| serde_json::Value::String(print::input(e)))
+                            .collect(),
+                    ),
+                };
+                let mut m = serde_json::Map::new();
+                if let Some(n) = name {
+                    m.insert("name".into(), serde_json::Value::String(n.to_string()));
+                }
+                m.insert("value".into(), value);
+                format!("{}\n", serde_json::Value::Object(m))
+            }
+        }
+    }
+
+    // ------------------------------------------------------------ commands
+
+    fn command(&mut self, cmd: &str) -> Response {
+        let cmd = cmd.trim();
+        let (name, args) = match cmd.find(char::is_whitespace) {
+            Some(i) => (&cmd[..i], cmd[i..].trim()),
+            None => (cmd, ""),
+        };
+        match name {
+            "q" | "quit" | "exit" => Response {
+                quit: true,
+                ..Response::default()
+            },
+            "help" | "h" | "?" => Response::out(help_text()),
+            "equations" | "eq" | "derive" => self.run(Command::Derive, args),
+            "solve" => self.run(Command::Solve, args),
+            "forces" => self.run(Command::Forces, args),
+            "equilibrium" => self.run(Command::Equilibrium, args),
+            "modes" => self.run(Command::Modes, args),
+            "latex" => self.latex(args),
+            "show" => self.show(args),
+            "scene" => Response::out(self.scene_text()),
+            "load" => self.load(args),
+            "save" => self.save(args),
+            "undo" => match self.undo.pop() {
+                Some(s) => {
+                    let (src, _) = join(&s.statements);
+                    match Scene::parse(&src) {
+                        Ok(scene) => {
+                            self.scene = scene;
+                            self.statements = s.statements;
+                            self.last = s.last;
+                            Response::out("(undone)")
+                        }
+                        Err(d) => Response::error(d.render("scene", &src)),
+                    }
+                }
+                None => Response::error("error: nothing to undo"),
+            },
+            "reset" => {
+                self.push_undo();
+                self.statements.clear();
+                self.scene = empty_scene();
+                self.last = None;
+                Response::out("(an empty scene; :undo brings the old one back)")
+            }
+            "format" => match args {
+                "text" => self.set_format(Format::Text),
+                "latex" => self.set_format(Format::Latex),
+                "json" => self.set_format(Format::Json),
+                "" => Response::out(format!("the format is {}", format_name(self.format))),
+                other => Response::error(format!(
+                    "error: unknown format `{other}`\n  = hint: :format text, :format latex or :format json\n"
+                )),
+            },
+            _ => {
+                let near = COMMANDS
+                    .iter()
+                    .map(|c| &c.0[1..])
+                    .find(|c| c.starts_with(name) && !name.is_empty());
+                let hint = match near {
+                    Some(c) => format!("did you mean `:{c}`? :help lists the commands"),
+                    None => ":help lists the commands".to_string(),
+                };
+                Response::error(format!(
+                    "error: unknown command `:{name}`\n  = hint: {hint}\n"
+                ))
+            }
+        }
+    }
+
+    fn set_format(&mut self, f: Format) -> Response {
+        self.format = f;
+        Response::out(format!("(results as {})", format_name(f)))
+    }
+
+    fn run(&self, cmd: Command, args: &str) -> Response {
+        let mut opts = Options::default();
+        if let Err(e) = parse_options(args, cmd, &mut opts) {
+            return Response::error(e);
+        }
+        let (src, _) = join(&self.statements);
+        match output::run_with(cmd, &src, self.format, &opts) {
+            Ok((out, warnings)) => {
+                let err: String = warnings.iter().map(|w| w.render("scene", &src)).collect();
+                Response {
+                    out: if out.ends_with('\n') { out } else { out + "\n" },
+                    err,
+                    ..Response::default()
+                }
+            }
+            Err(d) => Response::error(d.render("scene", &src)),
+        }
+    }
+
+    fn latex(&self, args: &str) -> Response {
+        match (args, &self.last) {
+            ("" | "last", Some(v)) => {
+                let names = self.names_tex();
+                Response::out(match v {
+                    Value::Scalar(e) => tex::latex_with(e, &names),
+                    Value::Vector(c) => format!(
+                        "\\begin{{pmatrix}} {} \\end{{pmatrix}}",
+                        c.iter()
+                            .map(|e| tex::latex_with(e, &names))
+                            .collect::<Vec<_>>()
+                            .join(" \\\\ ")
+                    ),
+                })
+            }
+            ("last", None) => Response::error("error: there is no result yet"),
+            ("" | "all" | "steps" | "derivation", _) => {
+                let (src, _) = join(&self.statements);
+                let opts = Options {
+                    steps: args == "steps" || args == "derivation",
+                    ..Options::default()
+                };
+                match output::run_with(Command::Latex, &src, Format::Latex, &opts) {
+                    Ok((out, _)) => Response::out(out),
+                    Err(d) => Response::error(d.render("scene", &src)),
+                }
+            }
+            (other, _) => Response::error(format!(
+                "error: `:latex {other}`: expected nothing, `steps` or `last`\n  = hint: :latex prints the last result (or the equations when there is none); :latex steps the whole derivation\n"
+            )),
+        }
+    }
+
+    fn show(&self, name: &str) -> Response {
+        if name.is_empty() {
+            return Response::error("error: `:show` needs a name\n  = hint: :show E");
+        }
+        let s = &self.scene;
+        if name == "_" {
+            return match &self.last {
+                Some(v) => Response::out(self.show_value(Some("_"), v, Layout::Plain)),
+                None => Response::error("error: there is no result yet"),
+            };
+        }
+        if let Some(d) = s.definitions.iter().find(|d| d.name == name) {
+            let role = d
+                .role
+                .map(|r| format!("{} ", r.keyword()))
+                .unwrap_or_default();
+            let text = self
+                .statements
+                .iter()
+                .find(|st| st.defines.as_deref() == Some(name))
+                .map(|st| format!("  (as written: {})\n", st.text))
+                .unwrap_or_default();
+            return Response::out(format!(
+                "{role}{}{text}",
+                self.show_value(Some(name), &d.value, Layout::Plain)
+            ));
+        }
+        if s.coordinates.iter().any(|c| c.name == name) {
+            return Response::out(format!(
+                "{name} is a generalized coordinate (a function of t; {name}' and {name}'' are its derivatives)"
+            ));
+        }
+        if let Some(p) = s.parameters.iter().find(|p| p.name == name) {
+            let dim = p
+                .dimension
+                .as_ref()
+                .map(|d| format!(" ({d})"))
+                .unwrap_or_default();
+            return Response::out(format!("{name} is a parameter{dim}: a positive constant"));
+        }
+        if s.systems
+            .iter()
+            .any(|b| b.unknowns.iter().any(|u| u.name == name))
+        {
+            return Response::out(format!(
+                "{name} is an unknown of a solve block (:solve finds it)"
+            ));
+        }
+        Response::error(format!(
+            "error: `{name}` is not in the scene\n  = hint: the names are {}\n",
+            self.names().join(", ")
+        ))
+    }
+
+    fn load(&mut self, path: &str) -> Response {
+        if path.is_empty() {
+            return Response::error(
+                "error: `:load` needs a file\n  = hint: :load examples/seed_23_4.qd",
+            );
+        }
+        let src = match std::fs::read_to_string(path) {
+            Ok(s) => s,
+            Err(e) => return Response::error(format!("error: cannot read `{path}`: {e}")),
+        };
+        let stmts = match crate::parse::parse_scene(&src) {
+            Ok(s) => s,
+            Err(d) => return Response::error(d.render(path, &src)),
+        };
+        let mut r = self.statements(&src, &stmts);
+        // the definitions of a whole file are not echoed
+        if !r.failed {
+            r.out = format!("(loaded {} statements from {path})\n", stmts.len());
+            r.err = r
+                .err
+                .replace(&format!("--> {INPUT}:"), &format!("--> {path}:"));
+        } else {
+            r.err = r
+                .err
+                .replace(&format!("--> {INPUT}:"), &format!("--> {path}:"));
+        }
+        r
+    }
+
+    fn save(&self, path: &str) -> Response {
+        if path.is_empty() {
+            return Response::error("error: `:save` needs a file\n  = hint: :save my_scene.qd");
+        }
+        match std::fs::write(path, self.scene_text()) {
+            Ok(()) => Response::out(format!(
+                "(saved {} statements to {path})",
+                self.statements.len()
+            )),
+            Err(e) => Response::error(format!("error: cannot write `{path}`: {e}")),
+        }
+    }
+}
+
+/// How an expression is laid out: as qdot prints it, every term of the
+/// numerator separately (`expand`), or as a product of irreducible factors
+/// (`factor`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Layout {
+    Plain,
+    Expanded,
+    Factored,
+}
+
+impl Layout {
+    fn text(self, e: &Expr) -> String {
+        match self {
+            Layout::Plain => print::unicode(e),
+            Layout::Expanded => expanded(e, Style::Unicode),
+            Layout::Factored => factored(e, Style::Unicode),
+        }
+    }
+    fn latex(self, e: &Expr, names: &Names) -> String {
+        match self {
+            Layout::Plain => tex::latex_with(e, names),
+            Layout::Expanded => tex::latex_expanded(e, names),
+            Layout::Factored => tex::latex_with(e, names),
+        }
+    }
+}
+
+/// Every term of the numerator on its own, over the denominator.
+fn expanded(e: &Expr, st: Style) -> String {
+    if e.den().len() == 1 {
+        return print::expanded(e);
+    }
+    let num = terms_text(e.num(), st);
+    format!(
+        "({num})/({})",
+        print::render(&Expr::from_poly(e.den().clone()), st)
+    )
+}
+
+fn terms_text(p: &Poly, st: Style) -> String {
+    let items = p.terms().iter().rev().map(|(m, c)| {
+        let t = Expr::from_poly(Poly::monomial(m.clone(), c.abs()));
+        (c.is_negative(), print::render(&t, st))
+    });
+    print::join_terms(items, st)
+}
+
+/// The numerator and denominator as products of irreducible factors over ℚ.
+fn factored(e: &Expr, st: Style) -> String {
+    let top = factor_text(e.num(), st);
+    if e.den().is_one() {
+        return top;
+    }
+    let bottom = factor_text(e.den(), st);
+    let bottom = if bottom.contains(['·', '*', '/', ' ']) {
+        format!("({bottom})")
+    } else {
+        bottom
+    };
+    let top = if top.contains([' ']) && !top.starts_with('(') {
+        format!("({top})")
+    } else {
+        top
+    };
+    format!("{top}/{bottom}")
+}
+
+fn factor_text(p: &Poly, st: Style) -> String {
+    let f = factor_poly(p); // FACTOR-MERGE
+    if f.factors.is_empty() {
+        return print::render(&Expr::rational(f.unit.clone()), st);
+    }
+    let times = if st == Style::Unicode { "·" } else { "*" };
+    let mut parts: Vec<String> = Vec::new();
+    let unit = f.unit.clone();
+    let (neg, mag) = (unit.is_negative(), unit.abs());
+    if !mag.is_one() {
+        parts.push(print::render(&Expr::rational(mag), st));
+    }
+    for (g, k) in &f.factors {
+        let s = print::render(&Expr::from_poly(g.clone()), st);
+        let s = if g.len() > 1 { format!("({s})") } else { s };
+        parts.push(match (k, st) {
+            (1, _) => s,
+            (k, Style::Unicode) => format!("{s}{}", print::superscript(*k)),
+            (k, _) => format!("{s}^{k}"),
+        });
+    }
+    let body = parts.join(times);
+    let minus = if st == Style::Unicode { "−" } else { "-" };
+    if neg {
+        format!("{minus}{body}")
+    } else {
+        body
+    }
+}
+
+/// The statements joined into one source, and where each starts.
+fn join(list: &[Statement]) -> (String, Vec<usize>) {
+    let mut src = String::new();
+    let mut offsets = Vec::with_capacity(list.len());
+    for s in list {
+        offsets.push(src.len());
+        src.push_str(&s.text);
+        src.push('\n');
+    }
+    (src, offsets)
+}
+
+/// `d` moved from the joined source into the entry, when the offset falls
+/// in one of the entry's new statements.
+fn shift(
+    d: &Diagnostic,
+    at: usize,
+    offsets: &[usize],
+    placed: &[(usize, usize)],
+) -> Option<Diagnostic> {
+    let i = match offsets.binary_search(&at) {
+        Ok(i) => i,
+        Err(0) => return None,
+        Err(i) => i - 1,
+    };
+    let &(_, entry_start) = placed.iter().find(|&&(j, _)| j == i)?;
+    let span = d.span?;
+    let delta = entry_start as isize - offsets[i] as isize;
+    let mv = |x: usize| (x as isize + delta).max(0) as usize;
+    let mut e = d.clone();
+    e.span = Some(crate::parse::ast::Span::new(mv(span.start), mv(span.end)));
+    Some(e)
+}
+
+fn empty_scene() -> Scene {
+    Scene::parse("").unwrap_or_else(|_| unreachable_scene())
+}
+
+/// An empty scene built by hand (parsing "" cannot fail; this keeps the
+/// code free of `unwrap`).
+fn unreachable_scene() -> Scene {
+    Scene {
+        source: String::new(),
+        coordinates: Vec::new(),
+        parameters: Vec::new(),
+        definitions: Vec::new(),
+        forces: Vec::new(),
+        loads: Vec::new(),
+        torques: Vec::new(),
+        systems: Vec::new(),
+        warnings: Vec::new(),
+        latex_names: Vec::new(),
+    }
+}
+
+fn format_name(f: Format) -> &'static str {
+    match f {
+        Format::Text => "text",
+        Format::Latex => "latex",
+        Format::Json => "json",
+    }
+}
+
+fn help_text() -> String {
+    let mut out = String::from(HELP);
+    out.push_str("\nCommands:\n");
+    for (c, a, what) in COMMANDS {
+        let head = if a.is_empty() {
+            c.to_string()
+        } else {
+            format!("{c} {a}")
+        };
+        out.push_str(&format!("  {head:<44} {what}\n"));
+    }
+    out.push_str(&format!("Functions: {}\n", FUNCTIONS.join(", ")));
+    out
+}
+
+/// `--at X --init Y --set Z` (or `at=X`) after `:modes`/`:equilibrium`.
+fn parse_options(args: &str, cmd: Command, opts: &mut Options) -> Result<(), String> {
+    let mut words = args.split_whitespace();
+    while let Some(w) = words.next() {
+        let (key, value) = match w.strip_prefix("--") {
+            Some(k) => match k.split_once('=') {
+                Some((k, v)) => (k.to_string(), Some(v.to_string())),
+                None => (k.to_string(), words.next().map(str::to_string)),
+            },
+            None => {
+                return Err(format!(
+                    "error: unexpected `{w}`\n  = hint: options are written --set m=1,g=9.81 (and for :modes --at q=…, --init q=…)\n"
+                ))
+            }
+        };
+        let allowed = match cmd {
+            Command::Modes => ["set", "at", "init"].contains(&key.as_str()),
+            Command::Equilibrium | Command::Latex => key == "set",
+            _ => false,
+        };
+        if !allowed {
+            return Err(format!(
+                "error: this command takes no option `--{key}`\n  = hint: :equilibrium takes --set; :modes takes --at, --init and --set\n"
+            ));
+        }
+        let Some(value) = value else {
+            return Err(format!("error: `--{key}` needs a value\n"));
+        };
+        match key.as_str() {
+            "set" => {
+                opts.set = output::parse_set(&value).map_err(|d| d.render("--set", &value))?;
+            }
+            "at" => opts.at = Some(value),
+            _ => opts.init = Some(value),
+        }
+    }
+    Ok(())
+}
+
+/// Whether an entry that parses neither way was meant as a statement: it
+/// starts with a keyword or has `=` outside brackets.
+fn looks_like_statement(entry: &str) -> bool {
+    let first: String = entry
+        .trim_start()
+        .chars()
+        .take_while(|c| c.is_alphanumeric() || *c == '_')
+        .collect();
+    if KEYWORDS.contains(&first.as_str()) && first != "at" && first != "on" {
+        return true;
+    }
+    let mut depth = 0i32;
+    for c in entry.chars() {
+        match c {
+            '#' => break,
+            '(' | '[' | '{' => depth += 1,
+            ')' | ']' | '}' => depth -= 1,
+            '=' if depth == 0 => return true,
+            _ => {}
+        }
+    }
+    false
+}
+
+/// The identifiers of `src` (outside comments and strings), with offsets.
+fn idents(src: &str) -> Vec<(usize, &str)> {
+    let mut out = Vec::new();
+    let mut it = src.char_indices().peekable();
+    while let Some((i, c)) = it.next() {
+        if c == '#' {
+            while it.peek().is_some_and(|&(_, c)| c != '\n') {
+                it.next();
+            }
+        } else if c == '"' {
+            while it.peek().is_some_and(|&(_, c)| c != '"' && c != '\n') {
+                it.next();
+            }
+            it.next();
+        } else if c.is_alphabetic() || c == '_' {
+            let mut end = i + c.len_utf8();
+            while let Some(&(j, d)) = it.peek() {
+                if d.is_alphanumeric() || d == '_' {
+                    end = j + d.len_utf8();
+                    it.next();
+                } else {
+                    break;
+                }
+            }
+            out.push((i, &src[i..end]));
+        } else if c.is_ascii_digit() {
+            // a number with its exponent and unit (`2e3`, `30deg`) is not a name
+            while it
+                .peek()
+                .is_some_and(|&(_, d)| d.is_alphanumeric() || d == '.' || d == '_')
+            {
+                it.next();
+            }
+        }
+    }
+    out
+}
+
+fn mentions_last(src: &str) -> bool {
+    idents(src).iter().any(|(_, w)| *w == "_")
+}
+
+/// `src` with every identifier `_` replaced by `(value)`.
+fn replace_last(src: &str, value: &str) -> String {
+    let mut out = String::with_capacity(src.len() + value.len());
+    let mut prev = 0;
+    for (i, w) in idents(src) {
+        if w == "_" {
+            out.push_str(&src[prev..i]);
+            out.push('(');
+            out.push_str(value);
+            out.push(')');
+            prev = i + 1;
+        }
+    }
+    out.push_str(&src[prev..]);
+    out
+}
+
+/// A value in input syntax (re-parses to the same value).
+fn value_input(v: &Value) -> String {
+    match v {
+        Value::Scalar(e) => print::input(e),
+        Value::Vector(c) => format!(
+            "[{}]",
+            c.iter().map(print::input).collect::<Vec<_>>().join(", ")
+        ),
+    }
+}
+
+/// Whether `text` is a whole entry, or the user is still typing one: an
+/// open `(`, `[` or `{`, or a line ending in a binary operator, `,` or `=`,
+/// asks for another line.
+pub fn is_complete(text: &str) -> bool {
+    let mut depth = 0i32;
+    let mut last = ' ';
+    for line in text.lines() {
+        let mut in_str = false;
+        for c in line.chars() {
+            if in_str {
+                if c == '"' {
+                    in_str = false;
+                }
+                continue;
+            }
+            match c {
+                '#' => break,
+                '"' => in_str = true,
+                '(' | '[' | '{' => depth += 1,
+                ')' | ']' | '}' => depth -= 1,
+                _ => {}
+            }
+            if !c.is_whitespace() {
+                last = c;
+            }
+        }
+    }
+    if text.trim_start().starts_with(':') {
+        return true;
+    }
+    depth <= 0 && !matches!(last, '+' | '-' | '*' | '/' | '^' | ',' | '=')
+}
+
+// FACTOR-MERGE: replaced by crate::poly::factor when it lands.
+struct Fz {
+    unit: crate::num::Q,
+    factors: Vec<(Poly, u32)>,
+}
+fn factor_poly(p: &Poly) -> Fz {
+    Fz {
+        unit: crate::num::Q::one(),
+        factors: vec![(p.clone(), 1)],
+    }
+}

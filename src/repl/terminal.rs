@@ -1,0 +1,440 @@
+//! The REPL in a terminal (rustyline), or over a pipe.
+//!
+//! On a terminal: line editing, history kept in the user's data directory
+//! (`$XDG_DATA_HOME/qdot/history.txt` on Linux), tab completion of names,
+//! commands and functions, highlighting, `  ...` continuation prompts for
+//! unfinished entries (an open bracket or `{`, a trailing operator). Every
+//! entry runs on a worker thread: Ctrl-C while it computes abandons it
+//! (and asks it to stop, see [`crate::cancel`]) and leaves the session as
+//! it was; Ctrl-C while typing drops the entry; Ctrl-D or `:quit` leave.
+//!
+//! When stdin is not a terminal, entries are read from it with no prompts:
+//! results go to stdout, errors to stderr, and the exit status is 1 when
+//! any entry failed.
+
+use super::{is_complete, Response, Session, COMMANDS, FUNCTIONS, KEYWORDS};
+use rustyline::completion::{Completer, Pair};
+use rustyline::error::ReadlineError;
+use rustyline::highlight::{CmdKind, Highlighter};
+use rustyline::hint::Hinter;
+use rustyline::history::DefaultHistory;
+use rustyline::validate::Validator;
+use rustyline::{Config, Context, Editor, Helper};
+use std::borrow::Cow;
+use std::io::{BufRead, IsTerminal, Write};
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc;
+use std::time::Duration;
+
+const PROMPT: &str = "qdot> ";
+const MORE: &str = "  ... ";
+
+/// Set by the SIGINT handler while an entry computes.
+static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+
+/// Run the REPL, first loading `file` if given; the process exit code.
+pub fn run(file: Option<&str>) -> i32 {
+    let mut session = Session::new();
+    let mut failed = false;
+    if let Some(f) = file {
+        let r = session.execute(&format!(":load {f}"));
+        failed |= r.failed;
+        print_response(&r);
+    }
+    if std::io::stdin().is_terminal() {
+        interactive(session);
+        0
+    } else {
+        i32::from(piped(session, std::io::stdin().lock()) || failed)
+    }
+}
+
+/// Entries from a reader, no prompts: whether any failed.
+pub fn piped(mut session: Session, input: impl BufRead) -> bool {
+    let mut failed = false;
+    let mut entry = String::new();
+    for line in input.lines() {
+        let Ok(line) = line else { break };
+        entry.push_str(&line);
+        entry.push('\n');
+        if !is_complete(&entry) {
+            continue;
+        }
+        let r = session.execute(&entry);
+        entry.clear();
+        failed |= r.failed;
+        print_response(&r);
+        if r.quit {
+            return failed;
+        }
+    }
+    if !entry.trim().is_empty() {
+        let r = session.execute(&entry);
+        failed |= r.failed;
+        print_response(&r);
+    }
+    failed
+}
+
+fn print_response(r: &Response) {
+    let mut out = std::io::stdout().lock();
+    let _ = out.write_all(r.out.as_bytes());
+    let _ = out.flush();
+    let mut err = std::io::stderr().lock();
+    let _ = err.write_all(r.err.as_bytes());
+    let _ = err.flush();
+}
+
+/// The history file: `$XDG_DATA_HOME/qdot/history.txt` (or the platform's
+/// data directory), created on demand.
+pub fn history_path() -> Option<PathBuf> {
+    let dir = dirs::data_dir()?.join("qdot");
+    std::fs::create_dir_all(&dir).ok()?;
+    Some(dir.join("history.txt"))
+}
+
+fn interactive(mut session: Session) {
+    let config = Config::builder()
+        .auto_add_history(false)
+        .history_ignore_dups(true)
+        .and_then(|b| b.max_history_size(10_000))
+        .map(|b| b.build())
+        .unwrap_or_default();
+    let mut rl: Editor<ReplHelper, DefaultHistory> = match Editor::with_config(config) {
+        Ok(rl) => rl,
+        Err(e) => {
+            eprintln!("error: cannot start the line editor: {e}");
+            return;
+        }
+    };
+    rl.set_helper(Some(ReplHelper::new(&session)));
+    let history = history_path();
+    if let Some(h) = &history {
+        let _ = rl.load_history(h);
+    }
+    // Ctrl-C outside line editing (while an entry computes) is a signal.
+    let _ = ctrlc::set_handler(|| INTERRUPTED.store(true, Ordering::SeqCst));
+    println!(
+        "qdot {} — :help for help, Ctrl-D to leave",
+        env!("CARGO_PKG_VERSION")
+    );
+    let mut entry = String::new();
+    loop {
+        let prompt = if entry.is_empty() { PROMPT } else { MORE };
+        match rl.readline(prompt) {
+            Ok(line) => {
+                entry.push_str(&line);
+                entry.push('\n');
+                if !is_complete(&entry) {
+                    continue;
+                }
+                let text = std::mem::take(&mut entry);
+                let trimmed = text.trim_end();
+                if !trimmed.is_empty() {
+                    let _ = rl.add_history_entry(trimmed);
+                    if let Some(h) = &history {
+                        let _ = rl.save_history(h);
+                    }
+                }
+                let (s, r) = execute_cancellable(session, &text);
+                session = s;
+                print_response(&r);
+                if let Some(h) = rl.helper_mut() {
+                    h.refresh(&session);
+                }
+                if r.quit {
+                    break;
+                }
+            }
+            Err(ReadlineError::Interrupted) => {
+                if entry.is_empty() {
+                    println!("(Ctrl-D or :quit leaves)");
+                } else {
+                    entry.clear();
+                    println!("(entry dropped)");
+                }
+            }
+            Err(ReadlineError::Eof) => break,
+            Err(e) => {
+                eprintln!("error: {e}");
+                break;
+            }
+        }
+    }
+    if let Some(h) = &history {
+        let _ = rl.save_history(h);
+    }
+}
+
+/// Run an entry on a worker thread on a copy of the session: the new
+/// session and the response, or the old session if Ctrl-C interrupted it.
+fn execute_cancellable(session: Session, entry: &str) -> (Session, Response) {
+    let mut work = session.clone();
+    let original = entry;
+    let entry = entry.to_string();
+    let ticket = crate::cancel::ticket();
+    INTERRUPTED.store(false, Ordering::SeqCst);
+    let (tx, rx) = mpsc::channel();
+    let spawned = std::thread::Builder::new()
+        .name("qdot-entry".into())
+        .stack_size(64 << 20)
+        .spawn(move || {
+            crate::cancel::enter(ticket);
+            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                let r = work.execute(&entry);
+                (work, r)
+            }));
+            let _ = tx.send(r.ok());
+        });
+    if spawned.is_err() {
+        // no thread to be had: run it here, without Ctrl-C
+        let mut s = session;
+        let r = s.execute(original);
+        return (s, r);
+    }
+    loop {
+        match rx.recv_timeout(Duration::from_millis(25)) {
+            Ok(Some((s, r))) => return (s, r),
+            Ok(None) => {
+                let r = Response {
+                    err: "error: internal error while computing this entry (the session is as it was)\n".into(),
+                    failed: true,
+                    ..Response::default()
+                };
+                return (session, r);
+            }
+            Err(mpsc::RecvTimeoutError::Timeout) => {
+                if INTERRUPTED.swap(false, Ordering::SeqCst) {
+                    crate::cancel::cancel(ticket);
+                    let r = Response {
+                        err: "(interrupted; the session is as it was)\n".into(),
+                        failed: true,
+                        ..Response::default()
+                    };
+                    return (session, r);
+                }
+            }
+            Err(mpsc::RecvTimeoutError::Disconnected) => {
+                return (session, Response::default());
+            }
+        }
+    }
+}
+
+/// Completion and highlighting from the session's names.
+struct ReplHelper {
+    coordinates: Vec<String>,
+    parameters: Vec<String>,
+    others: Vec<String>,
+}
+
+impl ReplHelper {
+    fn new(s: &Session) -> ReplHelper {
+        let mut h = ReplHelper {
+            coordinates: Vec::new(),
+            parameters: Vec::new(),
+            others: Vec::new(),
+        };
+        h.refresh(s);
+        h
+    }
+
+    fn refresh(&mut self, s: &Session) {
+        let sc = s.scene();
+        self.coordinates = sc.coordinates.iter().map(|c| c.name.clone()).collect();
+        self.parameters = sc.parameters.iter().map(|p| p.name.clone()).collect();
+        self.others = s
+            .names()
+            .into_iter()
+            .filter(|n| !self.coordinates.contains(n) && !self.parameters.contains(n))
+            .collect();
+    }
+}
+
+impl Helper for ReplHelper {}
+impl Hinter for ReplHelper {
+    type Hint = String;
+}
+impl Validator for ReplHelper {}
+
+impl Completer for ReplHelper {
+    type Candidate = Pair;
+
+    fn complete(
+        &self,
+        line: &str,
+        pos: usize,
+        _ctx: &Context<'_>,
+    ) -> rustyline::Result<(usize, Vec<Pair>)> {
+        Ok(completions(
+            line,
+            pos,
+            &[&self.coordinates, &self.parameters, &self.others],
+        ))
+    }
+}
+
+/// The candidates for the word before `pos`: commands after a leading
+/// `:`, otherwise names, functions (with `(`) and keywords.
+pub fn completions(line: &str, pos: usize, names: &[&[String]]) -> (usize, Vec<Pair>) {
+    let before = &line[..pos.min(line.len())];
+    let start = before
+        .char_indices()
+        .rev()
+        .take_while(|&(_, c)| c.is_alphanumeric() || c == '_' || c == ':')
+        .last()
+        .map(|(i, _)| i)
+        .unwrap_or(before.len());
+    let word = &before[start..];
+    let mut out: Vec<Pair> = Vec::new();
+    if word.starts_with(':') && line[..start].trim().is_empty() {
+        for (c, _, _) in COMMANDS {
+            if c.starts_with(word) {
+                out.push(Pair {
+                    display: c.to_string(),
+                    replacement: c.to_string(),
+                });
+            }
+        }
+        return (start, out);
+    }
+    if word.is_empty() {
+        return (start, out);
+    }
+    for list in names {
+        for n in list.iter() {
+            if n.starts_with(word) {
+                out.push(Pair {
+                    display: n.clone(),
+                    replacement: n.clone(),
+                });
+            }
+        }
+    }
+    for f in FUNCTIONS {
+        if f.starts_with(word) {
+            out.push(Pair {
+                display: format!("{f}("),
+                replacement: format!("{f}("),
+            });
+        }
+    }
+    if line[..start].trim().is_empty() {
+        for k in KEYWORDS {
+            if k.starts_with(word) && !["at", "on"].contains(k) {
+                out.push(Pair {
+                    display: k.to_string(),
+                    replacement: format!("{k} "),
+                });
+            }
+        }
+    }
+    out.sort_by(|a, b| a.display.cmp(&b.display));
+    out.dedup_by(|a, b| a.display == b.display);
+    (start, out)
+}
+
+impl Highlighter for ReplHelper {
+    fn highlight<'l>(&self, line: &'l str, _pos: usize) -> Cow<'l, str> {
+        Cow::Owned(highlight(
+            line,
+            &self.coordinates,
+            &self.parameters,
+            &self.others,
+        ))
+    }
+
+    fn highlight_char(&self, _line: &str, _pos: usize, _kind: CmdKind) -> bool {
+        true
+    }
+}
+
+const RESET: &str = "\x1b[0m";
+const KEYWORD: &str = "\x1b[1;34m";
+const COORD: &str = "\x1b[32m";
+const PARAM: &str = "\x1b[33m";
+const DEFINED: &str = "\x1b[36m";
+const FUNCTION: &str = "\x1b[35m";
+const NUMBER: &str = "\x1b[36m";
+const COMMENT: &str = "\x1b[2m";
+const COMMAND: &str = "\x1b[1;35m";
+
+/// ANSI colours for one line: keywords, coordinates, parameters, other
+/// names, functions, numbers, comments and `:commands`.
+pub fn highlight(line: &str, coords: &[String], params: &[String], others: &[String]) -> String {
+    if line.trim_start().starts_with(':') {
+        return format!("{COMMAND}{line}{RESET}");
+    }
+    let mut out = String::with_capacity(line.len() + 32);
+    let mut it = line.char_indices().peekable();
+    let mut first_word = true;
+    while let Some((i, c)) = it.next() {
+        if c == '#' {
+            out.push_str(COMMENT);
+            out.push_str(&line[i..]);
+            out.push_str(RESET);
+            break;
+        }
+        if c.is_alphabetic() || c == '_' {
+            let mut end = i + c.len_utf8();
+            while let Some(&(j, d)) = it.peek() {
+                if d.is_alphanumeric() || d == '_' {
+                    end = j + d.len_utf8();
+                    it.next();
+                } else {
+                    break;
+                }
+            }
+            let w = &line[i..end];
+            let call = line[end..].starts_with('(');
+            let colour = if call && FUNCTIONS.contains(&w) {
+                Some(FUNCTION)
+            } else if coords.iter().any(|n| n == w) {
+                Some(COORD)
+            } else if params.iter().any(|n| n == w) {
+                Some(PARAM)
+            } else if others.iter().any(|n| n == w) {
+                Some(DEFINED)
+            } else if (first_word || w == "at" || w == "on") && KEYWORDS.contains(&w) {
+                Some(KEYWORD)
+            } else {
+                None
+            };
+            first_word = false;
+            match colour {
+                Some(col) => {
+                    out.push_str(col);
+                    out.push_str(w);
+                    out.push_str(RESET);
+                }
+                None => out.push_str(w),
+            }
+            continue;
+        }
+        if c.is_ascii_digit() {
+            let mut end = i + 1;
+            while let Some(&(j, d)) = it.peek() {
+                if d.is_ascii_alphanumeric() || d == '.' {
+                    end = j + d.len_utf8();
+                    it.next();
+                } else {
+                    break;
+                }
+            }
+            out.push_str(NUMBER);
+            out.push_str(&line[i..end]);
+            out.push_str(RESET);
+            first_word = false;
+            continue;
+        }
+        if !c.is_whitespace() && c != ';' {
+            first_word = false;
+        }
+        if c == ';' {
+            first_word = true;
+        }
+        out.push(c);
+    }
+    out
+}
