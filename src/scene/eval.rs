@@ -370,7 +370,12 @@ impl<'a> Evaluator<'a> {
         let mut best: Option<(usize, &String)> = None;
         for k in self.names.keys() {
             let d = edit_distance(n, k);
-            if d <= 2 && d < n.chars().count() && best.is_none_or(|(bd, _)| d < bd) {
+            // ties go to the name first in alphabetical order (the map's
+            // order is arbitrary)
+            if d <= 2
+                && d < n.chars().count()
+                && best.is_none_or(|(bd, bk)| d < bd || (d == bd && k < bk))
+            {
                 best = Some((d, k));
             }
         }
