@@ -19,7 +19,7 @@ use rustyline::highlight::{CmdKind, Highlighter};
 use rustyline::hint::Hinter;
 use rustyline::history::DefaultHistory;
 use rustyline::validate::Validator;
-use rustyline::{Config, Context, Editor, Helper};
+use rustyline::{CompletionType, Config, Context, Editor, Helper};
 use std::borrow::Cow;
 use std::io::{BufRead, IsTerminal, Write};
 use std::path::PathBuf;
@@ -36,13 +36,20 @@ static INTERRUPTED: AtomicBool = AtomicBool::new(false);
 /// Run the REPL, first loading `file` if given; the process exit code.
 pub fn run(file: Option<&str>) -> i32 {
     let mut session = Session::new();
+    let interactive_mode = std::io::stdin().is_terminal();
+    if interactive_mode {
+        println!(
+            "qdot {} — :help for help, Ctrl-D to leave",
+            env!("CARGO_PKG_VERSION")
+        );
+    }
     let mut failed = false;
     if let Some(f) = file {
         let r = session.execute(&format!(":load {f}"));
         failed |= r.failed;
         print_response(&r);
     }
-    if std::io::stdin().is_terminal() {
+    if interactive_mode {
         interactive(session);
         0
     } else {
@@ -97,6 +104,7 @@ pub fn history_path() -> Option<PathBuf> {
 fn interactive(mut session: Session) {
     let config = Config::builder()
         .auto_add_history(false)
+        .completion_type(CompletionType::List)
         .history_ignore_dups(true)
         .and_then(|b| b.max_history_size(10_000))
         .map(|b| b.build())
@@ -108,7 +116,11 @@ fn interactive(mut session: Session) {
             return;
         }
     };
-    rl.set_helper(Some(ReplHelper::new(&session)));
+    let mut helper = ReplHelper::new(&session);
+    // https://no-color.org, and terminals that can't show colour
+    helper.colour = std::env::var_os("NO_COLOR").is_none_or(|v| v.is_empty())
+        && std::env::var("TERM").map_or(true, |t| t != "dumb");
+    rl.set_helper(Some(helper));
     let history = history_path();
     if let Some(h) = &history {
         let _ = rl.load_history(h);
@@ -224,6 +236,7 @@ fn execute_cancellable(session: Session, entry: &str) -> (Session, Response) {
 
 /// Completion and highlighting from the session's names.
 struct ReplHelper {
+    colour: bool,
     coordinates: Vec<String>,
     parameters: Vec<String>,
     others: Vec<String>,
@@ -232,6 +245,7 @@ struct ReplHelper {
 impl ReplHelper {
     fn new(s: &Session) -> ReplHelper {
         let mut h = ReplHelper {
+            colour: true,
             coordinates: Vec::new(),
             parameters: Vec::new(),
             others: Vec::new(),
@@ -337,6 +351,9 @@ pub fn completions(line: &str, pos: usize, names: &[&[String]]) -> (usize, Vec<P
 
 impl Highlighter for ReplHelper {
     fn highlight<'l>(&self, line: &'l str, _pos: usize) -> Cow<'l, str> {
+        if !self.colour {
+            return Cow::Borrowed(line);
+        }
         Cow::Owned(highlight(
             line,
             &self.coordinates,
@@ -346,7 +363,7 @@ impl Highlighter for ReplHelper {
     }
 
     fn highlight_char(&self, _line: &str, _pos: usize, _kind: CmdKind) -> bool {
-        true
+        self.colour
     }
 }
 
