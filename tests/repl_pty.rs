@@ -45,7 +45,7 @@ fn expect(p: &mut PtySession, needle: &str) {
 /// Type a line, wait for what it prints (`needle`, may be empty) and for
 /// the next prompt, so that nothing is typed ahead of the line editor.
 fn enter(p: &mut PtySession, line: &str, needle: &str) {
-    p.send_line(line).expect("typed");
+    p.send_line(line).expect("typed").unwrap();
     if !needle.is_empty() {
         if let Err(e) = p.exp_string(&bytes(needle)) {
             panic!("after `{line}`, expected `{needle}`: {e}");
@@ -95,7 +95,7 @@ fn derive_seed_23_4_line_by_line_and_solve() {
     enter(&mut p, "forcefunction U = G*y1 + G*y2 +", "");
     enter(&mut p, "  3*G*y3", "U = 5·G·y₃ + G·r·θ₃");
     enter(&mut p, "work L = -mu*2*G*x5", "L = −1/8·G·y₃");
-    p.send_line(":solve").unwrap();
+    p.send_line(":solve").unwrap().unwrap();
     expect(&mut p, &format!("{Y_DDOT}₃ = 343/460·g"));
     expect(&mut p, "13/460·g/r");
     prompt(&mut p);
@@ -109,7 +109,7 @@ fn a_typo_line_then_a_correct_one() {
     let data = data_dir("typo");
     let mut p = start(&data, &[]);
     enter(&mut p, "parameters m, k", "");
-    p.send_line("w = sqrt(k/mm)");
+    p.send_line("w = sqrt(k/mm)").unwrap();
     expect(&mut p, "error: unknown name `mm`");
     expect(&mut p, "--> input:1:12");
     expect(&mut p, "^^");
@@ -117,7 +117,7 @@ fn a_typo_line_then_a_correct_one() {
     // the session is as it was: k and m are still there
     enter(&mut p, "w = sqrt(k/m)", "w = √(k)·√(m)/m");
     enter(&mut p, "w^2", "k/m");
-    p.send_line(":quit").unwrap();
+    p.send_line(":quit").unwrap().unwrap();
     p.exp_eof().unwrap();
 }
 
@@ -132,7 +132,7 @@ fn ctrl_c_drops_the_entry_being_typed_and_the_session_goes_on() {
     expect(&mut p, "(entry dropped)");
     prompt(&mut p);
     // text typed on the line, then Ctrl-C: the line is dropped
-    p.send("c = 1");
+    p.send("c = 1").unwrap();
     p.flush().unwrap();
     p.send_control('c').unwrap();
     expect(&mut p, "(Ctrl-D or :quit leaves)");
@@ -150,7 +150,7 @@ fn ctrl_c_interrupts_a_long_computation() {
     enter(&mut p, "parameters a, b, c, d, e, f", "");
     enter(&mut p, "x = 2*a", "x = 2·a");
     // takes minutes: interrupted after a moment
-    p.send_line("(a + b + c + d + e + f)^40");
+    p.send_line("(a + b + c + d + e + f)^40").unwrap();
     std::thread::sleep(std::time::Duration::from_millis(700));
     p.send_control('c').unwrap();
     expect(&mut p, "(interrupted; the session is as it was)");
@@ -177,11 +177,11 @@ fn history_is_recalled_after_a_restart() {
     let mut p = start(&data, &[]);
     p.send("\x1b[A\x1b[A"); // Up, Up: `parameters m, k`
     p.flush().unwrap();
-    p.send_line("");
+    p.send_line("").unwrap();
     expect(&mut p, "");
     p.send("\x1b[A\x1b[A"); // Up, Up: the expression (after the new entry)
     p.flush().unwrap();
-    p.send_line("");
+    p.send_line("").unwrap();
     expect(&mut p, "7·√(k)·√(m)/m");
     p.send_control('d').unwrap();
     p.exp_eof().unwrap();
@@ -195,10 +195,10 @@ fn repl_starts_from_a_file_and_completes_names() {
     // them, so ask for something from it
     enter(&mut p, ":show mu", "μ = 1/8");
     // Tab completes the only name starting with `x`
-    p.send("1 + x");
-    p.send("\t");
+    p.send("1 + x").unwrap();
+    p.send("\t").unwrap();
     p.flush().unwrap();
-    p.send("\r");
+    p.send("\r").unwrap();
     p.flush().unwrap();
     expect(&mut p, "1/2·y₃ + 1");
     p.send_control('d').unwrap();
