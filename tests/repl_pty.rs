@@ -45,7 +45,7 @@ fn expect(p: &mut PtySession, needle: &str) {
 /// Type a line, wait for what it prints (`needle`, may be empty) and for
 /// the next prompt, so that nothing is typed ahead of the line editor.
 fn enter(p: &mut PtySession, line: &str, needle: &str) {
-    p.send_line(line).expect("typed").unwrap();
+    p.send_line(line).expect("typed");
     if !needle.is_empty() {
         if let Err(e) = p.exp_string(&bytes(needle)) {
             panic!("after `{line}`, expected `{needle}`: {e}");
@@ -95,7 +95,7 @@ fn derive_seed_23_4_line_by_line_and_solve() {
     enter(&mut p, "forcefunction U = G*y1 + G*y2 +", "");
     enter(&mut p, "  3*G*y3", "U = 5·G·y₃ + G·r·θ₃");
     enter(&mut p, "work L = -mu*2*G*x5", "L = −1/8·G·y₃");
-    p.send_line(":solve").unwrap().unwrap();
+    p.send_line(":solve").unwrap();
     expect(&mut p, &format!("{Y_DDOT}₃ = 343/460·g"));
     expect(&mut p, "13/460·g/r");
     prompt(&mut p);
@@ -117,7 +117,7 @@ fn a_typo_line_then_a_correct_one() {
     // the session is as it was: k and m are still there
     enter(&mut p, "w = sqrt(k/m)", "w = √(k)·√(m)/m");
     enter(&mut p, "w^2", "k/m");
-    p.send_line(":quit").unwrap().unwrap();
+    p.send_line(":quit").unwrap();
     p.exp_eof().unwrap();
 }
 
@@ -175,14 +175,17 @@ fn history_is_recalled_after_a_restart() {
 
     // a new session: Up recalls the last entry, Up again the one before
     let mut p = start(&data, &[]);
-    p.send("\x1b[A\x1b[A"); // Up, Up: `parameters m, k`
+    p.send("\x1b[A\x1b[A").unwrap(); // Up, Up: `parameters m, k`
     p.flush().unwrap();
     p.send_line("").unwrap();
-    expect(&mut p, "");
-    p.send("\x1b[A\x1b[A"); // Up, Up: the expression (after the new entry)
+    // the redraws after Up also show `qdot> `: wait for Enter's newline
+    p.exp_string("\r\n").unwrap();
+    prompt(&mut p);
+    p.send("\x1b[A\x1b[A").unwrap(); // Up, Up: the expression (after the new entry)
     p.flush().unwrap();
     p.send_line("").unwrap();
     expect(&mut p, "7·√(k)·√(m)/m");
+    prompt(&mut p);
     p.send_control('d').unwrap();
     p.exp_eof().unwrap();
 }
