@@ -38,6 +38,10 @@ enum Command {
     Repl {
         /// A scene file (.qd) to start from.
         file: Option<String>,
+        /// With stdin not a terminal: print each entry after its prompt
+        /// and everything on stdout, as a transcript of the session.
+        #[arg(long)]
+        echo: bool,
     },
     /// Derive Lagrange's equations, the mass matrix and the forcing.
     Derive {
@@ -109,13 +113,13 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let command = match cli.command {
-        None => return repl(None),
-        Some(Command::Repl { file }) => return repl(file.as_deref()),
+        None => return repl(None, false),
+        Some(Command::Repl { file, echo }) => return repl(file.as_deref(), echo),
         Some(c) => c,
     };
     let mut opts = output::Options::default();
     let (cmd, file, fmt, set) = match &command {
-        Command::Repl { .. } => return repl(None),
+        Command::Repl { .. } => return repl(None, false),
         Command::Derive { file, format } => (output::Command::Derive, file, *format, None),
         Command::Solve { file, format } => (output::Command::Solve, file, *format, None),
         Command::Forces { file, format } => (output::Command::Forces, file, *format, None),
@@ -180,8 +184,8 @@ fn main() -> ExitCode {
     }
 }
 
-fn repl(file: Option<&str>) -> ExitCode {
-    match qdot::repl::terminal::run(file) {
+fn repl(file: Option<&str>, echo: bool) -> ExitCode {
+    match qdot::repl::terminal::run(file, echo) {
         0 => ExitCode::SUCCESS,
         _ => ExitCode::from(1),
     }

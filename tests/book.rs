@@ -1,6 +1,7 @@
 //! The book shows qdot's real output: every ```text (or ```latex) block
 //! preceded by a `<!-- qdot ARGS -->` comment must equal what `qdot ARGS`
-//! prints (run from the repository root), and the text between
+//! prints (run from the repository root; `ARGS < FILE` feeds FILE to
+//! stdin, for REPL transcripts), and the text between
 //! `<!-- qdot-math ARGS -->` and `<!-- /qdot-math -->` must be qdot's LaTeX
 //! output made into Markdown that MathJax renders ([`mathjax`]).
 //! `QDOT_BLESS=1 cargo test --test book` rewrites the blocks from the
@@ -8,12 +9,22 @@
 
 use std::process::Command;
 
+/// `qdot ARGS`; `ARGS < FILE` feeds the file to stdin (a REPL session).
 fn run(args: &str) -> String {
-    let out = Command::new(env!("CARGO_BIN_EXE_qdot"))
-        .args(args.split_whitespace())
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("qdot runs");
+    let (args, input) = match args.split_once(" < ") {
+        Some((a, f)) => (a, Some(f.trim())),
+        None => (args, None),
+    };
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_qdot"));
+    cmd.args(args.split_whitespace())
+        .current_dir(env!("CARGO_MANIFEST_DIR"));
+    let stdin = match input {
+        Some(f) => std::fs::File::open(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(f))
+            .expect("the REPL script")
+            .into(),
+        None => std::process::Stdio::null(),
+    };
+    let out = cmd.stdin(stdin).output().expect("qdot runs");
     assert!(
         out.status.success(),
         "qdot {args} failed: {}",

@@ -103,20 +103,33 @@ fn expressions_and_the_functions_of_the_repl() {
     assert_eq!(ok(&mut s, "subs(U, y3 = 0, theta3 = 1)"), "G·r\n");
     assert_eq!(
         ok(&mut s, "taylor(cos(theta3), theta3, 4)"),
-        "1/24·θ₃⁴ − 1/2·θ₃² + 1\n"
+        "1 − 1/2·θ₃² + 1/24·θ₃⁴\n"
     );
     // series(f, q, n) with q a coordinate is the Taylor series
     assert_eq!(
         ok(&mut s, "series(sin(theta3), theta3, 5)"),
-        "1/120·θ₃⁵ − 1/6·θ₃³ + θ₃\n"
+        "θ₃ − 1/6·θ₃³ + 1/120·θ₃⁵\n"
     );
-    // about another point: sin θ near π is −(θ − π) + (θ − π)³/6 …
-    let about_pi = ok(&mut s, "taylor(sin(theta3), theta3 = pi, 1)");
-    assert_eq!(about_pi, "−θ₃ + π\n");
+    // about another point, in powers of θ − π
+    assert_eq!(
+        ok(&mut s, "taylor(sin(theta3), theta3 = pi, 3)"),
+        "−(θ₃ − π) + 1/6·(θ₃ − π)³\n"
+    );
+    // the value is the polynomial itself: −θ + π + (θ − π)³/6 expanded
+    assert_eq!(ok(&mut s, "_ - (pi - theta3) - (theta3 - pi)^3/6"), "0\n");
+    assert_eq!(
+        ok(&mut s, "series(exp(theta3), theta3 = -1, 2)"),
+        "1/exp(1) + 1/exp(1)·(θ₃ + 1) + 1/(2·exp(1))·(θ₃ + 1)²\n"
+    );
     // expand shows every term
     assert_eq!(
         ok(&mut s, "expand((y3 + r)^3)"),
         "y₃³ + 3·r·y₃² + 3·r²·y₃ + r³\n"
+    );
+    // over a sum: every numerator term, by descending degree
+    assert_eq!(
+        ok(&mut s, "expand((y3 + r)^2/(y3 - r))"),
+        "(y₃² + 2·r·y₃ + r²)/(y₃ − r)\n"
     );
     // the value of expand/factor is the canonical expression itself
     assert_eq!(ok(&mut s, "expand((y3 + r)^2) - (y3 + r)^2"), "0\n");

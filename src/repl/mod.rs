@@ -28,7 +28,7 @@ use crate::expr::print::{self, Style};
 use crate::expr::Expr;
 use crate::output::{self, Command, Format, Options};
 use crate::parse::ast::{ExprKind, Stmt};
-use crate::poly::Poly;
+use crate::poly::{Poly, Var};
 use crate::scene::{Scene, Value};
 
 /// The label of the REPL's own input in error messages.
@@ -46,7 +46,8 @@ pub struct Response {
 }
 
 impl Response {
-    fn out(s: impl Into<String>) -> Response {
+    /// Output only.
+    pub fn out(s: impl Into<String>) -> Response {
         let mut out: String = s.into();
         if !out.is_empty() && !out.ends_with('\n') {
             out.push('\n');
@@ -380,11 +381,7 @@ impl Session {
                 return Response::error(d.render(INPUT, entry));
             }
         };
-        let layout = match &e.kind {
-            ExprKind::Call(f, _) if f.name == "expand" => Layout::Expanded,
-            ExprKind::Call(f, _) if f.name == "factor" => Layout::Factored,
-            _ => Layout::Plain,
-        };
+        let layout = self.layout(e, &extra);
         let out = self.show_value(None, &value, layout);
         let err: String = warnings.iter().map(|w| w.render(INPUT, entry)).collect();
         self.push_undo();
@@ -393,6 +390,50 @@ impl Session {
             out,
             err,
             ..Response::default()
+        }
+    }
+
+    /// The layout the outermost call asks for.
+    fn layout(&self, e: &crate::parse::ast::Expr, extra: &[(&str, Value)]) -> Layout {
+        let ExprKind::Call(f, args) = &e.kind else {
+            return Layout::Plain;
+        };
+        match f.name.as_str() {
+            "expand" => Layout::Expanded,
+            "factor" => Layout::Factored,
+            "taylor" | "series" if args.len() == 3 => {
+                let (x, a) = match &args[1].kind {
+                    ExprKind::Assign(x, a) => (&**x, Some(&**a)),
+                    _ => (&args[1], None),
+                };
+                let scalar = |x: &crate::parse::ast::Expr| match self.scene.evaluate(x, extra) {
+                    Ok((Value::Scalar(v), _)) => Some(v),
+                    _ => None,
+                };
+                let var = scalar(x).and_then(|v| v.as_var());
+                let point = match a {
+                    Some(a) => scalar(a),
+                    None => Some(Expr::zero()),
+                };
+                match (var, point) {
+                    // series(k1, k2, k3) of springs is a plain value
+                    (Some(var), Some(point)) if f.name == "taylor" || self.is_taylor(args) => {
+                        Layout::Series { var, point }
+                    }
+                    _ => Layout::Plain,
+                }
+            }
+            _ => Layout::Plain,
+        }
+    }
+
+    /// Whether `series(…)` with these arguments is the Taylor series (a
+    /// named point, or a coordinate, velocity or `t` as the variable).
+    fn is_taylor(&self, args: &[crate::parse::ast::Expr]) -> bool {
+        match &args[1].kind {
+            ExprKind::Assign(..) | ExprKind::Prime(..) => true,
+            ExprKind::Name(n) => n == "t" || self.scene.coordinates.iter().any(|c| &c.name == n),
+            _ => false,
         }
     }
 
@@ -406,6 +447,7 @@ impl Session {
 
     /// A value (with its name, for definitions) in the current format.
     fn show_value(&self, name: Option<&str>, v: &Value, layout: Layout) -> String {
+        let layout = &layout;
         match self.format {
             Format::Text => {
                 let body = match v {
@@ -685,46 +727,152 @@ impl Session {
 }
 
 /// How an expression is laid out: as qdot prints it, every term of the
-/// numerator separately (`expand`), or as a product of irreducible factors
-/// (`factor`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// numerator separately (`expand`), as a product of irreducible factors
+/// (`factor`), or in ascending powers of x − a (`taylor`, `series`).
+#[derive(Clone, Debug, PartialEq)]
 enum Layout {
     Plain,
     Expanded,
     Factored,
+    Series { var: Var, point: Expr },
 }
 
 impl Layout {
-    fn text(self, e: &Expr) -> String {
+    fn text(&self, e: &Expr) -> String {
         match self {
             Layout::Plain => print::unicode(e),
             Layout::Expanded => expanded(e, Style::Unicode),
             Layout::Factored => factored(e, Style::Unicode),
+            Layout::Series { var, point } => series_layout(e, *var, point, None),
         }
     }
-    fn latex(self, e: &Expr, names: &Names) -> String {
+    fn latex(&self, e: &Expr, names: &Names) -> String {
         match self {
-            Layout::Plain => tex::latex_with(e, names),
+            Layout::Plain | Layout::Factored => tex::latex_with(e, names),
             Layout::Expanded => tex::latex_expanded(e, names),
-            Layout::Factored => tex::latex_with(e, names),
+            Layout::Series { var, point } => series_layout(e, *var, point, Some(names)),
         }
+    }
+}
+
+/// A polynomial p in `var` as Σ cₖ·(var − a)ᵏ in ascending k, with
+/// cₖ = p⁽ᵏ⁾(a)/k! (Unicode, or LaTeX with `names`); anything else plainly.
+fn series_layout(e: &Expr, var: Var, a: &Expr, names: Option<&Names>) -> String {
+    let plain = |x: &Expr| match names {
+        Some(n) => tex::latex_with(x, n),
+        None => print::unicode(x),
+    };
+    let degree = e.num().degree(var);
+    if e.den().contains_var(var) || degree == 0 {
+        return plain(e);
+    }
+    let x = Expr::var(var);
+    // x − a, written that way round whatever the names' order
+    let base = if a.is_zero() {
+        plain(&x)
+    } else {
+        let at = plain(a);
+        let (sign, mag) = match at.strip_prefix('−').or_else(|| at.strip_prefix('-')) {
+            Some(_) => ("+", plain(&a.neg())),
+            None => ("−", at),
+        };
+        let mag = if a.num().len() > 1 {
+            format!("({mag})")
+        } else {
+            mag
+        };
+        match names {
+            Some(_) => format!(
+                "\\left({} {} {mag}\\right)",
+                plain(&x),
+                if sign == "+" { "+" } else { "-" }
+            ),
+            None => format!("({} {sign} {mag})", plain(&x)),
+        }
+    };
+    let mut items: Vec<(bool, String)> = Vec::new();
+    let mut d = e.clone();
+    let mut fact = crate::num::Q::one();
+    for k in 0..=degree {
+        if k > 0 {
+            d = d.diff(var);
+            fact = &fact * &crate::num::Q::from_i64(i64::from(k));
+        }
+        let Ok(at) = d.subs(var, a) else {
+            return plain(e);
+        };
+        let c = at.scale(&fact.recip().unwrap_or_else(crate::num::Q::zero));
+        if c.is_zero() {
+            continue;
+        }
+        let power = match (k, names) {
+            (0, _) => String::new(),
+            (1, _) => base.clone(),
+            (k, Some(_)) => format!("{base}^{{{k}}}"),
+            (k, None) => format!("{base}{}", print::superscript(k)),
+        };
+        let text = plain(&c);
+        let neg = text.starts_with('−') || text.starts_with('-');
+        let mag = if neg { c.neg() } else { c.clone() };
+        let coef = plain(&mag);
+        let sum = mag.num().len() > 1;
+        let term = match (power.is_empty(), mag.is_one(), sum, names) {
+            (true, ..) => coef,
+            (false, true, ..) => power,
+            (false, false, true, Some(_)) => format!("\\left({coef}\\right) {power}"),
+            (false, false, true, None) => format!("({coef})·{power}"),
+            (false, false, false, Some(_)) => format!("{coef} {power}"),
+            (false, false, false, None) => format!("{coef}·{power}"),
+        };
+        items.push((neg, term));
+    }
+    match names {
+        Some(_) => tex::join(items),
+        None => print::join_terms(items.into_iter(), Style::Unicode),
     }
 }
 
 /// Every term of the numerator on its own, over the denominator.
 fn expanded(e: &Expr, st: Style) -> String {
-    if e.den().len() == 1 {
+    let num = terms_text(e.num(), st);
+    if e.den().is_one() {
+        return num;
+    }
+    if e.den().len() == 1 && e.num().len() > 1 {
         return print::expanded(e);
     }
-    let num = terms_text(e.num(), st);
-    format!(
-        "({num})/({})",
-        print::render(&Expr::from_poly(e.den().clone()), st)
-    )
+    let den = print::render(&Expr::from_poly(e.den().clone()), st);
+    let den = if e.den().len() > 1 || den.contains('·') {
+        format!("({den})")
+    } else {
+        den
+    };
+    if e.num().len() > 1 {
+        format!("({num})/{den}")
+    } else {
+        format!("{num}/{den}")
+    }
 }
 
+/// The terms by descending degree in the coordinates (as qdot's printer
+/// orders them), then by descending total degree (ties in the
+/// polynomial's order).
 fn terms_text(p: &Poly, st: Style) -> String {
-    let items = p.terms().iter().rev().map(|(m, c)| {
+    let mut terms: Vec<&(crate::poly::Mono, crate::num::Q)> = p.terms().iter().rev().collect();
+    let moving = |m: &crate::poly::Mono| -> u32 {
+        m.pairs()
+            .iter()
+            .filter(|(v, _)| Expr::var(*v).is_time_dependent())
+            .map(|(_, e)| e)
+            .sum()
+    };
+    terms.sort_by_key(|(m, _)| {
+        (
+            std::cmp::Reverse(moving(m)),
+            std::cmp::Reverse(m.total_degree()),
+        )
+    });
+    let items = terms.into_iter().map(|(m, c)| {
         let t = Expr::from_poly(Poly::monomial(m.clone(), c.abs()));
         (c.is_negative(), print::render(&t, st))
     });

@@ -10,7 +10,8 @@
 //!
 //! When stdin is not a terminal, entries are read from it with no prompts:
 //! results go to stdout, errors to stderr, and the exit status is 1 when
-//! any entry failed.
+//! any entry failed. With `echo`, each entry is printed after its prompt
+//! and errors go to stdout too: a transcript, as the terminal would show.
 
 use super::{is_complete, Response, Session, COMMANDS, FUNCTIONS, KEYWORDS};
 use rustyline::completion::{Completer, Pair};
@@ -34,7 +35,7 @@ const MORE: &str = "  ... ";
 static INTERRUPTED: AtomicBool = AtomicBool::new(false);
 
 /// Run the REPL, first loading `file` if given; the process exit code.
-pub fn run(file: Option<&str>) -> i32 {
+pub fn run(file: Option<&str>, echo: bool) -> i32 {
     let mut session = Session::new();
     let interactive_mode = std::io::stdin().is_terminal();
     if interactive_mode {
@@ -53,14 +54,30 @@ pub fn run(file: Option<&str>) -> i32 {
         interactive(session);
         0
     } else {
-        i32::from(piped(session, std::io::stdin().lock()) || failed)
+        i32::from(piped(session, std::io::stdin().lock(), echo) || failed)
     }
 }
 
-/// Entries from a reader, no prompts: whether any failed.
-pub fn piped(mut session: Session, input: impl BufRead) -> bool {
+/// Entries from a reader, no prompts (with `echo`, a transcript):
+/// whether any failed.
+pub fn piped(mut session: Session, input: impl BufRead, echo: bool) -> bool {
     let mut failed = false;
     let mut entry = String::new();
+    let show = |entry: &str, r: &Response| {
+        if echo {
+            let mut t = String::new();
+            for (i, line) in entry.trim_end_matches('\n').lines().enumerate() {
+                t.push_str(if i == 0 { PROMPT } else { MORE });
+                t.push_str(line);
+                t.push('\n');
+            }
+            t.push_str(&r.out);
+            t.push_str(&r.err);
+            print_response(&Response::out(t));
+        } else {
+            print_response(r);
+        }
+    };
     for line in input.lines() {
         let Ok(line) = line else { break };
         entry.push_str(&line);
@@ -69,17 +86,17 @@ pub fn piped(mut session: Session, input: impl BufRead) -> bool {
             continue;
         }
         let r = session.execute(&entry);
+        show(&entry, &r);
         entry.clear();
         failed |= r.failed;
-        print_response(&r);
         if r.quit {
             return failed;
         }
     }
     if !entry.trim().is_empty() {
         let r = session.execute(&entry);
+        show(&entry, &r);
         failed |= r.failed;
-        print_response(&r);
     }
     failed
 }
