@@ -21,18 +21,32 @@
 //!    & Gerhard, *Modern Computer Algebra*, 3rd ed., §14.2–14.3, Alg. 15.10,
 //!    15.17, 15.19; Cohen, *A Course in Computational Algebraic Number
 //!    Theory*, §3.5);
-//! 5. multivariate parts: Kronecker's substitution `xⱼ ↦ y^Dⱼ` with mixed
-//!    radices `Dⱼ₊₁ = Dⱼ·(deg_{xⱼ} p + 1)` (injective on every divisor of
-//!    `p`), the univariate image factored completely over ℤ, and subsets of
-//!    its irreducible factors (and of the power of `y` it contains) mapped
-//!    back and tested by exact division, smallest subsets first (Kaltofen,
-//!    "Factorization of polynomials", Computer Algebra, 1982; MCA §16.6).
+//! 5. multivariate parts: the extended Zassenhaus method — the variables
+//!    other than the main one `x` (smallest degree) are set to an integer
+//!    point `c` (zero first) that keeps `deg_x` and leaves the image
+//!    square-free; an irreducible image proves irreducibility; otherwise the
+//!    image factors (the best of a few points: fewest factors) are lifted
+//!    in ℚ[[y − c]][x] by linear Hensel lifting in all the other variables
+//!    at once, and subsets recombined by exact division (Wang & Rothschild,
+//!    "Factoring multivariate polynomials over the integers", Math. Comp.
+//!    29, 1975; MCA §15.4–15.6, §16.6);
+//! 6. when no suitable point is found: Kronecker's substitution
+//!    `xⱼ ↦ y^Dⱼ` with mixed radices `Dⱼ₊₁ = Dⱼ·(deg_{xⱼ} p + 1)` (injective
+//!    on every divisor of `p`), the univariate image factored completely
+//!    over ℤ, and subsets of its irreducible factors (and of the power of `y`
+//!    it contains) mapped back and tested by exact division, smallest
+//!    subsets first (Kaltofen, "Factorization of polynomials", Computer
+//!    Algebra, 1982).
 //!
 //! Every search is finite. The costs to know:
-//! * recombination is exponential in the number of modular (univariate) or
-//!   ℤ-irreducible (Kronecker image) factors: `Σ_{s ≤ r/2} C(r, s)` trial
-//!   candidates at worst (Swinnerton-Dyer polynomials of degree 2ᵏ split into
-//!   ≥ 2ᵏ⁻¹ factors modulo every prime);
+//! * recombination is exponential in the number `r` of modular
+//!   (univariate), image (evaluation) or ℤ-irreducible (Kronecker image)
+//!   factors: `Σ_{s ≤ r/2} C(r, s)` trial candidates at worst
+//!   (Swinnerton-Dyer polynomials of degree 2ᵏ split into ≥ 2ᵏ⁻¹ factors
+//!   modulo every prime); no lattice reduction (van Hoeij) is done;
+//! * the lifting in several variables works on dense truncated power
+//!   series: its cost grows with `deg_x · (number of monomials of total
+//!   degree ≤ 2·deg_y)`;
 //! * the Kronecker image has degree up to `∏ (deg_{xⱼ} p + 1) − 1`; above
 //!   [`MAX_KRONECKER_DEGREE`] a multivariate part is returned unsplit (it is
 //!   then a factor, but not certified irreducible);
@@ -271,7 +285,10 @@ fn factor_squarefree(g: &Poly, out: &mut Vec<Poly>) {
         out.push(g.clone());
         return;
     }
-    out.extend(kronecker_factor(g, &vars));
+    match hensel_factor(g, &vars) {
+        Some(fs) => out.extend(fs),
+        None => out.extend(kronecker_factor(g, &vars)),
+    }
 }
 
 // ===========================================================================
@@ -1114,6 +1131,348 @@ fn inverse_kronecker(
     Some(Poly::from_terms(terms))
 }
 
+// ===========================================================================
+// evaluation and Hensel lifting over Q[[y]] (several variables)
+// ===========================================================================
+
+/// Dense univariate polynomial over ℚ, lowest degree first, no trailing
+/// zeros.
+type QPoly = Vec<Q>;
+
+fn q_trim(a: &mut QPoly) {
+    while a.last().is_some_and(|c| c.is_zero()) {
+        a.pop();
+    }
+}
+
+fn q_mul(a: &[Q], b: &[Q]) -> QPoly {
+    if a.is_empty() || b.is_empty() {
+        return Vec::new();
+    }
+    let mut out = vec![Q::zero(); a.len() + b.len() - 1];
+    for (i, x) in a.iter().enumerate() {
+        if x.is_zero() {
+            continue;
+        }
+        for (j, y) in b.iter().enumerate() {
+            out[i + j] += x * y;
+        }
+    }
+    q_trim(&mut out);
+    out
+}
+
+fn q_sub(a: &[Q], b: &[Q]) -> QPoly {
+    let n = a.len().max(b.len());
+    let mut out: QPoly = (0..n)
+        .map(|i| {
+            let x = a.get(i).cloned().unwrap_or_else(Q::zero);
+            match b.get(i) {
+                Some(y) => &x - y,
+                None => x,
+            }
+        })
+        .collect();
+    q_trim(&mut out);
+    out
+}
+
+/// Quotient and remainder by a nonzero `b`.
+fn q_divrem(a: &[Q], b: &[Q]) -> (QPoly, QPoly) {
+    let db = b.len() - 1;
+    if a.len() < b.len() {
+        return (Vec::new(), a.to_vec());
+    }
+    let inv = b[db].recip().unwrap_or_else(Q::one);
+    let mut r = a.to_vec();
+    let mut q = vec![Q::zero(); a.len() - db];
+    for k in (0..q.len()).rev() {
+        let c = &r[k + db] * &inv;
+        if c.is_zero() {
+            continue;
+        }
+        for (j, bj) in b.iter().enumerate() {
+            let t = &c * bj;
+            r[k + j] -= t;
+        }
+        q[k] = c;
+    }
+    r.truncate(db);
+    q_trim(&mut r);
+    q_trim(&mut q);
+    (q, r)
+}
+
+/// The inverse of `a` modulo `m` (coprime), or `None`.
+fn q_inverse_mod(a: &[Q], m: &[Q]) -> Option<QPoly> {
+    let (mut r0, mut r1) = (m.to_vec(), q_divrem(a, m).1);
+    let (mut t0, mut t1): (QPoly, QPoly) = (Vec::new(), vec![Q::one()]);
+    while !r1.is_empty() {
+        let (q, r) = q_divrem(&r0, &r1);
+        let t2 = q_sub(&t0, &q_mul(&q, &t1));
+        r0 = std::mem::replace(&mut r1, r);
+        t0 = std::mem::replace(&mut t1, t2);
+    }
+    if r0.len() != 1 {
+        return None;
+    }
+    let inv = r0[0].recip()?;
+    Some(t0.iter().map(|c| c * &inv).collect())
+}
+
+/// Total degree of a monomial in the variables other than `x`.
+fn ydeg(m: &Mono, x: Var) -> u32 {
+    m.total_degree() - m.degree(x)
+}
+
+/// Drops the terms of total degree ≥ `prec` in the variables other than `x`.
+fn truncate_y(p: &Poly, x: Var, prec: u32) -> Poly {
+    Poly::from_terms(
+        p.terms()
+            .iter()
+            .filter(|t| ydeg(&t.0, x) < prec)
+            .cloned()
+            .collect(),
+    )
+}
+
+/// The terms of `p` of total degree exactly `k` in the variables other than `x`.
+fn homogeneous_y(p: &Poly, x: Var, k: u32) -> Poly {
+    Poly::from_terms(
+        p.terms()
+            .iter()
+            .filter(|t| ydeg(&t.0, x) == k)
+            .cloned()
+            .collect(),
+    )
+}
+
+/// `p` with every `yⱼ` replaced by `yⱼ + cⱼ`.
+fn shift(p: &Poly, ys: &[Var], c: &[i64]) -> Poly {
+    let mut out = p.clone();
+    for (&y, &cj) in ys.iter().zip(c) {
+        if cj != 0 {
+            out = out.subst(y, &(&Poly::var(y) + &Poly::constant(Q::from_i64(cj))));
+        }
+    }
+    out
+}
+
+/// `(s · e) mod u` in `x`, coefficientwise over the monomials in the other
+/// variables.
+fn rem_coeffwise(e: &Poly, s: &[Q], u: &[Q], x: Var) -> Poly {
+    let mut groups: rustc_hash::FxHashMap<Mono, QPoly> = rustc_hash::FxHashMap::default();
+    for (m, c) in e.terms() {
+        let d = m.degree(x) as usize;
+        let rest = m.without(x);
+        let v = groups.entry(rest).or_default();
+        if v.len() <= d {
+            v.resize(d + 1, Q::zero());
+        }
+        v[d] = c.clone();
+    }
+    let mut terms = Vec::new();
+    for (rest, mut v) in groups {
+        q_trim(&mut v);
+        let r = q_divrem(&q_mul(&v, s), u).1;
+        for (i, c) in r.into_iter().enumerate() {
+            if !c.is_zero() {
+                terms.push((rest.mul(&Mono::var_pow(x, i as u32)), c));
+            }
+        }
+    }
+    Poly::from_terms(terms)
+}
+
+/// Evaluation points tried (at most) per polynomial, and good ones compared.
+const POINTS_TRIED: usize = 24;
+const GOOD_POINTS: usize = 3;
+
+/// The `k`-th evaluation point for `n` variables: zero first, then small
+/// integers in a fixed pseudo-random order.
+fn point(k: usize, n: usize) -> Vec<i64> {
+    if k == 0 {
+        return vec![0; n];
+    }
+    let mut rng = Rng(0x2545_F491_4F6C_DD1D ^ (k as u64).wrapping_mul(0x9E37_79B9));
+    let r = 1 + (k as u64) / 4;
+    (0..n)
+        .map(|_| (rng.next() % (2 * r + 1)) as i64 - r as i64)
+        .collect()
+}
+
+/// Factors a multivariate `g` (primitive in every variable, square-free, no
+/// monomial content, positive leading coefficient) by evaluation and Hensel
+/// lifting (the extended Zassenhaus method, Wang & Rothschild 1975; MCA
+/// §16.4–16.6, with the lifting done at once in all evaluated variables
+/// modulo the powers of the ideal (y − c)): the other variables are set
+/// to a point `c` keeping the degree in the main variable `x` and the image
+/// square-free; the image is factored over ℤ; the monic factors are lifted
+/// in ℚ[[y − c]][x] up to the total degree that bounds `lc(g)·h/lc(h)` for
+/// every factor `h`; subsets of the lifted factors, smallest first, are
+/// tested by exact division. `None` when no point among the first
+/// [`POINTS_TRIED`] is suitable (then Kronecker's method is used).
+fn hensel_factor(g: &Poly, vars: &[Var]) -> Option<Vec<Poly>> {
+    // main variable: the smallest degree
+    let x = *vars.iter().min_by_key(|&&v| (g.degree(v), v))?;
+    let ys: Vec<Var> = vars.iter().copied().filter(|&v| v != x).collect();
+    let n = g.degree(x) as usize;
+    let lcx = g.coeffs_in(x).pop()?;
+    let mut best: Option<(Vec<i64>, Vec<ZPoly>)> = None;
+    let mut good = 0;
+    for k in 0..POINTS_TRIED {
+        let c = point(k, ys.len());
+        let mut lc0 = lcx.clone();
+        let mut f0 = g.clone();
+        for (&y, &cj) in ys.iter().zip(&c) {
+            lc0 = lc0.eval_var(y, &Q::from_i64(cj));
+            f0 = f0.eval_var(y, &Q::from_i64(cj));
+        }
+        if lc0.is_zero() || f0.degree(x) as usize != n {
+            continue;
+        }
+        if !f0.gcd(&f0.diff(x)).is_constant() {
+            continue;
+        }
+        let f0 = normalize(&f0);
+        let fs = zassenhaus(&to_dense(&f0, x));
+        if fs.len() == 1 {
+            return Some(vec![g.clone()]);
+        }
+        if best.as_ref().is_none_or(|b| fs.len() < b.1.len()) {
+            best = Some((c, fs));
+        }
+        good += 1;
+        if good >= GOOD_POINTS {
+            break;
+        }
+    }
+    let (c, us) = best?;
+    let fs = shift(g, &ys, &c);
+    let lcs = fs.coeffs_in(x).pop()?;
+    let dy = fs.terms().iter().map(|t| ydeg(&t.0, x)).max().unwrap_or(0);
+    let dl = lcs.terms().iter().map(|t| ydeg(&t.0, x)).max().unwrap_or(0);
+    let prec = dy + dl + 1;
+    // monic target fs / lc (a power series: lc has constant term lc0 ≠ 0)
+    let lc0 = lcs.as_constant().cloned().unwrap_or_else(|| {
+        lcs.terms()
+            .last()
+            .filter(|t| t.0.is_one())
+            .map(|t| t.1.clone())
+            .unwrap_or_else(Q::zero)
+    });
+    let inv0 = lc0.recip()?;
+    let tser = &Poly::one() - &lcs.scale(&inv0);
+    let mut inv = Poly::one();
+    let mut pw = Poly::one();
+    for _ in 1..prec {
+        pw = truncate_y(&(&pw * &tser), x, prec);
+        if pw.is_zero() {
+            break;
+        }
+        inv = &inv + &pw;
+    }
+    let inv = inv.scale(&inv0);
+    let target = truncate_y(&(&fs * &inv), x, prec);
+    // monic univariate factors over Q and their Bézout cofactors
+    let ubar: Vec<QPoly> = us
+        .iter()
+        .map(|u| {
+            let l = Q::from_bigint(u[u.len() - 1].clone());
+            let il = l.recip().unwrap_or_else(Q::one);
+            u.iter().map(|c| &Q::from_bigint(c.clone()) * &il).collect()
+        })
+        .collect();
+    let mut cof: Vec<QPoly> = Vec::with_capacity(ubar.len());
+    for i in 0..ubar.len() {
+        let mut prod: QPoly = vec![Q::one()];
+        for (j, u) in ubar.iter().enumerate() {
+            if j != i {
+                prod = q_mul(&prod, u);
+            }
+        }
+        cof.push(q_inverse_mod(&prod, &ubar[i])?);
+    }
+    let mut lifted: Vec<Poly> = ubar
+        .iter()
+        .map(|u| {
+            Poly::from_terms(
+                u.iter()
+                    .enumerate()
+                    .map(|(i, c)| (Mono::var_pow(x, i as u32), c.clone()))
+                    .collect(),
+            )
+        })
+        .collect();
+    for k in 1..prec {
+        let mut prod = Poly::one();
+        for u in &lifted {
+            prod = truncate_y(&(&prod * u), x, k + 1);
+        }
+        let e = homogeneous_y(&(&target - &prod), x, k);
+        if e.is_zero() {
+            continue;
+        }
+        for (i, u) in lifted.iter_mut().enumerate() {
+            let d = rem_coeffwise(&e, &cof[i], &ubar[i], x);
+            *u = &*u + &d;
+        }
+    }
+    // recombination
+    let mut t: Vec<usize> = (0..lifted.len()).collect();
+    let mut fstar = fs;
+    let mut out = Vec::new();
+    let mut s = 1usize;
+    while 2 * s <= t.len() {
+        let lcf = fstar.coeffs_in(x).pop().unwrap_or_else(Poly::one);
+        let mut found: Option<(Vec<usize>, Poly, Poly)> = None;
+        let mut comb: Vec<usize> = (0..s).collect();
+        loop {
+            let mut cand = lcf.clone();
+            for &i in &comb {
+                cand = truncate_y(&(&cand * &lifted[t[i]]), x, prec);
+            }
+            let cont = content_in(&cand, x);
+            let cand = if cont.is_constant() {
+                normalize(&cand)
+            } else {
+                cand.div_exact(&cont)
+                    .map(|q| normalize(&q))
+                    .unwrap_or_default()
+            };
+            let ok = !cand.is_constant() && cand.terms().iter().all(|t| ydeg(&t.0, x) <= dy);
+            if ok {
+                if let Some(q) = fstar.div_exact(&cand) {
+                    found = Some((comb.clone(), cand, q));
+                    break;
+                }
+            }
+            if !next_combination(&mut comb, t.len()) {
+                break;
+            }
+        }
+        match found {
+            Some((comb, cand, q)) => {
+                for &i in comb.iter().rev() {
+                    t.remove(i);
+                }
+                out.push(cand);
+                fstar = normalize(&q);
+            }
+            None => s += 1,
+        }
+    }
+    if !fstar.is_constant() {
+        out.push(fstar);
+    }
+    let neg: Vec<i64> = c.iter().map(|v| -v).collect();
+    Some(
+        out.iter()
+            .map(|h| normalize(&shift(h, &ys, &neg)))
+            .collect(),
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1193,5 +1552,37 @@ mod tests {
         let f = &(&a.pow(3) * &b.pow(2)) * &c(-3);
         let sf = square_free(&f);
         assert_eq!(sf, vec![(b, 2), (a, 3)]);
+    }
+
+    fn parse2(terms: &[(i64, u32, u32)]) -> Poly {
+        Poly::from_terms(
+            terms
+                .iter()
+                .map(|&(c, i, j)| (Mono::from_pairs([(0, i), (1, j)]), Q::from_i64(c)))
+                .collect(),
+        )
+    }
+
+    #[test]
+    fn kronecker_and_hensel_agree() {
+        // x^4 - y^4 (after the linear factors: x^2 + y^2 irreducible) and
+        // (x^2 + xy + y^2)(x^2 - xy + y^2) = x^4 + x^2 y^2 + y^4;
+        // x^2 y^2 - 1 needs a nonzero evaluation point (lc_x = y^2)
+        let cases = [
+            (parse2(&[(1, 4, 0), (-1, 0, 4)]), 3),
+            (parse2(&[(1, 4, 0), (1, 2, 2), (1, 0, 4)]), 2),
+            (parse2(&[(1, 2, 2), (-1, 0, 0)]), 2),
+            (parse2(&[(1, 2, 0), (1, 0, 2)]), 1),
+        ];
+        for (f, n) in cases {
+            let vars = f.vars();
+            let mut k = kronecker_factor(&f, &vars);
+            let mut h = hensel_factor(&f, &vars).expect("a good point");
+            k.sort_by(canonical_cmp);
+            h.sort_by(canonical_cmp);
+            assert_eq!(k.len(), n, "{f}");
+            assert_eq!(k, h, "{f}");
+            assert_eq!(k.iter().cloned().product::<Poly>(), f);
+        }
     }
 }
