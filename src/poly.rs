@@ -31,6 +31,8 @@
 //! factored out and the gcd of the cofactors computed recursively. The result
 //! is therefore always exact; randomness only affects speed.
 
+pub mod factor;
+
 use crate::num::Q;
 use num_bigint::BigInt;
 use num_integer::Integer;
