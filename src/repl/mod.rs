@@ -748,7 +748,8 @@ impl Layout {
     }
     fn latex(&self, e: &Expr, names: &Names) -> String {
         match self {
-            Layout::Plain | Layout::Factored => tex::latex_with(e, names),
+            Layout::Plain => tex::latex_with(e, names),
+            Layout::Factored => factored_latex(e, names),
             Layout::Expanded => tex::latex_expanded(e, names),
             Layout::Series { var, point } => series_layout(e, *var, point, Some(names)),
         }
@@ -881,17 +882,20 @@ fn terms_text(p: &Poly, st: Style) -> String {
 
 /// The numerator and denominator as products of irreducible factors over ℚ.
 fn factored(e: &Expr, st: Style) -> String {
-    let top = factor_text(e.num(), st);
+    let (top, top_parts) = factor_text(e.num(), st);
     if e.den().is_one() {
         return top;
     }
-    let bottom = factor_text(e.den(), st);
-    let bottom = if bottom.contains(['·', '*', '/', ' ']) {
+    let (bottom, bottom_parts) = factor_text(e.den(), st);
+    // a product or a bare sum below the bar, and a bare sum above it,
+    // take parentheses; a lone power (x + y)² does not
+    let bare_sum = |t: &str| t.contains(' ') && !t.starts_with('(');
+    let bottom = if bottom_parts > 1 || bare_sum(&bottom) {
         format!("({bottom})")
     } else {
         bottom
     };
-    let top = if top.contains([' ']) && !top.starts_with('(') {
+    let top = if top_parts == 1 && bare_sum(&top) {
         format!("({top})")
     } else {
         top
@@ -899,21 +903,85 @@ fn factored(e: &Expr, st: Style) -> String {
     format!("{top}/{bottom}")
 }
 
-fn factor_text(p: &Poly, st: Style) -> String {
-    let f = factor_poly(p); // FACTOR-MERGE
-    if f.factors.is_empty() {
-        return print::render(&Expr::rational(f.unit.clone()), st);
+/// `p`'s factorization with each factor starting with a positive term as
+/// printed (the sign moved into the unit), sorted by degree and printed
+/// text: the order must not depend on the order atoms were interned in.
+fn display_factors(p: &Poly) -> (crate::num::Q, Vec<(Poly, u32)>) {
+    let f = crate::poly::factor::factor(p);
+    let mut unit = f.unit.clone();
+    let mut out: Vec<(Poly, u32, String)> = Vec::with_capacity(f.factors.len());
+    for (g, k) in &f.factors {
+        let text = print::render(&Expr::from_poly(g.clone()), Style::Unicode);
+        let g = if text.starts_with('−') {
+            if k % 2 == 1 {
+                unit = -unit;
+            }
+            g.scale(&crate::num::Q::from_i64(-1))
+        } else {
+            g.clone()
+        };
+        let text = print::render(&Expr::from_poly(g.clone()), Style::Unicode);
+        out.push((g, *k, text));
+    }
+    out.sort_by(|a, b| {
+        (a.0.total_degree(), a.0.len(), &a.2).cmp(&(b.0.total_degree(), b.0.len(), &b.2))
+    });
+    (unit, out.into_iter().map(|(g, k, _)| (g, k)).collect())
+}
+
+/// LaTeX of the factored form: \\frac of the factored numerator and
+/// denominator.
+fn factored_latex(e: &Expr, names: &Names) -> String {
+    let body = |fs: &[(Poly, u32)], lead: &num_bigint::BigInt| -> String {
+        let alone = fs.len() == 1 && fs[0].1 == 1 && *lead == num_bigint::BigInt::from(1);
+        let mut items: Vec<String> = Vec::new();
+        if *lead != num_bigint::BigInt::from(1) || fs.is_empty() {
+            items.push(lead.to_string());
+        }
+        for (g, k) in fs {
+            let b = tex::latex_with(&Expr::from_poly(g.clone()), names);
+            let b = if g.len() > 1 && !alone {
+                format!("\\left({b}\\right)")
+            } else {
+                b
+            };
+            items.push(if *k == 1 { b } else { format!("{b}^{{{k}}}") });
+        }
+        items.join(" ")
+    };
+    let (un, top) = display_factors(e.num());
+    let (ud, bottom) = display_factors(e.den());
+    let unit = un.checked_div(&ud).unwrap_or_else(crate::num::Q::one);
+    let sign = if unit.is_negative() { "-" } else { "" };
+    let unit = unit.abs().to_big();
+    let top = body(&top, unit.numer());
+    if bottom.is_empty() && unit.denom() == &num_bigint::BigInt::from(1) {
+        return format!("{sign}{top}");
+    }
+    format!("{sign}\\frac{{{top}}}{{{}}}", body(&bottom, unit.denom()))
+}
+
+/// The factored text of `p` and its number of factors (with the unit).
+fn factor_text(p: &Poly, st: Style) -> (String, usize) {
+    let (unit, factors) = display_factors(p);
+    if factors.is_empty() {
+        return (print::render(&Expr::rational(unit), st), 1);
     }
     let times = if st == Style::Unicode { "·" } else { "*" };
     let mut parts: Vec<String> = Vec::new();
-    let unit = f.unit.clone();
     let (neg, mag) = (unit.is_negative(), unit.abs());
     if !mag.is_one() {
         parts.push(print::render(&Expr::rational(mag), st));
     }
-    for (g, k) in &f.factors {
+    // a lone irreducible polynomial needs no parentheses
+    let alone = factors.len() == 1 && factors[0].1 == 1 && unit.is_one();
+    for (g, k) in &factors {
         let s = print::render(&Expr::from_poly(g.clone()), st);
-        let s = if g.len() > 1 { format!("({s})") } else { s };
+        let s = if g.len() > 1 && !alone {
+            format!("({s})")
+        } else {
+            s
+        };
         parts.push(match (k, st) {
             (1, _) => s,
             (k, Style::Unicode) => format!("{s}{}", print::superscript(*k)),
@@ -922,10 +990,11 @@ fn factor_text(p: &Poly, st: Style) -> String {
     }
     let body = parts.join(times);
     let minus = if st == Style::Unicode { "−" } else { "-" };
+    let n = parts.len();
     if neg {
-        format!("{minus}{body}")
+        (format!("{minus}{body}"), n)
     } else {
-        body
+        (body, n)
     }
 }
 
@@ -1171,16 +1240,4 @@ pub fn is_complete(text: &str) -> bool {
         return true;
     }
     depth <= 0 && !matches!(last, '+' | '-' | '*' | '/' | '^' | ',' | '=')
-}
-
-// FACTOR-MERGE: replaced by crate::poly::factor when it lands.
-struct Fz {
-    unit: crate::num::Q,
-    factors: Vec<(Poly, u32)>,
-}
-fn factor_poly(p: &Poly) -> Fz {
-    Fz {
-        unit: crate::num::Q::one(),
-        factors: vec![(p.clone(), 1)],
-    }
 }
