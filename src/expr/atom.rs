@@ -176,7 +176,15 @@ pub fn intern_trig(u: &Expr) -> (Var, Var) {
         return (s, c);
     }
     let s = t.push(key, PLAIN, None);
-    let square = &Poly::one() - &Poly::var(s).pow(2);
+    // 1 − s², built without arithmetic: nothing that may be cancelled
+    // (crate::cancel) runs while the table is locked
+    let square = Poly::from_terms(vec![
+        (crate::poly::Mono::one(), crate::num::Q::one()),
+        (
+            crate::poly::Mono::var_pow(s, 2),
+            crate::num::Q::from_i64(-1),
+        ),
+    ]);
     let c = t.push(Atom::Cos(u.clone()), TRIG_COS, Some(square));
     (s, c)
 }
