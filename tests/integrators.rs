@@ -318,6 +318,60 @@ fn output_exactly_at_the_requested_times() {
 }
 
 #[test]
+fn output_times_are_sorted_and_clipped_to_the_interval() {
+    let opts = Options {
+        t_end: 2.0,
+        rtol: 1e-10,
+        atol: 1e-10,
+        t_out: vec![1.5, -1.0, 0.5, 3.0, 1.0, 2.0],
+        ..Options::default()
+    };
+    let sol = integrate(&mut oscillator(), Method::Dop853, &[1.0, 0.0], &opts).expect("valid");
+    assert_eq!(sol.t, vec![0.5, 1.0, 1.5, 2.0]);
+    for (&t, y) in sol.t.iter().zip(&sol.y) {
+        assert!(max_err(y, &[t.cos(), -t.sin()]) < 1e-9, "{t}: {y:?}");
+    }
+    // backward: from 2 down to 0, output in decreasing time
+    let opts = Options {
+        t0: 2.0,
+        t_end: 0.0,
+        t_out: vec![0.5, 1.0, 1.5],
+        ..opts
+    };
+    let y0 = [2.0f64.cos(), -2.0f64.sin()];
+    let sol = integrate(&mut oscillator(), Method::Vern7, &y0, &opts).expect("valid");
+    assert_eq!(sol.t, vec![1.5, 1.0, 0.5]);
+    for (&t, y) in sol.t.iter().zip(&sol.y) {
+        assert!(max_err(y, &[t.cos(), -t.sin()]) < 1e-9, "{t}: {y:?}");
+    }
+}
+
+#[test]
+fn blow_up_ends_with_a_too_small_step() {
+    // y' = y², y(0) = 1: y = 1/(1 − t) blows up at t = 1
+    for m in [Method::Dopri5, Method::Dop853, Method::Vern7] {
+        let mut sys = FnSystem {
+            dim: 1,
+            f: |_t: f64, y: &[f64], dy: &mut [f64]| dy[0] = y[0] * y[0],
+        };
+        let opts = Options {
+            t_end: 2.0,
+            ..Options::default()
+        };
+        let sol = integrate(&mut sys, m, &[1.0], &opts).expect("valid");
+        eprintln!("blow-up {m:?}: {:?} after {:?}", sol.status, sol.stats);
+        let t = match sol.status {
+            Status::StepTooSmall { t } | Status::NotFinite { t } => t,
+            ref other => panic!("{m:?}: {other:?}"),
+        };
+        // the numerical blow-up time is that of the exact solution up to the
+        // tolerance
+        assert!((t - 1.0).abs() < 1e-3, "{m:?}: {t}");
+        assert_eq!(*sol.t.last().expect("recorded"), t);
+    }
+}
+
+#[test]
 fn every_accepted_step_is_recorded_without_t_out() {
     let opts = Options {
         t_end: 5.0,

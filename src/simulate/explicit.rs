@@ -572,13 +572,16 @@ fn run<S: System + ?Sized>(
     let mut y = y0.to_vec();
     let mut buf = vec![0.0; n];
 
-    // output times in the direction of integration, from t0 on
-    let t_out = &opts.t_out;
+    // output times in the direction of integration (sorted; NaNs dropped),
+    // from t0 on; times beyond t_end are never reached
+    let mut t_out: Vec<f64> = opts.t_out.iter().copied().filter(|t| !t.is_nan()).collect();
+    t_out.sort_by(|a, b| (dir * a).total_cmp(&(dir * b)));
+    let t_out = &t_out[..];
     let mut iout = 0;
     while iout < t_out.len() && (t_out[iout] - t0) * dir < 0.0 {
         iout += 1;
     }
-    let record_steps = t_out.is_empty();
+    let record_steps = opts.t_out.is_empty();
     if record_steps {
         sol.t.push(t0);
         sol.y.push(y.clone());
