@@ -385,6 +385,17 @@ fn every_accepted_step_is_recorded_without_t_out() {
     // FSAL: 6 evaluations per attempted step, plus the first f and hinit's
     let attempts = sol.stats.steps + sol.stats.rejected;
     assert_eq!(sol.stats.rhs_evals, 6 * attempts + 2);
+    // DOP853: 11 stages per attempt + f(t + h, y₁) per accepted step;
+    // Vern7: 9 + 1 likewise (no dense output needed without t_out)
+    for (m, per_attempt) in [(Method::Dop853, 11), (Method::Vern7, 9)] {
+        let sol = integrate(&mut oscillator(), m, &[1.0, 0.0], &opts).expect("valid");
+        let st = &sol.stats;
+        assert_eq!(
+            st.rhs_evals,
+            per_attempt * (st.steps + st.rejected) + st.steps + 2
+        );
+        assert_eq!(sol.t.len(), st.steps + 1);
+    }
 }
 
 #[test]
