@@ -8,8 +8,9 @@
 //! Hairer's continuous extensions (order 4 for DOPRI5, 7 for DOP853) and his
 //! stiffness test (h·|λ| estimated from the two last stages at t + h; the
 //! test is made after every accepted step, i.e. `dopri5.f` with NSTIFF = 1).
-//! Vern7 uses Verner's order-7 interpolant and the same controller with
-//! β = 0.
+//! Vern7 uses Verner's interpolant (6 extra stages; published as of order
+//! 7, of order 6 by the continuous order conditions, see `tableaus`) and the
+//! same controller with β = 0.
 //!
 //! Output: every accepted step when `Options::t_out` is empty, else exactly
 //! the requested times, evaluated by the dense output (RK4: the Hermite cubic

@@ -10,7 +10,9 @@
 //! Sources: Dormand & Prince (1980) and Shampine (1986) for DOPRI5; Hairer's
 //! `dop853.f` (Hairer, Nørsett & Wanner, Solving ODEs I, II.10) for DOP853;
 //! Verner's "most efficient" 7(6) pair `RKV76.IIa.Efficient.00001675585`
-//! with its order-7 interpolant (J. H. Verner, Numer. Algorithms 53, 2010).
+//! with its interpolant (J. H. Verner, Numer. Algorithms 53, 2010; published
+//! as of order 7, it satisfies the continuous order conditions through
+//! order 6 only, see the tests).
 //! The unit tests check the order conditions each table must satisfy.
 #![allow(clippy::excessive_precision)]
 
@@ -398,7 +400,7 @@ const B_VERN7: [f64; 10] = [
 ];
 
 /// Verner's most efficient 7(6) pair: 10 stages, slot 10 = f(t + h, y₁),
-/// slots 11–15 the extra stages of the order-7 interpolant.
+/// slots 11–15 the extra stages of the interpolant.
 pub(crate) const VERN7: Tableau = Tableau {
     c: &[
         0.0,
@@ -737,6 +739,167 @@ mod tests {
             }
             let want = 1.0 / (k * (k + 1)) as f64;
             assert!((s - want).abs() < tol, "k = {k}: {s} vs {want}");
+        }
+    }
+
+    /// A rooted tree: its subtrees, in canonical (sorted) order.
+    #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+    struct Tree(Vec<Tree>);
+
+    fn canon(t: &Tree) -> Tree {
+        let mut c: Vec<Tree> = t.0.iter().map(canon).collect();
+        c.sort();
+        Tree(c)
+    }
+
+    /// Every tree with one more vertex than `t`.
+    fn grow(t: &Tree) -> Vec<Tree> {
+        let mut r = t.clone();
+        r.0.push(Tree(vec![]));
+        let mut out = vec![canon(&r)];
+        for (i, c) in t.0.iter().enumerate() {
+            for g in grow(c) {
+                let mut r = t.clone();
+                r.0[i] = g;
+                out.push(canon(&r));
+            }
+        }
+        out
+    }
+
+    /// The rooted trees by order 1..=p (1, 1, 2, 4, 9, 20, 48, 115 of them).
+    fn trees(p: usize) -> Vec<Vec<Tree>> {
+        let mut by_order = vec![vec![Tree(vec![])]];
+        while by_order.len() < p {
+            let mut next: Vec<Tree> = by_order
+                .last()
+                .into_iter()
+                .flatten()
+                .flat_map(grow)
+                .collect();
+            next.sort();
+            next.dedup();
+            by_order.push(next);
+        }
+        by_order
+    }
+
+    fn order(t: &Tree) -> i32 {
+        1 + t.0.iter().map(order).sum::<i32>()
+    }
+
+    fn gamma(t: &Tree) -> f64 {
+        t.0.iter().map(gamma).product::<f64>() * order(t) as f64
+    }
+
+    /// The elementary weights Φᵢ(t) of a tableau (slots 0..a.len()).
+    fn phi(t: &Tree, a: &[&[f64]]) -> Vec<f64> {
+        let s = a.len();
+        let mut v = vec![1.0; s];
+        for c in &t.0 {
+            let pc = phi(c, a);
+            for (i, vi) in v.iter_mut().enumerate() {
+                *vi *= a[i].iter().zip(&pc).map(|(x, y)| x * y).sum::<f64>();
+            }
+        }
+        v
+    }
+
+    /// All order conditions Σ bᵢΦᵢ(t) = 1/γ(t) for |t| ≤ p (Butcher; Hairer,
+    /// Nørsett & Wanner, Solving ODEs I, II.2, Theorem 2.13).
+    fn check_all_conditions(t: &Tableau, p: usize, tol: f64) {
+        let counts = [1, 1, 2, 4, 9, 20, 48, 115];
+        let a = &t.a[..t.s];
+        for (k, level) in trees(p).iter().enumerate() {
+            assert_eq!(level.len(), counts[k]);
+            for tree in level {
+                let w: f64 = t.b.iter().zip(phi(tree, a)).map(|(b, f)| b * f).sum();
+                let r = w * gamma(tree) - 1.0;
+                assert!(r.abs() < tol, "order {}: {tree:?}: {r}", k + 1);
+            }
+        }
+    }
+
+    #[test]
+    fn all_order_conditions() {
+        check_all_conditions(&RK4, 4, 1e-15);
+        check_all_conditions(&DOPRI5, 5, 1e-14);
+        check_all_conditions(&DOP853, 8, 1e-12);
+        check_all_conditions(&VERN7, 7, 1e-12);
+        // Vern7 is not of order 8: some condition of order 8 fails
+        let fails = trees(8)[7].iter().any(|tree| {
+            let w: f64 = VERN7
+                .b
+                .iter()
+                .zip(phi(tree, &VERN7.a[..10]))
+                .map(|(b, f)| b * f)
+                .sum();
+            (w * gamma(tree) - 1.0).abs() > 1e-3
+        });
+        assert!(fails);
+    }
+
+    /// The continuous order conditions Σ bᵢ(θ)Φᵢ(t) = θ^|t|/γ(t) over all
+    /// slots (Solving ODEs I, II.6, Theorem 6.1); returns the number of
+    /// trees of each order 1..=p that fail.
+    fn continuous_failures(bt: &[f64], a: &[&[f64]], p: usize, theta: f64) -> Vec<usize> {
+        trees(p)
+            .iter()
+            .map(|level| {
+                level
+                    .iter()
+                    .filter(|tree| {
+                        let w: f64 = bt.iter().zip(phi(tree, a)).map(|(b, f)| b * f).sum();
+                        (w - theta.powi(order(tree)) / gamma(tree)).abs() > 1e-12
+                    })
+                    .count()
+            })
+            .collect()
+    }
+
+    /// DOP853's dense output (Hairer's form, slots 0..16) is of order 7
+    /// exactly: every continuous condition through order 7 holds, none of
+    /// order 8.
+    #[test]
+    fn dop853_dense_output_conditions() {
+        for theta in [0.3f64, 0.5, 0.8] {
+            let t1 = 1.0 - theta;
+            let bt: Vec<f64> = (0..16)
+                .map(|i| {
+                    let b = B853.get(i).copied().unwrap_or(0.0);
+                    let e1 = if i == 0 { 1.0 } else { 0.0 };
+                    let e12 = if i == 12 { 1.0 } else { 0.0 };
+                    let (c1, c2) = (b, e1 - b);
+                    let c3 = b - e12 - c2;
+                    let d = |r: usize| DOP853_D[r][i];
+                    theta
+                        * (c1
+                            + t1 * (c2
+                                + theta
+                                    * (c3
+                                        + t1 * (d(0)
+                                            + theta * (d(1) + t1 * (d(2) + theta * d(3)))))))
+                })
+                .collect();
+            let fails = continuous_failures(&bt, DOP853.a, 8, theta);
+            assert_eq!(fails, vec![0, 0, 0, 0, 0, 0, 0, 115], "θ = {theta}");
+        }
+    }
+
+    /// Verner's interpolant for this pair, with the coefficients as published
+    /// (and as in Julia's OrdinaryDiffEq): every continuous condition through
+    /// order 6 holds; at order 7, 12 of the 48 fail (by up to 9 % of
+    /// θ⁷/γ(t)), so it is of order 6 on general nonlinear problems (order 7
+    /// on linear ones: the tall tree holds).
+    #[test]
+    fn vern7_interpolant_conditions() {
+        for theta in [0.3f64, 0.5, 0.8] {
+            let bt: Vec<f64> = VERN7_BI
+                .iter()
+                .map(|row| (0..7).map(|k| row[k] * theta.powi(k as i32 + 1)).sum())
+                .collect();
+            let fails = continuous_failures(&bt, VERN7.a, 7, theta);
+            assert_eq!(fails, vec![0, 0, 0, 0, 0, 0, 12], "θ = {theta}");
         }
     }
 
