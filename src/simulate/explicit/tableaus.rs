@@ -857,6 +857,31 @@ mod tests {
             .collect()
     }
 
+    /// DOPRI5's continuous extension (Shampine's, in Hairer's form over slots
+    /// 0..7) is of order 4: every condition through order 4 holds, and some
+    /// of order 5 fail.
+    #[test]
+    fn dopri5_dense_output_conditions() {
+        for theta in [0.3f64, 0.5, 0.8] {
+            let t1 = 1.0 - theta;
+            let bt: Vec<f64> = (0..7)
+                .map(|i| {
+                    let b = DOPRI5.b.get(i).copied().unwrap_or(0.0);
+                    let e1 = if i == 0 { 1.0 } else { 0.0 };
+                    let e6 = if i == 6 { 1.0 } else { 0.0 };
+                    let (c1, c2) = (b, e1 - b);
+                    let c3 = b - e6 - c2;
+                    theta * (c1 + t1 * (c2 + theta * (c3 + t1 * DOPRI5_D[i])))
+                })
+                .collect();
+            let mut a: Vec<&[f64]> = DOPRI5.a.to_vec();
+            a.push(DOPRI5.b);
+            let fails = continuous_failures(&bt, &a, 5, theta);
+            assert_eq!(&fails[..4], &[0, 0, 0, 0], "θ = {theta}");
+            assert!(fails[4] > 0, "θ = {theta}");
+        }
+    }
+
     /// DOP853's dense output (Hairer's form, slots 0..16) is of order 7
     /// exactly: every continuous condition through order 7 holds, none of
     /// order 8.
