@@ -11,6 +11,10 @@
 //!   output, Hairer's step-size control, stiffness detection, events.
 //! * `implicit`: Radau IIA (order 5, L-stable), Gauss–Legendre (symplectic).
 //! * `elliptic`: Jacobi elliptic functions (exact pendulum references).
+//!
+//! [`integrate`] and [`integrate_with_event`] dispatch on [`Method`].
+
+pub mod explicit;
 
 /// A first-order system y' = F(t, y) of fixed dimension.
 pub trait System {
@@ -127,4 +131,128 @@ pub struct Solution {
     /// Set by explicit adaptive methods when the stiffness test (Hairer's,
     /// as in DOPRI5/DOP853) fired: the time at which it did.
     pub stiff_at: Option<f64>,
+}
+
+/// Why an integration could not start.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SimError {
+    /// The method is not compiled into this build (its module is absent).
+    NotInThisBuild(Method),
+    /// The inputs are inconsistent (dimension, tolerances, times, step).
+    BadInput(String),
+}
+
+impl std::fmt::Display for SimError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SimError::NotInThisBuild(m) => write!(f, "method {m:?} is not in this build"),
+            SimError::BadInput(s) => write!(f, "bad input: {s}"),
+        }
+    }
+}
+
+impl std::error::Error for SimError {}
+
+/// Integrate y' = F(t, y), y(`opts.t0`) = `y0`, to `opts.t_end` with `method`.
+///
+/// Explicit methods are in [`explicit`]; `Gauss6` and `Radau5` answer
+/// [`SimError::NotInThisBuild`] until the implicit module is present.
+/// Early ends (step too small, too many steps, non-finite values) are a
+/// [`Status`] of the returned [`Solution`], not an error.
+pub fn integrate<S: System + ?Sized>(
+    sys: &mut S,
+    method: Method,
+    y0: &[f64],
+    opts: &Options,
+) -> Result<Solution, SimError> {
+    match method {
+        Method::Rk4 | Method::Dopri5 | Method::Dop853 | Method::Vern7 => {
+            explicit::integrate(sys, method, y0, opts)
+        }
+        Method::Gauss6 | Method::Radau5 => Err(SimError::NotInThisBuild(method)),
+    }
+}
+
+/// [`integrate`], stopping where `event(t, y)` changes sign between two
+/// accepted steps: the crossing is located on the dense output (Brent's
+/// method, |t − t*| ≤ 1e-12 relative), the solution ends there with
+/// [`Status::Event`], and its last recorded state is the state at t*.
+pub fn integrate_with_event<S: System + ?Sized>(
+    sys: &mut S,
+    method: Method,
+    y0: &[f64],
+    opts: &Options,
+    event: &mut dyn FnMut(f64, &[f64]) -> f64,
+) -> Result<Solution, SimError> {
+    match method {
+        Method::Rk4 | Method::Dopri5 | Method::Dop853 | Method::Vern7 => {
+            explicit::integrate_with_event(sys, method, y0, opts, event)
+        }
+        Method::Gauss6 | Method::Radau5 => Err(SimError::NotInThisBuild(method)),
+    }
+}
+
+/// Hairer's weighted RMS norm of a local error estimate `err`:
+/// √(1/n Σ (errᵢ/skᵢ)²), skᵢ = atol + rtol·max(|y0ᵢ|, |y1ᵢ|)
+/// (Hairer, Nørsett & Wanner, Solving ODEs I, II.4, (4.11)).
+pub(crate) fn error_norm(err: &[f64], y0: &[f64], y1: &[f64], rtol: f64, atol: f64) -> f64 {
+    let n = err.len().max(1) as f64;
+    let mut s = 0.0;
+    for ((e, a), b) in err.iter().zip(y0).zip(y1) {
+        let sk = atol + rtol * a.abs().max(b.abs());
+        s += (e / sk) * (e / sk);
+    }
+    (s / n).sqrt()
+}
+
+/// Hairer's starting-step rule (`HINIT` of dopri5.f / dop853.f; Solving ODEs
+/// I, II.4): a first guess from ‖y0‖/‖f0‖, one explicit Euler step to
+/// estimate the second derivative, then h = (0.01 / max(‖f′‖, ‖f0‖))^(1/order),
+/// at most 100 times the first guess and `hmax`. Returns the signed step
+/// (direction `dir` = ±1); `y1` and `f1` are work space.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn initial_step<S: System + ?Sized>(
+    sys: &mut S,
+    t0: f64,
+    y0: &[f64],
+    f0: &[f64],
+    dir: f64,
+    order: i32,
+    hmax: f64,
+    rtol: f64,
+    atol: f64,
+    y1: &mut [f64],
+    f1: &mut [f64],
+    stats: &mut Stats,
+) -> f64 {
+    let (mut dnf, mut dny) = (0.0, 0.0);
+    for (y, f) in y0.iter().zip(f0) {
+        let sk = atol + rtol * y.abs();
+        dnf += (f / sk) * (f / sk);
+        dny += (y / sk) * (y / sk);
+    }
+    let mut h = if dnf <= 1e-10 || dny <= 1e-10 {
+        1e-6
+    } else {
+        (dny / dnf).sqrt() * 0.01
+    };
+    h = h.min(hmax);
+    for ((y1, y), f) in y1.iter_mut().zip(y0).zip(f0) {
+        *y1 = y + dir * h * f;
+    }
+    sys.rhs(t0 + dir * h, y1, f1);
+    stats.rhs_evals += 1;
+    let mut der2 = 0.0;
+    for ((a, b), y) in f1.iter().zip(f0).zip(y0) {
+        let sk = atol + rtol * y.abs();
+        der2 += ((a - b) / sk) * ((a - b) / sk);
+    }
+    let der2 = der2.sqrt() / h;
+    let der12 = der2.max(dnf.sqrt());
+    let h1 = if der12 <= 1e-15 || !der12.is_finite() {
+        (h * 1e-3).max(1e-6)
+    } else {
+        (0.01 / der12).powf(1.0 / order as f64)
+    };
+    dir * (100.0 * h).min(h1).min(hmax)
 }
