@@ -128,3 +128,6 @@ pub struct Solution {
     /// as in DOPRI5/DOP853) fired: the time at which it did.
     pub stiff_at: Option<f64>,
 }
+
+pub mod elliptic;
+pub mod implicit;
