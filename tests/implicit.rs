@@ -45,6 +45,26 @@ impl System for Pendulum {
     }
 }
 
+/// Van der Pol in Hairer's scaled form, ε = 1e-6:
+/// y1' = y2, y2' = ((1 − y1²)·y2 − y1)/ε, with its analytic Jacobian.
+struct Vdp;
+impl System for Vdp {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) {
+        dy[0] = y[1];
+        dy[1] = ((1.0 - y[0] * y[0]) * y[1] - y[0]) / 1e-6;
+    }
+    fn jacobian(&mut self, _t: f64, y: &[f64], jac: &mut [f64]) -> bool {
+        jac[0] = 0.0;
+        jac[1] = 1.0;
+        jac[2] = (-2.0 * y[0] * y[1] - 1.0) / 1e-6;
+        jac[3] = (1.0 - y[0] * y[0]) / 1e-6;
+        true
+    }
+}
+
 fn last(sol: &Solution) -> &[f64] {
     sol.y.last().map(|v| v.as_slice()).unwrap_or(&[])
 }
@@ -179,23 +199,6 @@ fn radau5_robertson_matches_the_test_set_reference() {
 fn radau5_stiff_van_der_pol_matches_the_test_set_reference() {
     // y'' = ((1 − y²)y' − y)/ε, ε = 1e-6 (μ = 1000 scaled), y(0) = (2, 0),
     // reference at t = 2 from the Bari IVP test set (`vdpol`).
-    struct Vdp;
-    impl System for Vdp {
-        fn dim(&self) -> usize {
-            2
-        }
-        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) {
-            dy[0] = y[1];
-            dy[1] = ((1.0 - y[0] * y[0]) * y[1] - y[0]) / 1e-6;
-        }
-        fn jacobian(&mut self, _t: f64, y: &[f64], jac: &mut [f64]) -> bool {
-            jac[0] = 0.0;
-            jac[1] = 1.0;
-            jac[2] = (-2.0 * y[0] * y[1] - 1.0) / 1e-6;
-            jac[3] = (1.0 - y[0] * y[0]) / 1e-6;
-            true
-        }
-    }
     let reference = [1.706_167_732_170_469, -0.892_809_701_024_812_5];
     for (rtol, bound, max_steps) in [(1e-6, 1e-4, 800), (1e-9, 1e-7, 3000)] {
         let opts = Options {
@@ -216,6 +219,39 @@ fn radau5_stiff_van_der_pol_matches_the_test_set_reference() {
         assert!((y[0] - reference[0]).abs() < bound, "{y:?}");
         assert!((y[1] - reference[1]).abs() < 10.0 * bound, "{y:?}");
     }
+}
+
+#[test]
+fn radau5_reproduces_hairers_van_der_pol_run() {
+    // Hairer's driver dr1_radau5.f: ε = 1e-6, y(0) = (2, −0.66), h0 = 1e-6,
+    // rtol = atol = 1e-4 on [0, 2]. radau5.f ends at
+    // y = (1.706163410178079, −0.8927971289301175) after 242 accepted of
+    // 280 attempted steps, 162 Jacobians, 253 decompositions and 2248
+    // function calls (as reproduced by russell_ode's tests). Ours follows
+    // the same algorithm; the counts agree to a few percent.
+    let opts = Options {
+        t_end: 2.0,
+        rtol: 1e-4,
+        atol: 1e-4,
+        dt: Some(1e-6),
+        ..Options::default()
+    };
+    let sol = radau5(&mut Vdp, &[2.0, -0.66], &opts).unwrap();
+    eprintln!("dr1_radau5: {:?} {:?}", last(&sol), sol.stats);
+    assert_eq!(sol.status, Status::Done);
+    let y = last(&sol);
+    assert!((y[0] - 1.706_163_410_178_079).abs() < 1e-5, "{y:?}");
+    assert!((y[1] + 0.892_797_128_930_117_5).abs() < 1e-4, "{y:?}");
+    let within = |ours: usize, theirs: f64| (ours as f64 - theirs).abs() <= 0.05 * theirs;
+    assert!(within(sol.stats.steps, 242.0), "{:?}", sol.stats);
+    assert!(
+        within(sol.stats.steps + sol.stats.rejected, 280.0),
+        "{:?}",
+        sol.stats
+    );
+    assert!(within(sol.stats.jacobians, 162.0), "{:?}", sol.stats);
+    assert!(within(sol.stats.factorizations, 253.0), "{:?}", sol.stats);
+    assert!(within(sol.stats.rhs_evals, 2248.0), "{:?}", sol.stats);
 }
 
 #[test]
