@@ -445,6 +445,34 @@ fn fixed_step_methods_need_a_step_and_inputs_are_checked() {
 }
 
 #[test]
+fn gauss6_resonant_forcing_from_rest() {
+    // Resonant forcing from rest: y'' = −y + cos t, y(0) = y'(0) = 0, so
+    // y = t·sin(t)/2 (a time-dependent F, started from the zero state).
+    let mut sys = FnSystem {
+        dim: 2,
+        f: |t: f64, y: &[f64], dy: &mut [f64]| {
+            dy[0] = y[1];
+            dy[1] = -y[0] + t.cos();
+        },
+    };
+    let opts = Options {
+        t_end: 5.0,
+        dt: Some(0.125),
+        ..Options::default()
+    };
+    let sol = gauss6(&mut sys, &[0.0, 0.0], &opts).unwrap();
+    assert_eq!(sol.status, Status::Done);
+    assert_eq!(sol.stats.factorizations, 0, "{:?}", sol.stats);
+    for (t, y) in sol.t.iter().zip(&sol.y) {
+        let exact = [0.5 * t * t.sin(), 0.5 * (t.sin() + t * t.cos())];
+        assert!(
+            (y[0] - exact[0]).abs() < 1e-8 && (y[1] - exact[1]).abs() < 1e-8,
+            "{t} {y:?}"
+        );
+    }
+}
+
+#[test]
 fn gauss6_falls_back_to_newton_on_a_stiff_linear_problem() {
     // y' = −1000 (y − cos t): h·|λ|·ρ(A) ≫ 1, so the fixed-point iteration
     // diverges; Newton (exact here: linear) solves the stages. The Gauss
