@@ -14,7 +14,9 @@
 //!
 //! [`integrate`] and [`integrate_with_event`] dispatch on [`Method`].
 
+pub mod elliptic;
 pub mod explicit;
+pub mod implicit;
 
 /// A first-order system y' = F(t, y) of fixed dimension.
 pub trait System {
@@ -155,8 +157,8 @@ impl std::error::Error for SimError {}
 
 /// Integrate y' = F(t, y), y(`opts.t0`) = `y0`, to `opts.t_end` with `method`.
 ///
-/// Explicit methods are in [`explicit`]; `Gauss6` and `Radau5` answer
-/// [`SimError::NotInThisBuild`] until the implicit module is present.
+/// Explicit methods are in [`explicit`], `Gauss6` and `Radau5` in
+/// [`implicit`].
 /// Early ends (step too small, too many steps, non-finite values) are a
 /// [`Status`] of the returned [`Solution`], not an error.
 pub fn integrate<S: System + ?Sized>(
@@ -169,7 +171,29 @@ pub fn integrate<S: System + ?Sized>(
         Method::Rk4 | Method::Dopri5 | Method::Dop853 | Method::Vern7 => {
             explicit::integrate(sys, method, y0, opts)
         }
-        Method::Gauss6 | Method::Radau5 => Err(SimError::NotInThisBuild(method)),
+        Method::Radau5 => Ok(implicit::radau5(&mut Dyn(sys), y0, opts)?),
+        Method::Gauss6 => Ok(implicit::gauss6(&mut Dyn(sys), y0, opts)?),
+    }
+}
+
+/// A `System` behind any reference, as a sized `dyn System`.
+struct Dyn<'a, S: System + ?Sized>(&'a mut S);
+
+impl<S: System + ?Sized> System for Dyn<'_, S> {
+    fn dim(&self) -> usize {
+        self.0.dim()
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        self.0.rhs(t, y, dy)
+    }
+    fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut [f64]) -> bool {
+        self.0.jacobian(t, y, jac)
+    }
+}
+
+impl From<implicit::ImplicitError> for SimError {
+    fn from(e: implicit::ImplicitError) -> SimError {
+        SimError::BadInput(e.to_string())
     }
 }
 
@@ -188,7 +212,9 @@ pub fn integrate_with_event<S: System + ?Sized>(
         Method::Rk4 | Method::Dopri5 | Method::Dop853 | Method::Vern7 => {
             explicit::integrate_with_event(sys, method, y0, opts, event)
         }
-        Method::Gauss6 | Method::Radau5 => Err(SimError::NotInThisBuild(method)),
+        Method::Gauss6 | Method::Radau5 => Err(SimError::BadInput(format!(
+            "events are located on the dense output of the explicit methods; {method:?} has none here: use Dopri5, Dop853 or Vern7"
+        ))),
     }
 }
 
