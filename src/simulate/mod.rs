@@ -12,6 +12,8 @@
 //! * `implicit`: Radau IIA (order 5, L-stable), Gauss–Legendre (symplectic).
 //! * `elliptic`: Jacobi elliptic functions (exact pendulum references).
 
+pub mod compile;
+
 /// A first-order system y' = F(t, y) of fixed dimension.
 pub trait System {
     /// The dimension of y.
