@@ -50,6 +50,15 @@ pub enum Instr {
     Mul { dst: u32, a: u32, b: u32 },
     /// `dst = a · b + c` (two roundings, not a fused multiply-add).
     MulAdd { dst: u32, a: u32, b: u32, c: u32 },
+    /// `dst = init + Σ a_k·b_k` over the register pairs
+    /// `start..start + len` of [`Program::pairs`], summed left to right
+    /// (`init == u32::MAX`: no initial value).
+    Dot {
+        dst: u32,
+        init: u32,
+        start: u32,
+        len: u32,
+    },
     /// `dst = a / b`.
     Div { dst: u32, a: u32, b: u32 },
     /// `dst = −a`.
@@ -86,6 +95,7 @@ pub struct Program {
     n_inputs: usize,
     n_regs: usize,
     code: Vec<Instr>,
+    pairs: Vec<(u32, u32)>,
     outputs: Vec<u32>,
 }
 
@@ -106,6 +116,10 @@ impl Program {
     pub fn instructions(&self) -> &[Instr] {
         &self.code
     }
+    /// The register pairs of the [`Instr::Dot`] instructions.
+    pub fn pairs(&self) -> &[(u32, u32)] {
+        &self.pairs
+    }
     /// The folded constants (loaded into the first registers).
     pub fn constants(&self) -> &[f64] {
         &self.consts
@@ -114,14 +128,25 @@ impl Program {
     pub fn registers(&self) -> Vec<f64> {
         vec![0.0; self.n_regs]
     }
-    /// Instructions of each kind: `(adds/subs/negs, muls incl. powi and
-    /// mul-adds, divs, transcendental calls)`; a sin_cos counts once.
+    /// Floating-point operations per evaluation: `(additions, subtractions
+    /// and negations; multiplications, powers counted once; divisions;
+    /// function calls)`. A mul-add counts one addition and one
+    /// multiplication, a dot product of k pairs k multiplications and k − 1
+    /// or k additions, a sin_cos one call.
     pub fn op_counts(&self) -> (usize, usize, usize, usize) {
         let (mut add, mut mul, mut div, mut fun) = (0, 0, 0, 0);
         for i in &self.code {
             match i {
                 Instr::Add { .. } | Instr::Sub { .. } | Instr::Neg { .. } => add += 1,
-                Instr::Mul { .. } | Instr::Powi { .. } | Instr::MulAdd { .. } => mul += 1,
+                Instr::Mul { .. } | Instr::Powi { .. } => mul += 1,
+                Instr::MulAdd { .. } => {
+                    mul += 1;
+                    add += 1;
+                }
+                Instr::Dot { len, init, .. } => {
+                    mul += *len as usize;
+                    add += *len as usize - usize::from(*init == NONE);
+                }
                 Instr::Div { .. } => div += 1,
                 _ => fun += 1,
             }
@@ -147,7 +172,7 @@ impl Program {
             // SAFETY: `Program`s are only built by `Builder::finish`, which
             // gives every operand and destination an index < n_regs, and
             // `r.len() == n_regs` here.
-            unsafe { step(r, *ins) }
+            unsafe { step(r, &self.pairs, *ins) }
         }
         for (o, &k) in out.iter_mut().zip(&self.outputs) {
             *o = r[k as usize];
@@ -158,9 +183,10 @@ impl Program {
 /// One instruction.
 ///
 /// # Safety
-/// Every register index of `ins` is `< r.len()`.
+/// Every register index of `ins` (and of its `pairs`) is `< r.len()`, and a
+/// dot product's pairs are within `pairs`.
 #[inline(always)]
-unsafe fn step(r: &mut [f64], ins: Instr) {
+unsafe fn step(r: &mut [f64], pairs: &[(u32, u32)], ins: Instr) {
     macro_rules! g {
         ($i:expr) => {
             *r.get_unchecked($i as usize)
@@ -177,6 +203,19 @@ unsafe fn step(r: &mut [f64], ins: Instr) {
         Instr::Sub { dst, a, b } => s!(dst, g!(a) - g!(b)),
         Instr::Mul { dst, a, b } => s!(dst, g!(a) * g!(b)),
         Instr::MulAdd { dst, a, b, c } => s!(dst, g!(a) * g!(b) + g!(c)),
+        Instr::Dot {
+            dst,
+            init,
+            start,
+            len,
+        } => {
+            let mut acc = if init == NONE { 0.0 } else { g!(init) };
+            let ps = pairs.get_unchecked(start as usize..(start + len) as usize);
+            for &(a, b) in ps {
+                acc += g!(a) * g!(b);
+            }
+            s!(dst, acc)
+        }
         Instr::Div { dst, a, b } => s!(dst, g!(a) / g!(b)),
         Instr::Neg { dst, a } => s!(dst, -g!(a)),
         Instr::Powi { dst, a, n } => s!(dst, powi(g!(a), n)),
@@ -703,7 +742,8 @@ impl<'a> Builder<'a> {
 
     // ------------------------------------------------------------ emission
 
-    /// Dead code removal, sin/cos pairing, register allocation.
+    /// Dead code removal, sin/cos pairing, fusion of multiply-add chains
+    /// into dot products, register allocation.
     fn finish(self, outs: &[u32]) -> Program {
         let n_inputs = self
             .nodes
@@ -711,6 +751,7 @@ impl<'a> Builder<'a> {
             .filter(|n| matches!(n, Node::Input(_)))
             .count();
         let nn = self.nodes.len();
+        let fixed = |id: u32| matches!(self.nodes[id as usize], Node::Const(_) | Node::Input(_));
         // Liveness (nodes are in topological order: operands first).
         let mut live = vec![false; nn];
         for &o in outs {
@@ -735,6 +776,95 @@ impl<'a> Builder<'a> {
                 }
             }
         }
+        // Dot products: a multiply-add (or a sum of products) whose
+        // accumulated operand is a product or a dot product used nowhere
+        // else absorbs it, so a chain of k multiply-adds is one instruction
+        // with a tight loop (summed in the same order).
+        let mut uses = vec![0u32; nn];
+        for (id, node) in self.nodes.iter().enumerate() {
+            if live[id] {
+                for a in node.operands() {
+                    uses[a as usize] += 1;
+                }
+            }
+        }
+        for &o in outs {
+            uses[o as usize] += 1;
+        }
+        let mut absorbed = vec![false; nn];
+        let mut dots: FxHashMap<u32, Dot> = FxHashMap::default();
+        for (id, _) in live.iter().enumerate().filter(|(_, &l)| l) {
+            let single = |c: u32| uses[c as usize] == 1 && !fixed(c);
+            let as_dot = |c: u32, dots: &FxHashMap<u32, Dot>| -> Option<Dot> {
+                if !single(c) {
+                    return None;
+                }
+                match self.nodes[c as usize] {
+                    Node::Mul(x, y) => Some(Dot {
+                        init: None,
+                        terms: vec![(x, y)],
+                    }),
+                    Node::MulAdd(..) | Node::Add(..) => dots.get(&c).cloned(),
+                    _ => None,
+                }
+            };
+            let dot = match self.nodes[id] {
+                Node::MulAdd(x, y, c) => {
+                    let mut d = match as_dot(c, &dots) {
+                        Some(d) => {
+                            absorbed[c as usize] = true;
+                            dots.remove(&c);
+                            d
+                        }
+                        None => Dot {
+                            init: Some(c),
+                            terms: Vec::new(),
+                        },
+                    };
+                    d.terms.push((x, y));
+                    d
+                }
+                Node::Add(x, y) => match (as_dot(x, &dots), as_dot(y, &dots)) {
+                    (Some(mut dx), Some(dy)) if dx.init.is_none() || dy.init.is_none() => {
+                        for c in [x, y] {
+                            absorbed[c as usize] = true;
+                            dots.remove(&c);
+                        }
+                        dx.init = dx.init.or(dy.init);
+                        dx.terms.extend(dy.terms);
+                        dx
+                    }
+                    (Some(mut d), None) if d.init.is_none() => {
+                        absorbed[x as usize] = true;
+                        dots.remove(&x);
+                        d.init = Some(y);
+                        d
+                    }
+                    (None, Some(mut d)) if d.init.is_none() => {
+                        absorbed[y as usize] = true;
+                        dots.remove(&y);
+                        d.init = Some(x);
+                        d
+                    }
+                    _ => continue,
+                },
+                _ => continue,
+            };
+            dots.insert(id as u32, dot);
+        }
+        // The operands an emitted node reads.
+        let operands = |id: u32| -> SmallVec<[u32; 3]> {
+            match dots.get(&id) {
+                Some(d) => d
+                    .init
+                    .iter()
+                    .copied()
+                    .chain(d.terms.iter().flat_map(|&(a, b)| [a, b]))
+                    .collect(),
+                None => self.nodes[id as usize].operands(),
+            }
+        };
+        let emitted = |id: usize| live[id] && !absorbed[id];
         // Constants and inputs get fixed registers.
         let mut reg = vec![u32::MAX; nn];
         let mut consts = Vec::new();
@@ -759,9 +889,9 @@ impl<'a> Builder<'a> {
             }
         };
         let mut last = vec![0u32; nn];
-        for (id, node) in self.nodes.iter().enumerate() {
-            if live[id] {
-                for a in node.operands() {
+        for id in 0..nn {
+            if emitted(id) {
+                for a in operands(id as u32) {
                     last[a as usize] = last[a as usize].max(pos(id as u32));
                 }
             }
@@ -769,17 +899,17 @@ impl<'a> Builder<'a> {
         for &o in outs {
             last[o as usize] = u32::MAX;
         }
-        // Nodes whose last use is at position p, to free after p.
+        // Nodes whose last use is at position p, to free there.
         let mut dying: Vec<Vec<u32>> = vec![Vec::new(); nn];
         for id in 0..nn {
-            let fixed = matches!(self.nodes[id], Node::Const(_) | Node::Input(_));
-            if live[id] && !fixed && last[id] != u32::MAX && (last[id] as usize) < nn {
+            if emitted(id) && !fixed(id as u32) && (last[id] as usize) < nn {
                 dying[last[id] as usize].push(id as u32);
             }
         }
         let mut free: Vec<u32> = Vec::new();
         let mut next = nc + n_inputs as u32;
         let mut code = Vec::new();
+        let mut pairs: Vec<(u32, u32)> = Vec::new();
         let mut alloc = |free: &mut Vec<u32>| -> u32 {
             free.pop().unwrap_or_else(|| {
                 next += 1;
@@ -787,15 +917,25 @@ impl<'a> Builder<'a> {
             })
         };
         for id in 0..nn {
-            if !live[id] || matches!(self.nodes[id], Node::Const(_) | Node::Input(_)) {
-                continue;
-            }
-            if reg[id] != u32::MAX {
-                continue; // the second of a sin_cos pair
+            if !emitted(id) || fixed(id as u32) || reg[id] != u32::MAX {
+                continue; // dead, absorbed, preloaded, or the second of a sin_cos
             }
             let node = self.nodes[id];
             let ops: SmallVec<[u32; 3]> =
                 node.operands().iter().map(|&a| reg[a as usize]).collect();
+            let dot = dots.get(&(id as u32)).map(|d| {
+                let start = pairs.len() as u32;
+                pairs.extend(
+                    d.terms
+                        .iter()
+                        .map(|&(a, b)| (reg[a as usize], reg[b as usize])),
+                );
+                (
+                    d.init.map_or(NONE, |i| reg[i as usize]),
+                    start,
+                    d.terms.len() as u32,
+                )
+            });
             // Operands dying here may be reused for the result.
             for &d in &dying[id] {
                 free.push(reg[d as usize]);
@@ -821,6 +961,32 @@ impl<'a> Builder<'a> {
             }
             let dst = alloc(&mut free);
             reg[id] = dst;
+            if let Some((init, start, len)) = dot {
+                let one = pairs[start as usize];
+                code.push(match (len, init) {
+                    (1, NONE) => Instr::Mul {
+                        dst,
+                        a: one.0,
+                        b: one.1,
+                    },
+                    (1, c) => {
+                        pairs.pop();
+                        Instr::MulAdd {
+                            dst,
+                            a: one.0,
+                            b: one.1,
+                            c,
+                        }
+                    }
+                    _ => Instr::Dot {
+                        dst,
+                        init,
+                        start,
+                        len,
+                    },
+                });
+                continue;
+            }
             code.push(match node {
                 Node::Add(..) => Instr::Add {
                     dst,
@@ -861,17 +1027,26 @@ impl<'a> Builder<'a> {
                 Node::Const(_) | Node::Input(_) => continue,
             });
         }
-        // Sin/cos pairs: the second member's operand uses are covered since
-        // the pair is emitted at the earlier position, before either is used.
         let outputs = outs.iter().map(|&o| reg[o as usize]).collect();
         Program {
             consts,
             n_inputs,
             n_regs: next as usize,
             code,
+            pairs,
             outputs,
         }
     }
+}
+
+/// "No register": a dot product without an initial value.
+const NONE: u32 = u32::MAX;
+
+/// A dot product `init + Σ a·b` over node ids, before register allocation.
+#[derive(Clone, Debug)]
+struct Dot {
+    init: Option<u32>,
+    terms: Vec<(u32, u32)>,
 }
 
 /// The value of a polynomial without runtime variables.
