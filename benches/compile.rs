@@ -6,7 +6,9 @@
 //!   and f at one state by the compiled program, by `Expr::eval_f64` (tree
 //!   walking) and by the hand-written Rust below;
 //! * `rhs/chain10/{compiled,hand}`: the whole right-hand side y' = (q̇, M⁻¹f),
-//!   i.e. the above plus `solve_spd`.
+//!   i.e. the above plus `solve_spd`;
+//! * `rhs/double_pendulum/{mass_matrix,accelerations}`: M and f compiled
+//!   and solved against the compiled exact accelerations.
 //!
 //! The hand-written chain (equal masses m, lengths l; angles from the
 //! downward vertical, 0-based): M_ij = m l² (n − max(i, j)) cos(θ_i − θ_j),
@@ -176,5 +178,35 @@ fn chain(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, chain);
+/// The double pendulum (the 2-link chain): M⁻¹f by `solve_spd` against the
+/// compiled exact accelerations (`CompiledDynamics::from_accelerations`).
+fn double_pendulum(c: &mut Criterion) {
+    let l = Scene::parse(&qdot::gallery::pendulum_chain(2))
+        .expect("parses")
+        .lagrange()
+        .expect("derives");
+    let params: FxHashMap<Var, f64> = [("m", M), ("l", L), ("g", G)]
+        .iter()
+        .map(|(k, v)| (atom::param(k), *v))
+        .collect();
+    let mut via_m = CompiledDynamics::new(&l, &params).expect("compiles");
+    let mut via_acc = CompiledDynamics::from_accelerations(&l, &params).expect("compiles");
+    let y = [0.4, -0.3, 0.2, 0.7];
+    let (mut d1, mut d2) = ([0.0; 4], [0.0; 4]);
+    via_m.rhs(0.0, &y, &mut d1);
+    via_acc.rhs(0.0, &y, &mut d2);
+    for (a, b) in d1.iter().zip(&d2) {
+        assert!((a - b).abs() < 1e-12 * a.abs().max(1.0), "{d1:?} vs {d2:?}");
+    }
+    let mut g = c.benchmark_group("rhs/double_pendulum");
+    g.bench_function("mass_matrix", |b| {
+        b.iter(|| via_m.rhs(0.0, black_box(&y), &mut d1))
+    });
+    g.bench_function("accelerations", |b| {
+        b.iter(|| via_acc.rhs(0.0, black_box(&y), &mut d2))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, chain, double_pendulum);
 criterion_main!(benches);
