@@ -507,3 +507,48 @@ proptest! {
         check_program(&es, 3, seed);
     }
 }
+
+#[test]
+fn elementary_functions_and_time() {
+    let (x, y, a, t) = (
+        Expr::coord("x", 0),
+        Expr::coord("y", 1),
+        Expr::param("a"),
+        Expr::time(),
+    );
+    let third = Expr::rational(qdot::num::Q::new(1, 3).expect("1/3"));
+    let exprs = vec![
+        func::exp(&x.neg()).mul(&t),
+        func::ln(&a.add(&x.mul(&x))).expect("ln"),
+        func::atan(&x.mul(&y)),
+        func::asin(&x.mul(&third)).expect("asin"),
+        func::acos(&y.mul(&third)).expect("acos"),
+        func::sin(&a).mul(&func::cos(&t)),
+    ];
+    let worst = check_program(&exprs, 30, 21);
+    assert!(worst < 1e-14, "{worst:e}");
+    let inputs = leaves(&exprs);
+    let p = compile(&exprs, &inputs).expect("compiles");
+    for want in [
+        |i: &Instr| matches!(i, Instr::Exp { .. }),
+        |i: &Instr| matches!(i, Instr::Ln { .. }),
+        |i: &Instr| matches!(i, Instr::Atan { .. }),
+        |i: &Instr| matches!(i, Instr::Asin { .. }),
+        |i: &Instr| matches!(i, Instr::Acos { .. }),
+    ] {
+        assert_eq!(count(&p, want), 1, "{:?}", p.instructions());
+    }
+    // sin a and cos t alone: no pair to share.
+    assert_eq!(count(&p, |i| matches!(i, Instr::Sin { .. })), 1);
+    assert_eq!(count(&p, |i| matches!(i, Instr::Cos { .. })), 1);
+    // With a bound, sin a is a constant.
+    let params: FxHashMap<Var, f64> = [(atom::param("a"), 0.8)].into_iter().collect();
+    let free: Vec<Var> = inputs
+        .iter()
+        .copied()
+        .filter(|v| *v != atom::param("a"))
+        .collect();
+    let bound = compile_with(&exprs, &free, &params).expect("compiles");
+    assert_eq!(count(&bound, |i| matches!(i, Instr::Sin { .. })), 0);
+    assert_eq!(bound.n_inputs(), free.len());
+}
