@@ -2,9 +2,10 @@
 //! on the 10-link pendulum chain (`gallery::pendulum_chain`), in one run:
 //!
 //! * `compile/chain10`: compiling M's upper triangle and f (parameters bound);
-//! * `eval/chain10/{compiled,tree_walk,hand}`: evaluating M's upper triangle
-//!   and f at one state by the compiled program, by `Expr::eval_f64` (tree
-//!   walking) and by the hand-written Rust below;
+//! * `eval/chain10/{compiled,tree_walk,hand,hand_tuned}`: evaluating M's
+//!   upper triangle and f at one state by the compiled program, by
+//!   `Expr::eval_f64` (tree walking), by the hand-written Rust below, and by
+//!   a tuned hand-written version (one sin_cos per angle, addition theorems);
 //! * `rhs/chain10/{compiled,hand}`: the whole right-hand side y' = (q̇, M⁻¹f),
 //!   i.e. the above plus `solve_spd`;
 //! * `rhs/double_pendulum/{mass_matrix,accelerations}`: M and f compiled
@@ -59,6 +60,34 @@ fn hand_chain(q: &[f64], qd: &[f64], upper: &mut [f64], f: &mut [f64], sd: &mut 
     }
 }
 
+/// The hand-written chain with one `sin_cos` per angle and the addition
+/// theorems (cos(θ_i − θ_j) = c_i c_j + s_i s_j, sin(θ_i − θ_j) = s_i c_j −
+/// c_i s_j): the tuned hand-written reference. `sc` (2n) is scratch.
+fn hand_chain_tuned(q: &[f64], qd: &[f64], upper: &mut [f64], f: &mut [f64], sc: &mut [f64]) {
+    let n = q.len();
+    let ml2 = M * L * L;
+    let (s, c) = sc.split_at_mut(n);
+    for i in 0..n {
+        (s[i], c[i]) = q[i].sin_cos();
+    }
+    let mut k = 0;
+    for i in 0..n {
+        for j in i..n {
+            upper[k] = ml2 * (n - j) as f64 * (c[i] * c[j] + s[i] * s[j]);
+            k += 1;
+        }
+    }
+    for i in 0..n {
+        let (mut sc_sum, mut ss_sum) = (0.0, 0.0);
+        for j in 0..n {
+            let w = (n - i.max(j)) as f64 * qd[j] * qd[j];
+            sc_sum += w * c[j];
+            ss_sum += w * s[j];
+        }
+        f[i] = -ml2 * (s[i] * sc_sum - c[i] * ss_sum) - M * G * L * (n - i) as f64 * s[i];
+    }
+}
+
 fn setup() -> (Lagrange, Vec<Expr>, FxHashMap<Var, f64>) {
     let l = Scene::parse(&qdot::gallery::pendulum_chain(N))
         .expect("parses")
@@ -99,6 +128,8 @@ fn chain(c: &mut Criterion) {
     prog.eval(&x, &mut regs, &mut out);
     let (mut hu, mut hf, mut sd) = (vec![0.0; k], vec![0.0; N], vec![0.0; N * N]);
     hand_chain(&q, &qd, &mut hu, &mut hf, &mut sd);
+    let (mut tu, mut tf, mut sc) = (vec![0.0; k], vec![0.0; N], vec![0.0; 2 * N]);
+    hand_chain_tuned(&q, &qd, &mut tu, &mut tf, &mut sc);
     let vals: FxHashMap<Var, f64> = inputs.iter().copied().zip(x.iter().copied()).collect();
     let env = |a: &Atom| -> Option<f64> {
         match a {
@@ -138,6 +169,9 @@ fn chain(c: &mut Criterion) {
     });
     g.bench_function("hand", |b| {
         b.iter(|| hand_chain(black_box(&q), black_box(&qd), &mut hu, &mut hf, &mut sd))
+    });
+    g.bench_function("hand_tuned", |b| {
+        b.iter(|| hand_chain_tuned(black_box(&q), black_box(&qd), &mut tu, &mut tf, &mut sc))
     });
     g.bench_function("tree_walk", |b| {
         b.iter(|| {
