@@ -552,3 +552,22 @@ fn elementary_functions_and_time() {
     assert_eq!(count(&bound, |i| matches!(i, Instr::Sin { .. })), 0);
     assert_eq!(bound.n_inputs(), free.len());
 }
+
+#[test]
+fn dead_code_is_removed() {
+    // (a − 2)·sin x + y with a = 2: sin x is lowered, then its term folds
+    // to zero; no instruction computes it.
+    let (x, y, a) = (Expr::coord("x", 0), Expr::coord("y", 0), Expr::param("a"));
+    let e = a.sub(&Expr::int(2)).mul(&func::sin(&x)).add(&y);
+    let params: FxHashMap<Var, f64> = [(atom::param("a"), 2.0)].into_iter().collect();
+    let p = compile_with(
+        std::slice::from_ref(&e),
+        &[atom::coord("x", 0), atom::coord("y", 0)],
+        &params,
+    )
+    .expect("compiles");
+    assert!(p.instructions().is_empty(), "{:?}", p.instructions());
+    let mut out = [0.0];
+    p.eval(&[0.3, 1.25], &mut p.registers(), &mut out);
+    assert_eq!(out[0], 1.25);
+}

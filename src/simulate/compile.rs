@@ -267,7 +267,8 @@ pub fn compile(outputs: &[Expr], inputs: &[Var]) -> Result<Program, String> {
 }
 
 /// [`compile`] with some atoms (usually parameters) bound to numbers at
-/// compile time: they are folded into the constants.
+/// compile time: they are folded into the constants (a bound atom that is
+/// also an input takes its bound value; its input slot is then ignored).
 pub fn compile_with(
     outputs: &[Expr],
     inputs: &[Var],
