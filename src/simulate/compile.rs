@@ -1135,22 +1135,19 @@ pub fn solve_spd(m: &mut [f64], f: &mut [f64], n: usize) -> Result<(), String> {
 /// strict upper triangle untouched. Err(j) when the pivot of column j is
 /// not positive (columns < j are then factored, column j untouched).
 fn cholesky(a: &mut [f64], n: usize) -> Result<(), usize> {
+    let dot = |x: &[f64], y: &[f64]| -> f64 { x.iter().zip(y).map(|(p, q)| p * q).sum() };
     for j in 0..n {
-        let mut d = a[j * n + j];
-        for k in 0..j {
-            d -= a[j * n + k] * a[j * n + k];
-        }
+        let (done, rest) = a[..n * n].split_at_mut((j + 1) * n);
+        let row_j = &mut done[j * n..];
+        let d = row_j[j] - dot(&row_j[..j], &row_j[..j]);
         if d.is_nan() || d <= 0.0 {
             return Err(j);
         }
         let d = d.sqrt();
-        a[j * n + j] = d;
-        for i in j + 1..n {
-            let mut s = a[i * n + j];
-            for k in 0..j {
-                s -= a[i * n + k] * a[j * n + k];
-            }
-            a[i * n + j] = s / d;
+        row_j[j] = d;
+        let lj = &row_j[..j];
+        for row_i in rest.chunks_exact_mut(n) {
+            row_i[j] = (row_i[j] - dot(&row_i[..j], lj)) / d;
         }
     }
     Ok(())
@@ -1158,11 +1155,9 @@ fn cholesky(a: &mut [f64], n: usize) -> Result<(), usize> {
 
 fn cholesky_solve(l: &[f64], b: &mut [f64], n: usize) {
     for i in 0..n {
-        let mut s = b[i];
-        for k in 0..i {
-            s -= l[i * n + k] * b[k];
-        }
-        b[i] = s / l[i * n + i];
+        let row = &l[i * n..i * n + i];
+        let s: f64 = row.iter().zip(&b[..i]).map(|(p, q)| p * q).sum();
+        b[i] = (b[i] - s) / l[i * n + i];
     }
     for i in (0..n).rev() {
         let mut s = b[i];
