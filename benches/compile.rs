@@ -15,6 +15,11 @@
 //! downward vertical, 0-based): M_ij = m l² (n − max(i, j)) cos(θ_i − θ_j),
 //! f_i = −m l² Σ_j (n − max(i, j)) sin(θ_i − θ_j) θ̇_j² − m g l (n − i) sin θ_i.
 //! It is checked against qdot's M and f before timing.
+//!
+//! Measured (2 shared cores under load, so ±30 %): compile ≈ 0.4–0.7 ms;
+//! eval compiled ≈ 1.1–2.4 µs, hand ≈ 2.0–3.9 µs (compiled/hand ≈ 0.5–0.65),
+//! hand_tuned ≈ 0.65–1.05 µs (compiled/tuned ≈ 1.2–2.2), tree walk ≈
+//! 150–360 µs (≈ 130× the compiled program).
 
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
