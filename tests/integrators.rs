@@ -567,10 +567,25 @@ fn too_many_steps_and_bad_inputs() {
         integrate(&mut oscillator(), Method::Vern7, &[1.0, 0.0], &bad_tol),
         Err(SimError::BadInput(_))
     ));
+    // the implicit methods through the same dispatch: Radau5 integrates,
+    // Gauss6 (fixed step) needs dt, and neither locates events
+    let r = integrate(&mut oscillator(), Method::Radau5, &[1.0, 0.0], &ok).unwrap();
+    assert_eq!(r.status, Status::Done);
+    assert!((r.y.last().unwrap()[0] - ok.t_end.cos()).abs() < 1e-4);
+    assert!(matches!(
+        integrate(&mut oscillator(), Method::Gauss6, &[1.0, 0.0], &ok),
+        Err(SimError::BadInput(_))
+    ));
     for m in [Method::Radau5, Method::Gauss6] {
-        assert_eq!(
-            integrate(&mut oscillator(), m, &[1.0, 0.0], &ok).err(),
-            Some(SimError::NotInThisBuild(m))
-        );
+        assert!(matches!(
+            integrate_with_event(&mut oscillator(), m, &[1.0, 0.0], &ok, &mut |_, y| y[0]),
+            Err(SimError::BadInput(_))
+        ));
     }
+    // explicit::integrate itself takes only explicit methods
+    assert_eq!(
+        qdot::simulate::explicit::integrate(&mut oscillator(), Method::Radau5, &[1.0, 0.0], &ok)
+            .err(),
+        Some(SimError::NotExplicit(Method::Radau5))
+    );
 }

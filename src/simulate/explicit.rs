@@ -554,7 +554,7 @@ fn run<S: System + ?Sized>(
     mut event: EventFn<'_>,
 ) -> Result<Solution, SimError> {
     let Some(kind) = Kind::of(method) else {
-        return Err(SimError::NotInThisBuild(method));
+        return Err(SimError::NotExplicit(method));
     };
     check_inputs(sys, y0, opts, fixed)?;
     let n = y0.len();

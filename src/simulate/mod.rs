@@ -18,6 +18,8 @@ pub mod elliptic;
 pub mod explicit;
 pub mod implicit;
 
+pub mod compile;
+
 /// A first-order system y' = F(t, y) of fixed dimension.
 pub trait System {
     /// The dimension of y.
@@ -138,8 +140,8 @@ pub struct Solution {
 /// Why an integration could not start.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SimError {
-    /// The method is not compiled into this build (its module is absent).
-    NotInThisBuild(Method),
+    /// An explicit-only entry point ([`explicit`]) was given an implicit method.
+    NotExplicit(Method),
     /// The inputs are inconsistent (dimension, tolerances, times, step).
     BadInput(String),
 }
@@ -147,7 +149,7 @@ pub enum SimError {
 impl std::fmt::Display for SimError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            SimError::NotInThisBuild(m) => write!(f, "method {m:?} is not in this build"),
+            SimError::NotExplicit(m) => write!(f, "{m:?} is not an explicit method"),
             SimError::BadInput(s) => write!(f, "bad input: {s}"),
         }
     }
