@@ -47,9 +47,13 @@
 //! * the lifting in several variables works on dense truncated power
 //!   series: its cost grows with `deg_x · (number of monomials of total
 //!   degree ≤ 2·deg_y)`;
-//! * the Kronecker image has degree up to `∏ (deg_{xⱼ} p + 1) − 1`; above
-//!   [`MAX_KRONECKER_DEGREE`] a multivariate part is returned unsplit (it is
-//!   then a factor, but not certified irreducible);
+//! * the lifting is skipped beyond [`MAX_LIFTING_WORK`] (sparse polynomials
+//!   whose leading coefficient in every variable vanishes at 0 need a
+//!   shifted point, which makes them dense), and the Kronecker image has
+//!   degree up to `∏ (deg_{xⱼ} p + 1) − 1`; when the lifting is skipped and
+//!   the image is above [`MAX_KRONECKER_DEGREE`], a multivariate part is
+//!   returned unsplit: it is then a factor, but not certified irreducible
+//!   (seen on products of sparse quartic-by-cubic pieces in 4 variables);
 //! * a univariate part for which no prime below 2¹⁶ keeps it square-free (a
 //!   discriminant divisible by all of them) is likewise returned unsplit.
 
