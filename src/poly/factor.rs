@@ -26,7 +26,7 @@
 //!    point `c` (zero first) that keeps `deg_x` and leaves the image
 //!    square-free; an irreducible image proves irreducibility; otherwise the
 //!    image factors (the best of a few points: fewest factors) are lifted
-//!    in ℚ[[y − c]][x] by linear Hensel lifting in all the other variables
+//!    in `ℚ[[y − c]][x]` by linear Hensel lifting in all the other variables
 //!    at once, and subsets recombined by exact division (Wang & Rothschild,
 //!    "Factoring multivariate polynomials over the integers", Math. Comp.
 //!    29, 1975; MCA §15.4–15.6, §16.6);
@@ -1327,7 +1327,7 @@ fn point(k: usize, n: usize) -> Vec<i64> {
 /// modulo the powers of the ideal (y − c)): the other variables are set
 /// to a point `c` keeping the degree in the main variable `x` and the image
 /// square-free; the image is factored over ℤ; the monic factors are lifted
-/// in ℚ[[y − c]][x] up to the total degree that bounds `lc(g)·h/lc(h)` for
+/// in `ℚ[[y − c]][x]` up to the total degree that bounds `lc(g)·h/lc(h)` for
 /// every factor `h`; subsets of the lifted factors, smallest first, are
 /// tested by exact division. `None` when no point among the first
 /// [`POINTS_TRIED`] is suitable (then Kronecker's method is used).
