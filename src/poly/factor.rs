@@ -26,7 +26,7 @@
 //!    point `c` (zero first) that keeps `deg_x` and leaves the image
 //!    square-free; an irreducible image proves irreducibility; otherwise the
 //!    image factors (the best of a few points: fewest factors) are lifted
-//!    in ℚ[[y − c]][x] by linear Hensel lifting in all the other variables
+//!    in `ℚ[[y − c]][x]` by linear Hensel lifting in all the other variables
 //!    at once, and subsets recombined by exact division (Wang & Rothschild,
 //!    "Factoring multivariate polynomials over the integers", Math. Comp.
 //!    29, 1975; MCA §15.4–15.6, §16.6);
@@ -47,9 +47,13 @@
 //! * the lifting in several variables works on dense truncated power
 //!   series: its cost grows with `deg_x · (number of monomials of total
 //!   degree ≤ 2·deg_y)`;
-//! * the Kronecker image has degree up to `∏ (deg_{xⱼ} p + 1) − 1`; above
-//!   [`MAX_KRONECKER_DEGREE`] a multivariate part is returned unsplit (it is
-//!   then a factor, but not certified irreducible);
+//! * the lifting is skipped beyond [`MAX_LIFTING_WORK`] (sparse polynomials
+//!   whose leading coefficient in every variable vanishes at 0 need a
+//!   shifted point, which makes them dense), and the Kronecker image has
+//!   degree up to `∏ (deg_{xⱼ} p + 1) − 1`; when the lifting is skipped and
+//!   the image is above [`MAX_KRONECKER_DEGREE`], a multivariate part is
+//!   returned unsplit: it is then a factor, but not certified irreducible
+//!   (seen on products of sparse quartic-by-cubic pieces in 4 variables);
 //! * a univariate part for which no prime below 2¹⁶ keeps it square-free (a
 //!   discriminant divisible by all of them) is likewise returned unsplit.
 
@@ -63,7 +67,7 @@ use std::cmp::Ordering;
 
 /// Degree limit of the univariate Kronecker image of a multivariate part
 /// (see the module docs): beyond it the part is not split.
-pub const MAX_KRONECKER_DEGREE: u64 = 2000;
+pub const MAX_KRONECKER_DEGREE: u64 = 256;
 
 /// Primes are taken below this bound for the modular factorization.
 const PRIME_LIMIT: u64 = 1 << 16;
@@ -1284,6 +1288,21 @@ fn rem_coeffwise(e: &Poly, s: &[Q], u: &[Q], x: Var) -> Poly {
     Poly::from_terms(terms)
 }
 
+/// Budget of the lifting in several variables: M² · r · prec with `M` the
+/// number of monomials of a dense lifted factor (`(deg_x + 1)·C(prec − 1 +
+/// k, k)` for `k` other variables), `r` image factors and the precision
+/// `prec` (a fraction of a second at the limit); beyond it Kronecker's method is used.
+pub const MAX_LIFTING_WORK: u64 = 200_000_000;
+
+/// `C(n, k)`, saturating.
+fn binomial(n: u64, k: u64) -> u64 {
+    let mut r: u64 = 1;
+    for i in 0..k.min(n) {
+        r = r.saturating_mul(n - i) / (i + 1);
+    }
+    r
+}
+
 /// Evaluation points tried (at most) per polynomial, and good ones compared.
 const POINTS_TRIED: usize = 24;
 const GOOD_POINTS: usize = 3;
@@ -1308,19 +1327,28 @@ fn point(k: usize, n: usize) -> Vec<i64> {
 /// modulo the powers of the ideal (y − c)): the other variables are set
 /// to a point `c` keeping the degree in the main variable `x` and the image
 /// square-free; the image is factored over ℤ; the monic factors are lifted
-/// in ℚ[[y − c]][x] up to the total degree that bounds `lc(g)·h/lc(h)` for
+/// in `ℚ[[y − c]][x]` up to the total degree that bounds `lc(g)·h/lc(h)` for
 /// every factor `h`; subsets of the lifted factors, smallest first, are
 /// tested by exact division. `None` when no point among the first
 /// [`POINTS_TRIED`] is suitable (then Kronecker's method is used).
 fn hensel_factor(g: &Poly, vars: &[Var]) -> Option<Vec<Poly>> {
-    // main variable: the smallest degree
-    let x = *vars.iter().min_by_key(|&&v| (g.degree(v), v))?;
-    let ys: Vec<Var> = vars.iter().copied().filter(|&v| v != x).collect();
-    let n = g.degree(x) as usize;
-    let lcx = g.coeffs_in(x).pop()?;
-    let mut best: Option<(Vec<i64>, Vec<ZPoly>)> = None;
+    // candidates: every variable as the main one at the zero point (sparse),
+    // then the smallest-degree variable at other points
+    let mut order: Vec<Var> = vars.to_vec();
+    order.sort_by_key(|&v| (g.degree(v), v));
+    let mut best: Option<(Var, Vec<i64>, Vec<ZPoly>)> = None;
     let mut good = 0;
-    for k in 0..POINTS_TRIED {
+    let tries = order
+        .iter()
+        .map(|&x| (x, 0usize))
+        .chain((1..POINTS_TRIED).map(|k| (order[0], k)));
+    for (x, k) in tries {
+        if k > 0 && best.as_ref().is_some_and(|b| b.1.iter().all(|&v| v == 0)) {
+            break;
+        }
+        let n = g.degree(x) as usize;
+        let lcx = g.coeffs_in(x).pop()?;
+        let ys: Vec<Var> = vars.iter().copied().filter(|&v| v != x).collect();
         let c = point(k, ys.len());
         let mut lc0 = lcx.clone();
         let mut f0 = g.clone();
@@ -1339,20 +1367,30 @@ fn hensel_factor(g: &Poly, vars: &[Var]) -> Option<Vec<Poly>> {
         if fs.len() == 1 {
             return Some(vec![g.clone()]);
         }
-        if best.as_ref().is_none_or(|b| fs.len() < b.1.len()) {
-            best = Some((c, fs));
+        if best.as_ref().is_none_or(|b| fs.len() < b.2.len()) {
+            best = Some((x, c, fs));
         }
         good += 1;
-        if good >= GOOD_POINTS {
+        if good >= GOOD_POINTS && k > 0 {
             break;
         }
     }
-    let (c, us) = best?;
+    let (x, c, us) = best?;
+    let ys: Vec<Var> = vars.iter().copied().filter(|&v| v != x).collect();
+    let n = g.degree(x);
     let fs = shift(g, &ys, &c);
     let lcs = fs.coeffs_in(x).pop()?;
     let dy = fs.terms().iter().map(|t| ydeg(&t.0, x)).max().unwrap_or(0);
     let dl = lcs.terms().iter().map(|t| ydeg(&t.0, x)).max().unwrap_or(0);
     let prec = dy + dl + 1;
+    // work budget of the dense lifting (see the module docs)
+    let dense = (n as u64 + 1) * binomial(prec as u64 - 1 + ys.len() as u64, ys.len() as u64);
+    let work = dense
+        .saturating_mul(dense)
+        .saturating_mul(us.len() as u64 * prec as u64);
+    if work > MAX_LIFTING_WORK {
+        return None;
+    }
     // monic target fs / lc (a power series: lc has constant term lc0 ≠ 0)
     let lc0 = lcs.as_constant().cloned().unwrap_or_else(|| {
         lcs.terms()
