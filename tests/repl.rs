@@ -495,3 +495,31 @@ fn completion_and_highlighting() {
         "\u{1b}[1;34mkinetic\u{1b}[0m E = \u{1b}[36m1\u{1b}[0m/\u{1b}[36m2\u{1b}[0m*\u{1b}[33mG\u{1b}[0m*\u{1b}[32mtheta3\u{1b}[0m'^\u{1b}[36m2\u{1b}[0m \u{1b}[2m# note\u{1b}[0m"
     );
 }
+
+#[test]
+fn every_statement_kind_works_as_a_line() {
+    let mut s = Session::new();
+    ok(&mut s, "coordinates x, phi");
+    ok(&mut s, "parameters m, k, F, M0, J, c");
+    ok(&mut s, "kinetic E = 1/2*m*x'^2 + 1/2*J*phi'^2");
+    ok(&mut s, "potential V = 1/2*k*x^2");
+    assert_eq!(ok(&mut s, "load F at x"), "");
+    assert_eq!(ok(&mut s, "torque M0*cos(phi) on phi"), "");
+    assert_eq!(ok(&mut s, "force x: -c*x'"), "");
+    ok(&mut s, "rayleigh R = 1/2*c*phi'^2");
+    assert_eq!(ok(&mut s, "latex phi = \"\\vartheta\""), "");
+    ok(&mut s, "load [F, 0] at [x, 0]");
+    assert_eq!(
+        ok(&mut s, ":forces"),
+        "Generalized forces  δL = Σ Q_k·δq_k\n  Q_x = −c·ẋ − k·x + 2·F\n  Q_φ = −c·φ̇ + M₀·cos(φ)\n"
+    );
+    // the scene's LaTeX notation applies to results
+    ok(&mut s, ":format latex");
+    assert_eq!(ok(&mut s, "phi'"), "\\dot{\\vartheta}\n");
+    // a load at a point that does not move is the scene's usual warning
+    ok(&mut s, ":format text");
+    let r = s.execute("load F at c");
+    assert!(!r.failed);
+    assert!(r.err.contains("does no virtual work"), "{}", r.err);
+    assert!(r.err.contains("--> input:1:"), "{}", r.err);
+}

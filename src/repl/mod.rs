@@ -16,7 +16,7 @@
 //!              "potential V = 1/2*k*x^2"] {
 //!     assert!(!s.execute(line).failed);
 //! }
-//! assert_eq!(s.execute("diff(E, x')").out, "m·ẋ\n");
+//! assert_eq!(s.execute("diff(E, x')").out, "m·x\u{307}\n"); // ẋ: x and a combining dot
 //! assert!(s.execute(":solve").out.contains("= −k/m·x"));
 //! ```
 
