@@ -370,16 +370,25 @@ fn scene_save_and_load_round_trip_through_the_cli() {
     );
     let saved = std::fs::read_to_string(&path).unwrap();
     assert_eq!(saved, s.scene_text());
-    // qdot solve on the saved file answers as the session does
+    // `qdot solve` on the saved file answers as the session does
     let in_repl = ok(&mut s, ":solve");
-    let (cli, _) = qdot::output::run(
-        qdot::output::Command::Solve,
-        &saved,
-        qdot::output::Format::Text,
-        &Default::default(),
-    )
-    .unwrap();
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_qdot"))
+        .args(["solve", p])
+        .output()
+        .unwrap();
+    assert!(run.status.success());
+    assert!(run.stderr.is_empty());
+    let cli = String::from_utf8(run.stdout).unwrap();
     assert_eq!(in_repl, composed(&cli));
+    // and so does its JSON
+    ok(&mut s, ":format json");
+    let json_repl = ok(&mut s, ":solve");
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_qdot"))
+        .args(["solve", p, "--format", "json"])
+        .output()
+        .unwrap();
+    assert_eq!(json_repl, String::from_utf8(run.stdout).unwrap());
+    ok(&mut s, ":format text");
     assert!(
         cli.contains("343/460·g") && cli.contains("T = 1/8·G"),
         "{cli}"
