@@ -151,7 +151,10 @@ fn ctrl_c_interrupts_a_long_computation() {
     enter(&mut p, "x = 2*a", "x = 2·a");
     // takes minutes: interrupted after a moment
     p.send_line("(a + b + c + d + e + f)^40").unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(700));
+    // Enter accepted (the line editor has left raw mode, so Ctrl-C is a
+    // signal now), and the computation under way
+    p.exp_string("\r\n").unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(500));
     p.send_control('c').unwrap();
     expect(&mut p, "(interrupted; the session is as it was)");
     prompt(&mut p);
