@@ -98,6 +98,42 @@ enum Command {
         #[arg(long)]
         set: Option<String>,
     },
+    /// Integrate the equations numerically: the exact M and f compiled to
+    /// f64, then RK4, DOPRI5, DOP853, Vern7, Gauss6 or Radau5.
+    Simulate {
+        /// The scene file (.qd).
+        file: String,
+        /// Every parameter's value: m=1,g=9.81
+        #[arg(long)]
+        set: Option<String>,
+        /// Every coordinate's and velocity's initial value: theta=0.5,theta'=0
+        #[arg(long)]
+        init: Option<String>,
+        /// The final time (from t = 0).
+        #[arg(long = "t-end")]
+        t_end: f64,
+        /// rk4, dopri5, dop853, vern7, gauss6 (symplectic) or radau5 (stiff)
+        #[arg(long, default_value = "dop853")]
+        method: String,
+        /// Relative tolerance of the adaptive methods.
+        #[arg(long, default_value_t = 1e-8)]
+        rtol: f64,
+        /// Absolute tolerance of the adaptive methods.
+        #[arg(long, default_value_t = 1e-10)]
+        atol: f64,
+        /// The step of rk4 and gauss6 (the first step of the others).
+        #[arg(long)]
+        dt: Option<f64>,
+        /// Evenly spaced output times from 0 to --t-end.
+        #[arg(long, default_value_t = 101)]
+        points: usize,
+        /// csv or json
+        #[arg(long, default_value = "csv")]
+        output: String,
+        /// Steps, rejections, RHS evaluations, factorizations, wall time (on stderr).
+        #[arg(long)]
+        stats: bool,
+    },
     /// Equilibrium positions (Q_k = 0) and their stability.
     Equilibrium {
         /// The scene file (.qd).
@@ -115,11 +151,41 @@ fn main() -> ExitCode {
     let command = match cli.command {
         None => return repl(None, false),
         Some(Command::Repl { file, echo }) => return repl(file.as_deref(), echo),
+        Some(Command::Simulate {
+            file,
+            set,
+            init,
+            t_end,
+            method,
+            rtol,
+            atol,
+            dt,
+            points,
+            output,
+            stats,
+        }) => {
+            return simulate(
+                &file,
+                set.as_deref(),
+                init.as_deref(),
+                qdot::simulate::run::Request {
+                    t_end,
+                    rtol,
+                    atol,
+                    dt,
+                    points,
+                    ..Default::default()
+                },
+                &method,
+                &output,
+                stats,
+            )
+        }
         Some(c) => c,
     };
     let mut opts = output::Options::default();
     let (cmd, file, fmt, set) = match &command {
-        Command::Repl { .. } => return repl(None, false),
+        Command::Repl { .. } | Command::Simulate { .. } => return repl(None, false),
         Command::Derive { file, format } => (output::Command::Derive, file, *format, None),
         Command::Solve { file, format } => (output::Command::Solve, file, *format, None),
         Command::Forces { file, format } => (output::Command::Forces, file, *format, None),
@@ -188,5 +254,79 @@ fn repl(file: Option<&str>, echo: bool) -> ExitCode {
     match qdot::repl::terminal::run(file, echo) {
         0 => ExitCode::SUCCESS,
         _ => ExitCode::from(1),
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn simulate(
+    file: &str,
+    set: Option<&str>,
+    init: Option<&str>,
+    mut req: qdot::simulate::run::Request,
+    method: &str,
+    output: &str,
+    stats: bool,
+) -> ExitCode {
+    use qdot::simulate::run;
+    let fail = |d: qdot::Diagnostic, src: &str| {
+        eprint!("{}", d.render(file, src));
+        ExitCode::from(1)
+    };
+    let src = match std::fs::read_to_string(file) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: cannot read `{file}`: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    if output != "csv" && output != "json" {
+        return fail(
+            qdot::Diagnostic::global(format!("unknown output `{output}`"))
+                .with_hint("--output csv or --output json"),
+            "",
+        );
+    }
+    match run::method_by_name(method) {
+        Ok(m) => req.method = m,
+        Err(d) => return fail(d, ""),
+    }
+    match set.map(output::parse_set).transpose() {
+        Ok(s) => req.set = s.unwrap_or_default(),
+        Err(d) => return fail(d, ""),
+    }
+    match init.map(run::parse_init).transpose() {
+        Ok(s) => req.init = s.unwrap_or_default(),
+        Err(d) => return fail(d, ""),
+    }
+    let r = match run::simulate(&src, &req) {
+        Ok(r) => r,
+        Err(d) => return fail(d, &src),
+    };
+    print!(
+        "{}",
+        if output == "json" {
+            run::json(&r)
+        } else {
+            run::csv(&r)
+        }
+    );
+    if stats {
+        eprint!("{}", run::stats_text(&r));
+    }
+    if let Some(t) = r.solution.stiff_at {
+        eprintln!(
+            "warning: the problem looks stiff from t = {t:.6e} on (Hairer's test); --method radau5 integrates it in far fewer steps"
+        );
+    }
+    match r.solution.status {
+        qdot::simulate::Status::Done | qdot::simulate::Status::Event { .. } => ExitCode::SUCCESS,
+        ref s => {
+            eprintln!(
+                "error: the integration stopped early: {} (at t = {:.6e})",
+                run::status_word(s),
+                r.rows.last().map_or(0.0, |row| row[0])
+            );
+            ExitCode::from(1)
+        }
     }
 }

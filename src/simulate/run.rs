@@ -1,0 +1,371 @@
+//! `qdot simulate`: a scene's exact equations compiled and integrated.
+//!
+//! The parameters get values (`--set`), every coordinate and velocity an
+//! initial value (`--init`); M and f are compiled ([`CompiledDynamics`])
+//! and integrated by the chosen [`Method`]. When the scene is conservative
+//! (no work, dissipation, forces, loads or torques, and no explicit t) the
+//! Jacobi integral h = Σ q̇ₖ·∂E/∂q̇ₖ − E + V − U (E + V − U for a natural
+//! system) is compiled too and reported as `energy`, so its drift shows
+//! the integration error.
+
+use super::compile::{compile_with, state_inputs, CompiledDynamics, Program};
+use super::{integrate, Method, Options, SimError, Solution, Status};
+use crate::diag::Diagnostic;
+use crate::expr::{atom, Expr};
+use crate::parse::ast::Role;
+use crate::poly::Var;
+use crate::scene::Scene;
+use rustc_hash::FxHashMap;
+use std::time::Instant;
+
+/// What `qdot simulate` was asked.
+#[derive(Clone, Debug)]
+pub struct Request {
+    /// Parameter values (every parameter of the scene needs one).
+    pub set: FxHashMap<String, f64>,
+    /// Initial values: `q` and `q'` for every coordinate.
+    pub init: FxHashMap<String, f64>,
+    pub t_end: f64,
+    pub method: Method,
+    pub rtol: f64,
+    pub atol: f64,
+    /// The step of RK4 and Gauss6 (required for them), the first step of
+    /// the adaptive methods.
+    pub dt: Option<f64>,
+    /// Number of evenly spaced output times from 0 to `t_end` (at least 2).
+    pub points: usize,
+}
+
+impl Default for Request {
+    fn default() -> Self {
+        Request {
+            set: FxHashMap::default(),
+            init: FxHashMap::default(),
+            t_end: 1.0,
+            method: Method::Dop853,
+            rtol: 1e-8,
+            atol: 1e-10,
+            dt: None,
+            points: 101,
+        }
+    }
+}
+
+/// A finished simulation.
+#[derive(Clone, Debug)]
+pub struct Run {
+    /// Column names: `t`, each q, each q', and `energy` when conservative.
+    pub columns: Vec<String>,
+    /// One row per output time.
+    pub rows: Vec<Vec<f64>>,
+    pub solution: Solution,
+    pub method: Method,
+    /// Wall time of the integration alone (compilation excluded).
+    pub seconds: f64,
+    /// Wall time of compiling M, f (and the energy).
+    pub compile_seconds: f64,
+}
+
+/// The method named on the command line.
+pub fn method_by_name(s: &str) -> Result<Method, Diagnostic> {
+    Ok(match s.to_ascii_lowercase().as_str() {
+        "rk4" => Method::Rk4,
+        "dopri5" | "rk45" => Method::Dopri5,
+        "dop853" => Method::Dop853,
+        "vern7" => Method::Vern7,
+        "gauss6" => Method::Gauss6,
+        "radau5" => Method::Radau5,
+        _ => {
+            return Err(Diagnostic::global(format!("unknown method `{s}`")).with_hint(
+                "the methods are rk4, dopri5, dop853, vern7 (explicit), gauss6 (symplectic) and radau5 (stiff)",
+            ))
+        }
+    })
+}
+
+/// The lower-case name of a method, as the command line spells it.
+pub fn method_name(m: Method) -> &'static str {
+    match m {
+        Method::Rk4 => "rk4",
+        Method::Dopri5 => "dopri5",
+        Method::Dop853 => "dop853",
+        Method::Vern7 => "vern7",
+        Method::Gauss6 => "gauss6",
+        Method::Radau5 => "radau5",
+    }
+}
+
+/// `q=0.5,q'=0` (numbers, signs allowed) as a map.
+pub fn parse_init(s: &str) -> Result<FxHashMap<String, f64>, Diagnostic> {
+    let mut out = FxHashMap::default();
+    for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+        let Some((k, v)) = part.split_once('=').filter(|(k, _)| !k.trim().is_empty()) else {
+            return Err(
+                Diagnostic::global(format!("`--init {part}`: expected name=value"))
+                    .with_hint("for example --init theta=0.5,theta'=0"),
+            );
+        };
+        let k = k.trim().to_string();
+        let v: f64 = match v.trim().parse() {
+            Ok(x) if f64::is_finite(x) => x,
+            _ => {
+                return Err(Diagnostic::global(format!(
+                    "`--init {part}`: `{}` is not a number",
+                    v.trim()
+                ))
+                .with_hint("write decimal numbers: --init x=0.1,x'=-2.5"))
+            }
+        };
+        if out.insert(k.clone(), v).is_some() {
+            return Err(Diagnostic::global(format!(
+                "`--init`: `{k}` is given twice"
+            )));
+        }
+    }
+    Ok(out)
+}
+
+/// Simulate the scene `src` as `req` asks.
+pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
+    let scene = Scene::parse(src)?;
+    let lag = scene.lagrange()?;
+    let names: Vec<String> = lag.coordinates.clone();
+    // parameter values: every parameter, nothing else
+    let mut params: FxHashMap<Var, f64> = FxHashMap::default();
+    let mut missing: Vec<String> = Vec::new();
+    for p in &scene.parameters {
+        match req.set.get(&p.name) {
+            Some(&v) => {
+                params.insert(atom::param(&p.name), v);
+            }
+            None => missing.push(p.name.clone()),
+        }
+    }
+    if !missing.is_empty() {
+        let example: Vec<String> = missing.iter().map(|m| format!("{m}=1")).collect();
+        return Err(Diagnostic::global(format!(
+            "no value for the parameter{} {}",
+            if missing.len() > 1 { "s" } else { "" },
+            missing.join(", ")
+        ))
+        .with_hint(format!(
+            "give every parameter a value: --set {}",
+            example.join(",")
+        )));
+    }
+    for k in req.set.keys() {
+        if !scene.parameters.iter().any(|p| &p.name == k) {
+            return Err(Diagnostic::global(format!(
+                "`--set {k}=…`: `{k}` is not a parameter of the scene"
+            ))
+            .with_hint(format!(
+                "the parameters are {}",
+                scene
+                    .parameters
+                    .iter()
+                    .map(|p| p.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )));
+        }
+    }
+    // initial values: q and q' of every coordinate
+    let mut y0 = Vec::with_capacity(2 * names.len());
+    let mut missing: Vec<String> = Vec::new();
+    for order in ["", "'"] {
+        for q in &names {
+            let key = format!("{q}{order}");
+            match req.init.get(&key) {
+                Some(&v) => y0.push(v),
+                None => {
+                    missing.push(key);
+                    y0.push(0.0);
+                }
+            }
+        }
+    }
+    if !missing.is_empty() {
+        let example: Vec<String> = missing.iter().map(|m| format!("{m}=0")).collect();
+        return Err(
+            Diagnostic::global(format!("no initial value for {}", missing.join(", "))).with_hint(
+                format!(
+                    "give every coordinate and velocity a value: --init {}",
+                    example.join(",")
+                ),
+            ),
+        );
+    }
+    for k in req.init.keys() {
+        let base = k.trim_end_matches('\'');
+        if !names.iter().any(|q| q == base) || k.len() - base.len() > 1 {
+            return Err(Diagnostic::global(format!(
+                "`--init {k}=…`: `{k}` is not a coordinate or a velocity"
+            ))
+            .with_hint(format!(
+                "the coordinates are {}; velocities are written q'",
+                names.join(", ")
+            )));
+        }
+    }
+    if !(req.t_end.is_finite() && req.t_end > 0.0) {
+        return Err(Diagnostic::global(format!(
+            "--t-end {} must be a positive number",
+            req.t_end
+        )));
+    }
+    let compile_start = Instant::now();
+    let mut dynamics = CompiledDynamics::new(&lag, &params)
+        .map_err(|e| Diagnostic::global(format!("cannot compile the equations: {e}")))?;
+    let energy = conserved_quantity(&scene, &lag.coordinates, &params)?;
+    let compile_seconds = compile_start.elapsed().as_secs_f64();
+
+    let points = req.points.max(2);
+    let t_out: Vec<f64> = (0..points)
+        .map(|i| req.t_end * i as f64 / (points - 1) as f64)
+        .collect();
+    let opts = Options {
+        t0: 0.0,
+        t_end: req.t_end,
+        rtol: req.rtol,
+        atol: req.atol,
+        dt: req.dt,
+        t_out,
+        ..Options::default()
+    };
+    let start = Instant::now();
+    let solution = integrate(&mut dynamics, req.method, &y0, &opts).map_err(|e| match e {
+        SimError::BadInput(s) => Diagnostic::global(s).with_hint(match req.method {
+            Method::Rk4 | Method::Gauss6 => "RK4 and Gauss6 take a fixed step: --dt 0.01",
+            _ => "check --rtol, --atol and --dt",
+        }),
+        e => Diagnostic::global(e.to_string()),
+    })?;
+    let seconds = start.elapsed().as_secs_f64();
+
+    let mut columns = vec!["t".to_string()];
+    columns.extend(names.iter().cloned());
+    columns.extend(names.iter().map(|q| format!("{q}'")));
+    if energy.is_some() {
+        columns.push("energy".into());
+    }
+    let mut rows = Vec::with_capacity(solution.t.len());
+    let (mut regs, mut out) = match &energy {
+        Some(p) => (p.registers(), vec![0.0; p.n_outputs()]),
+        None => (Vec::new(), Vec::new()),
+    };
+    for (t, y) in solution.t.iter().zip(&solution.y) {
+        let mut row = Vec::with_capacity(columns.len());
+        row.push(*t);
+        row.extend_from_slice(y);
+        if let Some(p) = &energy {
+            let mut input = Vec::with_capacity(1 + y.len());
+            input.push(*t);
+            input.extend_from_slice(y);
+            p.eval(&input, &mut regs, &mut out);
+            row.push(out[0]);
+        }
+        rows.push(row);
+    }
+    Ok(Run {
+        columns,
+        rows,
+        solution,
+        method: req.method,
+        seconds,
+        compile_seconds,
+    })
+}
+
+/// The Jacobi integral compiled, when the scene conserves it.
+fn conserved_quantity(
+    scene: &Scene,
+    coordinates: &[String],
+    params: &FxHashMap<Var, f64>,
+) -> Result<Option<Program>, Diagnostic> {
+    let non_conservative = [Role::Work, Role::Dissipation, Role::Rayleigh]
+        .into_iter()
+        .any(|r| scene.has_role(r))
+        || !scene.forces.is_empty()
+        || !scene.loads.is_empty()
+        || !scene.torques.is_empty();
+    if non_conservative {
+        return Ok(None);
+    }
+    let e = scene.role_sum(Role::Kinetic);
+    let v = scene
+        .role_sum(Role::Potential)
+        .sub(&scene.role_sum(Role::ForceFunction));
+    let t = atom::time();
+    if e.depends_on(t) || v.depends_on(t) {
+        return Ok(None);
+    }
+    let mut h = v.sub(&e);
+    for q in coordinates {
+        let qd = atom::coord(q, 1);
+        h = h.add(&Expr::var(qd).mul(&e.diff(qd)));
+    }
+    let program = compile_with(&[h], &state_inputs(coordinates), params)
+        .map_err(|e| Diagnostic::global(format!("cannot compile the energy: {e}")))?;
+    Ok(Some(program))
+}
+
+/// The run as CSV: a header line, then one line per output time.
+pub fn csv(run: &Run) -> String {
+    let mut out = run.columns.join(",");
+    out.push('\n');
+    for row in &run.rows {
+        let cells: Vec<String> = row.iter().map(|x| format!("{x:.17e}")).collect();
+        out.push_str(&cells.join(","));
+        out.push('\n');
+    }
+    out
+}
+
+/// The run as JSON: `method`, `status`, `columns`, `rows`, `stats`.
+pub fn json(run: &Run) -> String {
+    let s = &run.solution.stats;
+    let v = serde_json::json!({
+        "method": method_name(run.method),
+        "status": status_word(&run.solution.status),
+        "columns": run.columns,
+        "rows": run.rows,
+        "stats": {
+            "steps": s.steps,
+            "rejected": s.rejected,
+            "rhs_evals": s.rhs_evals,
+            "jacobians": s.jacobians,
+            "factorizations": s.factorizations,
+            "seconds": run.seconds,
+            "compile_seconds": run.compile_seconds,
+        },
+        "stiff_at": run.solution.stiff_at,
+    });
+    format!("{v}\n")
+}
+
+/// `done`, `event`, `step too small`, `too many steps`, `not finite`.
+pub fn status_word(s: &Status) -> &'static str {
+    match s {
+        Status::Done => "done",
+        Status::Event { .. } => "event",
+        Status::StepTooSmall { .. } => "step too small",
+        Status::TooManySteps { .. } => "too many steps",
+        Status::NotFinite { .. } => "not finite",
+    }
+}
+
+/// The `--stats` lines.
+pub fn stats_text(run: &Run) -> String {
+    let s = &run.solution.stats;
+    format!(
+        "method {}: {} steps ({} rejected), {} RHS evaluations, {} Jacobians, {} factorizations; integration {:.3} ms, compilation {:.3} ms\n",
+        method_name(run.method),
+        s.steps,
+        s.rejected,
+        s.rhs_evals,
+        s.jacobians,
+        s.factorizations,
+        run.seconds * 1e3,
+        run.compile_seconds * 1e3
+    )
+}

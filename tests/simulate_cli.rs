@@ -1,0 +1,323 @@
+//! `qdot simulate`: the compiled equations integrated, checked against
+//! exact solutions (seed 23.4's constant accelerations, the pendulum's
+//! elliptic-function solution, the damped oscillator's closed form), and
+//! the command line's errors and JSON keys.
+
+use qdot::simulate::elliptic::pendulum_exact;
+use std::process::Command;
+
+fn qdot(args: &[&str]) -> (bool, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_qdot"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("qdot runs");
+    (
+        out.status.success(),
+        String::from_utf8(out.stdout).unwrap(),
+        String::from_utf8(out.stderr).unwrap(),
+    )
+}
+
+fn scene(name: &str, text: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("qdot-sim-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p.to_str().unwrap().to_string()
+}
+
+fn rows(csv: &str) -> (Vec<String>, Vec<Vec<f64>>) {
+    let mut lines = csv.lines();
+    let head = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    let rows = lines
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    (head, rows)
+}
+
+const PENDULUM: &str = "coordinates th\nparameters m, g, l\n\
+    kinetic E = 1/2*m*l^2*th'^2\npotential V = -m*g*l*cos(th)\n";
+
+#[test]
+fn seed_23_4_moves_with_its_exact_constant_accelerations() {
+    let (ok, out, err) = qdot(&[
+        "simulate",
+        "examples/seed_23_4.qd",
+        "--set",
+        "G=2,g=9.81,r=0.5",
+        "--init",
+        "y3=0,theta3=0,y3'=1,theta3'=0",
+        "--t-end",
+        "2",
+        "--points",
+        "5",
+    ]);
+    assert!(ok, "{err}");
+    let (head, rows) = rows(&out);
+    assert_eq!(head, ["t", "y3", "theta3", "y3'", "theta3'"]);
+    assert_eq!(rows.len(), 5);
+    // ÿ₃ = 343/460·g, θ̈₃ = 13/460·g/r (friction: no energy column)
+    let (a, e) = (343.0 / 460.0 * 9.81, 13.0 / 460.0 * 9.81 / 0.5);
+    for r in &rows {
+        let t = r[0];
+        assert!((r[1] - (t + a * t * t / 2.0)).abs() < 1e-9, "{r:?}");
+        assert!((r[2] - e * t * t / 2.0).abs() < 1e-9, "{r:?}");
+        assert!((r[3] - (1.0 + a * t)).abs() < 1e-9, "{r:?}");
+        assert!((r[4] - e * t).abs() < 1e-9, "{r:?}");
+    }
+}
+
+#[test]
+fn the_pendulum_at_large_amplitude_matches_the_elliptic_solution() {
+    let file = scene("pendulum.qd", PENDULUM);
+    for (method, extra, tol) in [
+        ("dop853", vec!["--rtol", "1e-11", "--atol", "1e-12"], 1e-8),
+        ("vern7", vec!["--rtol", "1e-11", "--atol", "1e-12"], 1e-8),
+        ("dopri5", vec!["--rtol", "1e-10", "--atol", "1e-12"], 1e-6),
+        ("radau5", vec!["--rtol", "1e-10", "--atol", "1e-12"], 1e-5),
+        ("gauss6", vec!["--dt", "0.01"], 1e-8),
+        ("rk4", vec!["--dt", "0.001"], 1e-8),
+    ] {
+        let mut args = vec![
+            "simulate",
+            &file,
+            "--set",
+            "m=1,g=9.81,l=1",
+            "--init",
+            "th=2.5,th'=0",
+            "--t-end",
+            "10",
+            "--points",
+            "11",
+            "--method",
+            method,
+        ];
+        args.extend(extra);
+        let (ok, out, err) = qdot(&args);
+        assert!(ok, "{method}: {err}");
+        let (head, rows) = rows(&out);
+        assert_eq!(head, ["t", "th", "th'", "energy"]);
+        let h0 = rows[0][3];
+        // E + V at rest at 2.5 rad
+        assert!((h0 - (-9.81 * 2.5f64.cos())).abs() < 1e-12);
+        for r in &rows {
+            let (th, thd) = pendulum_exact(2.5, 9.81, r[0]);
+            assert!(
+                (r[1] - th).abs() < tol,
+                "{method} at t = {}: {} vs {th}",
+                r[0],
+                r[1]
+            );
+            assert!(
+                (r[2] - thd).abs() < 10.0 * tol,
+                "{method}: {} vs {thd}",
+                r[2]
+            );
+            assert!(
+                (r[3] - h0).abs() < 10.0 * tol,
+                "{method}: energy {} vs {h0}",
+                r[3]
+            );
+        }
+    }
+}
+
+#[test]
+fn a_damped_oscillator_matches_its_closed_form_and_has_no_energy_column() {
+    let file = scene(
+        "damped.qd",
+        "coordinates x\nparameters m, k, c\nkinetic E = 1/2*m*x'^2\n\
+         potential V = 1/2*k*x^2\nrayleigh R = 1/2*c*x'^2\n",
+    );
+    let (ok, out, err) = qdot(&[
+        "simulate",
+        &file,
+        "--set",
+        "m=1,k=4,c=0.4",
+        "--init",
+        "x=1,x'=0",
+        "--t-end",
+        "5",
+        "--points",
+        "6",
+        "--rtol",
+        "1e-12",
+        "--atol",
+        "1e-14",
+    ]);
+    assert!(ok, "{err}");
+    let (head, rows) = rows(&out);
+    assert_eq!(head, ["t", "x", "x'"]);
+    // x'' + 0.4 x' + 4 x = 0: α = 0.2, ω_d = √(4 − 0.04)
+    let (alpha, wd) = (0.2f64, (4.0f64 - 0.04).sqrt());
+    for r in &rows {
+        let t = r[0];
+        let x = (-alpha * t).exp() * ((wd * t).cos() + alpha / wd * (wd * t).sin());
+        assert!((r[1] - x).abs() < 1e-10, "t = {t}: {} vs {x}", r[1]);
+    }
+}
+
+#[test]
+fn json_output_and_stats() {
+    let file = scene("pendulum_json.qd", PENDULUM);
+    let (ok, out, err) = qdot(&[
+        "simulate",
+        &file,
+        "--set",
+        "m=1,g=9.81,l=1",
+        "--init",
+        "th=1,th'=0",
+        "--t-end",
+        "1",
+        "--points",
+        "3",
+        "--output",
+        "json",
+        "--stats",
+    ]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let keys: Vec<&str> = v.as_object().unwrap().keys().map(String::as_str).collect();
+    assert_eq!(
+        keys,
+        ["method", "status", "columns", "rows", "stats", "stiff_at"]
+    );
+    assert_eq!(v["method"], "dop853");
+    assert_eq!(v["status"], "done");
+    assert_eq!(v["rows"].as_array().unwrap().len(), 3);
+    assert!(v["stats"]["rhs_evals"].as_u64().unwrap() > 10);
+    assert!(err.starts_with("method dop853: "), "{err}");
+    assert!(err.contains("RHS evaluations"), "{err}");
+}
+
+#[test]
+fn missing_values_are_listed() {
+    let file = scene("pendulum_err.qd", PENDULUM);
+    let (ok, _, err) = qdot(&[
+        "simulate",
+        &file,
+        "--set",
+        "m=1",
+        "--init",
+        "th=1,th'=0",
+        "--t-end",
+        "1",
+    ]);
+    assert!(!ok);
+    assert_eq!(
+        err,
+        "error: no value for the parameters g, l\n  = hint: give every parameter a value: --set g=1,l=1\n"
+    );
+    let (ok, _, err) = qdot(&["simulate", &file, "--set", "m=1,g=1,l=1", "--t-end", "1"]);
+    assert!(!ok);
+    assert!(err.contains("no initial value for th, th'"), "{err}");
+    let (ok, _, err) = qdot(&[
+        "simulate",
+        &file,
+        "--set",
+        "m=1,g=1,l=1,q=2",
+        "--init",
+        "th=1,th'=0",
+        "--t-end",
+        "1",
+    ]);
+    assert!(!ok);
+    assert!(err.contains("`q` is not a parameter of the scene"), "{err}");
+    let (ok, _, err) = qdot(&[
+        "simulate",
+        &file,
+        "--set",
+        "m=1,g=1,l=1",
+        "--init",
+        "th=1,th'=0,x=1",
+        "--t-end",
+        "1",
+    ]);
+    assert!(!ok);
+    assert!(
+        err.contains("`x` is not a coordinate or a velocity"),
+        "{err}"
+    );
+    let (ok, _, err) = qdot(&[
+        "simulate",
+        &file,
+        "--set",
+        "m=1,g=1,l=1",
+        "--init",
+        "th=1,th'=0",
+        "--t-end",
+        "1",
+        "--method",
+        "euler",
+    ]);
+    assert!(!ok);
+    assert!(err.contains("unknown method `euler`"), "{err}");
+    let (ok, _, err) = qdot(&[
+        "simulate",
+        &file,
+        "--set",
+        "m=1,g=1,l=1",
+        "--init",
+        "th=1,th'=0",
+        "--t-end",
+        "1",
+        "--method",
+        "rk4",
+    ]);
+    assert!(!ok);
+    assert!(err.contains("--dt"), "{err}");
+}
+
+#[test]
+fn a_stiff_scene_is_detected_by_explicit_methods_and_radau_solves_it() {
+    // two masses, springs of stiffness 1 and 1e6
+    let file = scene(
+        "stiff.qd",
+        "coordinates x1, x2\nparameters m, k, K\nkinetic E = 1/2*m*(x1'^2 + x2'^2)\n\
+         potential V = 1/2*k*x1^2 + 1/2*K*(x2 - x1)^2\nrayleigh R = 1/2*K/1000*(x2' - x1')^2\n",
+    );
+    let base = [
+        "simulate",
+        &file,
+        "--set",
+        "m=1,k=1,K=1000000",
+        "--init",
+        "x1=1,x2=1,x1'=0,x2'=0",
+        "--t-end",
+        "10",
+        "--points",
+        "3",
+        "--rtol",
+        "1e-6",
+        "--atol",
+        "1e-8",
+        "--output",
+        "json",
+    ];
+    let (ok, out, err) = qdot(&[&base[..], &["--method", "dopri5"]].concat());
+    assert!(ok, "{err}");
+    assert!(err.contains("looks stiff"), "{err}");
+    let explicit: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let (ok, out, err) = qdot(&[&base[..], &["--method", "radau5"]].concat());
+    assert!(ok, "{err}");
+    assert!(!err.contains("looks stiff"), "{err}");
+    let radau: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let steps = |v: &serde_json::Value| v["stats"]["steps"].as_u64().unwrap();
+    assert!(steps(&radau) < 200, "{}", steps(&radau));
+    assert!(
+        steps(&explicit) > 20 * steps(&radau),
+        "{} vs {}",
+        steps(&explicit),
+        steps(&radau)
+    );
+    // both agree on the slow motion: x1 ≈ x2 ≈ cos(t/√2)
+    let last = |v: &serde_json::Value| v["rows"][2][1].as_f64().unwrap();
+    assert!((last(&radau) - (10.0 / 2f64.sqrt()).cos()).abs() < 1e-3);
+    assert!((last(&radau) - last(&explicit)).abs() < 1e-4);
+}
