@@ -133,6 +133,10 @@ enum Command {
         /// Steps, rejections, RHS evaluations, factorizations, wall time (on stderr).
         #[arg(long)]
         stats: bool,
+        /// Also draw the motion to this SVG file: q(t), the phase portrait,
+        /// and the energy error when the scene conserves energy.
+        #[arg(long)]
+        plot: Option<String>,
     },
     /// Equilibrium positions (Q_k = 0) and their stability.
     Equilibrium {
@@ -163,6 +167,7 @@ fn main() -> ExitCode {
             points,
             output,
             stats,
+            plot,
         }) => {
             return simulate(
                 &file,
@@ -179,6 +184,7 @@ fn main() -> ExitCode {
                 &method,
                 &output,
                 stats,
+                plot.as_deref(),
             )
         }
         Some(c) => c,
@@ -266,6 +272,7 @@ fn simulate(
     method: &str,
     output: &str,
     stats: bool,
+    plot: Option<&str>,
 ) -> ExitCode {
     use qdot::simulate::run;
     let fail = |d: qdot::Diagnostic, src: &str| {
@@ -312,6 +319,15 @@ fn simulate(
     );
     if stats {
         eprint!("{}", run::stats_text(&r));
+    }
+    if let Some(path) = plot {
+        let written = qdot::simulate::plot::svg(&r)
+            .map_err(|e| e.to_string())
+            .and_then(|svg| std::fs::write(path, svg).map_err(|e| e.to_string()));
+        if let Err(e) = written {
+            eprintln!("error: cannot write the plot `{path}`: {e}");
+            return ExitCode::from(1);
+        }
     }
     if let Some(t) = r.solution.stiff_at {
         eprintln!(

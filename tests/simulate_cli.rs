@@ -321,3 +321,104 @@ fn a_stiff_scene_is_detected_by_explicit_methods_and_radau_solves_it() {
     assert!((last(&radau) - (10.0 / 2f64.sqrt()).cos()).abs() < 1e-3);
     assert!((last(&radau) - last(&explicit)).abs() < 1e-4);
 }
+
+/// The `points` of every `<polyline>` of an SVG, as (x, y) pixels.
+fn polylines(svg: &str) -> Vec<Vec<(f64, f64)>> {
+    let mut out = Vec::new();
+    let mut rest = svg;
+    while let Some(at) = rest.find("<polyline") {
+        rest = &rest[at..];
+        let end = rest.find('>').unwrap();
+        let tag = &rest[..end];
+        if let Some(p) = tag.find("points=\"") {
+            let body = &tag[p + 8..];
+            let body = &body[..body.find('"').unwrap()];
+            out.push(
+                body.split_whitespace()
+                    .map(|xy| {
+                        let (x, y) = xy.split_once(',').unwrap();
+                        (x.parse().unwrap(), y.parse().unwrap())
+                    })
+                    .collect(),
+            );
+        }
+        rest = &rest[end..];
+    }
+    out
+}
+
+/// Least-squares fit y ≈ a + b·x: (b, max residual relative to the span).
+fn affine(xs: &[f64], ys: &[f64]) -> (f64, f64) {
+    let n = xs.len() as f64;
+    let (mx, my) = (xs.iter().sum::<f64>() / n, ys.iter().sum::<f64>() / n);
+    let sxy: f64 = xs.iter().zip(ys).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
+    let b = sxy / sxx;
+    let a = my - b * mx;
+    let span =
+        ys.iter().cloned().fold(f64::MIN, f64::max) - ys.iter().cloned().fold(f64::MAX, f64::min);
+    let worst = xs
+        .iter()
+        .zip(ys)
+        .map(|(x, y)| (y - (a + b * x)).abs())
+        .fold(0.0, f64::max);
+    (b, worst / span)
+}
+
+#[test]
+fn plot_of_seed_24_2_shows_the_motion() {
+    let dir = std::env::temp_dir().join(format!("qdot-plot-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg_path = dir.join("seed_24_2.svg");
+    let (ok, out, err) = qdot(&[
+        "simulate",
+        "examples/seed_24_2.qd",
+        "--set",
+        "m=1,k=10,R=0.2",
+        "--init",
+        "x1=0.1,x2=0,x1'=0,x2'=0",
+        "--t-end",
+        "5",
+        "--points",
+        "200",
+        "--plot",
+        svg_path.to_str().unwrap(),
+    ]);
+    assert!(ok, "{err}");
+    let (head, rows) = rows(&out);
+    assert_eq!(head, ["t", "x1", "x2", "x1'", "x2'", "energy"]);
+    let svg = std::fs::read_to_string(&svg_path).unwrap();
+    assert!(svg.starts_with("<svg"));
+    for caption in ["dop853 — q(t)", "phase portrait", "energy error"] {
+        assert!(svg.contains(caption), "{caption}");
+    }
+    // the series: one per coordinate against t, one per phase portrait,
+    // and the energy error, each with a point per output time
+    let series: Vec<Vec<(f64, f64)>> = polylines(&svg)
+        .into_iter()
+        .filter(|p| p.len() == 200)
+        .collect();
+    assert_eq!(series.len(), 2 + 2 + 1);
+    for k in 0..2 {
+        let s = &series[k];
+        // time runs left to right
+        assert!(s.windows(2).all(|w| w[1].0 > w[0].0));
+        // the pixels are the CSV values under an affine map (y grows down)
+        let q: Vec<f64> = rows.iter().map(|r| r[1 + k]).collect();
+        let py: Vec<f64> = s.iter().map(|p| p.1).collect();
+        let (slope, residual) = affine(&q, &py);
+        assert!(slope < 0.0 && residual < 0.01, "{slope} {residual}");
+        // and they move: x1 swings through its amplitude
+        let span = py.iter().cloned().fold(f64::MIN, f64::max)
+            - py.iter().cloned().fold(f64::MAX, f64::min);
+        assert!(span > 50.0, "{span}");
+    }
+    // the phase portrait of x1: x pixels follow x1, y pixels follow x1'
+    let x1: Vec<f64> = rows.iter().map(|r| r[1]).collect();
+    let v1: Vec<f64> = rows.iter().map(|r| r[3]).collect();
+    let px: Vec<f64> = series[2].iter().map(|p| p.0).collect();
+    let py: Vec<f64> = series[2].iter().map(|p| p.1).collect();
+    assert!(affine(&x1, &px).0 > 0.0 && affine(&x1, &px).1 < 0.01);
+    assert!(affine(&v1, &py).0 < 0.0 && affine(&v1, &py).1 < 0.01);
+    std::fs::remove_dir_all(&dir).ok();
+}

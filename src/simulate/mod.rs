@@ -17,6 +17,7 @@
 pub mod elliptic;
 pub mod explicit;
 pub mod implicit;
+pub mod plot;
 pub mod run;
 
 pub mod compile;
