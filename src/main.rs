@@ -137,6 +137,10 @@ enum Command {
         /// and the energy error when the scene conserves energy.
         #[arg(long)]
         plot: Option<String>,
+        /// End the run where this changes sign: "theta = 0", "x' = 0"
+        /// (located on the dense output of dopri5, dop853, vern7 or rk4).
+        #[arg(long = "stop-when")]
+        stop_when: Option<String>,
     },
     /// Equilibrium positions (Q_k = 0) and their stability.
     Equilibrium {
@@ -168,6 +172,7 @@ fn main() -> ExitCode {
             output,
             stats,
             plot,
+            stop_when,
         }) => {
             return simulate(
                 &file,
@@ -179,6 +184,7 @@ fn main() -> ExitCode {
                     atol,
                     dt,
                     points,
+                    stop_when,
                     ..Default::default()
                 },
                 &method,
@@ -333,6 +339,9 @@ fn simulate(
         eprintln!(
             "warning: the problem looks stiff from t = {t:.6e} on (Hairer's test); --method radau5 integrates it in far fewer steps"
         );
+    }
+    if let qdot::simulate::Status::Event { t } = r.solution.status {
+        eprintln!("stopped at t = {t:.15e}, where the --stop-when condition changes sign");
     }
     match r.solution.status {
         qdot::simulate::Status::Done | qdot::simulate::Status::Event { .. } => ExitCode::SUCCESS,

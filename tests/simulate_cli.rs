@@ -186,8 +186,9 @@ fn json_output_and_stats() {
     let keys: Vec<&str> = v.as_object().unwrap().keys().map(String::as_str).collect();
     assert_eq!(
         keys,
-        ["method", "status", "columns", "rows", "stats", "stiff_at"]
+        ["method", "status", "columns", "rows", "stats", "stiff_at", "event_t"]
     );
+    assert!(v["event_t"].is_null());
     assert_eq!(v["method"], "dop853");
     assert_eq!(v["status"], "done");
     assert_eq!(v["rows"].as_array().unwrap().len(), 3);
@@ -421,4 +422,105 @@ fn plot_of_seed_24_2_shows_the_motion() {
     assert!(affine(&x1, &px).0 > 0.0 && affine(&x1, &px).1 < 0.01);
     assert!(affine(&v1, &py).0 < 0.0 && affine(&v1, &py).1 < 0.01);
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn stop_when_lands_on_the_event_within_1e_10() {
+    use qdot::simulate::elliptic::ellipk;
+    let file = scene("pendulum_event.qd", PENDULUM);
+    let quarter = ellipk((0.5f64).sin().powi(2)) / 9.81f64.sqrt();
+    for method in ["dop853", "dopri5", "vern7"] {
+        let (ok, out, err) = qdot(&[
+            "simulate",
+            &file,
+            "--set",
+            "m=1,g=9.81,l=1",
+            "--init",
+            "th=1,th'=0",
+            "--t-end",
+            "10",
+            "--rtol",
+            "1e-12",
+            "--atol",
+            "1e-14",
+            "--stop-when",
+            "th = 0",
+            "--method",
+            method,
+        ]);
+        assert!(ok, "{err}");
+        assert!(err.starts_with("stopped at t = "), "{err}");
+        let (_, rows) = rows(&out);
+        let last = rows.last().unwrap();
+        // released from rest at 1 rad, θ first reaches 0 at a quarter period K(k²)/ω₀
+        assert!(
+            (last[0] - quarter).abs() < 1e-10,
+            "{method}: {} vs {quarter}",
+            last[0]
+        );
+        assert!(last[1].abs() < 1e-10, "{method}: θ = {}", last[1]);
+        assert!(rows.windows(2).all(|w| w[1][0] > w[0][0]));
+    }
+    // a velocity condition: the first turning point, θ' = 0 after t > 0,
+    // is at half a period (the start, with θ' = 0 exactly, is no crossing)
+    let (ok, out, err) = qdot(&[
+        "simulate",
+        &file,
+        "--set",
+        "m=1,g=9.81,l=1",
+        "--init",
+        "th=1,th'=0.000001",
+        "--t-end",
+        "10",
+        "--rtol",
+        "1e-12",
+        "--atol",
+        "1e-14",
+        "--stop-when",
+        "th' = 0",
+        "--output",
+        "json",
+    ]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["status"], "event");
+    let t = v["event_t"].as_f64().unwrap();
+    assert!(t > 0.0 && t < 2.0 * quarter + 1e-3, "{t}");
+    // errors
+    let (ok, _, err) = qdot(&[
+        "simulate",
+        &file,
+        "--set",
+        "m=1,g=9.81,l=1",
+        "--init",
+        "th=1,th'=0",
+        "--t-end",
+        "1",
+        "--stop-when",
+        "th = qq",
+    ]);
+    assert!(!ok);
+    assert!(
+        err.starts_with("error: `--stop-when th = qq`: unknown name `qq`"),
+        "{err}"
+    );
+    let (ok, _, err) = qdot(&[
+        "simulate",
+        &file,
+        "--set",
+        "m=1,g=9.81,l=1",
+        "--init",
+        "th=1,th'=0",
+        "--t-end",
+        "1",
+        "--stop-when",
+        "th = 0",
+        "--method",
+        "radau5",
+    ]);
+    assert!(!ok);
+    assert!(
+        err.contains("dense output of the explicit methods"),
+        "{err}"
+    );
 }

@@ -9,7 +9,7 @@
 //! the integration error.
 
 use super::compile::{compile_with, state_inputs, CompiledDynamics, Program};
-use super::{integrate, Method, Options, SimError, Solution, Status};
+use super::{integrate, integrate_with_event, Method, Options, SimError, Solution, Status};
 use crate::diag::Diagnostic;
 use crate::expr::{atom, Expr};
 use crate::parse::ast::Role;
@@ -34,6 +34,9 @@ pub struct Request {
     pub dt: Option<f64>,
     /// Number of evenly spaced output times from 0 to `t_end` (at least 2).
     pub points: usize,
+    /// `--stop-when`: `lhs = rhs` (or one expression, = 0) in the scene's
+    /// names; the run ends where it first changes sign.
+    pub stop_when: Option<String>,
 }
 
 impl Default for Request {
@@ -47,6 +50,7 @@ impl Default for Request {
             atol: 1e-10,
             dt: None,
             points: 101,
+            stop_when: None,
         }
     }
 }
@@ -232,8 +236,26 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
         t_out,
         ..Options::default()
     };
+    let event = match &req.stop_when {
+        Some(text) => Some(event_program(&scene, &lag.coordinates, &params, text)?),
+        None => None,
+    };
     let start = Instant::now();
-    let solution = integrate(&mut dynamics, req.method, &y0, &opts).map_err(|e| match e {
+    let solution = match &event {
+        Some(p) => {
+            let (mut regs, mut out, mut input) =
+                (p.registers(), vec![0.0; 1], vec![0.0; 1 + y0.len()]);
+            let mut g = |t: f64, y: &[f64]| {
+                input[0] = t;
+                input[1..].copy_from_slice(y);
+                p.eval(&input, &mut regs, &mut out);
+                out[0]
+            };
+            integrate_with_event(&mut dynamics, req.method, &y0, &opts, &mut g)
+        }
+        None => integrate(&mut dynamics, req.method, &y0, &opts),
+    };
+    let solution = solution.map_err(|e| match e {
         SimError::BadInput(s) => Diagnostic::global(s).with_hint(match req.method {
             Method::Rk4 | Method::Gauss6 => "RK4 and Gauss6 take a fixed step: --dt 0.01",
             _ => "check --rtol, --atol and --dt",
@@ -273,6 +295,34 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
         method: req.method,
         seconds,
         compile_seconds,
+    })
+}
+
+/// `--stop-when lhs = rhs`: lhs − rhs compiled over `[t, q…, q̇…]`.
+fn event_program(
+    scene: &Scene,
+    coordinates: &[String],
+    params: &FxHashMap<Var, f64>,
+    text: &str,
+) -> Result<Program, Diagnostic> {
+    let located = |d: Diagnostic| {
+        let e = Diagnostic::global(format!("`--stop-when {text}`: {}", d.message));
+        match d.hint {
+            Some(h) => e.with_hint(h),
+            None => e,
+        }
+    };
+    let g = match text.split_once('=') {
+        Some((l, r)) => {
+            let l = scene.expr(l).map_err(located)?;
+            let r = scene.expr(r).map_err(located)?;
+            l.sub(&r)
+        }
+        None => scene.expr(text).map_err(located)?,
+    };
+    compile_with(&[g], &state_inputs(coordinates), params).map_err(|e| {
+        Diagnostic::global(format!("`--stop-when {text}` cannot be evaluated during the run: {e}"))
+            .with_hint("use t, the coordinates, their velocities (q') and parameters: --stop-when \"theta = 0\"")
     })
 }
 
@@ -321,7 +371,8 @@ pub fn csv(run: &Run) -> String {
     out
 }
 
-/// The run as JSON: `method`, `status`, `columns`, `rows`, `stats`.
+/// The run as JSON: `method`, `status`, `columns`, `rows`, `stats`,
+/// `stiff_at` and `event_t` (null unless they happened).
 pub fn json(run: &Run) -> String {
     let s = &run.solution.stats;
     let v = serde_json::json!({
@@ -339,6 +390,10 @@ pub fn json(run: &Run) -> String {
             "compile_seconds": run.compile_seconds,
         },
         "stiff_at": run.solution.stiff_at,
+        "event_t": match run.solution.status {
+            Status::Event { t } => Some(t),
+            _ => None,
+        },
     });
     format!("{v}\n")
 }
