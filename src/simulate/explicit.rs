@@ -664,7 +664,11 @@ fn run<S: System + ?Sized>(
 
         let err = st.attempt(sys, t, &y, h, opts.rtol, opts.atol, !fixed, &mut stats);
 
-        if !fixed {
+        // the next step: the controller's for adaptive methods, h for fixed
+        let h_next = if fixed {
+            st.finish(sys, t, h, false, &mut stats);
+            h
+        } else {
             if !err.is_finite() {
                 // a stage left the domain or overflowed: retry smaller
                 last_nonfinite = true;
@@ -694,68 +698,38 @@ fn run<S: System + ?Sized>(
             reject = false;
             st.finish(sys, t, h, true, &mut stats);
             accept_stiffness(&st, &par, h, t, &mut iasti, &mut nonsti, &mut sol);
-            stats.steps += 1;
-            if !all_finite(&st.y_new) || !all_finite(st.slot(s)) {
-                return finish(sol, stats, Status::NotFinite { t });
-            }
-            let t_new = if last { t_end } else { t + h };
-            if let Some(te) = output(
-                sys,
-                &mut st,
-                &mut sol,
-                &mut stats,
-                &mut event,
-                &mut g_prev,
-                t_out,
-                &mut iout,
-                record_steps,
-                t,
-                t_new,
-                &y,
-                h,
-                &mut buf,
-            ) {
-                return finish(sol, stats, Status::Event { t: te });
-            }
-            std::mem::swap(&mut y, &mut st.y_new);
-            st.k.copy_within(s * n..(s + 1) * n, 0);
-            t = t_new;
-            if last {
-                return finish(sol, stats, Status::Done);
-            }
-            h = h_new;
-        } else {
-            st.finish(sys, t, h, false, &mut stats);
-            stats.steps += 1;
-            if !all_finite(&st.y_new) || !all_finite(st.slot(s)) {
-                return finish(sol, stats, Status::NotFinite { t });
-            }
-            let t_new = if last { t_end } else { t + h };
-            if let Some(te) = output(
-                sys,
-                &mut st,
-                &mut sol,
-                &mut stats,
-                &mut event,
-                &mut g_prev,
-                t_out,
-                &mut iout,
-                record_steps,
-                t,
-                t_new,
-                &y,
-                h,
-                &mut buf,
-            ) {
-                return finish(sol, stats, Status::Event { t: te });
-            }
-            std::mem::swap(&mut y, &mut st.y_new);
-            st.k.copy_within(s * n..(s + 1) * n, 0);
-            t = t_new;
-            if last {
-                return finish(sol, stats, Status::Done);
-            }
+            h_new
+        };
+        stats.steps += 1;
+        if !all_finite(&st.y_new) || !all_finite(st.slot(s)) {
+            return finish(sol, stats, Status::NotFinite { t });
         }
+        let t_new = if last { t_end } else { t + h };
+        if let Some(te) = output(
+            sys,
+            &mut st,
+            &mut sol,
+            &mut stats,
+            &mut event,
+            &mut g_prev,
+            t_out,
+            &mut iout,
+            record_steps,
+            t,
+            t_new,
+            &y,
+            h,
+            &mut buf,
+        ) {
+            return finish(sol, stats, Status::Event { t: te });
+        }
+        std::mem::swap(&mut y, &mut st.y_new);
+        st.k.copy_within(s * n..(s + 1) * n, 0);
+        t = t_new;
+        if last {
+            return finish(sol, stats, Status::Done);
+        }
+        h = h_next;
     }
 }
 
