@@ -417,23 +417,18 @@ impl Session {
                 };
                 match (var, point) {
                     // series(k1, k2, k3) of springs is a plain value
-                    (Some(var), Some(point)) if f.name == "taylor" || self.is_taylor(args) => {
+                    (Some(var), Some(point))
+                        if f.name == "taylor"
+                            || crate::scene::is_taylor_form(args, |n| {
+                                n == "t" || self.scene.coordinates.iter().any(|c| c.name == n)
+                            }) =>
+                    {
                         Layout::Series { var, point }
                     }
                     _ => Layout::Plain,
                 }
             }
             _ => Layout::Plain,
-        }
-    }
-
-    /// Whether `series(…)` with these arguments is the Taylor series (a
-    /// named point, or a coordinate, velocity or `t` as the variable).
-    fn is_taylor(&self, args: &[crate::parse::ast::Expr]) -> bool {
-        match &args[1].kind {
-            ExprKind::Assign(..) | ExprKind::Prime(..) => true,
-            ExprKind::Name(n) => n == "t" || self.scene.coordinates.iter().any(|c| &c.name == n),
-            _ => false,
         }
     }
 

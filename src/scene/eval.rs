@@ -677,20 +677,10 @@ impl<'a> Evaluator<'a> {
         })
     }
 
-    /// `series(f, x = a, n)`, or `series(f, q, n)` with `q` a coordinate, a
-    /// velocity or `t` (never a stiffness): the Taylor series, not springs.
     fn is_taylor_call(&self, args: &[ast::Expr]) -> bool {
-        if args.len() != 3 {
-            return false;
-        }
-        match &args[1].kind {
-            ExprKind::Assign(..) | ExprKind::Prime(..) => true,
-            ExprKind::Name(n) => matches!(
-                self.names.get(n.as_str()),
-                Some((Binding::Coord | Binding::Time, _))
-            ),
-            _ => false,
-        }
+        is_taylor_form(args, |n| {
+            matches!(self.names.get(n), Some((Binding::Coord | Binding::Time, _)))
+        })
     }
 
     /// `series(a, b, n)` with a name `b` and a whole number `n`: what a
@@ -747,6 +737,20 @@ impl<'a> Evaluator<'a> {
         } else {
             Value::Vector(vec![c(1, 2), c(2, 0), c(0, 1)])
         })
+    }
+}
+
+/// `series(f, x = a, n)`, or `series(f, q, n)` with `q` a coordinate, a
+/// velocity or `t` (`moves(name)` tells which names are; never a
+/// stiffness): the Taylor series, not springs.
+pub(crate) fn is_taylor_form(args: &[ast::Expr], moves: impl Fn(&str) -> bool) -> bool {
+    if args.len() != 3 {
+        return false;
+    }
+    match &args[1].kind {
+        ExprKind::Assign(..) | ExprKind::Prime(..) => true,
+        ExprKind::Name(n) => moves(n),
+        _ => false,
     }
 }
 

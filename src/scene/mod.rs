@@ -9,6 +9,8 @@
 
 mod eval;
 
+pub(crate) use eval::is_taylor_form;
+
 use crate::diag::Diagnostic;
 use crate::expr::Expr;
 use crate::parse::ast::{self, Role, Span, Stmt};
