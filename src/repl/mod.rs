@@ -187,7 +187,7 @@ impl Session {
     pub fn new() -> Session {
         Session {
             statements: Vec::new(),
-            scene: empty_scene(),
+            scene: Scene::default(),
             last: None,
             undo: Vec::new(),
             format: Format::Text,
@@ -538,7 +538,7 @@ impl Session {
             "reset" => {
                 self.push_undo();
                 self.statements.clear();
-                self.scene = empty_scene();
+                self.scene = Scene::default();
                 self.last = None;
                 Response::out("(an empty scene; :undo brings the old one back)")
             }
@@ -1025,27 +1025,6 @@ fn shift(
     let mut e = d.clone();
     e.span = Some(crate::parse::ast::Span::new(mv(span.start), mv(span.end)));
     Some(e)
-}
-
-fn empty_scene() -> Scene {
-    Scene::parse("").unwrap_or_else(|_| unreachable_scene())
-}
-
-/// An empty scene built by hand (parsing "" cannot fail; this keeps the
-/// code free of `unwrap`).
-fn unreachable_scene() -> Scene {
-    Scene {
-        source: String::new(),
-        coordinates: Vec::new(),
-        parameters: Vec::new(),
-        definitions: Vec::new(),
-        forces: Vec::new(),
-        loads: Vec::new(),
-        torques: Vec::new(),
-        systems: Vec::new(),
-        warnings: Vec::new(),
-        latex_names: Vec::new(),
-    }
 }
 
 fn format_name(f: Format) -> &'static str {

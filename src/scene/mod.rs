@@ -123,8 +123,8 @@ pub struct System {
     pub span: Span,
 }
 
-/// A resolved scene.
-#[derive(Clone, Debug)]
+/// A resolved scene (`Scene::default()` is the empty scene).
+#[derive(Clone, Debug, Default)]
 pub struct Scene {
     pub source: String,
     pub coordinates: Vec<Coordinate>,
