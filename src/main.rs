@@ -156,10 +156,13 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    let command = match cli.command {
-        None => return repl(None, false),
-        Some(Command::Repl { file, echo }) => return repl(file.as_deref(), echo),
-        Some(Command::Simulate {
+    let Some(command) = cli.command else {
+        return repl(None, false);
+    };
+    let mut opts = output::Options::default();
+    let (cmd, file, fmt, set) = match &command {
+        Command::Repl { file, echo } => return repl(file.as_deref(), *echo),
+        Command::Simulate {
             file,
             set,
             init,
@@ -173,31 +176,26 @@ fn main() -> ExitCode {
             stats,
             plot,
             stop_when,
-        }) => {
+        } => {
             return simulate(
-                &file,
+                file,
                 set.as_deref(),
                 init.as_deref(),
                 qdot::simulate::run::Request {
-                    t_end,
-                    rtol,
-                    atol,
-                    dt,
-                    points,
-                    stop_when,
+                    t_end: *t_end,
+                    rtol: *rtol,
+                    atol: *atol,
+                    dt: *dt,
+                    points: *points,
+                    stop_when: stop_when.clone(),
                     ..Default::default()
                 },
-                &method,
-                &output,
-                stats,
+                method,
+                output,
+                *stats,
                 plot.as_deref(),
             )
         }
-        Some(c) => c,
-    };
-    let mut opts = output::Options::default();
-    let (cmd, file, fmt, set) = match &command {
-        Command::Repl { .. } | Command::Simulate { .. } => return repl(None, false),
         Command::Derive { file, format } => (output::Command::Derive, file, *format, None),
         Command::Solve { file, format } => (output::Command::Solve, file, *format, None),
         Command::Forces { file, format } => (output::Command::Forces, file, *format, None),
