@@ -280,10 +280,8 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
         row.push(*t);
         row.extend_from_slice(y);
         if let Some(p) = &energy {
-            let mut input = Vec::with_capacity(1 + y.len());
-            input.push(*t);
-            input.extend_from_slice(y);
-            p.eval(&input, &mut regs, &mut out);
+            // the row so far, [t, q…, q̇…], is the program's input
+            p.eval(&row, &mut regs, &mut out);
             row.push(out[0]);
         }
         rows.push(row);
