@@ -18,6 +18,7 @@ pub mod elliptic;
 pub mod explicit;
 pub mod implicit;
 pub mod plot;
+pub mod problems;
 pub mod run;
 
 pub mod compile;

@@ -324,8 +324,9 @@ fn event_program(
     })
 }
 
-/// The Jacobi integral compiled, when the scene conserves it.
-fn conserved_quantity(
+/// The Jacobi integral compiled over `[t, q…, q̇…]`, when the scene conserves
+/// it (no work, dissipation, forces, loads or torques, and no explicit t).
+pub fn conserved_quantity(
     scene: &Scene,
     coordinates: &[String],
     params: &FxHashMap<Var, f64>,
