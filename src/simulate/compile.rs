@@ -124,9 +124,22 @@ impl Program {
     pub fn constants(&self) -> &[f64] {
         &self.consts
     }
-    /// A zeroed register file of the right size.
+    /// A register file of the right size with the constants loaded (no
+    /// instruction ever writes a constant's or an input's register, so they
+    /// stay loaded: see [`Program::run`]).
     pub fn registers(&self) -> Vec<f64> {
-        vec![0.0; self.n_regs]
+        let mut r = vec![0.0; self.n_regs];
+        r[..self.consts.len()].copy_from_slice(&self.consts);
+        r
+    }
+    /// Where the inputs go in the register file, for [`Program::run`]:
+    /// input k is register `input_offset() + k`.
+    pub fn input_offset(&self) -> usize {
+        self.consts.len()
+    }
+    /// The register holding each output after [`Program::run`].
+    pub fn output_registers(&self) -> &[u32] {
+        &self.outputs
     }
     /// Floating-point operations per evaluation: `(additions, subtractions
     /// and negations; multiplications, powers counted once; divisions;
@@ -167,15 +180,28 @@ impl Program {
         let nc = self.consts.len();
         regs[..nc].copy_from_slice(&self.consts);
         regs[nc..nc + self.n_inputs].copy_from_slice(inputs);
+        self.run(regs);
+        for (o, &k) in out.iter_mut().zip(&self.outputs) {
+            *o = regs[k as usize];
+        }
+    }
+
+    /// Run the instructions on a register file that already holds the
+    /// constants (as [`Program::registers`] returns it) and the inputs (at
+    /// [`Program::input_offset`]); the outputs are then in the registers
+    /// [`Program::output_registers`] names. The allocation- and copy-free
+    /// core of [`Program::eval`], for callers that evaluate in a loop.
+    ///
+    /// # Panics
+    /// When `regs.len() < self.n_registers()`.
+    #[inline]
+    pub fn run(&self, regs: &mut [f64]) {
         let r = &mut regs[..self.n_regs];
         for ins in &self.code {
             // SAFETY: `Program`s are only built by `Builder::finish`, which
             // gives every operand and destination an index < n_regs, and
             // `r.len() == n_regs` here.
             unsafe { step(r, &self.pairs, *ins) }
-        }
-        for (o, &k) in out.iter_mut().zip(&self.outputs) {
-            *o = r[k as usize];
         }
     }
 }
@@ -1219,15 +1245,6 @@ fn gauss_solve(a: &mut [f64], b: &mut [f64], n: usize) -> Result<(), String> {
     Ok(())
 }
 
-/// A factorization kept for repeated solves (a constant mass matrix).
-#[derive(Clone, Debug)]
-enum Factor {
-    /// L of M = L·Lᵀ (lower triangle).
-    Cholesky(Vec<f64>),
-    /// The matrix itself, solved by [`gauss_solve`] on a copy each time.
-    General(Vec<f64>),
-}
-
 // ================================================================ dynamics
 
 /// How [`CompiledDynamics`] gets q̈.
@@ -1236,7 +1253,9 @@ enum Mode {
     /// Outputs: M's upper triangle (row by row) then f; solve each time.
     MassMatrix,
     /// Outputs: f only; M constant, factored once.
-    ConstantMass(Factor),
+    /// Outputs: f; M was constant, factored once and its inverse kept
+    /// (row-major), so q̈ = M⁻¹·f is one product with no division.
+    ConstantMass(Vec<f64>),
     /// Outputs: the exact accelerations.
     Accelerations,
 }
@@ -1249,9 +1268,8 @@ pub struct CompiledDynamics {
     n: usize,
     program: Program,
     mode: Mode,
-    input: Vec<f64>,
+    /// The register file, constants loaded (see [`Program::run`]).
     regs: Vec<f64>,
-    out: Vec<f64>,
     m: Vec<f64>,
     f: Vec<f64>,
 }
@@ -1303,19 +1321,23 @@ impl CompiledDynamics {
             let mut vals = vec![0.0; upper.len()];
             pm.eval(&vec![0.0; inputs.len()], &mut pm.registers(), &mut vals);
             let mut m = vec![0.0; n * n];
-            fill_symmetric(&vals, &mut m, n);
-            let factor = if cholesky(&mut m, n).is_ok() {
-                Factor::Cholesky(m)
-            } else {
-                let mut full = vec![0.0; n * n];
-                fill_symmetric(&vals, &mut full, n);
-                let mut probe = full.clone();
-                gauss_solve(&mut probe, &mut vec![0.0; n], n)
+            // M⁻¹ column by column, once, at construction (Cholesky, else
+            // Gaussian elimination when M is not numerically positive
+            // definite): each step is then one product and no division.
+            let mut inverse = vec![0.0; n * n];
+            let mut col = vec![0.0; n];
+            for j in 0..n {
+                fill_symmetric(&vals, &mut m, n);
+                col.fill(0.0);
+                col[j] = 1.0;
+                solve_spd(&mut m, &mut col, n)
                     .map_err(|e| format!("the constant mass matrix: {e}"))?;
-                Factor::General(full)
-            };
+                for i in 0..n {
+                    inverse[i * n + j] = col[i];
+                }
+            }
             let program = compile_with(forcing, &inputs, params)?;
-            return Ok(Self::with(n, program, Mode::ConstantMass(factor)));
+            return Ok(Self::with(n, program, Mode::ConstantMass(inverse)));
         }
         let mut outputs = upper;
         outputs.extend(forcing.iter().cloned());
@@ -1340,8 +1362,6 @@ impl CompiledDynamics {
         CompiledDynamics {
             n,
             regs: program.registers(),
-            out: vec![0.0; program.n_outputs()],
-            input: vec![0.0; 1 + 2 * n],
             m: vec![0.0; n * n],
             f: vec![0.0; n],
             program,
@@ -1379,11 +1399,22 @@ impl CompiledDynamics {
             return Err(format!("expected {n} coordinates and an {n}×{n} matrix"));
         }
         self.load(t, q, qd);
+        let (regs, outs) = (&self.regs, self.program.output_registers());
         match &self.mode {
             Mode::MassMatrix => {
                 let k = n * (n + 1) / 2;
-                fill_symmetric(&self.out[..k], m, n);
-                f.copy_from_slice(&self.out[k..]);
+                let mut idx = 0;
+                for i in 0..n {
+                    for j in i..n {
+                        let v = regs[outs[idx] as usize];
+                        m[i * n + j] = v;
+                        m[j * n + i] = v;
+                        idx += 1;
+                    }
+                }
+                for (fi, &o) in f.iter_mut().zip(&outs[k..]) {
+                    *fi = regs[o as usize];
+                }
                 Ok(())
             }
             Mode::ConstantMass(_) => Err("the mass matrix is constant and factored".into()),
@@ -1391,13 +1422,20 @@ impl CompiledDynamics {
         }
     }
 
+    /// Write (t, q, q̇) into the input registers and run the program.
+    #[inline]
     fn load(&mut self, t: f64, q: &[f64], qd: &[f64]) {
-        let n = self.n;
-        self.input[0] = t;
-        self.input[1..=n].copy_from_slice(q);
-        self.input[n + 1..].copy_from_slice(qd);
-        self.program
-            .eval(&self.input, &mut self.regs, &mut self.out);
+        let off = self.program.input_offset();
+        let r = &mut self.regs[off..off + 1 + 2 * self.n];
+        r[0] = t;
+        let (rq, rqd) = r[1..].split_at_mut(self.n);
+        for (a, b) in rq.iter_mut().zip(q) {
+            *a = *b;
+        }
+        for (a, b) in rqd.iter_mut().zip(qd) {
+            *a = *b;
+        }
+        self.program.run(&mut self.regs);
     }
 
     /// q̈ at (t, q, q̇), allocation-free. An error when M is singular there
@@ -1414,21 +1452,37 @@ impl CompiledDynamics {
             return Err(format!("expected {n} coordinates"));
         }
         self.load(t, q, qd);
+        let (regs, outs) = (&self.regs, self.program.output_registers());
         match &self.mode {
-            Mode::Accelerations => qdd.copy_from_slice(&self.out),
-            Mode::ConstantMass(Factor::Cholesky(l)) => {
-                qdd.copy_from_slice(&self.out);
-                cholesky_solve(l, qdd, n);
+            Mode::Accelerations => {
+                for (a, &o) in qdd.iter_mut().zip(outs) {
+                    *a = regs[o as usize];
+                }
             }
-            Mode::ConstantMass(Factor::General(a)) => {
-                self.m.copy_from_slice(a);
-                qdd.copy_from_slice(&self.out);
-                gauss_solve(&mut self.m, qdd, n)?;
+            Mode::ConstantMass(inv) => {
+                // q̈ = M⁻¹·f, f read from its registers.
+                for (a, row) in qdd.iter_mut().zip(inv.chunks_exact(n)) {
+                    *a = row
+                        .iter()
+                        .zip(outs)
+                        .map(|(m, &o)| m * regs[o as usize])
+                        .sum();
+                }
             }
             Mode::MassMatrix => {
                 let k = n * (n + 1) / 2;
-                fill_symmetric(&self.out[..k], &mut self.m, n);
-                self.f.copy_from_slice(&self.out[k..]);
+                let mut idx = 0;
+                for i in 0..n {
+                    for j in i..n {
+                        let v = regs[outs[idx] as usize];
+                        self.m[i * n + j] = v;
+                        self.m[j * n + i] = v;
+                        idx += 1;
+                    }
+                }
+                for (fi, &o) in self.f.iter_mut().zip(&outs[k..]) {
+                    *fi = regs[o as usize];
+                }
                 solve_spd(&mut self.m, &mut self.f, n)?;
                 qdd.copy_from_slice(&self.f);
             }
@@ -1460,7 +1514,10 @@ impl System for CompiledDynamics {
         let n = self.n;
         let (q, qd) = y.split_at(n);
         let (dq, dqd) = dy.split_at_mut(n);
-        dq.copy_from_slice(qd);
+        // an element loop, not copy_from_slice: no memcpy call for small n
+        for (a, b) in dq.iter_mut().zip(qd) {
+            *a = *b;
+        }
         if self.accelerations(t, q, qd, dqd).is_err() {
             dqd.fill(f64::NAN);
         }
