@@ -699,11 +699,10 @@ fn markdown(reports: &[Report], scipy: &Result<Value, String>, started: &str, wa
         Ok(v) => {
             let _ = writeln!(
                 md,
-                "Peers in the same run: SciPy {} with NumPy {} on Python {}, `ode_solvers` {}.",
+                "Peers in the same run: SciPy {} with NumPy {} on Python {}, `ode_solvers` 0.6.2.",
                 v["scipy"].as_str().unwrap_or("?"),
                 v["numpy"].as_str().unwrap_or("?"),
                 v["python"].as_str().unwrap_or("?"),
-                "0.6.2"
             );
         }
         Err(e) => {
@@ -711,6 +710,73 @@ fn markdown(reports: &[Report], scipy: &Result<Value, String>, started: &str, wa
         }
     }
     let targets = [1e-4, 1e-6, 1e-8, 1e-10];
+    // The ranges of the headline ratios over problems and target errors.
+    let range = |num: &str, den: &str, skip: &[&str]| -> String {
+        let mut v: Vec<f64> = Vec::new();
+        for r in reports.iter().filter(|r| !skip.contains(&r.problem.name)) {
+            let find = |l: &str| r.series.iter().find(|s| s.label == l);
+            for &e in &targets {
+                if let (Some(a), Some(b)) = (
+                    find(num).and_then(|s| time_at(s, e)),
+                    find(den).and_then(|s| time_at(s, e)),
+                ) {
+                    v.push(a / b);
+                }
+            }
+        }
+        if v.is_empty() {
+            return "not measured".into();
+        }
+        let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = v.iter().copied().fold(0.0, f64::max);
+        let mut sorted = v.clone();
+        sorted.sort_by(f64::total_cmp);
+        format!(
+            "{lo:.2} … {hi:.2} (median {:.2}, {} points)",
+            sorted[sorted.len() / 2],
+            v.len()
+        )
+    };
+    let _ = writeln!(md, "\n### Summary\n");
+    let _ = writeln!(md, "Ranges over the problems and the target errors 1e-4, 1e-6, 1e-8, 1e-10 of the table below (time of the first over the second at equal error):\n");
+    let _ = writeln!(
+        md,
+        "- SciPy DOP853 / qdot DOP853: {}",
+        range("SciPy solve_ivp DOP853", "qdot DOP853", &[])
+    );
+    let _ = writeln!(
+        md,
+        "- SciPy RK45 / qdot Dopri5: {}",
+        range("SciPy solve_ivp RK45", "qdot Dopri5", &[])
+    );
+    let _ = writeln!(
+        md,
+        "- ode_solvers Dop853 / qdot DOP853 (oscillator left out: see below): {}",
+        range(
+            "ode_solvers Dop853 (compiled RHS)",
+            "qdot DOP853",
+            &["oscillator"]
+        )
+    );
+    let _ = writeln!(
+        md,
+        "- compiled / hand-written RHS, both with qdot's DOP853: {}",
+        range("qdot DOP853", "qdot DOP853, hand-written RHS", &[])
+    );
+    let _ = writeln!(
+        md,
+        "- compiled / tuned hand-written RHS: {}",
+        range("qdot DOP853", "qdot DOP853, tuned hand-written RHS", &[])
+    );
+    let _ = writeln!(
+        md,
+        "\n`ode_solvers` 0.6.2's Dop853 has the node c₁₂ = 0 where Hairer's DOP853 has 1 \
+         (`butcher_tableau.rs`; the fix is the open pull request srenevey/ode-solvers#42), so it \
+         evaluates its 12th stage at t instead of t + h. Autonomous problems do not notice; on the \
+         forced oscillator, whose right-hand side depends on t, it is a first-order method, its \
+         error stalls near the tolerance's square root and its step count explodes. Its \
+         oscillator series measures that bug, not its speed."
+    );
     let _ = writeln!(md, "\n### Ratios at equal error\n");
     let _ = writeln!(
         md,

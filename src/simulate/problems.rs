@@ -51,25 +51,12 @@ pub struct Problem {
     pub t_end: f64,
 }
 
-/// The damped forced oscillator m·ẍ + c·ẋ + k·x = F0·cos(p·t).
-pub const OSCILLATOR: &str = "\
-# Damped forced linear oscillator: m·ẍ + c·ẋ + k·x = F0·cos(p·t)
-coordinates x
-parameters m, k, c, F0, p
-kinetic E = 1/2*m*x'^2
-potential V = 1/2*k*x^2
-rayleigh R = 1/2*c*x'^2
-work L = F0*cos(p*t)*x
-";
+/// The damped forced oscillator m·ẍ + c·ẋ + k·x = F0·cos(p·t)
+/// (`examples/forced_oscillator.qd`).
+pub const OSCILLATOR: &str = include_str!("../../examples/forced_oscillator.qd");
 
-/// The pendulum of mass m on a massless rod l.
-pub const PENDULUM: &str = "\
-# Simple pendulum, theta from the downward vertical
-coordinates theta
-parameters m, l, g
-kinetic E = 1/2*m*l^2*theta'^2
-potential V = -m*g*l*cos(theta)
-";
+/// The pendulum of mass m on a massless rod l (`examples/pendulum.qd`).
+pub const PENDULUM: &str = include_str!("../../examples/pendulum.qd");
 
 impl Problem {
     /// The damped forced oscillator: m = 1, k = 4, c = 0.4 (ζ = 0.1),
