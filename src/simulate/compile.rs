@@ -1171,9 +1171,9 @@ fn cholesky(a: &mut [f64], n: usize) -> Result<(), usize> {
         }
         let d = d.sqrt();
         row_j[j] = d;
-        let lj = &row_j[..j];
+        let (lj, inv) = (&row_j[..j], 1.0 / d);
         for row_i in rest.chunks_exact_mut(n) {
-            row_i[j] = (row_i[j] - dot(&row_i[..j], lj)) / d;
+            row_i[j] = (row_i[j] - dot(&row_i[..j], lj)) * inv;
         }
     }
     Ok(())
