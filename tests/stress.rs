@@ -24,16 +24,18 @@ fn at(d: &Drift, p: u64) -> f64 {
         .expect("checkpoint recorded")
 }
 
-/// Gauss6 at h = T/16 over 10⁴ periods of the pendulum at θ0 = 1: the energy
-/// error stays where it was after 100 periods (measured: 4.97e-8 at 10² and
-/// at 10⁴ periods; drift of H − H0 at the chunk ends ≈ −1e-14 per period).
+/// Gauss6 at h = T/16.3 over 10⁴ periods of the pendulum at θ0 = 1: the
+/// energy error stays where it was after 100 periods (measured: 4.43e-8 at
+/// 10² and at 10⁴ periods; drift of H − H0 at the chunk ends ≈ 1e-16 per
+/// period). (h = T/16 exactly is a step-size resonance, whose growth shows
+/// only after ~10⁵ periods: see the report.)
 #[test]
 fn gauss6_energy_error_stays_bounded() {
     let d = energy_drift(
         1.0,
         Method::Gauss6,
         Stepping::Fixed {
-            steps_per_period: 16,
+            steps_per_period: 16.3,
         },
         10_000,
         1000,
@@ -61,7 +63,7 @@ fn rk4_and_dop853_energy_errors_grow_linearly() {
         (
             Method::Rk4,
             Stepping::Fixed {
-                steps_per_period: 64,
+                steps_per_period: 64.0,
             },
         ),
         (Method::Dop853, Stepping::Adaptive { tol: 1e-8 }),

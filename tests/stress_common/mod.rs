@@ -33,7 +33,7 @@ pub fn pendulum(theta0: f64) -> Problem {
 #[derive(Clone, Copy, Debug)]
 pub enum Stepping {
     /// A fixed step T/`steps_per_period` (RK4, Gauss6).
-    Fixed { steps_per_period: usize },
+    Fixed { steps_per_period: f64 },
     /// Adaptive with rtol = atol = `tol`.
     Adaptive { tol: f64 },
 }
@@ -119,7 +119,7 @@ pub fn energy_drift(
         };
         match stepping {
             Stepping::Fixed { steps_per_period } => {
-                opts.dt = Some(period / steps_per_period as f64);
+                opts.dt = Some(period / steps_per_period);
             }
             Stepping::Adaptive { tol } => {
                 opts.rtol = tol;
