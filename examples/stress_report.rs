@@ -86,6 +86,7 @@ macro_rules! figure {
         chart
             .configure_mesh()
             .x_desc($xd)
+            .x_label_formatter(&|v| tick(*v))
             .y_desc($yd)
             .y_label_formatter(&|v| format!("{v:.0e}"))
             .draw()?;
@@ -124,6 +125,18 @@ macro_rules! figure {
             .draw()?;
         root.present()?;
     }};
+}
+
+/// An axis tick: plain between 1e-3 and 1e4, else in e-notation.
+fn tick(v: f64) -> String {
+    if v == 0.0 {
+        "0".into()
+    } else if v.abs() >= 1e4 || v.abs() < 1e-3 {
+        format!("{v:.0e}")
+    } else {
+        let s = format!("{v:.3}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    }
 }
 
 fn e(x: f64) -> String {
@@ -262,8 +275,8 @@ fn experiment_drift(
          GNI, IX.8). At h = T/16.3 its |H − H0| is {} after 10 periods and {} after {} \
          periods, and the fitted drift is {:.1e} per period ({:.0e} times smaller than \
          DOP853's at tol 1e-10; over the whole run it would amount to {:.0e}, below \
-         the oscillation, and part of it is the slow slide of the sampled phase along \
-         that oscillation): {}\n\n\
+         the oscillation; probably the slow slide of the sampled phase along that \
+         oscillation): {}\n\n\
          At h = T/16 exactly the first 10⁵ periods look the same ({} after 10⁵), but \
          then the error grows: {} after {} periods (a separate run of the same code to \
          10⁶ periods reached 4.8e-7, 10 times the early value). Steps that are not a \

@@ -41,6 +41,7 @@ pub enum Stepping {
 /// The energy error of one run of [`energy_drift`].
 #[derive(Clone, Debug)]
 pub struct Drift {
+    /// The method and how it stepped.
     pub method: Method,
     pub stepping: Stepping,
     /// The period T.
@@ -55,6 +56,7 @@ pub struct Drift {
     pub bins: Vec<(f64, f64)>,
     /// Least-squares slope of H − H0 at the chunk ends against P, per period.
     pub rate: f64,
+    /// The work, summed over the calls, and the wall-clock time.
     pub stats: Stats,
     pub seconds: f64,
     /// The final status (`Done` unless something failed).
@@ -187,6 +189,7 @@ fn slope(pts: &[(u64, f64)]) -> f64 {
 pub struct Rng(pub u64);
 
 impl Rng {
+    /// The next 64 random bits.
     pub fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
@@ -251,6 +254,7 @@ pub fn exact(x: f64) -> Q {
 /// One solve of [`chain_accuracy`].
 #[derive(Clone, Debug)]
 pub struct SolveError {
+    /// The number of links.
     pub n: usize,
     /// The 2-norm condition number of M (SVD in f64).
     pub cond: f64,
