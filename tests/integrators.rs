@@ -490,7 +490,7 @@ fn event_falling_body_hits_the_ground() {
 
 #[test]
 fn stiffness_is_detected_on_a_stiff_problem_only() {
-    for m in [Method::Dopri5, Method::Dop853] {
+    for m in [Method::Dopri5, Method::Dop853, Method::Vern7] {
         let mut stiff = FnSystem {
             dim: 1,
             f: |t: f64, y: &[f64], dy: &mut [f64]| dy[0] = -1e6 * (y[0] - t.cos()),

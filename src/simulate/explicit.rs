@@ -10,7 +10,9 @@
 //! test is made after every accepted step, i.e. `dopri5.f` with NSTIFF = 1).
 //! Vern7 uses Verner's interpolant (6 extra stages; published as of order
 //! 7, of order 6 by the continuous order conditions, see `tableaus`) and the
-//! same controller with β = 0.
+//! same controller with β = 0, and the same stiffness test on its two
+//! stages at t + h (stage 10 and f(t + h, y₁)), with the limit 4.5 just
+//! inside its real stability boundary 4.64.
 //!
 //! Output: every accepted step when `Options::t_out` is empty, else exactly
 //! the requested times, evaluated by the dense output (RK4: the Hermite cubic
@@ -136,7 +138,9 @@ impl Kind {
                 fac2: 10.0,
                 safe: 0.9,
                 order: 7,
-                stiff_limit: None,
+                // just inside the real stability boundary 4.64 (tableaus'
+                // test), as Hairer's 3.25 and 6.1 for DOPRI5 and DOP853
+                stiff_limit: Some(4.5),
             },
         }
     }

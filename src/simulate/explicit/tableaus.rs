@@ -1002,4 +1002,39 @@ mod tests {
             assert!((s - b).abs() < 1e-12, "slot {i}: {s} vs {b}");
         }
     }
+
+    /// The stability function R(z) = 1 + z·bᵀ(I − zA)⁻¹·1 of the step proper
+    /// at real z (stage by stage: gᵢ = 1 + z Σⱼ aᵢⱼ gⱼ).
+    fn stability(t: &Tableau, z: f64) -> f64 {
+        let mut g = Vec::with_capacity(t.s);
+        for row in &t.a[..t.s] {
+            let v = 1.0 + z * row.iter().zip(&g).map(|(a, g)| a * g).sum::<f64>();
+            g.push(v);
+        }
+        1.0 + z * t.b.iter().zip(&g).map(|(b, g)| b * g).sum::<f64>()
+    }
+
+    /// The real stability boundary x: |R(−ξ)| ≤ 1 on [0, x], to 1e-3.
+    fn real_boundary(t: &Tableau) -> f64 {
+        let mut x = 0.0;
+        while stability(t, -(x + 1e-3)).abs() <= 1.0 {
+            x += 1e-3;
+        }
+        x
+    }
+
+    /// The thresholds of the stiffness test (h·|λ| > limit) sit just inside
+    /// each method's real stability boundary: DOPRI5 3.31 (Hairer's limit
+    /// 3.25), DOP853 6.39 (Hairer's 6.1), Vern7 4.64 (our 4.5).
+    #[test]
+    fn real_stability_boundaries() {
+        let b: Vec<f64> = [&DOPRI5, &DOP853, &VERN7]
+            .iter()
+            .map(|t| real_boundary(t))
+            .collect();
+        eprintln!("real stability boundaries {b:?}");
+        assert!((b[0] - 3.31).abs() < 0.02, "{b:?}");
+        assert!((b[1] - 6.39).abs() < 0.02, "{b:?}");
+        assert!((b[2] - 4.64).abs() < 0.02, "{b:?}");
+    }
 }
