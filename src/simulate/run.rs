@@ -9,7 +9,8 @@
 //! the integration error.
 
 use super::compile::{compile_with, state_inputs, CompiledDynamics, Program};
-use super::{integrate, integrate_with_event, Method, Options, SimError, Solution, Status};
+use super::progress::Progress;
+use super::{integrate, integrate_with_event, Method, Options, SimError, Solution, Status, System};
 use crate::diag::Diagnostic;
 use crate::expr::{atom, Expr};
 use crate::parse::ast::Role;
@@ -37,6 +38,10 @@ pub struct Request {
     /// `--stop-when`: `lhs = rhs` (or one expression, = 0) in the scene's
     /// names; the run ends where it first changes sign.
     pub stop_when: Option<String>,
+    /// Show a progress bar on standard error when the integration lasts
+    /// more than half a second ([`super::progress`]); the command line sets
+    /// it when standard error is a terminal. Without it nothing is wrapped.
+    pub progress: bool,
 }
 
 impl Default for Request {
@@ -51,6 +56,7 @@ impl Default for Request {
             dt: None,
             points: 101,
             stop_when: None,
+            progress: false,
         }
     }
 }
@@ -241,19 +247,11 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
         None => None,
     };
     let start = Instant::now();
-    let solution = match &event {
-        Some(p) => {
-            let (mut regs, mut out, mut input) =
-                (p.registers(), vec![0.0; 1], vec![0.0; 1 + y0.len()]);
-            let mut g = |t: f64, y: &[f64]| {
-                input[0] = t;
-                input[1..].copy_from_slice(y);
-                p.eval(&input, &mut regs, &mut out);
-                out[0]
-            };
-            integrate_with_event(&mut dynamics, req.method, &y0, &opts, &mut g)
-        }
-        None => integrate(&mut dynamics, req.method, &y0, &opts),
+    let solution = if req.progress {
+        let mut sys = Progress::new(&mut dynamics, opts.t0, opts.t_end);
+        run_method(&mut sys, req.method, &y0, &opts, event.as_ref())
+    } else {
+        run_method(&mut dynamics, req.method, &y0, &opts, event.as_ref())
     };
     let solution = solution.map_err(|e| match e {
         SimError::BadInput(s) => Diagnostic::global(s).with_hint(match req.method {
@@ -294,6 +292,31 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
         seconds,
         compile_seconds,
     })
+}
+
+/// [`integrate`], or [`integrate_with_event`] with the compiled event
+/// function over `[t, q…, q̇…]`.
+fn run_method<S: System + ?Sized>(
+    sys: &mut S,
+    method: Method,
+    y0: &[f64],
+    opts: &Options,
+    event: Option<&Program>,
+) -> Result<Solution, SimError> {
+    match event {
+        Some(p) => {
+            let (mut regs, mut out, mut input) =
+                (p.registers(), vec![0.0; 1], vec![0.0; 1 + y0.len()]);
+            let mut g = |t: f64, y: &[f64]| {
+                input[0] = t;
+                input[1..].copy_from_slice(y);
+                p.eval(&input, &mut regs, &mut out);
+                out[0]
+            };
+            integrate_with_event(sys, method, y0, opts, &mut g)
+        }
+        None => integrate(sys, method, y0, opts),
+    }
 }
 
 /// `--stop-when lhs = rhs`: lhs − rhs compiled over `[t, q…, q̇…]`.
