@@ -8,7 +8,7 @@
 //! system) is compiled too and reported as `energy`, so its drift shows
 //! the integration error.
 
-use super::compile::{compile_with, state_inputs, CompiledDynamics, Program};
+use super::compile::{compile_with, state_inputs, Choice, CompiledDynamics, Program};
 use super::progress::Progress;
 use super::{integrate, integrate_with_event, Method, Options, SimError, Solution, Status, System};
 use crate::diag::Diagnostic;
@@ -74,6 +74,8 @@ pub struct Run {
     pub seconds: f64,
     /// Wall time of compiling M, f (and the energy).
     pub compile_seconds: f64,
+    /// How q̈ was evaluated, and why ([`CompiledDynamics::best`]).
+    pub evaluator: Choice,
 }
 
 /// The method named on the command line.
@@ -224,7 +226,7 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
         )));
     }
     let compile_start = Instant::now();
-    let mut dynamics = CompiledDynamics::new(&lag, &params)
+    let (mut dynamics, evaluator) = CompiledDynamics::best(&lag, &params)
         .map_err(|e| Diagnostic::global(format!("cannot compile the equations: {e}")))?;
     let energy = conserved_quantity(&scene, &lag.coordinates, &params)?;
     let compile_seconds = compile_start.elapsed().as_secs_f64();
@@ -291,6 +293,7 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
         method: req.method,
         seconds,
         compile_seconds,
+        evaluator,
     })
 }
 
@@ -394,7 +397,12 @@ pub fn csv(run: &Run) -> String {
 }
 
 /// The run as JSON: `method`, `status`, `columns`, `rows`, `stats`,
-/// `stiff_at` and `event_t` (null unless they happened).
+/// `stiff_at` and `event_t` (null unless they happened). `stats` holds
+/// `steps`, `rejected`, `rhs_evals`, `jacobians`, `factorizations`,
+/// `seconds`, `compile_seconds` and `evaluator`: `{"name", "reason",
+/// "cost": {"mass_matrix", "accelerations"}}` (the estimated flops per
+/// right-hand side of M, f and their solve, and of the exact
+/// accelerations, null when they were not derived).
 pub fn json(run: &Run) -> String {
     let s = &run.solution.stats;
     let v = serde_json::json!({
@@ -410,6 +418,14 @@ pub fn json(run: &Run) -> String {
             "factorizations": s.factorizations,
             "seconds": run.seconds,
             "compile_seconds": run.compile_seconds,
+            "evaluator": {
+                "name": run.evaluator.evaluator.name(),
+                "reason": run.evaluator.reason,
+                "cost": {
+                    "mass_matrix": run.evaluator.mass_cost,
+                    "accelerations": run.evaluator.accelerations_cost,
+                },
+            },
         },
         "stiff_at": run.solution.stiff_at,
         "event_t": match run.solution.status {
@@ -431,11 +447,12 @@ pub fn status_word(s: &Status) -> &'static str {
     }
 }
 
-/// The `--stats` lines.
+/// The `--stats` lines: the method's work, then the evaluator of q̈ and
+/// why it was chosen.
 pub fn stats_text(run: &Run) -> String {
     let s = &run.solution.stats;
     format!(
-        "method {}: {} steps ({} rejected), {} RHS evaluations, {} Jacobians, {} factorizations; integration {:.3} ms, compilation {:.3} ms\n",
+        "method {}: {} steps ({} rejected), {} RHS evaluations, {} Jacobians, {} factorizations; integration {:.3} ms, compilation {:.3} ms\nevaluator {}: {}\n",
         method_name(run.method),
         s.steps,
         s.rejected,
@@ -443,6 +460,8 @@ pub fn stats_text(run: &Run) -> String {
         s.jacobians,
         s.factorizations,
         run.seconds * 1e3,
-        run.compile_seconds * 1e3
+        run.compile_seconds * 1e3,
+        run.evaluator.evaluator.name(),
+        run.evaluator.reason
     )
 }
