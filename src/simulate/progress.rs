@@ -13,7 +13,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::time::{Duration, Instant};
 
 /// Right-hand-side calls between two looks at the clock and the bar.
-pub const CHECK_EVERY: u32 = 256;
+pub const CHECK_EVERY: u32 = 1024;
 
 /// How long a run goes on before its bar appears.
 pub const DELAY: Duration = Duration::from_millis(500);
