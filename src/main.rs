@@ -188,6 +188,7 @@ fn main() -> ExitCode {
                     dt: *dt,
                     points: *points,
                     stop_when: stop_when.clone(),
+                    progress: std::io::IsTerminal::is_terminal(&std::io::stderr()),
                     ..Default::default()
                 },
                 method,

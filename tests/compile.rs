@@ -8,7 +8,7 @@ use qdot::expr::atom::{self, Atom};
 use qdot::expr::func;
 use qdot::poly::{Poly, Var};
 use qdot::simulate::compile::{
-    compile, compile_with, naive_op_count, solve_spd, CompiledDynamics, Instr, Program,
+    compile, compile_with, naive_op_count, solve_spd, CompiledDynamics, Evaluator, Instr, Program,
 };
 use qdot::simulate::System;
 use qdot::{Expr, Lagrange, Scene};
@@ -570,4 +570,97 @@ fn dead_code_is_removed() {
     let mut out = [0.0];
     p.eval(&[0.3, 1.25], &mut p.registers(), &mut out);
     assert_eq!(out[0], 1.25);
+}
+
+fn chain_params() -> FxHashMap<Var, f64> {
+    [("m", 1.0), ("l", 1.0), ("g", 9.81)]
+        .iter()
+        .map(|(k, v)| (atom::param(k), *v))
+        .collect()
+}
+
+#[test]
+fn best_evaluator_by_estimated_cost() {
+    // 1 dof, the pendulum: M = m·l² is constant; the exact acceleration
+    // −g/l·sin q1 is the forcing's program (one multiplication, one sin:
+    // 1 + 20) without the product by the kept M⁻¹ (n² + n(n − 1) = 1 flop).
+    let (d, c) = CompiledDynamics::best(&chain(1), &chain_params()).expect("compiles");
+    assert_eq!(c.evaluator, Evaluator::Accelerations);
+    assert_eq!(d.evaluator(), Evaluator::Accelerations);
+    assert_eq!(c.accelerations_cost, Some(21.0));
+    assert_eq!(c.mass_cost, 22.0);
+    assert!(c.reason.contains("constant M"), "{}", c.reason);
+
+    // The double pendulum: the exact accelerations (a common determinant,
+    // Cramer numerators) cost more than M, f and a 2×2 Cholesky (measured:
+    // a tie within 3 %, ≈ 133 ns each; see the report).
+    let (d, c) = CompiledDynamics::best(&chain(2), &chain_params()).expect("compiles");
+    assert_eq!(c.evaluator, Evaluator::MassMatrix);
+    assert_eq!(d.evaluator(), Evaluator::MassMatrix);
+    let acc = c.accelerations_cost.expect("derived for n = 2");
+    assert!(acc > c.mass_cost, "{c:?}");
+    // the solve's share: n³/3 + 2n² = 8/3 + 8 flops, n(n − 1)/2 + 2n = 5
+    // divisions and n = 2 square roots of 4, n² + n = 6 copies
+    let via_m = CompiledDynamics::new(&chain(2), &chain_params()).expect("compiles");
+    let (a, m, dv, calls) = via_m.program().op_counts();
+    let program = (a + m) as f64 + 4.0 * dv as f64 + 20.0 * calls as f64;
+    assert!((c.mass_cost - program - (8.0 / 3.0 + 8.0 + 28.0 + 6.0)).abs() < 1e-12);
+
+    // The 10-link chain: beyond BEST_MAX_N = 3, nothing more is derived.
+    let (d, c) = CompiledDynamics::best(&chain(10), &chain_params()).expect("compiles");
+    assert_eq!(c.evaluator, Evaluator::MassMatrix);
+    assert_eq!(d.n(), 10);
+    assert_eq!(c.accelerations_cost, None);
+    assert!(c.reason.contains("10 coordinates"), "{}", c.reason);
+
+    // Seed 24.2: M constant; the exact accelerations fold M⁻¹ into the
+    // coefficients of the same linear forcing, so they win by exactly the
+    // product by the kept M⁻¹: n² + n(n − 1) = 6 flops.
+    let l = example("seed_24_2").lagrange().expect("derives");
+    let params: FxHashMap<Var, f64> = [("m", 1.0), ("k", 6.0), ("R", 0.5)]
+        .iter()
+        .map(|(k, v)| (atom::param(k), *v))
+        .collect();
+    let via_m = CompiledDynamics::new(&l, &params).expect("compiles");
+    assert_eq!(via_m.evaluator(), Evaluator::ConstantMass);
+    let (d, c) = CompiledDynamics::best(&l, &params).expect("compiles");
+    assert_eq!(c.evaluator, Evaluator::Accelerations);
+    assert_eq!(d.evaluator(), Evaluator::Accelerations);
+    let acc = c.accelerations_cost.expect("derived");
+    assert_eq!(acc + 6.0, c.mass_cost, "{c:?}");
+}
+
+#[test]
+fn both_evaluators_give_the_same_double_pendulum_trajectory() {
+    use qdot::simulate::{integrate, problems::Problem, Method, Options};
+    let p = Problem::double_pendulum();
+    let l = Scene::parse(&p.scene)
+        .expect("parses")
+        .lagrange()
+        .expect("derives");
+    let params = p.param_map();
+    let mut via_m = CompiledDynamics::new(&l, &params).expect("compiles");
+    let mut via_acc = CompiledDynamics::from_accelerations(&l, &params).expect("compiles");
+    assert_eq!(via_m.evaluator(), Evaluator::MassMatrix);
+    assert_eq!(via_acc.evaluator(), Evaluator::Accelerations);
+    let opts = Options {
+        t_end: p.t_end,
+        rtol: 1e-10,
+        atol: 1e-10,
+        t_out: (0..=100).map(|i| p.t_end * i as f64 / 100.0).collect(),
+        ..Options::default()
+    };
+    let a = integrate(&mut via_m, Method::Dop853, &p.y0, &opts).expect("integrates");
+    let b = integrate(&mut via_acc, Method::Dop853, &p.y0, &opts).expect("integrates");
+    assert_eq!(a.t.len(), 101);
+    assert_eq!(a.t, b.t);
+    let mut worst: f64 = 0.0;
+    for (ya, yb) in a.y.iter().zip(&b.y) {
+        for (u, v) in ya.iter().zip(yb) {
+            worst = worst.max((u - v).abs());
+        }
+    }
+    assert!(worst < 1e-9, "largest difference {worst:e}");
+    // the trajectory moves: not a trivially equal pair of constants
+    assert!((a.y[100][0] - p.y0[0]).abs() > 1e-2);
 }

@@ -15,7 +15,12 @@
 use qdot::simulate::problems::Problem;
 use qdot::simulate::{integrate, Method, Options};
 
-const ADAPTIVE: [Method; 4] = [Method::Dopri5, Method::Dop853, Method::Vern7, Method::Radau5];
+const ADAPTIVE: [Method; 4] = [
+    Method::Dopri5,
+    Method::Dop853,
+    Method::Vern7,
+    Method::Radau5,
+];
 
 fn final_error(p: &Problem, m: Method, tol: f64) -> f64 {
     let mut sys = p.dynamics().expect("compiles");

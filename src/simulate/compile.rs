@@ -1252,12 +1252,68 @@ fn gauss_solve(a: &mut [f64], b: &mut [f64], n: usize) -> Result<(), String> {
 enum Mode {
     /// Outputs: M's upper triangle (row by row) then f; solve each time.
     MassMatrix,
-    /// Outputs: f only; M constant, factored once.
     /// Outputs: f; M was constant, factored once and its inverse kept
     /// (row-major), so q̈ = M⁻¹·f is one product with no division.
     ConstantMass(Vec<f64>),
     /// Outputs: the exact accelerations.
     Accelerations,
+}
+
+/// How a [`CompiledDynamics`] evaluates q̈.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Evaluator {
+    /// M (upper triangle) and f compiled, M·q̈ = f solved at each call
+    /// (Cholesky, Golub & Van Loan 4.2.5): about n³/3 + 2n² flops, n
+    /// square roots and n(n − 1)/2 + 2n divisions.
+    MassMatrix,
+    /// f compiled; the constant M factored once at compile time and M⁻¹
+    /// kept, so each call is one product (n² multiplications).
+    ConstantMass,
+    /// The exact accelerations q̈ = M⁻¹·f (`Lagrange::accelerations`)
+    /// compiled: no solve.
+    Accelerations,
+}
+
+impl Evaluator {
+    /// The name in `--stats` and JSON: `mass_matrix`, `constant_mass`,
+    /// `accelerations`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Evaluator::MassMatrix => "mass_matrix",
+            Evaluator::ConstantMass => "constant_mass",
+            Evaluator::Accelerations => "accelerations",
+        }
+    }
+}
+
+/// The largest number of coordinates for which [`CompiledDynamics::best`]
+/// derives the exact accelerations to compare: their expressions (Cramer's
+/// rule, exact) grow quickly with n — for the pendulum chain ≈ 0.1 ms at
+/// n = 2 and ≈ 5 ms at n = 3 to derive, and at n = 3 the compiled program
+/// is already ≈ 1.3 times as slow as M, f and the solve.
+pub const BEST_MAX_N: usize = 3;
+
+/// Weights of [`CompiledDynamics::estimated_cost`], in additions: a
+/// division and a function call (sin, cos, sin_cos, exp, …) take several
+/// times the latency of an addition or a multiplication.
+pub const DIVISION_COST: f64 = 4.0;
+/// See [`DIVISION_COST`].
+pub const CALL_COST: f64 = 20.0;
+
+/// What [`CompiledDynamics::best`] chose, and why.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Choice {
+    /// The evaluator kept.
+    pub evaluator: Evaluator,
+    /// The estimated cost per right-hand side of M and f with their solve
+    /// ([`CompiledDynamics::estimated_cost`]).
+    pub mass_cost: f64,
+    /// The estimated cost of the compiled exact accelerations; `None` when
+    /// they were not derived (n > [`BEST_MAX_N`], or no exact solution).
+    pub accelerations_cost: Option<f64>,
+    /// Why, in a few words for `--stats` (the estimated costs compared, or
+    /// why the exact accelerations were not derived).
+    pub reason: String,
 }
 
 /// Lagrange's equations M(q, t)·q̈ = f(q, q̇, t) compiled for simulation:
@@ -1356,6 +1412,117 @@ impl CompiledDynamics {
         let n = lagrange.coordinates.len();
         let program = compile_with(&exprs, &state_inputs(&lagrange.coordinates), params)?;
         Ok(Self::with(n, program, Mode::Accelerations))
+    }
+
+    /// The cheaper evaluator of q̈ for `lagrange`: M and f with their solve
+    /// ([`CompiledDynamics::new`]) and, for n ≤ [`BEST_MAX_N`] coordinates,
+    /// the exact accelerations ([`CompiledDynamics::from_accelerations`]);
+    /// the one with the smaller [`CompiledDynamics::estimated_cost`] is
+    /// kept, the exact accelerations on a tie. For n > [`BEST_MAX_N`], or
+    /// when the exact accelerations cannot be derived, M and f are used
+    /// without deriving anything more. An error only when M and f do not
+    /// compile.
+    pub fn best(
+        lagrange: &Lagrange,
+        params: &FxHashMap<Var, f64>,
+    ) -> Result<(Self, Choice), String> {
+        let via_m = Self::new(lagrange, params)?;
+        let mass_cost = via_m.estimated_cost();
+        let n = via_m.n;
+        let what = |d: &Self| match d.evaluator() {
+            Evaluator::ConstantMass => "f with the constant M inverted once",
+            _ => "M and f with a Cholesky solve",
+        };
+        if n > BEST_MAX_N {
+            let reason = format!(
+                "{n} coordinates (more than {BEST_MAX_N}): the exact accelerations are not derived"
+            );
+            let evaluator = via_m.evaluator();
+            return Ok((
+                via_m,
+                Choice {
+                    evaluator,
+                    mass_cost,
+                    accelerations_cost: None,
+                    reason,
+                },
+            ));
+        }
+        let via_acc = match Self::from_accelerations(lagrange, params) {
+            Ok(d) => d,
+            Err(e) => {
+                let reason = format!("no exact accelerations: {e}");
+                let evaluator = via_m.evaluator();
+                return Ok((
+                    via_m,
+                    Choice {
+                        evaluator,
+                        mass_cost,
+                        accelerations_cost: None,
+                        reason,
+                    },
+                ));
+            }
+        };
+        let acc_cost = via_acc.estimated_cost();
+        let (kept, reason) = if acc_cost <= mass_cost {
+            let reason = format!(
+                "≈ {acc_cost:.0} flops per RHS against ≈ {mass_cost:.0} for {}",
+                what(&via_m)
+            );
+            (via_acc, reason)
+        } else {
+            let reason = format!(
+                "≈ {mass_cost:.0} flops per RHS against ≈ {acc_cost:.0} for the exact accelerations"
+            );
+            (via_m, reason)
+        };
+        let evaluator = kept.evaluator();
+        Ok((
+            kept,
+            Choice {
+                evaluator,
+                mass_cost,
+                accelerations_cost: Some(acc_cost),
+                reason,
+            },
+        ))
+    }
+
+    /// The estimated cost of one right-hand side, in flops: the program's
+    /// additions and multiplications ([`Program::op_counts`]), divisions
+    /// weighted by [`DIVISION_COST`] and function calls by [`CALL_COST`],
+    /// plus the solve. For a varying M: n³/3 + 2n² additions and
+    /// multiplications (Cholesky and the two triangular solves),
+    /// n(n − 1)/2 + 2n divisions and n square roots (weighted as divisions: they lie
+    /// on the solve's critical path), and n² + n copies (M filled from its
+    /// upper triangle, f). For a constant M: the product with the kept M⁻¹,
+    /// n² multiplications and n(n − 1) additions. Nothing for the exact
+    /// accelerations.
+    pub fn estimated_cost(&self) -> f64 {
+        let (add, mul, div, call) = self.program.op_counts();
+        let n = self.n as f64;
+        let solve = match self.mode {
+            Mode::MassMatrix => {
+                n * n * n / 3.0
+                    + 2.0 * n * n
+                    + DIVISION_COST * (n * (n - 1.0) / 2.0 + 3.0 * n)
+                    + n * n
+                    + n
+            }
+            Mode::ConstantMass(_) => 2.0 * n * n - n,
+            Mode::Accelerations => 0.0,
+        };
+        (add + mul) as f64 + DIVISION_COST * div as f64 + CALL_COST * call as f64 + solve
+    }
+
+    /// How q̈ is evaluated.
+    pub fn evaluator(&self) -> Evaluator {
+        match self.mode {
+            Mode::MassMatrix => Evaluator::MassMatrix,
+            Mode::ConstantMass(_) => Evaluator::ConstantMass,
+            Mode::Accelerations => Evaluator::Accelerations,
+        }
     }
 
     fn with(n: usize, program: Program, mode: Mode) -> Self {

@@ -19,6 +19,7 @@ pub mod explicit;
 pub mod implicit;
 pub mod plot;
 pub mod problems;
+pub mod progress;
 pub mod run;
 
 pub mod compile;

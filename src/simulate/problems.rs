@@ -11,7 +11,8 @@
 //! | `chain10` | 10-link chain | tight-tolerance run |
 //!
 //! Every scene here goes through the same path as `qdot simulate`:
-//! [`Problem::dynamics`] compiles its exact M and f.
+//! [`Problem::dynamics`] compiles its exact equations by
+//! [`CompiledDynamics::best`].
 
 use super::compile::CompiledDynamics;
 use super::elliptic::pendulum_exact;
@@ -159,11 +160,14 @@ impl Problem {
             .collect()
     }
 
-    /// The scene parsed and its exact M, f compiled (the path of `qdot simulate`).
+    /// The scene parsed and its equations compiled by
+    /// [`CompiledDynamics::best`] (the path of `qdot simulate`: M and f, or
+    /// the exact accelerations when they are estimated cheaper).
     pub fn dynamics(&self) -> Result<CompiledDynamics, Diagnostic> {
         let scene = Scene::parse(&self.scene)?;
         let lag = scene.lagrange()?;
-        CompiledDynamics::new(&lag, &self.param_map())
+        CompiledDynamics::best(&lag, &self.param_map())
+            .map(|(d, _)| d)
             .map_err(|e| Diagnostic::global(format!("cannot compile {}: {e}", self.name)))
     }
 

@@ -8,8 +8,9 @@
 //! system) is compiled too and reported as `energy`, so its drift shows
 //! the integration error.
 
-use super::compile::{compile_with, state_inputs, CompiledDynamics, Program};
-use super::{integrate, integrate_with_event, Method, Options, SimError, Solution, Status};
+use super::compile::{compile_with, state_inputs, Choice, CompiledDynamics, Program};
+use super::progress::Progress;
+use super::{integrate, integrate_with_event, Method, Options, SimError, Solution, Status, System};
 use crate::diag::Diagnostic;
 use crate::expr::{atom, Expr};
 use crate::parse::ast::Role;
@@ -37,6 +38,10 @@ pub struct Request {
     /// `--stop-when`: `lhs = rhs` (or one expression, = 0) in the scene's
     /// names; the run ends where it first changes sign.
     pub stop_when: Option<String>,
+    /// Show a progress bar on standard error when the integration lasts
+    /// more than half a second ([`super::progress`]); the command line sets
+    /// it when standard error is a terminal. Without it nothing is wrapped.
+    pub progress: bool,
 }
 
 impl Default for Request {
@@ -51,6 +56,7 @@ impl Default for Request {
             dt: None,
             points: 101,
             stop_when: None,
+            progress: false,
         }
     }
 }
@@ -68,6 +74,8 @@ pub struct Run {
     pub seconds: f64,
     /// Wall time of compiling M, f (and the energy).
     pub compile_seconds: f64,
+    /// How q̈ was evaluated, and why ([`CompiledDynamics::best`]).
+    pub evaluator: Choice,
 }
 
 /// The method named on the command line.
@@ -218,7 +226,7 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
         )));
     }
     let compile_start = Instant::now();
-    let mut dynamics = CompiledDynamics::new(&lag, &params)
+    let (mut dynamics, evaluator) = CompiledDynamics::best(&lag, &params)
         .map_err(|e| Diagnostic::global(format!("cannot compile the equations: {e}")))?;
     let energy = conserved_quantity(&scene, &lag.coordinates, &params)?;
     let compile_seconds = compile_start.elapsed().as_secs_f64();
@@ -241,19 +249,11 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
         None => None,
     };
     let start = Instant::now();
-    let solution = match &event {
-        Some(p) => {
-            let (mut regs, mut out, mut input) =
-                (p.registers(), vec![0.0; 1], vec![0.0; 1 + y0.len()]);
-            let mut g = |t: f64, y: &[f64]| {
-                input[0] = t;
-                input[1..].copy_from_slice(y);
-                p.eval(&input, &mut regs, &mut out);
-                out[0]
-            };
-            integrate_with_event(&mut dynamics, req.method, &y0, &opts, &mut g)
-        }
-        None => integrate(&mut dynamics, req.method, &y0, &opts),
+    let solution = if req.progress {
+        let mut sys = Progress::new(&mut dynamics, opts.t0, opts.t_end);
+        run_method(&mut sys, req.method, &y0, &opts, event.as_ref())
+    } else {
+        run_method(&mut dynamics, req.method, &y0, &opts, event.as_ref())
     };
     let solution = solution.map_err(|e| match e {
         SimError::BadInput(s) => Diagnostic::global(s).with_hint(match req.method {
@@ -293,7 +293,33 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
         method: req.method,
         seconds,
         compile_seconds,
+        evaluator,
     })
+}
+
+/// [`integrate`], or [`integrate_with_event`] with the compiled event
+/// function over `[t, q…, q̇…]`.
+fn run_method<S: System + ?Sized>(
+    sys: &mut S,
+    method: Method,
+    y0: &[f64],
+    opts: &Options,
+    event: Option<&Program>,
+) -> Result<Solution, SimError> {
+    match event {
+        Some(p) => {
+            let (mut regs, mut out, mut input) =
+                (p.registers(), vec![0.0; 1], vec![0.0; 1 + y0.len()]);
+            let mut g = |t: f64, y: &[f64]| {
+                input[0] = t;
+                input[1..].copy_from_slice(y);
+                p.eval(&input, &mut regs, &mut out);
+                out[0]
+            };
+            integrate_with_event(sys, method, y0, opts, &mut g)
+        }
+        None => integrate(sys, method, y0, opts),
+    }
 }
 
 /// `--stop-when lhs = rhs`: lhs − rhs compiled over `[t, q…, q̇…]`.
@@ -371,7 +397,12 @@ pub fn csv(run: &Run) -> String {
 }
 
 /// The run as JSON: `method`, `status`, `columns`, `rows`, `stats`,
-/// `stiff_at` and `event_t` (null unless they happened).
+/// `stiff_at` and `event_t` (null unless they happened). `stats` holds
+/// `steps`, `rejected`, `rhs_evals`, `jacobians`, `factorizations`,
+/// `seconds`, `compile_seconds` and `evaluator`: `{"name", "reason",
+/// "cost": {"mass_matrix", "accelerations"}}` (the estimated flops per
+/// right-hand side of M, f and their solve, and of the exact
+/// accelerations, null when they were not derived).
 pub fn json(run: &Run) -> String {
     let s = &run.solution.stats;
     let v = serde_json::json!({
@@ -387,6 +418,14 @@ pub fn json(run: &Run) -> String {
             "factorizations": s.factorizations,
             "seconds": run.seconds,
             "compile_seconds": run.compile_seconds,
+            "evaluator": {
+                "name": run.evaluator.evaluator.name(),
+                "reason": run.evaluator.reason,
+                "cost": {
+                    "mass_matrix": run.evaluator.mass_cost,
+                    "accelerations": run.evaluator.accelerations_cost,
+                },
+            },
         },
         "stiff_at": run.solution.stiff_at,
         "event_t": match run.solution.status {
@@ -408,11 +447,12 @@ pub fn status_word(s: &Status) -> &'static str {
     }
 }
 
-/// The `--stats` lines.
+/// The `--stats` lines: the method's work, then the evaluator of q̈ and
+/// why it was chosen.
 pub fn stats_text(run: &Run) -> String {
     let s = &run.solution.stats;
     format!(
-        "method {}: {} steps ({} rejected), {} RHS evaluations, {} Jacobians, {} factorizations; integration {:.3} ms, compilation {:.3} ms\n",
+        "method {}: {} steps ({} rejected), {} RHS evaluations, {} Jacobians, {} factorizations; integration {:.3} ms, compilation {:.3} ms\nevaluator {}: {}\n",
         method_name(run.method),
         s.steps,
         s.rejected,
@@ -420,6 +460,8 @@ pub fn stats_text(run: &Run) -> String {
         s.jacobians,
         s.factorizations,
         run.seconds * 1e3,
-        run.compile_seconds * 1e3
+        run.compile_seconds * 1e3,
+        run.evaluator.evaluator.name(),
+        run.evaluator.reason
     )
 }
