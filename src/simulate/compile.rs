@@ -1596,12 +1596,8 @@ impl CompiledDynamics {
         let r = &mut self.regs[off..off + 1 + 2 * self.n];
         r[0] = t;
         let (rq, rqd) = r[1..].split_at_mut(self.n);
-        for (a, b) in rq.iter_mut().zip(q) {
-            *a = *b;
-        }
-        for (a, b) in rqd.iter_mut().zip(qd) {
-            *a = *b;
-        }
+        copy_small(rq, q);
+        copy_small(rqd, qd);
         self.program.run(&mut self.regs);
     }
 
@@ -1619,6 +1615,13 @@ impl CompiledDynamics {
             return Err(format!("expected {n} coordinates"));
         }
         self.load(t, q, qd);
+        self.finish(qdd)
+    }
+
+    /// q̈ from the program's outputs (after [`Self::load`]), by the mode.
+    #[inline]
+    fn finish(&mut self, qdd: &mut [f64]) -> Result<(), String> {
+        let n = self.n;
         let (regs, outs) = (&self.regs, self.program.output_registers());
         match &self.mode {
             Mode::Accelerations => {
@@ -1679,16 +1682,37 @@ impl System for CompiledDynamics {
     /// (the integrators stop with `Status::NotFinite`).
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
         let n = self.n;
-        let (q, qd) = y.split_at(n);
-        let (dq, dqd) = dy.split_at_mut(n);
-        // an element loop, not copy_from_slice: no memcpy call for small n
-        for (a, b) in dq.iter_mut().zip(qd) {
-            *a = *b;
+        if y.len() != 2 * n || dy.len() != 2 * n {
+            dy.fill(f64::NAN);
+            return;
         }
-        if self.accelerations(t, q, qd, dqd).is_err() {
+        let (dq, dqd) = dy.split_at_mut(n);
+        copy_small(dq, &y[n..]);
+        // y = (q, q̇) is the program's input after t: one copy
+        let off = self.program.input_offset();
+        self.regs[off] = t;
+        copy_small(&mut self.regs[off + 1..off + 1 + 2 * n], y);
+        self.program.run(&mut self.regs);
+        if self.finish(dqd).is_err() {
             dqd.fill(f64::NAN);
         }
     }
+}
+
+/// `dst.copy_from_slice(src)` (equal lengths), as plain moves for the
+/// lengths of small systems: a right-hand side of a few flops would
+/// otherwise spend a good part of its time in `memcpy` calls.
+#[inline(always)]
+fn copy_small(dst: &mut [f64], src: &[f64]) {
+    macro_rules! fixed {
+        ($($k:literal)*) => {
+            match src.len() {
+                $($k => dst[..$k].copy_from_slice(&src[..$k]),)*
+                _ => dst.copy_from_slice(src),
+            }
+        };
+    }
+    fixed!(1 2 3 4 5 6 7 8)
 }
 
 #[cfg(test)]
