@@ -75,6 +75,10 @@ struct Report {
     /// The reference's own error (0 for closed forms).
     reference_error: f64,
     h0: Option<f64>,
+    /// The check point (t = 0.7, y, F(t, y) compiled) the hand-written and
+    /// SciPy right-hand sides must reproduce.
+    check_y: Vec<f64>,
+    check_dy: Vec<f64>,
     series: Vec<Series>,
 }
 
@@ -169,9 +173,11 @@ fn qdot_point<S: System>(
 }
 
 /// The compiled dynamics behind `ode_solvers`' `&self` interface.
-struct OdeSolversRhs<const D: usize>(RefCell<CompiledDynamics>);
+struct OdeSolversRhs<'a, const D: usize>(&'a RefCell<CompiledDynamics>);
 
-impl<const D: usize> ode_solvers::System<f64, ode_solvers::SVector<f64, D>> for OdeSolversRhs<D> {
+impl<const D: usize> ode_solvers::System<f64, ode_solvers::SVector<f64, D>>
+    for OdeSolversRhs<'_, D>
+{
     fn system(
         &self,
         t: f64,
@@ -183,19 +189,23 @@ impl<const D: usize> ode_solvers::System<f64, ode_solvers::SVector<f64, D>> for 
 }
 
 /// One `ode_solvers` Dop853 point (state as a stack vector of dimension D,
-/// the crate's fastest form).
+/// the crate's fastest form) on `sys`, compiled once by the caller: the
+/// timed runs only build the stepper (its work space) and integrate.
 fn ode_solvers_point<const D: usize>(
     p: &Problem,
+    sys: &RefCell<CompiledDynamics>,
     reference: &[f64],
     energy: Option<(&Program, f64)>,
     tol: f64,
 ) -> Option<Point> {
     use ode_solvers::{Dop853, OutputType, SVector};
     let y0 = SVector::<f64, D>::from_column_slice(&p.y0);
-    let make = |out: OutputType| {
-        let sys = OdeSolversRhs::<D>(RefCell::new(p.dynamics().ok()?));
-        Some(Dop853::from_param(
-            sys,
+    // Sparse output: every accepted step is recorded, and no dense-output
+    // coefficients are computed (Dense costs DOP853 three extra evaluations
+    // per step).
+    let make = || {
+        Dop853::from_param(
+            OdeSolversRhs::<D>(sys),
             0.0,
             p.t_end,
             p.t_end,
@@ -210,16 +220,13 @@ fn ode_solvers_point<const D: usize>(
             0.0,
             50_000_000,
             u32::MAX,
-            out,
-        ))
+            OutputType::Sparse,
+        )
     };
-    // Sparse output: every accepted step is recorded, and no dense-output
-    // coefficients are computed (Dense costs DOP853 three extra evaluations
-    // per step).
-    let mut stepper = make(OutputType::Sparse)?;
-    let (seconds, stats) = time_min(|| {
-        stepper = make(OutputType::Sparse).expect("built above");
-        stepper.integrate()
+    let (seconds, (stepper, stats)) = time_min(|| {
+        let mut stepper = make();
+        let stats = stepper.integrate();
+        (stepper, stats)
     });
     let stats = match stats {
         Ok(s) => s,
@@ -383,12 +390,13 @@ fn run_problem(p: &Problem, tolerances: &[f64], quick: bool) -> Result<Report, S
         });
     }
     let mut pts = Vec::new();
+    let shared = RefCell::new(sys);
     for &tol in tolerances {
         eprint!("\r{:<16} ode_solvers Dop853 {tol:.0e}   ", p.name);
         let pt = match p.y0.len() {
-            2 => ode_solvers_point::<2>(p, &reference, en, tol),
-            4 => ode_solvers_point::<4>(p, &reference, en, tol),
-            20 => ode_solvers_point::<20>(p, &reference, en, tol),
+            2 => ode_solvers_point::<2>(p, &shared, &reference, en, tol),
+            4 => ode_solvers_point::<4>(p, &shared, &reference, en, tol),
+            20 => ode_solvers_point::<20>(p, &shared, &reference, en, tol),
             d => return Err(format!("no ode_solvers instance for dimension {d}")),
         };
         pts.extend(pt);
@@ -405,14 +413,16 @@ fn run_problem(p: &Problem, tolerances: &[f64], quick: bool) -> Result<Report, S
         reference,
         reference_error,
         h0,
+        check_y: y,
+        check_dy: a,
         series,
     })
 }
 
 /// Time at error `e` on a curve, by log-log interpolation along its lower
-/// envelope (points sorted by error, each kept only if faster than every
-/// point with a larger error is not required: the envelope is the minimum
-/// time reaching at most that error). None outside the curve's range.
+/// envelope: at each point's error, the least time of any point reaching
+/// that error or a smaller one (a loose tolerance that happens to land on a
+/// small error counts for it). None outside the curve's range.
 fn time_at(s: &Series, e: f64) -> Option<f64> {
     let mut pts: Vec<(f64, f64)> = s
         .points
@@ -421,9 +431,9 @@ fn time_at(s: &Series, e: f64) -> Option<f64> {
         .map(|p| (p.error.log10(), p.seconds.log10()))
         .collect();
     pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-    // Minimum time reaching error ≤ x: running min from the large-error end.
-    for i in (0..pts.len().saturating_sub(1)).rev() {
-        pts[i].1 = pts[i].1.max(pts[i + 1].1.min(pts[i].1));
+    // Least time reaching error ≤ x: a running minimum from the small errors.
+    for i in 1..pts.len() {
+        pts[i].1 = pts[i].1.min(pts[i - 1].1);
     }
     let x = e.log10();
     let first = pts.first()?;
@@ -610,14 +620,6 @@ fn run_scipy(reports: &[Report], tolerances: &[f64], dir: &Path) -> Result<Value
         .iter()
         .map(|r| {
             let p = &r.problem;
-            let mut sys = p.dynamics().expect("compiled before");
-            let y: Vec<f64> =
-                p.y0.iter()
-                    .enumerate()
-                    .map(|(i, v)| v + 0.1 * (i as f64 + 1.0).sin())
-                    .collect();
-            let mut dy = vec![0.0; y.len()];
-            sys.rhs(0.7, &y, &mut dy);
             let params: serde_json::Map<String, Value> = p
                 .params
                 .iter()
@@ -626,7 +628,7 @@ fn run_scipy(reports: &[Report], tolerances: &[f64], dir: &Path) -> Result<Value
             json!({
                 "name": p.name, "params": params, "y0": p.y0, "t_end": p.t_end,
                 "reference": r.reference, "energy_reference": r.h0,
-                "check": {"t": 0.7, "y": y, "dy": dy},
+                "check": {"t": 0.7, "y": r.check_y, "dy": r.check_dy},
             })
         })
         .collect();
@@ -674,15 +676,20 @@ fn fmt_s(x: f64) -> String {
 }
 
 /// The ratio rows at equal error: `num` / `den` at each target error.
+/// Time of series `num` over series `den` on `r` at error `e`.
+fn ratio_at(r: &Report, num: &str, den: &str, e: f64) -> Option<f64> {
+    let at = |l: &str| {
+        r.series
+            .iter()
+            .find(|s| s.label == l)
+            .and_then(|s| time_at(s, e))
+    };
+    Some(at(num)? / at(den)?)
+}
+
+/// The table cell of [`ratio_at`].
 fn ratio_cell(r: &Report, num: &str, den: &str, e: f64) -> String {
-    let find = |l: &str| r.series.iter().find(|s| s.label == l);
-    match (
-        find(num).and_then(|s| time_at(s, e)),
-        find(den).and_then(|s| time_at(s, e)),
-    ) {
-        (Some(a), Some(b)) => format!("{:.2}", a / b),
-        _ => "—".into(),
-    }
+    ratio_at(r, num, den, e).map_or_else(|| "—".into(), |x| format!("{x:.2}"))
 }
 
 fn markdown(reports: &[Report], scipy: &Result<Value, String>, started: &str, wall: f64) -> String {
@@ -712,30 +719,24 @@ fn markdown(reports: &[Report], scipy: &Result<Value, String>, started: &str, wa
     let targets = [1e-4, 1e-6, 1e-8, 1e-10];
     // The ranges of the headline ratios over problems and target errors.
     let range = |num: &str, den: &str, skip: &[&str]| -> String {
-        let mut v: Vec<f64> = Vec::new();
-        for r in reports.iter().filter(|r| !skip.contains(&r.problem.name)) {
-            let find = |l: &str| r.series.iter().find(|s| s.label == l);
-            for &e in &targets {
-                if let (Some(a), Some(b)) = (
-                    find(num).and_then(|s| time_at(s, e)),
-                    find(den).and_then(|s| time_at(s, e)),
-                ) {
-                    v.push(a / b);
-                }
-            }
+        let mut v: Vec<f64> = reports
+            .iter()
+            .filter(|r| !skip.contains(&r.problem.name))
+            .flat_map(|r| {
+                targets
+                    .iter()
+                    .filter_map(move |&e| ratio_at(r, num, den, e))
+            })
+            .collect();
+        v.sort_by(f64::total_cmp);
+        match (v.first(), v.last()) {
+            (Some(lo), Some(hi)) => format!(
+                "{lo:.2} … {hi:.2} (median {:.2}, {} points)",
+                v[v.len() / 2],
+                v.len()
+            ),
+            _ => "not measured".into(),
         }
-        if v.is_empty() {
-            return "not measured".into();
-        }
-        let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = v.iter().copied().fold(0.0, f64::max);
-        let mut sorted = v.clone();
-        sorted.sort_by(f64::total_cmp);
-        format!(
-            "{lo:.2} … {hi:.2} (median {:.2}, {} points)",
-            sorted[sorted.len() / 2],
-            v.len()
-        )
     };
     let _ = writeln!(md, "\n### Summary\n");
     let _ = writeln!(md, "Ranges over the problems and the target errors 1e-4, 1e-6, 1e-8, 1e-10 of the table below (time of the first over the second at equal error):\n");
