@@ -18,6 +18,7 @@ mod common;
 
 use common::*;
 use plotters::prelude::*;
+use qdot::simulate::plot::PALETTE;
 use qdot::simulate::run::method_name;
 use qdot::simulate::{Method, Solution};
 use std::fmt::Write as _;
@@ -25,15 +26,6 @@ use std::path::Path;
 use std::time::Instant;
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
-
-const PALETTE: [RGBColor; 6] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(255, 127, 14),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-];
 
 /// One curve of a figure: label, points, and whether to draw markers only.
 struct Curve {

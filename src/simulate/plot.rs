@@ -8,7 +8,9 @@
 use super::run::{method_name, Run};
 use plotters::prelude::*;
 
-const PALETTE: [RGBColor; 6] = [
+/// The curves' colours (matplotlib's first six), also used by the
+/// stress report's figures.
+pub const PALETTE: [RGBColor; 6] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
