@@ -5,6 +5,9 @@
 //! pair in its slow mode), and Gauss6's long-time energy behaviour on the
 //! pendulum against the exact elliptic-function solution.
 
+mod common;
+
+use common::numeric::loglog_slope;
 use qdot::simulate::elliptic::{pendulum_exact, pendulum_period};
 use qdot::simulate::implicit::{gauss6, radau5, radau5_fixed_step, ImplicitError};
 use qdot::simulate::{FnSystem, Options, Solution, Status, System};
@@ -69,17 +72,6 @@ fn last(sol: &Solution) -> &[f64] {
     sol.y.last().map(|v| v.as_slice()).unwrap_or(&[])
 }
 
-/// Least-squares slope of log(err) against log(h).
-fn slope(hs: &[f64], errs: &[f64]) -> f64 {
-    let xs: Vec<f64> = hs.iter().map(|h| h.ln()).collect();
-    let ys: Vec<f64> = errs.iter().map(|e| e.ln()).collect();
-    let n = xs.len() as f64;
-    let (mx, my) = (xs.iter().sum::<f64>() / n, ys.iter().sum::<f64>() / n);
-    let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
-    let sxx: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
-    sxy / sxx
-}
-
 #[test]
 fn radau5_fixed_step_has_order_5_on_the_oscillator() {
     let t_end = 10.0;
@@ -101,7 +93,7 @@ fn radau5_fixed_step_has_order_5_on_the_oscillator() {
         hs.push(h);
         errs.push(err);
     }
-    let p = slope(&hs, &errs);
+    let p = loglog_slope(&hs, &errs);
     eprintln!("radau5 fixed-step errors {errs:?}, order {p:.3}");
     assert!((p - 5.0).abs() < 0.3, "order {p}, errors {errs:?}");
 }
@@ -325,7 +317,7 @@ fn gauss6_has_order_6_against_the_exact_pendulum() {
         hs.push(h);
         errs.push((y[0] - exact).abs().max((y[1] - exact_d).abs()));
     }
-    let p = slope(&hs, &errs);
+    let p = loglog_slope(&hs, &errs);
     eprintln!("gauss6 pendulum errors {errs:?}, order {p:.3}");
     assert!((p - 6.0).abs() < 0.3, "order {p}, errors {errs:?}");
     assert!(errs[3] < 1e-11, "{errs:?}");
@@ -350,7 +342,7 @@ fn gauss6_has_order_6_on_the_oscillator() {
         // exp, exactly norm-preserving (|R(ih)| = 1).
         assert!((y[0] * y[0] + y[1] * y[1] - 1.0).abs() < 1e-13);
     }
-    let p = slope(&hs, &errs);
+    let p = loglog_slope(&hs, &errs);
     eprintln!("gauss6 oscillator errors {errs:?}, order {p:.3}");
     assert!((p - 6.0).abs() < 0.3, "order {p}, errors {errs:?}");
 }

@@ -3,6 +3,9 @@
 //! proportionality of the adaptive methods, exact output times, events,
 //! stiffness detection and the early-end statuses.
 
+mod common;
+
+use common::numeric::{loglog_slope, max_abs_diff};
 use qdot::simulate::explicit::integrate_fixed;
 use qdot::simulate::{
     integrate, integrate_with_event, FnSystem, Method, Options, SimError, Status, System,
@@ -64,25 +67,6 @@ fn kepler_y0(e: f64) -> Vec<f64> {
     vec![1.0 - e, 0.0, 0.0, ((1.0 + e) / (1.0 - e)).sqrt()]
 }
 
-fn max_err(a: &[f64], b: &[f64]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
-}
-
-/// Least-squares slope of log(err) against log(h).
-fn slope(h: &[f64], e: &[f64]) -> f64 {
-    let x: Vec<f64> = h.iter().map(|v| v.ln()).collect();
-    let y: Vec<f64> = e.iter().map(|v| v.ln()).collect();
-    let n = x.len() as f64;
-    let mx = x.iter().sum::<f64>() / n;
-    let my = y.iter().sum::<f64>() / n;
-    let sxy: f64 = x.iter().zip(&y).map(|(a, b)| (a - mx) * (b - my)).sum();
-    let sxx: f64 = x.iter().map(|a| (a - mx) * (a - mx)).sum();
-    sxy / sxx
-}
-
 fn fixed_error<S: System>(
     sys: &mut S,
     m: Method,
@@ -100,7 +84,7 @@ fn fixed_error<S: System>(
     assert_eq!(sol.status, Status::Done);
     assert_eq!(sol.stats.steps, steps);
     assert_eq!(*sol.t.last().expect("recorded"), t_end);
-    max_err(sol.y.last().expect("recorded"), exact)
+    max_abs_diff(sol.y.last().expect("recorded"), exact)
 }
 
 /// Global orders on linear problems. Vern7 is of order 7, but on a linear
@@ -133,7 +117,7 @@ fn fixed_step_order_on_the_oscillator() {
                 &exact,
             ));
         }
-        let s = slope(&hs, &es);
+        let s = loglog_slope(&hs, &es);
         eprintln!("oscillator {m:?}: errors {es:?}, slope {s:.3}");
         let ok = if m == Method::Vern7 {
             (6.7..8.3).contains(&s)
@@ -167,7 +151,7 @@ fn fixed_step_order_on_kepler() {
             hs.push(period / n as f64);
             es.push(fixed_error(&mut kepler(), m, &y0, period, n, &y0));
         }
-        let s = slope(&hs, &es);
+        let s = loglog_slope(&hs, &es);
         eprintln!("kepler {m:?}: errors {es:?}, slope {s:.3}");
         if (s - p).abs() >= 0.3 {
             fails.push(format!("{m:?}: slope {s}, errors {es:?}"));
@@ -181,14 +165,14 @@ fn fixed_step_order_on_the_forced_damped_oscillator() {
     let mut fails: Vec<String> = vec![];
     let t_end = 10.0;
     let exact = forced_exact(t_end);
-    assert!(max_err(&forced_exact(0.0), &[1.0, 0.0]) < 1e-15);
+    assert!(max_abs_diff(&forced_exact(0.0), &[1.0, 0.0]) < 1e-15);
     for (m, p, ns) in ORDERS {
         let (mut hs, mut es) = (vec![], vec![]);
         for &n in ns {
             hs.push(t_end / n as f64);
             es.push(fixed_error(&mut forced(), m, &[1.0, 0.0], t_end, n, &exact));
         }
-        let s = slope(&hs, &es);
+        let s = loglog_slope(&hs, &es);
         eprintln!("forced {m:?}: errors {es:?}, slope {s:.3}");
         let ok = if m == Method::Vern7 {
             (6.7..8.3).contains(&s)
@@ -217,7 +201,7 @@ fn dense_errors(m: Method, theta: f64, hs: &[f64]) -> Vec<f64> {
         };
         let sol = integrate_fixed(&mut forced(), m, &forced_exact(t0), &opts).expect("valid");
         assert_eq!(sol.t, vec![t0 + theta * h]);
-        es.push(max_err(&sol.y[0], &forced_exact(t0 + theta * h)));
+        es.push(max_abs_diff(&sol.y[0], &forced_exact(t0 + theta * h)));
     }
     es
 }
@@ -245,7 +229,7 @@ fn dense_output_order() {
     ];
     for (m, theta, p, hs) in cases {
         let es = dense_errors(m, theta, hs);
-        let s = slope(hs, &es);
+        let s = loglog_slope(hs, &es);
         eprintln!("dense {m:?} θ = {theta}: errors {es:?}, slope {s:.3}");
         if (s - p).abs() >= 0.3 {
             fails.push(format!("{m:?} θ = {theta}: slope {s}"));
@@ -271,7 +255,7 @@ fn adaptive_methods_meet_the_tolerance_on_kepler() {
             let y0 = kepler_y0(0.5);
             let sol = integrate(&mut kepler(), m, &y0, &opts).expect("valid");
             assert_eq!(sol.status, Status::Done);
-            let err = max_err(sol.y.last().expect("recorded"), &y0);
+            let err = max_abs_diff(sol.y.last().expect("recorded"), &y0);
             eprintln!(
                 "kepler {m:?} tol {tol:.0e}: error {err:.2e}, steps {}, rejected {}, f {}",
                 sol.stats.steps, sol.stats.rejected, sol.stats.rhs_evals
@@ -313,7 +297,7 @@ fn output_exactly_at_the_requested_times() {
             .t
             .iter()
             .zip(&sol.y)
-            .map(|(&t, y)| max_err(y, &forced_exact(t)))
+            .map(|(&t, y)| max_abs_diff(y, &forced_exact(t)))
             .fold(0.0, f64::max);
         eprintln!("t_out {m:?}: worst error {worst:.2e}");
         assert!(worst < 1e-7, "{m:?}: {worst}");
@@ -332,7 +316,7 @@ fn output_times_are_sorted_and_clipped_to_the_interval() {
     let sol = integrate(&mut oscillator(), Method::Dop853, &[1.0, 0.0], &opts).expect("valid");
     assert_eq!(sol.t, vec![0.5, 1.0, 1.5, 2.0]);
     for (&t, y) in sol.t.iter().zip(&sol.y) {
-        assert!(max_err(y, &[t.cos(), -t.sin()]) < 1e-9, "{t}: {y:?}");
+        assert!(max_abs_diff(y, &[t.cos(), -t.sin()]) < 1e-9, "{t}: {y:?}");
     }
     // backward: from 2 down to 0, output in decreasing time
     let opts = Options {
@@ -345,7 +329,7 @@ fn output_times_are_sorted_and_clipped_to_the_interval() {
     let sol = integrate(&mut oscillator(), Method::Vern7, &y0, &opts).expect("valid");
     assert_eq!(sol.t, vec![1.5, 1.0, 0.5]);
     for (&t, y) in sol.t.iter().zip(&sol.y) {
-        assert!(max_err(y, &[t.cos(), -t.sin()]) < 1e-9, "{t}: {y:?}");
+        assert!(max_abs_diff(y, &[t.cos(), -t.sin()]) < 1e-9, "{t}: {y:?}");
     }
 }
 
@@ -415,7 +399,7 @@ fn backward_integration() {
         let sol = integrate(&mut oscillator(), m, &y0, &opts).expect("valid");
         assert_eq!(sol.status, Status::Done);
         assert_eq!(*sol.t.last().expect("recorded"), -1.0);
-        let err = max_err(
+        let err = max_abs_diff(
             sol.y.last().expect("recorded"),
             &[1.0f64.cos(), 1.0f64.sin()],
         );

@@ -12,6 +12,9 @@
 //! (its period depends steeply on the amplitude there), so its multiple is
 //! large for every method alike, SciPy's included (see the report).
 
+mod common;
+
+use common::numeric::{loglog_slope, max_abs_diff};
 use qdot::simulate::problems::Problem;
 use qdot::simulate::{integrate, Method, Options};
 
@@ -34,24 +37,7 @@ fn final_error(p: &Problem, m: Method, tol: f64) -> f64 {
     let sol = integrate(&mut sys, m, &p.y0, &opts).expect("runs");
     assert_eq!(sol.t.last(), Some(&p.t_end), "{} {m:?} {tol:e}", p.name);
     let exact = p.exact(p.t_end).expect("a closed form");
-    sol.y
-        .last()
-        .expect("a state")
-        .iter()
-        .zip(&exact)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max)
-}
-
-/// Least-squares slope of log10(error) against log10(tol).
-fn slope(tols: &[f64], errs: &[f64]) -> f64 {
-    let xs: Vec<f64> = tols.iter().map(|t| t.log10()).collect();
-    let ys: Vec<f64> = errs.iter().map(|e| e.log10()).collect();
-    let n = xs.len() as f64;
-    let (mx, my) = (xs.iter().sum::<f64>() / n, ys.iter().sum::<f64>() / n);
-    let num: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
-    let den: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
-    num / den
+    max_abs_diff(sol.y.last().expect("a state"), &exact)
 }
 
 fn check(p: Problem, multiple: f64) {
@@ -65,7 +51,7 @@ fn check(p: Problem, multiple: f64) {
                 p.name
             );
         }
-        let s = slope(&tols, &errs);
+        let s = loglog_slope(&tols, &errs);
         assert!(
             (0.7..=1.3).contains(&s),
             "{} {m:?}: error ∝ tol^{s:.2} ({errs:?})",
@@ -108,11 +94,7 @@ fn the_tight_references_agree() {
         };
         let a = integrate(&mut sys, Method::Vern7, &p.y0, &opts).expect("runs");
         let b = integrate(&mut sys, Method::Dop853, &p.y0, &opts).expect("runs");
-        let d = a.y[a.y.len() - 1]
-            .iter()
-            .zip(&b.y[b.y.len() - 1])
-            .map(|(x, y)| (x - y).abs())
-            .fold(0.0, f64::max);
+        let d = max_abs_diff(&a.y[a.y.len() - 1], &b.y[b.y.len() - 1]);
         assert!(d < 1e-10, "{}: references differ by {d:e}", p.name);
     }
 }

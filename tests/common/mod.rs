@@ -2,6 +2,7 @@
 //! fully parenthesized source printer, span stripping, and error locations.
 #![allow(dead_code)]
 
+pub mod numeric;
 pub mod run;
 
 use qdot::diag::Diagnostic;
