@@ -807,6 +807,28 @@ fn gauss_basis(theta: f64) -> [f64; 3] {
     l
 }
 
+/// The three stage derivatives of Gauss6: f[j] = F(t + c_j·h, y + z[j]),
+/// with `tmp` as work space.
+#[allow(clippy::too_many_arguments)]
+fn gauss_stages(
+    sys: &mut dyn System,
+    t: f64,
+    h: f64,
+    y: &[f64],
+    z: &[Vec<f64>; 3],
+    tmp: &mut [f64],
+    f: &mut [Vec<f64>; 3],
+    stats: &mut Stats,
+) {
+    for j in 0..3 {
+        for ((tc, yc), zc) in tmp.iter_mut().zip(y).zip(&z[j]) {
+            *tc = yc + zc;
+        }
+        sys.rhs(t + GC[j] * h, tmp, &mut f[j]);
+    }
+    stats.rhs_evals += 3;
+}
+
 /// Maximum fixed-point iterations before falling back to Newton.
 const GAUSS_FP_MAX: usize = 40;
 /// Maximum Newton iterations of the fallback.
@@ -916,13 +938,7 @@ pub fn gauss6(sys: &mut dyn System, y0: &[f64], opts: &Options) -> Result<Soluti
         let mut converged = false;
         let mut dold = f64::INFINITY;
         for it in 1..=GAUSS_FP_MAX {
-            for j in 0..3 {
-                for c in 0..n {
-                    tmp[c] = y[c] + z[j][c];
-                }
-                sys.rhs(t + GC[j] * h, &tmp, &mut f[j]);
-            }
-            stats.rhs_evals += 3;
+            gauss_stages(sys, t, h, &y, &z, &mut tmp, &mut f, &mut stats);
             let (mut d, mut zmax) = (0.0f64, 0.0f64);
             for (i, zi) in z.iter_mut().enumerate() {
                 for c in 0..n {
@@ -974,13 +990,7 @@ pub fn gauss6(sys: &mut dyn System, y0: &[f64], opts: &Options) -> Result<Soluti
             }
             let mut dold = f64::INFINITY;
             for it in 1..=GAUSS_NEWTON_MAX {
-                for j in 0..3 {
-                    for c in 0..n {
-                        tmp[c] = y[c] + z[j][c];
-                    }
-                    sys.rhs(t + GC[j] * h, &tmp, &mut f[j]);
-                }
-                stats.rhs_evals += 3;
+                gauss_stages(sys, t, h, &y, &z, &mut tmp, &mut f, &mut stats);
                 for i in 0..3 {
                     for c in 0..n {
                         let g = h * (GA[i][0] * f[0][c] + GA[i][1] * f[1][c] + GA[i][2] * f[2][c]);
@@ -1017,13 +1027,7 @@ pub fn gauss6(sys: &mut dyn System, y0: &[f64], opts: &Options) -> Result<Soluti
                 };
                 break;
             }
-            for j in 0..3 {
-                for c in 0..n {
-                    tmp[c] = y[c] + z[j][c];
-                }
-                sys.rhs(t + GC[j] * h, &tmp, &mut f[j]);
-            }
-            stats.rhs_evals += 3;
+            gauss_stages(sys, t, h, &y, &z, &mut tmp, &mut f, &mut stats);
         }
         // y1 = y0 + h·Σ b_j F_j, with compensated summation.
         yold.copy_from_slice(&y);
