@@ -4,17 +4,15 @@
 //! * `compile/chain10`: compiling M's upper triangle and f (parameters bound);
 //! * `eval/chain10/{compiled,tree_walk,hand,hand_tuned}`: evaluating M's
 //!   upper triangle and f at one state by the compiled program, by
-//!   `Expr::eval_f64` (tree walking), by the hand-written Rust below, and by
-//!   a tuned hand-written version (one sin_cos per angle, addition theorems);
+//!   `Expr::eval_f64` (tree walking), and M (full) and f by the
+//!   hand-written Rust of `hand/mod.rs` (the work-precision report's), plain
+//!   (one sin_cos per pair) and tuned (one per angle, addition theorems);
 //! * `rhs/chain10/{compiled,hand}`: the whole right-hand side y' = (q̇, M⁻¹f),
 //!   i.e. the above plus `solve_spd`;
 //! * `rhs/double_pendulum/{mass_matrix,accelerations}`: M and f compiled
 //!   and solved against the compiled exact accelerations.
 //!
-//! The hand-written chain (equal masses m, lengths l; angles from the
-//! downward vertical, 0-based): M_ij = m l² (n − max(i, j)) cos(θ_i − θ_j),
-//! f_i = −m l² Σ_j (n − max(i, j)) sin(θ_i − θ_j) θ̇_j² − m g l (n − i) sin θ_i.
-//! It is checked against qdot's M and f before timing.
+//! The hand-written chain is checked against qdot's M and f before timing.
 //!
 //! Measured (2 shared cores under load, so ±30 %): compile ≈ 0.4–0.7 ms;
 //! eval compiled ≈ 1.1–2.4 µs, hand ≈ 2.0–3.9 µs (compiled/hand ≈ 0.5–0.65),
@@ -24,10 +22,15 @@
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
+#[path = "hand/mod.rs"]
+mod hand;
+
 use criterion::{criterion_group, criterion_main, Criterion};
+use hand::Hand;
 use qdot::expr::atom::{self, Atom};
 use qdot::poly::Var;
-use qdot::simulate::compile::{compile_with, solve_spd, state_inputs, CompiledDynamics};
+use qdot::simulate::compile::{compile_with, state_inputs, CompiledDynamics};
+use qdot::simulate::problems::Problem;
 use qdot::simulate::System;
 use qdot::{Expr, Lagrange, Scene};
 use rustc_hash::FxHashMap;
@@ -38,59 +41,11 @@ const M: f64 = 1.3;
 const L: f64 = 0.7;
 const G: f64 = 9.81;
 
-/// The hand-written chain: M's upper triangle (row by row) and f, using
-/// `sd` (n×n) as scratch for sin(θ_i − θ_j).
-fn hand_chain(q: &[f64], qd: &[f64], upper: &mut [f64], f: &mut [f64], sd: &mut [f64]) {
-    let n = q.len();
-    let ml2 = M * L * L;
-    let mut k = 0;
-    for i in 0..n {
-        upper[k] = ml2 * (n - i) as f64;
-        sd[i * n + i] = 0.0;
-        k += 1;
-        for j in i + 1..n {
-            let (s, c) = (q[i] - q[j]).sin_cos();
-            upper[k] = ml2 * (n - j) as f64 * c;
-            sd[i * n + j] = s;
-            sd[j * n + i] = -s;
-            k += 1;
-        }
-    }
-    for i in 0..n {
-        let mut acc = 0.0;
-        for j in 0..n {
-            acc += (n - i.max(j)) as f64 * sd[i * n + j] * qd[j] * qd[j];
-        }
-        f[i] = -ml2 * acc - M * G * L * (n - i) as f64 * q[i].sin();
-    }
-}
-
-/// The hand-written chain with one `sin_cos` per angle and the addition
-/// theorems (cos(θ_i − θ_j) = c_i c_j + s_i s_j, sin(θ_i − θ_j) = s_i c_j −
-/// c_i s_j): the tuned hand-written reference. `sc` (2n) is scratch.
-fn hand_chain_tuned(q: &[f64], qd: &[f64], upper: &mut [f64], f: &mut [f64], sc: &mut [f64]) {
-    let n = q.len();
-    let ml2 = M * L * L;
-    let (s, c) = sc.split_at_mut(n);
-    for i in 0..n {
-        (s[i], c[i]) = q[i].sin_cos();
-    }
-    let mut k = 0;
-    for i in 0..n {
-        for j in i..n {
-            upper[k] = ml2 * (n - j) as f64 * (c[i] * c[j] + s[i] * s[j]);
-            k += 1;
-        }
-    }
-    for i in 0..n {
-        let (mut sc_sum, mut ss_sum) = (0.0, 0.0);
-        for j in 0..n {
-            let w = (n - i.max(j)) as f64 * qd[j] * qd[j];
-            sc_sum += w * c[j];
-            ss_sum += w * s[j];
-        }
-        f[i] = -ml2 * (s[i] * sc_sum - c[i] * ss_sum) - M * G * L * (n - i) as f64 * s[i];
-    }
+/// The hand-written chain with this bench's m, l, g.
+fn hand(tuned: bool) -> Hand {
+    let mut p = Problem::chain10();
+    p.params = vec![("m", M), ("l", L), ("g", G)];
+    Hand::new(&p, tuned)
 }
 
 fn setup() -> (Lagrange, Vec<Expr>, FxHashMap<Var, f64>) {
@@ -131,10 +86,9 @@ fn chain(c: &mut Criterion) {
     let mut regs = prog.registers();
     let mut out = vec![0.0; k + N];
     prog.eval(&x, &mut regs, &mut out);
-    let (mut hu, mut hf, mut sd) = (vec![0.0; k], vec![0.0; N], vec![0.0; N * N]);
-    hand_chain(&q, &qd, &mut hu, &mut hf, &mut sd);
-    let (mut tu, mut tf, mut sc) = (vec![0.0; k], vec![0.0; N], vec![0.0; 2 * N]);
-    hand_chain_tuned(&q, &qd, &mut tu, &mut tf, &mut sc);
+    let (mut plain, mut tuned) = (hand(false), hand(true));
+    let upper_pairs: Vec<(usize, usize)> =
+        (0..N).flat_map(|i| (i..N).map(move |j| (i, j))).collect();
     let vals: FxHashMap<Var, f64> = inputs.iter().copied().zip(x.iter().copied()).collect();
     let env = |a: &Atom| -> Option<f64> {
         match a {
@@ -144,19 +98,25 @@ fn chain(c: &mut Criterion) {
             _ => None,
         }
     };
-    for (i, e) in outputs.iter().enumerate() {
-        let tree = e.eval_f64(&env).expect("evaluates");
-        let hand = if i < k { hu[i] } else { hf[i - k] };
-        let scale = tree.abs().max(1.0);
-        assert!(
-            (out[i] - tree).abs() < 1e-10 * scale,
-            "{i}: {} vs {tree}",
-            out[i]
-        );
-        assert!(
-            (hand - tree).abs() < 1e-10 * scale,
-            "{i}: hand {hand} vs {tree}"
-        );
+    for h in [&mut plain, &mut tuned] {
+        let (hm, hf) = h.chain(&q, &qd);
+        for (i, e) in outputs.iter().enumerate() {
+            let tree = e.eval_f64(&env).expect("evaluates");
+            let hand = match upper_pairs.get(i) {
+                Some(&(r, c)) => hm[r * N + c],
+                None => hf[i - k],
+            };
+            let scale = tree.abs().max(1.0);
+            assert!(
+                (out[i] - tree).abs() < 1e-10 * scale,
+                "{i}: {} vs {tree}",
+                out[i]
+            );
+            assert!(
+                (hand - tree).abs() < 1e-10 * scale,
+                "{i}: hand {hand} vs {tree}"
+            );
+        }
     }
     println!(
         "chain10: {} instructions, {} registers, {} constants",
@@ -173,10 +133,14 @@ fn chain(c: &mut Criterion) {
         b.iter(|| prog.eval(black_box(&x), &mut regs, &mut out))
     });
     g.bench_function("hand", |b| {
-        b.iter(|| hand_chain(black_box(&q), black_box(&qd), &mut hu, &mut hf, &mut sd))
+        b.iter(|| {
+            black_box(plain.chain(black_box(&q), black_box(&qd)));
+        })
     });
     g.bench_function("hand_tuned", |b| {
-        b.iter(|| hand_chain_tuned(black_box(&q), black_box(&qd), &mut tu, &mut tf, &mut sc))
+        b.iter(|| {
+            black_box(tuned.chain(black_box(&q), black_box(&qd)));
+        })
     });
     g.bench_function("tree_walk", |b| {
         b.iter(|| {
@@ -196,23 +160,8 @@ fn chain(c: &mut Criterion) {
     g.bench_function("compiled", |b| {
         b.iter(|| dynamics.rhs(0.0, black_box(&y), &mut dy))
     });
-    let (mut mm, mut ff) = (vec![0.0; N * N], vec![0.0; N]);
     g.bench_function("hand", |b| {
-        b.iter(|| {
-            let (q, qd) = black_box(&y).split_at(N);
-            hand_chain(q, qd, &mut hu, &mut ff, &mut sd);
-            let mut kk = 0;
-            for i in 0..N {
-                for j in i..N {
-                    mm[i * N + j] = hu[kk];
-                    mm[j * N + i] = hu[kk];
-                    kk += 1;
-                }
-            }
-            solve_spd(&mut mm, &mut ff, N).expect("SPD");
-            dy[..N].copy_from_slice(qd);
-            dy[N..].copy_from_slice(&ff);
-        })
+        b.iter(|| plain.rhs(0.0, black_box(&y), &mut dy))
     });
     g.finish();
 }

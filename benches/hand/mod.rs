@@ -15,6 +15,8 @@ pub struct Hand {
     p: [f64; 5],
     m: Vec<f64>,
     f: Vec<f64>,
+    /// Scratch: sin θ and cos θ of each angle (tuned), or sin(θ_i − θ_j)
+    /// for every pair (plain, n × n).
     sc: Vec<f64>,
     /// The chain's entries by addition theorems (one sin_cos per angle).
     pub tuned: bool,
@@ -34,15 +36,18 @@ impl Hand {
             p,
             m: vec![0.0; n * n],
             f: vec![0.0; n],
-            sc: vec![0.0; 2 * n],
+            sc: vec![0.0; (2 * n).max(n * n)],
             tuned,
         }
     }
 
-    /// The chain (equal m, l; angles from the downward vertical, 0-based):
+    /// The chain's M (full, row-major) and f at (q, q̇) (equal m, l; angles
+    /// from the downward vertical, 0-based):
     /// M_ij = m l² (n − max(i, j)) cos(θ_i − θ_j),
     /// f_i = −m l² Σ_j (n − max(i, j)) sin(θ_i − θ_j) θ̇_j² − m g l (n − i) sin θ_i.
-    fn chain(&mut self, q: &[f64], qd: &[f64]) {
+    /// The plain version takes one sin_cos per pair i < j (sin is odd);
+    /// the tuned one, one per angle and the addition theorems.
+    pub fn chain(&mut self, q: &[f64], qd: &[f64]) -> (&[f64], &[f64]) {
         let n = self.n;
         let [m, l, g, _, _] = self.p;
         let ml2 = m * l * l;
@@ -70,21 +75,28 @@ impl Hand {
                     -ml2 * (s[i] * sc_sum - c[i] * ss_sum) - m * g * l * (n - i) as f64 * s[i];
             }
         } else {
+            let sd = &mut self.sc[..n * n];
             for i in 0..n {
                 self.m[i * n + i] = ml2 * (n - i) as f64;
+                sd[i * n + i] = 0.0;
+                for j in i + 1..n {
+                    let (s, c) = (q[i] - q[j]).sin_cos();
+                    let v = ml2 * (n - j) as f64 * c;
+                    self.m[i * n + j] = v;
+                    self.m[j * n + i] = v;
+                    sd[i * n + j] = s;
+                    sd[j * n + i] = -s;
+                }
+            }
+            for i in 0..n {
                 let mut acc = 0.0;
                 for j in 0..n {
-                    let (s, c) = (q[i] - q[j]).sin_cos();
-                    let w = (n - i.max(j)) as f64;
-                    if j > i {
-                        self.m[i * n + j] = ml2 * w * c;
-                        self.m[j * n + i] = ml2 * w * c;
-                    }
-                    acc += w * s * qd[j] * qd[j];
+                    acc += (n - i.max(j)) as f64 * sd[i * n + j] * qd[j] * qd[j];
                 }
                 self.f[i] = -ml2 * acc - m * g * l * (n - i) as f64 * q[i].sin();
             }
         }
+        (&self.m, &self.f)
     }
 }
 
