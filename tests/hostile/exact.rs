@@ -1,0 +1,4 @@
+//! Hostile inputs: exact.
+
+#[allow(unused_imports)]
+use crate::bound::*;

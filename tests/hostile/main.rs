@@ -1,0 +1,11 @@
+//! The hostile-input suite: one module per class of input that once made
+//! qdot wrong, panic, crash or hang. Every case asserts the exact outcome
+//! (the value, or the error message and its position) and runs the binary
+//! under a time and a memory bound (`bounded`).
+
+mod bound;
+mod exact;
+mod input;
+mod mechanics;
+mod numeric;
+mod output;

@@ -1,0 +1,4 @@
+//! Hostile inputs: mechanics.
+
+#[allow(unused_imports)]
+use crate::bound::*;

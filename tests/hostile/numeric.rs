@@ -1,0 +1,4 @@
+//! Hostile inputs: numeric.
+
+#[allow(unused_imports)]
+use crate::bound::*;
