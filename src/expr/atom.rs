@@ -105,6 +105,10 @@ impl Atom {
 
 struct Entry {
     atom: Atom,
+    /// How many function atoms are nested in this one, itself included
+    /// (0 for symbols, π and √n): the depth every walk into arguments
+    /// recurses to.
+    depth: u32,
     /// For reducible atoms: the polynomial P with atom² = P.
     square: Option<Poly>,
 }
@@ -137,13 +141,35 @@ fn write() -> std::sync::RwLockWriteGuard<'static, Table> {
 impl Table {
     fn push(&mut self, atom: Atom, kind: Var, square: Option<Poly>) -> Var {
         let v = ((self.entries.len() as Var) << 2) | kind;
+        let depth = atom
+            .argument()
+            .map_or(0, |u| 1 + self.max_depth(u.vars().into_iter()));
         self.entries.push(Entry {
             atom: atom.clone(),
+            depth,
             square,
         });
         self.index.insert(atom, v);
         v
     }
+
+    fn max_depth(&self, vars: impl Iterator<Item = Var>) -> u32 {
+        vars.filter_map(|v| self.entries.get((v >> 2) as usize))
+            .map(|e| e.depth)
+            .max()
+            .unwrap_or(0)
+    }
+}
+
+/// Most function atoms nested in one another (`sin(sin(…))`, through
+/// definitions). Every walk into arguments (printing, d/dt, substitution,
+/// compilation) recurses once per level, so the depth is bounded to keep
+/// the stack bounded; textbook scenes nest a handful of levels.
+pub const MAX_NESTING: u32 = 200;
+
+/// How deeply function atoms nest in `e` (0 for a polynomial in symbols).
+pub fn nesting_depth(e: &Expr) -> u32 {
+    read().max_depth(e.vars().into_iter())
 }
 
 /// The variable of a plain atom (parameter, coordinate, time, π, exp, ln, atan).

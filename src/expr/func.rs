@@ -88,8 +88,8 @@ pub fn sin_cos(u: &Expr) -> (Expr, Expr) {
     let mut rest: Vec<(Mono, Q)> = Vec::new();
     let mut expanded = 0;
     for (m, coef) in u.num().terms() {
-        let (ts, tc) = if m.0.len() == 1 && m.0[0] == (pi, 1) && is_twelfth(coef) {
-            exact_pi(coef)
+        let (ts, tc) = if m.0.len() == 1 && m.0[0] == (pi, 1) {
+            pi_sin_cos(coef)
         } else if expanded < MAX_EXPANDED_TERMS && is_simple_term(m) {
             expanded += 1;
             term_sin_cos(m, coef)
@@ -142,13 +142,58 @@ pub fn tan(u: &Expr) -> Result<Expr, MathError> {
         .map_err(|_| MathError::new("tan is undefined here: cos of its argument is zero"))
 }
 
+/// sin and cos of k·π for a rational k, however large: k is reduced
+/// modulo 2 exactly, then into [0, 1/2] by sin(−φ) = −sin φ and
+/// sin(π − φ) = sin φ, cos(π − φ) = −cos φ, so equal angles (and
+/// supplementary ones) give one canonical form.
+fn pi_sin_cos(k: &Q) -> (Expr, Expr) {
+    let k = reduce_pi_multiple(k);
+    if is_twelfth(&k) {
+        return exact_pi(&k);
+    }
+    let (k, sin_sign) = if k.is_negative() { (-k, -1) } else { (k, 1) };
+    let half = Q::new(1, 2).unwrap_or_else(Q::one);
+    let (k, cos_sign) = if k > half {
+        (&Q::one() - &k, -1)
+    } else {
+        (k, 1)
+    };
+    let (s, c) = term_sin_cos(&Mono::var_pow(atom::pi(), 1), &k);
+    (
+        if sin_sign < 0 { s.neg() } else { s },
+        if cos_sign < 0 { c.neg() } else { c },
+    )
+}
+
+/// k − 2·j for the integer j that puts the result in (−1, 1]: the same
+/// angle k·π modulo 2π, computed on big integers (k = p/q: p mod 2q).
+pub fn reduce_pi_multiple(k: &Q) -> Q {
+    let q = k.denom();
+    let two_q: BigInt = &q * 2u32;
+    let mut r = k.numer() % &two_q;
+    if r.is_negative() {
+        r += &two_q;
+    }
+    if r > q {
+        r -= &two_q;
+    }
+    Q::from_bigint(r)
+        .checked_div(&Q::from_bigint(q))
+        .unwrap_or_else(Q::zero)
+}
+
 fn is_twelfth(q: &Q) -> bool {
     (q * &Q::from_i64(12)).is_integer()
 }
 
-/// sin, cos of (k·π) where 12k is an integer.
+/// sin, cos of (k·π) where 12k is an integer and k ∈ (−1, 1] (reduced by
+/// [`reduce_pi_multiple`], so 12k fits an i64).
 fn exact_pi(k: &Q) -> (Expr, Expr) {
-    let n = (k * &Q::from_i64(12)).as_i64().unwrap_or(0).rem_euclid(24);
+    debug_assert!(k.abs() <= Q::one(), "exact_pi takes a reduced multiple");
+    let n = (k * &Q::from_i64(12))
+        .as_i64()
+        .unwrap_or(0) // ok: |12k| ≤ 12 after reduction
+        .rem_euclid(24);
     (sin_twelfths(n), sin_twelfths((n + 6) % 24))
 }
 
@@ -376,6 +421,12 @@ pub fn sqrt(u: &Expr) -> Result<Expr, MathError> {
             }
         }
     }
+    if certainly_negative(&prim) {
+        return Err(
+            MathError::new(format!("square root of a negative quantity: {} < 0", u))
+                .hint("qdot works over the reals, and parameters are positive"),
+        );
+    }
     let inner = if prim.is_one() {
         Expr::one()
     } else if let Some(r) = perfect_square_monomial(&prim) {
@@ -385,6 +436,29 @@ pub fn sqrt(u: &Expr) -> Result<Expr, MathError> {
         Expr::var(v)
     };
     outside.mul(&inner).div(&den)
+}
+
+/// Whether p < 0 wherever it is defined: every term is ≤ 0 (a negative
+/// coefficient times positive atoms and even powers of anything) and one
+/// is < 0 (positive atoms only). So −a, −a − b and −x² − 1 are, −x² is not.
+fn certainly_negative(p: &Poly) -> bool {
+    let mut strict = false;
+    for (m, c) in p.terms() {
+        if !c.is_negative() {
+            return false;
+        }
+        let mut positive = true;
+        for &(v, e) in m.0.iter() {
+            if !is_positive_atom(v) {
+                if e % 2 != 0 {
+                    return false;
+                }
+                positive = false;
+            }
+        }
+        strict |= positive;
+    }
+    strict
 }
 
 /// √a for a positive atom a (a parameter or π; √(√p) is not simplified).

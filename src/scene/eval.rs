@@ -414,7 +414,35 @@ impl<'a> Evaluator<'a> {
         .with_hint("qdot keeps results exact; square roots are supported, other roots are not yet"))
     }
 
+    /// A function call, its result's nesting depth bounded
+    /// ([`atom::MAX_NESTING`]: every walk into arguments recurses per level).
     fn call(
+        &mut self,
+        f: &ast::Ident,
+        args: &[ast::Expr],
+        span: Span,
+    ) -> Result<Value, Diagnostic> {
+        let v = self.call_unbounded(f, args, span)?;
+        let depth = v
+            .components()
+            .iter()
+            .map(atom::nesting_depth)
+            .max()
+            .unwrap_or(0);
+        if depth > atom::MAX_NESTING {
+            return Err(Diagnostic::error(
+                span,
+                format!(
+                    "functions nested {depth} deep here; qdot allows at most {}",
+                    atom::MAX_NESTING
+                ),
+            )
+            .with_hint("a chain of definitions that each apply a function to the previous one nests them; no mechanics needs this depth"));
+        }
+        Ok(v)
+    }
+
+    fn call_unbounded(
         &mut self,
         f: &ast::Ident,
         args: &[ast::Expr],

@@ -5,6 +5,7 @@
 
 mod bound;
 mod exact;
+mod exact_values;
 mod input;
 mod mechanics;
 mod numeric;
