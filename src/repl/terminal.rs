@@ -8,6 +8,11 @@
 //! (and asks it to stop, see [`crate::cancel`]) and leaves the session as
 //! it was; Ctrl-C while typing drops the entry; Ctrl-D or `:quit` leave.
 //!
+//! Lines typed ahead (a fast paste, a script driving the terminal) are all
+//! read, in order: rustyline's `buffer-redux` feature keeps the bytes read
+//! past one line for the next `readline` (without it they were dropped), and
+//! a bracketed paste of several lines is split into lines here.
+//!
 //! When stdin is not a terminal, entries are read from it with no prompts:
 //! results go to stdout, errors to stderr, and the exit status is 1 when
 //! any entry failed. With `echo`, each entry is printed after its prompt
@@ -144,36 +149,36 @@ fn interactive(mut session: Session) {
     }
     // Ctrl-C outside line editing (while an entry computes) is a signal.
     let _ = ctrlc::set_handler(|| INTERRUPTED.store(true, Ordering::SeqCst));
-    println!(
-        "qdot {} — :help for help, Ctrl-D to leave",
-        env!("CARGO_PKG_VERSION")
-    );
     let mut entry = String::new();
-    loop {
+    'read: loop {
         let prompt = if entry.is_empty() { PROMPT } else { MORE };
         match rl.readline(prompt) {
-            Ok(line) => {
-                entry.push_str(&line);
-                entry.push('\n');
-                if !is_complete(&entry) {
-                    continue;
-                }
-                let text = std::mem::take(&mut entry);
-                let trimmed = text.trim_end();
-                if !trimmed.is_empty() {
-                    let _ = rl.add_history_entry(trimmed);
-                    if let Some(h) = &history {
-                        let _ = rl.save_history(h);
+            Ok(text) => {
+                // A bracketed paste returns several lines at once: each is
+                // taken as if typed on its own, in order.
+                for line in text.split('\n') {
+                    entry.push_str(line.strip_suffix('\r').unwrap_or(line));
+                    entry.push('\n');
+                    if !is_complete(&entry) {
+                        continue;
                     }
-                }
-                let (s, r) = execute_cancellable(session, &text);
-                session = s;
-                print_response(&r);
-                if let Some(h) = rl.helper_mut() {
-                    h.refresh(&session);
-                }
-                if r.quit {
-                    break;
+                    let text = std::mem::take(&mut entry);
+                    let trimmed = text.trim_end();
+                    if !trimmed.is_empty() {
+                        let _ = rl.add_history_entry(trimmed);
+                        if let Some(h) = &history {
+                            let _ = rl.save_history(h);
+                        }
+                    }
+                    let (s, r) = execute_cancellable(session, &text);
+                    session = s;
+                    print_response(&r);
+                    if let Some(h) = rl.helper_mut() {
+                        h.refresh(&session);
+                    }
+                    if r.quit {
+                        break 'read;
+                    }
                 }
             }
             Err(ReadlineError::Interrupted) => {

@@ -21,7 +21,11 @@ impl Outcome {
     /// printed no panic message.
     #[track_caller]
     pub fn assert_clean(&self) {
-        assert!(!self.timed_out, "timed out after {:?}: {self:?}", self.elapsed);
+        assert!(
+            !self.timed_out,
+            "timed out after {:?}: {self:?}",
+            self.elapsed
+        );
         assert!(self.code.is_some(), "killed by a signal (crash): {self:?}");
         assert!(
             !self.stderr.contains("panicked") && !self.stderr.contains("overflow"),
