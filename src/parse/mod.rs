@@ -22,6 +22,10 @@
 // rustfmt would re-wrap its `Stmt::Def` variant, so it is not formatted here.
 #[rustfmt::skip]
 pub mod ast;
+mod chars;
+pub mod keywords;
+
+pub use chars::is_hidden;
 
 use std::cell::Cell;
 
@@ -705,10 +709,12 @@ impl<'s> P<'s> {
                 "unmatched `}`".into(),
                 "remove it, or open a solve block before it: `solve x, y { … }`".into(),
             ),
-            _ if !is_known(c) => (
-                format!("unknown character `{}`", show_char(c)),
-                "this character is not part of the .qd language".into(),
-            ),
+            _ if !is_known(c) => chars::describe(c).unwrap_or_else(|| {
+                (
+                    format!("unknown character `{}`", show_char(c)),
+                    "this character is not part of the .qd language".into(),
+                )
+            }),
             _ => (
                 format!("unexpected {shown}"),
                 "check the statement against `NAME = expression`".into(),
@@ -1089,6 +1095,14 @@ impl<'s> P<'s> {
                     ))
                 }
             }
+            _ if !next_is_eq && !next.starts_with('(') => match keywords::suggest(word) {
+                // a definition needs `=` next: this line is no definition
+                Some(k) => self.fail(
+                    Diagnostic::error(self.span(j, after), format!("unknown keyword `{word}`"))
+                        .with_hint(format!("did you mean `{k}`?")),
+                ),
+                None => self.definition(i),
+            },
             _ => self.definition(i),
         }
     }
@@ -2192,6 +2206,9 @@ impl<'s> P<'s> {
     fn name(&self, i: &'s str, len: usize) -> PResult<'s, Node> {
         let start = self.pos(i);
         let span = Span::new(start, start + len);
+        if !i.as_bytes()[..len].is_ascii() {
+            self.check_letters(&i[..len], start)?;
+        }
         Ok((
             &i[len..],
             Self::leaf(ExprKind::Name(i[..len].to_string()), span),
@@ -2499,6 +2516,9 @@ impl<'s> P<'s> {
         if len == 0 {
             return self.nothing(i);
         }
+        if !i.as_bytes()[..len].is_ascii() {
+            self.check_letters(&i[..len], self.pos(i))?;
+        }
         Ok((
             &i[len..],
             Ident {
@@ -2506,6 +2526,22 @@ impl<'s> P<'s> {
                 span: Span::new(self.pos(i), self.pos(i) + len),
             },
         ))
+    }
+}
+
+impl P<'_> {
+    /// Refuse a look-alike letter in the name `name` at byte `start` (see
+    /// [`chars::refused_letter`]).
+    #[cold]
+    #[inline(never)]
+    fn check_letters(&self, name: &str, start: usize) -> Result<(), nom::Err<PErr>> {
+        match chars::refused_letter(name) {
+            None => Ok(()),
+            Some((p, c, message, hint)) => {
+                let at = Span::new(start + p, start + p + c.len_utf8());
+                Err(failure(Diagnostic::error(at, message).with_hint(hint)))
+            }
+        }
     }
 }
 

@@ -18,7 +18,7 @@
 //! any entry failed. With `echo`, each entry is printed after its prompt
 //! and errors go to stdout too: a transcript, as the terminal would show.
 
-use super::{is_complete, Response, Session, COMMANDS, FUNCTIONS, KEYWORDS};
+use super::{is_complete, keywords, Response, Session, COMMANDS, FUNCTIONS};
 use rustyline::completion::{Completer, Pair};
 use rustyline::error::ReadlineError;
 use rustyline::highlight::{CmdKind, Highlighter};
@@ -357,8 +357,8 @@ pub fn completions(line: &str, pos: usize, names: &[&[String]]) -> (usize, Vec<P
         }
     }
     if line[..start].trim().is_empty() {
-        for k in KEYWORDS {
-            if k.starts_with(word) && !["at", "on"].contains(k) {
+        for k in keywords::statement_keywords() {
+            if k.starts_with(word) {
                 out.push(Pair {
                     display: k.to_string(),
                     replacement: format!("{k} "),
@@ -435,7 +435,8 @@ pub fn highlight(line: &str, coords: &[String], params: &[String], others: &[Str
                 Some(PARAM)
             } else if others.iter().any(|n| n == w) {
                 Some(DEFINED)
-            } else if (first_word || w == "at" || w == "on") && KEYWORDS.contains(&w) {
+            } else if (first_word || keywords::STOP.contains(&w)) && keywords::all().any(|k| k == w)
+            {
                 Some(KEYWORD)
             } else {
                 None
