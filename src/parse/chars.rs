@@ -8,6 +8,8 @@
 //! where it could only be a mistake: next to ASCII letters, or in a name whose
 //! letters all look like ASCII ones.
 
+use super::{is_known, show_char};
+
 /// What a character is, for a message.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Kind {
@@ -283,7 +285,8 @@ pub fn refused_letter(name: &str) -> Option<(usize, char, String, String)> {
 }
 
 fn is_greek_or_cyrillic(c: char) -> bool {
-    matches!(u32::from(c), 0x0370..=0x03FF | 0x0400..=0x052F)
+    // Greek (U+0370..U+03FF), then Cyrillic and its supplement
+    matches!(u32::from(c), 0x0370..=0x052F)
 }
 
 fn refusal(name: &str, p: usize, c: char, n: &str, a: char) -> (usize, char, String, String) {
@@ -299,6 +302,107 @@ fn refusal(name: &str, p: usize, c: char, n: &str, a: char) -> (usize, char, Str
         format!("the name `{name}` has the character {what}, which looks like `{a}`"),
         hint,
     )
+}
+
+/// The message and hint for the character `c` where it has no place;
+/// `shown` is the token it starts, as named in messages.
+pub fn unexpected(c: char, shown: &str) -> (String, String) {
+    match c {
+        '\n' => (
+            "unexpected end of the line".into(),
+            "the statement is incomplete".into(),
+        ),
+        ')' => (
+            "unmatched `)`".into(),
+            "remove it, or add the matching `(` before it".into(),
+        ),
+        '=' => (
+            "unexpected `=`".into(),
+            "a statement has one `=`; put each statement on its own line or separate them with `;`".into(),
+        ),
+        ',' => (
+            "unexpected `,`".into(),
+            "commas separate call arguments like `atan(y, x)` and the names after `coordinates` or `parameters`".into(),
+        ),
+        ':' => (
+            "unexpected `:`".into(),
+            "`:` appears only in `force COORD: expression` and in annotations like `parameters r: length`".into(),
+        ),
+        '\'' => (
+            "unexpected `'`".into(),
+            "a prime (time derivative) follows a name, a call or a parenthesized expression: `x'`, `sin(x)'`, `(x*y)'`".into(),
+        ),
+        '°' => (
+            "unexpected `°`".into(),
+            "`°` follows a number: `30°`".into(),
+        ),
+        '.' => (
+            "unexpected `.`".into(),
+            "a decimal point belongs inside a number, like `0.5`".into(),
+        ),
+        '(' => (
+            "unexpected `(`".into(),
+            "to call a function write the name directly before `(`: `sin(x)`; to multiply, write `*`".into(),
+        ),
+        '+' | '-' | '*' | '/' | '^' => (
+            format!("unexpected `{c}`"),
+            format!("to continue an expression on the next line, end the previous line with the operator `{c}`"),
+        ),
+        ';' => (
+            "unexpected `;`".into(),
+            "`;` separates two statements on one line".into(),
+        ),
+        '²' | '³' | '¹' => (
+            format!("unknown character `{c}`"),
+            "write powers with `^`, like `x^2`".into(),
+        ),
+        '×' | '·' | '⋅' | '∙' => (
+            format!("unknown character `{c}`"),
+            "write multiplication with `*`".into(),
+        ),
+        '÷' | '∕' => (
+            format!("unknown character `{c}`"),
+            "write division with `/`".into(),
+        ),
+        '−' | '–' | '—' => (
+            format!("unknown character `{c}`"),
+            "write minus with the ASCII `-`".into(),
+        ),
+        '′' | '’' | '`' | '´' => (
+            format!("unknown character `{c}`"),
+            "write a time derivative with the ASCII prime `'`: `x'`".into(),
+        ),
+        '"' => (
+            "unknown character `\"`".into(),
+            "a string is only the notation of `latex NAME = \"…\"`".into(),
+        ),
+        '[' => (
+            "unexpected `[`".into(),
+            "a vector like `[x, y]` stands where an expression is expected".into(),
+        ),
+        ']' => (
+            "unmatched `]`".into(),
+            "remove it, or add the matching `[` before it".into(),
+        ),
+        '{' => (
+            "unexpected `{`".into(),
+            "braces hold the equations of a solve block: `solve x, y { … }`; group expressions with `(` and `)`".into(),
+        ),
+        '}' => (
+            "unmatched `}`".into(),
+            "remove it, or open a solve block before it: `solve x, y { … }`".into(),
+        ),
+        _ if !is_known(c) => describe(c).unwrap_or_else(|| {
+            (
+                format!("unknown character `{}`", show_char(c)),
+                "this character is not part of the .qd language".into(),
+            )
+        }),
+        _ => (
+            format!("unexpected {shown}"),
+            "check the statement against `NAME = expression`".into(),
+        ),
+    }
 }
 
 #[cfg(test)]
