@@ -1084,6 +1084,13 @@ fn looks_like_statement(entry: &str) -> bool {
     if keywords::statement_keywords().any(|k| k == first) {
         return true;
     }
+    // a misspelled keyword before a name (`solv a { … }`): a statement
+    let rest = entry.trim_start()[first.len()..].trim_start();
+    if rest.starts_with(|c: char| c.is_alphabetic() || c == '_')
+        && keywords::suggest(&first).is_some()
+    {
+        return true;
+    }
     let mut depth = 0i32;
     for c in entry.chars() {
         match c {
