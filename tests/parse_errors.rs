@@ -96,13 +96,26 @@ fn invisible_and_look_alike_characters() {
         &format!("unknown character U+200B (ZERO WIDTH SPACE){invisible}"),
         "delete it",
     );
+    // a bidirectional control, even in a comment or a string
     check(
-        "x = a + b \u{202E}# c",
+        "x = a + b # \u{202E}c",
         1,
-        11,
+        13,
         1,
-        &format!("unknown character U+202E (RIGHT-TO-LEFT OVERRIDE){invisible}"),
+        "invisible character U+202E (RIGHT-TO-LEFT OVERRIDE), which reorders how the line is displayed",
+        "refused in comments and strings too",
+    );
+    check(
+        "y = 1\nlatex x = \"\u{2066}\"",
+        2,
+        12,
+        1,
+        "invisible character U+2066 (LEFT-TO-RIGHT ISOLATE), which reorders how the line is displayed",
         "the text shown is not the text read",
+    );
+    assert_eq!(
+        expr_err("a + \u{200F}b").message,
+        "invisible character U+200F (RIGHT-TO-LEFT MARK), which reorders how the line is displayed"
     );
     check(
         "x = a\u{2060}",

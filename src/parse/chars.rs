@@ -9,6 +9,8 @@
 //! letters all look like ASCII ones.
 
 use super::{is_known, show_char};
+use crate::diag::Diagnostic;
+use crate::parse::ast::Span;
 
 /// What a character is, for a message.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -198,6 +200,7 @@ fn lookup(c: char) -> Option<(String, Kind)> {
         0x0300..=0x036F => "a combining mark",
         0xFE00..=0xFE0F | 0xE0100..=0xE01EF => "a variation selector",
         0xE0000..=0xE007F => "a tag character",
+        0x206A..=0x206F => "a deprecated format character",
         0xFEFF => "ZERO WIDTH NO-BREAK SPACE",
         _ => return None,
     };
@@ -221,6 +224,39 @@ fn named(c: char, name: &str) -> String {
     format!("{} ({name})", code_point(c))
 }
 
+const BIDI_HINT: &str =
+    "delete it: with it the text shown is not the text read (it is refused in comments and strings too)";
+
+/// Refuse a bidirectional control anywhere in `src`, comments and strings
+/// included (as rustc does): it reorders how its line is displayed, so a
+/// reader would see other text than qdot reads ("Trojan Source",
+/// CVE-2021-42574). Their UTF-8 starts with 0xD8 or 0xE2, so only those
+/// bytes are decoded.
+pub fn no_bidi_control(src: &str) -> Result<(), Diagnostic> {
+    let b = src.as_bytes();
+    for (p, _) in b
+        .iter()
+        .enumerate()
+        .filter(|(_, &x)| x == 0xE2 || x == 0xD8)
+    {
+        let Some(c) = src.get(p..).and_then(|s| s.chars().next()) else {
+            continue;
+        };
+        if let Some((name, Kind::Bidi)) = lookup(c) {
+            let span = Span::new(p, p + c.len_utf8());
+            return Err(Diagnostic::error(
+                span,
+                format!(
+                    "invisible character {}, which reorders how the line is displayed",
+                    named(c, &name)
+                ),
+            )
+            .with_hint(BIDI_HINT));
+        }
+    }
+    Ok(())
+}
+
 /// The message and hint for a character that has no place in the language
 /// and that a reader can't see or can't tell from ASCII; `None` for other
 /// characters (they are shown as they are).
@@ -233,8 +269,8 @@ pub fn describe(c: char) -> Option<(String, String)> {
             "delete it (invisible characters often come with text pasted from a web page or a word processor)".into(),
         ),
         Kind::Bidi => (
-            format!("unknown character {what}, which is invisible"),
-            "delete it: it changes the order in which the line is displayed, so the text shown is not the text read".into(),
+            format!("invisible character {what}, which reorders how the line is displayed"),
+            BIDI_HINT.into(),
         ),
         Kind::Control => (
             format!("unknown character {what}"),

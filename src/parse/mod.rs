@@ -50,6 +50,7 @@ pub const MAX_EXPONENT: u32 = 1000;
 
 /// Parse a whole scene.
 pub fn parse_scene(src: &str) -> Result<Vec<Stmt>, Diagnostic> {
+    chars::no_bidi_control(src)?;
     let p = P::new(src);
     match p.scene(src) {
         Ok((_, stmts)) => Ok(stmts),
@@ -61,6 +62,7 @@ pub fn parse_scene(src: &str) -> Result<Vec<Stmt>, Diagnostic> {
 /// space, newlines and comments are allowed; newlines are white space
 /// throughout, as inside parentheses).
 pub fn parse_expr(src: &str) -> Result<Expr, Diagnostic> {
+    chars::no_bidi_control(src)?;
     let p = P::new(src);
     match p.whole_expr(src) {
         Ok((_, node)) => Ok(*node.e),

@@ -82,18 +82,19 @@ fn a_zero_width_space_is_named_by_its_code_point() {
 }
 
 #[test]
-fn a_right_to_left_override_is_named_and_not_echoed() {
-    // the override would reorder the echoed line on a terminal: it is
-    // shown as U+FFFD there
-    let src = format!("{HEAD}kinetic E = 1/2*m*x'^2 \u{202E}# 2^x*k*2/1 = V laitnetop\n");
+fn a_right_to_left_override_is_refused_even_in_a_comment() {
+    // "Trojan Source": the override makes the comment display as code (on
+    // a terminal this line reads `… # V = 1/2*k*x^2 laitnetop`); it is shown
+    // as U+FFFD in the echoed line
+    let src = format!("{HEAD}kinetic E = 1/2*m*x'^2 # \u{202E}2^x*k*2/1 = V laitnetop\n");
     derive_fails_with(
         "rlo",
         src.as_bytes(),
-        "error: unknown character U+202E (RIGHT-TO-LEFT OVERRIDE), which is invisible\n \
-         --> scene.qd:3:24\n  |\n\
-         3 | kinetic E = 1/2*m*x'^2 \u{FFFD}# 2^x*k*2/1 = V laitnetop\n  \
-         |                        ^\n  \
-         = hint: delete it: it changes the order in which the line is displayed, so the text shown is not the text read\n",
+        "error: invisible character U+202E (RIGHT-TO-LEFT OVERRIDE), which reorders how the line is displayed\n \
+         --> scene.qd:3:26\n  |\n\
+         3 | kinetic E = 1/2*m*x'^2 # \u{FFFD}2^x*k*2/1 = V laitnetop\n  \
+         |                          ^\n  \
+         = hint: delete it: with it the text shown is not the text read (it is refused in comments and strings too)\n",
     );
 }
 
