@@ -218,10 +218,15 @@ fn repl_starts_from_a_file_and_completes_names() {
 fn lines_typed_ahead_are_all_processed_in_order() {
     let data = data_dir("typeahead");
     let mut p = start(&data, &[]);
+    // a comment on each line makes the block (~3 KB) longer than the line
+    // editor's read buffer, so part of it waits in the terminal while the
+    // first entries run
+    let pad = "# doubled ".repeat(8);
     let mut block = String::from("x1 = 1\n");
     for k in 2..=30 {
-        block.push_str(&format!("x{k} = 2*x{}\n", k - 1));
+        block.push_str(&format!("x{k} = 2*x{}  {pad}\n", k - 1));
     }
+    assert!(block.len() > 2048);
     block.push_str("x30 + 0\n");
     p.send(&block).unwrap();
     p.flush().unwrap();
