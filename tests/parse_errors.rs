@@ -221,6 +221,15 @@ fn misspelled_keywords() {
         "expected `=` after `energy`, found `E`",
         "a definition is written",
     );
+    // a keyword spelled with a look-alike letter: that letter
+    check(
+        "p\u{43E}tential V = x",
+        1,
+        2,
+        1,
+        "the name `p\u{43E}tential` has the character U+043E (CYRILLIC SMALL LETTER O), which looks like `o`",
+        "ASCII `o`",
+    );
     // a definition of a name that looks like a keyword is a definition
     assert!(parse_scene("potental = 3").is_ok());
 }
@@ -1642,4 +1651,17 @@ fn latex_statement_errors() {
     assert!(m.starts_with("expected `=` after `latex x`"), "{m}");
     let (m, _, _, _) = latex_error("latex x = \"X\" y");
     assert!(!m.is_empty());
+}
+
+/// The echoed source line: an invisible character shows as `�` (one
+/// character for one, so the caret stays under its column), but a tab and
+/// the `\r` of a CRLF line end are printed as they are.
+#[test]
+fn the_echoed_line_shows_invisible_characters() {
+    let src = "x = 1\r\ny =\t3 \u{200B} 4\r\n";
+    let d = parse_scene(src).unwrap_err();
+    assert_eq!(
+        d.render("scene.qd", src),
+        "error: unknown character U+200B (ZERO WIDTH SPACE), which is invisible\n --> scene.qd:2:7\n  |\n2 | y =\t3 \u{FFFD} 4\r\n  |       ^\n  = hint: delete it (invisible characters often come with text pasted from a web page or a word processor)\n"
+    );
 }

@@ -208,10 +208,10 @@ fn lookup(c: char) -> Option<(String, Kind)> {
 }
 
 /// Can't `c` be seen, or does it reorder the display of its line? (A tab
-/// is not counted: it shows as white space.)
+/// shows as white space, and the `\r` of a CRLF line end as nothing.)
 pub fn is_hidden(c: char) -> bool {
     if c.is_ascii() {
-        return c.is_ascii_control() && c != '\t';
+        return c.is_ascii_control() && c != '\t' && c != '\r';
     }
     matches!(
         lookup(c),

@@ -1004,10 +1004,16 @@ impl<'s> P<'s> {
             }
             _ if !next_is_eq && !next.starts_with('(') => match keywords::suggest(word) {
                 // a definition needs `=` next: this line is no definition
-                Some(k) => self.fail(
-                    Diagnostic::error(self.span(j, after), format!("unknown keyword `{word}`"))
-                        .with_hint(format!("did you mean `{k}`?")),
-                ),
+                Some(k) => {
+                    if !word.is_ascii() {
+                        // `pоtential` with a Cyrillic о: that letter first
+                        self.check_letters(word, self.pos(j))?;
+                    }
+                    self.fail(
+                        Diagnostic::error(self.span(j, after), format!("unknown keyword `{word}`"))
+                            .with_hint(format!("did you mean `{k}`?")),
+                    )
+                }
                 None => self.definition(i),
             },
             _ => self.definition(i),
