@@ -151,8 +151,8 @@ pub const FUNCTIONS: &[&str] = &[
     "inertia", "series", "parallel", "diff", "dt", "subs", "expand", "factor", "taylor",
 ];
 
-/// The keywords, for completion and highlighting: the parser's list.
-pub use crate::parse::keywords;
+// The keywords, for completion and highlighting: the parser's list.
+use crate::parse::keywords;
 
 const HELP: &str = "\
 Type statements as in a .qd file, one per line:
