@@ -92,7 +92,7 @@ impl Diagnostic {
                 .find('\n')
                 .map(|i| line_start + i)
                 .unwrap_or(src.len());
-            let text = &src[line_start..line_end];
+            let text = shown_line(&src[line_start..line_end]);
             let gutter = line.to_string().len();
             let pad = " ".repeat(gutter);
             let end = span.end.clamp(span.start, line_end);
@@ -114,6 +114,87 @@ impl Diagnostic {
             out.push_str(&format!("  = hint: {h}\n"));
         }
         out
+    }
+}
+
+/// A source line as printed under a message: characters that can't be seen
+/// or that reorder the display (a zero-width space, a right-to-left
+/// override, control characters but the tab) are shown as `�`, one
+/// character for one, so the caret stays under its column.
+fn shown_line(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if crate::parse::is_hidden(c) {
+                '\u{FFFD}'
+            } else {
+                c
+            }
+        })
+        .collect()
+}
+
+/// Read a source file. The error is the message to print: why the file
+/// can't be read, or, if it is not UTF-8, a diagnostic at the first byte
+/// that is not (see [`decode_source`]).
+pub fn read_source(path: &str) -> Result<String, String> {
+    match std::fs::read(path) {
+        Ok(bytes) => decode_source(path, bytes),
+        Err(e) => Err(format!("error: cannot read `{path}`: {e}\n")),
+    }
+}
+
+/// `bytes` as UTF-8 text, or the rendered diagnostic at the first byte
+/// that is not UTF-8 (its line and column; the line shown with `�` for
+/// every byte that is not UTF-8). `path` names the file in the message.
+pub fn decode_source(path: &str, bytes: Vec<u8>) -> Result<String, String> {
+    let e = match String::from_utf8(bytes) {
+        Ok(s) => return Ok(s),
+        Err(e) => e,
+    };
+    let at = e.utf8_error().valid_up_to();
+    let bytes = e.as_bytes();
+    let bad = match e.utf8_error().error_len() {
+        Some(n) => &bytes[at..at + n],
+        None => &bytes[at..],
+    };
+    let hex: Vec<String> = bad.iter().map(|b| format!("0x{b:02X}")).collect();
+    let message = if bad.len() == 1 {
+        format!("the file is not valid UTF-8: byte {} here", hex[0])
+    } else {
+        format!(
+            "the file is not valid UTF-8: bytes {} here (an incomplete character)",
+            hex.join(" ")
+        )
+    };
+    let hint = match bad {
+        [b] => match latin(*b) {
+            Some(c) => format!(
+                "save the file as UTF-8 (in Latin-1 or Windows-1252, {} is `{c}`)",
+                hex[0]
+            ),
+            None => "save the file as UTF-8".to_string(),
+        },
+        _ => "save the file as UTF-8".to_string(),
+    };
+    // the text before `at` is the same in the lossy copy, so are positions
+    let text = String::from_utf8_lossy(bytes);
+    let d = Diagnostic::error(Span::new(at, at + '\u{FFFD}'.len_utf8()), message).with_hint(hint);
+    Err(d.render(path, &text))
+}
+
+/// The character a byte stands for in Windows-1252 (Latin-1 above 0x9F),
+/// for the bytes an editor most often writes in place of UTF-8.
+fn latin(b: u8) -> Option<char> {
+    match b {
+        0xA0..=0xFF => Some(char::from(b)),
+        0x80 => Some('€'),
+        0x91 => Some('‘'),
+        0x92 => Some('’'),
+        0x93 => Some('“'),
+        0x94 => Some('”'),
+        0x96 => Some('–'),
+        0x97 => Some('—'),
+        _ => None,
     }
 }
 

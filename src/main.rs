@@ -238,10 +238,10 @@ fn main() -> ExitCode {
             return ExitCode::from(1);
         }
     };
-    let src = match std::fs::read_to_string(file) {
+    let src = match qdot::diag::read_source(file) {
         Ok(s) => s,
-        Err(e) => {
-            eprintln!("error: cannot read `{file}`: {e}");
+        Err(message) => {
+            eprint!("{message}");
             return ExitCode::from(1);
         }
     };
@@ -284,10 +284,10 @@ fn simulate(
         eprint!("{}", d.render(file, src));
         ExitCode::from(1)
     };
-    let src = match std::fs::read_to_string(file) {
+    let src = match qdot::diag::read_source(file) {
         Ok(s) => s,
-        Err(e) => {
-            eprintln!("error: cannot read `{file}`: {e}");
+        Err(message) => {
+            eprint!("{message}");
             return ExitCode::from(1);
         }
     };

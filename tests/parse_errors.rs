@@ -76,11 +76,162 @@ fn unknown_characters() {
         1,
         5,
         1,
-        "unknown character `\\u{1}`",
-        "not part",
+        "unknown character U+0001 (a control character)",
+        "delete it",
     );
     check("x = a ¦ b", 1, 7, 1, "unknown character `¦`", "not part");
     check("θ = ε $", 1, 7, 1, "unknown character `$`", "not part");
+}
+
+/// Characters that can't be seen or can't be told from ASCII are named by
+/// their code point; columns count characters.
+#[test]
+fn invisible_and_look_alike_characters() {
+    let invisible = ", which is invisible";
+    check(
+        "θ = 1\nx = a\u{200B} + b",
+        2,
+        6,
+        1,
+        &format!("unknown character U+200B (ZERO WIDTH SPACE){invisible}"),
+        "delete it",
+    );
+    // a bidirectional control, even in a comment or a string
+    check(
+        "x = a + b # \u{202E}c",
+        1,
+        13,
+        1,
+        "invisible character U+202E (RIGHT-TO-LEFT OVERRIDE), which reorders how the line is displayed",
+        "refused in comments and strings too",
+    );
+    check(
+        "y = 1\nlatex x = \"\u{2066}\"",
+        2,
+        12,
+        1,
+        "invisible character U+2066 (LEFT-TO-RIGHT ISOLATE), which reorders how the line is displayed",
+        "the text shown is not the text read",
+    );
+    assert_eq!(
+        expr_err("a + \u{200F}b").message,
+        "invisible character U+200F (RIGHT-TO-LEFT MARK), which reorders how the line is displayed"
+    );
+    check(
+        "x = a\u{2060}",
+        1,
+        6,
+        1,
+        &format!("unknown character U+2060 (WORD JOINER){invisible}"),
+        "delete it",
+    );
+    check(
+        "x = 1\u{37E} y = 2",
+        1,
+        6,
+        1,
+        "unknown character U+037E (GREEK QUESTION MARK), which looks like `;`",
+        "replace it with the ASCII `;`",
+    );
+    check(
+        "x = a\u{FF0A}b",
+        1,
+        6,
+        1,
+        "unknown character U+FF0A (a fullwidth form), which looks like `*`",
+        "ASCII `*`",
+    );
+    check(
+        "x = \u{FF11}",
+        1,
+        5,
+        1,
+        "unknown character U+FF11 (FULLWIDTH DIGIT 1), which looks like `1`",
+        "ASCII `1`",
+    );
+    // a look-alike letter in a name: at that letter
+    check(
+        "parameters m\u{430}ss, k",
+        1,
+        13,
+        1,
+        "the name `m\u{430}ss` has the character U+0430 (CYRILLIC SMALL LETTER A), which looks like `a`",
+        "retype it as the ASCII `a`",
+    );
+    check(
+        "y = 2*\u{3BF}",
+        1,
+        7,
+        1,
+        "the name `\u{3BF}` has the character U+03BF (GREEK SMALL LETTER OMICRON), which looks like `o`",
+        "ASCII `o`",
+    );
+    check(
+        "v = x\u{2BC}",
+        1,
+        6,
+        1,
+        "the name `x\u{2BC}` has the character U+02BC (MODIFIER LETTER APOSTROPHE), which looks like `'`",
+        "ASCII prime",
+    );
+    check(
+        "\u{FF58} = 1",
+        1,
+        1,
+        1,
+        "the name `\u{FF58}` has the character U+FF58 (FULLWIDTH LATIN SMALL LETTER X), which looks like `x`",
+        "ASCII `x`",
+    );
+    // names in other scripts are names
+    assert!(parse_scene("масса = 1\nθ3 = 2*масса\nΔx = θ3").is_ok());
+    // a no-break space is white space
+    assert!(parse_scene("x =\u{A0}1").is_ok());
+}
+
+/// A misspelled keyword: "did you mean", at the word.
+#[test]
+fn misspelled_keywords() {
+    for (src, width, kw) in [
+        ("potental V = 1/2*k*x^2", 8, "potential"),
+        ("coordinate x", 10, "coordinates"),
+        ("paramters m, k", 9, "parameters"),
+        ("kinectic E = 1/2*m*x'^2", 8, "kinetic"),
+        ("forcefuntion U = m*g*x", 12, "forcefunction"),
+        ("rayliegh R = 1/2*b*x'^2", 8, "rayleigh"),
+        ("solv a { a = 1 }", 4, "solve"),
+        ("Potential V = x", 9, "potential"),
+        ("lod F at P", 3, "load"),
+    ] {
+        let word = &src[..width];
+        check(
+            &format!("x = 1\n  {src}"),
+            2,
+            3,
+            width,
+            &format!("unknown keyword `{word}`"),
+            &format!("did you mean `{kw}`?"),
+        );
+    }
+    // not near a keyword: the usual message
+    check(
+        "energy E = 1",
+        1,
+        8,
+        1,
+        "expected `=` after `energy`, found `E`",
+        "a definition is written",
+    );
+    // a keyword spelled with a look-alike letter: that letter
+    check(
+        "p\u{43E}tential V = x",
+        1,
+        2,
+        1,
+        "the name `p\u{43E}tential` has the character U+043E (CYRILLIC SMALL LETTER O), which looks like `o`",
+        "ASCII `o`",
+    );
+    // a definition of a name that looks like a keyword is a definition
+    assert!(parse_scene("potental = 3").is_ok());
 }
 
 #[test]
@@ -1500,4 +1651,17 @@ fn latex_statement_errors() {
     assert!(m.starts_with("expected `=` after `latex x`"), "{m}");
     let (m, _, _, _) = latex_error("latex x = \"X\" y");
     assert!(!m.is_empty());
+}
+
+/// The echoed source line: an invisible character shows as `�` (one
+/// character for one, so the caret stays under its column), but a tab and
+/// the `\r` of a CRLF line end are printed as they are.
+#[test]
+fn the_echoed_line_shows_invisible_characters() {
+    let src = "x = 1\r\ny =\t3 \u{200B} 4\r\n";
+    let d = parse_scene(src).unwrap_err();
+    assert_eq!(
+        d.render("scene.qd", src),
+        "error: unknown character U+200B (ZERO WIDTH SPACE), which is invisible\n --> scene.qd:2:7\n  |\n2 | y =\t3 \u{FFFD} 4\r\n  |       ^\n  = hint: delete it (invisible characters often come with text pasted from a web page or a word processor)\n"
+    );
 }

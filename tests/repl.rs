@@ -532,3 +532,41 @@ fn every_statement_kind_works_as_a_line() {
     assert!(r.err.contains("does no virtual work"), "{}", r.err);
     assert!(r.err.contains("--> input:1:"), "{}", r.err);
 }
+
+/// A misspelled keyword typed in the REPL: "did you mean", at the word,
+/// also when the rest of the line would read as an expression.
+#[test]
+fn a_misspelled_keyword_is_named() {
+    let mut s = seed();
+    let before = s.scene_text();
+    assert_eq!(
+        err(&mut s, "potental V = G*y3"),
+        "error: unknown keyword `potental`\n --> input:1:1\n  |\n1 | potental V = G*y3\n  | ^^^^^^^^\n  = hint: did you mean `potential`?\n"
+    );
+    assert_eq!(
+        err(&mut s, "solv a { a = 1 }"),
+        "error: unknown keyword `solv`\n --> input:1:1\n  |\n1 | solv a { a = 1 }\n  | ^^^^\n  = hint: did you mean `solve`?\n"
+    );
+    // a bare name near a keyword is still a name
+    assert!(err(&mut s, "kinetc").starts_with("error: unknown name `kinetc`"));
+    assert_eq!(s.scene_text(), before);
+}
+
+/// An invisible character typed (or pasted) in the REPL, and a file that
+/// is not UTF-8 given to `:load`.
+#[test]
+fn invisible_characters_and_invalid_utf8_are_positioned() {
+    let mut s = seed();
+    assert_eq!(
+        err(&mut s, "z = m\u{200B}*g"),
+        "error: unknown character U+200B (ZERO WIDTH SPACE), which is invisible\n --> input:1:6\n  |\n1 | z = m\u{FFFD}*g\n  |      ^\n  = hint: delete it (invisible characters often come with text pasted from a web page or a word processor)\n"
+    );
+    let path = std::env::temp_dir().join(format!("qdot-repl-latin1-{}.qd", std::process::id()));
+    std::fs::write(&path, b"parameters b\nz = b*\xE9\n").unwrap();
+    let p = path.to_str().unwrap();
+    assert_eq!(
+        err(&mut s, &format!(":load {p}")),
+        format!("error: the file is not valid UTF-8: byte 0xE9 here\n --> {p}:2:7\n  |\n2 | z = b*\u{FFFD}\n  |       ^\n  = hint: save the file as UTF-8 (in Latin-1 or Windows-1252, 0xE9 is `é`)\n")
+    );
+    let _ = std::fs::remove_file(&path);
+}

@@ -210,3 +210,65 @@ fn repl_starts_from_a_file_and_completes_names() {
     p.send_control('d').unwrap();
     p.exp_eof().unwrap();
 }
+
+/// Thirty lines typed ahead in one write (a fast paste, or a script driving
+/// the terminal), each defining `x_k` from `x_{k-1}`: every line is read and
+/// run, in order, so the last one's value is 2^30 times the first.
+#[test]
+fn lines_typed_ahead_are_all_processed_in_order() {
+    let data = data_dir("typeahead");
+    let mut p = start(&data, &[]);
+    // a comment on each line makes the block (~3 KB) longer than the line
+    // editor's read buffer, so part of it waits in the terminal while the
+    // first entries run
+    let pad = "# doubled ".repeat(8);
+    let mut block = String::from("x1 = 1\n");
+    for k in 2..=30 {
+        block.push_str(&format!("x{k} = 2*x{}  {pad}\n", k - 1));
+    }
+    assert!(block.len() > 2048);
+    block.push_str("x30 + 0\n");
+    p.send(&block).unwrap();
+    p.flush().unwrap();
+    // 2^29: x1 = 1 doubled 29 times
+    expect(&mut p, "\n536870912");
+    prompt(&mut p);
+    enter(&mut p, ":show x17", "= 65536");
+    p.send_control('d').unwrap();
+    p.exp_eof().unwrap();
+}
+
+/// The banner is printed once, before the first prompt.
+#[test]
+fn the_banner_is_printed_once() {
+    let data = data_dir("banner");
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_qdot"));
+    cmd.env("XDG_DATA_HOME", &data)
+        .env("TERM", "xterm")
+        .env("NO_COLOR", "1");
+    let mut p = rexpect::session::spawn_command(cmd, Some(TIMEOUT_MS)).expect("qdot starts");
+    expect(&mut p, ":help for help");
+    // between the banner and the first prompt: no second banner
+    let before = p.exp_string("qdot> ").expect("the first prompt");
+    assert!(!before.contains(":help for help"), "{before:?}");
+    enter(&mut p, "1 + 1", "2");
+    p.send_control('d').unwrap();
+    let rest = p.exp_eof().expect("the end");
+    assert!(!rest.contains(":help for help"), "{rest:?}");
+}
+
+/// A bracketed paste (what a terminal sends when text is pasted) of several
+/// lines, a command among them: each line is taken as if typed on its own.
+#[test]
+fn a_pasted_block_runs_line_by_line() {
+    let data = data_dir("paste");
+    let mut p = start(&data, &[]);
+    p.send("\x1b[200~parameters a\nb = 3*a\n:show b\nb + a\x1b[201~\r")
+        .unwrap();
+    p.flush().unwrap();
+    expect(&mut p, "b = 3·a");
+    expect(&mut p, "4·a");
+    prompt(&mut p);
+    p.send_control('d').unwrap();
+    p.exp_eof().unwrap();
+}

@@ -22,6 +22,10 @@
 // rustfmt would re-wrap its `Stmt::Def` variant, so it is not formatted here.
 #[rustfmt::skip]
 pub mod ast;
+mod chars;
+pub mod keywords;
+
+pub use chars::is_hidden;
 
 use std::cell::Cell;
 
@@ -46,6 +50,7 @@ pub const MAX_EXPONENT: u32 = 1000;
 
 /// Parse a whole scene.
 pub fn parse_scene(src: &str) -> Result<Vec<Stmt>, Diagnostic> {
+    chars::no_bidi_control(src)?;
     let p = P::new(src);
     match p.scene(src) {
         Ok((_, stmts)) => Ok(stmts),
@@ -57,6 +62,7 @@ pub fn parse_scene(src: &str) -> Result<Vec<Stmt>, Diagnostic> {
 /// space, newlines and comments are allowed; newlines are white space
 /// throughout, as inside parentheses).
 pub fn parse_expr(src: &str) -> Result<Expr, Diagnostic> {
+    chars::no_bidi_control(src)?;
     let p = P::new(src);
     match p.whole_expr(src) {
         Ok((_, node)) => Ok(*node.e),
@@ -620,100 +626,7 @@ impl<'s> P<'s> {
             return Diagnostic::error(span, "unexpected end of the file")
                 .with_hint("the statement is incomplete");
         };
-        let (msg, hint): (String, String) = match c {
-            '\n' => (
-                "unexpected end of the line".into(),
-                "the statement is incomplete".into(),
-            ),
-            ')' => (
-                "unmatched `)`".into(),
-                "remove it, or add the matching `(` before it".into(),
-            ),
-            '=' => (
-                "unexpected `=`".into(),
-                "a statement has one `=`; put each statement on its own line or separate them with `;`".into(),
-            ),
-            ',' => (
-                "unexpected `,`".into(),
-                "commas separate call arguments like `atan(y, x)` and the names after `coordinates` or `parameters`".into(),
-            ),
-            ':' => (
-                "unexpected `:`".into(),
-                "`:` appears only in `force COORD: expression` and in annotations like `parameters r: length`".into(),
-            ),
-            '\'' => (
-                "unexpected `'`".into(),
-                "a prime (time derivative) follows a name, a call or a parenthesized expression: `x'`, `sin(x)'`, `(x*y)'`".into(),
-            ),
-            '°' => (
-                "unexpected `°`".into(),
-                "`°` follows a number: `30°`".into(),
-            ),
-            '.' => (
-                "unexpected `.`".into(),
-                "a decimal point belongs inside a number, like `0.5`".into(),
-            ),
-            '(' => (
-                "unexpected `(`".into(),
-                "to call a function write the name directly before `(`: `sin(x)`; to multiply, write `*`".into(),
-            ),
-            '+' | '-' | '*' | '/' | '^' => (
-                format!("unexpected `{c}`"),
-                format!("to continue an expression on the next line, end the previous line with the operator `{c}`"),
-            ),
-            ';' => (
-                "unexpected `;`".into(),
-                "`;` separates two statements on one line".into(),
-            ),
-            '²' | '³' | '¹' => (
-                format!("unknown character `{c}`"),
-                "write powers with `^`, like `x^2`".into(),
-            ),
-            '×' | '·' | '⋅' | '∙' => (
-                format!("unknown character `{c}`"),
-                "write multiplication with `*`".into(),
-            ),
-            '÷' | '∕' => (
-                format!("unknown character `{c}`"),
-                "write division with `/`".into(),
-            ),
-            '−' | '–' | '—' => (
-                format!("unknown character `{c}`"),
-                "write minus with the ASCII `-`".into(),
-            ),
-            '′' | '’' | '`' | '´' => (
-                format!("unknown character `{c}`"),
-                "write a time derivative with the ASCII prime `'`: `x'`".into(),
-            ),
-            '"' => (
-                "unknown character `\"`".into(),
-                "a string is only the notation of `latex NAME = \"…\"`".into(),
-            ),
-            '[' => (
-                "unexpected `[`".into(),
-                "a vector like `[x, y]` stands where an expression is expected".into(),
-            ),
-            ']' => (
-                "unmatched `]`".into(),
-                "remove it, or add the matching `[` before it".into(),
-            ),
-            '{' => (
-                "unexpected `{`".into(),
-                "braces hold the equations of a solve block: `solve x, y { … }`; group expressions with `(` and `)`".into(),
-            ),
-            '}' => (
-                "unmatched `}`".into(),
-                "remove it, or open a solve block before it: `solve x, y { … }`".into(),
-            ),
-            _ if !is_known(c) => (
-                format!("unknown character `{}`", show_char(c)),
-                "this character is not part of the .qd language".into(),
-            ),
-            _ => (
-                format!("unexpected {shown}"),
-                "check the statement against `NAME = expression`".into(),
-            ),
-        };
+        let (msg, hint) = chars::unexpected(c, &shown);
         Diagnostic::error(span, msg).with_hint(hint)
     }
 
@@ -1089,6 +1002,20 @@ impl<'s> P<'s> {
                     ))
                 }
             }
+            _ if !next_is_eq && !next.starts_with('(') => match keywords::suggest(word) {
+                // a definition needs `=` next: this line is no definition
+                Some(k) => {
+                    if !word.is_ascii() {
+                        // `pоtential` with a Cyrillic о: that letter first
+                        self.check_letters(word, self.pos(j))?;
+                    }
+                    self.fail(
+                        Diagnostic::error(self.span(j, after), format!("unknown keyword `{word}`"))
+                            .with_hint(format!("did you mean `{k}`?")),
+                    )
+                }
+                None => self.definition(i),
+            },
             _ => self.definition(i),
         }
     }
@@ -2192,6 +2119,9 @@ impl<'s> P<'s> {
     fn name(&self, i: &'s str, len: usize) -> PResult<'s, Node> {
         let start = self.pos(i);
         let span = Span::new(start, start + len);
+        if !i.as_bytes()[..len].is_ascii() {
+            self.check_letters(&i[..len], start)?;
+        }
         Ok((
             &i[len..],
             Self::leaf(ExprKind::Name(i[..len].to_string()), span),
@@ -2499,6 +2429,9 @@ impl<'s> P<'s> {
         if len == 0 {
             return self.nothing(i);
         }
+        if !i.as_bytes()[..len].is_ascii() {
+            self.check_letters(&i[..len], self.pos(i))?;
+        }
         Ok((
             &i[len..],
             Ident {
@@ -2506,6 +2439,22 @@ impl<'s> P<'s> {
                 span: Span::new(self.pos(i), self.pos(i) + len),
             },
         ))
+    }
+}
+
+impl P<'_> {
+    /// Refuse a look-alike letter in the name `name` at byte `start` (see
+    /// [`chars::refused_letter`]).
+    #[cold]
+    #[inline(never)]
+    fn check_letters(&self, name: &str, start: usize) -> Result<(), nom::Err<PErr>> {
+        match chars::refused_letter(name) {
+            None => Ok(()),
+            Some((p, c, message, hint)) => {
+                let at = Span::new(start + p, start + p + c.len_utf8());
+                Err(failure(Diagnostic::error(at, message).with_hint(hint)))
+            }
+        }
     }
 }
 

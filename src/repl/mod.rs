@@ -151,24 +151,8 @@ pub const FUNCTIONS: &[&str] = &[
     "inertia", "series", "parallel", "diff", "dt", "subs", "expand", "factor", "taylor",
 ];
 
-/// The statement keywords, for completion and highlighting.
-pub const KEYWORDS: &[&str] = &[
-    "coordinates",
-    "parameters",
-    "kinetic",
-    "potential",
-    "forcefunction",
-    "work",
-    "dissipation",
-    "rayleigh",
-    "force",
-    "load",
-    "at",
-    "torque",
-    "on",
-    "solve",
-    "latex",
-];
+// The keywords, for completion and highlighting: the parser's list.
+use crate::parse::keywords;
 
 const HELP: &str = "\
 Type statements as in a .qd file, one per line:
@@ -684,9 +668,9 @@ impl Session {
                 "error: `:load` needs a file\n  = hint: :load examples/seed_23_4.qd",
             );
         }
-        let src = match std::fs::read_to_string(path) {
+        let src = match crate::diag::read_source(path) {
             Ok(s) => s,
-            Err(e) => return Response::error(format!("error: cannot read `{path}`: {e}")),
+            Err(message) => return Response::error(message),
         };
         let stmts = match crate::parse::parse_scene(&src) {
             Ok(s) => s,
@@ -1097,7 +1081,14 @@ fn looks_like_statement(entry: &str) -> bool {
         .chars()
         .take_while(|c| c.is_alphanumeric() || *c == '_')
         .collect();
-    if KEYWORDS.contains(&first.as_str()) && first != "at" && first != "on" {
+    if keywords::statement_keywords().any(|k| k == first) {
+        return true;
+    }
+    // a misspelled keyword before a name (`solv a { … }`): a statement
+    let rest = entry.trim_start()[first.len()..].trim_start();
+    if rest.starts_with(|c: char| c.is_alphabetic() || c == '_')
+        && keywords::suggest(&first).is_some()
+    {
         return true;
     }
     let mut depth = 0i32;

@@ -8,12 +8,17 @@
 //! (and asks it to stop, see [`crate::cancel`]) and leaves the session as
 //! it was; Ctrl-C while typing drops the entry; Ctrl-D or `:quit` leave.
 //!
+//! Lines typed ahead (a fast paste, a script driving the terminal) are all
+//! read, in order: rustyline's `buffer-redux` feature keeps the bytes read
+//! past one line for the next `readline` (without it they were dropped), and
+//! a bracketed paste of several lines is split into lines here.
+//!
 //! When stdin is not a terminal, entries are read from it with no prompts:
 //! results go to stdout, errors to stderr, and the exit status is 1 when
 //! any entry failed. With `echo`, each entry is printed after its prompt
 //! and errors go to stdout too: a transcript, as the terminal would show.
 
-use super::{is_complete, Response, Session, COMMANDS, FUNCTIONS, KEYWORDS};
+use super::{is_complete, keywords, Response, Session, COMMANDS, FUNCTIONS};
 use rustyline::completion::{Completer, Pair};
 use rustyline::error::ReadlineError;
 use rustyline::highlight::{CmdKind, Highlighter};
@@ -144,36 +149,36 @@ fn interactive(mut session: Session) {
     }
     // Ctrl-C outside line editing (while an entry computes) is a signal.
     let _ = ctrlc::set_handler(|| INTERRUPTED.store(true, Ordering::SeqCst));
-    println!(
-        "qdot {} — :help for help, Ctrl-D to leave",
-        env!("CARGO_PKG_VERSION")
-    );
     let mut entry = String::new();
-    loop {
+    'read: loop {
         let prompt = if entry.is_empty() { PROMPT } else { MORE };
         match rl.readline(prompt) {
-            Ok(line) => {
-                entry.push_str(&line);
-                entry.push('\n');
-                if !is_complete(&entry) {
-                    continue;
-                }
-                let text = std::mem::take(&mut entry);
-                let trimmed = text.trim_end();
-                if !trimmed.is_empty() {
-                    let _ = rl.add_history_entry(trimmed);
-                    if let Some(h) = &history {
-                        let _ = rl.save_history(h);
+            Ok(text) => {
+                // A bracketed paste returns several lines at once: each is
+                // taken as if typed on its own, in order.
+                for line in text.split('\n') {
+                    entry.push_str(line.strip_suffix('\r').unwrap_or(line));
+                    entry.push('\n');
+                    if !is_complete(&entry) {
+                        continue;
                     }
-                }
-                let (s, r) = execute_cancellable(session, &text);
-                session = s;
-                print_response(&r);
-                if let Some(h) = rl.helper_mut() {
-                    h.refresh(&session);
-                }
-                if r.quit {
-                    break;
+                    let text = std::mem::take(&mut entry);
+                    let trimmed = text.trim_end();
+                    if !trimmed.is_empty() {
+                        let _ = rl.add_history_entry(trimmed);
+                        if let Some(h) = &history {
+                            let _ = rl.save_history(h);
+                        }
+                    }
+                    let (s, r) = execute_cancellable(session, &text);
+                    session = s;
+                    print_response(&r);
+                    if let Some(h) = rl.helper_mut() {
+                        h.refresh(&session);
+                    }
+                    if r.quit {
+                        break 'read;
+                    }
                 }
             }
             Err(ReadlineError::Interrupted) => {
@@ -352,8 +357,8 @@ pub fn completions(line: &str, pos: usize, names: &[&[String]]) -> (usize, Vec<P
         }
     }
     if line[..start].trim().is_empty() {
-        for k in KEYWORDS {
-            if k.starts_with(word) && !["at", "on"].contains(k) {
+        for k in keywords::statement_keywords() {
+            if k.starts_with(word) {
                 out.push(Pair {
                     display: k.to_string(),
                     replacement: format!("{k} "),
@@ -430,7 +435,8 @@ pub fn highlight(line: &str, coords: &[String], params: &[String], others: &[Str
                 Some(PARAM)
             } else if others.iter().any(|n| n == w) {
                 Some(DEFINED)
-            } else if (first_word || w == "at" || w == "on") && KEYWORDS.contains(&w) {
+            } else if (first_word || keywords::STOP.contains(&w)) && keywords::all().any(|k| k == w)
+            {
                 Some(KEYWORD)
             } else {
                 None

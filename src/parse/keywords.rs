@@ -1,0 +1,160 @@
+//! The keywords of the language, and the suggestion for a misspelled one.
+//!
+//! This is the one list: the parser's statement rules, the suggestion
+//! `did you mean `potential`?` and the REPL's completion and highlighting
+//! all read it. The role keywords come from [`Role::keyword`] for every
+//! role in [`ROLES`]; a new `Role` does not compile until it is listed there.
+
+use super::ast::Role;
+
+/// Every role, in the grammar's order.
+pub const ROLES: &[Role] = &[
+    Role::Kinetic,
+    Role::Potential,
+    Role::ForceFunction,
+    Role::Work,
+    Role::Dissipation,
+    Role::Rayleigh,
+];
+
+/// The position of `r` in [`ROLES`]: an exhaustive match, so that a new
+/// variant of `Role` is a compile error here until [`ROLES`] lists it.
+#[cfg_attr(not(test), allow(dead_code))]
+const fn role_index(r: Role) -> usize {
+    match r {
+        Role::Kinetic => 0,
+        Role::Potential => 1,
+        Role::ForceFunction => 2,
+        Role::Work => 3,
+        Role::Dissipation => 4,
+        Role::Rayleigh => 5,
+    }
+}
+
+/// The keywords that start a statement, other than the roles.
+pub const STATEMENT: &[&str] = &[
+    "coordinates",
+    "parameters",
+    "force",
+    "load",
+    "torque",
+    "solve",
+    "latex",
+];
+
+/// The stop words inside `load … at …` and `torque … on …`.
+pub const STOP: &[&str] = &["at", "on"];
+
+/// Every keyword that starts a statement: declarations, roles, the rest.
+pub fn statement_keywords() -> impl Iterator<Item = &'static str> {
+    STATEMENT[..2]
+        .iter()
+        .copied()
+        .chain(ROLES.iter().map(|r| r.keyword()))
+        .chain(STATEMENT[2..].iter().copied())
+}
+
+/// Every keyword, the stop words included.
+pub fn all() -> impl Iterator<Item = &'static str> {
+    statement_keywords().chain(STOP.iter().copied())
+}
+
+/// The statement keyword `word` is most likely a misspelling of: within
+/// edit distance 1 of a keyword of up to 6 letters, 2 of a longer one
+/// (transpositions count 1; case is ignored). `None` for a keyword itself
+/// and for words shorter than 3 letters.
+pub fn suggest(word: &str) -> Option<&'static str> {
+    if word.chars().count() < 3 || word.len() > 40 {
+        return None;
+    }
+    let lower = word.to_lowercase();
+    let w: Vec<char> = lower.chars().collect();
+    let mut best: Option<(usize, &'static str)> = None;
+    for k in statement_keywords() {
+        if k == word {
+            return None;
+        }
+        let limit = if k.len() <= 6 { 1 } else { 2 };
+        let kc: Vec<char> = k.chars().collect();
+        let d = distance(&w, &kc);
+        if d <= limit && best.is_none_or(|(b, _)| d < b) {
+            best = Some((d, k));
+        }
+    }
+    best.map(|(_, k)| k)
+}
+
+/// The optimal-string-alignment distance of `a` and `b` (Damerau–
+/// Levenshtein without edits inside a transposed pair): insertions,
+/// deletions, substitutions and swaps of two neighbours each cost 1.
+fn distance(a: &[char], b: &[char]) -> usize {
+    let n = b.len();
+    // three rows: two back (for swaps), one back, current
+    let mut two: Vec<usize> = vec![0; n + 1];
+    let mut one: Vec<usize> = (0..=n).collect();
+    let mut cur: Vec<usize> = vec![0; n + 1];
+    for i in 1..=a.len() {
+        cur[0] = i;
+        for j in 1..=n {
+            let cost = usize::from(a[i - 1] != b[j - 1]);
+            let mut d = (one[j] + 1).min(cur[j - 1] + 1).min(one[j - 1] + cost);
+            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                d = d.min(two[j - 2] + 1);
+            }
+            cur[j] = d;
+        }
+        std::mem::swap(&mut two, &mut one);
+        std::mem::swap(&mut one, &mut cur);
+    }
+    one[n]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn roles_are_listed_once_each_in_their_place() {
+        for (i, &r) in ROLES.iter().enumerate() {
+            assert_eq!(role_index(r), i);
+            assert_eq!(Role::from_keyword(r.keyword()), Some(r));
+        }
+    }
+
+    #[test]
+    fn distances() {
+        let d = |a: &str, b: &str| {
+            distance(
+                &a.chars().collect::<Vec<_>>(),
+                &b.chars().collect::<Vec<_>>(),
+            )
+        };
+        assert_eq!(d("rayliegh", "rayleigh"), 1);
+        assert_eq!(d("kinectic", "kinetic"), 1);
+        assert_eq!(d("potental", "potential"), 1);
+        assert_eq!(d("ab", "ba"), 1);
+        assert_eq!(d("ca", "abc"), 3);
+        assert_eq!(d("", "abc"), 3);
+    }
+
+    #[test]
+    fn suggestions() {
+        for (typo, kw) in [
+            ("potental", "potential"),
+            ("coordinate", "coordinates"),
+            ("paramters", "parameters"),
+            ("kinectic", "kinetic"),
+            ("forcefuntion", "forcefunction"),
+            ("rayliegh", "rayleigh"),
+            ("solv", "solve"),
+            ("Potential", "potential"),
+            ("torqe", "torque"),
+            ("dissipaton", "dissipation"),
+        ] {
+            assert_eq!(suggest(typo), Some(kw), "{typo}");
+        }
+        for none in ["potential", "x", "energy", "sin", "mass", "at"] {
+            assert_eq!(suggest(none), None, "{none}");
+        }
+    }
+}
