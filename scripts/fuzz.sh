@@ -15,9 +15,8 @@
 # and is printed (base64) in the log. fuzz/README.md tells what to do then.
 #
 # Environment: FUZZ_TIMEOUT (10), FUZZ_RSS_MB (2048), FUZZ_MAX_LEN (4096),
-# FUZZ_JOBS (1: parallel
-# libFuzzer processes per target), FUZZ_TARGET_DIR (fuzz/target),
-# FUZZ_ARGS (more libFuzzer flags, e.g. "-seed=1").
+# FUZZ_JOBS (1; more runs libFuzzer's -fork=N, N processes a target),
+# FUZZ_TARGET_DIR (fuzz/target), FUZZ_ARGS (more libFuzzer flags: "-seed=1").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -60,10 +59,12 @@ run_one() {
     local status=0
     cargo fuzz run "${FUZZ_FLAGS[@]}" "$t" "fuzz/work/$t" "fuzz/corpus/$t" -- \
         -max_total_time="$secs" -timeout="$TIMEOUT" -rss_limit_mb="$RSS_MB" -max_len="$MAX_LEN" \
-        -jobs="$JOBS" -workers="$JOBS" -print_final_stats=1 \
+        -print_final_stats=1 $([ "$JOBS" -gt 1 ] && echo "-fork=$JOBS") \
         -artifact_prefix="fuzz/artifacts/$t/" ${FUZZ_ARGS:-} >"$log" 2>&1 || status=$?
-    if [ "$JOBS" -gt 1 ]; then cat fuzz-*.log >>"$log" 2>/dev/null && rm -f fuzz-*.log; fi
-    grep -E '^(#[0-9]+ +DONE|Done [0-9]+ runs|stat::number_of_executed_units|stat::peak_rss_mb)' "$log" | sed 's/^/   /' || true
+    # the final stats: plain mode's `Done N runs in S second(s)` and
+    # stat:: lines, fork mode's last `#N: cov:` line
+    grep -E '^(Done [0-9]+ runs|stat::number_of_executed_units|stat::peak_rss_mb)' "$log" | sed 's/^/   /' || true
+    grep -E '^#[0-9]+: cov:' "$log" | tail -1 | sed 's/^/   /' || true
     if [ "$status" != 0 ]; then
         echo "!! fuzz target $t found a failure (exit $status):"
         grep -E -A30 'panicked at|ERROR: libFuzzer|overflowed its stack|SUMMARY' "$log" | head -80
