@@ -58,7 +58,7 @@ run_one() {
     echo "== fuzz $t for ${secs}s"
     local status=0
     cargo fuzz run "${FUZZ_FLAGS[@]}" "$t" "fuzz/work/$t" "fuzz/corpus/$t" -- \
-        -max_total_time="$secs" -timeout="$TIMEOUT" -rss_limit_mb="$RSS_MB" -max_len="$MAX_LEN" \
+        -max_total_time="$secs" -timeout="$TIMEOUT" -rss_limit_mb="$RSS_MB" -max_len="$MAX_LEN" -dict=fuzz/qd.dict \
         -print_final_stats=1 $([ "$JOBS" -gt 1 ] && echo "-fork=$JOBS") \
         -artifact_prefix="fuzz/artifacts/$t/" ${FUZZ_ARGS:-} >"$log" 2>&1 || status=$?
     # the final stats: plain mode's `Done N runs in S second(s)` and
