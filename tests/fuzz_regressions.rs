@@ -112,8 +112,7 @@ fn replay_bounded(target: &str, inputs: &[PathBuf], seconds: u64) -> Option<Stri
     let err = reader.join().unwrap_or_default();
     let last = err
         .lines()
-        .filter(|l| l.starts_with("replaying "))
-        .last()
+        .rfind(|l| l.starts_with("replaying "))
         .unwrap_or("")
         .to_string();
     if timed_out {
