@@ -113,7 +113,7 @@ fn replay_bounded(target: &str, inputs: &[PathBuf], seconds: u64) -> Option<Stri
     let last = err
         .lines()
         .rfind(|l| l.starts_with("replaying "))
-        .unwrap_or("")
+        .map_or("", |l| &l["replaying ".len()..])
         .to_string();
     if timed_out {
         return Some(format!("{last}: timed out after {seconds} s"));
