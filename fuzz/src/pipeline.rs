@@ -1,0 +1,250 @@
+//! What each fuzz target does with its input, shared by the targets
+//! (fuzz/fuzz_targets/*.rs) and the regression tests
+//! (tests/fuzz_regressions.rs includes this file with `#[path]`), so a
+//! finding replays through exactly the code that found it.
+//!
+//! Every function takes the raw bytes and returns nothing: an `Err` of the
+//! library is a correct answer to bad input; a panic, an abort, a stack
+//! overflow, a hang or a memory blow-up is a finding.
+
+use qdot::output::{self, Command, Format, Options};
+use qdot::repl::{is_complete, Session};
+use qdot::simulate::run;
+
+/// The target names, in the order the script runs them.
+pub const TARGETS: [&str; 4] = ["parse", "pipeline", "repl", "simulate"];
+
+/// Replay `data` through the target called `name`.
+pub fn by_name(name: &str, data: &[u8]) {
+    match name {
+        "parse" => parse(data),
+        "pipeline" => pipeline(data),
+        "repl" => repl(data),
+        "simulate" => simulate(data),
+        _ => panic!("no fuzz target `{name}`"), // ok: a typo in a test, not input
+    }
+}
+
+/// Target `parse`: the syntax alone, as a scene and as one expression,
+/// with every error rendered (the caret line exercises the spans).
+pub fn parse(data: &[u8]) {
+    let Ok(src) = std::str::from_utf8(data) else {
+        return;
+    };
+    if let Err(d) = qdot::parse::parse_scene(src) {
+        let _ = d.render("fuzz.qd", src);
+    }
+    if let Err(d) = qdot::parse::parse_expr(src) {
+        let _ = d.render("fuzz.qd", src);
+    }
+}
+
+/// The header a `pipeline` input may start with: `#@ COMMAND FORMAT [SET]`
+/// on its first line (a comment, so the input stays a valid scene), e.g.
+/// `#@ equilibrium json m=1,g=9.81`. Without one: `solve` as text.
+fn header(src: &str) -> (Command, Format, Option<&str>) {
+    let first = src.lines().next().unwrap_or("");
+    let Some(rest) = first.strip_prefix("#@") else {
+        return (Command::Solve, Format::Text, None);
+    };
+    let mut words = rest.split_whitespace();
+    let cmd = match words.next() {
+        Some("derive") => Command::Derive,
+        Some("forces") => Command::Forces,
+        Some("equilibrium") => Command::Equilibrium,
+        Some("modes") => Command::Modes,
+        Some("latex") => Command::Latex,
+        _ => Command::Solve,
+    };
+    let fmt = match words.next() {
+        Some("json") => Format::Json,
+        Some("latex") => Format::Latex,
+        _ => Format::Text,
+    };
+    (cmd, fmt, words.next())
+}
+
+/// Target `pipeline`: parse → scene → derive → solve (or forces,
+/// equilibrium, modes, LaTeX) → print, as `qdot COMMAND --format FORMAT`
+/// does, the command chosen by the input's [`header`]. `latex` runs both
+/// the fragment and `--steps --standalone`.
+pub fn pipeline(data: &[u8]) {
+    let Ok(src) = std::str::from_utf8(data) else {
+        return;
+    };
+    let (cmd, fmt, set) = header(src);
+    let mut opts = Options::default();
+    if let Some(set) = set {
+        match output::parse_set(set) {
+            Ok(s) => opts.set = s,
+            Err(d) => {
+                let _ = d.render("--set", set);
+                return;
+            }
+        }
+    }
+    let mut runs = vec![(cmd, fmt, opts.clone())];
+    if cmd == Command::Latex {
+        opts.steps = true;
+        opts.standalone = true;
+        opts.title = "fuzz.qd".into();
+        runs.push((cmd, fmt, opts));
+    }
+    for (cmd, fmt, opts) in runs {
+        match output::run_with(cmd, src, fmt, &opts) {
+            Ok((_, warnings)) => {
+                for w in warnings {
+                    let _ = w.render("fuzz.qd", src);
+                }
+            }
+            Err(d) => {
+                let _ = d.render("fuzz.qd", src);
+            }
+        }
+    }
+}
+
+/// Target `repl`: the input's lines fed to a [`Session`] as the piped REPL
+/// feeds them (an entry is complete when [`is_complete`] says so). `:load`
+/// and `:save` are skipped: they would read and write the fuzzer's disk.
+pub fn repl(data: &[u8]) {
+    let text = String::from_utf8_lossy(data);
+    let mut session = Session::new();
+    let mut entry = String::new();
+    let feed = |session: &mut Session, entry: &str| -> bool {
+        let cmd = entry.trim_start();
+        let word = cmd.split_whitespace().next().unwrap_or("");
+        if word == ":load" || word == ":save" {
+            return false;
+        }
+        session.execute(entry).quit
+    };
+    for line in text.lines() {
+        entry.push_str(line);
+        entry.push('\n');
+        if !is_complete(&entry) {
+            continue;
+        }
+        if feed(&mut session, &entry) {
+            return;
+        }
+        entry.clear();
+    }
+    if !entry.trim().is_empty() {
+        feed(&mut session, &entry);
+    }
+    let _ = session.scene_text();
+}
+
+/// The scene of a `simulate` input that brings none: the pendulum.
+const PENDULUM: &str = "coordinates theta
+parameters m, l, g
+kinetic E = 1/2*m*l^2*theta'^2
+potential V = -m*g*l*cos(theta)
+";
+
+/// Target `simulate`: `qdot simulate` with fuzzed options. The input is
+/// the options, one `--name value` a line (as on the command line), then
+/// optionally a line `---` and the scene (the pendulum without one):
+///
+/// ```text
+/// --set m=1,l=1,g=9.81
+/// --init theta=0.5,theta'=0
+/// --t-end 10
+/// --method rk4
+/// --dt 0.01
+/// ```
+///
+/// Values are converted as the CLI's parser (clap, `FromStr`) does; one
+/// it would refuse ends the run, as it would. The run is checked,
+/// integrated and written as CSV and JSON (and SVG with `--plot`).
+pub fn simulate(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let (opts, scene) = match text.split_once("\n---\n") {
+        Some((o, s)) => (o, s),
+        None => (text, PENDULUM),
+    };
+    let mut req = run::Request::default();
+    let (mut set, mut init, mut t_end, mut plot) = (None, None, None, false);
+    let (mut output, mut method) = ("csv", "dop853");
+    for line in opts.lines() {
+        let line = line.trim();
+        let (key, value) = match line.split_once(char::is_whitespace) {
+            Some((k, v)) => (k, v.trim()),
+            None => (line, ""),
+        };
+        let num = || value.parse::<f64>().ok();
+        match key {
+            "--set" => set = Some(value),
+            "--init" => init = Some(value),
+            "--method" => method = value,
+            "--output" => output = value,
+            "--stop-when" => req.stop_when = Some(value.to_string()),
+            "--plot" => plot = true,
+            "--t-end" => match num() {
+                Some(x) => t_end = Some(x),
+                None => return,
+            },
+            "--rtol" => match num() {
+                Some(x) => req.rtol = x,
+                None => return,
+            },
+            "--atol" => match num() {
+                Some(x) => req.atol = x,
+                None => return,
+            },
+            "--dt" => match num() {
+                Some(x) => req.dt = Some(x),
+                None => return,
+            },
+            "--points" => match value.parse::<usize>() {
+                Ok(n) => req.points = n,
+                Err(_) => return,
+            },
+            _ => {}
+        }
+    }
+    // --t-end is required by the CLI
+    let Some(t_end) = t_end else { return };
+    req.t_end = t_end;
+    if output != "csv" && output != "json" {
+        return;
+    }
+    match run::method_by_name(method) {
+        Ok(m) => req.method = m,
+        Err(d) => {
+            let _ = d.render("fuzz.qd", "");
+            return;
+        }
+    }
+    match set.map(output::parse_set).transpose() {
+        Ok(s) => req.set = s.unwrap_or_default().into_iter().collect(),
+        Err(d) => {
+            let _ = d.render("fuzz.qd", "");
+            return;
+        }
+    }
+    match init.map(run::parse_init).transpose() {
+        Ok(s) => req.init = s.unwrap_or_default(),
+        Err(d) => {
+            let _ = d.render("fuzz.qd", "");
+            return;
+        }
+    }
+    match run::simulate(scene, &req) {
+        Ok(r) => {
+            let _ = run::csv(&r);
+            let _ = run::json(&r);
+            let _ = run::stats_text(&r);
+            let _ = run::status_word(&r.solution.status);
+            if plot {
+                let _ = qdot::simulate::plot::svg(&r);
+            }
+        }
+        Err(d) => {
+            let _ = d.render("fuzz.qd", scene);
+        }
+    }
+}

@@ -1,0 +1,173 @@
+#!/usr/bin/env bash
+# Fuzzing qdot with cargo-fuzz (libFuzzer), on the stable toolchain.
+#
+#   scripts/fuzz.sh run [SECONDS] [TARGET…]   each target for SECONDS (default 60)
+#   scripts/fuzz.sh seeds                     rewrite the seed-* files of fuzz/corpus/
+#   scripts/fuzz.sh cmin [TARGET…]            minimize fuzz/corpus/TARGET in place
+#   scripts/fuzz.sh build                     build the targets only
+#
+# Targets: parse, pipeline, repl, simulate (fuzz/src/pipeline.rs says what
+# each does). `run` reads the committed seeds (fuzz/corpus/TARGET, never
+# written) and keeps what it finds new in fuzz/work/TARGET (not committed),
+# so a long campaign resumes where the last one stopped. A crash, a time-out
+# (-timeout, seconds per input) or a memory blow-up (-rss_limit_mb) stops
+# the target and fails the script; the input is in fuzz/artifacts/TARGET/
+# and is printed (base64) in the log. fuzz/README.md tells what to do then.
+#
+# Environment: FUZZ_TIMEOUT (10), FUZZ_RSS_MB (2048), FUZZ_MAX_LEN (4096),
+# FUZZ_JOBS (1; more runs libFuzzer's -fork=N, N processes a target),
+# FUZZ_TARGET_DIR (fuzz/target), FUZZ_ARGS (more libFuzzer flags: "-seed=1").
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+TARGETS=(parse pipeline repl simulate)
+CARGO_FUZZ_VERSION=0.13.2
+TIMEOUT=${FUZZ_TIMEOUT:-10}
+RSS_MB=${FUZZ_RSS_MB:-2048}
+MAX_LEN=${FUZZ_MAX_LEN:-4096}
+JOBS=${FUZZ_JOBS:-1}
+TARGET_DIR=${FUZZ_TARGET_DIR:-fuzz/target}
+export PATH="$HOME/.cargo/bin:$PATH"
+
+# cargo-fuzz on stable: no sanitizer (`--sanitizer none` needs no -Z flag;
+# Rust's own checks, debug assertions and overflow checks included, find
+# the panics), one build shared by all targets.
+FUZZ_FLAGS=(--sanitizer none --target-dir "$TARGET_DIR")
+
+install() {
+    if ! cargo fuzz --version 2>/dev/null | grep -q "$CARGO_FUZZ_VERSION"; then
+        echo "== installing cargo-fuzz $CARGO_FUZZ_VERSION"
+        cargo install cargo-fuzz --version "$CARGO_FUZZ_VERSION" --locked --quiet
+    fi
+}
+
+build() {
+    install
+    echo "== cargo fuzz build (${TARGETS[*]})"
+    local t0=$SECONDS
+    cargo fuzz build "${FUZZ_FLAGS[@]}"
+    echo "   built in $((SECONDS - t0)) s"
+}
+
+# run SECONDS TARGET: one bounded campaign; the last lines of libFuzzer's
+# log (its final stats) are echoed.
+run_one() {
+    local secs=$1 t=$2 log
+    mkdir -p "fuzz/work/$t" "fuzz/artifacts/$t"
+    log=$(mktemp)
+    echo "== fuzz $t for ${secs}s"
+    local status=0
+    cargo fuzz run "${FUZZ_FLAGS[@]}" "$t" "fuzz/work/$t" "fuzz/corpus/$t" -- \
+        -max_total_time="$secs" -timeout="$TIMEOUT" -rss_limit_mb="$RSS_MB" -max_len="$MAX_LEN" -dict=fuzz/qd.dict \
+        -print_final_stats=1 $([ "$JOBS" -gt 1 ] && echo "-fork=$JOBS") \
+        -artifact_prefix="fuzz/artifacts/$t/" ${FUZZ_ARGS:-} >"$log" 2>&1 || status=$?
+    # the final stats: plain mode's `Done N runs in S second(s)` and
+    # stat:: lines, fork mode's last `#N: cov:` line
+    grep -E '^(Done [0-9]+ runs|stat::number_of_executed_units|stat::peak_rss_mb)' "$log" | sed 's/^/   /' || true
+    grep -E '^#[0-9]+: cov:' "$log" | tail -1 | sed 's/^/   /' || true
+    if [ "$status" != 0 ]; then
+        echo "!! fuzz target $t found a failure (exit $status):"
+        grep -E -A30 'panicked at|ERROR: libFuzzer|overflowed its stack|SUMMARY' "$log" | head -80
+        for f in "fuzz/artifacts/$t"/*; do
+            [ -f "$f" ] || continue
+            echo "   input $f (base64):"
+            base64 -w 0 "$f" | head -c 8000
+            echo
+        done
+    fi
+    rm -f "$log"
+    return "$status"
+}
+
+run() {
+    local secs=${1:-60}
+    shift || true
+    local ts=("$@")
+    [ ${#ts[@]} -gt 0 ] || ts=("${TARGETS[@]}")
+    build
+    local failed=()
+    local t0=$SECONDS
+    for t in "${ts[@]}"; do
+        run_one "$secs" "$t" || failed+=("$t")
+    done
+    echo "== fuzzing took $((SECONDS - t0)) s"
+    if [ ${#failed[@]} -gt 0 ]; then
+        echo "!! findings in: ${failed[*]} (inputs in fuzz/artifacts/; see fuzz/README.md)"
+        return 1
+    fi
+    echo "   no findings"
+}
+
+cmin() {
+    local ts=("$@")
+    [ ${#ts[@]} -gt 0 ] || ts=("${TARGETS[@]}")
+    install
+    for t in "${ts[@]}"; do
+        cargo fuzz cmin "${FUZZ_FLAGS[@]}" "$t" "fuzz/corpus/$t" -- \
+            -timeout="$TIMEOUT" -rss_limit_mb="$RSS_MB"
+    done
+}
+
+# A name for a seed file: seed-<origin>-<file stem>.
+seed_name() { basename "$1" | sed 's/\.[a-z]*$//'; }
+
+# The parameters of a scene, each set to 1: "m=1,g=1" (for --set).
+ones() {
+    sed -n 's/#.*//; s/^[[:space:]]*parameters[[:space:]]\+//p' "$1" |
+        tr ',' '\n' | tr -d ' \t' | sed '/^$/d; s/$/=1/' | paste -sd, -
+}
+
+seeds() {
+    local c=fuzz/corpus
+    mkdir -p "$c/parse" "$c/pipeline" "$c/repl" "$c/simulate"
+    rm -f "$c"/*/seed-*
+    local scenes=(examples/*.qd book/scenes/*.qd)
+    for f in "${scenes[@]}"; do
+        local n
+        n=$(seed_name "$f")
+        cp "$f" "$c/parse/seed-$n"
+        # pipeline: solve (no header), derive as JSON, the LaTeX, the
+        # equilibria with every parameter 1, the modes
+        cp "$f" "$c/pipeline/seed-$n"
+        { echo "#@ derive json"; cat "$f"; } >"$c/pipeline/seed-$n-derive-json"
+        { echo "#@ latex latex"; cat "$f"; } >"$c/pipeline/seed-$n-latex"
+        { echo "#@ equilibrium json $(ones "$f")"; cat "$f"; } >"$c/pipeline/seed-$n-equilibrium"
+        { echo "#@ modes text"; cat "$f"; } >"$c/pipeline/seed-$n-modes"
+        # repl: the scene's lines, then the commands
+        { cat "$f"; printf ':solve\n:equations\n:format json\n:forces\n:format latex\n:show\n:undo\n:scene\n:reset\n'; } \
+            >"$c/repl/seed-$n"
+    done
+    for f in book/scenes/*.repl; do
+        cp "$f" "$c/repl/seed-$(seed_name "$f")"
+        cp "$f" "$c/parse/seed-$(seed_name "$f")"
+    done
+    # the book's inline scene fragments (```qd and unlabelled blocks that
+    # are not includes)
+    awk -v dir="$c/parse" '
+        FNR == 1 { inb = 0 }
+        /^```/ {
+            if (inb) { inb = 0; if (keep && body != "") { k++; printf "%s", body > (dir "/seed-book-" k); close(dir "/seed-book-" k) } }
+            else { inb = 1; lang = substr($0, 4); keep = (lang == "" || lang == "qd"); body = "" }
+            next
+        }
+        inb && keep && !/\{\{#include/ { body = body $0 "\n" }
+    ' book/src/*.md book/src/simulation/*.md
+    # simulate: the book's runs, every method, events, the edges of the options
+    local s=$c/simulate
+    printf -- '--set m=1,l=1,g=1\n--init theta=3,theta'"'"'=0\n--t-end 10\n--stop-when theta=0\n--points 3\n--rtol 1e-12\n--atol 1e-12\n' >"$s/seed-book-pendulum-event"
+    { printf -- '--set m=1,k=6,R=0.5\n--init x1=1,x2=1.3333333333333333,x1'"'"'=0,x2'"'"'=0\n--t-end 6.283185307179586\n--points 5\n--rtol 1e-12\n--atol 1e-12\n---\n'; cat examples/seed_24_2.qd; } >"$s/seed-book-seed_24_2"
+    for m in rk4 dopri5 dop853 vern7 gauss6 radau5; do
+        printf -- '--set m=1,l=1,g=9.81\n--init theta=0.5,theta'"'"'=0\n--t-end 2\n--method %s\n--dt 0.01\n--points 11\n--output json\n' "$m" >"$s/seed-method-$m"
+    done
+    printf -- '--set m=1,l=1,g=9.81\n--init theta=2.5,theta'"'"'=0\n--t-end 5\n--plot\n--stop-when theta'"'"' = 0\n' >"$s/seed-plot-stop"
+    { printf -- '--set m=1,k=1,c=1,F0=1,p=2\n--init x=0,x'"'"'=0\n--t-end 3\n--points 4\n---\n'; cat examples/forced_oscillator.qd; } >"$s/seed-forced"
+    echo "seeds: $(ls "$c"/*/seed-* | wc -l) files, $(cat "$c"/*/* | wc -c) bytes"
+}
+
+case "${1:-run}" in
+run) shift || true; run "$@" ;;
+build) build ;;
+cmin) shift; cmin "$@" ;;
+seeds) seeds ;;
+*) echo "usage: scripts/fuzz.sh run [SECONDS] [TARGET…] | build | cmin [TARGET…] | seeds" >&2; exit 2 ;;
+esac
