@@ -4,7 +4,7 @@
 //! stdin, for REPL transcripts), and the text between
 //! `<!-- qdot-math ARGS -->` and `<!-- /qdot-math -->` must be qdot's LaTeX
 //! output made into Markdown that MathJax renders ([`mathjax`]).
-//! `QDOT_BLESS=1 cargo test --test book` rewrites the blocks from the
+//! `QDOT_BLESS=1 cargo test --release --test it book::` rewrites the blocks from the
 //! current output.
 
 use std::process::Command;
@@ -226,7 +226,7 @@ fn book_output_is_qdots_real_output() {
             pretty_assertions::assert_eq!(
                 page,
                 fresh,
-                "{} drifted; run QDOT_BLESS=1 cargo test --test book",
+                "{} drifted; run QDOT_BLESS=1 cargo test --release --test it book::",
                 path.display()
             );
         }

@@ -4,9 +4,7 @@
 //! the library's result), error rendering with file:line:column, a caret
 //! and a hint, exit code 1, and warnings on stderr with exit code 0.
 
-mod common;
-
-use common::run::{json, keys, qdot, BLOCK_KEYS, DYNAMICS_KEYS, EQUILIBRIUM_KEYS};
+use crate::common::run::{json, keys, qdot, BLOCK_KEYS, DYNAMICS_KEYS, EQUILIBRIUM_KEYS};
 use qdot::Scene;
 
 #[test]

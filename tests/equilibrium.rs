@@ -4,9 +4,7 @@
 //! value is derived by hand in a comment; numeric roots are checked against
 //! f64 evaluation of the equations and a sign-change count.
 
-mod common;
-
-use common::run::{qdot_on, EQUILIBRIUM_KEYS};
+use crate::common::run::{qdot_on, EQUILIBRIUM_KEYS};
 use qdot::solve::equilibrium::{equilibria, Equilibria, Equilibrium, Position, Stability};
 use qdot::{Expr, Scene};
 

@@ -22,6 +22,9 @@ mod pipeline;
 const SECONDS: u64 = 10;
 const MEMORY_MIB: u64 = 2048;
 
+/// The test [`replay`] by its full name in the test crate.
+const REPLAY_TEST: &str = "fuzz_regressions::replay";
+
 /// `TARGET` then the files, one a line.
 const ENV: &str = "QDOT_FUZZ_REPLAY";
 
@@ -80,7 +83,7 @@ fn replay_bounded(target: &str, inputs: &[PathBuf], seconds: u64) -> Option<Stri
         .arg("-c")
         .arg(script)
         .arg(exe)
-        .args(["replay", "--exact", "--nocapture", "--test-threads=1"])
+        .args([REPLAY_TEST, "--exact", "--nocapture", "--test-threads=1"])
         .env(ENV, job)
         .env("RUST_BACKTRACE", "0")
         .stdin(Stdio::null())

@@ -5,9 +5,7 @@
 //! pair in its slow mode), and Gauss6's long-time energy behaviour on the
 //! pendulum against the exact elliptic-function solution.
 
-mod common;
-
-use common::numeric::loglog_slope;
+use crate::common::numeric::loglog_slope;
 use qdot::simulate::elliptic::{pendulum_exact, pendulum_period};
 use qdot::simulate::implicit::{gauss6, radau5, radau5_fixed_step, ImplicitError};
 use qdot::simulate::{FnSystem, Options, Solution, Status, System};

@@ -3,9 +3,7 @@
 //! proportionality of the adaptive methods, exact output times, events,
 //! stiffness detection and the early-end statuses.
 
-mod common;
-
-use common::numeric::{loglog_slope, max_abs_diff};
+use crate::common::numeric::{loglog_slope, max_abs_diff};
 use qdot::simulate::explicit::integrate_fixed;
 use qdot::simulate::{
     integrate, integrate_with_event, FnSystem, Method, Options, SimError, Status, System,

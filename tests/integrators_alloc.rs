@@ -1,6 +1,7 @@
 //! The explicit integrators' step loop does not allocate: with a single
 //! output time, the number of allocations does not grow with the number of
-//! steps. (One test in this binary: the counting allocator is global.)
+//! steps. (The counting allocator is global to the test crate; it counts
+//! per thread, so the tests running beside this one do not disturb it.)
 
 use qdot::simulate::{integrate, FnSystem, Method, Options};
 use std::alloc::{GlobalAlloc, Layout, System as SysAlloc};

@@ -2,11 +2,10 @@
 //!
 //! The expected strings are insta snapshots under `tests/snapshots/`;
 //! each was read and checked by hand when it was accepted. To review a
-//! change: `INSTA_UPDATE=always cargo test --release --test latex`, then
+//! change: `INSTA_UPDATE=always cargo test --release --test it latex::`, then
 //! `git diff tests/snapshots`.
 
-mod common;
-
+use crate::common;
 use insta::assert_snapshot;
 use qdot::expr::latex::{latex, latex_with, Names};
 use qdot::Scene;

@@ -6,8 +6,7 @@
 //! `QDOT_REQUIRE_TEX=1`, so in CI a missing pdflatex fails this test. On a
 //! machine without TeX it says so and checks nothing else.
 
-mod common;
-
+use crate::common;
 use std::path::Path;
 use std::process::Command;
 

@@ -6,9 +6,7 @@
 //! exact ω² and modes against the numeric eigen-solver at random parameter
 //! values; the command line's exit codes, errors and JSON contract.
 
-mod common;
-
-use common::run::{json, keys, qdot, qdot_on};
+use crate::common::run::{json, keys, qdot, qdot_on};
 use proptest::test_runner::{Config, TestRunner};
 use qdot::expr::atom::{self, Atom};
 use qdot::mechanics::oscillations::{

@@ -1,8 +1,6 @@
 //! Exact syntax trees for every construct and precedence rule.
 
-mod common;
-
-use common::{def, ex, scene};
+use crate::common::{def, ex, scene};
 use pretty_assertions::assert_eq;
 use qdot::parse::ast::{ExprKind, Span, Stmt};
 use qdot::parse::{parse_expr, parse_scene};

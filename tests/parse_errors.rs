@@ -1,8 +1,6 @@
 //! Error positions (line, column, width in characters), messages and hints.
 
-mod common;
-
-use common::{expr_err, locate, scene_err, At};
+use crate::common::{expr_err, locate, scene_err, At};
 use pretty_assertions::assert_eq;
 use qdot::parse::{parse_expr, parse_scene, MAX_DEPTH, MAX_NESTING};
 

@@ -1,9 +1,7 @@
 //! Property tests: no input makes the parser panic, every error is well
 //! formed, and printing a tree with full parentheses parses back to it.
 
-mod common;
-
-use common::{print_full, print_stmt, stmt_sexpr, strip};
+use crate::common::{print_full, print_stmt, stmt_sexpr, strip};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use proptest::prelude::*;

@@ -570,3 +570,27 @@ fn invisible_characters_and_invalid_utf8_are_positioned() {
     );
     let _ = std::fs::remove_file(&path);
 }
+
+/// The canonical form's variable order is the order atoms were first seen
+/// in the process, so two sessions (or two names) can meet them in either
+/// order; what `expand` prints must not depend on it.
+#[test]
+fn expand_does_not_depend_on_the_order_names_were_first_seen() {
+    let mut s = Session::new();
+    // zqx seen before aqx, aqy before zqy (both pairs are new to the process)
+    ok(&mut s, "parameters zqx, aqx, aqy, zqy");
+    ok(&mut s, "zqx + 2*aqx");
+    ok(&mut s, "aqy + 2*zqy");
+    for i in ["x", "y"] {
+        let a = format!("aq{i}");
+        let z = format!("zq{i}");
+        assert_eq!(
+            ok(&mut s, &format!("expand(({a} + {z})^2/({z} - {a}))")),
+            format!("(−{a}² − 2·{a}·{z} − {z}²)/({a} − {z})\n"),
+        );
+        assert_eq!(
+            ok(&mut s, &format!("expand(({z} - {a})^3)")),
+            format!("−{a}³ + 3·{a}²·{z} − 3·{a}·{z}² + {z}³\n"),
+        );
+    }
+}

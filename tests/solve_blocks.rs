@@ -5,9 +5,7 @@
 //! Lagrange's accelerations, and the `qdot solve` output of all that.
 //! Every expected value is derived by hand in a comment.
 
-mod common;
-
-use common::run::{json, keys, qdot_on, BLOCK_KEYS, DYNAMICS_KEYS};
+use crate::common::run::{json, keys, qdot_on, BLOCK_KEYS, DYNAMICS_KEYS};
 use qdot::solve::system::{equation_label, solve_scene, BlockSolution};
 use qdot::{Expr, Scene};
 use std::collections::BTreeMap;

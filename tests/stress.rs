@@ -11,10 +11,8 @@
 //!    a small fraction of their steps.
 //! 4. A chaotic double pendulum: tighter tolerances agree longer.
 
-mod stress_common;
-
+use crate::stress_common::*;
 use qdot::simulate::{Method, Status};
-use stress_common::*;
 
 fn at(d: &Drift, p: u64) -> f64 {
     d.checkpoints

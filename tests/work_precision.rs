@@ -12,9 +12,7 @@
 //! (its period depends steeply on the amplitude there), so its multiple is
 //! large for every method alike, SciPy's included (see the report).
 
-mod common;
-
-use common::numeric::{loglog_slope, max_abs_diff};
+use crate::common::numeric::{loglog_slope, max_abs_diff};
 use qdot::simulate::problems::Problem;
 use qdot::simulate::{integrate, Method, Options};
 

@@ -173,6 +173,25 @@ pub(crate) fn display_order(a: &Mono, b: &Mono) -> Ordering {
     kb.cmp(&ka)
 }
 
+/// Lexicographic order of monomials with the variables ranked by
+/// [`factor_rank`] (by name, not by interning order): `l³, l²·m, l·m², m³`.
+pub(crate) fn name_lex_order(a: &Mono, b: &Mono) -> Ordering {
+    let ranked = |m: &Mono| {
+        let mut v: Vec<_> = m.0.iter().map(|&(v, e)| (factor_rank(v), e)).collect();
+        v.sort();
+        v
+    };
+    let (ra, rb) = (ranked(a), ranked(b));
+    for (x, y) in ra.iter().zip(&rb) {
+        // the variable ranked first wins; on the same variable the higher power
+        let o = x.0.cmp(&y.0).then_with(|| y.1.cmp(&x.1));
+        if o != Ordering::Equal {
+            return o;
+        }
+    }
+    rb.len().cmp(&ra.len())
+}
+
 /// The Unicode text of `coef·key` without its sign: the text printer's
 /// order of terms with one monomial.
 pub(crate) fn unicode_term(c: &Expr, key: &Mono) -> String {

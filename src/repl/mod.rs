@@ -814,14 +814,24 @@ fn series_layout(e: &Expr, var: Var, a: &Expr, names: Option<&Names>) -> String 
 
 /// Every term of the numerator on its own, over the denominator.
 fn expanded(e: &Expr, st: Style) -> String {
-    let num = terms_text(e.num(), st);
     if e.den().is_one() {
-        return num;
+        return terms_text(e.num(), st);
     }
     if e.den().len() == 1 && e.num().len() > 1 {
         return print::expanded(e);
     }
-    let den = print::render(&Expr::from_poly(e.den().clone()), st);
+    // The canonical denominator is monic in the atoms' interning order,
+    // which depends on the session's history: the sign shown is the one
+    // that makes the denominator's first displayed term positive.
+    let (den_sign, _, _) = print::split_poly(e.den());
+    let (num, den) = if den_sign.is_negative() {
+        (-e.num(), -e.den())
+    } else {
+        (e.num().clone(), e.den().clone())
+    };
+    let num_text = terms_text(&num, st);
+    let den_text = print::render(&Expr::from_poly(den.clone()), st);
+    let (num, den) = (num_text, den_text);
     let den = if e.den().len() > 1 || den.contains('·') {
         format!("({den})")
     } else {
@@ -835,10 +845,10 @@ fn expanded(e: &Expr, st: Style) -> String {
 }
 
 /// The terms by descending degree in the coordinates (as qdot's printer
-/// orders them), then by descending total degree (ties in the
-/// polynomial's order).
+/// orders them), then by descending total degree, then lexicographically
+/// by name (never in the polynomial's order, which follows interning).
 fn terms_text(p: &Poly, st: Style) -> String {
-    let mut terms: Vec<&(crate::poly::Mono, crate::num::Q)> = p.terms().iter().rev().collect();
+    let mut terms: Vec<&(crate::poly::Mono, crate::num::Q)> = p.terms().iter().collect();
     let moving = |m: &crate::poly::Mono| -> u32 {
         m.pairs()
             .iter()
@@ -846,11 +856,10 @@ fn terms_text(p: &Poly, st: Style) -> String {
             .map(|(_, e)| e)
             .sum()
     };
-    terms.sort_by_key(|(m, _)| {
-        (
-            std::cmp::Reverse(moving(m)),
-            std::cmp::Reverse(m.total_degree()),
-        )
+    terms.sort_by(|(a, _), (b, _)| {
+        (moving(b), b.total_degree())
+            .cmp(&(moving(a), a.total_degree()))
+            .then_with(|| print::name_lex_order(a, b))
     });
     let items = terms.into_iter().map(|(m, c)| {
         let t = Expr::from_poly(Poly::monomial(m.clone(), c.abs()));

@@ -3,7 +3,7 @@
 //! (the value, or the error message and its position) and runs the binary
 //! under a time and a memory bound (`bounded`).
 
-mod bound;
+pub(crate) mod bound;
 mod exact;
 mod exact_values;
 mod input;

@@ -1,0 +1,39 @@
+//! The integration tests: one test crate (one link of the library instead
+//! of one per file), each file of tests/ a module. Helpers shared by
+//! several modules are in `common` and `stress_common`; the hostile-input
+//! suite is a directory of its own.
+
+mod common;
+mod stress_common;
+
+mod book;
+mod cli;
+mod compile;
+mod equilibrium;
+mod factor;
+mod fuzz_regressions;
+mod hostile;
+// the hostile modules say `crate::bound` (they were a crate of their own)
+use hostile::bound;
+mod implicit;
+mod integrators;
+mod integrators_alloc;
+mod latex;
+mod latex_pdf;
+mod modes;
+mod no_panic;
+mod parse_ast;
+mod parse_errors;
+mod parse_grammar;
+mod parse_props;
+mod properties;
+mod repl;
+mod repl_pty;
+mod scenes;
+mod seed;
+mod simulate_cli;
+mod simulate_pty;
+mod solve_blocks;
+mod stress;
+mod sympy_fixtures;
+mod work_precision;
