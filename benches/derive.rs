@@ -22,7 +22,10 @@ use std::hint::black_box;
 fn seeds(c: &mut Criterion) {
     let mut g = c.benchmark_group("seed");
     for name in qdot::gallery::SEED_EXAMPLES {
-        let path = format!("{}/examples/{name}.qd", env!("CARGO_MANIFEST_DIR"));
+        let path = format!(
+            "{}/examples/{name}.qd",
+            concat!(env!("CARGO_MANIFEST_DIR"), "/..")
+        );
         let src = std::fs::read_to_string(&path).expect("example exists");
         g.bench_function(*name, |b| {
             b.iter(|| {
@@ -41,7 +44,7 @@ fn seeds(c: &mut Criterion) {
 fn equilibria(c: &mut Criterion) {
     let mut g = c.benchmark_group("equilibrium");
     let scenes = [
-        ("seed_23_1", std::fs::read_to_string(format!("{}/examples/seed_23_1.qd", env!("CARGO_MANIFEST_DIR"))).expect("example exists")),
+        ("seed_23_1", std::fs::read_to_string(format!("{}/examples/seed_23_1.qd", concat!(env!("CARGO_MANIFEST_DIR"), "/.."))).expect("example exists")),
         ("hoop", "coordinates th\nparameters m, g, r, W\nkinetic E = 1/2*m*r^2*(th'^2 + W^2*sin(th)^2)\npotential V = -m*g*r*cos(th)\n".to_string()),
     ];
     for (name, src) in &scenes {
@@ -65,7 +68,7 @@ fn modes(c: &mut Criterion) {
         .to_string();
     let seed = std::fs::read_to_string(format!(
         "{}/examples/seed_24_2.qd",
-        env!("CARGO_MANIFEST_DIR")
+        concat!(env!("CARGO_MANIFEST_DIR"), "/..")
     ))
     .expect("example exists");
     for (name, src) in [("seed_24_2", seed), ("chain3", chain)] {

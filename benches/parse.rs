@@ -11,7 +11,10 @@ use std::hint::black_box;
 fn parse(c: &mut Criterion) {
     let mut g = c.benchmark_group("parse");
     for name in qdot::gallery::SEED_EXAMPLES {
-        let path = format!("{}/examples/{name}.qd", env!("CARGO_MANIFEST_DIR"));
+        let path = format!(
+            "{}/examples/{name}.qd",
+            concat!(env!("CARGO_MANIFEST_DIR"), "/..")
+        );
         let src = std::fs::read_to_string(&path).expect("example exists");
         g.throughput(Throughput::Bytes(src.len() as u64));
         g.bench_function(*name, |b| {

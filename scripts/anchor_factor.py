@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Times SymPy's factor_list on the polynomials of benches/factor.rs (the
-anchor for `cargo bench --bench factor`): median of repeated runs, in µs.
+anchor for `cargo bench -p qdot-benches --bench factor`): median of repeated runs, in µs.
 
 Usage: python3 scripts/anchor_factor.py
 """

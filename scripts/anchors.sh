@@ -10,7 +10,7 @@ NMAX=${1:-12}
 SYMPY_NMAX=${2:-8}
 PY=${PYTHON:-/tmp/anchors/bin/python}
 ANCHORS=${ANCHORS:-../shared/anchors}
-cargo build --release -q --example npendulum
+cargo build --release -q -p qdot-benches --example npendulum
 echo "# qdot: n, derive seconds (best of 5), lhs terms, exact solve"
 target/release/examples/npendulum "$NMAX" 3 | tee /tmp/qdot_np.txt
 echo "# SymEngine: n, derive+expand seconds, size"
@@ -26,6 +26,6 @@ join <(awk '{print $1, $2}' /tmp/qdot_np.txt) <(awk '{print $1, $2}' /tmp/symeng
 
 echo
 echo "# Kinetostatic solve blocks, equilibria and modes: qdot (criterion) and SymPy, same run"
-cargo bench -q --bench derive -- "seed/seed_2[12]_[12]_kinetostatic|equilibrium/seed_23_1|modes/" \
+cargo bench -q -p qdot-benches --bench derive -- "seed/seed_2[12]_[12]_kinetostatic|equilibrium/seed_23_1|modes/" \
   --warm-up-time 1 --measurement-time 4 2>&1 | grep -E "time:" -B1 | grep -vE "^--|Warming|Collecting|Analyzing"
 "$PY" scripts/anchor_kinetostatic.py 10

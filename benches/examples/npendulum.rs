@@ -1,6 +1,6 @@
 //! Library example: derive the n-link pendulum chain and time it.
 //!
-//! `cargo run --release --example npendulum -- 12` prints, for n = 1…N,
+//! `cargo run --release -p qdot-benches --example npendulum -- 12` prints, for n = 1…N,
 //! the seconds to parse and derive the equations (and, for n ≤ 3, to solve
 //! for the exact accelerations), in the format of
 //! ../shared/anchors/symengine_npendulum.py so the two can be compared

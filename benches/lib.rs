@@ -1,0 +1,1 @@
+//! Nothing: the benches, the reports and the examples are its targets.
