@@ -71,7 +71,7 @@ fn inverse_trig(v: Var) -> Option<(Expr, Expr)> {
 /// sin and cos of an expression, expanded into base-angle atoms.
 ///
 /// A polynomial argument is split into its simple terms (see
-/// [`is_simple_term`]), each expanded by the addition and multiple-angle
+/// `is_simple_term`), each expanded by the addition and multiple-angle
 /// theorems, and the rest, which is kept as one base angle: `cos(θ1 − θ2)`
 /// expands, `cos(y·cos x)` does not (expanding it would multiply the size of
 /// the expression without making zero-testing any more complete).
