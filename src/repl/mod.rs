@@ -20,6 +20,7 @@
 //! assert!(s.execute(":solve").out.contains("= −k/m·x"));
 //! ```
 
+#[cfg(feature = "cli")]
 pub mod terminal;
 
 use crate::diag::Diagnostic;

@@ -17,8 +17,10 @@
 pub mod elliptic;
 pub mod explicit;
 pub mod implicit;
+#[cfg(feature = "cli")]
 pub mod plot;
 pub mod problems;
+#[cfg(feature = "cli")]
 pub mod progress;
 pub mod run;
 

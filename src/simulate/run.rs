@@ -9,6 +9,7 @@
 //! the integration error.
 
 use super::compile::{compile_with, state_inputs, Choice, CompiledDynamics, Program};
+#[cfg(feature = "cli")]
 use super::progress::Progress;
 use super::{integrate, integrate_with_event, Method, Options, SimError, Solution, Status, System};
 use crate::diag::Diagnostic;
@@ -39,8 +40,9 @@ pub struct Request {
     /// names; the run ends where it first changes sign.
     pub stop_when: Option<String>,
     /// Show a progress bar on standard error when the integration lasts
-    /// more than half a second ([`super::progress`]); the command line sets
-    /// it when standard error is a terminal. Without it nothing is wrapped.
+    /// more than half a second (`simulate::progress`, with the `cli`
+    /// feature); the command line sets it when standard error is a
+    /// terminal. Without it nothing is wrapped.
     pub progress: bool,
 }
 
@@ -249,12 +251,16 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
         None => None,
     };
     let start = Instant::now();
+    #[cfg(feature = "cli")]
     let solution = if req.progress {
         let mut sys = Progress::new(&mut dynamics, opts.t0, opts.t_end);
         run_method(&mut sys, req.method, &y0, &opts, event.as_ref())
     } else {
         run_method(&mut dynamics, req.method, &y0, &opts, event.as_ref())
     };
+    // without the `cli` feature there is no bar to draw
+    #[cfg(not(feature = "cli"))]
+    let solution = run_method(&mut dynamics, req.method, &y0, &opts, event.as_ref());
     let solution = solution.map_err(|e| match e {
         SimError::BadInput(s) => Diagnostic::global(s).with_hint(match req.method {
             Method::Rk4 | Method::Gauss6 => "RK4 and Gauss6 take a fixed step: --dt 0.01",
