@@ -1,0 +1,480 @@
+//! [`CompiledDynamics`]: M and f (or q̈) compiled, as a [`System`].
+
+use crate::expr::atom;
+use crate::expr::Expr;
+use crate::mechanics::Lagrange;
+use crate::poly::Var;
+use crate::simulate::System;
+use rustc_hash::FxHashMap;
+
+use super::builder::compile_with;
+use super::dense::solve_spd;
+use super::program::Program;
+
+/// How [`CompiledDynamics`] gets q̈.
+#[derive(Clone, Debug)]
+enum Mode {
+    /// Outputs: M's upper triangle (row by row) then f; solve each time.
+    MassMatrix,
+    /// Outputs: f; M was constant, factored once and its inverse kept
+    /// (row-major), so q̈ = M⁻¹·f is one product with no division.
+    ConstantMass(Vec<f64>),
+    /// Outputs: the exact accelerations.
+    Accelerations,
+}
+
+/// How a [`CompiledDynamics`] evaluates q̈.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Evaluator {
+    /// M (upper triangle) and f compiled, M·q̈ = f solved at each call
+    /// (Cholesky, Golub & Van Loan 4.2.5): about n³/3 + 2n² flops, n
+    /// square roots and n(n − 1)/2 + 2n divisions.
+    MassMatrix,
+    /// f compiled; the constant M factored once at compile time and M⁻¹
+    /// kept, so each call is one product (n² multiplications).
+    ConstantMass,
+    /// The exact accelerations q̈ = M⁻¹·f (`Lagrange::accelerations`)
+    /// compiled: no solve.
+    Accelerations,
+}
+
+impl Evaluator {
+    /// The name in `--stats` and JSON: `mass_matrix`, `constant_mass`,
+    /// `accelerations`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Evaluator::MassMatrix => "mass_matrix",
+            Evaluator::ConstantMass => "constant_mass",
+            Evaluator::Accelerations => "accelerations",
+        }
+    }
+}
+
+/// The largest number of coordinates for which [`CompiledDynamics::best`]
+/// derives the exact accelerations to compare: their expressions (Cramer's
+/// rule, exact) grow quickly with n — for the pendulum chain ≈ 0.1 ms at
+/// n = 2 and ≈ 5 ms at n = 3 to derive, and at n = 3 the compiled program
+/// is already ≈ 1.3 times as slow as M, f and the solve.
+pub const BEST_MAX_N: usize = 3;
+
+/// Weights of [`CompiledDynamics::estimated_cost`], in additions: a
+/// division and a function call (sin, cos, sin_cos, exp, …) take several
+/// times the latency of an addition or a multiplication.
+pub const DIVISION_COST: f64 = 4.0;
+/// See [`DIVISION_COST`].
+pub const CALL_COST: f64 = 20.0;
+
+/// What [`CompiledDynamics::best`] chose, and why.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Choice {
+    /// The evaluator kept.
+    pub evaluator: Evaluator,
+    /// The estimated cost per right-hand side of M and f with their solve
+    /// ([`CompiledDynamics::estimated_cost`]).
+    pub mass_cost: f64,
+    /// The estimated cost of the compiled exact accelerations; `None` when
+    /// they were not derived (n > [`BEST_MAX_N`], or no exact solution).
+    pub accelerations_cost: Option<f64>,
+    /// Why, in a few words for `--stats` (the estimated costs compared, or
+    /// why the exact accelerations were not derived).
+    pub reason: String,
+}
+
+/// Lagrange's equations M(q, t)·q̈ = f(q, q̇, t) compiled for simulation:
+/// the state is y = (q, q̇) and y' = (q̇, M⁻¹·f). The program's inputs are
+/// `[t, q₁ … qₙ, q̇₁ … q̇ₙ]`; every parameter is bound at compile time.
+#[derive(Clone, Debug)]
+pub struct CompiledDynamics {
+    n: usize,
+    program: Program,
+    mode: Mode,
+    /// The register file, constants loaded (see [`Program::run`]).
+    regs: Vec<f64>,
+    m: Vec<f64>,
+    f: Vec<f64>,
+}
+
+/// The input atoms `[t, q…, q̇…]` of a [`CompiledDynamics`] program.
+pub fn state_inputs(coordinates: &[String]) -> Vec<Var> {
+    let mut v = vec![atom::time()];
+    v.extend(coordinates.iter().map(|c| atom::coord(c, 0)));
+    v.extend(coordinates.iter().map(|c| atom::coord(c, 1)));
+    v
+}
+
+impl CompiledDynamics {
+    /// Compile M and f of `lagrange` with the parameter values `params`.
+    pub fn new(lagrange: &Lagrange, params: &FxHashMap<Var, f64>) -> Result<Self, String> {
+        Self::from_parts(
+            &lagrange.coordinates,
+            &lagrange.mass_matrix,
+            &lagrange.forcing,
+            params,
+        )
+    }
+
+    /// Compile a mass matrix (symmetric; its upper triangle is read) and a
+    /// forcing vector over `coordinates`. When no entry of M depends on the
+    /// coordinates, their velocities or t, M is evaluated and factored once.
+    pub fn from_parts(
+        coordinates: &[String],
+        mass: &[Vec<Expr>],
+        forcing: &[Expr],
+        params: &FxHashMap<Var, f64>,
+    ) -> Result<Self, String> {
+        let n = coordinates.len();
+        if mass.len() != n || mass.iter().any(|r| r.len() != n) || forcing.len() != n {
+            return Err(format!(
+                "the mass matrix must be {n}×{n} and the forcing of length {n}"
+            ));
+        }
+        let inputs = state_inputs(coordinates);
+        let upper: Vec<Expr> = (0..n)
+            .flat_map(|i| (i..n).map(move |j| (i, j)))
+            .map(|(i, j)| mass[i][j].clone())
+            .collect();
+        let constant = upper
+            .iter()
+            .all(|e| inputs.iter().all(|&v| !e.depends_on(v)));
+        if constant {
+            let pm = compile_with(&upper, &inputs, params)?;
+            let mut vals = vec![0.0; upper.len()];
+            pm.eval(&vec![0.0; inputs.len()], &mut pm.registers(), &mut vals);
+            let mut m = vec![0.0; n * n];
+            // M⁻¹ column by column, once, at construction (Cholesky, else
+            // Gaussian elimination when M is not numerically positive
+            // definite): each step is then one product and no division.
+            let mut inverse = vec![0.0; n * n];
+            let mut col = vec![0.0; n];
+            for j in 0..n {
+                fill_symmetric(&vals, &mut m, n);
+                col.fill(0.0);
+                col[j] = 1.0;
+                solve_spd(&mut m, &mut col, n)
+                    .map_err(|e| format!("the constant mass matrix: {e}"))?;
+                for i in 0..n {
+                    inverse[i * n + j] = col[i];
+                }
+            }
+            let program = compile_with(forcing, &inputs, params)?;
+            return Ok(Self::with(n, program, Mode::ConstantMass(inverse)));
+        }
+        let mut outputs = upper;
+        outputs.extend(forcing.iter().cloned());
+        let program = compile_with(&outputs, &inputs, params)?;
+        Ok(Self::with(n, program, Mode::MassMatrix))
+    }
+
+    /// Compile the exact accelerations q̈ = M⁻¹·f of `lagrange` instead
+    /// (cheaper for small systems, whose exact inverse is small).
+    pub fn from_accelerations(
+        lagrange: &Lagrange,
+        params: &FxHashMap<Var, f64>,
+    ) -> Result<Self, String> {
+        let acc = lagrange.accelerations().map_err(|d| d.message)?;
+        let exprs: Vec<Expr> = acc.into_iter().map(|(_, e)| e).collect();
+        let n = lagrange.coordinates.len();
+        let program = compile_with(&exprs, &state_inputs(&lagrange.coordinates), params)?;
+        Ok(Self::with(n, program, Mode::Accelerations))
+    }
+
+    /// The cheaper evaluator of q̈ for `lagrange`: M and f with their solve
+    /// ([`CompiledDynamics::new`]) and, for n ≤ [`BEST_MAX_N`] coordinates,
+    /// the exact accelerations ([`CompiledDynamics::from_accelerations`]);
+    /// the one with the smaller [`CompiledDynamics::estimated_cost`] is
+    /// kept, the exact accelerations on a tie. For n > [`BEST_MAX_N`], or
+    /// when the exact accelerations cannot be derived, M and f are used
+    /// without deriving anything more. An error only when M and f do not
+    /// compile.
+    pub fn best(
+        lagrange: &Lagrange,
+        params: &FxHashMap<Var, f64>,
+    ) -> Result<(Self, Choice), String> {
+        let via_m = Self::new(lagrange, params)?;
+        let mass_cost = via_m.estimated_cost();
+        let n = via_m.n;
+        let what = |d: &Self| match d.evaluator() {
+            Evaluator::ConstantMass => "f with the constant M inverted once",
+            _ => "M and f with a Cholesky solve",
+        };
+        if n > BEST_MAX_N {
+            let reason = format!(
+                "{n} coordinates (more than {BEST_MAX_N}): the exact accelerations are not derived"
+            );
+            let evaluator = via_m.evaluator();
+            return Ok((
+                via_m,
+                Choice {
+                    evaluator,
+                    mass_cost,
+                    accelerations_cost: None,
+                    reason,
+                },
+            ));
+        }
+        let via_acc = match Self::from_accelerations(lagrange, params) {
+            Ok(d) => d,
+            Err(e) => {
+                let reason = format!("no exact accelerations: {e}");
+                let evaluator = via_m.evaluator();
+                return Ok((
+                    via_m,
+                    Choice {
+                        evaluator,
+                        mass_cost,
+                        accelerations_cost: None,
+                        reason,
+                    },
+                ));
+            }
+        };
+        let acc_cost = via_acc.estimated_cost();
+        let (kept, reason) = if acc_cost <= mass_cost {
+            let reason = format!(
+                "≈ {acc_cost:.0} flops per RHS against ≈ {mass_cost:.0} for {}",
+                what(&via_m)
+            );
+            (via_acc, reason)
+        } else {
+            let reason = format!(
+                "≈ {mass_cost:.0} flops per RHS against ≈ {acc_cost:.0} for the exact accelerations"
+            );
+            (via_m, reason)
+        };
+        let evaluator = kept.evaluator();
+        Ok((
+            kept,
+            Choice {
+                evaluator,
+                mass_cost,
+                accelerations_cost: Some(acc_cost),
+                reason,
+            },
+        ))
+    }
+
+    /// The estimated cost of one right-hand side, in flops: the program's
+    /// additions and multiplications ([`Program::op_counts`]), divisions
+    /// weighted by [`DIVISION_COST`] and function calls by [`CALL_COST`],
+    /// plus the solve. For a varying M: n³/3 + 2n² additions and
+    /// multiplications (Cholesky and the two triangular solves),
+    /// n(n − 1)/2 + 2n divisions and n square roots (weighted as divisions: they lie
+    /// on the solve's critical path), and n² + n copies (M filled from its
+    /// upper triangle, f). For a constant M: the product with the kept M⁻¹,
+    /// n² multiplications and n(n − 1) additions. Nothing for the exact
+    /// accelerations.
+    pub fn estimated_cost(&self) -> f64 {
+        let (add, mul, div, call) = self.program.op_counts();
+        let n = self.n as f64;
+        let solve = match self.mode {
+            Mode::MassMatrix => {
+                n * n * n / 3.0
+                    + 2.0 * n * n
+                    + DIVISION_COST * (n * (n - 1.0) / 2.0 + 3.0 * n)
+                    + n * n
+                    + n
+            }
+            Mode::ConstantMass(_) => 2.0 * n * n - n,
+            Mode::Accelerations => 0.0,
+        };
+        (add + mul) as f64 + DIVISION_COST * div as f64 + CALL_COST * call as f64 + solve
+    }
+
+    /// How q̈ is evaluated.
+    pub fn evaluator(&self) -> Evaluator {
+        match self.mode {
+            Mode::MassMatrix => Evaluator::MassMatrix,
+            Mode::ConstantMass(_) => Evaluator::ConstantMass,
+            Mode::Accelerations => Evaluator::Accelerations,
+        }
+    }
+
+    fn with(n: usize, program: Program, mode: Mode) -> Self {
+        CompiledDynamics {
+            n,
+            regs: program.registers(),
+            m: vec![0.0; n * n],
+            f: vec![0.0; n],
+            program,
+            mode,
+        }
+    }
+
+    /// The number of coordinates.
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// The compiled program (inputs `[t, q…, q̇…]`).
+    pub fn program(&self) -> &Program {
+        &self.program
+    }
+
+    /// Whether M was found constant and factored once.
+    pub fn constant_mass(&self) -> bool {
+        matches!(self.mode, Mode::ConstantMass(_))
+    }
+
+    /// Evaluate M (full, row-major, n×n) and f at (t, q, q̇) — only for a
+    /// program compiled from M and f (else an error).
+    pub fn mass_and_forcing(
+        &mut self,
+        t: f64,
+        q: &[f64],
+        qd: &[f64],
+        m: &mut [f64],
+        f: &mut [f64],
+    ) -> Result<(), String> {
+        let n = self.n;
+        if q.len() != n || qd.len() != n || m.len() != n * n || f.len() != n {
+            return Err(format!("expected {n} coordinates and an {n}×{n} matrix"));
+        }
+        self.load(t, q, qd);
+        let (regs, outs) = (&self.regs, self.program.output_registers());
+        match &self.mode {
+            Mode::MassMatrix => {
+                let k = n * (n + 1) / 2;
+                let mut idx = 0;
+                for i in 0..n {
+                    for j in i..n {
+                        let v = regs[outs[idx] as usize];
+                        m[i * n + j] = v;
+                        m[j * n + i] = v;
+                        idx += 1;
+                    }
+                }
+                for (fi, &o) in f.iter_mut().zip(&outs[k..]) {
+                    *fi = regs[o as usize];
+                }
+                Ok(())
+            }
+            Mode::ConstantMass(_) => Err("the mass matrix is constant and factored".into()),
+            Mode::Accelerations => Err("compiled from the accelerations".into()),
+        }
+    }
+
+    /// Write (t, q, q̇) into the input registers and run the program.
+    #[inline]
+    fn load(&mut self, t: f64, q: &[f64], qd: &[f64]) {
+        let off = self.program.input_offset();
+        let r = &mut self.regs[off..off + 1 + 2 * self.n];
+        r[0] = t;
+        let (rq, rqd) = r[1..].split_at_mut(self.n);
+        copy_small(rq, q);
+        copy_small(rqd, qd);
+        self.program.run(&mut self.regs);
+    }
+
+    /// q̈ at (t, q, q̇), allocation-free. An error when M is singular there
+    /// (or the slices have the wrong length).
+    pub fn accelerations(
+        &mut self,
+        t: f64,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &mut [f64],
+    ) -> Result<(), String> {
+        let n = self.n;
+        if q.len() != n || qd.len() != n || qdd.len() != n {
+            return Err(format!("expected {n} coordinates"));
+        }
+        self.load(t, q, qd);
+        self.finish(qdd)
+    }
+
+    /// q̈ from the program's outputs (after [`Self::load`]), by the mode.
+    #[inline]
+    fn finish(&mut self, qdd: &mut [f64]) -> Result<(), String> {
+        let n = self.n;
+        let (regs, outs) = (&self.regs, self.program.output_registers());
+        match &self.mode {
+            Mode::Accelerations => {
+                for (a, &o) in qdd.iter_mut().zip(outs) {
+                    *a = regs[o as usize];
+                }
+            }
+            Mode::ConstantMass(inv) => {
+                // q̈ = M⁻¹·f, f read from its registers.
+                for (a, row) in qdd.iter_mut().zip(inv.chunks_exact(n)) {
+                    *a = row
+                        .iter()
+                        .zip(outs)
+                        .map(|(m, &o)| m * regs[o as usize])
+                        .sum();
+                }
+            }
+            Mode::MassMatrix => {
+                let k = n * (n + 1) / 2;
+                let mut idx = 0;
+                for i in 0..n {
+                    for j in i..n {
+                        let v = regs[outs[idx] as usize];
+                        self.m[i * n + j] = v;
+                        self.m[j * n + i] = v;
+                        idx += 1;
+                    }
+                }
+                for (fi, &o) in self.f.iter_mut().zip(&outs[k..]) {
+                    *fi = regs[o as usize];
+                }
+                solve_spd(&mut self.m, &mut self.f, n)?;
+                qdd.copy_from_slice(&self.f);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The full symmetric matrix from its upper triangle, row by row.
+fn fill_symmetric(upper: &[f64], m: &mut [f64], n: usize) {
+    let mut k = 0;
+    for i in 0..n {
+        for j in i..n {
+            m[i * n + j] = upper[k];
+            m[j * n + i] = upper[k];
+            k += 1;
+        }
+    }
+}
+
+impl System for CompiledDynamics {
+    fn dim(&self) -> usize {
+        2 * self.n
+    }
+
+    /// y = (q, q̇), y' = (q̇, M⁻¹·f); NaN accelerations where M is singular
+    /// (the integrators stop with `Status::NotFinite`).
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        let n = self.n;
+        if y.len() != 2 * n || dy.len() != 2 * n {
+            dy.fill(f64::NAN);
+            return;
+        }
+        let (dq, dqd) = dy.split_at_mut(n);
+        copy_small(dq, &y[n..]);
+        // y = (q, q̇) is the program's input after t: one copy
+        let off = self.program.input_offset();
+        self.regs[off] = t;
+        copy_small(&mut self.regs[off + 1..off + 1 + 2 * n], y);
+        self.program.run(&mut self.regs);
+        if self.finish(dqd).is_err() {
+            dqd.fill(f64::NAN);
+        }
+    }
+}
+
+/// `dst.copy_from_slice(src)` (equal lengths), as plain moves for the
+/// lengths of small systems: a right-hand side of a few flops would
+/// otherwise spend a good part of its time in `memcpy` calls.
+#[inline(always)]
+fn copy_small(dst: &mut [f64], src: &[f64]) {
+    macro_rules! fixed {
+        ($($k:literal)*) => {
+            match src.len() {
+                $($k => dst[..$k].copy_from_slice(&src[..$k]),)*
+                _ => dst.copy_from_slice(src),
+            }
+        };
+    }
+    fixed!(1 2 3 4 5 6 7 8)
+}
