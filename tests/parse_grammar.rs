@@ -1,6 +1,7 @@
 //! The grammar file and the parser stay in step: every rule of
 //! `grammar/qd.ebnf` appears as a doc comment "/// `rule ::= body`" in
-//! `src/parse/mod.rs` with the same body (white space aside).
+//! the parser's files (`src/parse/*.rs`) with the same body (white space
+//! aside).
 
 use std::collections::BTreeMap;
 
@@ -48,10 +49,25 @@ fn grammar_rules() -> BTreeMap<String, String> {
     rules
 }
 
+/// The parser's source: every file of src/parse/, in name order.
+fn parser_source() -> String {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/src/parse");
+    let mut files: Vec<_> = std::fs::read_dir(dir)
+        .expect("src/parse")
+        .map(|e| e.expect("an entry").path())
+        .filter(|p| p.extension().is_some_and(|x| x == "rs"))
+        .collect();
+    files.sort();
+    files
+        .iter()
+        .map(|f| std::fs::read_to_string(f).expect("readable"))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
 /// rule name -> body, from the parser's doc comments.
 fn parser_rules() -> BTreeMap<String, String> {
-    let src =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/src/parse/mod.rs")).unwrap();
+    let src = parser_source();
     let mut rules = BTreeMap::new();
     for line in src.lines() {
         let Some(doc) = line.trim().strip_prefix("/// `") else {
@@ -85,8 +101,7 @@ fn every_rule_has_a_parser_function_with_the_same_body() {
 
 #[test]
 fn rule_functions_are_named_after_rules() {
-    let src =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/src/parse/mod.rs")).unwrap();
+    let src = parser_source();
     for name in grammar_rules().keys() {
         let needle = format!("fn {name}(");
         assert!(src.contains(&needle), "no function `{name}`");

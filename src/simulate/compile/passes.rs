@@ -213,10 +213,10 @@ impl Graph<'_> {
         let nn = self.nodes.len();
         let mut reg = vec![u32::MAX; nn];
         let mut consts = Vec::new();
-        for id in 0..nn {
-            if let (true, Node::Const(b)) = (self.live[id], self.nodes[id]) {
-                reg[id] = consts.len() as u32;
-                consts.push(f64::from_bits(b));
+        for (r, (&live, node)) in reg.iter_mut().zip(self.live.iter().zip(self.nodes)) {
+            if let (true, Node::Const(b)) = (live, node) {
+                *r = consts.len() as u32;
+                consts.push(f64::from_bits(*b));
             }
         }
         let nc = consts.len() as u32;
