@@ -397,7 +397,8 @@ pub fn derive_text(l: &Lagrange) -> String {
     for e in &l.equations {
         let name = pretty_name(&e.coordinate, 0);
         out.push_str(&format!(
-            "  {name:<width$}  {} = {}\n",
+            "  {}  {} = {}\n",
+            padded(&name, width),
             u(&e.lhs),
             u(&e.rhs)
         ));
@@ -406,7 +407,7 @@ pub fn derive_text(l: &Lagrange) -> String {
     matrix_text(&mut out, "Mass matrix M  (M·q̈ = f)", &l.mass_matrix);
     out.push_str("\nForcing f\n");
     for (c, f) in l.coordinates.iter().zip(&l.forcing) {
-        out.push_str(&format!("  {:<width$}  {}\n", pretty_name(c, 0), u(f)));
+        out.push_str(&format!("  {}  {}\n", padded(&pretty_name(c, 0), width), u(f)));
     }
     out
 }
@@ -430,7 +431,7 @@ pub fn forces_text(names: &[String], q: &[Expr]) -> String {
         .max()
         .unwrap_or(1);
     for (c, e) in names.iter().zip(q) {
-        out.push_str(&format!("  Q_{:<width$} = {}\n", pretty_name(c, 0), u(e)));
+        out.push_str(&format!("  Q_{} = {}\n", padded(&pretty_name(c, 0), width), u(e)));
     }
     out
 }
@@ -455,7 +456,7 @@ pub fn solutions_text(scene: &Scene, blocks: &[BlockSolution]) -> String {
             if sol.free.contains(n) {
                 continue;
             }
-            out.push_str(&format!("  {:<width$} = {}\n", pretty_name(n, 0), u(v)));
+            out.push_str(&format!("  {} = {}\n", padded(&pretty_name(n, 0), width), u(v)));
         }
         if !sol.free.is_empty() {
             let f: Vec<String> = sol.free.iter().map(|n| pretty_name(n, 0)).collect();
@@ -628,6 +629,17 @@ pub fn equilibrium_json(eq: &Equilibria) -> Map<String, Value> {
     m
 }
 
+/// `s` padded with spaces to `width` characters. (`format!`'s `{:<w$}`
+/// panics for widths over 65,535, and a matrix entry or a name can be
+/// longer than that.)
+pub fn padded(s: &str, width: usize) -> String {
+    let n = s.chars().count();
+    let mut out = String::with_capacity(s.len() + width.saturating_sub(n));
+    out.push_str(s);
+    out.extend(std::iter::repeat_n(' ', width.saturating_sub(n)));
+    out
+}
+
 fn matrix_text(out: &mut String, title: &str, m: &[Vec<Expr>]) {
     out.push_str(title);
     out.push('\n');
@@ -646,7 +658,7 @@ fn matrix_text(out: &mut String, title: &str, m: &[Vec<Expr>]) {
         let row: Vec<String> = r
             .iter()
             .enumerate()
-            .map(|(j, c)| format!("{c:<w$}", w = widths[j]))
+            .map(|(j, c)| padded(c, widths[j]))
             .collect();
         out.push_str(&format!("  [ {} ]\n", row.join("   ")));
     }
