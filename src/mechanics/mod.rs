@@ -8,6 +8,11 @@
 //!       + Σ F·∂P/∂q_k (loads, eq. 23.8) + Σ M·∂φ/∂q_k (torques, eq. 22.28)
 //! ```
 //!
+//! A potential may depend on the velocities (Goldstein's generalized
+//! potential, the charged particle's U = e·φ − e·A·v): then its term is
+//! d/dt(∂(V − U)/∂q̇_k) − ∂(V − U)/∂q_k. A `lagrangian` L written directly
+//! joins E on the left: E above stands for E + L.
+//!
 //! and the split M(q,t)·q̈ = f(q,q̇,t), read off `lhs − Q` as the
 //! coefficients of q̈_j (the equations are linear in q̈). Without loads that
 //! carry inertia, M_ij = ∂²E/∂q̇_i∂q̇_j; a scene in D'Alembert's form puts
@@ -38,7 +43,8 @@ pub struct Equation {
 #[derive(Clone, Debug)]
 pub struct Lagrange {
     pub coordinates: Vec<String>,
-    /// Total kinetic energy E.
+    /// Total kinetic energy E, plus the scene's `lagrangian` terms if any
+    /// (the function whose derivatives make the left-hand sides).
     pub kinetic: Expr,
     pub equations: Vec<Equation>,
     /// M_ij = ∂²E/∂q̇_i∂q̇_j.
@@ -73,6 +79,11 @@ impl Lagrange {
         let qdd: Vec<Var> = names.iter().map(|c| atom::coord(c, 2)).collect();
 
         let e = scene.role_sum(Role::Kinetic);
+        let e = if scene.has_role(Role::Lagrangian) {
+            e.add(&scene.role_sum(Role::Lagrangian))
+        } else {
+            e
+        };
         let e_vars = e.vars();
         let mentions = crate::expr::diff::vars_depend_on;
         let forces = generalized_force_terms(scene);
@@ -159,7 +170,8 @@ fn sum_terms(terms: &[ForceTerm]) -> Expr {
 /// Where a term of a generalized force comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Source {
-    /// −∂(V − U)/∂q_k: the potential and the force function together.
+    /// −∂(V − U)/∂q_k: the potential and the force function together
+    /// (plus d/dt ∂(V − U)/∂q̇_k when they depend on the velocities).
     Potential,
     /// ∂L/∂q_k: the work of the non-conservative forces.
     Work,
@@ -222,9 +234,15 @@ pub fn generalized_force_terms(scene: &Scene) -> Vec<Vec<ForceTerm>> {
                 terms.push(ForceTerm { source, value });
             }
         };
+        let mut potential = Expr::zero();
         if mentions(&v_vars, q[k]) {
-            push(Source::Potential, v.diff(q[k]).neg());
+            potential = v.diff(q[k]).neg();
         }
+        if mentions(&v_vars, qd[k]) {
+            // a generalized potential U(q, q̇, t): Q_k = d/dt(∂U/∂q̇_k) − ∂U/∂q_k
+            potential = potential.add(&v.diff(qd[k]).dt());
+        }
+        push(Source::Potential, potential);
         if mentions(&l_vars, q[k]) {
             push(Source::Work, l.diff(q[k]));
         }

@@ -632,7 +632,26 @@ impl Writer {
                 .collect::<Vec<_>>()
         };
         match s {
-            Source::Potential => pair((Role::ForceFunction, "U"), (Role::Potential, "V"), &q),
+            Source::Potential => {
+                // a velocity-dependent (generalized) potential also has
+                // its d/dt ∂/∂q̇ term: Q = d/dt(∂V/∂q̇) − ∂V/∂q
+                let qd_var = crate::expr::atom::coord(c, 1);
+                let mut terms = Vec::new();
+                for (neg, role, letter) in [
+                    (false, Role::ForceFunction, "U"),
+                    (true, Role::Potential, "V"),
+                ] {
+                    if !scene.has_role(role) {
+                        continue;
+                    }
+                    let f = name(role, letter);
+                    terms.push((neg, d(&f, &q)));
+                    if scene.role_sum(role).depends_on(qd_var) {
+                        terms.push((!neg, format!("\\frac{{d}}{{dt}} {}", d(&f, &qd))));
+                    }
+                }
+                terms
+            }
             Source::Work => vec![(false, d(&name(Role::Work, "L"), &q))],
             Source::Dissipation => pair((Role::Dissipation, "D"), (Role::Rayleigh, "R"), &qd),
             Source::Force => vec![(false, format!("Q^{{*}}_{{{q}}}"))],

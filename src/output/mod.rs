@@ -407,7 +407,11 @@ pub fn derive_text(l: &Lagrange) -> String {
     matrix_text(&mut out, "Mass matrix M  (M·q̈ = f)", &l.mass_matrix);
     out.push_str("\nForcing f\n");
     for (c, f) in l.coordinates.iter().zip(&l.forcing) {
-        out.push_str(&format!("  {}  {}\n", padded(&pretty_name(c, 0), width), u(f)));
+        out.push_str(&format!(
+            "  {}  {}\n",
+            padded(&pretty_name(c, 0), width),
+            u(f)
+        ));
     }
     out
 }
@@ -431,7 +435,11 @@ pub fn forces_text(names: &[String], q: &[Expr]) -> String {
         .max()
         .unwrap_or(1);
     for (c, e) in names.iter().zip(q) {
-        out.push_str(&format!("  Q_{} = {}\n", padded(&pretty_name(c, 0), width), u(e)));
+        out.push_str(&format!(
+            "  Q_{} = {}\n",
+            padded(&pretty_name(c, 0), width),
+            u(e)
+        ));
     }
     out
 }
@@ -456,7 +464,11 @@ pub fn solutions_text(scene: &Scene, blocks: &[BlockSolution]) -> String {
             if sol.free.contains(n) {
                 continue;
             }
-            out.push_str(&format!("  {} = {}\n", padded(&pretty_name(n, 0), width), u(v)));
+            out.push_str(&format!(
+                "  {} = {}\n",
+                padded(&pretty_name(n, 0), width),
+                u(v)
+            ));
         }
         if !sol.free.is_empty() {
             let f: Vec<String> = sol.free.iter().map(|n| pretty_name(n, 0)).collect();

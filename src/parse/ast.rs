@@ -53,6 +53,10 @@ pub enum Role {
     Dissipation,
     /// `rayleigh` — Rayleigh's R ≥ 0: Q_k −= ∂R/∂q̇_k.
     Rayleigh,
+    /// `lagrangian` — a Lagrangian written directly (Landau's L = T − U,
+    /// any function of q, q̇, t): it joins E on the left,
+    /// d/dt(∂(E + L)/∂q̇_k) − ∂(E + L)/∂q_k = Q_k.
+    Lagrangian,
 }
 
 impl Role {
@@ -64,6 +68,7 @@ impl Role {
             Role::Work => "work",
             Role::Dissipation => "dissipation",
             Role::Rayleigh => "rayleigh",
+            Role::Lagrangian => "lagrangian",
         }
     }
     pub fn from_keyword(s: &str) -> Option<Role> {
@@ -74,6 +79,7 @@ impl Role {
             "work" => Role::Work,
             "dissipation" => Role::Dissipation,
             "rayleigh" => Role::Rayleigh,
+            "lagrangian" => Role::Lagrangian,
             _ => return None,
         })
     }

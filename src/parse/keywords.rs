@@ -15,6 +15,7 @@ pub const ROLES: &[Role] = &[
     Role::Work,
     Role::Dissipation,
     Role::Rayleigh,
+    Role::Lagrangian,
 ];
 
 /// The position of `r` in [`ROLES`]: an exhaustive match, so that a new
@@ -28,6 +29,7 @@ const fn role_index(r: Role) -> usize {
         Role::Work => 3,
         Role::Dissipation => 4,
         Role::Rayleigh => 5,
+        Role::Lagrangian => 6,
     }
 }
 

@@ -378,7 +378,7 @@ impl<'s> Parser<'s> {
         ))
     }
 
-    /// `role ::= "kinetic" | "potential" | "forcefunction" | "work" | "dissipation" | "rayleigh"`
+    /// `role ::= "kinetic" | "potential" | "forcefunction" | "work" | "dissipation" | "rayleigh" | "lagrangian"`
     pub(super) fn role(&self, i: &'s str) -> RuleResult<'s, Role> {
         let j = self.ws(i);
         let len = ident_len(j);

@@ -55,6 +55,26 @@ const FUNCTIONS: &[(&str, usize)] = &[
     ("taylor", 3),
 ];
 
+/// A definition on the path of [`Evaluator::evaluate_dependencies`]: its
+/// index, the definitions it uses (with the span of the name), and how many
+/// of those are handled.
+type PathStep = (usize, Vec<(usize, Span)>, usize);
+
+/// "cyclic definition: a → b → a"; a long cycle shows its first and last
+/// five links and its length.
+fn cycle_message(chain: &[String]) -> String {
+    if chain.len() <= 12 {
+        return format!("cyclic definition: {}", chain.join(" → "));
+    }
+    let n = chain.len();
+    format!(
+        "cyclic definition: {} → … → {} ({} definitions)",
+        chain[..5].join(" → "),
+        chain[n - 6..].join(" → "),
+        n - 1
+    )
+}
+
 /// The highest order `taylor` expands to.
 const MAX_TAYLOR_ORDER: i64 = 30;
 
@@ -96,6 +116,83 @@ impl<'a> Evaluator<'a> {
 
     /// The value of definition `i`, evaluating it (and what it needs) first.
     pub fn definition(&mut self, i: usize) -> Result<Value, Diagnostic> {
+        if matches!(self.state.get(i), Some(State::Todo)) && self.stack.is_empty() {
+            self.evaluate_dependencies(i)?;
+        }
+        self.definition_now(i)
+    }
+
+    /// Evaluate the definitions `i` uses, and theirs, deepest first, with an
+    /// explicit stack: a chain of thousands of definitions, each using the
+    /// next, must not recurse once per link. A cycle is reported here with
+    /// the whole chain.
+    fn evaluate_dependencies(&mut self, i: usize) -> Result<(), Diagnostic> {
+        let mut path: Vec<PathStep> = vec![(i, self.dependencies(i), 0)];
+        let mut on_path = vec![false; self.state.len()];
+        on_path[i] = true;
+        while let Some((j, deps, next)) = path.last_mut() {
+            let Some(&(k, span)) = deps.get(*next) else {
+                let j = *j;
+                path.pop();
+                on_path[j] = false;
+                if !path.is_empty() {
+                    // `i` itself is left to the caller
+                    self.definition_now(j)?;
+                }
+                continue;
+            };
+            *next += 1;
+            if on_path[k] {
+                let start = path.iter().position(|p| p.0 == k).unwrap_or(0);
+                let mut chain: Vec<String> = path[start..]
+                    .iter()
+                    .filter_map(|p| self.defs.get(p.0).map(|d| d.0.name.clone()))
+                    .collect();
+                chain.push(self.defs.get(k).map_or(String::new(), |d| d.0.name.clone()));
+                return Err(Diagnostic::error(span, cycle_message(&chain))
+                    .with_hint("a definition cannot use itself, directly or through others"));
+            }
+            if matches!(self.state.get(k), Some(State::Todo)) {
+                on_path[k] = true;
+                let deps = self.dependencies(k);
+                path.push((k, deps, 0));
+            }
+        }
+        Ok(())
+    }
+
+    /// The definitions named in definition `i`'s body (with the span of the
+    /// name), in the order evaluation meets them: left to right.
+    fn dependencies(&self, i: usize) -> Vec<(usize, Span)> {
+        let Some((_, Some(body))) = self.defs.get(i).copied() else {
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        let mut stack = vec![body];
+        while let Some(e) = stack.pop() {
+            match &e.kind {
+                ExprKind::Name(n) => {
+                    if let Some((Binding::Def(k), _)) = self.names.get(n.as_str()) {
+                        out.push((*k, e.span));
+                    }
+                }
+                ExprKind::Neg(x) | ExprKind::Prime(x, _) => stack.push(x),
+                ExprKind::Bin(_, a, b) => {
+                    stack.push(b);
+                    stack.push(a);
+                }
+                // `x = a` in a call: the name on the left is not evaluated
+                ExprKind::Assign(_, b) => stack.push(b),
+                ExprKind::Call(_, args) | ExprKind::Vector(args) => stack.extend(args.iter().rev()),
+                ExprKind::Num(_) | ExprKind::Degrees(_) => {}
+            }
+        }
+        out
+    }
+
+    /// [`Evaluator::definition`] once its dependencies are evaluated (or
+    /// inside another definition's evaluation).
+    fn definition_now(&mut self, i: usize) -> Result<Value, Diagnostic> {
         match &self.state[i] {
             State::Done(e) => return Ok(e.clone()),
             State::Busy => {
@@ -346,11 +443,8 @@ impl<'a> Evaluator<'a> {
                         .filter_map(|&j| self.defs.get(j).map(|d| d.0.name.clone()))
                         .collect();
                     chain.push(n.to_string());
-                    return Err(Diagnostic::error(
-                        span,
-                        format!("cyclic definition: {}", chain.join(" → ")),
-                    )
-                    .with_hint("a definition cannot use itself, directly or through others"));
+                    return Err(Diagnostic::error(span, cycle_message(&chain))
+                        .with_hint("a definition cannot use itself, directly or through others"));
                 }
                 self.definition(i)
             }
@@ -693,7 +787,21 @@ impl<'a> Evaluator<'a> {
                 if d.is_zero() {
                     break;
                 }
-                let at_a = d.subs(v, &a).map_err(|m| self.err(span, m))?;
+                let at_a = d.subs(v, &a).map_err(|m| {
+                    if !m.message.contains("division by zero") {
+                        return self.err(span, m);
+                    }
+                    let what = if k == 0 { "it" } else { "its derivative" };
+                    Diagnostic::error(
+                        args[0].span,
+                        format!(
+                            "this function is not defined at {} = {} ({what} divides by zero there), so it has no Taylor series about that point",
+                            crate::expr::print::input(&Expr::var(v)),
+                            crate::expr::print::input(&a)
+                        ),
+                    )
+                    .with_hint("qdot expands by derivatives at the point; write the function in a form defined there (sin(x)/x is 1 − x²/6 + x⁴/120 − …), or expand about another point: taylor(f, x = 1, 5)")
+                })?;
                 let coef = at_a.scale(&fact.recip().unwrap_or_else(Q::zero));
                 sum = sum.add(&coef.mul(&power));
             }

@@ -369,6 +369,18 @@ impl Scene {
                     )
                     .with_hint("energies are functions of the coordinates and parameters; unknowns belong in `solve` equations"));
                 }
+                if let Some(acc) = energy_acceleration(*role, e) {
+                    let at = second_prime_span(body).unwrap_or(body.span);
+                    return Err(Diagnostic::error(
+                        at,
+                        format!(
+                            "`{} {}` depends on the acceleration {acc}",
+                            role.keyword(),
+                            name.name
+                        ),
+                    )
+                    .with_hint("energies and the Lagrangian are functions of the coordinates, the velocities and t (Lagrange's equations would differentiate an acceleration into a third derivative); a force that depends on an acceleration is a `force` or a `load`"));
+                }
             }
             definitions.push(Definition {
                 name: name.name.clone(),
@@ -676,7 +688,7 @@ impl Scene {
         if self.coordinates.is_empty() {
             return false;
         }
-        if self.has_role(Role::Kinetic) {
+        if self.has_role(Role::Kinetic) || self.has_role(Role::Lagrangian) {
             return true;
         }
         let qdd: Vec<crate::poly::Var> = self
@@ -707,6 +719,59 @@ fn no_unknowns(es: &[Expr], span: Span, what: &str) -> Result<(), Diagnostic> {
 }
 
 /// The name of the first `solve` unknown an expression uses, if any.
+/// The first acceleration (a coordinate's derivative of order ≥ 2, as
+/// `x''`) in `e`, when `e` is a role's expression that must not have one:
+/// every role but `work`, whose inertia forces carry accelerations in
+/// D'Alembert's form.
+fn energy_acceleration(role: Role, e: &Expr) -> Option<String> {
+    use crate::expr::atom::{self, Atom};
+    if role == Role::Work {
+        return None;
+    }
+    fn walk(e: &Expr) -> Option<String> {
+        for v in e.vars() {
+            let a = atom::atom(v);
+            if let Atom::Coord(n, k) = &a {
+                if *k >= 2 {
+                    return Some(format!("{n}{}", "'".repeat(*k as usize)));
+                }
+            }
+            if let Some(n) = a.argument().and_then(walk) {
+                return Some(n);
+            }
+        }
+        None
+    }
+    walk(e)
+}
+
+/// The span of the first `x''` (two or more primes, or a prime of a primed
+/// expression) in an expression as written, found without recursion.
+fn second_prime_span(e: &ast::Expr) -> Option<Span> {
+    use ast::ExprKind as K;
+    let mut stack = vec![(e, 0u32)];
+    while let Some((e, primes)) = stack.pop() {
+        match &e.kind {
+            K::Prime(inner, k) => {
+                if primes + k >= 2 {
+                    return Some(e.span);
+                }
+                stack.push((inner, primes + k));
+            }
+            K::Neg(x) => stack.push((x, primes)),
+            K::Bin(_, a, b) | K::Assign(a, b) => {
+                stack.push((b, primes));
+                stack.push((a, primes));
+            }
+            K::Call(_, args) | K::Vector(args) => {
+                stack.extend(args.iter().rev().map(|a| (a, primes)));
+            }
+            K::Num(_) | K::Degrees(_) | K::Name(_) => {}
+        }
+    }
+    None
+}
+
 pub fn first_unknown(e: &Expr) -> Option<String> {
     use crate::expr::atom::{self, Atom};
     fn walk(e: &Expr) -> Option<String> {

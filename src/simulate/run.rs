@@ -372,7 +372,11 @@ pub fn conserved_quantity(
     if non_conservative {
         return Ok(None);
     }
-    let e = scene.role_sum(Role::Kinetic);
+    // The Jacobi integral h = Σ q̇·∂L/∂q̇ − L of L = E + (lagrangian) − V:
+    // E + V when E is quadratic in the velocities and V free of them.
+    let e = scene
+        .role_sum(Role::Kinetic)
+        .add(&scene.role_sum(Role::Lagrangian));
     let v = scene
         .role_sum(Role::Potential)
         .sub(&scene.role_sum(Role::ForceFunction));
@@ -384,6 +388,9 @@ pub fn conserved_quantity(
     for q in coordinates {
         let qd = atom::coord(q, 1);
         h = h.add(&Expr::var(qd).mul(&e.diff(qd)));
+        if v.depends_on(qd) {
+            h = h.sub(&Expr::var(qd).mul(&v.diff(qd)));
+        }
     }
     let program = compile_with(&[h], &state_inputs(coordinates), params)
         .map_err(|e| Diagnostic::global(format!("cannot compile the energy: {e}")))?;

@@ -128,7 +128,9 @@ pub fn equilibria(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic>
     }
     let mut conditions = forces.clone();
     let mut kinetic_terms = false;
-    if scene.has_role(crate::parse::ast::Role::Kinetic) {
+    if scene.has_role(crate::parse::ast::Role::Kinetic)
+        || scene.has_role(crate::parse::ast::Role::Lagrangian)
+    {
         let l = scene.lagrange()?;
         for (k, eq) in l.equations.iter().enumerate() {
             let lhs = at_rest(&eq.lhs)?;
@@ -227,7 +229,13 @@ pub fn equilibria(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic>
 
 /// Whether E has terms linear in the velocities (gyroscopic coupling).
 fn has_gyroscopic_terms(scene: &Scene, names: &[String]) -> bool {
-    let e = scene.role_sum(crate::parse::ast::Role::Kinetic);
+    use crate::parse::ast::Role;
+    // the whole Lagrangian: a velocity-dependent potential couples too
+    let e = scene
+        .role_sum(Role::Kinetic)
+        .add(&scene.role_sum(Role::Lagrangian))
+        .sub(&scene.role_sum(Role::Potential))
+        .add(&scene.role_sum(Role::ForceFunction));
     let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
     e.num().terms().iter().any(|(m, _)| {
         m.0.iter()

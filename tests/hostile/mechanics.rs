@@ -1,4 +1,222 @@
-//! Hostile inputs: mechanics.
+//! Hostile inputs for the mechanics: velocity-dependent potentials (which
+//! were differentiated by q only), a Lagrangian written directly,
+//! accelerations inside energies, definition chains thousands deep, and a
+//! Taylor series about a point where the function is undefined.
 
-#[allow(unused_imports)]
 use crate::bound::*;
+use qdot::Scene;
+
+fn example(name: &str) -> String {
+    std::fs::read_to_string(format!("{}/examples/{name}.qd", env!("CARGO_MANIFEST_DIR")))
+        .expect("the example")
+}
+
+fn accelerations(src: &str) -> Vec<String> {
+    let scene = Scene::parse(src).expect("the scene");
+    let acc = scene
+        .lagrange()
+        .expect("equations")
+        .accelerations()
+        .expect("solved");
+    acc.iter().map(|(q, e)| format!("{q}'' = {e}")).collect()
+}
+
+/// Acceptance 3 of issue 14: the magnetic force of a Penning trap written
+/// as a velocity-dependent potential, as a load and as a Lagrangian gives
+/// the same equations — the Lorentz force's generalized components.
+#[test]
+fn the_penning_trap_three_ways_gives_the_lorentz_force() {
+    let want = [
+        "rho'' = rho*phi'^2 + B*e*rho*phi'/m + e*V0*rho/(2*d^2*m)",
+        "phi'' = -rho'*(2*m*phi' + B*e)/(m*rho)",
+        "z'' = -e*V0*z/(d^2*m)",
+    ];
+    for name in ["penning_potential", "penning_load", "penning_lagrangian"] {
+        assert_eq!(accelerations(&example(name)), want, "{name}");
+    }
+    // the potential and the load give the same equations, term for term
+    let derive = |name: &str| {
+        let scene = Scene::parse(&example(name)).expect("scene");
+        let l = scene.lagrange().expect("equations");
+        let eqs: Vec<(String, String)> = l
+            .equations
+            .iter()
+            .map(|e| (e.lhs.to_string(), e.rhs.to_string()))
+            .collect();
+        (
+            eqs,
+            format!("{:?}", l.mass_matrix),
+            format!("{:?}", l.forcing),
+        )
+    };
+    assert_eq!(derive("penning_potential"), derive("penning_load"));
+    let pot = derive("penning_potential");
+    assert_eq!(pot.0[0].1, "B*e*rho*phi' + e*V0*rho/(2*d^2)");
+    assert_eq!(pot.0[1].1, "-B*e*rho*rho'");
+    // the Lagrangian's: everything on the left, Q = 0
+    let lag = derive("penning_lagrangian");
+    assert_eq!(
+        lag.0[1].0,
+        "m*rho^2*phi'' + 2*m*rho*phi'*rho' + B*e*rho*rho'"
+    );
+    assert!(lag.0.iter().all(|(_, q)| q == "0"));
+    assert_eq!(lag.1, pot.1);
+    assert_eq!(lag.2, pot.2);
+}
+
+/// A force function is minus a potential, velocities included.
+#[test]
+fn a_velocity_dependent_force_function_has_the_opposite_sign() {
+    let pot = example("penning_potential");
+    let ff = pot.replace(
+        "potential U = e*V0/(2*d^2)*(z^2 - rho^2/2) - e*dot(A, P')",
+        "forcefunction W = -e*V0/(2*d^2)*(z^2 - rho^2/2) + e*dot(A, P')",
+    );
+    assert_ne!(pot, ff);
+    assert_eq!(accelerations(&ff), accelerations(&pot));
+}
+
+/// A velocity-dependent potential quadratic in the velocities adds to the
+/// mass: U = −1/2·μ·x'² is a kinetic energy of mass μ.
+#[test]
+fn a_potential_quadratic_in_the_velocities_adds_inertia() {
+    let src = "coordinates x\nparameters m, mu, k\nkinetic E = 1/2*m*x'^2\npotential U = 1/2*k*x^2 - 1/2*mu*x'^2\n";
+    assert_eq!(accelerations(src), ["x'' = -k*x/(m + mu)"]);
+}
+
+/// `lagrangian` combines with the other roles.
+#[test]
+fn a_lagrangian_combines_with_kinetic_and_potential() {
+    let src = "coordinates x\nparameters m, k, c\nkinetic E = 1/2*m*x'^2\nlagrangian L = -1/2*k*x^2\nrayleigh R = 1/2*c*x'^2\n";
+    assert_eq!(accelerations(src), ["x'' = -c*x'/m - k*x/m"]);
+    let o = qdot_scene("lagrangian", src.as_bytes(), "solve", &[]);
+    o.assert_clean();
+    assert!(
+        o.stdout.contains("x\u{308} = −c/m·x\u{307} − k/m·x"),
+        "{o:?}"
+    );
+}
+
+#[test]
+fn an_acceleration_in_an_energy_is_refused_at_its_position() {
+    // the line, the role and name, the text the caret starts at
+    let cases = [
+        ("kinetic E = 1/2*m*x'^2 + m*x*x''", "kinetic E", "x''"),
+        ("kinetic E = 1/2*m*x''^2", "kinetic E", "x''"),
+        ("potential V = k*x*x''", "potential V", "x''"),
+        ("lagrangian L = 1/2*m*x'^2 - m*x''*x", "lagrangian L", "x''"),
+        ("rayleigh R = 1/2*c*(x')'^2", "rayleigh R", "x')'"),
+    ];
+    for (line, what, at) in cases {
+        let (l, c) = (3, line.find(at).expect("the marker") + 1);
+        let src = format!("coordinates x\nparameters m, k, c\n{line}\n");
+        let o = qdot_scene("acceleration", src.as_bytes(), "derive", &[]);
+        o.assert_clean();
+        assert_eq!(o.code, Some(1), "{line}: {o:?}");
+        assert!(
+            o.stderr.starts_with(&format!(
+                "error: `{what}` depends on the acceleration x''\n --> scene.qd:{l}:{c}\n"
+            )),
+            "{line}: {}",
+            o.stderr
+        );
+        assert!(o.stderr.contains("hint: energies and the Lagrangian are functions of the coordinates, the velocities and t"), "{}", o.stderr);
+        // never "the kinetic energy is zero"
+        assert!(!o.stderr.contains("is zero"), "{}", o.stderr);
+    }
+    // an acceleration through a definition: the whole expression is shown
+    let src = "coordinates x\nparameters m\na = x''\nkinetic E = 1/2*m*x'^2 + m*a*x\n";
+    let o = qdot_scene("acceleration_def", src.as_bytes(), "derive", &[]);
+    assert!(
+        o.stderr.starts_with(
+            "error: `kinetic E` depends on the acceleration x''\n --> scene.qd:4:13\n"
+        ),
+        "{}",
+        o.stderr
+    );
+    // the virtual work may hold D'Alembert's inertia forces
+    let src = "coordinates x\nparameters m, k\nwork L = -m*x''*x - k*x*x\n";
+    let o = qdot_scene("dalembert_work", src.as_bytes(), "forces", &[]);
+    o.assert_clean();
+    assert_eq!(o.code, Some(0), "{o:?}");
+    assert!(o.stdout.contains("Q_x = −m·x\u{308} − 2·k·x"), "{o:?}");
+}
+
+/// 5,000 definitions each using the next (forward references), also
+/// through the REPL's `:load`: no stack overflow, the right value.
+#[test]
+fn definition_chains_thousands_deep_evaluate_without_recursion() {
+    let mut src = String::from("coordinates x\nparameters m, k\n");
+    for i in 0..5000 {
+        src.push_str(&format!("a{i} = a{} + 1\n", i + 1));
+    }
+    src.push_str("a5000 = x\nkinetic E = 1/2*m*x'^2\npotential V = 1/2*k*a0^2\n");
+    let o = qdot_scene("chain", src.as_bytes(), "solve", &[]);
+    o.assert_clean();
+    assert_eq!(o.code, Some(0), "{o:?}");
+    assert!(o.stdout.contains("x\u{308} = −k/m·x − 5000·k/m"), "{o:?}");
+    // the same file through the REPL
+    let dir = std::env::temp_dir().join(format!("qdot-hostile-{}", std::process::id()));
+    let path = dir.join("chain.qd");
+    let o = qdot_bounded(
+        &["repl"],
+        &format!(":load {}\n:solve\n", path.display()),
+        SECONDS,
+        MEMORY_MIB,
+    );
+    o.assert_clean();
+    assert!(o.stdout.contains("x\u{308} = −k/m·x − 5000·k/m"), "{o:?}");
+    // a 5,000-long cycle is reported, whole, without recursion
+    let mut src = String::from("coordinates x\n");
+    for i in 0..5000 {
+        src.push_str(&format!("b{i} = b{} + 1\n", (i + 1) % 5000));
+    }
+    let o = qdot_scene("cycle", src.as_bytes(), "derive", &[]);
+    o.assert_clean();
+    assert!(
+        o.stderr.starts_with(
+            "error: cyclic definition: b0 → b1 → b2 → b3 → b4 → … → b4995 → b4996 → b4997 → b4998 → b4999 → b0 (5000 definitions)\n    --> scene.qd:5001:"
+        ),
+        "{o:?}"
+    );
+}
+
+/// 50,000 definitions each applying sin to the previous one: the nesting
+/// bound stops it with a positioned error.
+#[test]
+fn a_50000_deep_sin_chain_is_bounded() {
+    let mut src = String::from("coordinates x\nparameters m, k\na0 = x\n");
+    for i in 1..=50_000 {
+        src.push_str(&format!("a{i} = sin(a{})\n", i - 1));
+    }
+    src.push_str("kinetic E = 1/2*m*x'^2\npotential V = 1/2*k*a50000^2\n");
+    let o = qdot_scene("sin_chain", src.as_bytes(), "solve", &[]);
+    o.assert_clean();
+    assert_eq!(o.code, Some(1), "{o:?}");
+    assert!(
+        o.stderr.starts_with("error: functions nested 201 deep here; qdot allows at most 200\n   --> scene.qd:204:8\n"),
+        "{}",
+        &o.stderr[..300.min(o.stderr.len())]
+    );
+}
+
+#[test]
+fn a_taylor_series_about_an_undefined_point_says_so() {
+    let scene = Scene::parse("coordinates x\nparameters m\n").expect("scene");
+    let e = scene
+        .expr("taylor(sin(x)/x, x, 5)")
+        .expect_err("undefined at 0");
+    assert_eq!(
+        e.message,
+        "this function is not defined at x = 0 (it divides by zero there), so it has no Taylor series about that point"
+    );
+    let at = e.span.expect("a position");
+    assert_eq!((at.start, at.end), (7, 15));
+    assert!(e
+        .hint
+        .as_deref()
+        .unwrap_or("")
+        .contains("taylor(f, x = 1, 5)"));
+    // about another point it expands
+    assert!(scene.expr("taylor(sin(x)/x, x = pi, 1)").is_ok());
+}
