@@ -26,6 +26,7 @@ pub mod cancel;
 pub mod diag;
 pub mod expr;
 pub mod gallery;
+pub mod limits;
 pub mod mechanics;
 pub mod num;
 pub mod output;

@@ -124,9 +124,12 @@ enum Command {
         /// The step of rk4 and gauss6 (the first step of the others).
         #[arg(long)]
         dt: Option<f64>,
-        /// Evenly spaced output times from 0 to --t-end.
+        /// Evenly spaced output times from 0 to --t-end (2 to 1,000,000).
         #[arg(long, default_value_t = 101)]
         points: usize,
+        /// Give up after this many steps (accepted and rejected).
+        #[arg(long = "max-steps", default_value_t = qdot::limits::DEFAULT_MAX_STEPS)]
+        max_steps: usize,
         /// csv or json
         #[arg(long, default_value = "csv")]
         output: String,
@@ -172,6 +175,7 @@ fn main() -> ExitCode {
             atol,
             dt,
             points,
+            max_steps,
             output,
             stats,
             plot,
@@ -187,6 +191,7 @@ fn main() -> ExitCode {
                     atol: *atol,
                     dt: *dt,
                     points: *points,
+                    max_steps: *max_steps,
                     stop_when: stop_when.clone(),
                     progress: std::io::IsTerminal::is_terminal(&std::io::stderr()),
                     ..Default::default()
@@ -280,6 +285,7 @@ fn simulate(
     plot: Option<&str>,
 ) -> ExitCode {
     use qdot::simulate::run;
+    let req_max_steps = req.max_steps;
     let fail = |d: qdot::Diagnostic, src: &str| {
         eprint!("{}", d.render(file, src));
         ExitCode::from(1)
@@ -342,15 +348,19 @@ fn simulate(
     if let qdot::simulate::Status::Event { t } = r.solution.status {
         eprintln!("stopped at t = {t:.15e}, where the --stop-when condition changes sign");
     }
-    match r.solution.status {
-        qdot::simulate::Status::Done | qdot::simulate::Status::Event { .. } => ExitCode::SUCCESS,
-        ref s => {
-            eprintln!(
-                "error: the integration stopped early: {} (at t = {:.6e})",
-                run::status_word(s),
-                r.rows.last().map_or(0.0, |row| row[0])
-            );
-            ExitCode::from(1)
-        }
-    }
+    use qdot::simulate::Status;
+    let (t, hint) = match r.solution.status {
+        Status::Done | Status::Event { .. } => return ExitCode::SUCCESS,
+        Status::TooManySteps { t } => (t, format!("raise --max-steps (it is {}), loosen --rtol and --atol, or use --method radau5 if the problem is stiff", req_max_steps)),
+        Status::StepTooSmall { t } => (t, "the solution may blow up there; check the scene and the initial values, or loosen the tolerances".to_string()),
+        Status::NotFinite { t } => (t, match &r.not_finite_column {
+            Some(c) => format!("`{c}` is not finite there (a value out of the double range, or a division by zero); the rows before it are printed"),
+            None => "a value left the double range".to_string(),
+        }),
+    };
+    eprintln!(
+        "error: the integration stopped early: {} at t = {t:.6e}\n  = hint: {hint}",
+        run::status_word(&r.solution.status),
+    );
+    ExitCode::from(3)
 }

@@ -161,11 +161,7 @@ impl Table {
     }
 }
 
-/// Most function atoms nested in one another (`sin(sin(…))`, through
-/// definitions). Every walk into arguments (printing, d/dt, substitution,
-/// compilation) recurses once per level, so the depth is bounded to keep
-/// the stack bounded; textbook scenes nest a handful of levels.
-pub const MAX_NESTING: u32 = 200;
+pub use crate::limits::MAX_FUNCTION_NESTING as MAX_NESTING;
 
 /// How deeply function atoms nest in `e` (0 for a polynomial in symbols).
 pub fn nesting_depth(e: &Expr) -> u32 {

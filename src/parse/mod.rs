@@ -51,15 +51,11 @@ use ast::{BinOp, Decl, Equation, Expr, ExprKind, Ident, Role, SolveBlock, Span, 
 use failure::*;
 use lexer::*;
 
-/// Deepest recursion of the parser: parentheses, call arguments, unary signs
-/// and `^` chains each count one level.
-pub const MAX_NESTING: u32 = 200;
+pub use crate::limits::MAX_PARSE_NESTING as MAX_NESTING;
 
-/// Deepest expression tree the parser builds (a leaf has depth 1).
-pub const MAX_DEPTH: u32 = 1000;
+pub use crate::limits::MAX_TREE_DEPTH as MAX_DEPTH;
 
-/// Largest `|n|` accepted in a scientific exponent `…e±n`.
-pub const MAX_EXPONENT: u32 = 1000;
+pub use crate::limits::MAX_DECIMAL_EXPONENT as MAX_EXPONENT;
 
 /// Parse a whole scene.
 pub fn parse_scene(src: &str) -> Result<Vec<Stmt>, Diagnostic> {

@@ -75,8 +75,7 @@ fn cycle_message(chain: &[String]) -> String {
     )
 }
 
-/// The highest order `taylor` expands to.
-const MAX_TAYLOR_ORDER: i64 = 30;
+use crate::limits::MAX_TAYLOR_ORDER;
 
 /// Hint for a vector where a number is needed.
 const HINT_VECTOR: &str =

@@ -34,8 +34,11 @@ pub struct Request {
     /// The step of RK4 and Gauss6 (required for them), the first step of
     /// the adaptive methods.
     pub dt: Option<f64>,
-    /// Number of evenly spaced output times from 0 to `t_end` (at least 2).
+    /// Number of evenly spaced output times from 0 to `t_end` (2 to
+    /// [`crate::limits::MAX_POINTS`]).
     pub points: usize,
+    /// Steps (accepted and rejected) before the run gives up.
+    pub max_steps: usize,
     /// `--stop-when`: `lhs = rhs` (or one expression, = 0) in the scene's
     /// names; the run ends where it first changes sign.
     pub stop_when: Option<String>,
@@ -57,6 +60,7 @@ impl Default for Request {
             atol: 1e-10,
             dt: None,
             points: 101,
+            max_steps: crate::limits::DEFAULT_MAX_STEPS,
             stop_when: None,
             progress: false,
         }
@@ -78,6 +82,56 @@ pub struct Run {
     pub compile_seconds: f64,
     /// How q̈ was evaluated, and why ([`CompiledDynamics::best`]).
     pub evaluator: Choice,
+    /// The column where a NaN or ∞ appeared (the run then ends with
+    /// [`Status::NotFinite`] at the last row before it).
+    pub not_finite_column: Option<String>,
+}
+
+/// The options' numbers: a positive, finite `--t-end`, `--dt` and
+/// `--max-steps`, 2 to [`crate::limits::MAX_POINTS`] output times,
+/// tolerances a double can meet.
+fn check_numbers(req: &Request) -> Result<(), Diagnostic> {
+    use crate::limits::{MAX_POINTS, MIN_RTOL};
+    if !(req.t_end.is_finite() && req.t_end > 0.0) {
+        return Err(Diagnostic::global(format!(
+            "--t-end {} must be a positive number",
+            req.t_end
+        )));
+    }
+    if let Some(dt) = req.dt {
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(
+                Diagnostic::global(format!("--dt {dt} must be a positive number"))
+                    .with_hint("the run goes forward from t = 0 to --t-end: --dt 0.01"),
+            );
+        }
+    }
+    if !(2..=MAX_POINTS).contains(&req.points) {
+        return Err(Diagnostic::global(format!(
+            "--points {} must be from 2 to {MAX_POINTS}",
+            req.points
+        ))
+        .with_hint(
+            "the output times include t = 0 and --t-end; for more, run in pieces with --t-end",
+        ));
+    }
+    if req.max_steps == 0 {
+        return Err(Diagnostic::global("--max-steps must be at least 1"));
+    }
+    if !(req.rtol.is_finite() && req.rtol >= MIN_RTOL) {
+        return Err(Diagnostic::global(format!(
+            "--rtol {} is below what a double can meet ({MIN_RTOL:e}, ten units in the last place)",
+            req.rtol
+        ))
+        .with_hint("--rtol 1e-12 is about as tight as the integrators go"));
+    }
+    if !(req.atol.is_finite() && req.atol >= 0.0) {
+        return Err(Diagnostic::global(format!(
+            "--atol {} must be a number ≥ 0",
+            req.atol
+        )));
+    }
+    Ok(())
 }
 
 /// The method named on the command line.
@@ -221,19 +275,14 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
             )));
         }
     }
-    if !(req.t_end.is_finite() && req.t_end > 0.0) {
-        return Err(Diagnostic::global(format!(
-            "--t-end {} must be a positive number",
-            req.t_end
-        )));
-    }
+    check_numbers(req)?;
     let compile_start = Instant::now();
     let (mut dynamics, evaluator) = CompiledDynamics::best(&lag, &params)
         .map_err(|e| Diagnostic::global(format!("cannot compile the equations: {e}")))?;
     let energy = conserved_quantity(&scene, &lag.coordinates, &params)?;
     let compile_seconds = compile_start.elapsed().as_secs_f64();
 
-    let points = req.points.max(2);
+    let points = req.points;
     let t_out: Vec<f64> = (0..points)
         .map(|i| req.t_end * i as f64 / (points - 1) as f64)
         .collect();
@@ -244,6 +293,7 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
         atol: req.atol,
         dt: req.dt,
         t_out,
+        max_steps: req.max_steps,
         ..Options::default()
     };
     let event = match &req.stop_when {
@@ -281,6 +331,8 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
         Some(p) => (p.registers(), vec![0.0; p.n_outputs()]),
         None => (Vec::new(), Vec::new()),
     };
+    let mut solution = solution;
+    let mut not_finite = None;
     for (t, y) in solution.t.iter().zip(&solution.y) {
         let mut row = Vec::with_capacity(columns.len());
         row.push(*t);
@@ -290,9 +342,18 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
             p.eval(&row, &mut regs, &mut out);
             row.push(out[0]);
         }
+        // a NaN or ∞ in any column ends the run there: no row prints one
+        if let Some(j) = row.iter().position(|x| !x.is_finite()) {
+            not_finite = Some((columns[j].clone(), *t));
+            break;
+        }
         rows.push(row);
     }
+    if let Some((_, t)) = &not_finite {
+        solution.status = Status::NotFinite { t: *t };
+    }
     Ok(Run {
+        not_finite_column: not_finite.map(|(c, _)| c),
         columns,
         rows,
         solution,

@@ -35,7 +35,12 @@ fn a_matrix_entry_wider_than_65535_characters_prints() {
         let o = qdot_scene("wide", src.as_bytes(), cmd, &[]);
         o.assert_clean();
         assert_eq!(o.code, Some(0), "{cmd}: {o:?}");
-        let widest = o.stdout.lines().map(|l| l.chars().count()).max().unwrap_or(0);
+        let widest = o
+            .stdout
+            .lines()
+            .map(|l| l.chars().count())
+            .max()
+            .unwrap_or(0);
         assert!(widest > 65_535, "{cmd}: widest line {widest}");
     }
     // the mass matrix is one entry, its terms in name order: `[ m₀ + m₁ + m₁₀ + … ]`
@@ -45,8 +50,16 @@ fn a_matrix_entry_wider_than_65535_characters_prints() {
         .lines()
         .find(|l| l.starts_with("  [ "))
         .expect("the matrix row");
-    assert!(row.starts_with("  [ m₀ + m₁ + m₁₀ + m₁₀₀ + m₁₀₀₀ + "), "{}", &row[..60]);
-    assert!(row.ends_with(" + m₉₉₈ + m₉₉₉ ]"), "{}", &row[row.len() - 60..]);
+    assert!(
+        row.starts_with("  [ m₀ + m₁ + m₁₀ + m₁₀₀ + m₁₀₀₀ + "),
+        "{}",
+        &row[..60]
+    );
+    assert!(
+        row.ends_with(" + m₉₉₈ + m₉₉₉ ]"),
+        "{}",
+        &row[row.len() - 60..]
+    );
 }
 
 #[test]
@@ -77,4 +90,144 @@ fn a_coordinate_name_of_65536_characters_prints() {
         o.stdout.contains(&format!("  {name}′′ = −k/m·{name}\n")),
         "{o:?}"
     );
+}
+
+const PENDULUM: &str = "examples/pendulum.qd";
+
+fn simulate(args: &[&str]) -> Outcome {
+    let mut all = vec!["simulate", PENDULUM];
+    all.extend_from_slice(args);
+    qdot_bounded(&all, "", SECONDS, MEMORY_MIB)
+}
+
+/// A NaN or ∞ in any column (here the energy, with l = 1e308) ends the
+/// run: status "not finite", exit status 3, no row with a null.
+#[test]
+fn a_value_that_is_not_finite_ends_the_run() {
+    let o = simulate(&[
+        "--set",
+        "m=1,g=9.81,l=1e308",
+        "--init",
+        "theta=0.5,theta'=0",
+        "--t-end",
+        "1",
+        "--points",
+        "3",
+        "--output",
+        "json",
+    ]);
+    o.assert_clean();
+    assert_eq!(o.code, Some(3), "{o:?}");
+    assert!(o.stdout.starts_with("{\"method\":\"dop853\",\"status\":\"not finite\",\"columns\":[\"t\",\"theta\",\"theta'\",\"energy\"],\"rows\":[]"), "{o:?}");
+    assert!(
+        !o.stdout.contains("null,") && !o.stdout.contains("null]"),
+        "{o:?}"
+    );
+    assert_eq!(
+        o.stderr,
+        "error: the integration stopped early: not finite at t = 0.000000e0\n  = hint: `energy` is not finite there (a value out of the double range, or a division by zero); the rows before it are printed\n"
+    );
+}
+
+#[test]
+fn the_number_of_points_is_bounded() {
+    for (points, shown) in [("0", "0"), ("1", "1"), ("37179586", "37179586")] {
+        let o = simulate(&[
+            "--set",
+            "m=1,g=1,l=1",
+            "--init",
+            "theta=0.5,theta'=0",
+            "--t-end",
+            "1",
+            "--points",
+            points,
+        ]);
+        o.assert_clean();
+        assert_eq!(o.code, Some(1), "{o:?}");
+        assert!(o.stdout.is_empty(), "{o:?}");
+        assert!(
+            o.stderr.starts_with(&format!(
+                "error: --points {shown} must be from 2 to 1000000\n"
+            )),
+            "{o:?}"
+        );
+    }
+}
+
+/// Every method refuses a step that is not positive.
+#[test]
+fn a_negative_or_zero_step_is_refused_by_every_method() {
+    for method in ["rk4", "dopri5", "dop853", "vern7", "gauss6", "radau5"] {
+        for dt in ["-0.1", "0", "-1e-300"] {
+            let o = simulate(&[
+                "--set",
+                "m=1,g=1,l=1",
+                "--init",
+                "theta=0.5,theta'=0",
+                "--t-end",
+                "1",
+                "--method",
+                method,
+                &format!("--dt={dt}"),
+            ]);
+            o.assert_clean();
+            assert_eq!(o.code, Some(1), "{method} {dt}: {o:?}");
+            let dt_shown: f64 = dt.parse().expect("a number");
+            assert!(
+                o.stderr.starts_with(&format!(
+                    "error: --dt {dt_shown} must be a positive number\n"
+                )),
+                "{method} {dt}: {o:?}"
+            );
+        }
+    }
+}
+
+/// "too many steps" reports where the run stopped (not the last output
+/// time), exits with 3, and prints the rows before the stop.
+#[test]
+fn too_many_steps_says_where_and_exits_with_3() {
+    let o = simulate(&[
+        "--set",
+        "m=1,g=1,l=1",
+        "--init",
+        "theta=0.5,theta'=0",
+        "--t-end",
+        "1e17",
+        "--max-steps",
+        "1000",
+    ]);
+    o.assert_clean();
+    assert_eq!(o.code, Some(3), "{o:?}");
+    let first = o.stderr.lines().next().unwrap_or("");
+    let t: f64 = first
+        .strip_prefix("error: the integration stopped early: too many steps at t = ")
+        .and_then(|x| x.parse().ok())
+        .unwrap_or_else(|| panic!("{o:?}"));
+    assert!(t > 100.0 && t < 1e6, "{t}");
+    assert!(
+        o.stderr.contains("hint: raise --max-steps (it is 1000)"),
+        "{o:?}"
+    );
+    // the row at t = 0 only: the next output time is 1e15
+    assert_eq!(o.stdout.lines().count(), 2, "{o:?}");
+}
+
+#[test]
+fn tolerances_a_double_cannot_meet_are_refused() {
+    let o = simulate(&[
+        "--set",
+        "m=1,g=1,l=1",
+        "--init",
+        "theta=1,theta'=0",
+        "--t-end",
+        "10",
+        "--rtol",
+        "0",
+        "--atol",
+        "1e-42",
+    ]);
+    o.assert_clean();
+    assert_eq!(o.code, Some(1), "{o:?}");
+    assert!(o.stderr.starts_with("error: --rtol 0 is below what a double can meet (2.220446049250313e-15, ten units in the last place)\n"), "{o:?}");
 }

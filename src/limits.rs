@@ -1,0 +1,45 @@
+//! Every limit qdot puts on its input and its work, in one place: what it
+//! is, its default, and why that value. README's "Limits" section and the
+//! book's limits page list the same table (a test checks they agree).
+//!
+//! Each limit stops a computation with a clear, positioned error instead
+//! of a hang, a crash or memory exhaustion. The ones a user may need to
+//! raise for a real problem can be raised (`--max-terms`, `--max-steps`);
+//! the others bound input no scene needs.
+
+/// Deepest nesting of functions in one value (`sin(sin(…))`, directly or
+/// through definitions). Each level is an atom whose argument holds the
+/// next, and walks over atoms recurse; no mechanics needs more than a few.
+pub const MAX_FUNCTION_NESTING: u32 = 200;
+
+/// Deepest recursion of the parser: parentheses, call arguments, unary
+/// signs and `^` chains each count one level (2 MiB stacks must hold it,
+/// in debug builds too).
+pub const MAX_PARSE_NESTING: u32 = 200;
+
+/// Deepest expression tree the parser builds (a leaf has depth 1): long
+/// `a + b + …` chains are parsed by a loop but must not build a tree too
+/// deep to drop or walk.
+pub const MAX_TREE_DEPTH: u32 = 1000;
+
+/// Largest `|n|` of a scientific exponent `…e±n`: 10^1000 has 1,001
+/// digits, far beyond any physical constant.
+pub const MAX_DECIMAL_EXPONENT: u32 = 1000;
+
+/// The highest order `taylor` expands to (each order differentiates once
+/// more; the terms grow quickly).
+pub const MAX_TAYLOR_ORDER: i64 = 30;
+
+/// The most output times `qdot simulate --points` records: each row keeps
+/// t, q and q̇ (and the energy) in memory until printed.
+pub const MAX_POINTS: usize = 1_000_000;
+
+/// The default of `qdot simulate --max-steps`: steps (accepted and
+/// rejected) before a run gives up with "too many steps". A second or two
+/// of integration for small systems; raise it for long runs.
+pub const DEFAULT_MAX_STEPS: usize = 1_000_000;
+
+/// The smallest relative tolerance `qdot simulate` accepts: ten units in
+/// the last place of f64 (RADAU5's own floor); below it no method can
+/// meet the tolerance, and the step shrinks without end.
+pub const MIN_RTOL: f64 = 10.0 * f64::EPSILON;
