@@ -294,7 +294,6 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
         dt: req.dt,
         t_out,
         max_steps: req.max_steps,
-        ..Options::default()
     };
     let event = match &req.stop_when {
         Some(text) => Some(event_program(&scene, &lag.coordinates, &params, text)?),

@@ -119,10 +119,9 @@ fn a_value_that_is_not_finite_ends_the_run() {
     o.assert_clean();
     assert_eq!(o.code, Some(3), "{o:?}");
     assert!(o.stdout.starts_with("{\"method\":\"dop853\",\"status\":\"not finite\",\"columns\":[\"t\",\"theta\",\"theta'\",\"energy\"],\"rows\":[]"), "{o:?}");
-    assert!(
-        !o.stdout.contains("null,") && !o.stdout.contains("null]"),
-        "{o:?}"
-    );
+    let rows =
+        &o.stdout[o.stdout.find("\"rows\"").unwrap_or(0)..o.stdout.find("\"stats\"").unwrap_or(0)];
+    assert!(!rows.contains("null"), "{o:?}");
     assert_eq!(
         o.stderr,
         "error: the integration stopped early: not finite at t = 0.000000e0\n  = hint: `energy` is not finite there (a value out of the double range, or a division by zero); the rows before it are printed\n"
