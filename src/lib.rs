@@ -22,6 +22,7 @@
 //! expressions over [`poly`] and [`num`]) → [`mechanics`] → [`solve`] →
 //! [`output`].
 
+pub mod budget;
 pub mod cancel;
 pub mod diag;
 pub mod expr;

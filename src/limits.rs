@@ -39,6 +39,11 @@ pub const MAX_POINTS: usize = 1_000_000;
 /// of integration for small systems; raise it for long runs.
 pub const DEFAULT_MAX_STEPS: usize = 1_000_000;
 
+/// The default of `--max-terms`: the most terms one polynomial of an exact
+/// computation may have ([`crate::budget`]). The textbook scenes stay
+/// under a few thousand; the 10-link pendulum's equations under 100,000.
+pub const DEFAULT_MAX_TERMS: usize = 2_000_000;
+
 /// The smallest relative tolerance `qdot simulate` accepts: ten units in
 /// the last place of f64 (RADAU5's own floor); below it no method can
 /// meet the tolerance, and the step shrinks without end.

@@ -20,6 +20,11 @@ struct Cli {
     /// Without a command, qdot starts the REPL.
     #[command(subcommand)]
     command: Option<Command>,
+    /// The work budget of exact computation: the most terms one expression
+    /// may reach before qdot stops with an error (every command; the REPL
+    /// has :max-terms).
+    #[arg(long = "max-terms", global = true, default_value_t = qdot::limits::DEFAULT_MAX_TERMS)]
+    max_terms: usize,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -160,11 +165,14 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let Some(command) = cli.command else {
-        return repl(None, false);
+        return repl(None, false, cli.max_terms);
     };
-    let mut opts = output::Options::default();
+    let mut opts = output::Options {
+        max_terms: cli.max_terms,
+        ..output::Options::default()
+    };
     let (cmd, file, fmt, set) = match &command {
-        Command::Repl { file, echo } => return repl(file.as_deref(), *echo),
+        Command::Repl { file, echo } => return repl(file.as_deref(), *echo, cli.max_terms),
         Command::Simulate {
             file,
             set,
@@ -266,8 +274,8 @@ fn main() -> ExitCode {
     }
 }
 
-fn repl(file: Option<&str>, echo: bool) -> ExitCode {
-    match qdot::repl::terminal::run(file, echo) {
+fn repl(file: Option<&str>, echo: bool, max_terms: usize) -> ExitCode {
+    match qdot::repl::terminal::run(file, echo, max_terms) {
         0 => ExitCode::SUCCESS,
         _ => ExitCode::from(1),
     }

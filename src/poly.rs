@@ -595,6 +595,7 @@ fn mul_with<R: Repr>(r: &R, a: &[(Mono, Q)], b: &[(Mono, Q)]) -> Option<Vec<(Mon
     let ka: Vec<R::K> = a.iter().map(|t| r.enc(&t.0)).collect::<Option<_>>()?;
     let kb: Vec<R::K> = b.iter().map(|t| r.enc(&t.0)).collect::<Option<_>>()?;
     let cap = (a.len() * b.len()).min(1 << 16);
+    let limit = crate::budget::limit();
     let mut index: FxHashMap<R::K, usize> = FxHashMap::default();
     index.reserve(cap);
     let mut acc: Vec<(R::K, Q)> = Vec::with_capacity(cap);
@@ -608,6 +609,9 @@ fn mul_with<R: Repr>(r: &R, a: &[(Mono, Q)], b: &[(Mono, Q)]) -> Option<Vec<(Mon
                     let k = e.key().clone();
                     e.insert(acc.len());
                     acc.push((k, c));
+                    if acc.len() > limit {
+                        crate::budget::check_terms(acc.len());
+                    }
                 }
             }
         }
@@ -1268,6 +1272,7 @@ impl Poly {
         if b.len() == 1 {
             return self.mul_mono(&b[0].0, &b[0].1);
         }
+        crate::budget::check_product(a.len(), b.len());
         let deg = merge_deglists(&self.max_degrees(), &other.max_degrees(), true);
         // (saturated exponent sums cannot be packed without field overflow)
         let packable = deg.iter().all(|p| p.1 < u32::MAX);

@@ -169,6 +169,7 @@ impl Expr {
     /// (after reduction: `den` may be a disguised zero such as `√2² − 2`).
     pub fn from_parts(num: Poly, den: Poly) -> Result<Expr, MathError> {
         crate::cancel::check();
+        crate::budget::check_terms(num.len().max(den.len()));
         let mut num = reduced(num);
         let mut den = reduced(den);
         if den.is_zero() {

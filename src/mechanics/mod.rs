@@ -73,6 +73,7 @@ impl Lagrange {
             return Err(Diagnostic::global("the scene has no kinetic energy")
                 .with_hint("add `kinetic E = …` (several `kinetic` lines add up), or write the inertia forces as loads: `load G - inertia(m, y) at y`"));
         }
+        let _context = crate::budget::enter(|| "deriving Lagrange's equations".into(), None);
         let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
         let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();
         let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
@@ -132,6 +133,8 @@ impl Lagrange {
 
     /// The exact accelerations q̈ = M⁻¹·f.
     pub fn accelerations(&self) -> Result<Vec<(String, Expr)>, Diagnostic> {
+        let _context =
+            crate::budget::enter(|| "solving M·q̈ = f for the accelerations".into(), None);
         let sol = crate::solve::linear::solve(&self.mass_matrix, &self.forcing).map_err(|e| {
             match e {
                 crate::solve::linear::SolveError::Singular { dependent } => {

@@ -80,6 +80,10 @@ fn math(m: crate::expr::MathError) -> Diagnostic {
 
 /// Linearize about `at` (default q = 0) and find the modes.
 pub fn modes(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Modes, Diagnostic> {
+    let _context = crate::budget::enter(
+        || "linearizing about the equilibrium for the small oscillations".into(),
+        None,
+    );
     let l = scene.lagrange()?;
     let names = l.coordinates.clone();
     let n = names.len();

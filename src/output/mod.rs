@@ -57,6 +57,9 @@ pub struct Options {
     pub standalone: bool,
     /// The title of a standalone document (the file name).
     pub title: String,
+    /// `--max-terms`: the work budget ([`crate::budget`]); 0 means the
+    /// default, [`crate::limits::DEFAULT_MAX_TERMS`].
+    pub max_terms: usize,
 }
 
 /// Run `cmd` on the scene source `src`: the output, and the warnings to show.
@@ -73,8 +76,35 @@ pub fn run(
     run_with(cmd, src, fmt, &opts)
 }
 
-/// [`run`] with every option.
+/// [`run`] with every option, within the work budget `opts.max_terms`.
 pub fn run_with(
+    cmd: Command,
+    src: &str,
+    fmt: Format,
+    opts: &Options,
+) -> Result<(String, Vec<Diagnostic>), Diagnostic> {
+    let max_terms = match opts.max_terms {
+        0 => crate::limits::DEFAULT_MAX_TERMS,
+        n => n,
+    };
+    crate::budget::within(max_terms, || run_unbounded(cmd, src, fmt, opts))
+        .unwrap_or_else(|e| Err(too_large(&e)))
+}
+
+/// The error of an exceeded work budget, at the statement it names.
+pub fn too_large(e: &crate::budget::TooLarge) -> Diagnostic {
+    let hint = format!(
+        "exact expressions this large are rarely what a scene means (expand less, or choose other coordinates); to go on, raise the limit: --max-terms {}",
+        e.limit.saturating_mul(10)
+    );
+    match e.context.as_ref().and_then(|c| c.span) {
+        Some((a, b)) => Diagnostic::error(crate::parse::ast::Span::new(a, b), e.message()),
+        None => Diagnostic::global(e.message()),
+    }
+    .with_hint(hint)
+}
+
+fn run_unbounded(
     cmd: Command,
     src: &str,
     fmt: Format,

@@ -95,6 +95,8 @@ pub struct Session {
     undo: Vec<Snapshot>,
     /// How results are printed (`:format`).
     pub format: Format,
+    /// The work budget of every entry (`:max-terms`, `qdot --max-terms`).
+    pub max_terms: usize,
 }
 
 impl Default for Session {
@@ -142,6 +144,11 @@ pub const COMMANDS: &[(&str, &str, &str)] = &[
     (":undo", "", "take back the last change"),
     (":reset", "", "start from an empty scene"),
     (":format", "text|latex|json", "how results are printed"),
+    (
+        ":max-terms",
+        "N",
+        "the work budget: the most terms an expression may reach",
+    ),
     (":help", "", "this list"),
     (":quit", "", "leave (Ctrl-D does too)"),
 ];
@@ -176,6 +183,7 @@ impl Session {
             last: None,
             undo: Vec::new(),
             format: Format::Text,
+            max_terms: crate::limits::DEFAULT_MAX_TERMS,
         }
     }
 
@@ -216,6 +224,24 @@ impl Session {
 
     /// Run one complete entry (see [`is_complete`]).
     pub fn execute(&mut self, entry: &str) -> Response {
+        let max_terms = self.max_terms;
+        // an entry over budget changes nothing: statements are committed
+        // only after the scene they make has been resolved
+        crate::budget::within(max_terms, || self.execute_unbounded(entry)).unwrap_or_else(|e| {
+            let hint = format!(
+                "raise the limit with :max-terms {} (it is {})",
+                e.limit.saturating_mul(10),
+                e.limit
+            );
+            Response::error(
+                Diagnostic::global(e.message())
+                    .with_hint(hint)
+                    .render(INPUT, ""),
+            )
+        })
+    }
+
+    fn execute_unbounded(&mut self, entry: &str) -> Response {
         let trimmed = entry.trim();
         if trimmed.is_empty() {
             return Response::default();
@@ -503,6 +529,19 @@ impl Session {
             "latex" => self.latex(args),
             "show" => self.show(args),
             "scene" => Response::out(self.scene_text()),
+            "max-terms" => match args.replace(['_', ','], "").parse::<usize>() {
+                Ok(n) if n > 0 => {
+                    self.max_terms = n;
+                    Response::out(format!("(at most {} terms per expression)", crate::budget::grouped(n)))
+                }
+                _ if args.is_empty() => Response::out(format!(
+                    "at most {} terms per expression",
+                    crate::budget::grouped(self.max_terms)
+                )),
+                _ => Response::error(format!(
+                    "error: `:max-terms {args}` needs a whole number of terms\n  = hint: :max-terms 10000000\n"
+                )),
+            },
             "load" => self.load(args),
             "save" => self.save(args),
             "undo" => match self.undo.pop() {

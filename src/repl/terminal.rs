@@ -40,8 +40,9 @@ const MORE: &str = "  ... ";
 static INTERRUPTED: AtomicBool = AtomicBool::new(false);
 
 /// Run the REPL, first loading `file` if given; the process exit code.
-pub fn run(file: Option<&str>, echo: bool) -> i32 {
+pub fn run(file: Option<&str>, echo: bool, max_terms: usize) -> i32 {
     let mut session = Session::new();
+    session.max_terms = max_terms;
     let interactive_mode = std::io::stdin().is_terminal();
     if interactive_mode {
         println!(

@@ -206,6 +206,11 @@ impl<'a> Evaluator<'a> {
         };
         self.state[i] = State::Busy;
         self.stack.push(i);
+        let name = self.defs[i].0;
+        let _context = crate::budget::enter(
+            || format!("evaluating `{}`", name.name),
+            Some((body.span.start, body.span.end)),
+        );
         let v = self.value(body);
         self.stack.pop();
         let v = v?;

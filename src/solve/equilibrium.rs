@@ -104,6 +104,7 @@ pub type Values = FxHashMap<String, f64>;
 
 /// Find and classify the equilibria of a scene.
 pub fn equilibria(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic> {
+    let _context = crate::budget::enter(|| "finding the equilibria".into(), None);
     let n = scene.coordinates.len();
     if n == 0 {
         return Err(Diagnostic::global(

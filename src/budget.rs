@@ -1,0 +1,204 @@
+//! The work budget of exact computation: a bound on the size (terms) of the
+//! polynomials qdot builds, so that an expression that explodes —
+//! `(a+b+c+d)^200`, a 10×10 symbolic system, repeated squaring — stops with
+//! a clear error instead of exhausting time and memory.
+//!
+//! A front end runs a computation [`within`] a budget. The hot spots of
+//! polynomial arithmetic call [`check_terms`] with the size they reached;
+//! past the budget the thread unwinds with a [`TooLarge`] payload (by
+//! `resume_unwind`: no panic message), which `within` turns into an `Err`.
+//! The [`context`] a computation declares (the statement being evaluated,
+//! the phase of a command) is carried in the error. Threads outside
+//! `within` have no budget: a library user who does not opt in is never
+//! stopped, and pays one thread-local read per check.
+
+use std::cell::{Cell, RefCell};
+use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
+
+thread_local! {
+    static LIMIT: Cell<usize> = const { Cell::new(usize::MAX) };
+    static CONTEXT: RefCell<Vec<Context>> = const { RefCell::new(Vec::new()) };
+}
+
+/// What was being computed: a description and, for a statement, its byte
+/// range in the source.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Context {
+    pub what: String,
+    pub span: Option<(usize, usize)>,
+}
+
+/// The budget was exceeded: `terms` were reached with a limit of `limit`,
+/// while computing `context` (the innermost one declared).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TooLarge {
+    pub terms: usize,
+    pub limit: usize,
+    pub context: Option<Context>,
+    /// Set when a product of polynomials of these sizes was refused before
+    /// it began (its work, not its result, was over budget).
+    pub product: Option<(usize, usize)>,
+}
+
+impl TooLarge {
+    /// "expression too large: 2,000,001 terms while evaluating `a30`
+    /// (the limit is 2,000,000)".
+    pub fn message(&self) -> String {
+        let what = match &self.context {
+            Some(c) => format!(" while {}", c.what),
+            None => String::new(),
+        };
+        match self.product {
+            Some((a, b)) => format!(
+                "expression too large: a product of {} by {} terms{what} (the limit is {} terms, and {} term products)",
+                grouped(a),
+                grouped(b),
+                grouped(self.limit),
+                grouped(self.limit.saturating_mul(PRODUCTS_PER_TERM))
+            ),
+            None => format!(
+                "expression too large: {} terms{what} (the limit is {})",
+                grouped(self.terms),
+                grouped(self.limit)
+            ),
+        }
+    }
+}
+
+/// `1234567` as `1,234,567`.
+pub fn grouped(n: usize) -> String {
+    let s = n.to_string();
+    let mut out = String::with_capacity(s.len() + s.len() / 3);
+    for (i, c) in s.chars().enumerate() {
+        if i > 0 && (s.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// Run `f` with at most `max_terms` terms in any polynomial it builds.
+/// Budgets nest: the inner one applies, and the outer is restored after.
+pub fn within<T>(max_terms: usize, f: impl FnOnce() -> T) -> Result<T, TooLarge> {
+    let outer = LIMIT.with(|l| l.replace(max_terms));
+    let depth = CONTEXT.with(|c| c.borrow().len());
+    let r = catch_unwind(AssertUnwindSafe(f));
+    LIMIT.with(|l| l.set(outer));
+    CONTEXT.with(|c| c.borrow_mut().truncate(depth));
+    match r {
+        Ok(v) => Ok(v),
+        Err(payload) => match payload.downcast::<TooLarge>() {
+            Ok(t) => Err(*t),
+            Err(other) => resume_unwind(other),
+        },
+    }
+}
+
+/// Declare what the thread computes until the guard is dropped (for the
+/// error of [`within`]). `what` is only built under a budget.
+pub fn enter(what: impl FnOnce() -> String, span: Option<(usize, usize)>) -> ContextGuard {
+    // no budget, no bookkeeping
+    if LIMIT.with(Cell::get) == usize::MAX {
+        return ContextGuard { active: false };
+    }
+    CONTEXT.with(|c| c.borrow_mut().push(Context { what: what(), span }));
+    ContextGuard { active: true }
+}
+
+/// Ends the context of [`enter`] when dropped.
+#[must_use = "the context lasts as long as the guard"]
+pub struct ContextGuard {
+    active: bool,
+}
+
+impl Drop for ContextGuard {
+    fn drop(&mut self) {
+        if self.active {
+            CONTEXT.with(|c| c.borrow_mut().pop());
+        }
+    }
+}
+
+/// The budget of this thread (`usize::MAX`: none).
+#[inline]
+pub fn limit() -> usize {
+    LIMIT.with(Cell::get)
+}
+
+/// Unwind with [`TooLarge`] if `terms` exceeds this thread's budget.
+#[inline]
+pub fn check_terms(terms: usize) {
+    let limit = limit();
+    if terms > limit {
+        exceeded(terms, limit);
+    }
+}
+
+/// How many term-by-term products one multiplication may take per term of
+/// the budget: the work of a product grows as the product of the sizes
+/// even when the result stays small (squaring a 700,000-term polynomial).
+pub const PRODUCTS_PER_TERM: usize = 8;
+
+/// Unwind with [`TooLarge`] if multiplying polynomials of `a` and `b`
+/// terms would take more than the budget's term products.
+#[inline]
+pub fn check_product(a: usize, b: usize) {
+    let limit = limit();
+    if a.saturating_mul(b) > limit.saturating_mul(PRODUCTS_PER_TERM) {
+        exceeded_with(a.saturating_mul(b), limit, Some((a, b)));
+    }
+}
+
+#[cold]
+#[inline(never)]
+fn exceeded(terms: usize, limit: usize) -> ! {
+    exceeded_with(terms, limit, None)
+}
+
+#[cold]
+#[inline(never)]
+fn exceeded_with(terms: usize, limit: usize, product: Option<(usize, usize)>) -> ! {
+    let context = CONTEXT.with(|c| c.borrow().last().cloned());
+    resume_unwind(Box::new(TooLarge {
+        terms,
+        limit,
+        context,
+        product,
+    }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn within_a_budget_a_check_past_it_is_an_error_with_its_context() {
+        let r = within(10, || {
+            let _c = enter(|| "evaluating `E`".into(), Some((3, 7)));
+            check_terms(10);
+            check_terms(11);
+            unreachable!("stopped at 11 terms")
+        });
+        let e: TooLarge = r.expect_err("over budget");
+        assert_eq!(e.terms, 11);
+        assert_eq!(e.limit, 10);
+        assert_eq!(e.context.as_ref().map(|c| c.span), Some(Some((3, 7))));
+        assert_eq!(
+            e.message(),
+            "expression too large: 11 terms while evaluating `E` (the limit is 10)"
+        );
+        // outside, no budget: nothing stops
+        check_terms(usize::MAX - 1);
+        assert_eq!(limit(), usize::MAX);
+        assert_eq!(within(5, || 7), Ok(7));
+    }
+
+    #[test]
+    fn numbers_are_grouped_by_thousands() {
+        assert_eq!(grouped(0), "0");
+        assert_eq!(grouped(999), "999");
+        assert_eq!(grouped(1000), "1,000");
+        assert_eq!(grouped(2_000_000), "2,000,000");
+    }
+}
