@@ -150,7 +150,11 @@ fn ctrl_c_interrupts_a_long_computation() {
     enter(&mut p, "parameters a, b, c, d, e, f", "");
     enter(&mut p, "x = 2*a", "x = 2·a");
     // past the default work budget: raised, so that it runs for minutes
-    enter(&mut p, ":max-terms 1000000000", "(at most 1,000,000,000 terms per expression)");
+    enter(
+        &mut p,
+        ":max-terms 1000000000",
+        "(at most 1,000,000,000 terms per expression)",
+    );
     // takes minutes: interrupted after a moment
     p.send_line("(a + b + c + d + e + f)^40").unwrap();
     // Enter accepted (the line editor has left raw mode, so Ctrl-C is a
