@@ -92,7 +92,7 @@ impl Diagnostic {
                 .find('\n')
                 .map(|i| line_start + i)
                 .unwrap_or(src.len());
-            let text = shown_line(&src[line_start..line_end]);
+            let text: Vec<char> = shown_line(&src[line_start..line_end]).chars().collect();
             let gutter = line.to_string().len();
             let pad = " ".repeat(gutter);
             let end = span.end.clamp(span.start, line_end);
@@ -101,14 +101,11 @@ impl Diagnostic {
                 .map(|s| s.chars().count())
                 .unwrap_or(0)
                 .max(1);
+            let (shown, indent, width) = excerpt_of_line(&text, col - 1, width);
             out.push_str(&format!("{pad}--> {file}:{line}:{col}\n"));
             out.push_str(&format!("{pad} |\n"));
-            out.push_str(&format!("{line} | {text}\n"));
-            out.push_str(&format!(
-                "{pad} | {}{}\n",
-                " ".repeat(col - 1),
-                "^".repeat(width)
-            ));
+            out.push_str(&format!("{line} | {shown}\n"));
+            out.push_str(&format!("{pad} | {indent}{}\n", "^".repeat(width)));
         }
         if let Some(h) = &self.hint {
             out.push_str(&format!("  = hint: {h}\n"));
@@ -116,6 +113,38 @@ impl Diagnostic {
         out
     }
 }
+
+/// The part of a source line shown under a message, the caret's indent and
+/// the caret's width, for a caret at character `at` of `width` characters.
+/// A line longer than [`LINE_SHOWN`] is cut to a window around the caret,
+/// marked with `…`; the indent copies the line's tabs, so the caret stays
+/// under its column whatever the terminal's tab stops.
+fn excerpt_of_line(text: &[char], at: usize, width: usize) -> (String, String, usize) {
+    let at = at.min(text.len());
+    let (from, to) = if text.len() <= LINE_SHOWN {
+        (0, text.len())
+    } else {
+        let from = at.saturating_sub(LINE_SHOWN / 3);
+        (from, (from + LINE_SHOWN).min(text.len()))
+    };
+    let mut shown: String = text[from..to].iter().collect();
+    let mut indent: String = text[from..at]
+        .iter()
+        .map(|&c| if c == '\t' { '\t' } else { ' ' })
+        .collect();
+    if from > 0 {
+        shown.insert(0, '…');
+        indent.insert(0, ' ');
+    }
+    if to < text.len() {
+        shown.push('…');
+    }
+    let width = width.min(to.saturating_sub(at)).max(1);
+    (shown, indent, width)
+}
+
+/// The most characters of a source line shown under a message.
+const LINE_SHOWN: usize = 150;
 
 /// A source line as printed under a message: characters that can't be seen
 /// or that reorder the display (a zero-width space, a right-to-left

@@ -26,6 +26,11 @@ pub const MAX_TREE_DEPTH: u32 = 1000;
 /// digits, far beyond any physical constant.
 pub const MAX_DECIMAL_EXPONENT: u32 = 1000;
 
+/// The most digits of a number: a literal, or an integer power of a number
+/// (`7^100000`). Physical constants have tens of digits; past this,
+/// exact arithmetic on the number alone would take seconds.
+pub const MAX_NUMBER_DIGITS: usize = 10_000;
+
 /// The highest order `taylor` expands to (each order differentiates once
 /// more; the terms grow quickly).
 pub const MAX_TAYLOR_ORDER: i64 = 30;

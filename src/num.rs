@@ -316,6 +316,16 @@ impl Q {
         }
     }
 
+    /// log₁₀ of the larger of |numerator| and denominator (from the bit
+    /// length for big numbers: within 0.31): a power qᵏ has about
+    /// k·log₁₀ + 1 digits.
+    pub fn log10_size(&self) -> f64 {
+        match self {
+            Q::Small(n, d) => (n.unsigned_abs().max(d.unsigned_abs()) as f64).log10(),
+            Q::Big(r) => r.numer().bits().max(r.denom().bits()) as f64 * std::f64::consts::LOG10_2,
+        }
+    }
+
     /// `self^e`; `None` for `0^e` with `e < 0`. `0^0 == 1`.
     pub fn pow(&self, e: i32) -> Option<Q> {
         if e < 0 {

@@ -1660,6 +1660,6 @@ fn the_echoed_line_shows_invisible_characters() {
     let d = parse_scene(src).unwrap_err();
     assert_eq!(
         d.render("scene.qd", src),
-        "error: unknown character U+200B (ZERO WIDTH SPACE), which is invisible\n --> scene.qd:2:7\n  |\n2 | y =\t3 \u{FFFD} 4\r\n  |       ^\n  = hint: delete it (invisible characters often come with text pasted from a web page or a word processor)\n"
+        "error: unknown character U+200B (ZERO WIDTH SPACE), which is invisible\n --> scene.qd:2:7\n  |\n2 | y =\t3 \u{FFFD} 4\r\n  |    \t  ^\n  = hint: delete it (invisible characters often come with text pasted from a web page or a word processor)\n"
     );
 }

@@ -475,6 +475,16 @@ impl Expr {
         if n > 10_000 {
             return Err(MathError::new(format!("exponent {n} is too large")));
         }
+        if let Some(q) = self.as_rational() {
+            // a number's power: its digits grow n-fold
+            let digits = (q.log10_size() * f64::from(n)).floor() as usize + 1;
+            let max = crate::limits::MAX_NUMBER_DIGITS;
+            if digits > max {
+                return Err(MathError::new(format!(
+                    "this power of a number has about {digits} digits; qdot keeps numbers to {max} digits"
+                )));
+            }
+        }
         if self.is_poly() {
             return Ok(Expr::poly(reduced(self.0.num.pow(n))));
         }

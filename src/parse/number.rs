@@ -146,6 +146,9 @@ impl<'s> Parser<'s> {
         if rest.starts_with('.') {
             return Err(self.second_dot(i, rest));
         }
+        if int.len() + frac.len() > crate::limits::MAX_NUMBER_DIGITS {
+            return Err(self.too_many_digits(i, rest, int.len() + frac.len()));
+        }
         Ok((rest, Decimal { int, frac, exp }))
     }
 
@@ -183,6 +186,29 @@ impl<'s> Parser<'s> {
     }
 
     /// The error for `1.2.3` or `1e3.5` (a `.` at `rest`, after the number).
+    /// The error for a literal of more than [`crate::limits::MAX_NUMBER_DIGITS`]
+    /// digits (reading one is quadratic in its length).
+    #[cold]
+    #[inline(never)]
+    pub(super) fn too_many_digits(
+        &self,
+        i: &'s str,
+        rest: &'s str,
+        digits: usize,
+    ) -> nom::Err<RuleError> {
+        let span = Span::new(self.pos(i), self.pos(rest));
+        failure(
+            Diagnostic::error(
+                span,
+                format!(
+                    "a number of {digits} digits; qdot reads numbers of at most {} digits",
+                    crate::limits::MAX_NUMBER_DIGITS
+                ),
+            )
+            .with_hint("write a large or small number with an exponent: `6.02214076e23`"),
+        )
+    }
+
     #[cold]
     #[inline(never)]
     pub(super) fn second_dot(&self, i: &'s str, rest: &'s str) -> nom::Err<RuleError> {

@@ -143,3 +143,30 @@ proptest! {
         prop_assert_eq!(shifted, expected);
     }
 }
+
+/// A literal of a million digits is refused at once (reading it is
+/// quadratic), and so is a power of a number with too many digits.
+#[test]
+fn numbers_past_ten_thousand_digits_are_refused() {
+    let src = format!(
+        "coordinates x\nparameters m\nkinetic E = 1/2*m*x'^2\npotential V = {}*x^2\n",
+        "7".repeat(1_000_000)
+    );
+    let o = qdot_scene("million_digits", src.as_bytes(), "solve", &[]);
+    o.assert_clean();
+    assert_eq!(o.code, Some(1), "{o:?}");
+    assert!(
+        o.stderr.starts_with("error: a number of 1000000 digits; qdot reads numbers of at most 10000 digits\n --> scene.qd:4:15\n"),
+        "{o:?}"
+    );
+    // the shown line is cut around the caret
+    assert!(o.stderr.len() < 1000, "{o:?}");
+    assert!(o.stderr.contains("7777…\n"), "{o:?}");
+    assert!(o.elapsed.as_secs() < 5, "{o:?}");
+    assert_eq!(error("7^20000"), "exponent 20000 is too large");
+    assert_eq!(
+        error("66610^3066"),
+        "this power of a number has about 14789 digits; qdot keeps numbers to 10000 digits"
+    );
+    assert_eq!(value("2^1000 / 2^999"), "2");
+}

@@ -230,3 +230,20 @@ fn tolerances_a_double_cannot_meet_are_refused() {
     assert_eq!(o.code, Some(1), "{o:?}");
     assert!(o.stderr.starts_with("error: --rtol 0 is below what a double can meet (2.220446049250313e-15, ten units in the last place)\n"), "{o:?}");
 }
+
+/// The caret's indent copies the line's tabs, so it stays under its column
+/// whatever the tab stops.
+#[test]
+fn the_caret_stays_under_its_column_after_tabs() {
+    let o = qdot_scene(
+        "tabs",
+        b"coordinates x\n\tparameters m\nkinetic E = 1/2*m*x'^2\t+ \tbogus\n",
+        "solve",
+        &[],
+    );
+    o.assert_clean();
+    assert!(
+        o.stderr.starts_with("error: unknown name `bogus`\n --> scene.qd:3:27\n  |\n3 | kinetic E = 1/2*m*x'^2\t+ \tbogus\n  |                       \t  \t^^^^^\n"),
+        "{o:?}"
+    );
+}
