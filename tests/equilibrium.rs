@@ -729,8 +729,9 @@ fn numeric_roots_of_a_sin_theta_minus_b_theta() {
     assert_eq!(code, 0);
     assert!(
         out.ends_with(
-            "\nEquilibria (numeric: no closed form)\n  1. θ = −2.2788626601  — stable\n  \
-             2. θ = 0.0000000000  — unstable\n  3. θ = 2.2788626601  — stable\n"
+            "\nEquilibria (numeric: no closed form)\n  (found by Newton's method from many starting points: \
+             roots far from them may be missed; digits shown are certified by a sign change)\n  \
+             1. θ = −2.278862660076  — stable\n  2. θ = 0  — unstable\n  3. θ = 2.278862660076  — stable\n"
         ),
         "{out}"
     );
@@ -795,13 +796,15 @@ fn numeric_roots_of_a_periodic_equation_are_wrapped() {
 
 #[test]
 fn a_multiple_root_is_one_equilibrium() {
-    // F = −k (x − 1)³: V = k (x − 1)⁴/4, one equilibrium x = 1, a minimum.
+    // F = −k (x − 1)³: V = k (x − 1)⁴/4, one equilibrium x = 1, a minimum,
+    // found exactly (by factoring) with its multiplicity
     let s = parse("coordinates x\nparameters k\nforce x: -k*(x - 1)^3\n");
     let e = eq(&s, "k=1");
-    assert!(!e.exact);
-    let xs: Vec<f64> = e.equilibria.iter().map(|x| numeric(x)[0]).collect();
-    assert_eq!(xs.len(), 1, "{xs:?}");
-    assert!((xs[0] - 1.0).abs() < 1e-3, "{xs:?}");
+    assert!(e.exact);
+    assert_eq!(e.equilibria.len(), 1, "{:?}", e.equilibria);
+    let one = at(&s, &e, &["1"]);
+    assert_eq!(one.multiplicity, 3);
+    assert_eq!(one.stability, Stability::Stable);
     // in two coordinates: V ≥ 0 vanishes only at (1/2, 1/2)
     let s =
         parse("coordinates x, y\nparameters k\npotential V = k*(x - y)^2/2 + k*(x + y - 1)^4\n");
@@ -814,19 +817,21 @@ fn a_double_root_and_a_simple_one_numerically() {
     // F = −k (x − 1)² (x + 2) (degree 3: no closed form is tried).
     //   x = −2: F'(−2) = −9k, K = −F' = 9k > 0, stable;
     //   x = 1, a double root: F ≤ 0 on both sides, unstable.
+    // (found exactly by factoring: each root once, with its multiplicity)
     let s = parse("coordinates x\nparameters k\nforce x: -k*(x - 1)^2*(x + 2)\n");
     let e = eq(&s, "k=1");
-    let mut got: Vec<(f64, Stability)> = e
-        .equilibria
-        .iter()
-        .map(|x| (numeric(x)[0], x.stability.clone()))
-        .collect();
-    got.sort_by(|p, q| p.0.total_cmp(&q.0));
-    assert_eq!(got.len(), 2, "{got:?}");
-    assert!((got[0].0 + 2.0).abs() < 1e-9, "{got:?}");
-    assert_eq!(got[0].1, Stability::Stable);
-    assert!((got[1].0 - 1.0).abs() < 1e-6, "{got:?}");
-    assert_eq!(got[1].1, Stability::Unstable);
+    assert!(e.exact);
+    assert_eq!(e.equilibria.len(), 2, "{:?}", e.equilibria);
+    let simple = at(&s, &e, &["-2"]);
+    assert_eq!(
+        (simple.multiplicity, &simple.stability),
+        (1, &Stability::Stable)
+    );
+    let double = at(&s, &e, &["1"]);
+    assert_eq!(
+        (double.multiplicity, &double.stability),
+        (2, &Stability::Unstable)
+    );
 }
 
 #[test]

@@ -563,7 +563,13 @@ fn position_strings(
                 }
             })
             .collect::<Vec<String>>(),
-        Position::Numeric(xs) => xs.iter().map(|x| minus(format!("{x:.10}"))).collect(),
+        Position::Numeric(xs) => match &e.certified {
+            Some(digits) => digits.iter().map(|d| minus(d.clone())).collect(),
+            None => xs
+                .iter()
+                .map(|x| minus(crate::solve::certify::significant(*x, 6)))
+                .collect(),
+        },
     }
     .into_iter()
     .take(eq.coordinates.len())
@@ -587,6 +593,9 @@ pub fn equilibrium_text(eq: &Equilibria) -> String {
     if eq.equilibria.is_empty() {
         out.push_str("  none\n");
     }
+    if !eq.exact && !eq.equilibria.is_empty() {
+        out.push_str("  (found by Newton's method from many starting points: roots far from them may be missed; digits shown are certified by a sign change)\n");
+    }
     for (i, e) in eq.equilibria.iter().enumerate() {
         let vals = position_strings(eq, e, &u);
         let parts: Vec<String> = eq
@@ -605,6 +614,15 @@ pub fn equilibrium_text(eq: &Equilibria) -> String {
             out.push_str(&format!(" ({why})"));
         }
         out.push('\n');
+        if e.multiplicity > 1 {
+            out.push_str(&format!(
+                "     a root of multiplicity {} of the condition (V'' = 0 there; decided by the first derivative of V that is not 0)\n",
+                e.multiplicity
+            ));
+        }
+        if matches!(e.position, Position::Numeric(_)) && e.certified.is_none() {
+            out.push_str("     not certified: no sign change of the condition found around it (a multiple root, or one lost in rounding); 6 digits shown\n");
+        }
         for c in &e.conditions {
             out.push_str(&format!("     exists when {c}\n"));
         }
@@ -632,6 +650,7 @@ pub fn equilibrium_json(eq: &Equilibria) -> Map<String, Value> {
     m.insert("exact".into(), json!(eq.exact));
     let mut list = Vec::new();
     let mut stab = Vec::new();
+    let mut multiplicity = Vec::new();
     let mut notes = Vec::new();
     let mut approx = Vec::new();
     for e in &eq.equilibria {
@@ -654,6 +673,7 @@ pub fn equilibrium_json(eq: &Equilibria) -> Map<String, Value> {
         }
         list.push(Value::Object(o));
         stab.push(json!(e.stability.word()));
+        multiplicity.push(json!(e.multiplicity));
         let mut n: Vec<String> = e
             .conditions
             .iter()
@@ -668,6 +688,7 @@ pub fn equilibrium_json(eq: &Equilibria) -> Map<String, Value> {
     m.insert("stability".into(), Value::Array(stab));
     m.insert("notes".into(), Value::Array(notes));
     m.insert("approx".into(), Value::Array(approx));
+    m.insert("multiplicity".into(), Value::Array(multiplicity));
     m
 }
 

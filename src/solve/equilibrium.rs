@@ -81,6 +81,12 @@ pub struct Equilibrium {
     /// The numeric values of an exact position, given parameter values.
     pub approx: Option<Vec<f64>>,
     pub stability: Stability,
+    /// For one coordinate, the multiplicity of the root of the condition
+    /// F = 0 (1 for a simple root; 2 or more where V'' = 0).
+    pub multiplicity: u32,
+    /// A numeric position's digits that are certified (one coordinate: a
+    /// sign change of F encloses the root); `None` when not certified.
+    pub certified: Option<Vec<String>>,
 }
 
 /// The equilibria of a scene.
@@ -183,12 +189,18 @@ pub fn equilibria(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic>
                 } else {
                     Stability::Undecided("neutral: a coordinate is free".into())
                 };
+                let multiplicity = match (q.as_slice(), vals.as_slice()) {
+                    ([qk], [v]) if free.is_empty() => multiplicity(&conditions[0], *qk, v),
+                    _ => 1,
+                };
                 found.push(Equilibrium {
                     position: Position::Exact(vals),
                     free,
                     conditions: if approx.is_some() { Vec::new() } else { conds },
                     approx,
                     stability,
+                    multiplicity,
+                    certified: None,
                 });
             }
             true
@@ -496,8 +508,35 @@ fn vanishes(v: &Expr) -> bool {
     defined > 0
 }
 
-/// Roots of a polynomial in q of degree ≤ 2 after taking out q^k.
+/// Roots of a polynomial in q: its irreducible factors over ℚ (with the
+/// parameters) of degree ≤ 2 in q, each root once; `None` when a factor of
+/// higher degree has roots no closed form gives. Factoring first makes a
+/// multiple root one root ((1 + q)¹⁰⁰) and finds the small factors of a
+/// product whose expansion has a high degree (q·(q² − 2)²).
 fn poly_roots(p: &Poly, q: Var) -> Option<Vec<Root>> {
+    if p.degree(q) <= 2 {
+        return poly_roots_low(p, q);
+    }
+    let f = crate::poly::factor::factor(p);
+    let mut out: Vec<Root> = Vec::new();
+    for (g, _) in &f.factors {
+        if g.degree(q) == 0 {
+            continue;
+        }
+        if g.degree(q) > 2 {
+            return None;
+        }
+        for r in poly_roots_low(g, q)? {
+            if !out.iter().any(|o| o.0.equals(&r.0)) {
+                out.push(r);
+            }
+        }
+    }
+    Some(out)
+}
+
+/// Roots of a polynomial in q of degree ≤ 2 after taking out q^k.
+fn poly_roots_low(p: &Poly, q: Var) -> Option<Vec<Root>> {
     let cs = p.coeffs_in(q);
     let mut k = 0;
     while k < cs.len() && cs[k].is_zero() {
@@ -1079,7 +1118,7 @@ fn jacobi(signs: &[Option<i32>], gyroscopic: bool) -> Stability {
 /// One coordinate with V'' = 0: the first non-vanishing derivative decides.
 fn higher_order(f: &Expr, q: Var, at: &Expr, set: &Values) -> Stability {
     let mut d = f.diff(q); // F' = −V''
-    for order in 3..=8 {
+    for order in 3..=MAX_DERIVATIVE_ORDER {
         d = d.diff(q); // F^(order−1) = −V^(order)
         let Ok(v) = d.subs(q, at) else {
             break;
@@ -1091,7 +1130,27 @@ fn higher_order(f: &Expr, q: Var, at: &Expr, set: &Values) -> Stability {
             None => break,
         }
     }
-    Stability::Undecided("V'' = 0 here and higher derivatives do not decide".into())
+    Stability::Undecided(format!(
+        "V'' = 0 here and the derivatives up to order {MAX_DERIVATIVE_ORDER} do not decide"
+    ))
+}
+
+/// The highest derivative of V the stability test of a degenerate
+/// equilibrium takes (V = (1 + x)¹⁰⁰ needs the 100th).
+const MAX_DERIVATIVE_ORDER: u32 = 202;
+
+/// The multiplicity of the root `at` of the condition `f` (one
+/// coordinate): how many of f, f', f'', … vanish there (at most
+/// [`MAX_DERIVATIVE_ORDER`]).
+pub fn multiplicity(f: &Expr, q: Var, at: &Expr) -> u32 {
+    let mut d = f.clone();
+    for m in 0..MAX_DERIVATIVE_ORDER {
+        match d.subs(q, at) {
+            Ok(v) if v.is_zero() => d = d.diff(q),
+            _ => return m.max(1),
+        }
+    }
+    MAX_DERIVATIVE_ORDER
 }
 
 // ---------------------------------------------------------------- numeric
@@ -1162,19 +1221,31 @@ fn solve_numeric(
                 let h = 1e-3 * (1.0 + r.x[0].abs());
                 let side = |x: f64| f(&[x]).map(|v| v[0]);
                 if let (Some(lo), Some(hi)) = (side(r.x[0] - h), side(r.x[0] + h)) {
-                    stability = if lo > 0.0 && hi < 0.0 {
-                        Stability::Stable
-                    } else {
-                        Stability::Unstable
-                    };
+                    // restoring on both sides: stable; pushed away on
+                    // either side: unstable; a side with no force: not
+                    // decided (never guessed)
+                    if lo > 0.0 && hi < 0.0 {
+                        stability = Stability::Stable;
+                    } else if lo < 0.0 || hi > 0.0 {
+                        stability = Stability::Unstable;
+                    }
                 }
             }
+            // one coordinate: certify the digits by a sign change of F
+            let certified = (r.x.len() == 1)
+                .then(|| {
+                    let f1 = |x: f64| f(&[x]).map(|v| v[0]);
+                    super::certify::enclose(&f1, r.x[0]).map(|e| vec![e.digits()])
+                })
+                .flatten();
             Equilibrium {
                 position: Position::Numeric(r.x),
                 free: Vec::new(),
                 conditions: Vec::new(),
                 approx: None,
                 stability,
+                multiplicity: 1,
+                certified,
             }
         })
         .collect()

@@ -15,7 +15,7 @@ pub const DYNAMICS_KEYS: [&str; 5] = [
 pub const BLOCK_KEYS: [&str; 3] = ["solutions", "free_unknowns", "checks"];
 
 /// The JSON keys of `qdot equilibrium`, in order.
-pub const EQUILIBRIUM_KEYS: [&str; 8] = [
+pub const EQUILIBRIUM_KEYS: [&str; 9] = [
     "coordinates",
     "generalized_forces",
     "conditions",
@@ -24,6 +24,7 @@ pub const EQUILIBRIUM_KEYS: [&str; 8] = [
     "stability",
     "notes",
     "approx",
+    "multiplicity",
 ];
 
 /// `qdot ARGS` from the repository root: exit code, stdout, stderr.
