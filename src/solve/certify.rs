@@ -166,7 +166,7 @@ mod tests {
     #[test]
     fn significant_digits() {
         assert_eq!(significant(0.7390851332, 4), "0.7391");
-        assert_eq!(significant(-1.41421, 5), "-1.4142");
+        assert_eq!(significant(-1.2345678, 5), "-1.2346");
         assert_eq!(significant(1e-12, 3), "1.00e-12");
         assert_eq!(significant(123456789.0, 3), "1.23e8");
     }
