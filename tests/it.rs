@@ -20,6 +20,8 @@ mod integrators;
 mod integrators_alloc;
 mod latex;
 mod latex_pdf;
+mod layers;
+mod limits_doc;
 mod modes;
 mod no_panic;
 mod parse_ast;

@@ -6,7 +6,7 @@ use std::path::Path;
 
 /// Layers, lowest first; the modules of one layer do not use each other.
 const LAYERS: &[&[&str]] = &[
-    &["num", "cancel", "limits", "gallery"],
+    &["num", "cancel", "budget", "limits", "gallery"],
     &["poly"],
     &["expr"],
     &["algebra"],
@@ -19,7 +19,26 @@ const LAYERS: &[&[&str]] = &[
     &["repl"],
 ];
 
+/// Uses that break the order today, each to be removed by moving code
+/// (issue 15): `Span` and the hidden-character test belong in `diag`;
+/// `solve::linear` below `mechanics` (an `algebra` layer), and the small
+/// oscillations above it, in `solve`. The test fails on any use not listed
+/// here, and on a listed one that is gone (so the list only shrinks).
+const KNOWN_VIOLATIONS: &[&str] = &[
+    "diag.rs: uses crate::parse",
+    "mechanics/mod.rs: uses crate::solve",
+    "mechanics/oscillations.rs: uses crate::solve",
+];
+
 fn layer_of(module: &str) -> Option<usize> {
+    // the crate root's re-exports, by the module they come from
+    let module = match module {
+        "Scene" => "scene",
+        "Expr" => "expr",
+        "Lagrange" => "mechanics",
+        "Diagnostic" => "diag",
+        m => m,
+    };
     LAYERS.iter().position(|l| l.contains(&module))
 }
 
@@ -106,7 +125,11 @@ fn every_module_uses_only_lower_layers() {
     for f in &files {
         let rel = f.strip_prefix(&src).expect("under src");
         let first = rel.components().next().expect("a component");
-        let module = first.as_os_str().to_string_lossy().trim_end_matches(".rs").to_string();
+        let module = first
+            .as_os_str()
+            .to_string_lossy()
+            .trim_end_matches(".rs")
+            .to_string();
         if module == "lib" || module == "main" {
             continue; // the crate roots re-export and drive everything
         }
@@ -128,10 +151,28 @@ fn every_module_uses_only_lower_layers() {
     }
     unknown.sort();
     unknown.dedup();
-    assert!(unknown.is_empty(), "modules missing from the layer table (and ARCHITECTURE.md): {unknown:?}");
+    assert!(
+        unknown.is_empty(),
+        "modules missing from the layer table (and ARCHITECTURE.md): {unknown:?}"
+    );
     wrong.sort();
     wrong.dedup();
-    assert!(wrong.is_empty(), "uses of a module of the same or a higher layer:\n{}", wrong.join("\n"));
+    let new: Vec<&String> = wrong
+        .iter()
+        .filter(|w| !KNOWN_VIOLATIONS.contains(&w.as_str()))
+        .collect();
+    assert!(
+        new.is_empty(),
+        "uses of a module of the same or a higher layer:\n{new:?}"
+    );
+    let gone: Vec<&&str> = KNOWN_VIOLATIONS
+        .iter()
+        .filter(|k| !wrong.iter().any(|w| w == *k))
+        .collect();
+    assert!(
+        gone.is_empty(),
+        "fixed: remove from KNOWN_VIOLATIONS: {gone:?}"
+    );
 }
 
 #[test]
