@@ -194,6 +194,19 @@ fn run_unbounded(
                 Some(a) => Some(assignments(&scene, a)?),
                 None => None,
             };
+            // an equilibrium is a constant position
+            if let Some(vals) = &at {
+                for (c, v) in scene.coordinates.iter().zip(vals) {
+                    if v.is_time_dependent() {
+                        return Err(Diagnostic::global(format!(
+                            "`--at {}={}`: an equilibrium is a constant position, and this changes with time",
+                            c.name,
+                            crate::expr::print::input(v)
+                        ))
+                        .with_hint("give the coordinates constant values: --at theta=0 (the motion about a moving state is not small oscillations)"));
+                    }
+                }
+            }
             let md = crate::mechanics::oscillations::modes(&scene, at.as_deref(), set)?;
             let free = match &opts.init {
                 Some(i) => {
@@ -320,12 +333,24 @@ pub fn parse_set(s: &str) -> Result<Values, Diagnostic> {
             );
         };
         let k = k.trim();
+        let v_text = v.trim();
         if out.contains_key(k) {
             return Err(Diagnostic::global(format!("`--set`: `{k}` is given twice"))
                 .with_hint("give each parameter one value"));
         }
-        let v: f64 = match v.trim().parse() {
+        let v: f64 = match v.trim().parse::<f64>() {
             Ok(x) if f64::is_finite(x) => x,
+            // a number past the double range (1e400): say so
+            Ok(_)
+                if !v.trim().to_ascii_lowercase().contains("inf")
+                    && !v.trim().to_ascii_lowercase().contains("nan") =>
+            {
+                return Err(Diagnostic::global(format!(
+                    "`--set {part}`: `{}` is beyond the range of double precision (about 1.8e308)",
+                    v.trim()
+                ))
+                .with_hint("numeric work is done in doubles; rescale the units"))
+            }
             _ => {
                 return Err(Diagnostic::global(format!(
                     "`--set {part}`: `{}` is not a number",
@@ -334,6 +359,12 @@ pub fn parse_set(s: &str) -> Result<Values, Diagnostic> {
                 .with_hint("write decimal numbers: --set m=1.5,g=9.81"))
             }
         };
+        if v == 0.0 && v_is_nonzero_text(v_text) {
+            return Err(Diagnostic::global(format!(
+                "`--set {part}`: `{v_text}` is below the smallest double (about 4.9e-324)"
+            ))
+            .with_hint("numeric work is done in doubles; rescale the units"));
+        }
         if v <= 0.0 {
             return Err(Diagnostic::global(format!(
                 "`--set {part}`: parameters are positive, and {v} is not"
@@ -343,6 +374,14 @@ pub fn parse_set(s: &str) -> Result<Values, Diagnostic> {
         out.insert(k.to_string(), v);
     }
     Ok(out)
+}
+
+/// Whether a decimal number's text has a nonzero digit before any exponent
+/// (`1e-400` does, `0.0e5` does not).
+fn v_is_nonzero_text(t: &str) -> bool {
+    t.split(['e', 'E'])
+        .next()
+        .is_some_and(|m| m.chars().any(|c| c.is_ascii_digit() && c != '0'))
 }
 
 fn json_string(m: Map<String, Value>) -> String {

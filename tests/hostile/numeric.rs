@@ -97,3 +97,47 @@ fn numeric_roots_print_only_certified_digits() {
         "{line}"
     );
 }
+
+/// Parameter values past the double range say so (they were "not a
+/// number", and 1e-400 "0 is not positive").
+#[test]
+fn set_values_past_the_double_range_say_so() {
+    let run = |v: &str| {
+        let o = qdot_bounded(
+            &[
+                "modes",
+                "examples/pendulum.qd",
+                "--set",
+                &format!("m=1,l=1,g={v}"),
+            ],
+            "",
+            SECONDS,
+            MEMORY_MIB,
+        );
+        o.assert_clean();
+        assert_eq!(o.code, Some(1), "{o:?}");
+        o.stderr
+    };
+    assert!(run("1e400").starts_with(
+        "error: `--set g=1e400`: `1e400` is beyond the range of double precision (about 1.8e308)\n"
+    ));
+    assert!(run("1e-400").starts_with(
+        "error: `--set g=1e-400`: `1e-400` is below the smallest double (about 4.9e-324)\n"
+    ));
+    assert!(run("0").starts_with("error: `--set g=0`: parameters are positive, and 0 is not\n"));
+    assert!(run("inf").starts_with("error: `--set g=inf`: `inf` is not a number\n"));
+}
+
+/// `modes --at` takes an equilibrium: a constant position.
+#[test]
+fn modes_at_a_moving_position_is_refused() {
+    let o = qdot_bounded(
+        &["modes", "examples/pendulum.qd", "--at", "theta=sin(t)"],
+        "",
+        SECONDS,
+        MEMORY_MIB,
+    );
+    o.assert_clean();
+    assert_eq!(o.code, Some(1), "{o:?}");
+    assert!(o.stderr.starts_with("error: `--at theta=sin(t)`: an equilibrium is a constant position, and this changes with time\n"), "{o:?}");
+}
