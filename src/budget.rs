@@ -7,7 +7,7 @@
 //! polynomial arithmetic call [`check_terms`] with the size they reached;
 //! past the budget the thread unwinds with a [`TooLarge`] payload (by
 //! `resume_unwind`: no panic message), which `within` turns into an `Err`.
-//! The [`context`] a computation declares (the statement being evaluated,
+//! The context a computation declares ([`enter`]) (the statement being evaluated,
 //! the phase of a command) is carried in the error. Threads outside
 //! `within` have no budget: a library user who does not opt in is never
 //! stopped, and pays one thread-local read per check.

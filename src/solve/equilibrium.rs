@@ -1141,7 +1141,7 @@ const MAX_DERIVATIVE_ORDER: u32 = 202;
 
 /// The multiplicity of the root `at` of the condition `f` (one
 /// coordinate): how many of f, f', f'', … vanish there (at most
-/// [`MAX_DERIVATIVE_ORDER`]).
+/// `MAX_DERIVATIVE_ORDER`).
 pub fn multiplicity(f: &Expr, q: Var, at: &Expr) -> u32 {
     let mut d = f.clone();
     for m in 0..MAX_DERIVATIVE_ORDER {

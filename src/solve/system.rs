@@ -2,7 +2,7 @@
 //!
 //! A block's equations are linear in its unknowns with coefficients that are
 //! rational functions (with radicals, trig atoms, …) of everything else. The
-//! elimination ([`echelon`]) is fraction-free, like [`super::linear::solve`],
+//! elimination (`echelon`) is fraction-free, like [`super::linear::solve`],
 //! but rectangular: a column with no pivot is a *free* unknown, and a row left
 //! without a pivot is an equation implied by the others: a *check* that either
 //! holds (the seed's kinetostatic systems of 22.2 have one more equation than

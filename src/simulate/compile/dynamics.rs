@@ -61,7 +61,7 @@ pub const BEST_MAX_N: usize = 3;
 /// division and a function call (sin, cos, sin_cos, exp, …) take several
 /// times the latency of an addition or a multiplication.
 pub const DIVISION_COST: f64 = 4.0;
-/// See [`DIVISION_COST`].
+/// See `DIVISION_COST`.
 pub const CALL_COST: f64 = 20.0;
 
 /// What [`CompiledDynamics::best`] chose, and why.
@@ -73,7 +73,7 @@ pub struct Choice {
     /// ([`CompiledDynamics::estimated_cost`]).
     pub mass_cost: f64,
     /// The estimated cost of the compiled exact accelerations; `None` when
-    /// they were not derived (n > [`BEST_MAX_N`], or no exact solution).
+    /// they were not derived (n > `BEST_MAX_N`, or no exact solution).
     pub accelerations_cost: Option<f64>,
     /// Why, in a few words for `--stats` (the estimated costs compared, or
     /// why the exact accelerations were not derived).
@@ -179,10 +179,10 @@ impl CompiledDynamics {
     }
 
     /// The cheaper evaluator of q̈ for `lagrange`: M and f with their solve
-    /// ([`CompiledDynamics::new`]) and, for n ≤ [`BEST_MAX_N`] coordinates,
+    /// ([`CompiledDynamics::new`]) and, for n ≤ `BEST_MAX_N` coordinates,
     /// the exact accelerations ([`CompiledDynamics::from_accelerations`]);
     /// the one with the smaller [`CompiledDynamics::estimated_cost`] is
-    /// kept, the exact accelerations on a tie. For n > [`BEST_MAX_N`], or
+    /// kept, the exact accelerations on a tie. For n > `BEST_MAX_N`, or
     /// when the exact accelerations cannot be derived, M and f are used
     /// without deriving anything more. An error only when M and f do not
     /// compile.
@@ -255,7 +255,7 @@ impl CompiledDynamics {
 
     /// The estimated cost of one right-hand side, in flops: the program's
     /// additions and multiplications ([`Program::op_counts`]), divisions
-    /// weighted by [`DIVISION_COST`] and function calls by [`CALL_COST`],
+    /// weighted by `DIVISION_COST` and function calls by `CALL_COST`,
     /// plus the solve. For a varying M: n³/3 + 2n² additions and
     /// multiplications (Cholesky and the two triangular solves),
     /// n(n − 1)/2 + 2n divisions and n square roots (weighted as divisions: they lie

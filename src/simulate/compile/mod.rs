@@ -25,14 +25,14 @@
 //! [`CompiledDynamics`] evaluates M(q, t) (its upper triangle) and f(q, q̇, t)
 //! of Lagrange's equations in one program and solves M·q̈ = f by
 //! [`solve_spd`] (Cholesky, LU with partial pivoting as fallback; Golub &
-//! Van Loan, Matrix Computations, 4.2 and 3.4), as a [`System`] for the
+//! Van Loan, Matrix Computations, 4.2 and 3.4), as a [`super::System`] for the
 //! integrators.
 //!
-//! The stages, one file each: [`builder`] (expressions to a hash-consed
-//! graph of nodes, with constant folding and Horner schemes), [`passes`]
-//! (the named passes from that graph to a [`Program`]), [`program`] (the
+//! The stages, one file each: `builder` (expressions to a hash-consed
+//! graph of nodes, with constant folding and Horner schemes), `passes`
+//! (the named passes from that graph to a [`Program`]), `program` (the
 //! instructions and their interpreter), [`dense`] (the f64 solve of
-//! M·q̈ = f) and [`dynamics`] ([`CompiledDynamics`]).
+//! M·q̈ = f) and `dynamics` ([`CompiledDynamics`]).
 
 mod builder;
 pub mod dense;

@@ -131,7 +131,7 @@ impl Program {
     }
 
     /// Evaluate every output at `inputs` (in the order given to
-    /// [`compile`]), using `regs` as scratch. Allocation-free.
+    /// [`super::compile`]), using `regs` as scratch. Allocation-free.
     ///
     /// # Panics
     /// When `inputs.len() != self.n_inputs()`, `regs.len() <
