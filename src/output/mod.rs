@@ -633,7 +633,11 @@ pub fn equilibrium_text(eq: &Equilibria) -> String {
         out.push_str("  none\n");
     }
     if !eq.exact && !eq.equilibria.is_empty() {
-        out.push_str("  (found by Newton's method from many starting points: roots far from them may be missed; digits shown are certified by a sign change)\n");
+        out.push_str(if eq.coordinates.len() == 1 {
+            "  (found by Newton's method from many starting points: roots far from them may be missed; digits shown are certified by a sign change)\n"
+        } else {
+            "  (found by Newton's method from many starting points: roots far from them may be missed)\n"
+        });
     }
     for (i, e) in eq.equilibria.iter().enumerate() {
         let vals = position_strings(eq, e, &u);
@@ -659,8 +663,12 @@ pub fn equilibrium_text(eq: &Equilibria) -> String {
                 e.multiplicity
             ));
         }
-        if matches!(e.position, Position::Numeric(_)) && e.certified.is_none() {
-            out.push_str("     not certified: no sign change of the condition found around it (a multiple root, or one lost in rounding); 6 digits shown\n");
+        if let (Position::Numeric(xs), None) = (&e.position, &e.certified) {
+            out.push_str(if xs.len() == 1 {
+                "     not certified: no sign change of the condition found around it (a multiple root, or one lost in rounding); 6 digits shown\n"
+            } else {
+                "     not certified (several coordinates: qdot encloses roots of one equation only); 6 digits shown\n"
+            });
         }
         for c in &e.conditions {
             out.push_str(&format!("     exists when {c}\n"));
