@@ -104,7 +104,8 @@ impl Lagrange {
                 lhs = lhs.sub(&e.diff(q[k]));
             }
             // Mass-matrix row and the rest: lhs − Q = M_k·q̈ − f_k.
-            let (row, rest) = split_linear(&lhs.sub(&rhs), &qdd);
+            let (row, rest) =
+                split_linear(&lhs.sub(&rhs), &qdd).map_err(|m| Diagnostic::global(m.message))?;
             for (j, m) in row.into_iter().enumerate() {
                 mass[k][j] = m;
             }
@@ -283,8 +284,11 @@ pub fn generalized_force_terms(scene: &Scene) -> Vec<Vec<ForceTerm>> {
     out
 }
 
-/// Split `e` (linear in the variables `vs`) as Σ coef_j·vs_j + rest.
-pub fn split_linear(e: &Expr, vs: &[Var]) -> (Vec<Expr>, Expr) {
+/// Split `e` (linear in the variables `vs`) as Σ coef_j·vs_j + rest. An
+/// error only if a part has no canonical form (a coefficient over the
+/// denominator of `e` cannot vanish, so this does not happen in practice;
+/// it is reported, never turned into 0).
+pub fn split_linear(e: &Expr, vs: &[Var]) -> Result<(Vec<Expr>, Expr), crate::expr::MathError> {
     let den = e.den().clone();
     let mut rest = e.num().clone();
     let mut coefs = Vec::with_capacity(vs.len());
@@ -306,8 +310,8 @@ pub fn split_linear(e: &Expr, vs: &[Var]) -> (Vec<Expr>, Expr) {
             }
             rest = &rest + &extra;
         }
-        coefs.push(Expr::from_parts(c1, den.clone()).unwrap_or_else(|_| Expr::zero()));
+        coefs.push(Expr::from_parts(c1, den.clone())?);
     }
-    let rest = Expr::from_parts(rest, den).unwrap_or_else(|_| Expr::zero());
-    (coefs, rest)
+    let rest = Expr::from_parts(rest, den)?;
+    Ok((coefs, rest))
 }

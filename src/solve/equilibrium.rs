@@ -310,7 +310,8 @@ fn rec(
         let mut a = Vec::new();
         let mut b = Vec::new();
         for e in &eqs {
-            let (coefs, r) = crate::mechanics::split_linear(e, &open_vars);
+            // (no closed form on this branch if a part has none)
+            let (coefs, r) = crate::mechanics::split_linear(e, &open_vars).ok()?;
             a.push(coefs);
             b.push(r.neg());
         }

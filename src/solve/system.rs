@@ -253,7 +253,8 @@ fn solve_block(
     let mut a = Vec::with_capacity(residuals.len());
     let mut b = Vec::with_capacity(residuals.len());
     for r in &residuals {
-        let (coefs, rest) = crate::mechanics::split_linear(r, &unknowns);
+        let (coefs, rest) =
+            crate::mechanics::split_linear(r, &unknowns).map_err(|m| math(sys.span, m))?;
         a.push(coefs);
         b.push(rest.neg());
     }
