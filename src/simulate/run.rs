@@ -87,6 +87,93 @@ pub struct Run {
     pub not_finite_column: Option<String>,
 }
 
+/// The value of every parameter of the scene from `--set`, and nothing
+/// else.
+fn parameter_values(scene: &Scene, req: &Request) -> Result<FxHashMap<Var, f64>, Diagnostic> {
+    let mut params: FxHashMap<Var, f64> = FxHashMap::default();
+    let mut missing: Vec<String> = Vec::new();
+    for p in &scene.parameters {
+        match req.set.get(&p.name) {
+            Some(&v) => {
+                params.insert(atom::param(&p.name), v);
+            }
+            None => missing.push(p.name.clone()),
+        }
+    }
+    if !missing.is_empty() {
+        let example: Vec<String> = missing.iter().map(|m| format!("{m}=1")).collect();
+        return Err(Diagnostic::global(format!(
+            "no value for the parameter{} {}",
+            if missing.len() > 1 { "s" } else { "" },
+            missing.join(", ")
+        ))
+        .with_hint(format!(
+            "give every parameter a value: --set {}",
+            example.join(",")
+        )));
+    }
+    for k in req.set.keys() {
+        if !scene.parameters.iter().any(|p| &p.name == k) {
+            return Err(Diagnostic::global(format!(
+                "`--set {k}=…`: `{k}` is not a parameter of the scene"
+            ))
+            .with_hint(format!(
+                "the parameters are {}",
+                scene
+                    .parameters
+                    .iter()
+                    .map(|p| p.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )));
+        }
+    }
+    Ok(params)
+}
+
+/// The initial state y0 = (q, q̇) from `--init`: every coordinate and
+/// velocity, and nothing else.
+fn initial_values(names: &[String], req: &Request) -> Result<Vec<f64>, Diagnostic> {
+    let mut y0 = Vec::with_capacity(2 * names.len());
+    let mut missing: Vec<String> = Vec::new();
+    for order in ["", "'"] {
+        for q in names {
+            let key = format!("{q}{order}");
+            match req.init.get(&key) {
+                Some(&v) => y0.push(v),
+                None => {
+                    missing.push(key);
+                    y0.push(0.0);
+                }
+            }
+        }
+    }
+    if !missing.is_empty() {
+        let example: Vec<String> = missing.iter().map(|m| format!("{m}=0")).collect();
+        return Err(
+            Diagnostic::global(format!("no initial value for {}", missing.join(", "))).with_hint(
+                format!(
+                    "give every coordinate and velocity a value: --init {}",
+                    example.join(",")
+                ),
+            ),
+        );
+    }
+    for k in req.init.keys() {
+        let base = k.trim_end_matches('\'');
+        if !names.iter().any(|q| q == base) || k.len() - base.len() > 1 {
+            return Err(Diagnostic::global(format!(
+                "`--init {k}=…`: `{k}` is not a coordinate or a velocity"
+            ))
+            .with_hint(format!(
+                "the coordinates are {}; velocities are written q'",
+                names.join(", ")
+            )));
+        }
+    }
+    Ok(y0)
+}
+
 /// The options' numbers: a positive, finite `--t-end`, `--dt` and
 /// `--max-steps`, 2 to [`crate::limits::MAX_POINTS`] output times,
 /// tolerances a double can meet.
@@ -198,83 +285,8 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
     let scene = Scene::parse(src)?;
     let lag = scene.lagrange()?;
     let names: Vec<String> = lag.coordinates.clone();
-    // parameter values: every parameter, nothing else
-    let mut params: FxHashMap<Var, f64> = FxHashMap::default();
-    let mut missing: Vec<String> = Vec::new();
-    for p in &scene.parameters {
-        match req.set.get(&p.name) {
-            Some(&v) => {
-                params.insert(atom::param(&p.name), v);
-            }
-            None => missing.push(p.name.clone()),
-        }
-    }
-    if !missing.is_empty() {
-        let example: Vec<String> = missing.iter().map(|m| format!("{m}=1")).collect();
-        return Err(Diagnostic::global(format!(
-            "no value for the parameter{} {}",
-            if missing.len() > 1 { "s" } else { "" },
-            missing.join(", ")
-        ))
-        .with_hint(format!(
-            "give every parameter a value: --set {}",
-            example.join(",")
-        )));
-    }
-    for k in req.set.keys() {
-        if !scene.parameters.iter().any(|p| &p.name == k) {
-            return Err(Diagnostic::global(format!(
-                "`--set {k}=…`: `{k}` is not a parameter of the scene"
-            ))
-            .with_hint(format!(
-                "the parameters are {}",
-                scene
-                    .parameters
-                    .iter()
-                    .map(|p| p.name.as_str())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )));
-        }
-    }
-    // initial values: q and q' of every coordinate
-    let mut y0 = Vec::with_capacity(2 * names.len());
-    let mut missing: Vec<String> = Vec::new();
-    for order in ["", "'"] {
-        for q in &names {
-            let key = format!("{q}{order}");
-            match req.init.get(&key) {
-                Some(&v) => y0.push(v),
-                None => {
-                    missing.push(key);
-                    y0.push(0.0);
-                }
-            }
-        }
-    }
-    if !missing.is_empty() {
-        let example: Vec<String> = missing.iter().map(|m| format!("{m}=0")).collect();
-        return Err(
-            Diagnostic::global(format!("no initial value for {}", missing.join(", "))).with_hint(
-                format!(
-                    "give every coordinate and velocity a value: --init {}",
-                    example.join(",")
-                ),
-            ),
-        );
-    }
-    for k in req.init.keys() {
-        let base = k.trim_end_matches('\'');
-        if !names.iter().any(|q| q == base) || k.len() - base.len() > 1 {
-            return Err(Diagnostic::global(format!(
-                "`--init {k}=…`: `{k}` is not a coordinate or a velocity"
-            ))
-            .with_hint(format!(
-                "the coordinates are {}; velocities are written q'",
-                names.join(", ")
-            )));
-        }
-    }
+    let params = parameter_values(&scene, req)?;
+    let y0 = initial_values(&names, req)?;
     check_numbers(req)?;
     let compile_start = Instant::now();
     let (mut dynamics, evaluator) = CompiledDynamics::best(&lag, &params)
