@@ -76,8 +76,7 @@ fn modes(c: &mut Criterion) {
             b.iter(|| {
                 let s = Scene::parse(black_box(&src)).expect("parses");
                 black_box(
-                    qdot::mechanics::oscillations::modes(&s, None, &Default::default())
-                        .expect("modes"),
+                    qdot::solve::oscillations::modes(&s, None, &Default::default()).expect("modes"),
                 )
             })
         });

@@ -4,8 +4,24 @@
 //! prints it with `file:line:column`, the source line and a caret under the
 //! offending text.
 
-use crate::parse::ast::Span;
 use std::fmt;
+
+/// Byte range `start..end` into the scene source.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub struct Span {
+    pub start: usize,
+    pub end: usize,
+}
+
+impl Span {
+    pub fn new(start: usize, end: usize) -> Span {
+        Span { start, end }
+    }
+    /// The smallest span covering both.
+    pub fn to(self, other: Span) -> Span {
+        Span::new(self.start.min(other.start), self.end.max(other.end))
+    }
+}
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Severity {
@@ -153,7 +169,7 @@ const LINE_SHOWN: usize = 150;
 fn shown_line(text: &str) -> String {
     text.chars()
         .map(|c| {
-            if crate::parse::is_hidden(c) {
+            if crate::unicode::is_hidden(c) {
                 '\u{FFFD}'
             } else {
                 c

@@ -22,6 +22,7 @@
 //! expressions over [`poly`] and [`num`]) → [`mechanics`] → [`solve`] →
 //! [`output`].
 
+pub mod algebra;
 pub mod budget;
 pub mod cancel;
 pub mod diag;
@@ -37,6 +38,7 @@ pub mod repl;
 pub mod scene;
 pub mod simulate;
 pub mod solve;
+pub mod unicode;
 
 pub use diag::Diagnostic;
 pub use expr::Expr;

@@ -1,4 +1,4 @@
-//! Small oscillations (`qdot modes`, `qdot::mechanics::oscillations`): the
+//! Small oscillations (`qdot modes`, `qdot::solve::oscillations`): the
 //! linearized M, C, K and f(t), det(K − λ·M), the exact ω² and modes
 //! (distribution coefficients), stability, the standard form of one degree
 //! of freedom, the free and forced responses — all checked exactly against
@@ -9,11 +9,11 @@
 use crate::common::run::{json, keys, qdot, qdot_on};
 use proptest::test_runner::{Config, TestRunner};
 use qdot::expr::atom::{self, Atom};
-use qdot::mechanics::oscillations::{
-    damped_steady_state, forced_amplitudes, free_response, modes, standard_form, Modes, Stability,
-};
 use qdot::solve::eigen::{distribution_coefficients, generalized_symmetric};
 use qdot::solve::equilibrium::Values;
+use qdot::solve::oscillations::{
+    damped_steady_state, forced_amplitudes, free_response, modes, standard_form, Modes, Stability,
+};
 use qdot::{Expr, Scene};
 use serde_json::Value;
 
@@ -1487,7 +1487,7 @@ fn cart_pendulum_is_stable_exactly() {
         kinetic E = 1/2*M0*x'^2 + 1/2*m*(px'^2 + py'^2)\n\
         potential V = 1/2*k*x^2 + m*g*py\n";
     let s = Scene::parse(src).unwrap();
-    let md = qdot::mechanics::oscillations::modes(&s, None, &Default::default()).unwrap();
+    let md = qdot::solve::oscillations::modes(&s, None, &Default::default()).unwrap();
     assert_eq!(md.stability, qdot::solve::equilibrium::Stability::Stable);
     for w2 in &md.omega_squared {
         assert_eq!(qdot::solve::equilibrium::sign_exact(w2), Some(1), "{w2}");

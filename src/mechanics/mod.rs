@@ -19,12 +19,11 @@
 //! inertia forces `inertia(m, x)` among its loads (E may then be absent),
 //! and their q̈ terms join M.
 
-pub mod oscillations;
-
+pub use crate::algebra::linear::split_linear;
 use crate::diag::Diagnostic;
 use crate::expr::{atom, Expr};
 use crate::parse::ast::Role;
-use crate::poly::{Poly, Var};
+use crate::poly::Var;
 use crate::scene::Scene;
 
 /// One equation: `lhs = rhs` for a coordinate.
@@ -136,9 +135,9 @@ impl Lagrange {
     pub fn accelerations(&self) -> Result<Vec<(String, Expr)>, Diagnostic> {
         let _context =
             crate::budget::enter(|| "solving M·q̈ = f for the accelerations".into(), None);
-        let sol = crate::solve::linear::solve(&self.mass_matrix, &self.forcing).map_err(|e| {
+        let sol = crate::algebra::linear::solve(&self.mass_matrix, &self.forcing).map_err(|e| {
             match e {
-                crate::solve::linear::SolveError::Singular { dependent } => {
+                crate::algebra::linear::SolveError::Singular { dependent } => {
                     let names: Vec<&str> = dependent
                         .iter()
                         .filter_map(|&i| self.coordinates.get(i).map(|s| s.as_str()))
@@ -149,7 +148,7 @@ impl Lagrange {
                     ))
                     .with_hint("a combination of their velocities carries no kinetic energy; remove a redundant coordinate or add the missing inertia")
                 }
-                crate::solve::linear::SolveError::Math(m) => Diagnostic::global(m.message),
+                crate::algebra::linear::SolveError::Math(m) => Diagnostic::global(m.message),
             }
         })?;
         Ok(self.coordinates.iter().cloned().zip(sol).collect())
@@ -282,36 +281,4 @@ pub fn generalized_force_terms(scene: &Scene) -> Vec<Vec<ForceTerm>> {
         out.push(terms);
     }
     out
-}
-
-/// Split `e` (linear in the variables `vs`) as Σ coef_j·vs_j + rest. An
-/// error only if a part has no canonical form (a coefficient over the
-/// denominator of `e` cannot vanish, so this does not happen in practice;
-/// it is reported, never turned into 0).
-pub fn split_linear(e: &Expr, vs: &[Var]) -> Result<(Vec<Expr>, Expr), crate::expr::MathError> {
-    let den = e.den().clone();
-    let mut rest = e.num().clone();
-    let mut coefs = Vec::with_capacity(vs.len());
-    for &v in vs {
-        if !rest.contains_var(v) {
-            coefs.push(Expr::zero());
-            continue;
-        }
-        let cs = rest.coeffs_in(v);
-        let c1 = cs.get(1).cloned().unwrap_or_default();
-        // Any higher power would mean a nonlinear left-hand side; Lagrange's
-        // left-hand sides are always linear in q̈, so cs.len() ≤ 2.
-        rest = cs.first().cloned().unwrap_or_default();
-        if cs.len() > 2 {
-            let higher: Vec<Poly> = cs[2..].to_vec();
-            let mut extra = Poly::zero();
-            for (i, c) in higher.iter().enumerate() {
-                extra = &extra + &(c * &Poly::var(v).pow(i as u32 + 2));
-            }
-            rest = &rest + &extra;
-        }
-        coefs.push(Expr::from_parts(c1, den.clone())?);
-    }
-    let rest = Expr::from_parts(rest, den)?;
-    Ok((coefs, rest))
 }

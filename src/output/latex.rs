@@ -16,11 +16,11 @@ use super::position_strings;
 use crate::diag::Diagnostic;
 use crate::expr::latex::{join, latex_expanded, latex_with, Names};
 use crate::expr::Expr;
-use crate::mechanics::oscillations::Modes;
 use crate::mechanics::{Lagrange, Source};
 use crate::parse::ast::Role;
 use crate::scene::Scene;
 use crate::solve::equilibrium::{Equilibria, Stability};
+use crate::solve::oscillations::Modes;
 use crate::solve::system::{self, BlockSolution};
 
 /// The widest line, in the units of [`width`] (about one italic letter):
@@ -361,7 +361,7 @@ impl Writer {
         self.matrix("K", &md.stiffness);
         // λ = ω², with ω printed as a coordinate so that the terms are
         // collected by its powers
-        let lambda = crate::expr::atom::unknown(crate::mechanics::oscillations::LAMBDA);
+        let lambda = crate::expr::atom::unknown(crate::solve::oscillations::LAMBDA);
         let w2 = Expr::coord("omega", 0).powi(2);
         let subst = |e: &Expr| w2.as_ref().ok().and_then(|w| e.subs(lambda, w).ok());
         // each factor with a positive first term, the signs gathered in front

@@ -207,13 +207,11 @@ fn run_unbounded(
                     }
                 }
             }
-            let md = crate::mechanics::oscillations::modes(&scene, at.as_deref(), set)?;
+            let md = crate::solve::oscillations::modes(&scene, at.as_deref(), set)?;
             let free = match &opts.init {
                 Some(i) => {
                     let (q0, v0) = initial_conditions(&scene, i)?;
-                    Some(crate::mechanics::oscillations::free_response(
-                        &md, &q0, &v0,
-                    )?)
+                    Some(crate::solve::oscillations::free_response(&md, &q0, &v0)?)
                 }
                 None => None,
             };
@@ -776,7 +774,7 @@ fn matrix_text(out: &mut String, title: &str, m: &[Vec<Expr>]) {
 
 /// The generalized symmetric eigenproblem K·v = ω²·M·v at `set`.
 fn numeric_eigen(
-    md: &crate::mechanics::oscillations::Modes,
+    md: &crate::solve::oscillations::Modes,
     set: &Values,
 ) -> Option<crate::solve::eigen::GeneralizedEigen> {
     if set.is_empty() {
@@ -796,12 +794,12 @@ fn numeric_eigen(
 
 /// The text of `qdot modes`.
 pub fn modes_text(
-    md: &crate::mechanics::oscillations::Modes,
+    md: &crate::solve::oscillations::Modes,
     set: &Values,
     free: Option<&[Expr]>,
 ) -> String {
     let names: Vec<String> = md.coordinates.iter().map(|c| pretty_name(c, 0)).collect();
-    let standard = crate::mechanics::oscillations::standard_form(md, set);
+    let standard = crate::solve::oscillations::standard_form(md, set);
     let at: Vec<String> = names
         .iter()
         .zip(&md.at)
@@ -866,7 +864,7 @@ pub fn modes_text(
         out.push_str(&format!("  regime: {}\n", sf.regime));
     }
     out.push_str("\nCharacteristic equation  det(K − λ·M) = 0,  λ = ω²\n");
-    let lv = crate::expr::atom::unknown(crate::mechanics::oscillations::LAMBDA);
+    let lv = crate::expr::atom::unknown(crate::solve::oscillations::LAMBDA);
     // the equation is "= 0": constant factors are left out
     let shown: Vec<&Expr> = md.factors.iter().filter(|f| f.depends_on(lv)).collect();
     let factors: Vec<String> = shown
@@ -939,7 +937,7 @@ pub fn modes_text(
         "\nStability of the equilibrium: {}",
         md.stability.word()
     ));
-    if let crate::mechanics::oscillations::Stability::Undecided(why) = &md.stability {
+    if let crate::solve::oscillations::Stability::Undecided(why) = &md.stability {
         out.push_str(&format!(" ({why})"));
     }
     out.push('\n');
@@ -960,7 +958,7 @@ pub fn modes_text(
             let v0 = q.diff(t).subs_many(&zero).ok();
             if let (Some(y0), Some(v0)) = (y0, v0) {
                 if let Some((a, phi)) =
-                    crate::mechanics::oscillations::amplitude_phase(&md.omega_squared[0], &y0, &v0)
+                    crate::solve::oscillations::amplitude_phase(&md.omega_squared[0], &y0, &v0)
                 {
                     out.push_str(&format!(
                         "  = A·sin(ω·t + φ),  A = √(y₀² + (v₀/ω)²) = {},  φ = atan(y₀·ω/v₀) = {}\n",
@@ -973,14 +971,12 @@ pub fn modes_text(
     }
     if let Some(sf) = &standard {
         if !sf.alpha.is_zero() {
-            if let Some((p, _, tan_psi)) =
-                crate::mechanics::oscillations::damped_steady_state(md, sf)
-            {
+            if let Some((p, _, tan_psi)) = crate::solve::oscillations::damped_steady_state(md, sf) {
                 // X is exact in the JSON; the formula reads better here
                 out.push_str(&format!(
                     "\nSteady state under F·cos(p·t), p = {}:  y = X·cos(p·t − ψ)\n  X = (F/M)/√((ω² − p²)² + 4α²p²),  F/M = {}\n  tan ψ = 2αp/(ω² − p²) = {}\n",
                     u(&p),
-                    crate::mechanics::oscillations::harmonic_load(md)
+                    crate::solve::oscillations::harmonic_load(md)
                         .and_then(|(_, f)| f[0].div(&md.mass[0][0]).ok())
                         .map(|a| u(&a))
                         .unwrap_or_default(),
@@ -989,7 +985,7 @@ pub fn modes_text(
             }
         }
     }
-    if let Some((p, x)) = crate::mechanics::oscillations::forced_amplitudes(md) {
+    if let Some((p, x)) = crate::solve::oscillations::forced_amplitudes(md) {
         if md.damping.iter().flatten().all(|e| e.is_zero()) {
             out.push_str(&format!(
                 "\nSteady state under f = F·cos(p·t), p = {}  (undamped amplitudes; resonance at p² = ωᵢ²)\n",
@@ -1009,7 +1005,7 @@ fn expanded(e: &Expr) -> String {
 
 /// A polynomial in λ in ascending powers: k − 6·m·λ, 2·k² − 4·k·m·λ + m²·λ².
 fn lambda_poly(f: &Expr) -> String {
-    let lv = crate::expr::atom::unknown(crate::mechanics::oscillations::LAMBDA);
+    let lv = crate::expr::atom::unknown(crate::solve::oscillations::LAMBDA);
     if !f.den().is_one() || !f.num().contains_var(lv) {
         return u(f);
     }
@@ -1061,10 +1057,10 @@ fn paren_str(s: &str) -> String {
 /// `forced_response`: for f = F·cos(p·t), the undamped amplitudes
 /// (K − p²M)⁻¹·F, or for one damped coordinate X and tan ψ.
 fn forced_json(
-    md: &crate::mechanics::oscillations::Modes,
-    sf: Option<&crate::mechanics::oscillations::StandardForm>,
+    md: &crate::solve::oscillations::Modes,
+    sf: Option<&crate::solve::oscillations::StandardForm>,
 ) -> Value {
-    use crate::mechanics::oscillations as osc;
+    use crate::solve::oscillations as osc;
     let damped = md.damping.iter().flatten().any(|e| !e.is_zero());
     if !damped {
         return osc::forced_amplitudes(md)
@@ -1078,7 +1074,7 @@ fn forced_json(
 
 /// The JSON of `qdot modes`.
 pub fn modes_json(
-    md: &crate::mechanics::oscillations::Modes,
+    md: &crate::solve::oscillations::Modes,
     set: &Values,
     free: Option<&[Expr]>,
 ) -> Map<String, Value> {
@@ -1119,7 +1115,7 @@ pub fn modes_json(
             .collect::<Vec<_>>()),
     );
     m.insert("stability".into(), json!(md.stability.word()));
-    let standard = crate::mechanics::oscillations::standard_form(md, set);
+    let standard = crate::solve::oscillations::standard_form(md, set);
     let sf = standard.as_ref().map(|sf| {
         json!({
             "omega_squared": s(&sf.omega_squared),

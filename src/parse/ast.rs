@@ -6,22 +6,7 @@
 
 use num_rational::BigRational;
 
-/// Byte range `start..end` into the scene source.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
-pub struct Span {
-    pub start: usize,
-    pub end: usize,
-}
-
-impl Span {
-    pub fn new(start: usize, end: usize) -> Span {
-        Span { start, end }
-    }
-    /// The smallest span covering both.
-    pub fn to(self, other: Span) -> Span {
-        Span::new(self.start.min(other.start), self.end.max(other.end))
-    }
-}
+pub use crate::diag::Span;
 
 /// An identifier with its position.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -11,218 +11,7 @@
 use super::{is_known, show_char};
 use crate::diag::Diagnostic;
 use crate::parse::ast::Span;
-
-/// What a character is, for a message.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Kind {
-    /// Takes no room on screen.
-    Invisible,
-    /// Reorders the display of the line (bidirectional controls).
-    Bidi,
-    /// A C0/C1 control character.
-    Control,
-    /// Drawn like the given ASCII character.
-    Like(char),
-}
-
-/// The characters named in messages: code point, Unicode name, kind.
-const TABLE: &[(char, &str, Kind)] = &[
-    ('\u{00AD}', "SOFT HYPHEN", Kind::Invisible),
-    ('\u{02B9}', "MODIFIER LETTER PRIME", Kind::Like('\'')),
-    ('\u{02BC}', "MODIFIER LETTER APOSTROPHE", Kind::Like('\'')),
-    (
-        '\u{02C8}',
-        "MODIFIER LETTER VERTICAL LINE",
-        Kind::Like('\''),
-    ),
-    ('\u{034F}', "COMBINING GRAPHEME JOINER", Kind::Invisible),
-    ('\u{037E}', "GREEK QUESTION MARK", Kind::Like(';')),
-    ('\u{0391}', "GREEK CAPITAL LETTER ALPHA", Kind::Like('A')),
-    ('\u{0392}', "GREEK CAPITAL LETTER BETA", Kind::Like('B')),
-    ('\u{0395}', "GREEK CAPITAL LETTER EPSILON", Kind::Like('E')),
-    ('\u{0396}', "GREEK CAPITAL LETTER ZETA", Kind::Like('Z')),
-    ('\u{0397}', "GREEK CAPITAL LETTER ETA", Kind::Like('H')),
-    ('\u{0399}', "GREEK CAPITAL LETTER IOTA", Kind::Like('I')),
-    ('\u{039A}', "GREEK CAPITAL LETTER KAPPA", Kind::Like('K')),
-    ('\u{039C}', "GREEK CAPITAL LETTER MU", Kind::Like('M')),
-    ('\u{039D}', "GREEK CAPITAL LETTER NU", Kind::Like('N')),
-    ('\u{039F}', "GREEK CAPITAL LETTER OMICRON", Kind::Like('O')),
-    ('\u{03A1}', "GREEK CAPITAL LETTER RHO", Kind::Like('P')),
-    ('\u{03A4}', "GREEK CAPITAL LETTER TAU", Kind::Like('T')),
-    ('\u{03A5}', "GREEK CAPITAL LETTER UPSILON", Kind::Like('Y')),
-    ('\u{03A7}', "GREEK CAPITAL LETTER CHI", Kind::Like('X')),
-    ('\u{03BF}', "GREEK SMALL LETTER OMICRON", Kind::Like('o')),
-    ('\u{0405}', "CYRILLIC CAPITAL LETTER DZE", Kind::Like('S')),
-    (
-        '\u{0406}',
-        "CYRILLIC CAPITAL LETTER BYELORUSSIAN-UKRAINIAN I",
-        Kind::Like('I'),
-    ),
-    ('\u{0408}', "CYRILLIC CAPITAL LETTER JE", Kind::Like('J')),
-    ('\u{0410}', "CYRILLIC CAPITAL LETTER A", Kind::Like('A')),
-    ('\u{0412}', "CYRILLIC CAPITAL LETTER VE", Kind::Like('B')),
-    ('\u{0415}', "CYRILLIC CAPITAL LETTER IE", Kind::Like('E')),
-    ('\u{041A}', "CYRILLIC CAPITAL LETTER KA", Kind::Like('K')),
-    ('\u{041C}', "CYRILLIC CAPITAL LETTER EM", Kind::Like('M')),
-    ('\u{041D}', "CYRILLIC CAPITAL LETTER EN", Kind::Like('H')),
-    ('\u{041E}', "CYRILLIC CAPITAL LETTER O", Kind::Like('O')),
-    ('\u{0420}', "CYRILLIC CAPITAL LETTER ER", Kind::Like('P')),
-    ('\u{0421}', "CYRILLIC CAPITAL LETTER ES", Kind::Like('C')),
-    ('\u{0422}', "CYRILLIC CAPITAL LETTER TE", Kind::Like('T')),
-    ('\u{0423}', "CYRILLIC CAPITAL LETTER U", Kind::Like('Y')),
-    ('\u{0425}', "CYRILLIC CAPITAL LETTER HA", Kind::Like('X')),
-    ('\u{0430}', "CYRILLIC SMALL LETTER A", Kind::Like('a')),
-    ('\u{0435}', "CYRILLIC SMALL LETTER IE", Kind::Like('e')),
-    ('\u{043E}', "CYRILLIC SMALL LETTER O", Kind::Like('o')),
-    ('\u{0440}', "CYRILLIC SMALL LETTER ER", Kind::Like('p')),
-    ('\u{0441}', "CYRILLIC SMALL LETTER ES", Kind::Like('c')),
-    ('\u{0443}', "CYRILLIC SMALL LETTER U", Kind::Like('y')),
-    ('\u{0445}', "CYRILLIC SMALL LETTER HA", Kind::Like('x')),
-    ('\u{0455}', "CYRILLIC SMALL LETTER DZE", Kind::Like('s')),
-    (
-        '\u{0456}',
-        "CYRILLIC SMALL LETTER BYELORUSSIAN-UKRAINIAN I",
-        Kind::Like('i'),
-    ),
-    ('\u{0458}', "CYRILLIC SMALL LETTER JE", Kind::Like('j')),
-    ('\u{04BB}', "CYRILLIC SMALL LETTER SHHA", Kind::Like('h')),
-    (
-        '\u{04CF}',
-        "CYRILLIC SMALL LETTER PALOCHKA",
-        Kind::Like('l'),
-    ),
-    ('\u{0501}', "CYRILLIC SMALL LETTER KOMI DE", Kind::Like('d')),
-    ('\u{051B}', "CYRILLIC SMALL LETTER QA", Kind::Like('q')),
-    ('\u{051D}', "CYRILLIC SMALL LETTER WE", Kind::Like('w')),
-    ('\u{0589}', "ARMENIAN FULL STOP", Kind::Like(':')),
-    ('\u{061C}', "ARABIC LETTER MARK", Kind::Bidi),
-    ('\u{180E}', "MONGOLIAN VOWEL SEPARATOR", Kind::Invisible),
-    ('\u{200B}', "ZERO WIDTH SPACE", Kind::Invisible),
-    ('\u{200C}', "ZERO WIDTH NON-JOINER", Kind::Invisible),
-    ('\u{200D}', "ZERO WIDTH JOINER", Kind::Invisible),
-    ('\u{200E}', "LEFT-TO-RIGHT MARK", Kind::Bidi),
-    ('\u{200F}', "RIGHT-TO-LEFT MARK", Kind::Bidi),
-    ('\u{2010}', "HYPHEN", Kind::Like('-')),
-    ('\u{2011}', "NON-BREAKING HYPHEN", Kind::Like('-')),
-    ('\u{2012}', "FIGURE DASH", Kind::Like('-')),
-    ('\u{2018}', "LEFT SINGLE QUOTATION MARK", Kind::Like('\'')),
-    ('\u{201C}', "LEFT DOUBLE QUOTATION MARK", Kind::Like('"')),
-    ('\u{201D}', "RIGHT DOUBLE QUOTATION MARK", Kind::Like('"')),
-    ('\u{2024}', "ONE DOT LEADER", Kind::Like('.')),
-    ('\u{202A}', "LEFT-TO-RIGHT EMBEDDING", Kind::Bidi),
-    ('\u{202B}', "RIGHT-TO-LEFT EMBEDDING", Kind::Bidi),
-    ('\u{202C}', "POP DIRECTIONAL FORMATTING", Kind::Bidi),
-    ('\u{202D}', "LEFT-TO-RIGHT OVERRIDE", Kind::Bidi),
-    ('\u{202E}', "RIGHT-TO-LEFT OVERRIDE", Kind::Bidi),
-    ('\u{2044}', "FRACTION SLASH", Kind::Like('/')),
-    ('\u{2060}', "WORD JOINER", Kind::Invisible),
-    ('\u{2061}', "FUNCTION APPLICATION", Kind::Invisible),
-    ('\u{2062}', "INVISIBLE TIMES", Kind::Invisible),
-    ('\u{2063}', "INVISIBLE SEPARATOR", Kind::Invisible),
-    ('\u{2064}', "INVISIBLE PLUS", Kind::Invisible),
-    ('\u{2066}', "LEFT-TO-RIGHT ISOLATE", Kind::Bidi),
-    ('\u{2067}', "RIGHT-TO-LEFT ISOLATE", Kind::Bidi),
-    ('\u{2068}', "FIRST STRONG ISOLATE", Kind::Bidi),
-    ('\u{2069}', "POP DIRECTIONAL ISOLATE", Kind::Bidi),
-    ('\u{2217}', "ASTERISK OPERATOR", Kind::Like('*')),
-    ('\u{2236}', "RATIO", Kind::Like(':')),
-    ('\u{FE63}', "SMALL HYPHEN-MINUS", Kind::Like('-')),
-    ('\u{FFF9}', "INTERLINEAR ANNOTATION ANCHOR", Kind::Invisible),
-    (
-        '\u{FFFA}',
-        "INTERLINEAR ANNOTATION SEPARATOR",
-        Kind::Invisible,
-    ),
-    (
-        '\u{FFFB}',
-        "INTERLINEAR ANNOTATION TERMINATOR",
-        Kind::Invisible,
-    ),
-];
-
-/// Names of the control characters most often met in text.
-const CONTROLS: &[(char, &str)] = &[
-    ('\u{0}', "NULL"),
-    ('\u{7}', "BELL"),
-    ('\u{8}', "BACKSPACE"),
-    ('\u{1B}', "ESCAPE"),
-    ('\u{7F}', "DELETE"),
-    ('\u{85}', "NEXT LINE"),
-];
-
-/// `U+200B`.
-pub fn code_point(c: char) -> String {
-    format!("U+{:04X}", u32::from(c))
-}
-
-/// The name and kind of `c`, if messages single it out; names outside the
-/// table are built for whole blocks (fullwidth forms, mathematical letters
-/// and digits) or are a description in lower case.
-fn lookup(c: char) -> Option<(String, Kind)> {
-    if let Ok(k) = TABLE.binary_search_by_key(&c, |&(t, _, _)| t) {
-        let (_, name, kind) = TABLE[k];
-        return Some((name.to_string(), kind));
-    }
-    let u = u32::from(c);
-    if c.is_control() {
-        let name = CONTROLS
-            .iter()
-            .find(|&&(t, _)| t == c)
-            .map_or("a control character", |&(_, n)| n);
-        return Some((name.to_string(), Kind::Control));
-    }
-    // fullwidth ASCII: U+FF01..U+FF5E are U+0021..U+007E shifted
-    if (0xFF01..=0xFF5E).contains(&u) {
-        let a = char::from_u32(u - 0xFEE0)?;
-        let name = if a.is_ascii_uppercase() {
-            format!("FULLWIDTH LATIN CAPITAL LETTER {a}")
-        } else if a.is_ascii_lowercase() {
-            format!("FULLWIDTH LATIN SMALL LETTER {}", a.to_ascii_uppercase())
-        } else if a.is_ascii_digit() {
-            format!("FULLWIDTH DIGIT {a}")
-        } else {
-            "a fullwidth form".to_string()
-        };
-        return Some((name, Kind::Like(a)));
-    }
-    // mathematical alphanumeric symbols: 13 alphabets of A–Z a–z, then
-    // 5 of the digits 0–9
-    if (0x1D400..=0x1D6A3).contains(&u) {
-        let k = ((u - 0x1D400) % 52) as u8;
-        let a = if k < 26 { b'A' + k } else { b'a' + k - 26 };
-        return Some(("a mathematical letter".into(), Kind::Like(char::from(a))));
-    }
-    if (0x1D7CE..=0x1D7FF).contains(&u) {
-        let a = char::from(b'0' + ((u - 0x1D7CE) % 10) as u8);
-        return Some(("a mathematical digit".into(), Kind::Like(a)));
-    }
-    let description = match u {
-        0x0300..=0x036F => "a combining mark",
-        0xFE00..=0xFE0F | 0xE0100..=0xE01EF => "a variation selector",
-        0xE0000..=0xE007F => "a tag character",
-        0x206A..=0x206F => "a deprecated format character",
-        0xFEFF => "ZERO WIDTH NO-BREAK SPACE",
-        _ => return None,
-    };
-    Some((description.to_string(), Kind::Invisible))
-}
-
-/// Can't `c` be seen, or does it reorder the display of its line? (A tab
-/// shows as white space, and the `\r` of a CRLF line end as nothing.)
-pub fn is_hidden(c: char) -> bool {
-    if c.is_ascii() {
-        return c.is_ascii_control() && c != '\t' && c != '\r';
-    }
-    matches!(
-        lookup(c),
-        Some((_, Kind::Invisible | Kind::Bidi | Kind::Control))
-    )
-}
-
-/// `U+200B (ZERO WIDTH SPACE)`, or `U+0430 (CYRILLIC SMALL LETTER A)`.
-fn named(c: char, name: &str) -> String {
-    format!("{} ({name})", code_point(c))
-}
+use crate::unicode::{lookup, named, CharKind};
 
 const BIDI_HINT: &str =
     "delete it: with it the text shown is not the text read (it is refused in comments and strings too)";
@@ -242,7 +31,7 @@ pub fn no_bidi_control(src: &str) -> Result<(), Diagnostic> {
         let Some(c) = src.get(p..).and_then(|s| s.chars().next()) else {
             continue;
         };
-        if let Some((name, Kind::Bidi)) = lookup(c) {
+        if let Some((name, CharKind::Bidi)) = lookup(c) {
             let span = Span::new(p, p + c.len_utf8());
             return Err(Diagnostic::error(
                 span,
@@ -264,19 +53,19 @@ pub fn describe(c: char) -> Option<(String, String)> {
     let (name, kind) = lookup(c)?;
     let what = named(c, &name);
     Some(match kind {
-        Kind::Invisible => (
+        CharKind::Invisible => (
             format!("unknown character {what}, which is invisible"),
             "delete it (invisible characters often come with text pasted from a web page or a word processor)".into(),
         ),
-        Kind::Bidi => (
+        CharKind::Bidi => (
             format!("invisible character {what}, which reorders how the line is displayed"),
             BIDI_HINT.into(),
         ),
-        Kind::Control => (
+        CharKind::Control => (
             format!("unknown character {what}"),
             "delete it: control characters are not part of the .qd language".into(),
         ),
-        Kind::Like(a) => (
+        CharKind::Like(a) => (
             format!("unknown character {what}, which looks like `{a}`"),
             format!("replace it with the ASCII `{a}`"),
         ),
@@ -300,7 +89,7 @@ pub fn refused_letter(name: &str) -> Option<(usize, char, String, String)> {
             continue;
         }
         match lookup(c) {
-            Some((n, Kind::Like(a))) => {
+            Some((n, CharKind::Like(a))) => {
                 let always = a == '\'' || !is_greek_or_cyrillic(c);
                 if always {
                     return Some(refusal(name, p, c, &n, a));
@@ -444,11 +233,6 @@ pub fn unexpected(c: char, shown: &str) -> (String, String) {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn the_table_is_sorted_for_binary_search() {
-        assert!(TABLE.windows(2).all(|w| w[0].0 < w[1].0));
-    }
 
     #[test]
     fn names_in_other_scripts_are_names() {

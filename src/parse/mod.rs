@@ -36,7 +36,7 @@ mod lexer;
 mod number;
 mod statements;
 
-pub use chars::is_hidden;
+pub use crate::unicode::is_hidden;
 
 use std::cell::Cell;
 

@@ -32,6 +32,9 @@
 //! coordinate with K = 0 the first non-vanishing derivative decides.
 
 use super::numeric::{find_roots, RootOptions};
+use crate::algebra::linear::det;
+use crate::algebra::sign::sign_of;
+pub use crate::algebra::sign::{sign_exact, Values};
 use crate::diag::Diagnostic;
 use crate::expr::atom::{self, Atom};
 use crate::expr::{func, Expr};
@@ -104,9 +107,6 @@ pub struct Equilibria {
     /// True when the positions were found in closed form.
     pub exact: bool,
 }
-
-/// Parameter values for numeric work (`--set m=1,g=9.81`).
-pub type Values = FxHashMap<String, f64>;
 
 /// Find and classify the equilibria of a scene.
 pub fn equilibria(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic> {
@@ -779,182 +779,6 @@ fn poly_like_roots(cs: &[Expr]) -> Option<Vec<Root>> {
     Some(out)
 }
 
-// ---------------------------------------------------------------- signs
-
-/// +1, −1 or 0 when decided exactly (parameters are positive).
-pub fn sign_exact(e: &Expr) -> Option<i32> {
-    if let Some(q) = e.as_rational() {
-        return Some(rational_sign(&q));
-    }
-    let n = definite(e.num())?;
-    let d = definite(e.den())?;
-    Some(n * d)
-}
-
-/// −1, 0 or +1.
-fn rational_sign(q: &Q) -> i32 {
-    if q.is_zero() {
-        0
-    } else if q.is_negative() {
-        -1
-    } else {
-        1
-    }
-}
-
-/// The sign of a polynomial whose atoms are all positive and whose
-/// coefficients all have one sign, or which is a positive monomial times
-/// a real number built from radicals (2·g − √2·g = g·(2 − √2)), or
-/// A + B·√P with A and B definite (the roots of a quadratic in ω²).
-fn definite(p: &Poly) -> Option<i32> {
-    one_signed(p)
-        .or_else(|| radical_number(p))
-        .or_else(|| with_one_root(p))
-}
-
-/// p = A + B·√P with one radical atom √P (degree 1) and A, B of decided
-/// signs: if they agree, that sign; otherwise A − B·√P has A's sign and
-/// (A + B√P)(A − B√P) = A² − B²·P, so the sign is sign(A)·sign(A² − B²P).
-fn with_one_root(p: &Poly) -> Option<i32> {
-    let roots: Vec<Var> = p
-        .vars()
-        .into_iter()
-        .filter(|&v| matches!(atom::atom(v), Atom::SqrtOf(_)))
-        .collect();
-    let [r] = roots.as_slice() else {
-        return None;
-    };
-    let cs = p.coeffs_in(*r);
-    if cs.len() != 2 {
-        return None;
-    }
-    let (a, b) = (&cs[0], &cs[1]);
-    let sb = definite(b)?;
-    if a.is_zero() {
-        return Some(sb);
-    }
-    let sa = definite(a)?;
-    if sa == sb {
-        return Some(sa);
-    }
-    let square = atom::square_of(*r)?;
-    let diff = &(a * a) - &(&(b * b) * &square);
-    if diff.is_zero() {
-        return None;
-    }
-    let sd = definite(&crate::expr::reduce_poly(&diff))?;
-    Some(sa * sd)
-}
-
-/// p = (monomial in positive atoms) × (a combination of √n): the sign of
-/// the number, which is nonzero (p is canonical and not zero) and is
-/// evaluated in f64 only when far from 0.
-fn radical_number(p: &Poly) -> Option<i32> {
-    let mut terms = p.terms().iter();
-    let first = terms.next()?.0.clone();
-    let g = terms.fold(first, |g, (m, _)| g.gcd(m));
-    let rest = p.div_mono(&g)?;
-    if !rest
-        .vars()
-        .iter()
-        .all(|&v| matches!(atom::atom(v), Atom::Root(_)))
-    {
-        return None;
-    }
-    let positive_part = g.0.iter().all(|&(v, k)| {
-        k % 2 == 0
-            || matches!(
-                atom::atom(v),
-                Atom::Param(_) | Atom::Pi | Atom::Root(_) | Atom::SqrtOf(_) | Atom::Exp(_)
-            )
-    });
-    if !positive_part {
-        return None;
-    }
-    let v = Expr::from_poly(rest.clone()).eval_f64(&|_| None)?;
-    let scale = rest
-        .terms()
-        .iter()
-        .filter_map(|(m, c)| {
-            Expr::from_poly(Poly::monomial(m.clone(), c.clone()))
-                .eval_f64(&|_| None)
-                .map(f64::abs)
-        })
-        .fold(0.0, f64::max);
-    if !v.is_finite() || v.abs() <= 1e-9 * scale {
-        return None;
-    }
-    Some(if v > 0.0 { 1 } else { -1 })
-}
-
-fn one_signed(p: &Poly) -> Option<i32> {
-    let positive = |v: Var| {
-        matches!(
-            atom::atom(v),
-            Atom::Param(_) | Atom::Pi | Atom::Root(_) | Atom::SqrtOf(_) | Atom::Exp(_)
-        )
-    };
-    let mut sign = 0;
-    for (m, c) in p.terms() {
-        if !m.0.iter().all(|&(v, k)| k % 2 == 0 || positive(v)) {
-            return None;
-        }
-        let sg = if c.is_negative() { -1 } else { 1 };
-        if sign != 0 && sg != sign {
-            return None;
-        }
-        sign = sg;
-    }
-    Some(sign)
-}
-
-/// The sign, exactly or at the given parameter values.
-///
-/// With parameter values, the numeric sign comes first: an exact sign is a
-/// claim for all positive parameters, and a radical in it (a discriminant)
-/// can vanish at particular values, where two equilibria merge.
-pub(crate) fn sign_of(e: &Expr, set: &Values) -> Option<i32> {
-    if let Some(s) = sign_numeric(e, set) {
-        return Some(s);
-    }
-    sign_exact(e)
-}
-
-/// The sign at the given parameter values, if they determine it.
-fn sign_numeric(e: &Expr, set: &Values) -> Option<i32> {
-    if let Some(q) = e.as_rational() {
-        return Some(rational_sign(&q));
-    }
-    if set.is_empty() {
-        return None;
-    }
-    let at = |a: &Atom| match a {
-        Atom::Param(n) => set.get(&**n).copied(),
-        _ => None,
-    };
-    let num = Expr::from_poly(e.num().clone());
-    let v = num.eval_f64(&at)?;
-    let den = Expr::from_poly(e.den().clone()).eval_f64(&at)?;
-    if !v.is_finite() || !den.is_finite() || den == 0.0 {
-        return None;
-    }
-    // zero relative to the size of the numerator's terms
-    let scale = e
-        .num()
-        .terms()
-        .iter()
-        .filter_map(|(m, c)| {
-            Expr::from_poly(Poly::monomial(m.clone(), c.clone()))
-                .eval_f64(&at)
-                .map(f64::abs)
-        })
-        .fold(0.0, f64::max);
-    if v.abs() <= 1e-12 * scale {
-        return Some(0);
-    }
-    Some(if (v > 0.0) == (den > 0.0) { 1 } else { -1 })
-}
-
 /// Which coordinates are angles: they appear in sin/cos and never bare.
 fn periodic_coordinates(conditions: &[Expr], q: &[Var]) -> Vec<bool> {
     q.iter()
@@ -1001,37 +825,6 @@ fn numeric_values(vals: &[Expr], set: &Values) -> Option<Vec<f64>> {
 }
 
 // ---------------------------------------------------------------- stability
-
-/// det of a small matrix of expressions (Gaussian elimination with exact
-/// zero tests).
-#[allow(clippy::needless_range_loop)] // matrix indices read best as indices
-pub(crate) fn det(mut m: Vec<Vec<Expr>>) -> Option<Expr> {
-    let n = m.len();
-    let mut d = Expr::one();
-    for k in 0..n {
-        let p = (k..n).find(|&r| !m[r][k].is_zero());
-        let Some(p) = p else {
-            return Some(Expr::zero());
-        };
-        if p != k {
-            m.swap(p, k);
-            d = d.neg();
-        }
-        let piv = m[k][k].clone();
-        d = d.mul(&piv);
-        for r in k + 1..n {
-            if m[r][k].is_zero() {
-                continue;
-            }
-            let f = m[r][k].div(&piv).ok()?;
-            for c in k..n {
-                let x = m[r][c].sub(&f.mul(&m[k][c]));
-                m[r][c] = x;
-            }
-        }
-    }
-    Some(d)
-}
 
 #[allow(clippy::needless_range_loop)] // matrix indices read best as indices
 fn classify_exact(

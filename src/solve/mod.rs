@@ -1,9 +1,11 @@
 //! Exact solving: linear systems over rational functions (square, for
-//! accelerations; of any shape, for `solve` blocks) and equilibria.
+//! accelerations; of any shape, for `solve` blocks) equilibria and small oscillations.
 
 pub mod certify;
 pub mod eigen;
 pub mod equilibrium;
-pub mod linear;
 pub mod numeric;
+pub mod oscillations;
 pub mod system;
+
+pub use crate::algebra::linear;

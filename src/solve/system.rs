@@ -2,7 +2,7 @@
 //!
 //! A block's equations are linear in its unknowns with coefficients that are
 //! rational functions (with radicals, trig atoms, …) of everything else. The
-//! elimination (`echelon`) is fraction-free, like [`super::linear::solve`],
+//! elimination (`echelon`) is fraction-free, like [`crate::algebra::linear::solve`],
 //! but rectangular: a column with no pivot is a *free* unknown, and a row left
 //! without a pivot is an equation implied by the others: a *check* that either
 //! holds (the seed's kinetostatic systems of 22.2 have one more equation than
@@ -12,7 +12,7 @@
 //! exact accelerations of Lagrange's equations, so a kinetostatic follow-up
 //! (reactions once the accelerations are known) is written as in the book.
 
-use super::linear::SolveError;
+use crate::algebra::linear::SolveError;
 use crate::diag::Diagnostic;
 use crate::expr::atom;
 use crate::expr::{Expr, MathError};
@@ -57,7 +57,7 @@ pub fn solve_rect(
 ) -> Result<RectSolution, SolveError> {
     let m = a.len();
     let n = symbols.len();
-    let mut rows = super::linear::cleared_rows(a, b);
+    let mut rows = crate::algebra::linear::cleared_rows(a, b);
     let mut orig: Vec<usize> = (0..m).collect();
     let mut prev = Poly::one();
     let mut r = 0;
@@ -65,7 +65,7 @@ pub fn solve_rect(
     let mut free = Vec::new();
     for c in 0..n {
         let Some(p) = (r..m)
-            .filter(|&i| super::linear::nonzero(&rows[i][c]))
+            .filter(|&i| crate::algebra::linear::nonzero(&rows[i][c]))
             .min_by_key(|&i| orig[i])
         else {
             // no pivot: the entries left are zero (modulo sin² + cos² = 1)
@@ -80,7 +80,7 @@ pub fn solve_rect(
         for i in r + 1..m {
             for j in c + 1..=n {
                 let t = &(&rows[r][c] * &rows[i][j]) - &(&rows[i][c] * &rows[r][j]);
-                rows[i][j] = super::linear::exact(&t, &prev)?;
+                rows[i][j] = crate::algebra::linear::exact(&t, &prev)?;
             }
             rows[i][c] = Poly::zero();
         }

@@ -17,15 +17,17 @@
 //! the null vectors of K − λᵢ·M normalized to the first coordinate (the
 //! seed's distribution coefficients), computed exactly.
 
+use super::equilibrium::quadratic;
+/// The verdict on the linearized system (the same as for equilibria).
+pub use super::equilibrium::Stability;
+use crate::algebra::linear::det;
+use crate::algebra::sign::{sign_exact, sign_of, Values};
 use crate::diag::Diagnostic;
 use crate::expr::atom::{self, Atom};
 use crate::expr::{func, Expr};
 use crate::num::Q;
 use crate::poly::{Poly, Var};
 use crate::scene::Scene;
-/// The verdict on the linearized system (the same as for equilibria).
-pub use crate::solve::equilibrium::Stability;
-use crate::solve::equilibrium::{det, quadratic, sign_of, Values};
 use rustc_hash::FxHashMap;
 
 /// The variable of the characteristic polynomial, λ = ω².
@@ -433,7 +435,7 @@ fn null_basis(
         .map(|j| Expr::unknown(&format!("mode{}", j + 1)))
         .collect();
     let zero = vec![Expr::zero(); n];
-    let sol = crate::solve::system::solve_rect(&a, &zero, &syms)
+    let sol = super::system::solve_rect(&a, &zero, &syms)
         .map_err(|_| Diagnostic::global("internal error: the mode equations failed"))?;
     let mut out = Vec::new();
     for &f in &sol.shape.free {
@@ -512,9 +514,9 @@ pub fn free_response(md: &Modes, q0: &[Expr], v0: &[Expr]) -> Result<Vec<Expr>, 
     let u: Vec<Vec<Expr>> = (0..n)
         .map(|j| (0..n).map(|i| md.modes[i][j].clone()).collect())
         .collect();
-    let a = crate::solve::linear::solve(&u, q0)
+    let a = crate::algebra::linear::solve(&u, q0)
         .map_err(|_| Diagnostic::global("the modes are not independent"))?;
-    let wb = crate::solve::linear::solve(&u, v0)
+    let wb = crate::algebra::linear::solve(&u, v0)
         .map_err(|_| Diagnostic::global("the modes are not independent"))?;
     let t = Expr::time();
     let mut out = vec![Expr::zero(); n];
@@ -583,7 +585,7 @@ pub fn forced_amplitudes(md: &Modes) -> Option<(Expr, Vec<Expr>)> {
                 .collect()
         })
         .collect();
-    let x = crate::solve::linear::solve(&a, &amp).ok()?;
+    let x = crate::algebra::linear::solve(&a, &amp).ok()?;
     Some((p, x))
 }
 
@@ -610,7 +612,7 @@ pub fn amplitude_phase(omega_squared: &Expr, y0: &Expr, v0: &Expr) -> Option<(Ex
     let a = func::sqrt(&y0.mul(y0).add(&v0.div(&w).ok()?.powi(2).ok()?)).ok()?;
     let phi = if v0.is_zero() {
         let half_pi = Expr::pi().scale(&Q::new(1, 2).unwrap_or_else(Q::one));
-        match crate::solve::equilibrium::sign_exact(y0) {
+        match sign_exact(y0) {
             Some(s) if s < 0 => half_pi.neg(),
             _ => half_pi,
         }

@@ -13,7 +13,7 @@
 //! canonical, which is sound because reduction is a ring homomorphism.
 
 use crate::expr::{Expr, MathError};
-use crate::poly::Poly;
+use crate::poly::{Poly, Var};
 
 #[derive(Clone, Debug)]
 pub enum SolveError {
@@ -179,4 +179,67 @@ pub fn dependent_unknowns(a: &[Vec<Expr>]) -> Vec<usize> {
     }
     out.sort_unstable();
     out
+}
+
+/// det of a small matrix of expressions (Gaussian elimination with exact
+/// zero tests).
+#[allow(clippy::needless_range_loop)] // matrix indices read best as indices
+pub(crate) fn det(mut m: Vec<Vec<Expr>>) -> Option<Expr> {
+    let n = m.len();
+    let mut d = Expr::one();
+    for k in 0..n {
+        let p = (k..n).find(|&r| !m[r][k].is_zero());
+        let Some(p) = p else {
+            return Some(Expr::zero());
+        };
+        if p != k {
+            m.swap(p, k);
+            d = d.neg();
+        }
+        let piv = m[k][k].clone();
+        d = d.mul(&piv);
+        for r in k + 1..n {
+            if m[r][k].is_zero() {
+                continue;
+            }
+            let f = m[r][k].div(&piv).ok()?;
+            for c in k..n {
+                let x = m[r][c].sub(&f.mul(&m[k][c]));
+                m[r][c] = x;
+            }
+        }
+    }
+    Some(d)
+}
+
+/// Split `e` (linear in the variables `vs`) as Σ coef_j·vs_j + rest. An
+/// error only if a part has no canonical form (a coefficient over the
+/// denominator of `e` cannot vanish, so this does not happen in practice;
+/// it is reported, never turned into 0).
+pub fn split_linear(e: &Expr, vs: &[Var]) -> Result<(Vec<Expr>, Expr), crate::expr::MathError> {
+    let den = e.den().clone();
+    let mut rest = e.num().clone();
+    let mut coefs = Vec::with_capacity(vs.len());
+    for &v in vs {
+        if !rest.contains_var(v) {
+            coefs.push(Expr::zero());
+            continue;
+        }
+        let cs = rest.coeffs_in(v);
+        let c1 = cs.get(1).cloned().unwrap_or_default();
+        // Any higher power would mean a nonlinear left-hand side; Lagrange's
+        // left-hand sides are always linear in q̈, so cs.len() ≤ 2.
+        rest = cs.first().cloned().unwrap_or_default();
+        if cs.len() > 2 {
+            let higher: Vec<Poly> = cs[2..].to_vec();
+            let mut extra = Poly::zero();
+            for (i, c) in higher.iter().enumerate() {
+                extra = &extra + &(c * &Poly::var(v).pow(i as u32 + 2));
+            }
+            rest = &rest + &extra;
+        }
+        coefs.push(Expr::from_parts(c1, den.clone())?);
+    }
+    let rest = Expr::from_parts(rest, den)?;
+    Ok((coefs, rest))
 }

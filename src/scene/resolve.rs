@@ -1,0 +1,564 @@
+//! From statements to a [`Scene`]: the names are declared in a first pass
+//! (so definitions may refer forward), then every statement is resolved
+//! into exact values by the [`Evaluator`], each kind by its own method of
+//! [`Resolver`], with its errors built beside it.
+
+use super::eval::Evaluator;
+use super::{
+    first_unknown, latex_names, Binding, Coordinate, Definition, Force, Load, Parameter, Scene,
+    System, SystemEquation, Torque, Value,
+};
+use crate::diag::Diagnostic;
+use crate::expr::Expr;
+use crate::parse::ast::{self, Role, Span, Stmt};
+use crate::poly::Var;
+use rustc_hash::FxHashMap;
+
+/// A definition as written: its name, its body and its role, if any.
+type DefinitionAst<'a> = (&'a ast::Ident, &'a ast::Expr, Option<Role>);
+
+/// The names a scene declares, read in a first pass over its statements.
+struct Declarations<'a> {
+    src: &'a str,
+    names: FxHashMap<String, (Binding, Span)>,
+    coordinates: Vec<Coordinate>,
+    parameters: Vec<Parameter>,
+    definitions: Vec<DefinitionAst<'a>>,
+    forces: Vec<(&'a ast::Ident, &'a ast::Expr)>,
+    /// The unknowns of each `solve` block, in order.
+    unknowns: Vec<Vec<Parameter>>,
+}
+
+impl<'a> Declarations<'a> {
+    fn collect(src: &'a str, stmts: &'a [Stmt]) -> Result<Declarations<'a>, Diagnostic> {
+        let mut d = Declarations {
+            src,
+            names: FxHashMap::default(),
+            coordinates: Vec::new(),
+            parameters: Vec::new(),
+            definitions: Vec::new(),
+            forces: Vec::new(),
+            unknowns: Vec::new(),
+        };
+        for st in stmts {
+            d.statement(st)?;
+        }
+        d.names.insert("t".into(), (Binding::Time, Span::default()));
+        d.names.insert("pi".into(), (Binding::Pi, Span::default()));
+        Ok(d)
+    }
+
+    fn statement(&mut self, st: &'a Stmt) -> Result<(), Diagnostic> {
+        match st {
+            Stmt::Coordinates(ds, _) => {
+                for d in ds {
+                    self.declare(&d.name, Binding::Coord)?;
+                    self.coordinates.push(Coordinate {
+                        name: d.name.name.clone(),
+                        span: d.name.span,
+                    });
+                }
+            }
+            Stmt::Parameters(ds, _) => {
+                for d in ds {
+                    self.declare(&d.name, Binding::Param)?;
+                    self.parameters.push(Parameter {
+                        name: d.name.name.clone(),
+                        span: d.name.span,
+                        dimension: d.dimension.as_ref().map(|i| i.name.clone()),
+                    });
+                }
+            }
+            Stmt::Def { name, value, .. } => {
+                self.declare(name, Binding::Def(self.definitions.len()))?;
+                self.definitions.push((name, value, None));
+            }
+            Stmt::Role {
+                role, name, value, ..
+            } => {
+                self.declare(name, Binding::Def(self.definitions.len()))?;
+                self.definitions.push((name, value, Some(*role)));
+            }
+            Stmt::Force {
+                coordinate, value, ..
+            } => self.forces.push((coordinate, value)),
+            Stmt::Load { .. } | Stmt::Torque { .. } | Stmt::Latex { .. } => {}
+            Stmt::Solve(block) => {
+                let mut us = Vec::with_capacity(block.unknowns.len());
+                for u in &block.unknowns {
+                    self.declare(u, Binding::Unknown)?;
+                    us.push(Parameter {
+                        name: u.name.clone(),
+                        span: u.span,
+                        dimension: None,
+                    });
+                }
+                self.unknowns.push(us);
+            }
+        }
+        Ok(())
+    }
+
+    /// Give `name` its meaning, unless it is reserved or already has one.
+    fn declare(&mut self, name: &ast::Ident, b: Binding) -> Result<(), Diagnostic> {
+        if name.name == "t" || name.name == "pi" {
+            let what = if name.name == "t" {
+                "time"
+            } else {
+                "the constant π"
+            };
+            return Err(Diagnostic::error(
+                name.span,
+                format!("`{}` is reserved: it is {what}", name.name),
+            )
+            .with_hint("choose another name"));
+        }
+        if let Some((prev, prev_span)) = self.names.get(&name.name) {
+            return Err(self.declared_twice(name, &b, prev, *prev_span));
+        }
+        self.names.insert(name.name.clone(), (b, name.span));
+        Ok(())
+    }
+
+    fn declared_twice(
+        &self,
+        name: &ast::Ident,
+        b: &Binding,
+        prev: &Binding,
+        prev_span: Span,
+    ) -> Diagnostic {
+        let what = match prev {
+            Binding::Param => "a parameter",
+            Binding::Coord => "a coordinate",
+            Binding::Unknown => "an unknown of a `solve` block",
+            _ => "defined",
+        };
+        let (line, _) = Diagnostic::line_col(self.src, prev_span.start);
+        if matches!(b, Binding::Unknown) {
+            let hint = match prev {
+                Binding::Param => format!("a `solve` unknown is a new name that the equations determine; remove `{}` from `parameters` (line {line}) or solve for another name", name.name),
+                Binding::Unknown => format!("list each unknown once, in one `solve` block (`{}` is first at line {line})", name.name),
+                _ => format!("`{}` already has a value (line {line}); solve for a new name", name.name),
+            };
+            let message = if matches!(prev, Binding::Unknown) {
+                format!("the unknown `{}` is listed twice", name.name)
+            } else {
+                format!("the unknown `{}` is already {what}", name.name)
+            };
+            return Diagnostic::error(name.span, message).with_hint(hint);
+        }
+        let again = match (b, prev) {
+            (Binding::Coord, Binding::Coord) => "coordinate declared twice",
+            (Binding::Param, Binding::Param) => "parameter declared twice",
+            _ => "name used twice",
+        };
+        Diagnostic::error(
+            name.span,
+            format!("{again}: `{}` is already {what}", name.name),
+        )
+        .with_hint("each name has one meaning in a scene; role statements add up, but their names must differ")
+    }
+}
+
+/// The second pass: statements resolved into values, in source order.
+struct Resolver<'d> {
+    ev: Evaluator<'d>,
+    coordinates: &'d [Coordinate],
+    /// The coordinates' variables (q, not q̇), to tell what moves.
+    coordinate_vars: Vec<Var>,
+    loads: Vec<Load>,
+    torques: Vec<Torque>,
+    systems: Vec<System>,
+    warnings: Vec<Diagnostic>,
+}
+
+pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, Diagnostic> {
+    let decl = Declarations::collect(src, stmts)?;
+    // Intern q, q̇, q̈ in declaration order: printing lists terms of equal
+    // rank in the order the coordinates were declared.
+    for c in &decl.coordinates {
+        for k in 0..=2 {
+            crate::expr::atom::coord(&c.name, k);
+        }
+    }
+    let mut r = Resolver {
+        ev: Evaluator::new(&decl.names, &decl.definitions),
+        coordinates: &decl.coordinates,
+        coordinate_vars: decl
+            .coordinates
+            .iter()
+            .map(|c| crate::expr::atom::coord(&c.name, 0))
+            .collect(),
+        loads: Vec::new(),
+        torques: Vec::new(),
+        systems: Vec::new(),
+        warnings: Vec::new(),
+    };
+    let mut definitions = Vec::with_capacity(decl.definitions.len());
+    for (i, &(name, body, role)) in decl.definitions.iter().enumerate() {
+        let value = r.ev.definition(i)?;
+        if let Some(role) = role {
+            role_value_allowed(role, name, body, &value)?;
+        }
+        definitions.push(Definition {
+            name: name.name.clone(),
+            value,
+            span: name.span,
+            role,
+        });
+    }
+    let forces = r.forces(&decl.forces)?;
+    let mut blocks = decl.unknowns.iter().cloned();
+    for st in stmts {
+        match st {
+            Stmt::Load { force, point, span } => r.load(force, point, *span)?,
+            Stmt::Torque {
+                moment,
+                angle,
+                span,
+            } => r.torque(moment, angle, *span)?,
+            Stmt::Solve(block) => r.solve_block(block, blocks.next().unwrap_or_default())?,
+            _ => {}
+        }
+    }
+    let Resolver {
+        ev,
+        loads,
+        torques,
+        systems,
+        mut warnings,
+        ..
+    } = r;
+    warnings.extend(ev.warnings);
+    let Declarations {
+        coordinates,
+        parameters,
+        ..
+    } = decl;
+    let latex_names = latex_names(
+        stmts,
+        &coordinates,
+        &parameters,
+        &definitions,
+        &systems,
+        &mut warnings,
+    );
+    if coordinates.is_empty() && definitions.iter().any(|d| d.role.is_some()) {
+        warnings.push(Diagnostic::global(
+            "the scene has energies but no `coordinates`: there are no equations to derive",
+        ));
+    }
+    Ok(Scene {
+        source: src.to_string(),
+        coordinates,
+        parameters,
+        definitions,
+        forces,
+        loads,
+        torques,
+        systems,
+        warnings,
+        latex_names,
+    })
+}
+
+/// A role's value must be a number of the coordinates, velocities,
+/// parameters and t: no vector, no `solve` unknown, no acceleration.
+fn role_value_allowed(
+    role: Role,
+    name: &ast::Ident,
+    body: &ast::Expr,
+    value: &Value,
+) -> Result<(), Diagnostic> {
+    let e = match value {
+        Value::Vector(c) => return Err(Diagnostic::error(
+            body.span,
+            format!(
+                "`{} {}` must be a number, but this is a vector with {} components",
+                role.keyword(),
+                name.name,
+                c.len()
+            ),
+        )
+        .with_hint(match role {
+            Role::Kinetic => "the kinetic energy of a point with velocity v is 1/2*m*dot(v, v)",
+            _ => {
+                "energies, work and dissipation are numbers; use dot(F, r) for the work of a force"
+            }
+        })),
+        Value::Scalar(e) => e,
+    };
+    if let Some(u) = first_unknown(e) {
+        return Err(Diagnostic::error(
+            body.span,
+            format!(
+                "`{} {}` uses `{u}`, an unknown of a `solve` block",
+                role.keyword(),
+                name.name
+            ),
+        )
+        .with_hint("energies are functions of the coordinates and parameters; unknowns belong in `solve` equations"));
+    }
+    if let Some(acc) = energy_acceleration(role, e) {
+        let at = second_prime_span(body).unwrap_or(body.span);
+        return Err(Diagnostic::error(
+            at,
+            format!(
+                "`{} {}` depends on the acceleration {acc}",
+                role.keyword(),
+                name.name
+            ),
+        )
+        .with_hint("energies and the Lagrangian are functions of the coordinates, the velocities and t (Lagrange's equations would differentiate an acceleration into a third derivative); a force that depends on an acceleration is a `force` or a `load`"));
+    }
+    Ok(())
+}
+
+impl Resolver<'_> {
+    /// Does `e` change with some coordinate?
+    fn moves(&self, e: &Expr) -> bool {
+        self.coordinate_vars.iter().any(|&q| e.depends_on(q))
+    }
+
+    /// The `force q: Q` statements, in order.
+    fn forces(&mut self, asts: &[(&ast::Ident, &ast::Expr)]) -> Result<Vec<Force>, Diagnostic> {
+        let mut forces = Vec::new();
+        for &(c, value) in asts {
+            let Some(k) = self.coordinates.iter().position(|x| x.name == c.name) else {
+                let mut d = Diagnostic::error(
+                    c.span,
+                    format!(
+                        "`force {}:` needs a coordinate, and `{}` is not one",
+                        c.name, c.name
+                    ),
+                );
+                let list: Vec<&str> = self.coordinates.iter().map(|c| c.name.as_str()).collect();
+                d = d.with_hint(if list.is_empty() {
+                    "declare it with `coordinates …`".to_string()
+                } else {
+                    format!("the coordinates are {}", list.join(", "))
+                });
+                return Err(d);
+            };
+            let v = self.ev.expr(value)?;
+            no_unknowns(std::slice::from_ref(&v), value.span, "a generalized force")?;
+            forces.push(Force {
+                coordinate: k,
+                value: v,
+                span: value.span,
+            });
+        }
+        Ok(forces)
+    }
+
+    /// `load F at P`: a force and its point, both numbers or both vectors
+    /// of one size.
+    fn load(&mut self, force: &ast::Expr, point: &ast::Expr, span: Span) -> Result<(), Diagnostic> {
+        let f = self.ev.value(force)?;
+        let p = self.ev.value(point)?;
+        match (&f, &p) {
+            (Value::Vector(a), Value::Vector(b)) if a.len() != b.len() => {
+                return Err(Diagnostic::error(
+                    span,
+                    format!(
+                        "the force has {} components and the point {}",
+                        a.len(),
+                        b.len()
+                    ),
+                )
+                .with_hint("write both in the plane [x, y] or both in space [x, y, z]"))
+            }
+            (Value::Scalar(_), Value::Vector(_)) | (Value::Vector(_), Value::Scalar(_)) => {
+                return Err(Diagnostic::error(
+                    span,
+                    format!(
+                        "the force is {} but the point is {}",
+                        f.describe(),
+                        p.describe()
+                    ),
+                )
+                .with_hint("a vector force needs a position vector `load [Fx, Fy] at [x, y]`; a number needs a displacement along its line `load G at y1`"))
+            }
+            _ => {}
+        }
+        no_unknowns(f.components(), force.span, "a load")?;
+        no_unknowns(p.components(), point.span, "a load's point")?;
+        if !p.components().iter().any(|e| self.moves(e)) {
+            self.warnings.push(
+                Diagnostic::warning(point.span, "this load does no virtual work: its point does not move with any coordinate")
+                    .with_hint("a force at a fixed point (a reaction of a support) does not enter the generalized forces; check the point's definition"),
+            );
+        }
+        self.loads.push(Load {
+            force: f,
+            point: p,
+            span,
+        });
+        Ok(())
+    }
+
+    /// `torque M on φ`: two numbers.
+    fn torque(
+        &mut self,
+        moment: &ast::Expr,
+        angle: &ast::Expr,
+        span: Span,
+    ) -> Result<(), Diagnostic> {
+        let m = match self.ev.value(moment)? {
+            Value::Scalar(m) => m,
+            m @ Value::Vector(_) => return Err(Diagnostic::error(
+                moment.span,
+                format!(
+                    "a torque is a number (the moment about the axis of its angle), found {}",
+                    m.describe()
+                ),
+            )
+            .with_hint(
+                "in the plane write the moment's z component, e.g. cross(r, F) of plane vectors",
+            )),
+        };
+        let a = match self.ev.value(angle)? {
+            Value::Scalar(a) => a,
+            a @ Value::Vector(_) => {
+                return Err(Diagnostic::error(
+                    angle.span,
+                    format!(
+                        "a torque acts on an angle (a number), found {}",
+                        a.describe()
+                    ),
+                )
+                .with_hint("write `torque M on theta` with theta an angle of the scene"))
+            }
+        };
+        no_unknowns(std::slice::from_ref(&m), moment.span, "a torque")?;
+        no_unknowns(std::slice::from_ref(&a), angle.span, "a torque's angle")?;
+        if !self.moves(&a) {
+            self.warnings.push(
+                Diagnostic::warning(angle.span, "this torque does no virtual work: its angle does not change with any coordinate")
+                    .with_hint("check the angle's definition"),
+            );
+        }
+        self.torques.push(Torque {
+            moment: m,
+            angle: a,
+            span,
+        });
+        Ok(())
+    }
+
+    /// A `solve` block: each equation a residual, a vector equation one
+    /// residual per component.
+    fn solve_block(
+        &mut self,
+        block: &ast::SolveBlock,
+        unknowns: Vec<Parameter>,
+    ) -> Result<(), Diagnostic> {
+        let mut equations = Vec::new();
+        for eq in &block.equations {
+            let l = self.ev.value(&eq.lhs)?;
+            let r = self.ev.value(&eq.rhs)?;
+            let comps = match (&l, &r) {
+                (Value::Scalar(a), Value::Scalar(b)) => {
+                    equations.push(SystemEquation {
+                        residual: a.sub(b),
+                        span: eq.span,
+                        component: None,
+                    });
+                    continue;
+                }
+                (Value::Vector(a), Value::Vector(b)) if a.len() == b.len() => (a, b),
+                _ => {
+                    return Err(Diagnostic::error(
+                        eq.span,
+                        format!(
+                            "the left side is {} and the right side {}",
+                            l.describe(),
+                            r.describe()
+                        ),
+                    )
+                    .with_hint("a vector equation needs vectors of one size on both sides, e.g. `[Fx, Fy] = m*a`; write `[0, 0]` for the zero vector"))
+                }
+            };
+            for (k, (a, b)) in comps.0.iter().zip(comps.1).enumerate() {
+                equations.push(SystemEquation {
+                    residual: a.sub(b),
+                    span: eq.span,
+                    component: Some(k),
+                });
+            }
+        }
+        self.systems.push(System {
+            unknowns,
+            equations,
+            span: block.span,
+        });
+        Ok(())
+    }
+}
+
+/// An error if any of `es` uses a `solve` unknown: forces enter Lagrange's
+/// equations, which are solved before any block.
+fn no_unknowns(es: &[Expr], span: Span, what: &str) -> Result<(), Diagnostic> {
+    match es.iter().find_map(first_unknown) {
+        Some(u) => Err(Diagnostic::error(
+            span,
+            format!("{what} uses `{u}`, an unknown of a `solve` block"),
+        )
+        .with_hint("loads, torques and forces enter the equations of motion, which are solved before the blocks; a reaction found by a block can't drive the motion")),
+        None => Ok(()),
+    }
+}
+
+/// The name of the first `solve` unknown an expression uses, if any.
+/// The first acceleration (a coordinate's derivative of order ≥ 2, as
+/// `x''`) in `e`, when `e` is a role's expression that must not have one:
+/// every role but `work`, whose inertia forces carry accelerations in
+/// D'Alembert's form.
+fn energy_acceleration(role: Role, e: &Expr) -> Option<String> {
+    use crate::expr::atom::{self, Atom};
+    if role == Role::Work {
+        return None;
+    }
+    fn walk(e: &Expr) -> Option<String> {
+        for v in e.vars() {
+            let a = atom::atom(v);
+            if let Atom::Coord(n, k) = &a {
+                if *k >= 2 {
+                    return Some(format!("{n}{}", "'".repeat(*k as usize)));
+                }
+            }
+            if let Some(n) = a.argument().and_then(walk) {
+                return Some(n);
+            }
+        }
+        None
+    }
+    walk(e)
+}
+
+/// The span of the first `x''` (two or more primes, or a prime of a primed
+/// expression) in an expression as written, found without recursion.
+fn second_prime_span(e: &ast::Expr) -> Option<Span> {
+    use ast::ExprKind as K;
+    let mut stack = vec![(e, 0u32)];
+    while let Some((e, primes)) = stack.pop() {
+        match &e.kind {
+            K::Prime(inner, k) => {
+                if primes + k >= 2 {
+                    return Some(e.span);
+                }
+                stack.push((inner, primes + k));
+            }
+            K::Neg(x) => stack.push((x, primes)),
+            K::Bin(_, a, b) | K::Assign(a, b) => {
+                stack.push((b, primes));
+                stack.push((a, primes));
+            }
+            K::Call(_, args) | K::Vector(args) => {
+                stack.extend(args.iter().rev().map(|a| (a, primes)));
+            }
+            K::Num(_) | K::Degrees(_) | K::Name(_) => {}
+        }
+    }
+    None
+}
