@@ -57,6 +57,7 @@
 //! * a univariate part for which no prime below 2¹⁶ keeps it square-free (a
 //!   discriminant divisible by all of them) is likewise returned unsplit.
 
+use super::modular::{invmod, trim, XorShift64Star};
 use super::{Mono, Poly, Var};
 use crate::num::Q;
 use num_bigint::{BigInt, BigUint};
@@ -506,31 +507,8 @@ type Fp = Vec<u64>;
 /// A distinct-degree factorization: `(product of the factors of degree d, d)`.
 type Ddf = Vec<(Fp, usize)>;
 
-fn fp_trim(a: &mut Fp) {
-    while a.last() == Some(&0) {
-        a.pop();
-    }
-}
-
 fn deg_fp(a: &Fp) -> usize {
     a.len().saturating_sub(1)
-}
-
-fn pow_mod(mut a: u64, mut e: u64, p: u64) -> u64 {
-    let mut r = 1 % p;
-    a %= p;
-    while e > 0 {
-        if e & 1 == 1 {
-            r = r * a % p;
-        }
-        a = a * a % p;
-        e >>= 1;
-    }
-    r
-}
-
-fn inv_mod(a: u64, p: u64) -> u64 {
-    pow_mod(a, p - 2, p)
 }
 
 fn fp_from_z(a: &[BigInt], p: u64) -> Fp {
@@ -539,7 +517,7 @@ fn fp_from_z(a: &[BigInt], p: u64) -> Fp {
         .iter()
         .map(|c| c.mod_floor(&pb).to_u64().unwrap_or(0))
         .collect();
-    fp_trim(&mut out);
+    trim(&mut out);
     out
 }
 
@@ -556,13 +534,13 @@ fn fp_sub(a: &[u64], b: &[u64], p: u64) -> Fp {
             (x + p - y) % p
         })
         .collect();
-    fp_trim(&mut out);
+    trim(&mut out);
     out
 }
 
 fn fp_scale(a: &[u64], c: u64, p: u64) -> Fp {
     let mut out: Fp = a.iter().map(|&x| x * c % p).collect();
-    fp_trim(&mut out);
+    trim(&mut out);
     out
 }
 
@@ -579,7 +557,7 @@ fn fp_mul(a: &[u64], b: &[u64], p: u64) -> Fp {
             out[i + j] = (out[i + j] + x * y) % p;
         }
     }
-    fp_trim(&mut out);
+    trim(&mut out);
     out
 }
 
@@ -589,7 +567,7 @@ fn fp_divrem(a: &[u64], b: &[u64], p: u64) -> (Fp, Fp) {
     if a.len() < b.len() {
         return (Vec::new(), a.to_vec());
     }
-    let inv = inv_mod(b[db], p);
+    let inv = invmod(b[db], p);
     let mut r = a.to_vec();
     let mut q = vec![0u64; a.len() - db];
     for k in (0..q.len()).rev() {
@@ -603,8 +581,8 @@ fn fp_divrem(a: &[u64], b: &[u64], p: u64) -> (Fp, Fp) {
         q[k] = c;
     }
     r.truncate(db);
-    fp_trim(&mut r);
-    fp_trim(&mut q);
+    trim(&mut r);
+    trim(&mut q);
     (q, r)
 }
 
@@ -615,7 +593,7 @@ fn fp_rem(a: &[u64], b: &[u64], p: u64) -> Fp {
 fn fp_monic(a: &[u64], p: u64) -> Fp {
     match a.last() {
         None => Vec::new(),
-        Some(&l) => fp_scale(a, inv_mod(l, p), p),
+        Some(&l) => fp_scale(a, invmod(l, p), p),
     }
 }
 
@@ -643,7 +621,7 @@ fn fp_ext_gcd(a: &[u64], b: &[u64], p: u64) -> (Fp, Fp, Fp) {
         t0 = std::mem::replace(&mut t1, t2);
     }
     let l = r0.last().copied().unwrap_or(1);
-    let inv = inv_mod(l, p);
+    let inv = invmod(l, p);
     (
         fp_scale(&r0, inv, p),
         fp_scale(&s0, inv, p),
@@ -658,7 +636,7 @@ fn fp_deriv(a: &[u64], p: u64) -> Fp {
         .skip(1)
         .map(|(i, &c)| (i as u64 % p) * c % p)
         .collect();
-    fp_trim(&mut out);
+    trim(&mut out);
     out
 }
 
@@ -705,22 +683,10 @@ fn fp_ddf(f: &[u64], p: u64) -> Ddf {
     out
 }
 
-/// A small deterministic generator (xorshift64*) for the equal-degree split.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-}
-
 /// Equal-degree factorization (Cantor–Zassenhaus, odd `p`) of a monic
 /// product `g` of irreducibles of degree `d`; `None` if 64 random splits in
 /// a row fail (probability ≤ 2⁻⁶⁴ per split).
-fn fp_edf(g: &[u64], d: usize, p: u64, rng: &mut Rng) -> Option<Vec<Fp>> {
+fn fp_edf(g: &[u64], d: usize, p: u64, rng: &mut XorShift64Star) -> Option<Vec<Fp>> {
     let n = deg_fp(&g.to_vec());
     if n == d {
         return Some(vec![g.to_vec()]);
@@ -729,7 +695,7 @@ fn fp_edf(g: &[u64], d: usize, p: u64, rng: &mut Rng) -> Option<Vec<Fp>> {
     let nbits = e.bits();
     for _ in 0..64 {
         let mut a: Fp = (0..n).map(|_| rng.next() % p).collect();
-        fp_trim(&mut a);
+        trim(&mut a);
         if deg_fp(&a) == 0 {
             continue;
         }
@@ -905,7 +871,7 @@ fn zassenhaus(f: &[BigInt]) -> Vec<ZPoly> {
         }
     }
     cands.sort_by_key(|c| (c.0, std::cmp::Reverse(c.1)));
-    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+    let mut rng = XorShift64Star(0x9E37_79B9_7F4A_7C15);
     let mut chosen = None;
     for (_, p, dd) in &cands {
         let mut us = Vec::new();
@@ -1313,7 +1279,7 @@ fn point(k: usize, n: usize) -> Vec<i64> {
     if k == 0 {
         return vec![0; n];
     }
-    let mut rng = Rng(0x2545_F491_4F6C_DD1D ^ (k as u64).wrapping_mul(0x9E37_79B9));
+    let mut rng = XorShift64Star(0x2545_F491_4F6C_DD1D ^ (k as u64).wrapping_mul(0x9E37_79B9));
     let r = 1 + (k as u64) / 4;
     (0..n)
         .map(|_| (rng.next() % (2 * r + 1)) as i64 - r as i64)
@@ -1530,7 +1496,7 @@ mod tests {
         let dd = fp_ddf(&f, 3);
         assert_eq!(dd.len(), 1);
         assert_eq!(dd[0].1, 2);
-        let fs = fp_edf(&dd[0].0, 2, 3, &mut Rng(1)).expect("splits");
+        let fs = fp_edf(&dd[0].0, 2, 3, &mut XorShift64Star(1)).expect("splits");
         assert_eq!(fs.len(), 2);
         assert_eq!(fp_mul(&fs[0], &fs[1], 3), f);
     }
@@ -1548,7 +1514,7 @@ mod tests {
         assert!(deg_fp(&fp_gcd(&fp, &fp_deriv(&fp, p), p)) == 0);
         let us: Vec<Fp> = fp_ddf(&fp, p)
             .into_iter()
-            .flat_map(|(g, d)| fp_edf(&g, d, p, &mut Rng(3)).expect("splits"))
+            .flat_map(|(g, d)| fp_edf(&g, d, p, &mut XorShift64Star(3)).expect("splits"))
             .collect();
         assert_eq!(us.len(), 4);
         let lifted = hensel_lift(&f, &us, p, 3);

@@ -34,6 +34,7 @@
 mod arith;
 mod content;
 pub mod factor;
+mod modular;
 mod monomial;
 mod ops;
 mod packed;
@@ -41,12 +42,13 @@ mod structure;
 
 pub use monomial::{mono_gcd, Mono};
 
+use modular::{addmod, invmod, lift_sym, mulmod, next_rand, powmod, q_mod, submod, trim, PRIMES};
+
 use crate::num::Q;
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_traits::{Signed, ToPrimitive, Zero};
 use smallvec::SmallVec;
-use std::cell::Cell;
 use std::fmt;
 use std::hash::Hash;
 
@@ -272,131 +274,6 @@ impl Poly {
 // ===========================================================================
 // GCD machinery (all polynomials here have integer coefficients)
 // ===========================================================================
-
-const PRIMES: [u64; 6] = [
-    4611686018427387847,
-    4611686018427387817,
-    4611686018427387787,
-    4611686018427387761,
-    4611686018427387751,
-    4611686018427387737,
-];
-
-thread_local! {
-    static RNG: Cell<u64> = const { Cell::new(0x9E37_79B9_7F4A_7C15) };
-}
-
-fn next_rand() -> u64 {
-    RNG.with(|s| {
-        let mut z = s.get().wrapping_add(0x9E37_79B9_7F4A_7C15);
-        s.set(z);
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    })
-}
-
-/// `a * b mod p` for `a, b < p`. The primes used are `2^62 - c` with small
-/// `c`, which allows a division-free reduction; other moduli fall back to
-/// `u128` remainder.
-#[inline]
-fn mulmod(a: u64, b: u64, p: u64) -> u64 {
-    const MASK: u64 = (1 << 62) - 1;
-    let x = a as u128 * b as u128;
-    if p > (1 << 62) - (1 << 16) && p < (1 << 62) {
-        let c = (1u64 << 62) - p;
-        // x = hi * 2^62 + lo ≡ hi * c + lo
-        let x1 = (x >> 62) * c as u128 + (x as u64 & MASK) as u128;
-        let mut r = ((x1 >> 62) as u64) * c + (x1 as u64 & MASK);
-        while r >= p {
-            r -= p;
-        }
-        r
-    } else {
-        (x % p as u128) as u64
-    }
-}
-
-#[inline]
-fn addmod(a: u64, b: u64, p: u64) -> u64 {
-    let s = a + b; // p < 2^62: no overflow
-    if s >= p {
-        s - p
-    } else {
-        s
-    }
-}
-
-#[inline]
-fn submod(a: u64, b: u64, p: u64) -> u64 {
-    if a >= b {
-        a - b
-    } else {
-        a + p - b
-    }
-}
-
-fn powmod(mut b: u64, mut e: u64, p: u64) -> u64 {
-    let mut r = 1u64;
-    b %= p;
-    while e > 0 {
-        if e & 1 == 1 {
-            r = mulmod(r, b, p);
-        }
-        b = mulmod(b, b, p);
-        e >>= 1;
-    }
-    r
-}
-
-/// Inverse modulo the prime `p` by the extended Euclidean algorithm
-/// (`0` for `a ≡ 0`).
-fn invmod(a: u64, p: u64) -> u64 {
-    // p < 2^63, so remainders and Bezout coefficients (|s| <= p) fit i64
-    let (mut r0, mut r1) = (p as i64, (a % p) as i64);
-    let (mut s0, mut s1) = (0i64, 1i64);
-    while r1 != 0 {
-        let q = r0 / r1;
-        (r0, r1) = (r1, r0 - q * r1);
-        (s0, s1) = (s1, s0 - q * s1);
-    }
-    if r0 != 1 {
-        return 0;
-    }
-    s0.rem_euclid(p as i64) as u64
-}
-
-/// `c mod p`, `None` if the denominator vanishes mod `p`.
-fn q_mod(c: &Q, p: u64) -> Option<u64> {
-    match c {
-        Q::Small(n, d) => {
-            let nm = n.rem_euclid(p as i64) as u64;
-            if *d == 1 {
-                return Some(nm);
-            }
-            let dm = (*d as u64) % p;
-            if dm == 0 {
-                return None;
-            }
-            Some(mulmod(nm, invmod(dm, p), p))
-        }
-        Q::Big(_) => {
-            let pb = BigInt::from(p);
-            let nm = c.numer().mod_floor(&pb).to_u64()?;
-            let dm = c.denom().mod_floor(&pb).to_u64()?;
-            if dm == 0 {
-                return None;
-            }
-            Some(mulmod(nm, invmod(dm, p), p))
-        }
-    }
-}
-
-fn trim(v: &mut Vec<u64>) {
-    while v.last() == Some(&0) {
-        v.pop();
-    }
-}
 
 /// Monic gcd of two dense polynomials over Z_p (index = power).
 fn gcd_modp(mut a: Vec<u64>, mut b: Vec<u64>, p: u64) -> Vec<u64> {
@@ -919,15 +796,6 @@ fn vandermonde_modp(m: &[u64], v: &[u64], p: u64) -> Option<Vec<u64>> {
         out.push(mulmod(num, invmod(denom, p), p));
     }
     Some(out)
-}
-
-/// Symmetric lift of a residue mod p to an integer.
-fn lift_sym(c: u64, p: u64) -> Q {
-    if c > p / 2 {
-        Q::from_i64(-((p - c) as i64))
-    } else {
-        Q::from_i64(c as i64)
-    }
 }
 
 /// One attempt of Zippel's sparse modular gcd for primitive integer
