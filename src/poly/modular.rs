@@ -163,3 +163,31 @@ impl XorShift64Star {
         self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::poly::tests::lcg;
+
+    #[test]
+    fn modular_helpers() {
+        for &p in PRIMES.iter() {
+            let mut st = p;
+            for _ in 0..200 {
+                let a = lcg(&mut st) * lcg(&mut st) % p;
+                let b = (lcg(&mut st) << 31 | lcg(&mut st)) % p;
+                let expect = ((a as u128 * b as u128) % p as u128) as u64;
+                assert_eq!(mulmod(a, b, p), expect);
+                assert_eq!(mulmod(p - 1, p - 1, p), 1);
+                if a != 0 {
+                    assert_eq!(mulmod(a, invmod(a, p), p), 1);
+                }
+            }
+            // Fermat: the moduli are prime (for these witnesses)
+            for w in [2u64, 3, 5, 7, 11, 13] {
+                assert_eq!(powmod(w, p - 1, p), 1);
+            }
+        }
+        assert_eq!(mulmod(10, 10, 7), 2);
+    }
+}
