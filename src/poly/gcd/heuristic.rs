@@ -2,8 +2,8 @@
 //! the values, interpolate back xi-adically, and verify by division (tried
 //! first for at most 3 variables).
 
-use super::super::{Mono, Poly, Var};
 use crate::num::Q;
+use crate::poly::{Mono, Poly, Var};
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_traits::{Signed, ToPrimitive, Zero};

@@ -1,7 +1,7 @@
-//! The gcd of [`Poly`]s: the public entry points ([`Poly::gcd`],
-//! [`Poly::gcd_cofactors`], [`Poly::lcm`]) and the dispatch over integer
-//! polynomials that splits off contents and picks an algorithm (the steps
-//! are listed in the docs of `poly`); the algorithms are in the submodules.
+//! The gcd of [`Poly`]s: the entry points ([`Poly::gcd`],
+//! [`Poly::gcd_cofactors`], [`Poly::lcm`]) and the dispatch that splits off
+//! contents and picks an algorithm (the steps are listed in the docs of
+//! `poly`). Below the entry points every polynomial has integer coefficients.
 
 mod heuristic;
 mod modp;

@@ -2,10 +2,10 @@
 //! Z_p, and the upper bounds on the degrees of the gcd in every variable that
 //! images at random points give (step 4 of the gcd).
 
-use super::super::modular::{
+use crate::poly::modular::{
     addmod, invmod, mulmod, next_rand, powmod, q_mod, submod, trim, PRIMES,
 };
-use super::super::{Poly, Var};
+use crate::poly::{Poly, Var};
 use smallvec::SmallVec;
 
 /// Monic gcd of two dense polynomials over Z_p (index = power).

@@ -2,8 +2,8 @@
 //! others): the always-correct gcd, and the pseudo-remainders and dense
 //! primitive parts that Zippel's gcd uses too.
 
-use super::super::{Poly, Var};
 use super::{gcd_core, multi_gcd};
+use crate::poly::{Poly, Var};
 
 fn dense_trim(v: &mut Vec<Poly>) {
     while v.last().is_some_and(|p| p.is_zero()) {

@@ -3,13 +3,13 @@
 //! image (with Brown's leading-coefficient normalization), verified by
 //! division.
 
-use super::super::modular::{
-    addmod, invmod, lift_sym, mulmod, next_rand, powmod, q_mod, submod, PRIMES,
-};
-use super::super::{Mono, Poly, Var};
 use super::gcd_core;
 use super::modp::gcd_modp;
 use super::prs::dense_primitive;
+use crate::poly::modular::{
+    addmod, invmod, lift_sym, mulmod, next_rand, powmod, q_mod, submod, PRIMES,
+};
+use crate::poly::{Mono, Poly, Var};
 
 /// Terms of a polynomial mod p as (exponent of the main variable, exponents
 /// of the other variables `ys`, coefficient).
