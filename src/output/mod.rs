@@ -191,7 +191,7 @@ fn run_unbounded(
         Command::Modes => {
             check_set(&scene, set)?;
             let at = match &opts.at {
-                Some(a) => Some(assignments(&scene, a)?),
+                Some(a) => Some(scene.coordinate_values(a)?),
                 None => None,
             };
             // an equilibrium is a constant position
@@ -210,7 +210,7 @@ fn run_unbounded(
             let md = crate::solve::oscillations::modes(&scene, at.as_deref(), set)?;
             let free = match &opts.init {
                 Some(i) => {
-                    let (q0, v0) = initial_conditions(&scene, i)?;
+                    let (q0, v0) = scene.initial_conditions(i)?;
                     Some(crate::solve::oscillations::free_response(&md, &q0, &v0)?)
                 }
                 None => None,
@@ -256,131 +256,7 @@ fn check_set(scene: &Scene, set: &Values) -> Result<(), Diagnostic> {
     Ok(())
 }
 
-/// `q1=expr,q2=expr`: values per name, each an exact expression in the
-/// scene's names.
-fn parse_assignments(
-    scene: &Scene,
-    s: &str,
-    what: &str,
-) -> Result<Vec<(String, Expr)>, Diagnostic> {
-    let mut out = Vec::new();
-    for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
-        let Some((k, v)) = part.split_once('=') else {
-            return Err(
-                Diagnostic::global(format!("`{what} {part}`: expected name=value"))
-                    .with_hint("for example --at th=pi, --init y1=1/10,y1'=0"),
-            );
-        };
-        let e = scene.expr(v.trim()).map_err(|d| {
-            Diagnostic::global(format!("`{what} {part}`: {}", d.message))
-                .with_hint("values are exact expressions in the scene's parameters: 1/10, pi, 2*r")
-        })?;
-        out.push((k.trim().to_string(), e));
-    }
-    Ok(out)
-}
-
-/// `--at q=value,…`: one value per coordinate (0 where not given).
-fn assignments(scene: &Scene, s: &str) -> Result<Vec<Expr>, Diagnostic> {
-    let mut vals = vec![Expr::zero(); scene.coordinates.len()];
-    for (k, e) in parse_assignments(scene, s, "--at")? {
-        let Some(i) = scene.coordinates.iter().position(|c| c.name == k) else {
-            return Err(coordinate_error(scene, "--at", &k));
-        };
-        vals[i] = e;
-    }
-    Ok(vals)
-}
-
-fn coordinate_error(scene: &Scene, what: &str, k: &str) -> Diagnostic {
-    let list: Vec<&str> = scene.coordinates.iter().map(|c| c.name.as_str()).collect();
-    Diagnostic::global(format!("`{what}`: `{k}` is not a coordinate of the scene"))
-        .with_hint(format!("the coordinates are {}", list.join(", ")))
-}
-
-/// `--init q=…,q'=…`: positions and velocities (0 where not given).
-fn initial_conditions(scene: &Scene, s: &str) -> Result<(Vec<Expr>, Vec<Expr>), Diagnostic> {
-    let n = scene.coordinates.len();
-    let mut q0 = vec![Expr::zero(); n];
-    let mut v0 = vec![Expr::zero(); n];
-    for (k, e) in parse_assignments(scene, s, "--init")? {
-        let (name, vel) = match k.strip_suffix('\'') {
-            Some(b) => (b, true),
-            None => (k.as_str(), false),
-        };
-        let Some(i) = scene.coordinates.iter().position(|c| c.name == name) else {
-            return Err(coordinate_error(scene, "--init", name));
-        };
-        if vel {
-            v0[i] = e;
-        } else {
-            q0[i] = e;
-        }
-    }
-    Ok((q0, v0))
-}
-
-/// Parse `--set m=1,g=9.81` into parameter values.
-pub fn parse_set(s: &str) -> Result<Values, Diagnostic> {
-    let mut out = Values::default();
-    for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
-        let Some((k, v)) = part.split_once('=').filter(|(k, _)| !k.trim().is_empty()) else {
-            return Err(
-                Diagnostic::global(format!("`--set {part}`: expected name=value"))
-                    .with_hint("for example --set m=1,g=9.81,l=0.5"),
-            );
-        };
-        let k = k.trim();
-        let v_text = v.trim();
-        if out.contains_key(k) {
-            return Err(Diagnostic::global(format!("`--set`: `{k}` is given twice"))
-                .with_hint("give each parameter one value"));
-        }
-        let v: f64 = match v.trim().parse::<f64>() {
-            Ok(x) if f64::is_finite(x) => x,
-            // a number past the double range (1e400): say so
-            Ok(_)
-                if !v.trim().to_ascii_lowercase().contains("inf")
-                    && !v.trim().to_ascii_lowercase().contains("nan") =>
-            {
-                return Err(Diagnostic::global(format!(
-                    "`--set {part}`: `{}` is beyond the range of double precision (about 1.8e308)",
-                    v.trim()
-                ))
-                .with_hint("numeric work is done in doubles; rescale the units"))
-            }
-            _ => {
-                return Err(Diagnostic::global(format!(
-                    "`--set {part}`: `{}` is not a number",
-                    v.trim()
-                ))
-                .with_hint("write decimal numbers: --set m=1.5,g=9.81"))
-            }
-        };
-        if v == 0.0 && v_is_nonzero_text(v_text) {
-            return Err(Diagnostic::global(format!(
-                "`--set {part}`: `{v_text}` is below the smallest double (about 4.9e-324)"
-            ))
-            .with_hint("numeric work is done in doubles; rescale the units"));
-        }
-        if v <= 0.0 {
-            return Err(Diagnostic::global(format!(
-                "`--set {part}`: parameters are positive, and {v} is not"
-            ))
-            .with_hint("qdot takes every parameter to be positive; write a negative quantity as −p in the scene"));
-        }
-        out.insert(k.to_string(), v);
-    }
-    Ok(out)
-}
-
-/// Whether a decimal number's text has a nonzero digit before any exponent
-/// (`1e-400` does, `0.0e5` does not).
-fn v_is_nonzero_text(t: &str) -> bool {
-    t.split(['e', 'E'])
-        .next()
-        .is_some_and(|m| m.chars().any(|c| c.is_ascii_digit() && c != '0'))
-}
+pub use crate::scene::given::parameter_values as parse_set;
 
 fn json_string(m: Map<String, Value>) -> String {
     let mut s = serde_json::to_string_pretty(&Value::Object(m)).unwrap_or_default();

@@ -8,6 +8,7 @@
 //! a [`Diagnostic`] pointing into the source.
 
 mod eval;
+pub mod given;
 mod resolve;
 
 pub(crate) use eval::is_taylor_form;

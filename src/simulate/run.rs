@@ -250,35 +250,7 @@ pub fn method_name(m: Method) -> &'static str {
     }
 }
 
-/// `q=0.5,q'=0` (numbers, signs allowed) as a map.
-pub fn parse_init(s: &str) -> Result<FxHashMap<String, f64>, Diagnostic> {
-    let mut out = FxHashMap::default();
-    for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
-        let Some((k, v)) = part.split_once('=').filter(|(k, _)| !k.trim().is_empty()) else {
-            return Err(
-                Diagnostic::global(format!("`--init {part}`: expected name=value"))
-                    .with_hint("for example --init theta=0.5,theta'=0"),
-            );
-        };
-        let k = k.trim().to_string();
-        let v: f64 = match v.trim().parse() {
-            Ok(x) if f64::is_finite(x) => x,
-            _ => {
-                return Err(Diagnostic::global(format!(
-                    "`--init {part}`: `{}` is not a number",
-                    v.trim()
-                ))
-                .with_hint("write decimal numbers: --init x=0.1,x'=-2.5"))
-            }
-        };
-        if out.insert(k.clone(), v).is_some() {
-            return Err(Diagnostic::global(format!(
-                "`--init`: `{k}` is given twice"
-            )));
-        }
-    }
-    Ok(out)
-}
+pub use crate::scene::given::numeric_initial_values as parse_init;
 
 /// Simulate the scene `src` as `req` asks.
 pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {

@@ -1,0 +1,217 @@
+//! Values given for a scene's names outside the scene: `--set m=1,g=9.81`
+//! (parameters, as doubles), `--at th=pi` and `--init y=1/10,y'=0` (exact
+//! expressions), the simulator's `--init th=0.5,th'=0` (doubles). One
+//! reader of `name=value,…` lists serves them all, so they accept the same
+//! syntax and refuse it with the same messages.
+
+use super::Scene;
+use crate::diag::Diagnostic;
+use crate::expr::Expr;
+use rustc_hash::FxHashMap;
+
+/// How an option is written, for its messages.
+#[derive(Clone, Copy, Debug)]
+pub struct OptionSyntax {
+    /// `--set`
+    pub option: &'static str,
+    /// A whole example: `--set m=1,g=9.81,l=0.5`.
+    pub example: &'static str,
+    /// The hint for a name given twice.
+    pub once: Option<&'static str>,
+}
+
+pub const SET: OptionSyntax = OptionSyntax {
+    option: "--set",
+    example: "--set m=1,g=9.81,l=0.5",
+    once: Some("give each parameter one value"),
+};
+pub const AT: OptionSyntax = OptionSyntax {
+    option: "--at",
+    example: "--at th=pi, --init y1=1/10,y1'=0",
+    once: Some("give each coordinate one value"),
+};
+pub const INIT: OptionSyntax = OptionSyntax {
+    option: "--init",
+    example: "--at th=pi, --init y1=1/10,y1'=0",
+    once: Some("give each position and velocity one value"),
+};
+pub const SIMULATE_INIT: OptionSyntax = OptionSyntax {
+    option: "--init",
+    example: "--init theta=0.5,theta'=0",
+    once: None,
+};
+
+/// One `name=value` item: as written (trimmed), its name and its value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NameValue<'s> {
+    pub written: &'s str,
+    pub name: &'s str,
+    pub value: &'s str,
+}
+
+/// `a=1, b = 2,,c=x` as its items, trimmed: empty items are skipped; an
+/// item without `=` or without a name, or a name given twice, is refused.
+pub fn name_value_pairs(syntax: OptionSyntax, s: &str) -> Result<Vec<NameValue<'_>>, Diagnostic> {
+    let mut out: Vec<NameValue<'_>> = Vec::new();
+    for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+        let Some((k, v)) = part.split_once('=').filter(|(k, _)| !k.trim().is_empty()) else {
+            return Err(Diagnostic::global(format!(
+                "`{} {part}`: expected name=value",
+                syntax.option
+            ))
+            .with_hint(format!("for example {}", syntax.example)));
+        };
+        let k = k.trim();
+        if out.iter().any(|nv| nv.name == k) {
+            let d = Diagnostic::global(format!("`{}`: `{k}` is given twice", syntax.option));
+            return Err(match syntax.once {
+                Some(h) => d.with_hint(h),
+                None => d,
+            });
+        }
+        out.push(NameValue {
+            written: part,
+            name: k,
+            value: v.trim(),
+        });
+    }
+    Ok(out)
+}
+
+/// Parse `--set m=1,g=9.81` into parameter values: finite, positive doubles.
+pub fn parameter_values(s: &str) -> Result<FxHashMap<String, f64>, Diagnostic> {
+    let mut out = FxHashMap::default();
+    for NameValue {
+        written: part,
+        name: k,
+        value: v_text,
+    } in name_value_pairs(SET, s)?
+    {
+        let v: f64 = match v_text.parse::<f64>() {
+            Ok(x) if f64::is_finite(x) => x,
+            // a number past the double range (1e400): say so
+            Ok(_)
+                if !v_text.to_ascii_lowercase().contains("inf")
+                    && !v_text.to_ascii_lowercase().contains("nan") =>
+            {
+                return Err(Diagnostic::global(format!(
+                    "`--set {part}`: `{v_text}` is beyond the range of double precision (about 1.8e308)"
+                ))
+                .with_hint("numeric work is done in doubles; rescale the units"))
+            }
+            _ => {
+                return Err(Diagnostic::global(format!(
+                    "`--set {part}`: `{v_text}` is not a number"
+                ))
+                .with_hint("write decimal numbers: --set m=1.5,g=9.81"))
+            }
+        };
+        if v == 0.0 && has_nonzero_digit(v_text) {
+            return Err(Diagnostic::global(format!(
+                "`--set {part}`: `{v_text}` is below the smallest double (about 4.9e-324)"
+            ))
+            .with_hint("numeric work is done in doubles; rescale the units"));
+        }
+        if v <= 0.0 {
+            return Err(Diagnostic::global(format!(
+                "`--set {part}`: parameters are positive, and {v} is not"
+            ))
+            .with_hint("qdot takes every parameter to be positive; write a negative quantity as −p in the scene"));
+        }
+        out.insert(k.to_string(), v);
+    }
+    Ok(out)
+}
+
+/// The simulator's `--init q=0.5,q'=0` (finite doubles, signs allowed).
+pub fn numeric_initial_values(s: &str) -> Result<FxHashMap<String, f64>, Diagnostic> {
+    let mut out = FxHashMap::default();
+    for NameValue {
+        written: part,
+        name: k,
+        value: v,
+    } in name_value_pairs(SIMULATE_INIT, s)?
+    {
+        let x = match v.parse::<f64>() {
+            Ok(x) if f64::is_finite(x) => x,
+            _ => {
+                return Err(
+                    Diagnostic::global(format!("`--init {part}`: `{v}` is not a number"))
+                        .with_hint("write decimal numbers: --init x=0.1,x'=-2.5"),
+                )
+            }
+        };
+        out.insert(k.to_string(), x);
+    }
+    Ok(out)
+}
+
+/// Whether a decimal number's text has a nonzero digit before any exponent
+/// (`1e-400` does, `0.0e5` does not).
+fn has_nonzero_digit(t: &str) -> bool {
+    t.split(['e', 'E'])
+        .next()
+        .is_some_and(|m| m.chars().any(|c| c.is_ascii_digit() && c != '0'))
+}
+
+impl Scene {
+    /// `name=expr,…`: each value an exact expression in the scene's names.
+    fn exact_values(
+        &self,
+        syntax: OptionSyntax,
+        s: &str,
+    ) -> Result<Vec<(String, Expr)>, Diagnostic> {
+        let mut out = Vec::new();
+        for NameValue {
+            written,
+            name,
+            value,
+        } in name_value_pairs(syntax, s)?
+        {
+            let e = self.expr(value).map_err(|d| {
+                Diagnostic::global(format!("`{} {written}`: {}", syntax.option, d.message))
+                    .with_hint(
+                        "values are exact expressions in the scene's parameters: 1/10, pi, 2*r",
+                    )
+            })?;
+            out.push((name.to_string(), e));
+        }
+        Ok(out)
+    }
+
+    fn coordinate_index(&self, option: &str, name: &str) -> Result<usize, Diagnostic> {
+        self.coordinates
+            .iter()
+            .position(|c| c.name == name)
+            .ok_or_else(|| {
+                let list: Vec<&str> = self.coordinates.iter().map(|c| c.name.as_str()).collect();
+                Diagnostic::global(format!(
+                    "`{option}`: `{name}` is not a coordinate of the scene"
+                ))
+                .with_hint(format!("the coordinates are {}", list.join(", ")))
+            })
+    }
+
+    /// `--at q=value,…`: one exact value per coordinate (0 where not given).
+    pub fn coordinate_values(&self, s: &str) -> Result<Vec<Expr>, Diagnostic> {
+        let mut vals = vec![Expr::zero(); self.coordinates.len()];
+        for (k, e) in self.exact_values(AT, s)? {
+            vals[self.coordinate_index(AT.option, &k)?] = e;
+        }
+        Ok(vals)
+    }
+
+    /// `--init q=…,q'=…`: exact positions and velocities (0 where not given).
+    pub fn initial_conditions(&self, s: &str) -> Result<(Vec<Expr>, Vec<Expr>), Diagnostic> {
+        let n = self.coordinates.len();
+        let mut q0 = vec![Expr::zero(); n];
+        let mut v0 = vec![Expr::zero(); n];
+        for (k, e) in self.exact_values(INIT, s)? {
+            match k.strip_suffix('\'') {
+                Some(name) => v0[self.coordinate_index(INIT.option, name)?] = e,
+                None => q0[self.coordinate_index(INIT.option, &k)?] = e,
+            }
+        }
+        Ok((q0, v0))
+    }
+}
