@@ -67,6 +67,10 @@ pub struct StandardForm {
     pub forcing: Expr,
     /// ζ = α/ω (present when ω² is not zero).
     pub zeta: Option<Expr>,
+    /// ω = √(ω²) when it is a single term over a single term with no
+    /// radical inside (`√(k/m)`, `2·√(g/l)`); otherwise the text writes
+    /// √(ω²) and leaves ζ as α/ω.
+    pub omega: Option<Expr>,
     /// "undamped", "underdamped", "critically damped", "overdamped", or
     /// "undecided" when the sign of α² − ω² depends on the parameters.
     pub regime: String,
@@ -491,12 +495,21 @@ pub fn standard_form(md: &Modes, set: &Values) -> Option<StandardForm> {
             None => "underdamped when α² < ω², overdamped when α² > ω²".to_string(),
         }
     };
+    let omega = func::sqrt(&w2).ok().filter(|w| {
+        w.num().len() == 1
+            && w.den().len() == 1
+            && !w
+                .vars()
+                .iter()
+                .any(|&v| matches!(atom::atom(v), Atom::SqrtOf(_)))
+    });
     Some(StandardForm {
         omega_squared: w2,
         alpha,
         forcing,
         zeta,
         regime,
+        omega,
     })
 }
 
@@ -602,6 +615,43 @@ pub fn damped_steady_state(md: &Modes, sf: &StandardForm) -> Option<(Expr, Expr,
     let x = q.div(&den).ok()?;
     let tan_psi = two_ap.div(&d).ok()?;
     Some((p, x, tan_psi))
+}
+
+/// The amplitude and phase of a one-coordinate free response `q(t)`
+/// (see [`amplitude_phase`]), read from q(0) and q̇(0).
+pub fn free_amplitude_phase(md: &Modes, free: &[Expr]) -> Option<(Expr, Expr)> {
+    if md.coordinates.len() != 1 || md.omega_squared.len() != 1 {
+        return None;
+    }
+    let t = atom::time();
+    let zero: FxHashMap<_, _> = [(t, Expr::zero())].into_iter().collect();
+    let y0 = free[0].subs_many(&zero).ok()?;
+    let v0 = free[0].diff(t).subs_many(&zero).ok()?;
+    amplitude_phase(&md.omega_squared[0], &y0, &v0)
+}
+
+/// The amplitude per unit mass F/M of a harmonic load on one coordinate.
+pub fn load_per_mass(md: &Modes) -> Option<Expr> {
+    let (_, f) = harmonic_load(md)?;
+    f[0].div(&md.mass[0][0]).ok()
+}
+
+/// The generalized symmetric eigenproblem K·v = ω²·M·v, numerically at
+/// the parameter values `set` (none when a value is missing).
+pub fn numeric_modes(md: &Modes, set: &Values) -> Option<crate::solve::eigen::GeneralizedEigen> {
+    if set.is_empty() {
+        return None;
+    }
+    let at = |a: &Atom| match a {
+        Atom::Param(n) => set.get(&**n).copied(),
+        _ => None,
+    };
+    let num = |m: &[Vec<Expr>]| -> Option<Vec<Vec<f64>>> {
+        m.iter()
+            .map(|r| r.iter().map(|e| e.eval_f64(&at)).collect())
+            .collect()
+    };
+    crate::solve::eigen::generalized_symmetric(&num(&md.stiffness)?, &num(&md.mass)?).ok()
 }
 
 /// One coordinate, undamped: y = A·sin(ω·t + φ) from y(0) = y0, ẏ(0) = v0

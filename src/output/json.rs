@@ -1,0 +1,242 @@
+//! The JSON of every command: its keys are a public contract (listed in
+//! [`super`]'s documentation and in the book's CLI chapter).
+
+use super::{as_input, position_strings};
+use crate::expr::Expr;
+use crate::mechanics::Lagrange;
+use crate::scene::Scene;
+use crate::solve::equilibrium::{self, Equilibria, Position, Values};
+use crate::solve::system::{self, BlockSolution};
+use serde_json::{json, Map, Value};
+
+pub(super) fn json_string(m: Map<String, Value>) -> String {
+    let mut s = serde_json::to_string_pretty(&Value::Object(m)).unwrap_or_default();
+    s.push('\n');
+    s
+}
+
+pub(super) fn named(names: &[String], es: &[Expr]) -> Value {
+    let mut m = Map::new();
+    for (n, e) in names.iter().zip(es) {
+        m.insert(n.clone(), Value::String(as_input(e)));
+    }
+    Value::Object(m)
+}
+
+/// The JSON of `qdot derive`.
+pub fn derive_json(l: &Lagrange) -> Map<String, Value> {
+    let mut m = Map::new();
+    m.insert("coordinates".into(), json!(l.coordinates));
+    m.insert(
+        "equations".into(),
+        Value::Array(
+            l.equations
+                .iter()
+                .map(|e| json!({"coordinate": e.coordinate, "lhs": as_input(&e.lhs), "rhs": as_input(&e.rhs)}))
+                .collect(),
+        ),
+    );
+    m.insert(
+        "mass_matrix".into(),
+        json!(l
+            .mass_matrix
+            .iter()
+            .map(|r| r.iter().map(as_input).collect::<Vec<_>>())
+            .collect::<Vec<_>>()),
+    );
+    m.insert(
+        "forcing".into(),
+        json!(l.forcing.iter().map(as_input).collect::<Vec<_>>()),
+    );
+    m
+}
+
+/// The JSON of `qdot solve`: derive's keys plus `accelerations`.
+pub fn solve_json(l: &Lagrange, acc: &[(String, Expr)]) -> Map<String, Value> {
+    let mut m = derive_json(l);
+    let mut a = Map::new();
+    for (q, e) in acc {
+        a.insert(q.clone(), Value::String(as_input(e)));
+    }
+    m.insert("accelerations".into(), Value::Object(a));
+    m
+}
+
+/// Add `solutions`, `free_unknowns` and `checks` to a JSON object.
+pub fn solutions_json(scene: &Scene, blocks: &[BlockSolution], m: &mut Map<String, Value>) {
+    let mut sols = Map::new();
+    let mut free = Vec::new();
+    let mut checks = Vec::new();
+    for (b, (sys, sol)) in scene.systems.iter().zip(blocks).enumerate() {
+        for (n, v) in &sol.values {
+            if !sol.free.contains(n) {
+                sols.insert(n.clone(), Value::String(as_input(v)));
+            }
+        }
+        free.extend(sol.free.iter().cloned());
+        for &i in &sol.checks {
+            let mut c = json!({"block": b + 1, "equation": system::equation_number(sys, i)});
+            if let Some(k) = sys.equations[i].component {
+                c["component"] = json!(["x", "y", "z"][k.min(2)]);
+            }
+            checks.push(c);
+        }
+    }
+    m.insert("solutions".into(), Value::Object(sols));
+    m.insert("free_unknowns".into(), json!(free));
+    m.insert("checks".into(), Value::Array(checks));
+}
+
+/// The JSON of `qdot equilibrium`.
+pub fn equilibrium_json(eq: &Equilibria) -> Map<String, Value> {
+    let mut m = Map::new();
+    m.insert("coordinates".into(), json!(eq.coordinates));
+    m.insert(
+        "generalized_forces".into(),
+        named(&eq.coordinates, &eq.forces),
+    );
+    m.insert("conditions".into(), named(&eq.coordinates, &eq.conditions));
+    m.insert("exact".into(), json!(eq.exact));
+    let mut list = Vec::new();
+    let mut stab = Vec::new();
+    let mut multiplicity = Vec::new();
+    let mut notes = Vec::new();
+    let mut approx = Vec::new();
+    for e in &eq.equilibria {
+        approx.push(match &e.approx {
+            Some(a) => json!(a),
+            None => Value::Null,
+        });
+        let mut o = Map::new();
+        match &e.position {
+            Position::Numeric(xs) => {
+                for (c, x) in eq.coordinates.iter().zip(xs) {
+                    o.insert(c.clone(), json!(x));
+                }
+            }
+            Position::Exact(_) => {
+                for (c, v) in eq
+                    .coordinates
+                    .iter()
+                    .zip(position_strings(eq, e, &as_input))
+                {
+                    o.insert(c.clone(), Value::String(v));
+                }
+            }
+        }
+        list.push(Value::Object(o));
+        stab.push(json!(e.stability.word()));
+        multiplicity.push(json!(e.multiplicity));
+        let mut n: Vec<String> = e
+            .conditions
+            .iter()
+            .map(|c| format!("exists when {c}"))
+            .collect();
+        if let equilibrium::Stability::Undecided(why) = &e.stability {
+            n.push(why.clone());
+        }
+        notes.push(json!(n.join("; ")));
+    }
+    m.insert("equilibria".into(), Value::Array(list));
+    m.insert("stability".into(), Value::Array(stab));
+    m.insert("notes".into(), Value::Array(notes));
+    m.insert("approx".into(), Value::Array(approx));
+    m.insert("multiplicity".into(), Value::Array(multiplicity));
+    m
+}
+
+/// `forced_response`: for f = F·cos(p·t), the undamped amplitudes
+/// (K − p²M)⁻¹·F, or for one damped coordinate X and tan ψ.
+fn forced_json(
+    md: &crate::solve::oscillations::Modes,
+    sf: Option<&crate::solve::oscillations::StandardForm>,
+) -> Value {
+    use crate::solve::oscillations as osc;
+    let damped = md.damping.iter().flatten().any(|e| !e.is_zero());
+    if !damped {
+        return osc::forced_amplitudes(md)
+            .map(|(p, x)| json!({"p": as_input(&p), "amplitudes": named(&md.coordinates, &x)}))
+            .unwrap_or(Value::Null);
+    }
+    sf.and_then(|sf| osc::damped_steady_state(md, sf))
+        .map(|(p, x, t)| json!({"p": as_input(&p), "amplitude": as_input(&x), "tan_psi": as_input(&t)}))
+        .unwrap_or(Value::Null)
+}
+
+/// The JSON of `qdot modes`.
+pub fn modes_json(
+    md: &crate::solve::oscillations::Modes,
+    set: &Values,
+    free: Option<&[Expr]>,
+) -> Map<String, Value> {
+    let mat = |m: &[Vec<Expr>]| {
+        json!(m
+            .iter()
+            .map(|r| r.iter().map(as_input).collect::<Vec<_>>())
+            .collect::<Vec<_>>())
+    };
+    let mut m = Map::new();
+    m.insert("coordinates".into(), json!(md.coordinates));
+    m.insert("at".into(), named(&md.coordinates, &md.at));
+    m.insert("mass_matrix".into(), mat(&md.mass));
+    m.insert("stiffness_matrix".into(), mat(&md.stiffness));
+    m.insert("damping_matrix".into(), mat(&md.damping));
+    m.insert(
+        "forcing".into(),
+        json!(md.forcing.iter().map(as_input).collect::<Vec<_>>()),
+    );
+    m.insert(
+        "characteristic_polynomial".into(),
+        json!(as_input(&md.characteristic)),
+    );
+    m.insert(
+        "characteristic_factors".into(),
+        json!(md.factors.iter().map(as_input).collect::<Vec<_>>()),
+    );
+    m.insert(
+        "omega_squared".into(),
+        json!(md.omega_squared.iter().map(as_input).collect::<Vec<_>>()),
+    );
+    m.insert(
+        "modes".into(),
+        json!(md
+            .modes
+            .iter()
+            .map(|v| v.iter().map(as_input).collect::<Vec<_>>())
+            .collect::<Vec<_>>()),
+    );
+    m.insert("stability".into(), json!(md.stability.word()));
+    let standard = crate::solve::oscillations::standard_form(md, set);
+    let sf = standard.as_ref().map(|sf| {
+        json!({
+            "omega_squared": as_input(&sf.omega_squared),
+            "alpha": as_input(&sf.alpha),
+            "zeta": sf.zeta.as_ref().map(as_input),
+            "forcing": as_input(&sf.forcing),
+            "regime": sf.regime,
+        })
+    });
+    m.insert("standard_form".into(), sf.unwrap_or(Value::Null));
+    let eigen = crate::solve::oscillations::numeric_modes(md, set);
+    m.insert(
+        "numeric_omega_squared".into(),
+        eigen
+            .as_ref()
+            .map(|g| json!(g.values))
+            .unwrap_or(Value::Null),
+    );
+    m.insert(
+        "numeric_modes".into(),
+        eigen
+            .as_ref()
+            .map(|g| json!(g.vectors))
+            .unwrap_or(Value::Null),
+    );
+    m.insert(
+        "free_response".into(),
+        free.map(|f| named(&md.coordinates, f))
+            .unwrap_or(Value::Null),
+    );
+    m.insert("forced_response".into(), forced_json(md, standard.as_ref()));
+    m
+}

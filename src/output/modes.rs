@@ -1,0 +1,291 @@
+//! The readable text of `modes`: matrices, standard form, characteristic
+//! equation, frequencies and modes, responses.
+
+use super::text::matrix_text;
+use super::{as_unicode, minus};
+use crate::expr::print::{self, pretty_name};
+use crate::expr::Expr;
+use crate::solve::equilibrium::Values;
+use crate::solve::oscillations::{self as osc, Modes, StandardForm};
+
+/// The text of `qdot modes`.
+pub fn modes_text(md: &Modes, set: &Values, free: Option<&[Expr]>) -> String {
+    let names: Vec<String> = md.coordinates.iter().map(|c| pretty_name(c, 0)).collect();
+    let standard = osc::standard_form(md, set);
+    let mut out = linearized_text(md, &names);
+    if let Some(sf) = &standard {
+        out.push_str(&standard_form_text(&md.coordinates[0], sf));
+    }
+    out.push_str(&characteristic_text(md));
+    out.push_str(&frequencies_text(md, set));
+    out.push_str(&general_solution_text(md, &names));
+    out.push_str(&stability_text(md));
+    if let Some(free) = free {
+        out.push_str(&free_response_text(md, &names, free));
+    }
+    out.push_str(&steady_state_text(md, &names, standard.as_ref()));
+    out
+}
+
+/// The point of linearization and M, C, K, f(t).
+fn linearized_text(md: &Modes, names: &[String]) -> String {
+    let at: Vec<String> = names
+        .iter()
+        .zip(&md.at)
+        .map(|(c, v)| format!("{c} = {}", as_unicode(v)))
+        .collect();
+    let mut out = format!(
+        "Linearized about {}   M·q̈ + C·q̇ + K·q = f(t)\n",
+        at.join(", ")
+    );
+    matrix_text(&mut out, "Mass matrix M", &md.mass);
+    if is_damped(md) {
+        matrix_text(&mut out, "Damping matrix C", &md.damping);
+    }
+    matrix_text(&mut out, "Stiffness matrix K", &md.stiffness);
+    if md.forcing.iter().any(|e| !e.is_zero()) {
+        out.push_str("Forcing f(t)\n");
+        for (c, f) in names.iter().zip(&md.forcing) {
+            out.push_str(&format!("  {c}  {}\n", as_unicode(f)));
+        }
+    }
+    out
+}
+
+fn is_damped(md: &Modes) -> bool {
+    md.damping.iter().flatten().any(|e| !e.is_zero())
+}
+
+/// One coordinate: ÿ + 2α·ẏ + ω²·y = f(t)/M, ω, α, ζ and the regime.
+fn standard_form_text(q: &str, sf: &StandardForm) -> String {
+    let mut out = String::from("\nStandard form  ÿ + 2α·ẏ + ω²·y = f(t)/M\n");
+    let mut lhs = pretty_name(q, 2);
+    if !sf.alpha.is_zero() {
+        lhs.push_str(&format!(
+            " + {}·{}",
+            paren_str(&expanded(&sf.alpha.scale(&crate::num::Q::from_i64(2)))),
+            pretty_name(q, 1)
+        ));
+    }
+    lhs.push_str(&format!(
+        " + {}·{}",
+        paren_str(&expanded(&sf.omega_squared)),
+        pretty_name(q, 0)
+    ));
+    out.push_str(&format!("  {lhs} = {}\n", as_unicode(&sf.forcing)));
+    out.push_str(&format!("  ω² = {}\n", expanded(&sf.omega_squared)));
+    let ws = match &sf.omega {
+        Some(w) => as_unicode(w),
+        None => format!("√({})", expanded(&sf.omega_squared)),
+    };
+    out.push_str(&format!("  ω = {ws}   T = 2π/ω   f = ω/(2π)\n"));
+    if !sf.alpha.is_zero() {
+        out.push_str(&format!("  α = {}", expanded(&sf.alpha)));
+        match (&sf.zeta, &sf.omega) {
+            (Some(z), Some(_)) => out.push_str(&format!("   ζ = α/ω = {}", as_unicode(z))),
+            _ => out.push_str("   ζ = α/ω"),
+        }
+        out.push('\n');
+    }
+    out.push_str(&format!("  regime: {}\n", sf.regime));
+    out
+}
+
+/// det(K − λ·M) = 0, factored, constant factors left out.
+fn characteristic_text(md: &Modes) -> String {
+    let mut out = String::from("\nCharacteristic equation  det(K − λ·M) = 0,  λ = ω²\n");
+    let lv = crate::expr::atom::unknown(osc::LAMBDA);
+    // the equation is "= 0": constant factors are left out
+    let shown: Vec<&Expr> = md.factors.iter().filter(|f| f.depends_on(lv)).collect();
+    let factors: Vec<String> = shown
+        .iter()
+        .map(|f| {
+            let s = lambda_poly(f);
+            if shown.len() > 1 && (s.contains(" + ") || s.contains(" − ")) {
+                format!("({s})")
+            } else {
+                s
+            }
+        })
+        .collect();
+    if factors.is_empty() {
+        out.push_str(&format!("  {} = 0\n", lambda_poly(&md.characteristic)));
+    } else {
+        out.push_str(&format!("  {} = 0\n", factors.join("·")));
+    }
+    out
+}
+
+/// ωᵢ² with their modes, then the numeric eigen-solution under `--set`.
+fn frequencies_text(md: &Modes, set: &Values) -> String {
+    let mut out = String::new();
+    if md.omega_squared.is_empty() {
+        out.push_str("  (no closed form for its roots)\n");
+    } else {
+        out.push_str(
+            "\nNatural frequencies and modes  (distribution coefficients μ_j = x_j/x_1)\n",
+        );
+        for (i, (w2, mode)) in md.omega_squared.iter().zip(&md.modes).enumerate() {
+            let m: Vec<String> = mode.iter().map(as_unicode).collect();
+            out.push_str(&format!(
+                "  ω{}² = {}    mode ({})\n",
+                print::subscript(&(i + 1).to_string()),
+                expanded(w2),
+                m.join(", ")
+            ));
+        }
+    }
+    if let Some(g) = osc::numeric_modes(md, set) {
+        let v: Vec<String> = g.values.iter().map(|x| minus(format!("{x:.10}"))).collect();
+        out.push_str(&format!("  numeric ω² (eigen-solver): {}\n", v.join(", ")));
+        out.push_str("  mass-normalized modes (numeric, vᵀ·M·v = 1):\n");
+        for v in &g.vectors {
+            let c: Vec<String> = v.iter().map(|x| minus(format!("{x:.8}"))).collect();
+            out.push_str(&format!("    ({})\n", c.join(", ")));
+        }
+    }
+    out
+}
+
+/// q(t) = Σ Cᵢ·uᵢ·cos(ωᵢ·t + φᵢ), when every frequency is in closed form.
+fn general_solution_text(md: &Modes, names: &[String]) -> String {
+    if md.omega_squared.is_empty() || md.omega_squared.len() != md.coordinates.len() {
+        return String::new();
+    }
+    let mut out = String::from("\nGeneral solution (undamped)  q(t) = Σ Cᵢ·uᵢ·cos(ωᵢ·t + φᵢ)\n");
+    for (j, c) in names.iter().enumerate() {
+        let mut terms = Vec::new();
+        for (i, mode) in md.modes.iter().enumerate() {
+            let mu = &mode[j];
+            if mu.is_zero() {
+                continue;
+            }
+            let i1 = print::subscript(&(i + 1).to_string());
+            let wave = format!("C{i1}·cos(ω{i1}·t + φ{i1})");
+            let (neg, body) = signed_coefficient(&as_unicode(mu));
+            terms.push((
+                neg,
+                if body == "1" {
+                    wave
+                } else {
+                    format!("{body}·{wave}")
+                },
+            ));
+        }
+        let line = print::join_terms(terms.into_iter(), print::Style::Unicode);
+        out.push_str(&format!("  {c} = {line}\n"));
+    }
+    out
+}
+
+fn stability_text(md: &Modes) -> String {
+    let mut out = format!("\nStability of the equilibrium: {}", md.stability.word());
+    if let osc::Stability::Undecided(why) = &md.stability {
+        out.push_str(&format!(" ({why})"));
+    }
+    out.push('\n');
+    if md.coordinates.len() > 1 && is_damped(md) {
+        out.push_str("  (the modes are those of the undamped system)\n");
+    }
+    out
+}
+
+/// q(t) from `--init`, and for one coordinate the seed's A·sin(ω·t + φ).
+fn free_response_text(md: &Modes, names: &[String], free: &[Expr]) -> String {
+    let mut out = String::from("\nFree response (undamped) from the initial conditions\n");
+    for (c, q) in names.iter().zip(free) {
+        out.push_str(&format!("  {c}(t) = {}\n", as_unicode(q)));
+    }
+    if let Some((a, phi)) = osc::free_amplitude_phase(md, free) {
+        out.push_str(&format!(
+            "  = A·sin(ω·t + φ),  A = √(y₀² + (v₀/ω)²) = {},  φ = atan(y₀·ω/v₀) = {}\n",
+            as_unicode(&a),
+            as_unicode(&phi)
+        ));
+    }
+    out
+}
+
+/// The steady state under a harmonic load: damped (one coordinate) or
+/// undamped amplitudes.
+fn steady_state_text(md: &Modes, names: &[String], standard: Option<&StandardForm>) -> String {
+    let mut out = String::new();
+    if let Some(sf) = standard.filter(|sf| !sf.alpha.is_zero()) {
+        if let Some((p, _, tan_psi)) = osc::damped_steady_state(md, sf) {
+            // X is exact in the JSON; the formula reads better here
+            out.push_str(&format!(
+                "\nSteady state under F·cos(p·t), p = {}:  y = X·cos(p·t − ψ)\n  X = (F/M)/√((ω² − p²)² + 4α²p²),  F/M = {}\n  tan ψ = 2αp/(ω² − p²) = {}\n",
+                as_unicode(&p),
+                osc::load_per_mass(md).map(|a| as_unicode(&a)).unwrap_or_default(),
+                as_unicode(&tan_psi)
+            ));
+        }
+    }
+    if let Some((p, x)) = osc::forced_amplitudes(md) {
+        if !is_damped(md) {
+            out.push_str(&format!(
+                "\nSteady state under f = F·cos(p·t), p = {}  (undamped amplitudes; resonance at p² = ωᵢ²)\n",
+                as_unicode(&p)
+            ));
+            for (c, a) in names.iter().zip(&x) {
+                out.push_str(&format!("  {c}: {}·cos(p·t)\n", paren(a)));
+            }
+        }
+    }
+    out
+}
+
+fn expanded(e: &Expr) -> String {
+    print::expanded(e)
+}
+
+/// A polynomial in λ in ascending powers: k − 6·m·λ, 2·k² − 4·k·m·λ + m²·λ².
+fn lambda_poly(f: &Expr) -> String {
+    let lv = crate::expr::atom::unknown(crate::solve::oscillations::LAMBDA);
+    if !f.den().is_one() || !f.num().contains_var(lv) {
+        return as_unicode(f);
+    }
+    let mut terms = Vec::new();
+    for (i, c) in f.num().coeffs_in(lv).into_iter().enumerate() {
+        if c.is_zero() {
+            continue;
+        }
+        let (neg, cs) = signed_coefficient(&expanded(&Expr::from_poly(c)));
+        let pow = match i {
+            0 => String::new(),
+            1 => "λ".to_string(),
+            k => format!("λ{}", print::superscript(k as u32)),
+        };
+        let term = match (i, cs.as_str()) {
+            (0, _) => cs.clone(),
+            (_, "1") => pow,
+            _ => format!("{cs}·{pow}"),
+        };
+        terms.push((neg, term));
+    }
+    print::join_terms(terms.into_iter(), print::Style::Unicode)
+}
+
+/// A printed coefficient as (sign outside, body): `−a` → (true, `a`), a
+/// sum → (false, `(a − b)`), else (false, itself).
+fn signed_coefficient(s: &str) -> (bool, String) {
+    if s.contains(" + ") || s.contains(" − ") {
+        return (false, format!("({s})"));
+    }
+    match s.strip_prefix('−') {
+        Some(r) => (true, r.to_string()),
+        None => (false, s.to_string()),
+    }
+}
+
+fn paren(e: &Expr) -> String {
+    paren_str(&as_unicode(e))
+}
+
+fn paren_str(s: &str) -> String {
+    if s.contains(" + ") || s.contains(" − ") || s.starts_with('−') {
+        format!("({s})")
+    } else {
+        s.to_string()
+    }
+}

@@ -1,0 +1,220 @@
+//! The readable text of `derive`, `solve`, `forces`, `solve` blocks and
+//! `equilibrium`.
+
+use super::{as_unicode, minus, position_strings};
+use crate::expr::print::pretty_name;
+use crate::expr::Expr;
+use crate::mechanics::Lagrange;
+use crate::scene::Scene;
+use crate::solve::equilibrium::{self, Equilibria, Position};
+use crate::solve::system::{self, BlockSolution};
+
+/// The text of `qdot derive`.
+pub fn derive_text(l: &Lagrange) -> String {
+    let mut out = String::from("Lagrange's equations  d/dt(∂E/∂q̇) − ∂E/∂q = Q\n");
+    let width = l
+        .coordinates
+        .iter()
+        .map(|c| pretty_name(c, 0).chars().count())
+        .max()
+        .unwrap_or(1);
+    for e in &l.equations {
+        let name = pretty_name(&e.coordinate, 0);
+        out.push_str(&format!(
+            "  {}  {} = {}\n",
+            padded(&name, width),
+            as_unicode(&e.lhs),
+            as_unicode(&e.rhs)
+        ));
+    }
+    out.push('\n');
+    matrix_text(&mut out, "Mass matrix M  (M·q̈ = f)", &l.mass_matrix);
+    out.push_str("\nForcing f\n");
+    for (c, f) in l.coordinates.iter().zip(&l.forcing) {
+        out.push_str(&format!(
+            "  {}  {}\n",
+            padded(&pretty_name(c, 0), width),
+            as_unicode(f)
+        ));
+    }
+    out
+}
+
+/// The text of `qdot solve`: the accelerations, after the equations.
+pub fn solve_text(l: &Lagrange, acc: &[(String, Expr)]) -> String {
+    let mut out = derive_text(l);
+    out.push_str("\nAccelerations\n");
+    for (q, e) in acc {
+        out.push_str(&format!("  {} = {}\n", pretty_name(q, 2), as_unicode(e)));
+    }
+    out
+}
+
+/// The text of `qdot forces`.
+pub fn forces_text(names: &[String], q: &[Expr]) -> String {
+    let mut out = String::from("Generalized forces  δL = Σ Q_k·δq_k\n");
+    let width = names
+        .iter()
+        .map(|c| pretty_name(c, 0).chars().count())
+        .max()
+        .unwrap_or(1);
+    for (c, e) in names.iter().zip(q) {
+        out.push_str(&format!(
+            "  Q_{} = {}\n",
+            padded(&pretty_name(c, 0), width),
+            as_unicode(e)
+        ));
+    }
+    out
+}
+
+/// The solutions of the `solve` blocks as text.
+pub fn solutions_text(scene: &Scene, blocks: &[BlockSolution]) -> String {
+    let mut out = String::new();
+    for (b, (sys, sol)) in scene.systems.iter().zip(blocks).enumerate() {
+        let names: Vec<&str> = sys.unknowns.iter().map(|u| u.name.as_str()).collect();
+        if b > 0 {
+            out.push('\n');
+        }
+        let names: Vec<String> = names.iter().map(|n| pretty_name(n, 0)).collect();
+        out.push_str(&format!("Solutions  (solve {})\n", names.join(", ")));
+        let width = sol
+            .values
+            .iter()
+            .map(|(n, _)| pretty_name(n, 0).chars().count())
+            .max()
+            .unwrap_or(1);
+        for (n, v) in &sol.values {
+            if sol.free.contains(n) {
+                continue;
+            }
+            out.push_str(&format!(
+                "  {} = {}\n",
+                padded(&pretty_name(n, 0), width),
+                as_unicode(v)
+            ));
+        }
+        if !sol.free.is_empty() {
+            let f: Vec<String> = sol.free.iter().map(|n| pretty_name(n, 0)).collect();
+            out.push_str(&format!(
+                "  free: {} (the equations do not determine {})\n",
+                f.join(", "),
+                if f.len() == 1 { "it" } else { "them" }
+            ));
+        }
+        for &i in &sol.checks {
+            out.push_str(&format!(
+                "  check: {} follows from the others and holds\n",
+                system::equation_label(sys, i)
+            ));
+        }
+        if sol.used_accelerations {
+            out.push_str("  (q̈ taken from the accelerations above)\n");
+        }
+    }
+    out
+}
+
+/// The text of `qdot equilibrium`.
+pub fn equilibrium_text(eq: &Equilibria) -> String {
+    let mut out = forces_text(&eq.coordinates, &eq.forces);
+    if eq.kinetic_terms {
+        out.push_str("\nEquilibrium conditions at rest (Q_k plus the kinetic energy's terms ∂E/∂q_k at q̇ = 0)\n");
+        for (c, f) in eq.coordinates.iter().zip(&eq.conditions) {
+            out.push_str(&format!(
+                "  {}:  {} = 0\n",
+                pretty_name(c, 0),
+                as_unicode(f)
+            ));
+        }
+    }
+    out.push_str(if eq.exact {
+        "\nEquilibria\n"
+    } else {
+        "\nEquilibria (numeric: no closed form)\n"
+    });
+    if eq.equilibria.is_empty() {
+        out.push_str("  none\n");
+    }
+    if !eq.exact && !eq.equilibria.is_empty() {
+        out.push_str(if eq.coordinates.len() == 1 {
+            "  (found by Newton's method from many starting points: roots far from them may be missed; digits shown are certified by a sign change)\n"
+        } else {
+            "  (found by Newton's method from many starting points: roots far from them may be missed)\n"
+        });
+    }
+    for (i, e) in eq.equilibria.iter().enumerate() {
+        let vals = position_strings(eq, e, &as_unicode);
+        let parts: Vec<String> = eq
+            .coordinates
+            .iter()
+            .zip(&vals)
+            .map(|(c, v)| format!("{} = {v}", pretty_name(c, 0)))
+            .collect();
+        out.push_str(&format!("  {}. {}", i + 1, parts.join(", ")));
+        if let Some(a) = &e.approx {
+            let nums: Vec<String> = a.iter().map(|x| minus(format!("{x:.6}"))).collect();
+            out.push_str(&format!("  ≈ ({})", nums.join(", ")));
+        }
+        out.push_str(&format!("  — {}", e.stability.word()));
+        if let equilibrium::Stability::Undecided(why) = &e.stability {
+            out.push_str(&format!(" ({why})"));
+        }
+        out.push('\n');
+        if e.multiplicity > 1 {
+            out.push_str(&format!(
+                "     a root of multiplicity {} of the condition (V'' = 0 there; decided by the first derivative of V that is not 0)\n",
+                e.multiplicity
+            ));
+        }
+        if let (Position::Numeric(xs), None) = (&e.position, &e.certified) {
+            out.push_str(if xs.len() == 1 {
+                "     not certified: no sign change of the condition found around it (a multiple root, or one lost in rounding); 6 digits shown\n"
+            } else {
+                "     not certified (several coordinates: qdot encloses roots of one equation only); 6 digits shown\n"
+            });
+        }
+        for c in &e.conditions {
+            out.push_str(&format!("     exists when {c}\n"));
+        }
+    }
+    out
+}
+
+/// `s` padded with spaces to `width` characters. (`format!`'s `{:<w$}`
+/// panics for widths over 65,535, and a matrix entry or a name can be
+/// longer than that.)
+pub fn padded(s: &str, width: usize) -> String {
+    let n = s.chars().count();
+    let mut out = String::with_capacity(s.len() + width.saturating_sub(n));
+    out.push_str(s);
+    out.extend(std::iter::repeat_n(' ', width.saturating_sub(n)));
+    out
+}
+
+pub(super) fn matrix_text(out: &mut String, title: &str, m: &[Vec<Expr>]) {
+    out.push_str(title);
+    out.push('\n');
+    let cells: Vec<Vec<String>> = m
+        .iter()
+        .map(|r| r.iter().map(as_unicode).collect())
+        .collect();
+    let n = cells.first().map(|r| r.len()).unwrap_or(0);
+    let widths: Vec<usize> = (0..n)
+        .map(|j| {
+            cells
+                .iter()
+                .map(|r| r[j].chars().count())
+                .max()
+                .unwrap_or(1)
+        })
+        .collect();
+    for r in &cells {
+        let row: Vec<String> = r
+            .iter()
+            .enumerate()
+            .map(|(j, c)| padded(c, widths[j]))
+            .collect();
+        out.push_str(&format!("  [ {} ]\n", row.join("   ")));
+    }
+}
