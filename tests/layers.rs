@@ -19,13 +19,6 @@ const LAYERS: &[&[&str]] = &[
     &["repl"],
 ];
 
-/// Uses that break the order today, each to be removed by moving code
-/// (issue 15): `Span` and the hidden-character test belong in `diag`;
-/// `solve::linear` below `mechanics` (an `algebra` layer), and the small
-/// oscillations above it, in `solve`. The test fails on any use not listed
-/// here, and on a listed one that is gone (so the list only shrinks).
-const KNOWN_VIOLATIONS: &[&str] = &[];
-
 fn layer_of(module: &str) -> Option<usize> {
     // the crate root's re-exports, by the module they come from
     let module = match module {
@@ -153,21 +146,9 @@ fn every_module_uses_only_lower_layers() {
     );
     wrong.sort();
     wrong.dedup();
-    let new: Vec<&String> = wrong
-        .iter()
-        .filter(|w| !KNOWN_VIOLATIONS.contains(&w.as_str()))
-        .collect();
     assert!(
-        new.is_empty(),
-        "uses of a module of the same or a higher layer:\n{new:?}"
-    );
-    let gone: Vec<&&str> = KNOWN_VIOLATIONS
-        .iter()
-        .filter(|k| !wrong.iter().any(|w| w == *k))
-        .collect();
-    assert!(
-        gone.is_empty(),
-        "fixed: remove from KNOWN_VIOLATIONS: {gone:?}"
+        wrong.is_empty(),
+        "uses of a module of the same or a higher layer:\n{wrong:?}"
     );
 }
 
@@ -178,4 +159,80 @@ fn the_scanner_finds_what_it_must() {
     );
     assert_eq!(names, ["expr", "poly", "num", "num"]);
     assert_eq!(top_level_names("a, b::c}"), ["a", "b"]);
+}
+
+/// Functions allowed over 150 lines: ports of published algorithms, kept in
+/// the shape of their source (ARCHITECTURE.md, "Size").
+const LONG_PORTS: &[&str] = &["radau5_core", "gauss6", "zippel_gcd", "hensel_factor"];
+
+/// The functions of `text` longer than `limit` lines (from the `fn` line to
+/// the closing brace at the same indentation), with their lengths.
+fn long_functions(text: &str, limit: usize) -> Vec<(String, usize)> {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut out = Vec::new();
+    for (i, l) in lines.iter().enumerate() {
+        let body = l.trim_start();
+        let indent = &l[..l.len() - body.len()];
+        let after_fn = ["pub fn ", "pub(crate) fn ", "pub(super) fn ", "fn "]
+            .iter()
+            .find_map(|p| body.strip_prefix(p));
+        let Some(rest) = after_fn else { continue };
+        let name: String = rest
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect();
+        // a declaration without a body (in a trait) ends with `;`
+        let Some(open) =
+            (i..lines.len()).find(|&j| lines[j].contains('{') || lines[j].ends_with(';'))
+        else {
+            continue;
+        };
+        if !lines[open].contains('{') {
+            continue;
+        }
+        let close = format!("{indent}}}");
+        if let Some(end) = (open + 1..lines.len()).find(|&j| lines[j] == close) {
+            if end - i + 1 > limit {
+                out.push((name, end - i + 1));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn files_and_functions_stay_small() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let mut wrong = Vec::new();
+    for f in &files {
+        let text = std::fs::read_to_string(f).expect("readable");
+        let rel = f
+            .strip_prefix(&src)
+            .expect("under src")
+            .display()
+            .to_string();
+        let n = text.lines().count();
+        if n > 1500 {
+            wrong.push(format!("{rel}: {n} lines"));
+        }
+        for (name, len) in long_functions(&text, 150) {
+            if !LONG_PORTS.contains(&name.as_str()) {
+                wrong.push(format!("{rel}: fn {name} is {len} lines"));
+            }
+        }
+    }
+    assert!(wrong.is_empty(), "over the size limits:\n{wrong:#?}");
+}
+
+#[test]
+fn the_function_measure_counts_lines() {
+    let text =
+        "fn a() {\n    x;\n}\n    pub fn b(\n        y: u8,\n    ) -> u8 {\n        1\n    }\n";
+    assert_eq!(
+        long_functions(text, 2),
+        [("a".to_string(), 3), ("b".to_string(), 5)]
+    );
+    assert!(long_functions(text, 5).is_empty());
 }

@@ -603,7 +603,88 @@ fn check_inputs<S: System + ?Sized>(
 /// An optional event function g(t, y).
 type EventFn<'a> = Option<&'a mut dyn FnMut(f64, &[f64]) -> f64>;
 
-/// The common driver of all explicit methods.
+/// The output times in the direction of integration (sorted; NaNs
+/// dropped); times beyond t_end are never reached.
+fn output_times(opts: &Options, dir: f64) -> Vec<f64> {
+    let mut t_out: Vec<f64> = opts.t_out.iter().copied().filter(|t| !t.is_nan()).collect();
+    t_out.sort_by(|a, b| (dir * a).total_cmp(&(dir * b)));
+    t_out
+}
+
+/// Record the initial state (every step is recorded, or the output times
+/// equal to t0); the index of the first output time still ahead.
+fn record_initial(
+    sol: &mut Solution,
+    t_out: &[f64],
+    t0: f64,
+    dir: f64,
+    y: &[f64],
+    record_steps: bool,
+) -> usize {
+    let mut iout = 0;
+    while iout < t_out.len() && (t_out[iout] - t0) * dir < 0.0 {
+        iout += 1;
+    }
+    if record_steps {
+        sol.t.push(t0);
+        sol.y.push(y.to_vec());
+    } else {
+        while iout < t_out.len() && t_out[iout] == t0 {
+            sol.t.push(t0);
+            sol.y.push(y.to_vec());
+            iout += 1;
+        }
+    }
+    iout
+}
+
+/// The first step: `dt` (at most the whole interval for adaptive methods),
+/// or Hairer's initial-step estimate.
+#[allow(clippy::too_many_arguments)]
+fn first_step<S: System + ?Sized>(
+    sys: &mut S,
+    st: &mut Stepper,
+    opts: &Options,
+    fixed: bool,
+    y: &[f64],
+    dir: f64,
+    hmax: f64,
+    stats: &mut Stats,
+) -> f64 {
+    let n = y.len();
+    if fixed {
+        opts.dt.unwrap_or(hmax).abs() * dir
+    } else if let Some(dt) = opts.dt {
+        dt.abs().min(hmax) * dir
+    } else {
+        let (y1, f1) = (&mut st.y_new, &mut st.err);
+        initial_step(
+            sys,
+            opts.t0,
+            y,
+            &st.k[..n],
+            dir,
+            st.kind.params().order,
+            hmax,
+            opts.rtol,
+            opts.atol,
+            y1,
+            f1,
+            stats,
+        )
+    }
+}
+
+/// The solution as it ends, with its statistics.
+fn finish(mut sol: Solution, stats: Stats, status: Status) -> Result<Solution, SimError> {
+    sol.stats = stats;
+    sol.status = status;
+    Ok(sol)
+}
+
+/// The common driver of all explicit methods (Hairer's DOPRI5/DOP853
+/// driver: step-size control with Lund stabilization, stiffness detection,
+/// dense output).
 fn run<S: System + ?Sized>(
     sys: &mut S,
     method: Method,
@@ -632,32 +713,10 @@ fn run<S: System + ?Sized>(
     let mut y = y0.to_vec();
     let mut buf = vec![0.0; n];
 
-    // output times in the direction of integration (sorted; NaNs dropped),
-    // from t0 on; times beyond t_end are never reached
-    let mut t_out: Vec<f64> = opts.t_out.iter().copied().filter(|t| !t.is_nan()).collect();
-    t_out.sort_by(|a, b| (dir * a).total_cmp(&(dir * b)));
+    let t_out = output_times(opts, dir);
     let t_out = &t_out[..];
-    let mut iout = 0;
-    while iout < t_out.len() && (t_out[iout] - t0) * dir < 0.0 {
-        iout += 1;
-    }
     let record_steps = opts.t_out.is_empty();
-    if record_steps {
-        sol.t.push(t0);
-        sol.y.push(y.clone());
-    } else {
-        while iout < t_out.len() && t_out[iout] == t0 {
-            sol.t.push(t0);
-            sol.y.push(y.clone());
-            iout += 1;
-        }
-    }
-
-    fn finish(mut sol: Solution, stats: Stats, status: Status) -> Result<Solution, SimError> {
-        sol.stats = stats;
-        sol.status = status;
-        Ok(sol)
-    }
+    let mut iout = record_initial(&mut sol, t_out, t0, dir, &y, record_steps);
 
     sys.rhs(t0, &y, &mut st.k[..n]);
     stats.rhs_evals += 1;
@@ -673,27 +732,7 @@ fn run<S: System + ?Sized>(
     }
 
     let hmax = (t_end - t0).abs();
-    let mut h = if fixed {
-        opts.dt.unwrap_or(hmax).abs() * dir
-    } else if let Some(dt) = opts.dt {
-        dt.abs().min(hmax) * dir
-    } else {
-        let (y1, f1) = (&mut st.y_new, &mut st.err);
-        initial_step(
-            sys,
-            t0,
-            &y,
-            &st.k[..n],
-            dir,
-            par.order,
-            hmax,
-            opts.rtol,
-            opts.atol,
-            y1,
-            f1,
-            &mut stats,
-        )
-    };
+    let mut h = first_step(sys, &mut st, opts, fixed, &y, dir, hmax, &mut stats);
 
     let mut t = t0;
     let mut facold: f64 = 1e-4;
