@@ -13,7 +13,7 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use criterion::{criterion_group, criterion_main, Criterion};
 use qdot::simulate::elliptic::pendulum_period;
 use qdot::simulate::implicit::{gauss6, radau5};
-use qdot::simulate::{FnSystem, Options, System};
+use qdot::simulate::{FnSystem, IntegratorOptions, System};
 use std::hint::black_box;
 
 struct Vdp;
@@ -37,12 +37,12 @@ impl System for Vdp {
 
 fn implicit(c: &mut Criterion) {
     let mut g = c.benchmark_group("radau5");
-    let opts = Options {
+    let opts = IntegratorOptions {
         t_end: 1e11,
         rtol: 1e-8,
         atol: 1e-14,
         t_out: vec![1e11],
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     g.bench_function("robertson", |b| {
         b.iter(|| {
@@ -58,12 +58,12 @@ fn implicit(c: &mut Criterion) {
             black_box(radau5(&mut sys, black_box(&[1.0, 0.0, 0.0]), &opts).expect("valid input"))
         })
     });
-    let opts = Options {
+    let opts = IntegratorOptions {
         t_end: 2.0,
         rtol: 1e-6,
         atol: 1e-6,
         t_out: vec![2.0],
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     g.bench_function("vdpol", |b| {
         b.iter(|| black_box(radau5(&mut Vdp, black_box(&[2.0, 0.0]), &opts).expect("valid input")))
@@ -72,11 +72,11 @@ fn implicit(c: &mut Criterion) {
 
     let mut g = c.benchmark_group("gauss6");
     let period = pendulum_period(2.0, 1.0);
-    let opts = Options {
+    let opts = IntegratorOptions {
         t_end: 1000.0 * period,
         dt: Some(period / 32.0),
         t_out: vec![1000.0 * period],
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     g.bench_function("pendulum", |b| {
         b.iter(|| {

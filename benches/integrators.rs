@@ -7,7 +7,7 @@
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use qdot::simulate::{integrate, FnSystem, Method, Options};
+use qdot::simulate::{integrate, FnSystem, IntegratorOptions, Method};
 use std::hint::black_box;
 
 fn pendulum() -> FnSystem<impl FnMut(f64, &[f64], &mut [f64])> {
@@ -20,7 +20,7 @@ fn pendulum() -> FnSystem<impl FnMut(f64, &[f64], &mut [f64])> {
     }
 }
 
-fn run(method: Method, opts: &Options) -> f64 {
+fn run(method: Method, opts: &IntegratorOptions) -> f64 {
     let sol = integrate(&mut pendulum(), method, &[2.0, 0.0], opts).expect("valid input");
     sol.y.last().map_or(f64::NAN, |y| y[0])
 }
@@ -29,11 +29,11 @@ fn integrators(c: &mut Criterion) {
     let mut g = c.benchmark_group("pendulum");
     for method in [Method::Dopri5, Method::Dop853, Method::Vern7] {
         for tol in [1e-6, 1e-9, 1e-12] {
-            let opts = Options {
+            let opts = IntegratorOptions {
                 t_end: 20.0,
                 rtol: tol,
                 atol: tol,
-                ..Options::default()
+                ..IntegratorOptions::default()
             };
             let id = BenchmarkId::new(format!("{method:?}"), format!("tol {tol:.0e}"));
             g.bench_with_input(id, &opts, |b, o| {
@@ -42,10 +42,10 @@ fn integrators(c: &mut Criterion) {
         }
     }
     for dt in [1e-1, 1e-2, 1e-3] {
-        let opts = Options {
+        let opts = IntegratorOptions {
             t_end: 20.0,
             dt: Some(dt),
-            ..Options::default()
+            ..IntegratorOptions::default()
         };
         let id = BenchmarkId::new("Rk4", format!("dt {dt:.0e}"));
         g.bench_with_input(id, &opts, |b, o| {

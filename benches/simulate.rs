@@ -19,20 +19,20 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use criterion::{criterion_group, criterion_main, Criterion};
 use qdot::simulate::compile::CompiledDynamics;
 use qdot::simulate::problems::Problem;
-use qdot::simulate::{integrate, Method, Options, Status};
+use qdot::simulate::{integrate, IntegratorOptions, Method, Status};
 use qdot::Scene;
 use std::hint::black_box;
 use std::time::Duration;
 
 const TOL: f64 = 1e-8;
 
-fn options(t_end: f64) -> Options {
-    Options {
+fn options(t_end: f64) -> IntegratorOptions {
+    IntegratorOptions {
         t_end,
         rtol: TOL,
         atol: TOL,
         t_out: (0..=100).map(|i| t_end * i as f64 / 100.0).collect(),
-        ..Options::default()
+        ..IntegratorOptions::default()
     }
 }
 

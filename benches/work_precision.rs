@@ -40,7 +40,7 @@ use hand::Hand;
 use plotters::prelude::*;
 use qdot::simulate::compile::{CompiledDynamics, Program};
 use qdot::simulate::problems::Problem;
-use qdot::simulate::{integrate, Method, Options, System};
+use qdot::simulate::{integrate, IntegratorOptions, Method, System};
 use serde_json::{json, Value};
 use std::cell::RefCell;
 use std::fmt::Write as _;
@@ -139,14 +139,14 @@ fn qdot_point<S: System>(
     tol: f64,
     fixed_step: bool,
 ) -> Option<Point> {
-    let opts = Options {
+    let opts = IntegratorOptions {
         t_end: p.t_end,
         rtol: tol,
         atol: tol,
         dt: fixed_step.then_some(tol),
         t_out: vec![p.t_end],
         max_steps: 50_000_000,
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     let (seconds, sol) = time_min(|| integrate(sys, method, &p.y0, &opts));
     let sol = sol.ok()?;
@@ -155,7 +155,7 @@ fn qdot_point<S: System>(
         return None;
     }
     let energy_error = energy.and_then(|(e, h0)| {
-        let all = Options {
+        let all = IntegratorOptions {
             t_out: Vec::new(),
             ..opts.clone()
         };
@@ -284,13 +284,13 @@ fn run_problem(p: &Problem, tolerances: &[f64], quick: bool) -> Result<Report, S
     let (reference, reference_error) = match p.exact(p.t_end) {
         Some(y) => (y, 0.0),
         None => {
-            let opts = Options {
+            let opts = IntegratorOptions {
                 t_end: p.t_end,
                 rtol: 1e-14,
                 atol: 1e-14,
                 t_out: vec![p.t_end],
                 max_steps: 50_000_000,
-                ..Options::default()
+                ..IntegratorOptions::default()
             };
             let a = integrate(&mut sys, Method::Vern7, &p.y0, &opts).map_err(|e| e.to_string())?;
             let b = integrate(&mut sys, Method::Dop853, &p.y0, &opts).map_err(|e| e.to_string())?;

@@ -15,35 +15,51 @@
 //!     forcefunction U = m*g*x - 1/2*k*x^2
 //! ").unwrap();
 //! let acc = scene.lagrange().unwrap().accelerations().unwrap();
-//! assert_eq!(acc[0].1.to_string(), "-k*x/m + g");
+//! assert_eq!(acc["x"].to_string(), "-k*x/m + g");
 //! ```
 //!
 //! The data's path: [`parse`] → [`scene`] → [`expr`] (canonical exact
 //! expressions over [`poly`] and [`num`]) → [`mechanics`] → [`solve`] →
 //! [`output`].
 
-pub mod algebra;
-pub mod budget;
-pub mod cancel;
+// The public API: the modules along the data's path, and the names a
+// user needs at the root. The modules marked `doc(hidden)` are the engine's
+// internals: public for the tests, benches and fuzz targets of this
+// repository, without a promise of stability.
 pub mod diag;
 pub mod expr;
-pub mod gallery;
 pub mod limits;
 pub mod mechanics;
 pub mod num;
 pub mod output;
 pub mod parse;
-pub mod poly;
-pub mod repl;
 pub mod scene;
 pub mod simulate;
 pub mod solve;
+
+#[doc(hidden)]
+pub mod algebra;
+#[doc(hidden)]
+pub mod budget;
+#[doc(hidden)]
+pub mod cancel;
+#[doc(hidden)]
+pub mod gallery;
+#[doc(hidden)]
+pub mod poly;
+#[doc(hidden)]
+pub mod repl;
+#[doc(hidden)]
 pub mod unicode;
 
-pub use diag::Diagnostic;
+pub use diag::{Diagnostic, Severity, Span};
 pub use expr::Expr;
-pub use mechanics::Lagrange;
-pub use scene::Scene;
+pub use mechanics::{Accelerations, Equation, Lagrange};
+pub use num::Q;
+pub use output::{run, run_with, Command, CommandOptions, Format};
+pub use scene::{Scene, Value};
+pub use solve::equilibrium::{equilibria, Equilibria, Stability};
+pub use solve::oscillations::{modes, Modes};
 
 impl Scene {
     /// Derive Lagrange's equations.
@@ -55,3 +71,7 @@ impl Scene {
 #[cfg(doctest)]
 #[doc = include_str!("../book/src/library.md")]
 pub struct BookLibraryChapter;
+
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeExamples;

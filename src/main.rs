@@ -167,9 +167,9 @@ fn main() -> ExitCode {
     let Some(command) = cli.command else {
         return repl(None, false, cli.max_terms);
     };
-    let mut opts = output::Options {
+    let mut opts = output::CommandOptions {
         max_terms: cli.max_terms,
-        ..output::Options::default()
+        ..output::CommandOptions::default()
     };
     let (cmd, file, fmt, set) = match &command {
         Command::Repl { file, echo } => return repl(file.as_deref(), *echo, cli.max_terms),

@@ -64,10 +64,10 @@ fn check_dynamics(name: &str, scene: &Scene, v: &serde_json::Value, with_acc: bo
     }
     if with_acc {
         let acc = l.accelerations().unwrap();
-        let names: Vec<&str> = acc.iter().map(|(q, _)| q.as_str()).collect();
+        let names: Vec<&str> = acc.iter().map(|(q, _)| q).collect();
         assert_eq!(keys(&v["accelerations"]), names, "{name}");
         for (q, a) in &acc {
-            let got = reparse(scene, name, "acceleration", &v["accelerations"][q.as_str()]);
+            let got = reparse(scene, name, "acceleration", &v["accelerations"][q]);
             assert_eq!(&got, a, "{name}: {q}");
         }
     }

@@ -8,7 +8,7 @@
 use crate::common::numeric::loglog_slope;
 use qdot::simulate::elliptic::{pendulum_exact, pendulum_period};
 use qdot::simulate::implicit::{gauss6, radau5, radau5_fixed_step, ImplicitError};
-use qdot::simulate::{FnSystem, Options, Solution, Status, System};
+use qdot::simulate::{FnSystem, IntegratorOptions, Solution, Status, System};
 
 /// y'' = −y as (q, v), with its analytic Jacobian.
 struct Oscillator;
@@ -76,12 +76,12 @@ fn radau5_fixed_step_has_order_5_on_the_oscillator() {
     let (mut hs, mut errs) = (vec![], vec![]);
     for n in [10usize, 20, 40, 80] {
         let h = t_end / n as f64;
-        let opts = Options {
+        let opts = IntegratorOptions {
             t_end,
             dt: Some(h),
             rtol: 1e-13,
             atol: 1e-13,
-            ..Options::default()
+            ..IntegratorOptions::default()
         };
         let sol = radau5_fixed_step(&mut Oscillator, &[1.0, 0.0], &opts).unwrap();
         assert_eq!(sol.status, Status::Done);
@@ -103,12 +103,12 @@ fn radau5_adaptive_meets_its_tolerance_with_dense_output() {
     let mut worsts = vec![];
     for (rtol, bound) in [(1e-6, 1e-5), (1e-10, 2e-8)] {
         let t_out: Vec<f64> = (0..=40).map(|i| 0.25 * i as f64).collect();
-        let opts = Options {
+        let opts = IntegratorOptions {
             t_end: 10.0,
             rtol,
             atol: rtol,
             t_out: t_out.clone(),
-            ..Options::default()
+            ..IntegratorOptions::default()
         };
         // Forward-difference Jacobian (FnSystem has none).
         let mut sys = FnSystem {
@@ -153,12 +153,12 @@ fn radau5_robertson_matches_the_test_set_reference() {
             dy[2] = c;
         },
     };
-    let opts = Options {
+    let opts = IntegratorOptions {
         t_end: 1e11,
         rtol: 1e-8,
         atol: 1e-14,
         t_out: vec![40.0, 1e11],
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     let sol = radau5(&mut sys, &[1.0, 0.0, 0.0], &opts).unwrap();
     eprintln!("robertson: {:?}", sol.stats);
@@ -191,11 +191,11 @@ fn radau5_stiff_van_der_pol_matches_the_test_set_reference() {
     // reference at t = 2 from the Bari IVP test set (`vdpol`).
     let reference = [1.706_167_732_170_469, -0.892_809_701_024_812_5];
     for (rtol, bound, max_steps) in [(1e-6, 1e-4, 800), (1e-9, 1e-7, 3000)] {
-        let opts = Options {
+        let opts = IntegratorOptions {
             t_end: 2.0,
             rtol,
             atol: rtol,
-            ..Options::default()
+            ..IntegratorOptions::default()
         };
         let sol = radau5(&mut Vdp, &[2.0, 0.0], &opts).unwrap();
         eprintln!("van der pol rtol {rtol}: {:?} {:?}", last(&sol), sol.stats);
@@ -219,12 +219,12 @@ fn radau5_reproduces_hairers_van_der_pol_run() {
     // 280 attempted steps, 162 Jacobians, 253 decompositions and 2248
     // function calls (as reproduced by russell_ode's tests). Ours follows
     // the same algorithm; the counts agree to a few percent.
-    let opts = Options {
+    let opts = IntegratorOptions {
         t_end: 2.0,
         rtol: 1e-4,
         atol: 1e-4,
         dt: Some(1e-6),
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     let sol = radau5(&mut Vdp, &[2.0, -0.66], &opts).unwrap();
     eprintln!("dr1_radau5: {:?} {:?}", last(&sol), sol.stats);
@@ -270,12 +270,12 @@ fn radau5_stiff_spring_pair_follows_the_slow_mode_exactly() {
         },
     };
     let t_end = 20.0;
-    let opts = Options {
+    let opts = IntegratorOptions {
         t_end,
         rtol: 1e-8,
         atol: 1e-10,
         t_out: vec![5.0, 10.0, 20.0],
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     let sol = radau5(&mut sys, &[v[0], v[1], 0.0, 0.0], &opts).unwrap();
     eprintln!("spring pair: {:?}", sol.stats);
@@ -303,10 +303,10 @@ fn gauss6_has_order_6_against_the_exact_pendulum() {
     let (mut hs, mut errs) = (vec![], vec![]);
     for n in [40usize, 80, 160, 320] {
         let h = t_end / n as f64;
-        let opts = Options {
+        let opts = IntegratorOptions {
             t_end,
             dt: Some(h),
-            ..Options::default()
+            ..IntegratorOptions::default()
         };
         let sol = gauss6(&mut Pendulum { w2 }, &[th0, 0.0], &opts).unwrap();
         assert_eq!(sol.status, Status::Done);
@@ -327,10 +327,10 @@ fn gauss6_has_order_6_on_the_oscillator() {
     let (mut hs, mut errs) = (vec![], vec![]);
     for n in [5usize, 10, 20, 40] {
         let h = t_end / n as f64;
-        let opts = Options {
+        let opts = IntegratorOptions {
             t_end,
             dt: Some(h),
-            ..Options::default()
+            ..IntegratorOptions::default()
         };
         let sol = gauss6(&mut Oscillator, &[1.0, 0.0], &opts).unwrap();
         let y = last(&sol);
@@ -354,11 +354,11 @@ fn gauss6_pendulum_energy_does_not_drift_over_10000_periods() {
     // Every eighth step (a quarter period), at the integrator's own step
     // times t0 + k·dt (between steps the dense output is only O(h⁴)).
     let t_out: Vec<f64> = (0..=periods * 4).map(|i| (8 * i) as f64 * dt).collect();
-    let opts = Options {
+    let opts = IntegratorOptions {
         t_end: period * periods as f64,
         dt: Some(dt),
         t_out,
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     let sol = gauss6(&mut Pendulum { w2 }, &[th0, 0.0], &opts).unwrap();
     assert_eq!(sol.status, Status::Done);
@@ -383,49 +383,49 @@ fn gauss6_pendulum_energy_does_not_drift_over_10000_periods() {
 
 #[test]
 fn fixed_step_methods_need_a_step_and_inputs_are_checked() {
-    let opts = Options::default();
+    let opts = IntegratorOptions::default();
     assert_eq!(
         gauss6(&mut Oscillator, &[1.0, 0.0], &opts).unwrap_err(),
         ImplicitError::MissingStep
     );
-    let bad = Options {
+    let bad = IntegratorOptions {
         dt: Some(-1.0),
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     assert_eq!(
         gauss6(&mut Oscillator, &[1.0, 0.0], &bad).unwrap_err(),
         ImplicitError::InvalidStep(-1.0)
     );
     assert!(matches!(
-        radau5(&mut Oscillator, &[1.0], &Options::default()),
+        radau5(&mut Oscillator, &[1.0], &IntegratorOptions::default()),
         Err(ImplicitError::DimensionMismatch {
             expected: 2,
             got: 1
         })
     ));
-    let back = Options {
+    let back = IntegratorOptions {
         t0: 1.0,
         t_end: 0.0,
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     assert!(matches!(
         radau5(&mut Oscillator, &[1.0, 0.0], &back),
         Err(ImplicitError::InvalidInterval { .. })
     ));
-    let tol = Options {
+    let tol = IntegratorOptions {
         rtol: 0.0,
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     assert!(matches!(
         radau5(&mut Oscillator, &[1.0, 0.0], &tol),
         Err(ImplicitError::InvalidTolerance { .. })
     ));
     // max_steps is honoured.
-    let few = Options {
+    let few = IntegratorOptions {
         t_end: 100.0,
         dt: Some(0.1),
         max_steps: 10,
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     let sol = gauss6(&mut Oscillator, &[1.0, 0.0], &few).unwrap();
     assert!(matches!(sol.status, Status::TooManySteps { .. }));
@@ -445,10 +445,10 @@ fn gauss6_resonant_forcing_from_rest() {
             dy[1] = -y[0] + t.cos();
         },
     };
-    let opts = Options {
+    let opts = IntegratorOptions {
         t_end: 5.0,
         dt: Some(0.125),
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     let sol = gauss6(&mut sys, &[0.0, 0.0], &opts).unwrap();
     assert_eq!(sol.status, Status::Done);
@@ -471,10 +471,10 @@ fn gauss6_falls_back_to_newton_on_a_stiff_linear_problem() {
         dim: 1,
         f: |t: f64, y: &[f64], dy: &mut [f64]| dy[0] = -1000.0 * (y[0] - t.cos()),
     };
-    let opts = Options {
+    let opts = IntegratorOptions {
         t_end: 1.0,
         dt: Some(0.05),
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     let sol = gauss6(&mut sys, &[1.0], &opts).unwrap();
     assert_eq!(sol.status, Status::Done);

@@ -6,7 +6,7 @@
 use crate::common::numeric::{loglog_slope, max_abs_diff};
 use qdot::simulate::explicit::integrate_fixed;
 use qdot::simulate::{
-    integrate, integrate_with_event, FnSystem, Method, Options, SimError, Status, System,
+    integrate, integrate_with_event, FnSystem, IntegratorOptions, Method, SimError, Status, System,
 };
 
 /// x'' + x = 0 as y = (x, x'); y(0) = (1, 0), y(t) = (cos t, −sin t).
@@ -73,10 +73,10 @@ fn fixed_error<S: System>(
     steps: usize,
     exact: &[f64],
 ) -> f64 {
-    let opts = Options {
+    let opts = IntegratorOptions {
         t_end,
         dt: Some(t_end / steps as f64),
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     let sol = integrate_fixed(sys, m, y0, &opts).expect("valid input");
     assert_eq!(sol.status, Status::Done);
@@ -190,12 +190,12 @@ fn dense_errors(m: Method, theta: f64, hs: &[f64]) -> Vec<f64> {
     let mut es = vec![];
     for &h in hs {
         let t0 = 0.3;
-        let opts = Options {
+        let opts = IntegratorOptions {
             t0,
             t_end: t0 + h,
             dt: Some(h),
             t_out: vec![t0 + theta * h],
-            ..Options::default()
+            ..IntegratorOptions::default()
         };
         let sol = integrate_fixed(&mut forced(), m, &forced_exact(t0), &opts).expect("valid");
         assert_eq!(sol.t, vec![t0 + theta * h]);
@@ -244,11 +244,11 @@ fn adaptive_methods_meet_the_tolerance_on_kepler() {
         let mut prev_work = 0;
         let mut prev_err = f64::INFINITY;
         for tol in [1e-6, 1e-9, 1e-12] {
-            let opts = Options {
+            let opts = IntegratorOptions {
                 t_end: period,
                 rtol: tol,
                 atol: tol,
-                ..Options::default()
+                ..IntegratorOptions::default()
             };
             let y0 = kepler_y0(0.5);
             let sol = integrate(&mut kepler(), m, &y0, &opts).expect("valid");
@@ -280,13 +280,13 @@ fn adaptive_methods_meet_the_tolerance_on_kepler() {
 fn output_exactly_at_the_requested_times() {
     let t_out: Vec<f64> = (0..=40).map(|i| i as f64 * 0.25).collect();
     for m in [Method::Rk4, Method::Dopri5, Method::Dop853, Method::Vern7] {
-        let opts = Options {
+        let opts = IntegratorOptions {
             t_end: 10.0,
             rtol: 1e-10,
             atol: 1e-10,
             dt: (m == Method::Rk4).then_some(0.01),
             t_out: t_out.clone(),
-            ..Options::default()
+            ..IntegratorOptions::default()
         };
         let sol = integrate(&mut forced(), m, &[1.0, 0.0], &opts).expect("valid");
         assert_eq!(sol.status, Status::Done);
@@ -304,12 +304,12 @@ fn output_exactly_at_the_requested_times() {
 
 #[test]
 fn output_times_are_sorted_and_clipped_to_the_interval() {
-    let opts = Options {
+    let opts = IntegratorOptions {
         t_end: 2.0,
         rtol: 1e-10,
         atol: 1e-10,
         t_out: vec![1.5, -1.0, 0.5, 3.0, 1.0, 2.0],
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     let sol = integrate(&mut oscillator(), Method::Dop853, &[1.0, 0.0], &opts).expect("valid");
     assert_eq!(sol.t, vec![0.5, 1.0, 1.5, 2.0]);
@@ -317,7 +317,7 @@ fn output_times_are_sorted_and_clipped_to_the_interval() {
         assert!(max_abs_diff(y, &[t.cos(), -t.sin()]) < 1e-9, "{t}: {y:?}");
     }
     // backward: from 2 down to 0, output in decreasing time
-    let opts = Options {
+    let opts = IntegratorOptions {
         t0: 2.0,
         t_end: 0.0,
         t_out: vec![0.5, 1.0, 1.5],
@@ -339,9 +339,9 @@ fn blow_up_ends_with_a_too_small_step() {
             dim: 1,
             f: |_t: f64, y: &[f64], dy: &mut [f64]| dy[0] = y[0] * y[0],
         };
-        let opts = Options {
+        let opts = IntegratorOptions {
             t_end: 2.0,
-            ..Options::default()
+            ..IntegratorOptions::default()
         };
         let sol = integrate(&mut sys, m, &[1.0], &opts).expect("valid");
         eprintln!("blow-up {m:?}: {:?} after {:?}", sol.status, sol.stats);
@@ -358,9 +358,9 @@ fn blow_up_ends_with_a_too_small_step() {
 
 #[test]
 fn every_accepted_step_is_recorded_without_t_out() {
-    let opts = Options {
+    let opts = IntegratorOptions {
         t_end: 5.0,
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     let sol = integrate(&mut oscillator(), Method::Dopri5, &[1.0, 0.0], &opts).expect("valid");
     assert_eq!(sol.t.len(), sol.stats.steps + 1);
@@ -385,12 +385,12 @@ fn every_accepted_step_is_recorded_without_t_out() {
 
 #[test]
 fn backward_integration() {
-    let opts = Options {
+    let opts = IntegratorOptions {
         t0: 2.0,
         t_end: -1.0,
         rtol: 1e-10,
         atol: 1e-10,
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     let y0 = [2.0f64.cos(), -2.0f64.sin()];
     for m in [Method::Dopri5, Method::Dop853, Method::Vern7] {
@@ -408,12 +408,12 @@ fn backward_integration() {
 #[test]
 fn event_cosine_crosses_zero_at_half_pi() {
     for m in [Method::Rk4, Method::Dopri5, Method::Dop853, Method::Vern7] {
-        let opts = Options {
+        let opts = IntegratorOptions {
             t_end: 3.0,
             rtol: 1e-12,
             atol: 1e-12,
             dt: (m == Method::Rk4).then_some(1e-3),
-            ..Options::default()
+            ..IntegratorOptions::default()
         };
         let mut g = |_t: f64, y: &[f64]| y[0];
         let sol =
@@ -442,11 +442,11 @@ fn event_falling_body_hits_the_ground() {
                 dy[1] = -g;
             },
         };
-        let opts = Options {
+        let opts = IntegratorOptions {
             t_end: 10.0,
             dt: (m == Method::Rk4).then_some(0.1),
             t_out: vec![0.5, 1.0],
-            ..Options::default()
+            ..IntegratorOptions::default()
         };
         let mut ground = |_t: f64, y: &[f64]| y[0];
         let sol = integrate_with_event(&mut sys, m, &[h0, 0.0], &opts, &mut ground).expect("ok");
@@ -477,9 +477,9 @@ fn stiffness_is_detected_on_a_stiff_problem_only() {
             dim: 1,
             f: |t: f64, y: &[f64], dy: &mut [f64]| dy[0] = -1e6 * (y[0] - t.cos()),
         };
-        let opts = Options {
+        let opts = IntegratorOptions {
             t_end: 0.2,
-            ..Options::default()
+            ..IntegratorOptions::default()
         };
         let sol = integrate(&mut stiff, m, &[1.0], &opts).expect("valid");
         eprintln!(
@@ -492,9 +492,9 @@ fn stiffness_is_detected_on_a_stiff_problem_only() {
         let y_end = sol.y.last().expect("recorded")[0];
         assert!((y_end - 0.2f64.cos()).abs() < 1e-5);
 
-        let opts = Options {
+        let opts = IntegratorOptions {
             t_end: 100.0,
-            ..Options::default()
+            ..IntegratorOptions::default()
         };
         let sol = integrate(&mut oscillator(), m, &[1.0, 0.0], &opts).expect("valid");
         assert_eq!(sol.stiff_at, None, "{m:?}");
@@ -508,9 +508,9 @@ fn non_finite_values_end_the_integration() {
             dim: 1,
             f: |t: f64, _y: &[f64], dy: &mut [f64]| dy[0] = if t > 0.5 { f64::NAN } else { 1.0 },
         };
-        let opts = Options {
+        let opts = IntegratorOptions {
             dt: (m == Method::Rk4).then_some(0.1),
-            ..Options::default()
+            ..IntegratorOptions::default()
         };
         let sol = integrate(&mut sys, m, &[0.0], &opts).expect("valid");
         let Status::NotFinite { t } = sol.status else {
@@ -523,16 +523,16 @@ fn non_finite_values_end_the_integration() {
 
 #[test]
 fn too_many_steps_and_bad_inputs() {
-    let opts = Options {
+    let opts = IntegratorOptions {
         t_end: 100.0,
         max_steps: 10,
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     let sol = integrate(&mut oscillator(), Method::Dopri5, &[1.0, 0.0], &opts).expect("valid");
     assert!(matches!(sol.status, Status::TooManySteps { .. }));
     assert_eq!(sol.stats.steps + sol.stats.rejected, 10);
 
-    let ok = Options::default();
+    let ok = IntegratorOptions::default();
     assert!(matches!(
         integrate(&mut oscillator(), Method::Dopri5, &[1.0], &ok),
         Err(SimError::BadInput(_))
@@ -541,9 +541,9 @@ fn too_many_steps_and_bad_inputs() {
         integrate(&mut oscillator(), Method::Rk4, &[1.0, 0.0], &ok),
         Err(SimError::BadInput(_))
     ));
-    let bad_tol = Options {
+    let bad_tol = IntegratorOptions {
         rtol: -1.0,
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     assert!(matches!(
         integrate(&mut oscillator(), Method::Vern7, &[1.0, 0.0], &bad_tol),

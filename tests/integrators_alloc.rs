@@ -3,7 +3,7 @@
 //! steps. (The counting allocator is global to the test crate; it counts
 //! per thread, so the tests running beside this one do not disturb it.)
 
-use qdot::simulate::{integrate, FnSystem, Method, Options};
+use qdot::simulate::{integrate, FnSystem, IntegratorOptions, Method};
 use std::alloc::{GlobalAlloc, Layout, System as SysAlloc};
 use std::cell::Cell;
 
@@ -36,11 +36,11 @@ fn allocations(method: Method, t_end: f64) -> (usize, usize) {
             dy[1] = -y[0].sin();
         },
     };
-    let opts = Options {
+    let opts = IntegratorOptions {
         t_end,
         dt: (method == Method::Rk4).then_some(0.01),
         t_out: vec![t_end],
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     let before = ALLOCS.with(Cell::get);
     let sol = integrate(&mut sys, method, &[1.0, 0.0], &opts).expect("valid");

@@ -444,7 +444,7 @@ fn the_language_functions_work_in_scene_files_too() {
     let scene = qdot::Scene::parse(src).unwrap();
     assert_eq!(scene.definition("F").unwrap().to_string(), "k*x");
     let acc = scene.lagrange().unwrap().accelerations().unwrap();
-    assert_eq!(acc[0].1.to_string(), "-k*x/m");
+    assert_eq!(acc["x"].to_string(), "-k*x/m");
 }
 
 #[test]

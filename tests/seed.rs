@@ -18,6 +18,8 @@ fn accelerations(s: &Scene) -> Vec<(String, Expr)> {
         .expect("derives")
         .accelerations()
         .expect("solves")
+        .into_iter()
+        .collect()
 }
 
 /// The solutions of every `solve` block, by unknown.

@@ -70,7 +70,7 @@ fn agrees_with_sympy() {
                 .accelerations()
                 .unwrap_or_else(|d| panic!("{name}: solve: {d}"));
             for (q, e) in &got {
-                let want = ex(acc[q.as_str()].as_str().expect("string"));
+                let want = ex(acc[q].as_str().expect("string"));
                 if !e.equals(&want) {
                     failures.push(format!("{name}: {q}'': qdot {e}, SymPy {want}"));
                 }

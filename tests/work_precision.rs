@@ -14,7 +14,7 @@
 
 use crate::common::numeric::{loglog_slope, max_abs_diff};
 use qdot::simulate::problems::Problem;
-use qdot::simulate::{integrate, Method, Options};
+use qdot::simulate::{integrate, IntegratorOptions, Method};
 
 const ADAPTIVE: [Method; 4] = [
     Method::Dopri5,
@@ -25,12 +25,12 @@ const ADAPTIVE: [Method; 4] = [
 
 fn final_error(p: &Problem, m: Method, tol: f64) -> f64 {
     let mut sys = p.dynamics().expect("compiles");
-    let opts = Options {
+    let opts = IntegratorOptions {
         t_end: p.t_end,
         rtol: tol,
         atol: tol,
         t_out: vec![p.t_end],
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     let sol = integrate(&mut sys, m, &p.y0, &opts).expect("runs");
     assert_eq!(sol.t.last(), Some(&p.t_end), "{} {m:?} {tol:e}", p.name);
@@ -83,12 +83,12 @@ fn the_pendulum_at_172_degrees_meets_the_tolerance() {
 fn the_tight_references_agree() {
     for p in [Problem::double_pendulum(), Problem::chain10()] {
         let mut sys = p.dynamics().expect("compiles");
-        let opts = Options {
+        let opts = IntegratorOptions {
             t_end: p.t_end,
             rtol: 1e-14,
             atol: 1e-14,
             t_out: vec![p.t_end],
-            ..Options::default()
+            ..IntegratorOptions::default()
         };
         let a = integrate(&mut sys, Method::Vern7, &p.y0, &opts).expect("runs");
         let b = integrate(&mut sys, Method::Dop853, &p.y0, &opts).expect("runs");

@@ -7,7 +7,7 @@
 //! library is a correct answer to bad input; a panic, an abort, a stack
 //! overflow, a hang or a memory blow-up is a finding.
 
-use qdot::output::{self, Command, Format, Options};
+use qdot::output::{self, Command, CommandOptions, Format};
 use qdot::repl::{is_complete, Session};
 use qdot::simulate::run;
 
@@ -73,7 +73,7 @@ pub fn pipeline(data: &[u8]) {
         return;
     };
     let (cmd, fmt, set) = header(src);
-    let mut opts = Options::default();
+    let mut opts = CommandOptions::default();
     if let Some(set) = set {
         match output::parse_set(set) {
             Ok(s) => opts.set = s,

@@ -20,6 +20,7 @@
 //! (cross-multiplication and reduction modulo sin² + cos² = 1, which is exact
 //! because reduced polynomials are unique representatives of the quotient ring).
 
+#[doc(hidden)]
 pub mod atom;
 pub mod diff;
 pub mod func;
@@ -673,9 +674,41 @@ impl std::ops::Neg for Expr {
     }
 }
 
+/// `{}` writes qdot's input syntax, which re-parses to the same expression
+/// (`-k*x/m + g`, as SymPy's `str`); `{:#}` writes the Unicode a reader
+/// sees (`−g/l·sin(θ)`, with `θ̈₃`, `√`, `π`).
+///
+/// ```
+/// let e = qdot::Scene::parse("coordinates theta\nparameters g, l").unwrap()
+///     .expr("-g/l*sin(theta)").unwrap();
+/// assert_eq!(format!("{e}"), "-g*sin(theta)/l");
+/// assert_eq!(format!("{e:#}"), "−g/l·sin(θ)");
+/// assert_eq!(e.to_latex(), r"-\frac{g}{l} \sin\theta");
+/// ```
 impl fmt::Display for Expr {
-    /// qdot's input syntax (re-parses to the same expression).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", print::input(self))
+        if f.alternate() {
+            f.write_str(&print::unicode(self))
+        } else {
+            f.write_str(&print::input(self))
+        }
+    }
+}
+
+impl Expr {
+    /// The input syntax (what `{}` writes).
+    pub fn to_input(&self) -> String {
+        print::input(self)
+    }
+
+    /// The Unicode form (what `{:#}` writes).
+    pub fn to_unicode(&self) -> String {
+        print::unicode(self)
+    }
+
+    /// LaTeX (amsmath), with names turned into notation: `theta3` →
+    /// `\theta_{3}`, `x''` → `\ddot{x}`.
+    pub fn to_latex(&self) -> String {
+        latex::latex(self)
     }
 }

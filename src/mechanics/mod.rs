@@ -19,12 +19,15 @@
 //! inertia forces `inertia(m, x)` among its loads (E may then be absent),
 //! and their q̈ terms join M.
 
+mod accelerations;
+
 pub use crate::algebra::linear::split_linear;
 use crate::diag::Diagnostic;
 use crate::expr::{atom, Expr};
 use crate::parse::ast::Role;
 use crate::poly::Var;
 use crate::scene::Scene;
+pub use accelerations::Accelerations;
 
 /// One equation: `lhs = rhs` for a coordinate.
 #[derive(Clone, Debug)]
@@ -132,7 +135,7 @@ impl Lagrange {
     }
 
     /// The exact accelerations q̈ = M⁻¹·f.
-    pub fn accelerations(&self) -> Result<Vec<(String, Expr)>, Diagnostic> {
+    pub fn accelerations(&self) -> Result<Accelerations, Diagnostic> {
         let _context =
             crate::budget::enter(|| "solving M·q̈ = f for the accelerations".into(), None);
         let sol = crate::algebra::linear::solve(&self.mass_matrix, &self.forcing).map_err(|e| {
@@ -151,7 +154,7 @@ impl Lagrange {
                 crate::algebra::linear::SolveError::Math(m) => Diagnostic::global(m.message),
             }
         })?;
-        Ok(self.coordinates.iter().cloned().zip(sol).collect())
+        Ok(Accelerations::new(self.coordinates.clone(), sol))
     }
 }
 

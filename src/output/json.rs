@@ -52,11 +52,11 @@ pub fn derive_json(l: &Lagrange) -> Map<String, Value> {
 }
 
 /// The JSON of `qdot solve`: derive's keys plus `accelerations`.
-pub fn solve_json(l: &Lagrange, acc: &[(String, Expr)]) -> Map<String, Value> {
+pub fn solve_json(l: &Lagrange, acc: &crate::mechanics::Accelerations) -> Map<String, Value> {
     let mut m = derive_json(l);
     let mut a = Map::new();
     for (q, e) in acc {
-        a.insert(q.clone(), Value::String(as_input(e)));
+        a.insert(q.to_string(), Value::String(as_input(e)));
     }
     m.insert("accelerations".into(), Value::Object(a));
     m

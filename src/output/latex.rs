@@ -33,7 +33,7 @@ const LINE: f64 = 56.0;
 /// solutions; without either, the generalized forces and the equilibria —
 /// with the derivation first under `--steps`, and as a whole document
 /// under `--standalone`.
-pub fn document(scene: &Scene, opts: &super::Options) -> Result<String, Diagnostic> {
+pub fn document(scene: &Scene, opts: &super::CommandOptions) -> Result<String, Diagnostic> {
     let mut w = Writer::new(scene);
     let dynamics = scene.has_dynamics();
     if dynamics {
@@ -226,7 +226,7 @@ impl Writer {
     }
 
     /// The exact accelerations.
-    pub fn accelerations(&mut self, acc: &[(String, Expr)]) {
+    pub fn accelerations(&mut self, acc: &crate::mechanics::Accelerations) {
         self.line("The accelerations:");
         let rows: Vec<_> = acc
             .iter()

@@ -49,9 +49,9 @@ pub enum Command {
     Latex,
 }
 
-/// Options of the commands beyond the file and the format.
+/// CommandOptions of the commands beyond the file and the format.
 #[derive(Clone, Debug, Default)]
-pub struct Options {
+pub struct CommandOptions {
     /// `--set`: parameter values.
     pub set: Values,
     /// `modes --at q=value,…`: the equilibrium (expressions in the scene).
@@ -76,9 +76,9 @@ pub fn run(
     fmt: Format,
     set: &Values,
 ) -> Result<(String, Vec<Diagnostic>), Diagnostic> {
-    let opts = Options {
+    let opts = CommandOptions {
         set: set.clone(),
-        ..Options::default()
+        ..CommandOptions::default()
     };
     run_with(cmd, src, fmt, &opts)
 }
@@ -88,7 +88,7 @@ pub fn run_with(
     cmd: Command,
     src: &str,
     fmt: Format,
-    opts: &Options,
+    opts: &CommandOptions,
 ) -> Result<(String, Vec<Diagnostic>), Diagnostic> {
     let max_terms = match opts.max_terms {
         0 => crate::limits::DEFAULT_MAX_TERMS,
@@ -115,7 +115,7 @@ fn run_unbounded(
     cmd: Command,
     src: &str,
     fmt: Format,
-    opts: &Options,
+    opts: &CommandOptions,
 ) -> Result<(String, Vec<Diagnostic>), Diagnostic> {
     let set = &opts.set;
     let scene = Scene::parse(src)?;

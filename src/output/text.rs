@@ -41,7 +41,7 @@ pub fn derive_text(l: &Lagrange) -> String {
 }
 
 /// The text of `qdot solve`: the accelerations, after the equations.
-pub fn solve_text(l: &Lagrange, acc: &[(String, Expr)]) -> String {
+pub fn solve_text(l: &Lagrange, acc: &crate::mechanics::Accelerations) -> String {
     let mut out = derive_text(l);
     out.push_str("\nAccelerations\n");
     for (q, e) in acc {

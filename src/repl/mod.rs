@@ -27,7 +27,7 @@ use crate::diag::Diagnostic;
 use crate::expr::latex::{self as tex, Names};
 use crate::expr::print::{self, Style};
 use crate::expr::Expr;
-use crate::output::{self, Command, Format, Options};
+use crate::output::{self, Command, CommandOptions, Format};
 use crate::parse::ast::{ExprKind, Stmt};
 use crate::poly::{Poly, Var};
 use crate::scene::{Scene, Value};
@@ -597,7 +597,7 @@ impl Session {
     }
 
     fn run(&self, cmd: Command, args: &str) -> Response {
-        let mut opts = Options::default();
+        let mut opts = CommandOptions::default();
         if let Err(e) = parse_options(args, cmd, &mut opts) {
             return Response::error(e);
         }
@@ -633,9 +633,9 @@ impl Session {
             ("last", None) => Response::error("error: there is no result yet"),
             ("" | "all" | "steps" | "derivation", _) => {
                 let (src, _) = join(&self.statements);
-                let opts = Options {
+                let opts = CommandOptions {
                     steps: args == "steps" || args == "derivation",
-                    ..Options::default()
+                    ..CommandOptions::default()
                 };
                 match output::run_with(Command::Latex, &src, Format::Latex, &opts) {
                     Ok((out, _)) => Response::out(out),
@@ -1084,7 +1084,7 @@ fn help_text() -> String {
 }
 
 /// `--at X --init Y --set Z` (or `at=X`) after `:modes`/`:equilibrium`.
-fn parse_options(args: &str, cmd: Command, opts: &mut Options) -> Result<(), String> {
+fn parse_options(args: &str, cmd: Command, opts: &mut CommandOptions) -> Result<(), String> {
     let mut words = args.split_whitespace();
     while let Some(w) = words.next() {
         let (key, value) = match w.strip_prefix("--") {

@@ -16,7 +16,7 @@ enum State {
     Done(Value),
 }
 
-pub(crate) struct Evaluator<'a> {
+pub(crate) struct SyntaxEvaluator<'a> {
     names: &'a FxHashMap<String, (Binding, Span)>,
     defs: Vec<(&'a ast::Ident, Option<&'a ast::Expr>)>,
     state: Vec<State>,
@@ -55,7 +55,7 @@ const FUNCTIONS: &[(&str, usize)] = &[
     ("taylor", 3),
 ];
 
-/// A definition on the path of [`Evaluator::evaluate_dependencies`]: its
+/// A definition on the path of [`SyntaxEvaluator::evaluate_dependencies`]: its
 /// index, the definitions it uses (with the span of the name), and how many
 /// of those are handled.
 type PathStep = (usize, Vec<(usize, Span)>, usize);
@@ -81,12 +81,12 @@ use crate::limits::MAX_TAYLOR_ORDER;
 const HINT_VECTOR: &str =
     "vectors combine with + and -, scale by numbers, and reduce with dot(a, b), cross(a, b) or norm(a)";
 
-impl<'a> Evaluator<'a> {
+impl<'a> SyntaxEvaluator<'a> {
     pub fn new(
         names: &'a FxHashMap<String, (Binding, Span)>,
         defs: &'a [(&'a ast::Ident, &'a ast::Expr, Option<Role>)],
-    ) -> Evaluator<'a> {
-        Evaluator {
+    ) -> SyntaxEvaluator<'a> {
+        SyntaxEvaluator {
             names,
             defs: defs.iter().map(|(n, e, _)| (*n, Some(*e))).collect(),
             state: vec![State::Todo; defs.len()],
@@ -101,8 +101,8 @@ impl<'a> Evaluator<'a> {
     pub fn with_values(
         names: &'a FxHashMap<String, (Binding, Span)>,
         values: Vec<Value>,
-    ) -> Evaluator<'a> {
-        Evaluator {
+    ) -> SyntaxEvaluator<'a> {
+        SyntaxEvaluator {
             names,
             defs: Vec::new(),
             state: values.into_iter().map(State::Done).collect(),
@@ -189,7 +189,7 @@ impl<'a> Evaluator<'a> {
         out
     }
 
-    /// [`Evaluator::definition`] once its dependencies are evaluated (or
+    /// [`SyntaxEvaluator::definition`] once its dependencies are evaluated (or
     /// inside another definition's evaluation).
     fn definition_now(&mut self, i: usize) -> Result<Value, Diagnostic> {
         match &self.state[i] {

@@ -119,7 +119,7 @@ pub struct SystemEquation {
 
 /// A `solve` block: unknowns and the equations that determine them.
 #[derive(Clone, Debug)]
-pub struct System {
+pub struct SolveSystem {
     pub unknowns: Vec<Parameter>,
     pub equations: Vec<SystemEquation>,
     pub span: Span,
@@ -137,7 +137,7 @@ pub struct Scene {
     pub loads: Vec<Load>,
     pub torques: Vec<Torque>,
     /// The `solve` blocks, in source order.
-    pub systems: Vec<System>,
+    pub systems: Vec<SolveSystem>,
     /// Things worth a look that do not stop the computation.
     pub warnings: Vec<Diagnostic>,
     /// The `latex NAME = "…"` statements, in source order (a later one for
@@ -160,7 +160,7 @@ fn latex_names(
     coordinates: &[Coordinate],
     parameters: &[Parameter],
     definitions: &[Definition],
-    systems: &[System],
+    systems: &[SolveSystem],
     warnings: &mut Vec<Diagnostic>,
 ) -> Vec<LatexName> {
     let mut out: Vec<LatexName> = Vec::new();
@@ -280,7 +280,7 @@ impl Scene {
             );
             values.push(v.clone());
         }
-        let mut ev = eval::Evaluator::with_values(&names, values);
+        let mut ev = eval::SyntaxEvaluator::with_values(&names, values);
         let v = ev.value(e)?;
         Ok((v, std::mem::take(&mut ev.warnings)))
     }

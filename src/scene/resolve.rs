@@ -1,12 +1,12 @@
 //! From statements to a [`Scene`]: the names are declared in a first pass
 //! (so definitions may refer forward), then every statement is resolved
-//! into exact values by the [`Evaluator`], each kind by its own method of
+//! into exact values by the [`SyntaxEvaluator`], each kind by its own method of
 //! [`Resolver`], with its errors built beside it.
 
-use super::eval::Evaluator;
+use super::eval::SyntaxEvaluator;
 use super::{
     first_unknown, latex_names, Binding, Coordinate, Definition, Force, Load, Parameter, Scene,
-    System, SystemEquation, Torque, Value,
+    SolveSystem, SystemEquation, Torque, Value,
 };
 use crate::diag::Diagnostic;
 use crate::expr::Expr;
@@ -162,13 +162,13 @@ impl<'a> Declarations<'a> {
 
 /// The second pass: statements resolved into values, in source order.
 struct Resolver<'d> {
-    ev: Evaluator<'d>,
+    ev: SyntaxEvaluator<'d>,
     coordinates: &'d [Coordinate],
     /// The coordinates' variables (q, not q̇), to tell what moves.
     coordinate_vars: Vec<Var>,
     loads: Vec<Load>,
     torques: Vec<Torque>,
-    systems: Vec<System>,
+    systems: Vec<SolveSystem>,
     warnings: Vec<Diagnostic>,
 }
 
@@ -182,7 +182,7 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
         }
     }
     let mut r = Resolver {
-        ev: Evaluator::new(&decl.names, &decl.definitions),
+        ev: SyntaxEvaluator::new(&decl.names, &decl.definitions),
         coordinates: &decl.coordinates,
         coordinate_vars: decl
             .coordinates
@@ -487,7 +487,7 @@ impl Resolver<'_> {
                 });
             }
         }
-        self.systems.push(System {
+        self.systems.push(SolveSystem {
             unknowns,
             equations,
             span: block.span,

@@ -14,7 +14,7 @@
 //! stages at t + h (stage 10 and f(t + h, y₁)), with the limit 4.5 just
 //! inside its real stability boundary 4.64.
 //!
-//! Output: every accepted step when `Options::t_out` is empty, else exactly
+//! Output: every accepted step when `IntegratorOptions::t_out` is empty, else exactly
 //! the requested times, evaluated by the dense output (RK4: the Hermite cubic
 //! through the step's end values and slopes). Events: see
 //! [`integrate_with_event`].
@@ -24,7 +24,7 @@
 
 mod tableaus;
 
-use super::{initial_step, Method, Options, SimError, Solution, Stats, Status, System};
+use super::{initial_step, IntegratorOptions, Method, SimError, Solution, Stats, Status, System};
 use tableaus::Tableau;
 
 /// Integrate with an explicit method (`Rk4`, `Dopri5`, `Dop853`, `Vern7`);
@@ -33,7 +33,7 @@ pub fn integrate<S: System + ?Sized>(
     sys: &mut S,
     method: Method,
     y0: &[f64],
-    opts: &Options,
+    opts: &IntegratorOptions,
 ) -> Result<Solution, SimError> {
     let fixed = method == Method::Rk4;
     run(sys, method, y0, opts, fixed, None)
@@ -45,7 +45,7 @@ pub fn integrate_with_event<S: System + ?Sized>(
     sys: &mut S,
     method: Method,
     y0: &[f64],
-    opts: &Options,
+    opts: &IntegratorOptions,
     event: &mut dyn FnMut(f64, &[f64]) -> f64,
 ) -> Result<Solution, SimError> {
     let fixed = method == Method::Rk4;
@@ -60,7 +60,7 @@ pub fn integrate_fixed<S: System + ?Sized>(
     sys: &mut S,
     method: Method,
     y0: &[f64],
-    opts: &Options,
+    opts: &IntegratorOptions,
 ) -> Result<Solution, SimError> {
     run(sys, method, y0, opts, true, None)
 }
@@ -567,7 +567,7 @@ fn brent(f: &mut dyn FnMut(f64) -> f64, a0: f64, b0: f64, fa0: f64, fb0: f64, to
 fn check_inputs<S: System + ?Sized>(
     sys: &S,
     y0: &[f64],
-    opts: &Options,
+    opts: &IntegratorOptions,
     fixed: bool,
 ) -> Result<(), SimError> {
     let bad = |s: String| Err(SimError::BadInput(s));
@@ -605,7 +605,7 @@ type EventFn<'a> = Option<&'a mut dyn FnMut(f64, &[f64]) -> f64>;
 
 /// The output times in the direction of integration (sorted; NaNs
 /// dropped); times beyond t_end are never reached.
-fn output_times(opts: &Options, dir: f64) -> Vec<f64> {
+fn output_times(opts: &IntegratorOptions, dir: f64) -> Vec<f64> {
     let mut t_out: Vec<f64> = opts.t_out.iter().copied().filter(|t| !t.is_nan()).collect();
     t_out.sort_by(|a, b| (dir * a).total_cmp(&(dir * b)));
     t_out
@@ -644,7 +644,7 @@ fn record_initial(
 fn first_step<S: System + ?Sized>(
     sys: &mut S,
     st: &mut Stepper,
-    opts: &Options,
+    opts: &IntegratorOptions,
     fixed: bool,
     y: &[f64],
     dir: f64,
@@ -689,7 +689,7 @@ fn run<S: System + ?Sized>(
     sys: &mut S,
     method: Method,
     y0: &[f64],
-    opts: &Options,
+    opts: &IntegratorOptions,
     fixed: bool,
     mut event: EventFn<'_>,
 ) -> Result<Solution, SimError> {

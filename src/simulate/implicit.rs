@@ -17,7 +17,7 @@
 // Hairer's coefficients are kept digit for digit as published.
 #![allow(clippy::excessive_precision)]
 
-use super::{Options, Solution, Stats, Status, System};
+use super::{IntegratorOptions, Solution, Stats, Status, System};
 use nalgebra::Complex;
 use std::fmt;
 use std::ops::{Add, Div, Mul, Sub};
@@ -27,9 +27,9 @@ use std::ops::{Add, Div, Mul, Sub};
 pub enum ImplicitError {
     /// `y0.len()` differs from `System::dim()`.
     DimensionMismatch { expected: usize, got: usize },
-    /// A fixed-step method ([`gauss6`]) was called without `Options::dt`.
+    /// A fixed-step method ([`gauss6`]) was called without `IntegratorOptions::dt`.
     MissingStep,
-    /// `Options::dt` is not a positive finite number.
+    /// `IntegratorOptions::dt` is not a positive finite number.
     InvalidStep(f64),
     /// `t0` or `t_end` is not finite, or `t_end < t0`.
     InvalidInterval { t0: f64, t_end: f64 },
@@ -49,7 +49,10 @@ impl fmt::Display for ImplicitError {
                 )
             }
             ImplicitError::MissingStep => {
-                write!(f, "a fixed-step method needs a step size (Options::dt)")
+                write!(
+                    f,
+                    "a fixed-step method needs a step size (IntegratorOptions::dt)"
+                )
             }
             ImplicitError::InvalidStep(h) => write!(f, "step size {h} is not positive and finite"),
             ImplicitError::InvalidInterval { t0, t_end } => {
@@ -204,7 +207,11 @@ fn jacobian(
     }
 }
 
-fn check_common(sys: &dyn System, y0: &[f64], opts: &Options) -> Result<(), ImplicitError> {
+fn check_common(
+    sys: &dyn System,
+    y0: &[f64],
+    opts: &IntegratorOptions,
+) -> Result<(), ImplicitError> {
     if y0.len() != sys.dim() {
         return Err(ImplicitError::DimensionMismatch {
             expected: sys.dim(),
@@ -233,7 +240,7 @@ struct Recorder<'a> {
 }
 
 impl<'a> Recorder<'a> {
-    fn new(opts: &'a Options, y0: &[f64]) -> Self {
+    fn new(opts: &'a IntegratorOptions, y0: &[f64]) -> Self {
         let mut r = Recorder {
             t_out: &opts.t_out,
             next: 0,
@@ -354,14 +361,18 @@ fn radau_eigen() -> (f64, f64, f64) {
 /// filtered through (I − h·γ0·J)⁻¹ (IV.8.19–20), the step size follows
 /// Gustafsson's predictive controller (IV.8.25) with factors in [1/5, 8],
 /// and the tolerances are transformed as in RADAU5 (rtol' = 0.1·rtol^(2/3)).
-/// Output at `Options::t_out` comes from the collocation polynomial
+/// Output at `IntegratorOptions::t_out` comes from the collocation polynomial
 /// (order 3 in the step, uniformly; the step end values are of order 5).
 ///
-/// The step starts at `Options::dt` when given, else at 1e-6. On failure
+/// The step starts at `IntegratorOptions::dt` when given, else at 1e-6. On failure
 /// the solution so far is returned with `Status::StepTooSmall` (also after
 /// five consecutive singular iteration matrices), `TooManySteps` or
 /// `NotFinite`.
-pub fn radau5(sys: &mut dyn System, y0: &[f64], opts: &Options) -> Result<Solution, ImplicitError> {
+pub fn radau5(
+    sys: &mut dyn System,
+    y0: &[f64],
+    opts: &IntegratorOptions,
+) -> Result<Solution, ImplicitError> {
     radau5_core(sys, y0, opts, None)
 }
 
@@ -372,7 +383,7 @@ pub fn radau5(sys: &mut dyn System, y0: &[f64], opts: &Options) -> Result<Soluti
 pub fn radau5_fixed_step(
     sys: &mut dyn System,
     y0: &[f64],
-    opts: &Options,
+    opts: &IntegratorOptions,
 ) -> Result<Solution, ImplicitError> {
     let dt = opts.dt.ok_or(ImplicitError::MissingStep)?;
     if !(dt > 0.0 && dt.is_finite()) {
@@ -390,7 +401,7 @@ enum Next {
 fn radau5_core(
     sys: &mut dyn System,
     y0: &[f64],
-    opts: &Options,
+    opts: &IntegratorOptions,
     fixed: Option<f64>,
 ) -> Result<Solution, ImplicitError> {
     check_common(sys, y0, opts)?;
@@ -836,7 +847,7 @@ const GAUSS_NEWTON_MAX: usize = 30;
 
 /// Integrate `sys` from `y0` over [t0, t_end] with the 3-stage
 /// Gauss–Legendre collocation method (order 6) and the fixed step
-/// `Options::dt` (required: [`ImplicitError::MissingStep`] without it; the
+/// `IntegratorOptions::dt` (required: [`ImplicitError::MissingStep`] without it; the
 /// last step is shortened to land on t_end).
 ///
 /// The method is symplectic and symmetric (Hairer, Lubich & Wanner,
@@ -857,13 +868,17 @@ const GAUSS_NEWTON_MAX: usize = 30;
 /// collocation polynomial extrapolated (GNI, VIII.6.1); when that does not
 /// converge within 40 iterations, simplified Newton with the Jacobian at
 /// the step start takes over. The update is summed with compensation
-/// (Kahan) to keep round-off from drifting. Output at `Options::t_out` is
+/// (Kahan) to keep round-off from drifting. Output at `IntegratorOptions::t_out` is
 /// the collocation polynomial (order 3 between steps; step values order 6).
 ///
 /// `rtol` and `atol` are not used. Stops with `Status::StepTooSmall` if
 /// even Newton cannot solve the stage equations (h too large for the
 /// problem), `NotFinite` or `TooManySteps`.
-pub fn gauss6(sys: &mut dyn System, y0: &[f64], opts: &Options) -> Result<Solution, ImplicitError> {
+pub fn gauss6(
+    sys: &mut dyn System,
+    y0: &[f64],
+    opts: &IntegratorOptions,
+) -> Result<Solution, ImplicitError> {
     check_common(sys, y0, opts)?;
     let dt = opts.dt.ok_or(ImplicitError::MissingStep)?;
     if !(dt > 0.0 && dt.is_finite()) {

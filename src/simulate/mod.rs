@@ -6,7 +6,7 @@
 //! ever flows back into an exact result.
 //!
 //! * [`System`]: a first-order ODE y' = F(t, y) (what every method integrates).
-//! * [`Options`], [`Stats`], [`Solution`]: the common inputs and outputs.
+//! * [`IntegratorOptions`], [`Stats`], [`Solution`]: the common inputs and outputs.
 //! * `explicit`: RK4, Dormand–Prince 5(4), DOP853, Verner 7(6) — dense
 //!   output, Hairer's step-size control, stiffness detection, events.
 //! * `implicit`: Radau IIA (order 5, L-stable), Gauss–Legendre (symplectic).
@@ -19,6 +19,7 @@ pub mod explicit;
 pub mod implicit;
 #[cfg(feature = "cli")]
 pub mod plot;
+#[doc(hidden)]
 pub mod problems;
 #[cfg(feature = "cli")]
 pub mod progress;
@@ -74,7 +75,7 @@ pub enum Method {
 
 /// What to integrate and how precisely.
 #[derive(Clone, Debug)]
-pub struct Options {
+pub struct IntegratorOptions {
     pub t0: f64,
     pub t_end: f64,
     /// Relative and absolute tolerances of adaptive methods.
@@ -90,9 +91,9 @@ pub struct Options {
     pub max_steps: usize,
 }
 
-impl Default for Options {
+impl Default for IntegratorOptions {
     fn default() -> Self {
-        Options {
+        IntegratorOptions {
             t0: 0.0,
             t_end: 1.0,
             rtol: 1e-6,
@@ -173,7 +174,7 @@ pub fn integrate<S: System + ?Sized>(
     sys: &mut S,
     method: Method,
     y0: &[f64],
-    opts: &Options,
+    opts: &IntegratorOptions,
 ) -> Result<Solution, SimError> {
     match method {
         Method::Rk4 | Method::Dopri5 | Method::Dop853 | Method::Vern7 => {
@@ -213,7 +214,7 @@ pub fn integrate_with_event<S: System + ?Sized>(
     sys: &mut S,
     method: Method,
     y0: &[f64],
-    opts: &Options,
+    opts: &IntegratorOptions,
     event: &mut dyn FnMut(f64, &[f64]) -> f64,
 ) -> Result<Solution, SimError> {
     match method {

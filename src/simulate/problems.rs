@@ -253,7 +253,7 @@ impl Problem {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::simulate::{integrate, Method, Options, System};
+    use crate::simulate::{integrate, IntegratorOptions, Method, System};
 
     /// Every closed form satisfies its scene's equations: the residual of
     /// y' = F(t, y) by central differences of `exact` is at the level of
@@ -297,11 +297,11 @@ mod tests {
                 continue;
             };
             let mut sys = p.dynamics().expect("compiles");
-            let opts = Options {
+            let opts = IntegratorOptions {
                 t_end: p.t_end,
                 rtol: 1e-12,
                 atol: 1e-12,
-                ..Options::default()
+                ..IntegratorOptions::default()
             };
             let sol = integrate(&mut sys, Method::Dop853, &p.y0, &opts).expect("runs");
             let y = sol.y.last().expect("a state");

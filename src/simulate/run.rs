@@ -11,7 +11,9 @@
 use super::compile::{compile_with, state_inputs, Choice, CompiledDynamics, Program};
 #[cfg(feature = "cli")]
 use super::progress::Progress;
-use super::{integrate, integrate_with_event, Method, Options, SimError, Solution, Status, System};
+use super::{
+    integrate, integrate_with_event, IntegratorOptions, Method, SimError, Solution, Status, System,
+};
 use crate::diag::Diagnostic;
 use crate::expr::{atom, Expr};
 use crate::parse::ast::Role;
@@ -270,7 +272,7 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
     let t_out: Vec<f64> = (0..points)
         .map(|i| req.t_end * i as f64 / (points - 1) as f64)
         .collect();
-    let opts = Options {
+    let opts = IntegratorOptions {
         t0: 0.0,
         t_end: req.t_end,
         rtol: req.rtol,
@@ -353,7 +355,7 @@ fn run_method<S: System + ?Sized>(
     sys: &mut S,
     method: Method,
     y0: &[f64],
-    opts: &Options,
+    opts: &IntegratorOptions,
     event: Option<&Program>,
 ) -> Result<Solution, SimError> {
     match event {

@@ -170,7 +170,12 @@ pub fn equilibria(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic>
         Some(sols) => {
             let all_set =
                 !set.is_empty() && scene.parameters.iter().all(|p| set.contains_key(&p.name));
-            for (vals, free, conds) in sols {
+            for ExactSolution {
+                values: vals,
+                free,
+                conditions: conds,
+            } in sols
+            {
                 let approx = numeric_values(&vals, set);
                 if all_set && approx.is_none() {
                     continue; // does not exist for these parameter values (|x| > 1)
@@ -262,20 +267,28 @@ fn has_gyroscopic_terms(scene: &Scene, names: &[String]) -> bool {
 
 // ---------------------------------------------------------------- exact solving
 
-type Solution = (Vec<Expr>, Vec<usize>, Vec<String>);
+/// One equilibrium in closed form, as the exact search finds it.
+struct ExactSolution {
+    /// One value per coordinate (the coordinate itself where it is free).
+    values: Vec<Expr>,
+    /// The coordinates that any value satisfies.
+    free: Vec<usize>,
+    /// The conditions for it to exist (`|x| ≤ 1` of an asin, …).
+    conditions: Vec<String>,
+}
 
 /// All equilibria in closed form, or None if some equation has none.
-fn solve_exact(eqs: &[Expr], q: &[Var]) -> Option<Vec<Solution>> {
+fn solve_exact(eqs: &[Expr], q: &[Var]) -> Option<Vec<ExactSolution>> {
     let mut out = Vec::new();
     let mut assigned: Vec<Option<Expr>> = vec![None; q.len()];
     let mut conds = Vec::new();
-    rec(eqs.to_vec(), q, &mut assigned, &mut conds, &mut out)?;
+    solve_branch(eqs.to_vec(), q, &mut assigned, &mut conds, &mut out)?;
     // de-duplicate
-    let mut uniq: Vec<Solution> = Vec::new();
+    let mut uniq: Vec<ExactSolution> = Vec::new();
     for s in out {
         if !uniq
             .iter()
-            .any(|u| u.0.iter().zip(&s.0).all(|(a, b)| a.equals(b)))
+            .any(|u| u.values.iter().zip(&s.values).all(|(a, b)| a.equals(b)))
         {
             uniq.push(s);
         }
@@ -283,12 +296,15 @@ fn solve_exact(eqs: &[Expr], q: &[Var]) -> Option<Vec<Solution>> {
     Some(uniq)
 }
 
-fn rec(
+/// Solve `eqs` for the coordinates not yet assigned, pushing every
+/// solution of this branch to `out`; `None` when some equation has no
+/// closed form.
+fn solve_branch(
     eqs: Vec<Expr>,
     q: &[Var],
     assigned: &mut Vec<Option<Expr>>,
     conds: &mut Vec<String>,
-    out: &mut Vec<Solution>,
+    out: &mut Vec<ExactSolution>,
 ) -> Option<()> {
     let eqs: Vec<Expr> = eqs.into_iter().filter(|e| !e.is_zero()).collect();
     let open: Vec<usize> = (0..q.len()).filter(|&k| assigned[k].is_none()).collect();
@@ -301,7 +317,11 @@ fn rec(
         let vals = (0..q.len())
             .map(|k| assigned[k].clone().unwrap_or_else(|| Expr::var(q[k])))
             .collect();
-        out.push((vals, free, conds.clone()));
+        out.push(ExactSolution {
+            values: vals,
+            free,
+            conditions: conds.clone(),
+        });
         return Some(());
     }
     // Linear in all open coordinates together?
@@ -327,7 +347,11 @@ fn rec(
             vals[k] = sol.values[j].clone();
         }
         let free = sol.shape.free.iter().map(|&j| open[j]).collect();
-        out.push((vals, free, conds.clone()));
+        out.push(ExactSolution {
+            values: vals,
+            free,
+            conditions: conds.clone(),
+        });
         return Some(());
     }
     // An equation in a single open coordinate, the smallest first.
@@ -347,35 +371,36 @@ fn rec(
                 .find_map(|&k| single_factor(e, q[k], &open_vars).map(|(f, c)| (i, k, f, c)))
         })?;
         for (root, cond) in univariate(&factor, q[k])? {
-            branch(&eqs, usize::MAX, q, k, root, cond, assigned, conds, out)?;
+            assign_and_solve(&eqs, None, q, k, root, cond, assigned, conds, out)?;
         }
         let mut rest = eqs.clone();
         rest[i] = cofactor;
-        return rec(rest, q, assigned, conds, out);
+        return solve_branch(rest, q, assigned, conds, out);
     };
     let roots = univariate(&eqs[i], q[k])?;
     for (root, cond) in roots {
-        branch(&eqs, i, q, k, root, cond, assigned, conds, out)?;
+        assign_and_solve(&eqs, Some(i), q, k, root, cond, assigned, conds, out)?;
     }
     Some(())
 }
 
-/// Put q_k = root into the equations (all but `skip`) and go on.
+/// Put q_k = root into the equations (all but `solved`, the one the root
+/// came from) and go on.
 #[allow(clippy::too_many_arguments)]
-fn branch(
+fn assign_and_solve(
     eqs: &[Expr],
-    skip: usize,
+    solved: Option<usize>,
     q: &[Var],
     k: usize,
     root: Expr,
     cond: Vec<String>,
     assigned: &mut Vec<Option<Expr>>,
     conds: &mut Vec<String>,
-    out: &mut Vec<Solution>,
+    out: &mut Vec<ExactSolution>,
 ) -> Option<()> {
     let mut next = Vec::with_capacity(eqs.len());
     for (j, e) in eqs.iter().enumerate() {
-        if j == skip {
+        if solved == Some(j) {
             continue;
         }
         match e.subs(q[k], &root) {
@@ -386,7 +411,7 @@ fn branch(
     assigned[k] = Some(root);
     let n = conds.len();
     conds.extend(cond);
-    let r = rec(next, q, assigned, conds, out);
+    let r = solve_branch(next, q, assigned, conds, out);
     conds.truncate(n);
     assigned[k] = None;
     r
@@ -447,10 +472,10 @@ fn is_linear_in(e: &Expr, vs: &[Var]) -> bool {
 }
 
 /// A root with the conditions for it to exist.
-pub(crate) type Root = (Expr, Vec<String>);
+pub(crate) type ExactRoot = (Expr, Vec<String>);
 
 /// The real roots of `e = 0` in the one coordinate `q`, in closed form.
-fn univariate(e: &Expr, q: Var) -> Option<Vec<Root>> {
+fn univariate(e: &Expr, q: Var) -> Option<Vec<ExactRoot>> {
     let qe = Expr::var(q);
     let (s, c) = atom::intern_trig(&qe);
     let num = e.num();
@@ -465,7 +490,7 @@ fn univariate(e: &Expr, q: Var) -> Option<Vec<Root>> {
             return None; // q inside another function
         }
     }
-    let mut roots: Vec<Root> = match (has_q, has_trig) {
+    let mut roots: Vec<ExactRoot> = match (has_q, has_trig) {
         (true, false) => poly_roots(num, q)?,
         (false, true) => trig_roots(num, s, c)?,
         _ => return None,
@@ -514,12 +539,12 @@ fn vanishes(v: &Expr) -> bool {
 /// higher degree has roots no closed form gives. Factoring first makes a
 /// multiple root one root ((1 + q)¹⁰⁰) and finds the small factors of a
 /// product whose expansion has a high degree (q·(q² − 2)²).
-fn poly_roots(p: &Poly, q: Var) -> Option<Vec<Root>> {
+fn poly_roots(p: &Poly, q: Var) -> Option<Vec<ExactRoot>> {
     if p.degree(q) <= 2 {
         return poly_roots_low(p, q);
     }
     let f = crate::poly::factor::factor(p);
-    let mut out: Vec<Root> = Vec::new();
+    let mut out: Vec<ExactRoot> = Vec::new();
     for (g, _) in &f.factors {
         if g.degree(q) == 0 {
             continue;
@@ -537,13 +562,13 @@ fn poly_roots(p: &Poly, q: Var) -> Option<Vec<Root>> {
 }
 
 /// Roots of a polynomial in q of degree ≤ 2 after taking out q^k.
-fn poly_roots_low(p: &Poly, q: Var) -> Option<Vec<Root>> {
+fn poly_roots_low(p: &Poly, q: Var) -> Option<Vec<ExactRoot>> {
     let cs = p.coeffs_in(q);
     let mut k = 0;
     while k < cs.len() && cs[k].is_zero() {
         k += 1;
     }
-    let mut out: Vec<Root> = Vec::new();
+    let mut out: Vec<ExactRoot> = Vec::new();
     if k > 0 {
         out.push((Expr::zero(), Vec::new()));
     }
@@ -553,7 +578,7 @@ fn poly_roots_low(p: &Poly, q: Var) -> Option<Vec<Root>> {
 }
 
 /// Roots of c0 + c1·x + c2·x² (c2 may be zero; degree ≤ 2 only).
-pub(crate) fn quadratic(cs: &[Expr]) -> Option<Vec<Root>> {
+pub(crate) fn quadratic(cs: &[Expr]) -> Option<Vec<ExactRoot>> {
     match cs.len() {
         0 | 1 => Some(Vec::new()),
         2 => Some(vec![(cs[0].neg().div(&cs[1]).ok()?, Vec::new())]),
@@ -620,10 +645,10 @@ pub(crate) fn poly_sqrt(d: &Poly) -> Option<Poly> {
 }
 
 /// Roots of a polynomial in s = sin q, c = cos q.
-fn trig_roots(p: &Poly, s: Var, c: Var) -> Option<Vec<Root>> {
+fn trig_roots(p: &Poly, s: Var, c: Var) -> Option<Vec<ExactRoot>> {
     let pi = Expr::pi();
     let half = Q::new(1, 2).unwrap_or_else(Q::one);
-    let mut out: Vec<Root> = Vec::new();
+    let mut out: Vec<ExactRoot> = Vec::new();
     let mut p = p.clone();
     // sin q as a factor: q = 0, π.
     let cs = p.coeffs_in(s);
@@ -697,7 +722,7 @@ fn trig_roots(p: &Poly, s: Var, c: Var) -> Option<Vec<Root>> {
 }
 
 /// q = asin x and π − asin x (when |x| ≤ 1).
-fn asin_roots(x: &Expr) -> Option<Vec<Root>> {
+fn asin_roots(x: &Expr) -> Option<Vec<ExactRoot>> {
     let pi = Expr::pi();
     if let Some(v) = x.as_rational() {
         if v.abs() > Q::one() {
@@ -713,7 +738,7 @@ fn asin_roots(x: &Expr) -> Option<Vec<Root>> {
 }
 
 /// q = ±acos x (when |x| ≤ 1).
-fn acos_roots(x: &Expr) -> Option<Vec<Root>> {
+fn acos_roots(x: &Expr) -> Option<Vec<ExactRoot>> {
     if let Some(v) = x.as_rational() {
         if v.abs() > Q::one() {
             return Some(Vec::new());
@@ -735,7 +760,7 @@ fn abs_condition(x: &Expr) -> Vec<String> {
 }
 
 /// The general case by t = tan(q/2): sin q = 2t/(1 + t²), cos q = (1 − t²)/(1 + t²).
-fn weierstrass(p: &Poly, s: Var, c: Var) -> Option<Vec<Root>> {
+fn weierstrass(p: &Poly, s: Var, c: Var) -> Option<Vec<ExactRoot>> {
     let tv = atom::unknown("tan(q/2)");
     let t = Expr::var(tv);
     let one = Expr::one();
@@ -765,7 +790,7 @@ fn weierstrass(p: &Poly, s: Var, c: Var) -> Option<Vec<Root>> {
 }
 
 /// Roots of Σ cs[i]·x^i with x^k taken out, degree ≤ 2.
-fn poly_like_roots(cs: &[Expr]) -> Option<Vec<Root>> {
+fn poly_like_roots(cs: &[Expr]) -> Option<Vec<ExactRoot>> {
     let k = cs.iter().take_while(|c| c.is_zero()).count();
     let mut out = Vec::new();
     if k > 0 && k < cs.len() {

@@ -18,7 +18,7 @@ use crate::expr::atom;
 use crate::expr::{Expr, MathError};
 use crate::poly::{Poly, Var};
 
-use crate::scene::{Scene, System};
+use crate::scene::{Scene, SolveSystem};
 use rustc_hash::FxHashMap;
 
 /// The row echelon form of `[A | b]` and what it says about the system.
@@ -154,7 +154,7 @@ pub struct BlockSolution {
 
 /// The 1-based number of the source equation that scalar equation `i` of
 /// `sys` comes from (a vector equation gives several scalar ones).
-pub fn equation_number(sys: &System, i: usize) -> usize {
+pub fn equation_number(sys: &SolveSystem, i: usize) -> usize {
     let mut n = 0;
     let mut last = None;
     for e in &sys.equations[..=i.min(sys.equations.len().saturating_sub(1))] {
@@ -168,7 +168,7 @@ pub fn equation_number(sys: &System, i: usize) -> usize {
 
 /// Where equation `i` of `sys` is, for messages: "equation 3" or
 /// "equation 3 (component y)".
-pub fn equation_label(sys: &System, i: usize) -> String {
+pub fn equation_label(sys: &SolveSystem, i: usize) -> String {
     let eq = &sys.equations[i];
     let n = equation_number(sys, i);
     match eq.component {
@@ -203,7 +203,7 @@ fn mentions_any(e: &Expr, vs: &[Var]) -> bool {
 
 fn solve_block(
     scene: &Scene,
-    sys: &System,
+    sys: &SolveSystem,
     known: &FxHashMap<Var, Expr>,
     acc: &mut Option<FxHashMap<Var, Expr>>,
 ) -> Result<BlockSolution, Diagnostic> {

@@ -15,7 +15,7 @@ use qdot::num::Q;
 use qdot::simulate::compile::{solve_spd, CompiledDynamics};
 use qdot::simulate::elliptic::pendulum_period;
 use qdot::simulate::problems::Problem;
-use qdot::simulate::{integrate, Method, Options, Solution, Stats, Status};
+use qdot::simulate::{integrate, IntegratorOptions, Method, Solution, Stats, Status};
 use qdot::Expr;
 
 // ===================================================================== 1
@@ -113,11 +113,11 @@ pub fn energy_drift(
         }
         let t0 = done as f64 * period;
         let t_end = (done + c) as f64 * period;
-        let mut opts = Options {
+        let mut opts = IntegratorOptions {
             t0,
             t_end,
             max_steps: usize::MAX,
-            ..Options::default()
+            ..IntegratorOptions::default()
         };
         match stepping {
             Stepping::Fixed { steps_per_period } => {
@@ -363,11 +363,11 @@ pub fn stiff_problem() -> Problem {
 pub fn stiff_run(method: Method, tol: f64, t_end: f64) -> (Solution, f64) {
     let p = stiff_problem();
     let mut sys = p.dynamics().expect("compiles");
-    let opts = Options {
+    let opts = IntegratorOptions {
         t_end,
         rtol: tol,
         atol: tol / 100.0,
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     let t0 = std::time::Instant::now();
     let sol = integrate(&mut sys, method, &p.y0, &opts).expect("runs");
@@ -390,12 +390,12 @@ pub fn double_pendulum(a: f64, b: f64, t_end: f64) -> Problem {
 pub fn grid_run(p: &Problem, method: Method, tol: f64, dt: f64) -> Solution {
     let mut sys = p.dynamics().expect("compiles");
     let steps = (p.t_end / dt).round() as usize;
-    let opts = Options {
+    let opts = IntegratorOptions {
         t_end: p.t_end,
         rtol: tol,
         atol: tol,
         t_out: (0..=steps).map(|k| k as f64 * dt).collect(),
-        ..Options::default()
+        ..IntegratorOptions::default()
     };
     integrate(&mut sys, method, &p.y0, &opts).expect("runs")
 }

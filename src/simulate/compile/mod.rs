@@ -43,4 +43,6 @@ mod program;
 pub use builder::{compile, compile_with, naive_op_count};
 pub use dense::solve_spd;
 pub use dynamics::{state_inputs, Choice, CompiledDynamics, Evaluator};
-pub use program::{Instr, Program};
+#[doc(hidden)]
+pub use program::Instr;
+pub use program::Program;

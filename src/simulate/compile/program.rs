@@ -4,6 +4,7 @@
 /// One instruction of a [`Program`]: registers are indices into the
 /// register file; `dst` is written after all operands are read.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[doc(hidden)]
 pub enum Instr {
     /// `dst = a + b`.
     Add { dst: u32, a: u32, b: u32 },
