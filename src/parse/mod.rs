@@ -31,6 +31,7 @@ pub mod ast;
 mod chars;
 mod expressions;
 mod failure;
+pub mod functions;
 pub mod keywords;
 mod lexer;
 mod number;

@@ -153,12 +153,6 @@ pub const COMMANDS: &[(&str, &str, &str)] = &[
     (":quit", "", "leave (Ctrl-D does too)"),
 ];
 
-/// The functions of the expression language, for completion and `:help`.
-pub const FUNCTIONS: &[&str] = &[
-    "sin", "cos", "tan", "sqrt", "exp", "ln", "atan", "asin", "acos", "dot", "cross", "norm",
-    "inertia", "series", "parallel", "diff", "dt", "subs", "expand", "factor", "taylor",
-];
-
 // The keywords, for completion and highlighting: the parser's list.
 use crate::parse::keywords;
 
@@ -1079,7 +1073,8 @@ fn help_text() -> String {
         };
         out.push_str(&format!("  {head:<44} {what}\n"));
     }
-    out.push_str(&format!("Functions: {}\n", FUNCTIONS.join(", ")));
+    let functions: Vec<&str> = crate::parse::functions::names().collect();
+    out.push_str(&format!("Functions: {}\n", functions.join(", ")));
     out
 }
 

@@ -18,7 +18,8 @@
 //! any entry failed. With `echo`, each entry is printed after its prompt
 //! and errors go to stdout too: a transcript, as the terminal would show.
 
-use super::{is_complete, keywords, Response, Session, COMMANDS, FUNCTIONS};
+use super::{is_complete, keywords, Response, Session, COMMANDS};
+use crate::parse::functions;
 use rustyline::completion::{Completer, Pair};
 use rustyline::error::ReadlineError;
 use rustyline::highlight::{CmdKind, Highlighter};
@@ -349,7 +350,7 @@ pub fn completions(line: &str, pos: usize, names: &[&[String]]) -> (usize, Vec<P
             }
         }
     }
-    for f in FUNCTIONS {
+    for f in functions::names() {
         if f.starts_with(word) {
             out.push(Pair {
                 display: format!("{f}("),
@@ -428,7 +429,7 @@ pub fn highlight(line: &str, coords: &[String], params: &[String], others: &[Str
             }
             let w = &line[i..end];
             let call = line[end..].starts_with('(');
-            let colour = if call && FUNCTIONS.contains(&w) {
+            let colour = if call && functions::builtin(w).is_some() {
                 Some(FUNCTION)
             } else if coords.iter().any(|n| n == w) {
                 Some(COORD)

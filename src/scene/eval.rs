@@ -6,6 +6,7 @@ use crate::expr::atom::{self, Atom};
 use crate::expr::{func, Expr, MathError};
 use crate::num::Q;
 use crate::parse::ast::{self, BinOp, ExprKind, Role, Span};
+use crate::parse::functions::{self, Arity};
 use crate::poly::Var;
 use rustc_hash::FxHashMap;
 
@@ -31,30 +32,6 @@ pub(crate) struct SyntaxEvaluator<'a> {
 }
 
 /// The functions of the language and their numbers of arguments.
-const FUNCTIONS: &[(&str, usize)] = &[
-    ("sin", 1),
-    ("cos", 1),
-    ("tan", 1),
-    ("sqrt", 1),
-    ("exp", 1),
-    ("ln", 1),
-    ("atan", 1),
-    ("asin", 1),
-    ("acos", 1),
-    ("dot", 2),
-    ("cross", 2),
-    ("norm", 1),
-    ("inertia", 2),
-    ("series", 0),
-    ("parallel", 0),
-    ("diff", 2),
-    ("dt", 1),
-    ("subs", 0),
-    ("expand", 1),
-    ("factor", 1),
-    ("taylor", 3),
-];
-
 /// A definition on the path of [`SyntaxEvaluator::evaluate_dependencies`]: its
 /// index, the definitions it uses (with the span of the name), and how many
 /// of those are handled.
@@ -540,14 +517,51 @@ impl<'a> SyntaxEvaluator<'a> {
         Ok(v)
     }
 
+    /// `series(k1, k2, …)` = 1/Σ(1/k_i) and `parallel(k1, k2, …)` = Σ k_i:
+    /// springs combined.
+    fn springs(
+        &mut self,
+        f: &ast::Ident,
+        args: &[ast::Expr],
+        span: Span,
+        usage: &str,
+    ) -> Result<Value, Diagnostic> {
+        if args.len() < 2 {
+            return Err(Diagnostic::error(
+                span,
+                format!("`{}` combines two or more springs", f.name),
+            )
+            .with_hint(usage));
+        }
+        let mut acc = Expr::zero();
+        for a in args {
+            let k = self.expr(a)?;
+            acc = acc.add(&if f.name == "series" {
+                k.recip().map_err(|_| {
+                    Diagnostic::error(a.span, "a spring of stiffness 0 in series")
+                        .with_hint("series(k1, k2) = k1·k2/(k1 + k2) needs nonzero stiffnesses")
+                })?
+            } else {
+                k
+            });
+        }
+        if f.name == "series" {
+            acc.recip().map(Value::Scalar).map_err(|_| {
+                Diagnostic::error(span, "the series stiffness is undefined: Σ 1/k_i = 0")
+            })
+        } else {
+            Ok(Value::Scalar(acc))
+        }
+    }
+
     fn call_unbounded(
         &mut self,
         f: &ast::Ident,
         args: &[ast::Expr],
         span: Span,
     ) -> Result<Value, Diagnostic> {
-        let Some(&(_, arity)) = FUNCTIONS.iter().find(|(n, _)| *n == f.name) else {
-            let list: Vec<&str> = FUNCTIONS.iter().map(|(n, _)| *n).collect();
+        let Some(builtin) = functions::builtin(&f.name) else {
+            let list: Vec<&str> = functions::names().collect();
             let hint = if self.names.contains_key(&f.name) {
                 format!(
                     "`{}` is not a function; write `{}*(…)` to multiply",
@@ -574,52 +588,20 @@ impl<'a> SyntaxEvaluator<'a> {
             }
             _ => {}
         }
-        if arity == 0 {
-            // series(k1, k2, …) = 1/Σ(1/k_i), parallel(k1, k2, …) = Σ k_i
-            if args.len() < 2 {
-                return Err(Diagnostic::error(
-                    span,
-                    format!("`{}` combines two or more springs", f.name),
-                )
-                .with_hint(format!(
-                    "write {}(k1, k2) or {}(k1, k2, k3)",
-                    f.name, f.name
-                )));
+        let arity = match builtin.arity {
+            Arity::Exactly(n) => n,
+            Arity::Variadic => {
+                // series(k1, k2, …) = 1/Σ(1/k_i), parallel(k1, k2, …) = Σ k_i
+                return self.springs(f, args, span, builtin.usage);
             }
-            let mut acc = Expr::zero();
-            for a in args {
-                let k = self.expr(a)?;
-                acc = acc.add(&if f.name == "series" {
-                    k.recip().map_err(|_| {
-                        Diagnostic::error(a.span, "a spring of stiffness 0 in series")
-                            .with_hint("series(k1, k2) = k1·k2/(k1 + k2) needs nonzero stiffnesses")
-                    })?
-                } else {
-                    k
-                });
-            }
-            return if f.name == "series" {
-                acc.recip().map(Value::Scalar).map_err(|_| {
-                    Diagnostic::error(span, "the series stiffness is undefined: Σ 1/k_i = 0")
-                })
-            } else {
-                Ok(Value::Scalar(acc))
-            };
-        }
+        };
         if args.len() != arity {
             let n = if arity == 1 { "argument" } else { "arguments" };
             return Err(Diagnostic::error(
                 span,
                 format!("`{}` takes {arity} {n}, not {}", f.name, args.len()),
             )
-            .with_hint(match f.name.as_str() {
-                "atan" => "atan(y/x) is the arctangent of one ratio",
-                "dot" | "cross" => "two vectors: dot(a, b), cross(a, b)",
-                "inertia" => "inertia(m, x) is m·x'' for a mass m (or moment of inertia) and a coordinate or point x",
-                "diff" => "diff(f, x) is ∂f/∂x for a coordinate, a velocity (x'), a parameter or t",
-                "taylor" => "taylor(f, x, n) expands f about x = 0 to the power n; taylor(f, x = a, n) about a",
-                _ => "one argument, in parentheses",
-            }));
+            .with_hint(builtin.usage));
         }
         match f.name.as_str() {
             "dot" | "cross" => return self.vector_product(f, args, span),
