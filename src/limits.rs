@@ -35,6 +35,12 @@ pub const MAX_NUMBER_DIGITS: usize = 10_000;
 /// more; the terms grow quickly).
 pub const MAX_TAYLOR_ORDER: i64 = 30;
 
+/// The most radicals rationalized out of one denominator (each step
+/// multiplies by a conjugate and doubles the terms, so the work budget
+/// stops long before); past it the division is refused, never left with
+/// a radical in the denominator.
+pub const MAX_RATIONALIZE_STEPS: u32 = 64;
+
 /// The most output times `qdot simulate --points` records: each row keeps
 /// t, q and q̇ (and the energy) in memory until printed.
 pub const MAX_POINTS: usize = 1_000_000;

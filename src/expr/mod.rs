@@ -177,11 +177,14 @@ impl Expr {
             return Err(MathError::new("division by zero"));
         }
         // Rationalize: multiply by the conjugate in each radical of den.
-        let mut guard = 0;
+        let mut steps = 0;
         while let Some(r) = first_radical(&den) {
-            guard += 1;
-            if guard > 64 {
-                break;
+            steps += 1;
+            if steps > crate::limits::MAX_RATIONALIZE_STEPS {
+                return Err(MathError::new(format!(
+                    "the denominator has more than {} radicals to rationalize",
+                    crate::limits::MAX_RATIONALIZE_STEPS
+                )));
             }
             let cs = den.coeffs_in(r);
             let a = cs.first().cloned().unwrap_or_default();
@@ -225,22 +228,63 @@ impl Expr {
         };
         let lc = den.leading_coeff().cloned().unwrap_or_else(Q::one);
         if lc.is_one() {
-            Expr(Arc::new(Rat { num, den }))
+            Expr::canonical(Rat { num, den })
         } else {
             let inv = Q::one().checked_div(&lc).unwrap_or_else(Q::one);
-            Expr(Arc::new(Rat {
+            Expr::canonical(Rat {
                 num: num.scale(&inv),
                 den: den.scale(&inv),
-            }))
+            })
+        }
+    }
+
+    /// Wrap parts already in canonical form (checked in debug builds).
+    #[inline]
+    fn canonical(r: Rat) -> Expr {
+        let e = Expr(Arc::new(r));
+        e.debug_assert_canonical();
+        e
+    }
+
+    /// Check the canonical-form invariants (see the type's documentation)
+    /// in debug builds and under the fuzzer: reduced parts, a radical-free
+    /// monic denominator, and — for parts small enough to check cheaply —
+    /// lowest terms.
+    #[inline]
+    fn debug_assert_canonical(&self) {
+        #[cfg(debug_assertions)]
+        {
+            let (num, den) = (&self.0.num, &self.0.den);
+            debug_assert!(!den.is_zero(), "zero denominator");
+            debug_assert!(!needs_reduction(num), "unreduced numerator: {num}");
+            debug_assert!(!needs_reduction(den), "unreduced denominator: {den}");
+            debug_assert!(
+                first_radical(den).is_none(),
+                "radical in the denominator: {den}"
+            );
+            debug_assert!(
+                den.leading_coeff().is_some_and(Q::is_one),
+                "denominator not monic: {den}"
+            );
+            debug_assert!(
+                !num.is_zero() || den.is_one(),
+                "zero with a denominator: 0/{den}"
+            );
+            if num.len() * den.len() <= 64 && !den.is_constant() {
+                debug_assert!(
+                    num.gcd(den).is_constant(),
+                    "not in lowest terms: ({num})/({den})"
+                );
+            }
         }
     }
 
     /// A polynomial expression (must already be reduced).
     fn poly(p: Poly) -> Expr {
-        Expr(Arc::new(Rat {
+        Expr::canonical(Rat {
             num: p,
             den: Poly::one(),
-        }))
+        })
     }
 
     /// A polynomial, reduced.
@@ -389,10 +433,10 @@ impl Expr {
     }
 
     pub fn neg(&self) -> Expr {
-        Expr(Arc::new(Rat {
+        Expr::canonical(Rat {
             num: -&self.0.num,
             den: self.0.den.clone(),
-        }))
+        })
     }
 
     pub fn sub(&self, o: &Expr) -> Expr {
@@ -414,16 +458,16 @@ impl Expr {
             return Expr::poly(reduced(a * c));
         }
         if let Some(k) = c.as_constant().filter(|_| d.is_one()) {
-            return Expr(Arc::new(Rat {
+            return Expr::canonical(Rat {
                 num: a.scale(k),
                 den: b.clone(),
-            }));
+            });
         }
         if let Some(k) = a.as_constant().filter(|_| b.is_one()) {
-            return Expr(Arc::new(Rat {
+            return Expr::canonical(Rat {
                 num: c.scale(k),
                 den: d.clone(),
-            }));
+            });
         }
         // (a/b)(c/d) with cross cancellation.
         let (_, a1, d1) = cofactors(a, d);
@@ -498,10 +542,10 @@ impl Expr {
         if q.is_zero() {
             return Expr::zero();
         }
-        Expr(Arc::new(Rat {
+        Expr::canonical(Rat {
             num: self.0.num.scale(q),
             den: self.0.den.clone(),
-        }))
+        })
     }
 
     /// num/den where num and den are reduced, den radical-free, and known
@@ -516,13 +560,13 @@ impl Expr {
         }
         let lc = den.leading_coeff().cloned().unwrap_or_else(Q::one);
         if lc.is_one() {
-            return Expr(Arc::new(Rat { num, den }));
+            return Expr::canonical(Rat { num, den });
         }
         let inv = Q::one().checked_div(&lc).unwrap_or_else(Q::one);
-        Expr(Arc::new(Rat {
+        Expr::canonical(Rat {
             num: num.scale(&inv),
             den: den.scale(&inv),
-        }))
+        })
     }
 
     fn normalize_reduced(num: Poly, den: Poly) -> Expr {
