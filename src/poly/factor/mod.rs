@@ -6,7 +6,7 @@
 //!
 //! 1. the numeric content (a rational) and the monomial content (powers of
 //!    single variables) are split off;
-//! 2. [`square_free`]: Yun's algorithm with respect to the first variable on
+//! 2. `square_free`: Yun's algorithm with respect to the first variable on
 //!    the part primitive in it, recursively on the content (which is free of
 //!    that variable), so every part is a product of distinct irreducibles;
 //! 3. each square-free part is split by its contents with respect to every
