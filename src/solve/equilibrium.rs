@@ -75,6 +75,7 @@ pub enum Position {
 
 /// One equilibrium.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct Equilibrium {
     pub position: Position,
     /// Coordinates left free (indifferent equilibrium along them).
@@ -94,6 +95,7 @@ pub struct Equilibrium {
 
 /// The equilibria of a scene.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct Equilibria {
     pub coordinates: Vec<String>,
     /// Q_k at rest.

@@ -35,6 +35,7 @@ pub const LAMBDA: &str = "lambda";
 
 /// The linearized system and its modes.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct Modes {
     pub coordinates: Vec<String>,
     /// The equilibrium q0.
@@ -60,6 +61,7 @@ pub struct Modes {
 
 /// One degree of freedom in the standard form ÿ + 2α·ẏ + ω²·y = f(t)/M.
 #[derive(Clone, Debug)]
+#[non_exhaustive]
 pub struct StandardForm {
     pub omega_squared: Expr,
     pub alpha: Expr,
