@@ -35,9 +35,20 @@ pub struct TooLarge {
     pub terms: usize,
     pub limit: usize,
     pub context: Option<Context>,
-    /// Set when a product of polynomials of these sizes was refused before
-    /// it began (its work, not its result, was over budget).
-    pub product: Option<(usize, usize)>,
+    pub measure: Measure,
+}
+
+/// What passed the budget.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Measure {
+    /// A polynomial's terms.
+    Terms,
+    /// A product of polynomials of these sizes, refused before it began
+    /// (its work, not its result, was over budget).
+    Product(usize, usize),
+    /// An expression's symbols written out ([`check_printed`]): `terms`
+    /// counts symbols.
+    Printed,
 }
 
 impl TooLarge {
@@ -48,16 +59,21 @@ impl TooLarge {
             Some(c) => format!(" while {}", c.what),
             None => String::new(),
         };
-        match self.product {
-            Some((a, b)) => format!(
+        match self.measure {
+            Measure::Product(a, b) => format!(
                 "expression too large: a product of {} by {} terms{what} (the limit is {} terms, and {} term products)",
                 grouped(a),
                 grouped(b),
                 grouped(self.limit),
                 grouped(self.limit.saturating_mul(PRODUCTS_PER_TERM))
             ),
-            None => format!(
+            Measure::Terms => format!(
                 "expression too large: {} terms{what} (the limit is {})",
+                grouped(self.terms),
+                grouped(self.limit)
+            ),
+            Measure::Printed => format!(
+                "expression too large to print: {} symbols written out{what} (the limit is {})",
                 grouped(self.terms),
                 grouped(self.limit)
             ),
@@ -146,25 +162,42 @@ pub const PRODUCTS_PER_TERM: usize = 8;
 pub fn check_product(a: usize, b: usize) {
     let limit = limit();
     if a.saturating_mul(b) > limit.saturating_mul(PRODUCTS_PER_TERM) {
-        exceeded_with(a.saturating_mul(b), limit, Some((a, b)));
+        exceeded_with(a.saturating_mul(b), limit, Measure::Product(a, b));
+    }
+}
+
+/// Unwind with [`TooLarge`] if an expression of `symbols` symbols written
+/// out ([`crate::expr::atom::written_size`]) is too large to print: more
+/// symbols than the budget has terms. Shared arguments nested in
+/// definitions print at each occurrence, so a small expression can print
+/// as millions of symbols.
+#[inline]
+pub fn check_printed(symbols: u64) {
+    let limit = limit();
+    if symbols > limit as u64 {
+        exceeded_with(
+            usize::try_from(symbols).unwrap_or(usize::MAX),
+            limit,
+            Measure::Printed,
+        );
     }
 }
 
 #[cold]
 #[inline(never)]
 fn exceeded(terms: usize, limit: usize) -> ! {
-    exceeded_with(terms, limit, None)
+    exceeded_with(terms, limit, Measure::Terms)
 }
 
 #[cold]
 #[inline(never)]
-fn exceeded_with(terms: usize, limit: usize, product: Option<(usize, usize)>) -> ! {
+fn exceeded_with(terms: usize, limit: usize, measure: Measure) -> ! {
     let context = CONTEXT.with(|c| c.borrow().last().cloned());
     resume_unwind(Box::new(TooLarge {
         terms,
         limit,
         context,
-        product,
+        measure,
     }))
 }
 

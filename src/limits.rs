@@ -12,6 +12,14 @@
 /// next, and walks over atoms recurse; no mechanics needs more than a few.
 pub const MAX_FUNCTION_NESTING: u32 = 200;
 
+/// The longest argument of one function, in symbols written out (each
+/// term's coefficient and factors, an inner function's argument counted
+/// again at each occurrence). Mechanics writes `sin(θ₁ − θ₂)`; definitions
+/// that use the previous one twice inside functions double the length
+/// per line, and printing, differentiating and evaluating pay it at every
+/// occurrence.
+pub const MAX_FUNCTION_ARGUMENT_SIZE: u64 = 2_000;
+
 /// Deepest recursion of the parser: parentheses, call arguments, unary
 /// signs and `^` chains each count one level (2 MiB stacks must hold it,
 /// in debug builds too).
@@ -30,6 +38,12 @@ pub const MAX_DECIMAL_EXPONENT: u32 = 1000;
 /// (`7^100000`). Physical constants have tens of digits; past this,
 /// exact arithmetic on the number alone would take seconds.
 pub const MAX_NUMBER_DIGITS: usize = 10_000;
+
+/// The highest time derivative of a coordinate an expression may take
+/// (`x'''` is 3; `dt` and nested primes add up). A scene uses up to 2,
+/// accelerations; the n-th derivative of `f(x)` has as many terms as n has
+/// partitions (42 at 10, 966,467 at 60), so past this the work explodes.
+pub const MAX_TIME_DERIVATIVE_ORDER: u32 = 10;
 
 /// The highest order `taylor` expands to (each order differentiates once
 /// more; the terms grow quickly).

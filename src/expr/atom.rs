@@ -109,6 +109,21 @@ struct Entry {
     /// (0 for symbols, π and √n): the depth every walk into arguments
     /// recurses to.
     depth: u32,
+    /// The number of symbols the atom takes written out, its argument's
+    /// shared atoms counted at every occurrence (saturating): what printing
+    /// it costs. Definitions that each apply two functions to the previous
+    /// one double it per line.
+    size: u64,
+    /// The highest time derivative of a coordinate in the atom (itself or
+    /// its argument): what a walk into arguments would find, kept so that
+    /// no walk re-enters shared arguments.
+    highest: Option<(Arc<str>, u32)>,
+    /// Whether the atom changes with time (a coordinate, t, or a function
+    /// of them).
+    moving: bool,
+    /// Every atom inside the argument, at any depth, sorted: what the atom
+    /// depends on, found without walking shared arguments again.
+    inner: Arc<[Var]>,
     /// For reducible atoms: the polynomial P with atom² = P.
     square: Option<Poly>,
 }
@@ -141,16 +156,68 @@ fn write() -> std::sync::RwLockWriteGuard<'static, Table> {
 impl Table {
     fn push(&mut self, atom: Atom, kind: Var, square: Option<Poly>) -> Var {
         let v = ((self.entries.len() as Var) << 2) | kind;
-        let depth = atom
-            .argument()
-            .map_or(0, |u| 1 + self.max_depth(u.vars().into_iter()));
+        let mut inner: Vec<Var> = Vec::new();
+        let (depth, size, highest, moving) = match (&atom, atom.argument()) {
+            (_, Some(u)) => {
+                let vars = u.vars();
+                for &w in &vars {
+                    inner.push(w);
+                    if let Some(e) = self.entry(w) {
+                        inner.extend_from_slice(&e.inner);
+                    }
+                }
+                inner.sort_unstable();
+                inner.dedup();
+                let highest = vars
+                    .iter()
+                    .filter_map(|&w| self.entry(w).and_then(|e| e.highest.clone()))
+                    .max_by_key(|(_, k)| *k);
+                let moving = vars
+                    .iter()
+                    .any(|&w| self.entry(w).is_some_and(|e| e.moving));
+                let depth = 1 + self.max_depth(vars.into_iter());
+                (depth, 1 + self.written_size(u), highest, moving)
+            }
+            (Atom::Coord(name, k), None) => (0, 1, Some((name.clone(), *k)), true),
+            (Atom::Time, None) => (0, 1, None, true),
+            (Atom::Shown(f), None) => (
+                0,
+                1 + self.written_size(&f.a) + self.written_size(&f.b),
+                None,
+                false,
+            ),
+            _ => (0, 1, None, false),
+        };
         self.entries.push(Entry {
             atom: atom.clone(),
             depth,
+            size,
+            highest,
+            moving,
+            inner: inner.into(),
             square,
         });
         self.index.insert(atom, v);
         v
+    }
+
+    fn entry(&self, v: Var) -> Option<&Entry> {
+        self.entries.get((v >> 2) as usize)
+    }
+
+    /// Symbols of `e` written out: per term its coefficient and each
+    /// factor's atom (exponents are not counted).
+    fn written_size(&self, e: &Expr) -> u64 {
+        let mut n: u64 = 0;
+        for p in [e.num(), e.den()] {
+            for (m, _) in p.terms() {
+                n = n.saturating_add(1);
+                for w in m.vars() {
+                    n = n.saturating_add(self.entry(w).map_or(1, |e| e.size));
+                }
+            }
+        }
+        n
     }
 
     fn max_depth(&self, vars: impl Iterator<Item = Var>) -> u32 {
@@ -166,6 +233,54 @@ pub use crate::limits::MAX_FUNCTION_NESTING as MAX_NESTING;
 /// How deeply function atoms nest in `e` (0 for a polynomial in symbols).
 pub fn nesting_depth(e: &Expr) -> u32 {
     read().max_depth(e.vars().into_iter())
+}
+
+/// How many symbols `e` takes written out (saturating): what printing it
+/// costs, shared arguments counted at each occurrence. Linear in the
+/// size of `e`'s own polynomials.
+pub fn written_size(e: &Expr) -> u64 {
+    read().written_size(e)
+}
+
+/// The largest written size ([`written_size`]) of a function atom in `e`,
+/// argument included; 0 when `e` has none.
+pub fn largest_argument(e: &Expr) -> u64 {
+    let t = read();
+    e.vars()
+        .into_iter()
+        .filter_map(|v| t.entry(v))
+        .filter(|e| e.atom.argument().is_some())
+        .map(|e| e.size)
+        .max()
+        .unwrap_or(0)
+}
+
+/// The highest time derivative of a coordinate in the atom `v`, itself or
+/// in its argument.
+pub fn highest_time_derivative(v: Var) -> Option<(Arc<str>, u32)> {
+    read().entry(v).and_then(|e| e.highest.clone())
+}
+
+/// Whether atom `a` is `v` or has `v` in its argument, at any depth.
+pub fn contains(a: Var, v: Var) -> bool {
+    a == v
+        || read()
+            .entry(a)
+            .is_some_and(|e| e.inner.binary_search(&v).is_ok())
+}
+
+/// The atoms inside `a`'s argument, at any depth, sorted (empty for
+/// symbols).
+pub fn inner_atoms(a: Var) -> Arc<[Var]> {
+    read()
+        .entry(a)
+        .map_or_else(|| Arc::from(Vec::new()), |e| e.inner.clone())
+}
+
+/// Whether the atom `v` changes with time: a coordinate or its
+/// derivative, t, or a function of them.
+pub fn is_moving(v: Var) -> bool {
+    read().entry(v).is_some_and(|e| e.moving)
 }
 
 /// The variable of a plain atom (parameter, coordinate, time, π, exp, ln, atan).

@@ -105,10 +105,7 @@ fn compute_atom_derivative(a: Var, wrt: Wrt) -> Option<Expr> {
 
 /// Whether atom `a` depends on `v` through its argument.
 pub fn atom_depends_on(a: Var, v: Var) -> bool {
-    if a == v {
-        return true;
-    }
-    atom::atom(a).argument().is_some_and(|u| u.depends_on(v))
+    atom::contains(a, v)
 }
 
 /// Whether an expression with atoms `vars` depends on `v`, directly or
@@ -176,13 +173,17 @@ impl Expr {
 
     /// Whether the expression changes with time (mentions a coordinate or t).
     pub fn is_time_dependent(&self) -> bool {
-        self.vars().into_iter().any(atom_time_dependent)
+        self.vars().into_iter().any(atom::is_moving)
     }
-}
 
-fn atom_time_dependent(a: Var) -> bool {
-    match atom::atom(a) {
-        Atom::Coord(..) | Atom::Time => true,
-        a => a.argument().is_some_and(|u| u.is_time_dependent()),
+    /// The highest time derivative of a coordinate in the expression, with
+    /// its coordinate: `(x, 2)` for `m·ẍ + sin(ẋ)`; `None` when no
+    /// coordinate appears. Function arguments count (kept per atom, so
+    /// shared arguments are not walked again).
+    pub fn highest_time_derivative(&self) -> Option<(std::sync::Arc<str>, u32)> {
+        self.vars()
+            .into_iter()
+            .filter_map(atom::highest_time_derivative)
+            .max_by_key(|(_, k)| *k)
     }
 }

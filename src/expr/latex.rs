@@ -373,6 +373,7 @@ impl Tex<'_> {
         if e.is_zero() {
             return vec![(false, "0".into())];
         }
+        crate::budget::check_printed(super::atom::written_size(e));
         let num = print::fold_trig(e.num()).unwrap_or_else(|| e.num().clone());
         let den = print::fold_trig(e.den()).unwrap_or_else(|| e.den().clone());
         let Some(groups) = print::collect(&num, &den) else {

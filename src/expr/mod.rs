@@ -112,7 +112,8 @@ fn reduce(p: &Poly) -> Option<Poly> {
     // Substitution may create new squares of other reducible atoms (a
     // polynomial square may contain radicals), so iterate to a fixpoint.
     loop {
-        let mut acc = Poly::zero();
+        // collected, then merged once: adding term by term is quadratic
+        let mut acc: Vec<(Mono, Q)> = Vec::with_capacity(out.len());
         let mut changed = false;
         for (m, c) in out.terms() {
             let mut rest = Mono::default();
@@ -130,9 +131,10 @@ fn reduce(p: &Poly) -> Option<Poly> {
                 }
                 rest.0.push((v, e));
             }
-            acc = &acc + &factor.mul_mono(&rest, &Q::one());
+            acc.extend_from_slice(factor.mul_mono(&rest, &Q::one()).terms());
+            crate::budget::check_product(acc.len(), 1);
         }
-        out = acc;
+        out = Poly::from_terms(acc);
         if !changed || !needs_reduction(&out) {
             return Some(out);
         }

@@ -69,6 +69,7 @@ pub fn render(e: &Expr, st: Style) -> String {
     if e.is_zero() {
         return "0".into();
     }
+    crate::budget::check_printed(atom::written_size(e));
     let folded_num = fold_trig(e.num());
     let folded_den = fold_trig(e.den());
     if folded_num.is_some() || folded_den.is_some() {
@@ -473,7 +474,7 @@ fn fraction(num: &Poly, den: &Poly, st: Style) -> String {
 /// then coordinates by derivative order.
 pub(crate) fn factor_rank(v: Var) -> (u8, u32, String, String) {
     let a = atom::atom(v);
-    let name = atom_input(&a);
+    let name = atom_text(v, AtomText::Input).to_string();
     let name = (name.to_lowercase(), name);
     match a {
         Atom::Param(_) | Atom::Unknown(_) => (0, 0, name.0, name.1),
@@ -503,36 +504,69 @@ pub fn mono_str(m: &Mono, st: Style) -> String {
 }
 
 fn power_str(v: Var, e: u32, st: Style) -> String {
-    let a = atom::atom(v);
     match st {
         Style::Input => {
-            let s = atom_input(&a);
+            let s = atom_text(v, AtomText::Input);
             if e == 1 {
-                s
+                s.to_string()
             } else {
                 format!("{s}^{e}")
             }
         }
         Style::Unicode => {
             if e == 1 {
-                return atom_unicode(&a);
+                return atom_text(v, AtomText::Unicode).to_string();
             }
             let sup = superscript(e);
+            let a = atom::atom(v);
             match &a {
-                Atom::Sin(u)
-                | Atom::Cos(u)
-                | Atom::Exp(u)
-                | Atom::Ln(u)
-                | Atom::Atan(u)
-                | Atom::Asin(u)
-                | Atom::Acos(u) => {
+                Atom::Sin(_)
+                | Atom::Cos(_)
+                | Atom::Exp(_)
+                | Atom::Ln(_)
+                | Atom::Atan(_)
+                | Atom::Asin(_)
+                | Atom::Acos(_) => {
                     let f = fn_name(&a);
-                    format!("{f}{sup}({})", unicode(u))
+                    format!("{f}{sup}({})", atom_text(v, AtomText::UnicodeArgument))
                 }
-                _ => format!("{}{sup}", atom_unicode(&a)),
+                _ => format!("{}{sup}", atom_text(v, AtomText::Unicode)),
             }
         }
     }
+}
+
+/// Which text of an atom [`atom_text`] gives.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+enum AtomText {
+    Input,
+    Unicode,
+    /// A function's argument in Unicode, for `sin²(…)`.
+    UnicodeArgument,
+}
+
+thread_local! {
+    /// Atom texts already printed. An atom's text never changes, and
+    /// printing it again per occurrence and per sort comparison would
+    /// cost exponentially in the nesting of arguments.
+    static ATOM_TEXTS: std::cell::RefCell<rustc_hash::FxHashMap<(Var, AtomText), std::rc::Rc<str>>> =
+        std::cell::RefCell::new(rustc_hash::FxHashMap::default());
+}
+
+/// The text of atom `v`, printed once per thread.
+fn atom_text(v: Var, which: AtomText) -> std::rc::Rc<str> {
+    if let Some(s) = ATOM_TEXTS.with(|c| c.borrow().get(&(v, which)).cloned()) {
+        return s;
+    }
+    let a = atom::atom(v);
+    let s: std::rc::Rc<str> = match which {
+        AtomText::Input => atom_input(&a),
+        AtomText::Unicode => atom_unicode(&a),
+        AtomText::UnicodeArgument => unicode_arg(&a),
+    }
+    .into();
+    ATOM_TEXTS.with(|c| c.borrow_mut().insert((v, which), s.clone()));
+    s
 }
 
 fn fn_name(a: &Atom) -> &'static str {

@@ -162,15 +162,26 @@ impl MulAssign<Poly> for Poly {
     }
 }
 
+// Sums collect every term and merge once: adding one by one is quadratic.
 impl std::iter::Sum for Poly {
     fn sum<I: Iterator<Item = Poly>>(iter: I) -> Poly {
-        iter.fold(Poly::zero(), |a, b| a + b)
+        let mut terms = Vec::new();
+        for p in iter {
+            terms.extend_from_slice(p.terms());
+            crate::budget::check_product(terms.len(), 1);
+        }
+        Poly::from_terms(terms)
     }
 }
 
 impl<'a> std::iter::Sum<&'a Poly> for Poly {
     fn sum<I: Iterator<Item = &'a Poly>>(iter: I) -> Poly {
-        iter.fold(Poly::zero(), |a, b| a + b)
+        let mut terms = Vec::new();
+        for p in iter {
+            terms.extend_from_slice(p.terms());
+            crate::budget::check_product(terms.len(), 1);
+        }
+        Poly::from_terms(terms)
     }
 }
 

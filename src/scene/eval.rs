@@ -52,7 +52,7 @@ fn cycle_message(chain: &[String]) -> String {
     )
 }
 
-use crate::limits::MAX_TAYLOR_ORDER;
+use crate::limits::{MAX_FUNCTION_ARGUMENT_SIZE, MAX_TAYLOR_ORDER, MAX_TIME_DERIVATIVE_ORDER};
 
 /// Hint for a vector where a number is needed.
 const HINT_VECTOR: &str =
@@ -294,9 +294,34 @@ impl<'a> SyntaxEvaluator<'a> {
                     )
                     .with_hint("`'` is d/dt: it applies to coordinates, `t`, and expressions built from them; declare it in `coordinates` if it moves"));
                 }
+                self.check_derivative_order(&v, *order, e.span)?;
                 Ok(v.map(|c| self.dt(c, *order)))
             }
         }
+    }
+
+    /// An error when taking `order` more time derivatives of `v` would pass
+    /// [`MAX_TIME_DERIVATIVE_ORDER`].
+    fn check_derivative_order(&self, v: &Value, order: u32, span: Span) -> Result<(), Diagnostic> {
+        let Some((name, k)) = v
+            .components()
+            .iter()
+            .filter_map(|c| c.highest_time_derivative())
+            .max_by_key(|(_, k)| *k)
+        else {
+            return Ok(());
+        };
+        let total = k.saturating_add(order);
+        if total <= MAX_TIME_DERIVATIVE_ORDER {
+            return Ok(());
+        }
+        Err(Diagnostic::error(
+            span,
+            format!(
+                "this takes the time derivative of order {total} of `{name}`; qdot allows at most {MAX_TIME_DERIVATIVE_ORDER}"
+            ),
+        )
+        .with_hint("mechanics needs velocities and accelerations (x', x''); each further order multiplies the terms"))
     }
 
     /// The `order`-th time derivative, memoized by the shared value.
@@ -480,6 +505,7 @@ impl<'a> SyntaxEvaluator<'a> {
                 .filter(|n| n.abs() <= 10_000)
                 .ok_or_else(|| Diagnostic::error(exp.span, format!("exponent {q} is too large")))?;
             let r = func::sqrt(base).map_err(|m| self.err(span, m))?;
+            bounded_functions(std::slice::from_ref(&r), span)?;
             return r.powi(n).map_err(|m| self.err(span, m));
         }
         Err(Diagnostic::error(
@@ -498,22 +524,7 @@ impl<'a> SyntaxEvaluator<'a> {
         span: Span,
     ) -> Result<Value, Diagnostic> {
         let v = self.call_unbounded(f, args, span)?;
-        let depth = v
-            .components()
-            .iter()
-            .map(atom::nesting_depth)
-            .max()
-            .unwrap_or(0);
-        if depth > atom::MAX_NESTING {
-            return Err(Diagnostic::error(
-                span,
-                format!(
-                    "functions nested {depth} deep here; qdot allows at most {}",
-                    atom::MAX_NESTING
-                ),
-            )
-            .with_hint("a chain of definitions that each apply a function to the previous one nests them; no mechanics needs this depth"));
-        }
+        bounded_functions(v.components(), span)?;
         Ok(v)
     }
 
@@ -620,7 +631,11 @@ impl<'a> SyntaxEvaluator<'a> {
                 let v = self.variable(&args[1], "diff")?;
                 return Ok(self.value(&args[0])?.map(|c| c.diff(v)));
             }
-            "dt" => return Ok(self.value(&args[0])?.map(|c| c.dt())),
+            "dt" => {
+                let v = self.value(&args[0])?;
+                self.check_derivative_order(&v, 1, span)?;
+                return Ok(v.map(|c| c.dt()));
+            }
             // The value is the canonical form itself; the REPL shows the
             // outermost expand/factor as a layout.
             "expand" | "factor" => return self.value(&args[0]),
@@ -890,4 +905,36 @@ fn edit_distance(a: &str, b: &str) -> usize {
         prev = cur;
     }
     prev[b.len()]
+}
+
+/// An error when a function in `es` (just built at `span`) nests deeper
+/// than [`atom::MAX_NESTING`] or has an argument longer written out than
+/// [`MAX_FUNCTION_ARGUMENT_SIZE`]: walks into arguments recurse per level,
+/// and an argument shared by definitions prints, differentiates and
+/// evaluates at each occurrence.
+fn bounded_functions(es: &[Expr], span: Span) -> Result<(), Diagnostic> {
+    let depth = es.iter().map(atom::nesting_depth).max().unwrap_or(0);
+    if depth > atom::MAX_NESTING {
+        return Err(Diagnostic::error(
+            span,
+            format!(
+                "functions nested {depth} deep here; qdot allows at most {}",
+                atom::MAX_NESTING
+            ),
+        )
+        .with_hint("a chain of definitions that each apply a function to the previous one nests them; no mechanics needs this depth"));
+    }
+    let size = es.iter().map(atom::largest_argument).max().unwrap_or(0);
+    if size > MAX_FUNCTION_ARGUMENT_SIZE {
+        return Err(Diagnostic::error(
+            span,
+            format!(
+                "a function's argument here is {} symbols long written out; qdot allows at most {}",
+                crate::budget::grouped(usize::try_from(size).unwrap_or(usize::MAX)),
+                crate::budget::grouped(MAX_FUNCTION_ARGUMENT_SIZE as usize)
+            ),
+        )
+        .with_hint("definitions that each use the previous one twice inside a function (`f2 = sin(f1) + cos(f1)`) double its length per line; no mechanics needs this"));
+    }
+    Ok(())
 }

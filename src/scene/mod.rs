@@ -126,6 +126,13 @@ pub struct SolveSystem {
 }
 
 /// A resolved scene (`Scene::default()` is the empty scene).
+///
+/// Invariant (checked by the resolver): energies and the Lagrangian
+/// depend on the coordinates, the velocities and t; forces, loads,
+/// torques, `work` and `solve` equations at most on the accelerations;
+/// points of application and torque angles on the coordinates and t only.
+/// So the mechanics never meets a third derivative, and "at rest" is
+/// q̇ = q̈ = 0.
 #[derive(Clone, Debug, Default)]
 pub struct Scene {
     pub source: String,
@@ -348,17 +355,12 @@ impl Scene {
 /// The name of the first `solve` unknown an expression uses, if any.
 pub fn first_unknown(e: &Expr) -> Option<String> {
     use crate::expr::atom::{self, Atom};
-    fn walk(e: &Expr) -> Option<String> {
-        for v in e.vars() {
-            let a = atom::atom(v);
-            if let Atom::Unknown(n) = &a {
-                return Some(n.to_string());
-            }
-            if let Some(n) = a.argument().and_then(walk) {
-                return Some(n);
-            }
-        }
-        None
-    }
-    walk(e)
+    e.vars().into_iter().find_map(|v| {
+        std::iter::once(v)
+            .chain(atom::inner_atoms(v).iter().copied())
+            .find_map(|w| match atom::atom(w) {
+                Atom::Unknown(n) => Some(n.to_string()),
+                _ => None,
+            })
+    })
 }

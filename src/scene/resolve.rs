@@ -311,7 +311,8 @@ fn role_value_allowed(
         )
         .with_hint("energies and the Lagrangian are functions of the coordinates, the velocities and t (Lagrange's equations would differentiate an acceleration into a third derivative); a force that depends on an acceleration is a `force` or a `load`"));
     }
-    Ok(())
+    let what = format!("`{} {}`", role.keyword(), name.name);
+    forces_in_order(std::slice::from_ref(e), body.span, &what)
 }
 
 impl Resolver<'_> {
@@ -342,6 +343,7 @@ impl Resolver<'_> {
             };
             let v = self.ev.expr(value)?;
             no_unknowns(std::slice::from_ref(&v), value.span, "a generalized force")?;
+            forces_in_order(std::slice::from_ref(&v), value.span, "a generalized force")?;
             forces.push(Force {
                 coordinate: k,
                 value: v,
@@ -383,6 +385,8 @@ impl Resolver<'_> {
         }
         no_unknowns(f.components(), force.span, "a load")?;
         no_unknowns(p.components(), point.span, "a load's point")?;
+        forces_in_order(f.components(), force.span, "a load")?;
+        positions_only(p.components(), point.span, "a load's point")?;
         if !p.components().iter().any(|e| self.moves(e)) {
             self.warnings.push(
                 Diagnostic::warning(point.span, "this load does no virtual work: its point does not move with any coordinate")
@@ -432,6 +436,8 @@ impl Resolver<'_> {
         };
         no_unknowns(std::slice::from_ref(&m), moment.span, "a torque")?;
         no_unknowns(std::slice::from_ref(&a), angle.span, "a torque's angle")?;
+        forces_in_order(std::slice::from_ref(&m), moment.span, "a torque")?;
+        positions_only(std::slice::from_ref(&a), angle.span, "a torque's angle")?;
         if !self.moves(&a) {
             self.warnings.push(
                 Diagnostic::warning(angle.span, "this torque does no virtual work: its angle does not change with any coordinate")
@@ -457,6 +463,9 @@ impl Resolver<'_> {
         for eq in &block.equations {
             let l = self.ev.value(&eq.lhs)?;
             let r = self.ev.value(&eq.rhs)?;
+            for side in [&l, &r] {
+                forces_in_order(side.components(), eq.span, "a `solve` equation")?;
+            }
             let comps = match (&l, &r) {
                 (Value::Scalar(a), Value::Scalar(b)) => {
                     equations.push(SystemEquation {
@@ -513,27 +522,52 @@ fn no_unknowns(es: &[Expr], span: Span, what: &str) -> Result<(), Diagnostic> {
 /// The first acceleration (a coordinate's derivative of order ≥ 2, as
 /// `x''`) in `e`, when `e` is a role's expression that must not have one:
 /// every role but `work`, whose inertia forces carry accelerations in
-/// D'Alembert's form.
+/// D'Alembert's form (and are checked as forces, [`forces_in_order`]).
 fn energy_acceleration(role: Role, e: &Expr) -> Option<String> {
-    use crate::expr::atom::{self, Atom};
     if role == Role::Work {
         return None;
     }
-    fn walk(e: &Expr) -> Option<String> {
-        for v in e.vars() {
-            let a = atom::atom(v);
-            if let Atom::Coord(n, k) = &a {
-                if *k >= 2 {
-                    return Some(format!("{n}{}", "'".repeat(*k as usize)));
-                }
-            }
-            if let Some(n) = a.argument().and_then(walk) {
-                return Some(n);
-            }
-        }
-        None
+    derivative_past(std::slice::from_ref(e), 1).map(|(d, _)| d)
+}
+
+/// The highest time derivative in `es`, written as `x'''`, with its
+/// order, when that order passes `max`.
+fn derivative_past(es: &[Expr], max: u32) -> Option<(String, u32)> {
+    es.iter()
+        .filter_map(Expr::highest_time_derivative)
+        .max_by_key(|(_, k)| *k)
+        .filter(|(_, k)| *k > max)
+        .map(|(n, k)| (format!("{n}{}", "'".repeat(k as usize)), k))
+}
+
+/// An error when a force (`what`) depends on a derivative past the
+/// acceleration: Lagrange's equations are of second order, and a third
+/// derivative would be left in them as if it were a constant.
+fn forces_in_order(es: &[Expr], span: Span, what: &str) -> Result<(), Diagnostic> {
+    match derivative_past(es, 2) {
+        Some((d, k)) => Err(Diagnostic::error(
+            span,
+            format!("{what} depends on {d}, a time derivative of order {k}"),
+        )
+        .with_hint("forces depend on the coordinates, the velocities and t, and (D'Alembert's inertia forces) on the accelerations; the equations of motion are of second order")),
+        None => Ok(()),
     }
-    walk(e)
+}
+
+/// An error when a point of application (`what`) moves with a velocity or
+/// an acceleration: virtual work takes δr = Σ ∂r/∂q_k·δq_k at fixed
+/// velocities, which such a point would make wrong.
+fn positions_only(es: &[Expr], span: Span, what: &str) -> Result<(), Diagnostic> {
+    match derivative_past(es, 0) {
+        Some((d, _)) => Err(Diagnostic::error(
+            span,
+            format!(
+                "{what} depends on {d}; it must be a position, a function of the coordinates and t"
+            ),
+        )
+        .with_hint("a force that depends on the velocities goes in the force: `load -c*r' at r`")),
+        None => Ok(()),
+    }
 }
 
 /// The span of the first `x''` (two or more primes, or a prime of a primed

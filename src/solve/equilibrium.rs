@@ -123,6 +123,8 @@ pub fn equilibria(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic>
     let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
     let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();
     let mut rest: FxHashMap<Var, Expr> = FxHashMap::default();
+    // at rest every derivative vanishes; a scene has none past the second
+    // (the resolver refuses them: see `Scene`)
     for c in &names {
         rest.insert(atom::coord(c, 1), Expr::zero());
         rest.insert(atom::coord(c, 2), Expr::zero());

@@ -1,7 +1,9 @@
 //! Hostile inputs for the mechanics: velocity-dependent potentials (which
 //! were differentiated by q only), a Lagrangian written directly,
-//! accelerations inside energies, definition chains thousands deep, and a
-//! Taylor series about a point where the function is undefined.
+//! accelerations inside energies, derivatives past the second, points of
+//! application that move with the velocities, definition chains thousands
+//! deep or sharing their arguments, and a Taylor series about a point
+//! where the function is undefined.
 
 use crate::bound::*;
 use qdot::Scene;
@@ -140,6 +142,166 @@ fn an_acceleration_in_an_energy_is_refused_at_its_position() {
     o.assert_clean();
     assert_eq!(o.code, Some(0), "{o:?}");
     assert!(o.stdout.contains("Q_x = −m·x\u{308} − 2·k·x"), "{o:?}");
+}
+
+/// The fuzzer's finding: `cos(theta2)` with 61 primes inside a position
+/// vector took minutes (the n-th derivative has as many terms as n has
+/// partitions), and the equilibria it printed treated θ₂⁽¹⁵⁾ as a
+/// constant. Time derivatives are bounded, and stop at their position.
+#[test]
+fn time_derivatives_past_the_bound_are_refused_at_their_position() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/fuzz/regressions/pipeline/high-order-derivative"
+    );
+    let src = std::fs::read_to_string(path).expect("the fuzz finding");
+    let o = qdot_scene("primes", src.as_bytes(), "equilibrium", &[]);
+    o.assert_clean();
+    assert!(o.elapsed.as_secs() < 5, "{o:?}");
+    assert!(
+        o.stderr.starts_with(
+            "error: this takes the time derivative of order 65 of `theta2`; qdot allows at most 10\n --> scene.qd:8:60\n"
+        ),
+        "{}",
+        o.stderr
+    );
+    // nested primes and dt() add up; 10 is allowed
+    let cases = [
+        ("a = (x'''''')'''''", 5),
+        ("a = dt(dt(x''''''''''))", 8),
+        ("a = dt(sin(x)''''''''''')", 8),
+    ];
+    for (line, col) in cases {
+        let src = format!("coordinates x\nparameters m\n{line}\nkinetic T = 1/2*m*x'^2\n");
+        let o = qdot_scene("primes", src.as_bytes(), "derive", &[]);
+        o.assert_clean();
+        assert!(
+            o.stderr.starts_with(&format!(
+                "error: this takes the time derivative of order 11 of `x`; qdot allows at most 10\n --> scene.qd:3:{col}\n"
+            )),
+            "{line}: {}",
+            o.stderr
+        );
+    }
+    let src = "coordinates x\nparameters m\na = x''''''''''\nkinetic T = 1/2*m*x'^2\n";
+    let o = qdot_scene("primes_ok", src.as_bytes(), "derive", &[]);
+    assert_eq!(o.code, Some(0), "{o:?}");
+}
+
+/// A third derivative in a force would stay in the equations of motion as
+/// if it were a constant; a point of application moving with a velocity
+/// would make δr = Σ ∂r/∂q_k·δq_k wrong. Both are refused where written.
+#[test]
+fn forces_past_the_acceleration_and_moving_points_are_refused() {
+    let head = "coordinates x, y\nparameters m, c, k\nkinetic T = 1/2*m*(x'^2 + y'^2)\n";
+    let order3 =
+        |what: &str, d: &str| format!("{what} depends on {d}, a time derivative of order 3");
+    let moving = |what: &str, d: &str| {
+        format!("{what} depends on {d}; it must be a position, a function of the coordinates and t")
+    };
+    let cases = [
+        ("load -c*x''' at x", order3("a load", "x'''"), 6),
+        ("load [0, -c*y'''] at [x, y]", order3("a load", "y'''"), 6),
+        ("torque -c*x''' on x", order3("a torque", "x'''"), 8),
+        (
+            "force x: -c*x'''",
+            order3("a generalized force", "x'''"),
+            10,
+        ),
+        ("work W = -c*x'''*x", order3("`work W`", "x'''"), 10),
+        ("load -c at x + x'", moving("a load's point", "x'"), 12),
+        (
+            "load [0, -m] at [x, y*y'']",
+            moving("a load's point", "y''"),
+            17,
+        ),
+        ("torque k on x'", moving("a torque's angle", "x'"), 13),
+    ];
+    for (line, msg, col) in cases {
+        let src = format!("{head}{line}\n");
+        let o = qdot_scene("order", src.as_bytes(), "solve", &[]);
+        o.assert_clean();
+        assert!(
+            o.stderr
+                .starts_with(&format!("error: {msg}\n --> scene.qd:4:{col}\n")),
+            "{line}: {}",
+            o.stderr
+        );
+    }
+    // a `solve` equation: at most the accelerations
+    let src = format!("{head}solve N {{\n  N = m*x'''\n}}\n");
+    let o = qdot_scene("order_block", src.as_bytes(), "solve", &[]);
+    assert!(
+        o.stderr.starts_with(&format!(
+            "error: {}\n --> scene.qd:5:3\n",
+            order3("a `solve` equation", "x'''")
+        )),
+        "{}",
+        o.stderr
+    );
+    // D'Alembert's inertia force and a velocity-dependent force are fine
+    let src = format!("{head}load -m*x'' - c*x' at x\n");
+    let o = qdot_scene("order_ok", src.as_bytes(), "forces", &[]);
+    assert_eq!(o.code, Some(0), "{o:?}");
+}
+
+/// Definitions that each apply two functions to the previous one
+/// (`f_i = sin(f_{i-1}) + cos(f_{i-1})`) share their arguments: the value
+/// is small, but written out it doubles per line, and printing,
+/// differentiating and evaluating pay it at every occurrence. Such an
+/// argument is bounded where it is built; below the bound, printing a
+/// result past the work budget stops with the budget's error.
+#[test]
+fn definitions_sharing_their_arguments_do_not_hang() {
+    let chain = |n: usize| {
+        let mut src = String::from("coordinates x\nparameters m\nf0 = x\n");
+        for i in 1..=n {
+            src.push_str(&format!("f{i} = sin(f{}) + cos(f{})\n", i - 1, i - 1));
+        }
+        src.push_str(&format!("kinetic T = 1/2*m*x'^2\npotential V = f{n}\n"));
+        src
+    };
+    for n in [9, 40] {
+        let o = qdot_scene(
+            "shared",
+            chain(n).as_bytes(),
+            "equilibrium",
+            &["--set", "m=1"],
+        );
+        o.assert_clean();
+        assert!(o.elapsed.as_secs() < 5, "{o:?}");
+        assert!(
+            o.stderr.starts_with(
+                "error: a function's argument here is 2,044 symbols long written out; qdot allows at most 2,000\n  --> scene.qd:12:6\n"
+            ),
+            "{}",
+            o.stderr
+        );
+    }
+    // at the bound's edge: the equilibria of sin∘…, numerically, in seconds
+    let o = qdot_scene(
+        "shared_8",
+        chain(8).as_bytes(),
+        "equilibrium",
+        &["--set", "m=1"],
+    );
+    assert_eq!(o.code, Some(0), "{o:?}");
+    assert!(o.stdout.contains("x = 0.785398163397  — stable"), "{o:?}");
+    // a result that would print past the budget
+    let o = qdot_scene(
+        "shared_print",
+        chain(8).as_bytes(),
+        "forces",
+        &["--max-terms", "20000"],
+    );
+    o.assert_clean();
+    assert!(
+        o.stderr.starts_with(
+            "error: expression too large to print: 514,305 symbols written out (the limit is 20,000)\n"
+        ),
+        "{}",
+        o.stderr
+    );
 }
 
 /// 5,000 definitions each using the next (forward references), also
