@@ -178,20 +178,64 @@ fn shown_line(text: &str) -> String {
         .collect()
 }
 
-/// Read a source file. The error is the message to print: why the file
-/// can't be read, or, if it is not UTF-8, a diagnostic at the first byte
-/// that is not (see [`decode_source`]).
-pub fn read_source(path: &str) -> Result<String, String> {
-    match std::fs::read(path) {
-        Ok(bytes) => decode_source(path, bytes),
-        Err(e) => Err(format!("error: cannot read `{path}`: {e}\n")),
+/// Why a source file is not text qdot can read. Its `Display` is the
+/// whole message to print, ending in a newline.
+#[derive(Debug)]
+#[non_exhaustive]
+pub enum SourceError {
+    /// The file could not be read.
+    Unreadable {
+        /// The path as given.
+        path: String,
+        /// The system's reason.
+        error: std::io::Error,
+    },
+    /// The file is not UTF-8: the diagnostic at the first byte that is not,
+    /// and the text it points into (that byte and the rest of its
+    /// character shown as `�`).
+    NotUtf8 {
+        /// The path as given.
+        path: String,
+        /// The error, at the first byte that is not UTF-8.
+        diagnostic: Diagnostic,
+        /// The file decoded lossily (positions before the byte agree).
+        text: String,
+    },
+}
+
+impl std::fmt::Display for SourceError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SourceError::Unreadable { path, error } => {
+                writeln!(f, "error: cannot read `{path}`: {error}")
+            }
+            SourceError::NotUtf8 {
+                path,
+                diagnostic,
+                text,
+            } => f.write_str(&diagnostic.render(path, text)),
+        }
     }
 }
 
-/// `bytes` as UTF-8 text, or the rendered diagnostic at the first byte
-/// that is not UTF-8 (its line and column; the line shown with `�` for
-/// every byte that is not UTF-8). `path` names the file in the message.
-pub fn decode_source(path: &str, bytes: Vec<u8>) -> Result<String, String> {
+impl std::error::Error for SourceError {}
+
+/// Read a source file: its text, or why it can't be read or is not UTF-8
+/// (see [`decode_source`]).
+pub fn read_source(path: &str) -> Result<String, SourceError> {
+    match std::fs::read(path) {
+        Ok(bytes) => decode_source(path, bytes),
+        Err(error) => Err(SourceError::Unreadable {
+            path: path.to_string(),
+            error,
+        }),
+    }
+}
+
+/// `bytes` as UTF-8 text, or the diagnostic at the first byte that is
+/// not UTF-8 (its line and column; the line shown with `�` for every byte
+/// that is not UTF-8). `path` names the file in the message.
+pub fn decode_source(path: &str, bytes: Vec<u8>) -> Result<String, SourceError> {
     let e = match String::from_utf8(bytes) {
         Ok(s) => return Ok(s),
         Err(e) => e,
@@ -222,9 +266,14 @@ pub fn decode_source(path: &str, bytes: Vec<u8>) -> Result<String, String> {
         _ => "save the file as UTF-8".to_string(),
     };
     // the text before `at` is the same in the lossy copy, so are positions
-    let text = String::from_utf8_lossy(bytes);
-    let d = Diagnostic::error(Span::new(at, at + '\u{FFFD}'.len_utf8()), message).with_hint(hint);
-    Err(d.render(path, &text))
+    let text = String::from_utf8_lossy(bytes).into_owned();
+    let diagnostic =
+        Diagnostic::error(Span::new(at, at + '\u{FFFD}'.len_utf8()), message).with_hint(hint);
+    Err(SourceError::NotUtf8 {
+        path: path.to_string(),
+        diagnostic,
+        text,
+    })
 }
 
 /// The character a byte stands for in Windows-1252 (Latin-1 above 0x9F),

@@ -704,7 +704,7 @@ impl Session {
         }
         let src = match crate::diag::read_source(path) {
             Ok(s) => s,
-            Err(message) => return Response::error(message),
+            Err(e) => return Response::error(e.to_string()),
         };
         let stmts = match crate::parse::parse_scene(&src) {
             Ok(s) => s,

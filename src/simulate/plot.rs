@@ -19,8 +19,31 @@ pub const PALETTE: [RGBColor; 6] = [
     RGBColor(140, 86, 75),
 ];
 
+/// The plotting backend failed to draw the figure: its message.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PlotError {
+    /// What the backend reported.
+    pub message: String,
+}
+
+impl PlotError {
+    fn drawing(e: impl std::fmt::Display) -> PlotError {
+        PlotError {
+            message: e.to_string(),
+        }
+    }
+}
+
+impl std::fmt::Display for PlotError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for PlotError {}
+
 /// The figure of a run, as SVG text.
-pub fn svg(run: &Run) -> Result<String, String> {
+pub fn svg(run: &Run) -> Result<String, PlotError> {
     let n = (run.columns.len() - 1) / 2;
     let energy = run.columns.last().is_some_and(|c| c == "energy");
     let panels = if energy { 3 } else { 2 };
@@ -28,7 +51,7 @@ pub fn svg(run: &Run) -> Result<String, String> {
     {
         let root =
             SVGBackend::with_string(&mut out, (900, 320 * panels as u32)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        root.fill(&WHITE).map_err(PlotError::drawing)?;
         let areas = root.split_evenly((panels, 1));
         let t: Vec<f64> = run.rows.iter().map(|r| r[0]).collect();
         let col = |k: usize| -> Vec<f64> { run.rows.iter().map(|r| r[k]).collect() };
@@ -59,17 +82,17 @@ pub fn svg(run: &Run) -> Result<String, String> {
             .x_label_area_size(30)
             .y_label_area_size(60)
             .build_cartesian_2d(t0..t1.max(t0 + 1e-12), lo..hi)
-            .map_err(|e| e.to_string())?;
+            .map_err(PlotError::drawing)?;
         chart
             .configure_mesh()
             .x_desc("t")
             .draw()
-            .map_err(|e| e.to_string())?;
+            .map_err(PlotError::drawing)?;
         for (i, q) in qs.iter().enumerate() {
             let c = PALETTE[i % PALETTE.len()];
             chart
                 .draw_series(LineSeries::new(t.iter().copied().zip(q.iter().copied()), c))
-                .map_err(|e| e.to_string())?
+                .map_err(PlotError::drawing)?
                 .label(run.columns[1 + i].clone())
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c));
         }
@@ -78,7 +101,7 @@ pub fn svg(run: &Run) -> Result<String, String> {
             .background_style(WHITE.mix(0.8))
             .border_style(BLACK)
             .draw()
-            .map_err(|e| e.to_string())?;
+            .map_err(PlotError::drawing)?;
 
         // phase portrait
         let qds: Vec<Vec<f64>> = (1..=n).map(|k| col(n + k)).collect();
@@ -90,13 +113,13 @@ pub fn svg(run: &Run) -> Result<String, String> {
             .x_label_area_size(30)
             .y_label_area_size(60)
             .build_cartesian_2d(xlo..xhi, ylo..yhi)
-            .map_err(|e| e.to_string())?;
+            .map_err(PlotError::drawing)?;
         chart
             .configure_mesh()
             .x_desc("q")
             .y_desc("q'")
             .draw()
-            .map_err(|e| e.to_string())?;
+            .map_err(PlotError::drawing)?;
         for (i, (q, qd)) in qs.iter().zip(&qds).enumerate() {
             let c = PALETTE[i % PALETTE.len()];
             chart
@@ -104,7 +127,7 @@ pub fn svg(run: &Run) -> Result<String, String> {
                     q.iter().copied().zip(qd.iter().copied()),
                     c,
                 ))
-                .map_err(|e| e.to_string())?;
+                .map_err(PlotError::drawing)?;
         }
 
         // energy error
@@ -119,18 +142,18 @@ pub fn svg(run: &Run) -> Result<String, String> {
                 .x_label_area_size(30)
                 .y_label_area_size(80)
                 .build_cartesian_2d(t0..t1.max(t0 + 1e-12), lo..hi)
-                .map_err(|e| e.to_string())?;
+                .map_err(PlotError::drawing)?;
             chart
                 .configure_mesh()
                 .x_desc("t")
                 .y_label_formatter(&|v| format!("{v:.1e}"))
                 .draw()
-                .map_err(|e| e.to_string())?;
+                .map_err(PlotError::drawing)?;
             chart
                 .draw_series(LineSeries::new(t.iter().copied().zip(dh), BLACK))
-                .map_err(|e| e.to_string())?;
+                .map_err(PlotError::drawing)?;
         }
-        root.present().map_err(|e| e.to_string())?;
+        root.present().map_err(PlotError::drawing)?;
     }
     Ok(out)
 }

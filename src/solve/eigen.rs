@@ -102,16 +102,19 @@ pub struct GeneralizedEigen {
 /// assert!((e.values[0] - 1.0 / 6.0).abs() < 1e-12);
 /// assert!((e.values[1] - 1.0).abs() < 1e-12);
 /// ```
-pub fn generalized_symmetric(k: &[Vec<f64>], m: &[Vec<f64>]) -> Result<GeneralizedEigen, String> {
+pub fn generalized_symmetric(
+    k: &[Vec<f64>],
+    m: &[Vec<f64>],
+) -> Result<GeneralizedEigen, EigenError> {
     let n = m.len();
     check_square(m, "M")?;
     check_square(k, "K")?;
     if k.len() != n {
-        return Err(format!(
+        return Err(EigenError::Shape(format!(
             "K is {0}×{0} but M is {1}×{1}: the matrices must have the same size",
             k.len(),
             n
-        ));
+        )));
     }
     if n == 0 {
         return Ok(GeneralizedEigen {
@@ -128,34 +131,37 @@ pub fn generalized_symmetric(k: &[Vec<f64>], m: &[Vec<f64>]) -> Result<Generaliz
     let k_sym = DMatrix::from_fn(n, n, |i, j| 0.5 * (k[i][j] + k[j][i]));
 
     // M = L·Lᵀ.
-    let chol = Cholesky::new(m_sym.clone())
-        .ok_or_else(|| "M is not positive definite (Cholesky factorization failed)".to_string())?;
+    let chol = Cholesky::new(m_sym.clone()).ok_or(EigenError::NotPositiveDefinite)?;
     let l = chol.l();
     let min_pivot = (0..n)
         .map(|i| l[(i, i)] * l[(i, i)])
         .fold(f64::INFINITY, f64::min);
     if !min_pivot.is_finite() || min_pivot <= SINGULAR_RTOL * m_max {
-        return Err(format!(
-            "M is numerically singular (smallest Cholesky pivot {min_pivot:e} ≤ {SINGULAR_RTOL:e}·max|M| = {:e})",
-            SINGULAR_RTOL * m_max
-        ));
+        return Err(EigenError::SingularMass {
+            pivot: Some(min_pivot),
+            bound: SINGULAR_RTOL * m_max,
+        });
     }
 
     // A = L⁻¹·K·L⁻ᵀ = L⁻¹·(L⁻¹·K)ᵀ (K symmetric), then symmetrized.
-    let singular = || "M is numerically singular (zero Cholesky pivot)".to_string();
+    let singular = || EigenError::SingularMass {
+        pivot: None,
+        bound: 0.0,
+    };
     let x = l.solve_lower_triangular(&k_sym).ok_or_else(singular)?;
     let a = l
         .solve_lower_triangular(&x.transpose())
         .ok_or_else(singular)?;
     let a = (&a + a.transpose()) * 0.5;
     if a.iter().any(|v| !v.is_finite()) {
-        return Err("overflow: L⁻¹·K·L⁻ᵀ is not finite (K too large relative to M)".to_string());
+        return Err(EigenError::Overflow);
     }
 
     let max_niter = 100 * n + 100;
-    let eig = SymmetricEigen::try_new(a, f64::EPSILON, max_niter).ok_or_else(|| {
-        format!("the symmetric QR iteration did not converge in {max_niter} iterations")
-    })?;
+    let eig =
+        SymmetricEigen::try_new(a, f64::EPSILON, max_niter).ok_or(EigenError::NoConvergence {
+            iterations: max_niter,
+        })?;
 
     // v = L⁻ᵀ·w, column by column.
     let v = l
@@ -178,9 +184,9 @@ pub fn generalized_symmetric(k: &[Vec<f64>], m: &[Vec<f64>]) -> Result<Generaliz
             }
         }
         if !norm2.is_finite() || norm2 <= 0.0 || !lambda.is_finite() {
-            return Err(format!(
-                "numerical breakdown: eigenvalue {lambda:e} with vᵀ·M·v = {norm2:e}"
-            ));
+            return Err(EigenError::Breakdown(format!(
+                "eigenvalue {lambda:e} with vᵀ·M·v = {norm2:e}"
+            )));
         }
         let scale = 1.0 / norm2.sqrt();
         for x in &mut vec {
@@ -188,9 +194,9 @@ pub fn generalized_symmetric(k: &[Vec<f64>], m: &[Vec<f64>]) -> Result<Generaliz
         }
         normalize_sign(&mut vec);
         if vec.iter().any(|x| !x.is_finite()) {
-            return Err(format!(
-                "numerical breakdown: non-finite eigenvector for eigenvalue {lambda:e}"
-            ));
+            return Err(EigenError::Breakdown(format!(
+                "non-finite eigenvector for eigenvalue {lambda:e}"
+            )));
         }
         values.push(lambda);
         vectors.push(vec);
@@ -238,22 +244,26 @@ fn normalize_sign(v: &mut [f64]) {
 }
 
 /// Every row of `x` has length `x.len()`.
-fn check_square(x: &[Vec<f64>], name: &str) -> Result<(), String> {
+fn check_square(x: &[Vec<f64>], name: &str) -> Result<(), EigenError> {
     let n = x.len();
     match x.iter().position(|row| row.len() != n) {
-        Some(i) => Err(format!(
+        Some(i) => Err(EigenError::Shape(format!(
             "{name} is not square: it has {n} rows but row {i} has {} entries",
             x[i].len()
-        )),
+        ))),
         None => Ok(()),
     }
 }
 
 /// Every entry of `x` is finite.
-fn check_finite(x: &[Vec<f64>], name: &str) -> Result<(), String> {
+fn check_finite(x: &[Vec<f64>], name: &'static str) -> Result<(), EigenError> {
     for (i, row) in x.iter().enumerate() {
         if let Some(j) = row.iter().position(|v| !v.is_finite()) {
-            return Err(format!("{name}[{i}][{j}] = {} is not finite", row[j]));
+            return Err(EigenError::NotFinite {
+                matrix: name,
+                entry: (i, j),
+                value: row[j],
+            });
         }
     }
     Ok(())
@@ -261,7 +271,7 @@ fn check_finite(x: &[Vec<f64>], name: &str) -> Result<(), String> {
 
 /// Check |xᵢⱼ − xⱼᵢ| ≤ SYMMETRY_RTOL·max|x| for a square finite `x`, and
 /// return max|x|.
-fn check_symmetric(x: &[Vec<f64>], name: &str) -> Result<f64, String> {
+fn check_symmetric(x: &[Vec<f64>], name: &'static str) -> Result<f64, EigenError> {
     let max = x
         .iter()
         .flat_map(|row| row.iter())
@@ -271,14 +281,106 @@ fn check_symmetric(x: &[Vec<f64>], name: &str) -> Result<f64, String> {
         for (j, &xij) in row.iter().enumerate().take(i) {
             let xji = x[j][i];
             if (xij - xji).abs() > tol {
-                return Err(format!(
-                    "{name} is not symmetric: {name}[{i}][{j}] = {xij} but {name}[{j}][{i}] = {xji}"
-                ));
+                return Err(EigenError::NotSymmetric {
+                    matrix: name,
+                    entry: (i, j),
+                    values: (xij, xji),
+                });
             }
         }
     }
     Ok(max)
 }
+
+/// Why the generalized eigenproblem K·v = λ·M·v was not solved. Its
+/// `Display` is the message qdot prints.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum EigenError {
+    /// A matrix is not square, or K and M differ in size: what is wrong.
+    Shape(String),
+    /// An entry is NaN or infinite.
+    NotFinite {
+        /// "K" or "M".
+        matrix: &'static str,
+        /// (row, column).
+        entry: (usize, usize),
+        /// The entry.
+        value: f64,
+    },
+    /// `matrix[i][j]` and `matrix[j][i]` differ past the tolerance.
+    NotSymmetric {
+        /// "K" or "M".
+        matrix: &'static str,
+        /// (i, j) with j < i.
+        entry: (usize, usize),
+        /// (matrix[i][j], matrix[j][i]).
+        values: (f64, f64),
+    },
+    /// M is not positive definite: its Cholesky factorization failed.
+    NotPositiveDefinite,
+    /// M is numerically singular: its smallest Cholesky pivot, when
+    /// there is one, is at most `bound` (a relative tolerance times max|M|).
+    SingularMass {
+        /// The smallest pivot; `None` for a zero pivot met in a solve.
+        pivot: Option<f64>,
+        /// The pivot's lower bound.
+        bound: f64,
+    },
+    /// L⁻¹·K·L⁻ᵀ overflowed: K is too large relative to M.
+    Overflow,
+    /// The symmetric QR iteration did not converge.
+    NoConvergence {
+        /// The iterations allowed.
+        iterations: usize,
+    },
+    /// An eigenpair came out non-finite: which.
+    Breakdown(String),
+}
+
+impl std::fmt::Display for EigenError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            EigenError::Shape(what) => f.write_str(what),
+            EigenError::NotFinite {
+                matrix,
+                entry: (i, j),
+                value,
+            } => write!(f, "{matrix}[{i}][{j}] = {value} is not finite"),
+            EigenError::NotSymmetric {
+                matrix: m,
+                entry: (i, j),
+                values: (a, b),
+            } => write!(
+                f,
+                "{m} is not symmetric: {m}[{i}][{j}] = {a} but {m}[{j}][{i}] = {b}"
+            ),
+            EigenError::NotPositiveDefinite => {
+                f.write_str("M is not positive definite (Cholesky factorization failed)")
+            }
+            EigenError::SingularMass {
+                pivot: Some(p),
+                bound,
+            } => write!(
+                f,
+                "M is numerically singular (smallest Cholesky pivot {p:e} ≤ {SINGULAR_RTOL:e}·max|M| = {bound:e})"
+            ),
+            EigenError::SingularMass { pivot: None, .. } => {
+                f.write_str("M is numerically singular (zero Cholesky pivot)")
+            }
+            EigenError::Overflow => {
+                f.write_str("overflow: L⁻¹·K·L⁻ᵀ is not finite (K too large relative to M)")
+            }
+            EigenError::NoConvergence { iterations } => write!(
+                f,
+                "the symmetric QR iteration did not converge in {iterations} iterations"
+            ),
+            EigenError::Breakdown(what) => write!(f, "numerical breakdown: {what}"),
+        }
+    }
+}
+
+impl std::error::Error for EigenError {}
 
 #[cfg(test)]
 mod tests {
@@ -573,7 +675,7 @@ mod tests {
     fn err(k: &[Vec<f64>], m: &[Vec<f64>]) -> String {
         match generalized_symmetric(k, m) {
             Ok(e) => panic!("expected an error, got {e:?}"),
-            Err(msg) => msg,
+            Err(e) => e.to_string(),
         }
     }
 

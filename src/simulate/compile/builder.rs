@@ -7,12 +7,13 @@ use crate::poly::{Poly, Var};
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
+use super::error::CompileError;
 use super::program::{powi, Program};
 
 /// Compile `outputs` as functions of the atoms `inputs` (given in this
 /// order to [`Program::eval`]). Every parameter, coordinate or time the
 /// outputs mention must be an input.
-pub fn compile(outputs: &[Expr], inputs: &[Var]) -> Result<Program, String> {
+pub fn compile(outputs: &[Expr], inputs: &[Var]) -> Result<Program, CompileError> {
     compile_with(outputs, inputs, &FxHashMap::default())
 }
 
@@ -23,7 +24,7 @@ pub fn compile_with(
     outputs: &[Expr],
     inputs: &[Var],
     params: &FxHashMap<Var, f64>,
-) -> Result<Program, String> {
+) -> Result<Program, CompileError> {
     let mut b = Builder::new(inputs, params);
     let mut outs = Vec::with_capacity(outputs.len());
     for e in outputs {
@@ -245,7 +246,7 @@ impl<'a> Builder<'a> {
 
     // ------------------------------------------------------------ lowering
 
-    fn expr(&mut self, e: &Expr) -> Result<u32, String> {
+    fn expr(&mut self, e: &Expr) -> Result<u32, CompileError> {
         let den = self.fpoly(e.den())?;
         if let Some(c) = constant_of(&den) {
             // A constant denominator folds into the numerator's coefficients.
@@ -264,7 +265,7 @@ impl<'a> Builder<'a> {
     }
 
     /// A polynomial, memoized by its exact form.
-    fn poly(&mut self, p: &Poly) -> Result<u32, String> {
+    fn poly(&mut self, p: &Poly) -> Result<u32, CompileError> {
         if let Some(&id) = self.polys.get(p) {
             return Ok(id);
         }
@@ -276,7 +277,7 @@ impl<'a> Builder<'a> {
 
     /// The terms of `p` over runtime nodes, constant atoms folded into the
     /// coefficients and equal power products merged.
-    fn fpoly(&mut self, p: &Poly) -> Result<FPoly, String> {
+    fn fpoly(&mut self, p: &Poly) -> Result<FPoly, CompileError> {
         let mut merged: FxHashMap<NMono, f64> = FxHashMap::default();
         let mut order: Vec<NMono> = Vec::new();
         for (m, c) in p.terms() {
@@ -309,7 +310,7 @@ impl<'a> Builder<'a> {
     }
 
     /// The node of an atom.
-    fn atom(&mut self, v: Var) -> Result<u32, String> {
+    fn atom(&mut self, v: Var) -> Result<u32, CompileError> {
         if let Some(&id) = self.atoms.get(&v) {
             return Ok(id);
         }
@@ -321,20 +322,20 @@ impl<'a> Builder<'a> {
         } else {
             match &a {
                 Atom::Param(name) | Atom::Unknown(name) => {
-                    return Err(format!(
-                        "the parameter {name} has no value and is not an input"
-                    ))
+                    return Err(CompileError::UnsetParameter(name.to_string()))
                 }
                 Atom::Coord(name, k) => {
-                    return Err(format!(
-                        "the coordinate {name}{} is not an input",
+                    return Err(CompileError::NotAnInput(format!(
+                        "the coordinate {name}{}",
                         "'".repeat(*k as usize)
-                    ))
+                    )))
                 }
-                Atom::Time => return Err("the time t is not an input".to_string()),
+                Atom::Time => return Err(CompileError::NotAnInput("the time t".to_string())),
                 Atom::Pi => self.konst(std::f64::consts::PI),
                 Atom::Root(n) => {
-                    let x: f64 = n.parse().map_err(|_| format!("bad radical √{n}"))?;
+                    let x: f64 = n
+                        .parse()
+                        .map_err(|_| CompileError::BadRadical(n.to_string()))?;
                     self.konst(x.sqrt())
                 }
                 Atom::SqrtOf(u) => {
@@ -369,7 +370,7 @@ impl<'a> Builder<'a> {
                     let x = self.expr(u)?;
                     self.func(x, Node::Acos, f64::acos)
                 }
-                Atom::Shown(_) => return Err("a print-only atom cannot be evaluated".into()),
+                Atom::Shown(_) => return Err(CompileError::PrintOnly),
             }
         };
         self.atoms.insert(v, id);

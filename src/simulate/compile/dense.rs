@@ -1,17 +1,19 @@
 //! Dense f64 linear algebra for M·q̈ = f.
 
+use super::error::CompileError;
+
 /// Solve M·x = f in place for a symmetric M (n×n, row-major, both
 /// triangles filled): Cholesky M = L·Lᵀ (Golub & Van Loan, Matrix
 /// Computations, 4.2.5), and when M is not numerically positive definite
 /// Gaussian elimination with partial pivoting (3.4) on the restored M.
 /// The solution replaces `f`; `m` is overwritten. Allocation-free.
 /// An error when M is numerically singular (a zero pivot).
-pub fn solve_spd(m: &mut [f64], f: &mut [f64], n: usize) -> Result<(), String> {
+pub fn solve_spd(m: &mut [f64], f: &mut [f64], n: usize) -> Result<(), CompileError> {
     if m.len() < n * n || f.len() < n {
-        return Err(format!(
+        return Err(CompileError::Shape(format!(
             "solve_spd: a {n}×{n} system needs {} and {n} values",
             n * n
-        ));
+        )));
     }
     match cholesky(m, n) {
         Ok(()) => {
@@ -78,14 +80,17 @@ fn restore(a: &mut [f64], n: usize, j: usize) {
 }
 
 /// Gaussian elimination with partial pivoting on (a | b), in place.
-fn gauss_solve(a: &mut [f64], b: &mut [f64], n: usize) -> Result<(), String> {
+fn gauss_solve(a: &mut [f64], b: &mut [f64], n: usize) -> Result<(), CompileError> {
     for j in 0..n {
         let p = (j..n)
             .max_by(|&x, &y| a[x * n + j].abs().total_cmp(&a[y * n + j].abs()))
             .unwrap_or(j);
         let piv = a[p * n + j];
         if piv == 0.0 || !piv.is_finite() {
-            return Err(format!("the matrix is singular (column {j})"));
+            return Err(CompileError::Singular {
+                column: j,
+                constant_mass: false,
+            });
         }
         if p != j {
             for k in 0..n {
@@ -138,7 +143,17 @@ mod tests {
         // Singular.
         let mut m = vec![1.0, 1.0, 1.0, 1.0];
         let mut f = vec![1.0, 2.0];
-        assert!(solve_spd(&mut m, &mut f, 2).is_err());
+        assert_eq!(
+            solve_spd(&mut m, &mut f, 2),
+            Err(CompileError::Singular {
+                column: 1,
+                constant_mass: false
+            })
+        );
+        assert!(matches!(
+            solve_spd(&mut m, &mut f, 3),
+            Err(CompileError::Shape(_))
+        ));
     }
 
     #[test]

@@ -9,6 +9,7 @@ use rustc_hash::FxHashMap;
 
 use super::builder::compile_with;
 use super::dense::solve_spd;
+use super::error::CompileError;
 use super::program::Program;
 
 /// How [`CompiledDynamics`] gets q̈.
@@ -104,7 +105,7 @@ pub fn state_inputs(coordinates: &[String]) -> Vec<Var> {
 
 impl CompiledDynamics {
     /// Compile M and f of `lagrange` with the parameter values `params`.
-    pub fn new(lagrange: &Lagrange, params: &FxHashMap<Var, f64>) -> Result<Self, String> {
+    pub fn new(lagrange: &Lagrange, params: &FxHashMap<Var, f64>) -> Result<Self, CompileError> {
         Self::from_parts(
             &lagrange.coordinates,
             &lagrange.mass_matrix,
@@ -121,12 +122,12 @@ impl CompiledDynamics {
         mass: &[Vec<Expr>],
         forcing: &[Expr],
         params: &FxHashMap<Var, f64>,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, CompileError> {
         let n = coordinates.len();
         if mass.len() != n || mass.iter().any(|r| r.len() != n) || forcing.len() != n {
-            return Err(format!(
+            return Err(CompileError::Shape(format!(
                 "the mass matrix must be {n}×{n} and the forcing of length {n}"
-            ));
+            )));
         }
         let inputs = state_inputs(coordinates);
         let upper: Vec<Expr> = (0..n)
@@ -150,8 +151,13 @@ impl CompiledDynamics {
                 fill_symmetric(&vals, &mut m, n);
                 col.fill(0.0);
                 col[j] = 1.0;
-                solve_spd(&mut m, &mut col, n)
-                    .map_err(|e| format!("the constant mass matrix: {e}"))?;
+                solve_spd(&mut m, &mut col, n).map_err(|e| match e {
+                    CompileError::Singular { column, .. } => CompileError::Singular {
+                        column,
+                        constant_mass: true,
+                    },
+                    e => e,
+                })?;
                 for i in 0..n {
                     inverse[i * n + j] = col[i];
                 }
@@ -170,8 +176,10 @@ impl CompiledDynamics {
     pub fn from_accelerations(
         lagrange: &Lagrange,
         params: &FxHashMap<Var, f64>,
-    ) -> Result<Self, String> {
-        let acc = lagrange.accelerations().map_err(|d| d.message)?;
+    ) -> Result<Self, CompileError> {
+        let acc = lagrange
+            .accelerations()
+            .map_err(|d| CompileError::NoAccelerations(d.message))?;
         let exprs: Vec<Expr> = acc.into_iter().map(|(_, e)| e).collect();
         let n = lagrange.coordinates.len();
         let program = compile_with(&exprs, &state_inputs(&lagrange.coordinates), params)?;
@@ -189,7 +197,7 @@ impl CompiledDynamics {
     pub fn best(
         lagrange: &Lagrange,
         params: &FxHashMap<Var, f64>,
-    ) -> Result<(Self, Choice), String> {
+    ) -> Result<(Self, Choice), CompileError> {
         let via_m = Self::new(lagrange, params)?;
         let mass_cost = via_m.estimated_cost();
         let n = via_m.n;
@@ -324,10 +332,12 @@ impl CompiledDynamics {
         qd: &[f64],
         m: &mut [f64],
         f: &mut [f64],
-    ) -> Result<(), String> {
+    ) -> Result<(), CompileError> {
         let n = self.n;
         if q.len() != n || qd.len() != n || m.len() != n * n || f.len() != n {
-            return Err(format!("expected {n} coordinates and an {n}×{n} matrix"));
+            return Err(CompileError::Shape(format!(
+                "expected {n} coordinates and an {n}×{n} matrix"
+            )));
         }
         self.load(t, q, qd);
         let (regs, outs) = (&self.regs, self.program.output_registers());
@@ -348,8 +358,12 @@ impl CompiledDynamics {
                 }
                 Ok(())
             }
-            Mode::ConstantMass(_) => Err("the mass matrix is constant and factored".into()),
-            Mode::Accelerations => Err("compiled from the accelerations".into()),
+            Mode::ConstantMass(_) => Err(CompileError::NoMassMatrix(
+                "the mass matrix is constant and factored",
+            )),
+            Mode::Accelerations => Err(CompileError::NoMassMatrix(
+                "compiled from the accelerations",
+            )),
         }
     }
 
@@ -373,10 +387,10 @@ impl CompiledDynamics {
         q: &[f64],
         qd: &[f64],
         qdd: &mut [f64],
-    ) -> Result<(), String> {
+    ) -> Result<(), CompileError> {
         let n = self.n;
         if q.len() != n || qd.len() != n || qdd.len() != n {
-            return Err(format!("expected {n} coordinates"));
+            return Err(CompileError::Shape(format!("expected {n} coordinates")));
         }
         self.load(t, q, qd);
         self.finish(qdd)
@@ -384,7 +398,7 @@ impl CompiledDynamics {
 
     /// q̈ from the program's outputs (after [`Self::load`]), by the mode.
     #[inline]
-    fn finish(&mut self, qdd: &mut [f64]) -> Result<(), String> {
+    fn finish(&mut self, qdd: &mut [f64]) -> Result<(), CompileError> {
         let n = self.n;
         let (regs, outs) = (&self.regs, self.program.output_registers());
         match &self.mode {

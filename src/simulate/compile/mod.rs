@@ -32,17 +32,20 @@
 //! graph of nodes, with constant folding and Horner schemes), `passes`
 //! (the named passes from that graph to a [`Program`]), `program` (the
 //! instructions and their interpreter), [`dense`] (the f64 solve of
-//! M·q̈ = f) and `dynamics` ([`CompiledDynamics`]).
+//! M·q̈ = f), `dynamics` ([`CompiledDynamics`]) and `error`
+//! ([`CompileError`]).
 
 mod builder;
 pub mod dense;
 mod dynamics;
+mod error;
 mod passes;
 mod program;
 
 pub use builder::{compile, compile_with, naive_op_count};
 pub use dense::solve_spd;
 pub use dynamics::{state_inputs, Choice, CompiledDynamics, Evaluator};
+pub use error::CompileError;
 #[doc(hidden)]
 pub use program::Instr;
 pub use program::Program;
