@@ -494,7 +494,8 @@ pub(crate) fn factor_rank(v: Var) -> (u8, u32, String, String) {
     }
 }
 
-/// A power product of atoms in the notation `st` (parameters first, coordinates last; `1` when empty).
+/// A power product of atoms in the notation `st`: parameters first,
+/// coordinates last; `1` when empty.
 pub fn mono_str(m: &Mono, st: Style) -> String {
     if m.0.is_empty() {
         return "1".into();

@@ -48,7 +48,8 @@ pub enum Command {
     Forces,
     /// `qdot equilibrium`: the positions of equilibrium at rest and their stability.
     Equilibrium,
-    /// `qdot modes`: small oscillations about an equilibrium (frequencies, modes, responses).
+    /// `qdot modes`: small oscillations about an equilibrium (M, C, K, the
+    /// frequencies, the modes, the responses).
     Modes,
     /// LaTeX of the scene's main result (see [`latex::document`]).
     Latex,

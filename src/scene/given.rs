@@ -38,7 +38,8 @@ pub const INIT: OptionSyntax = OptionSyntax {
     example: "--at th=pi, --init y1=1/10,y1'=0",
     once: Some("give each position and velocity one value"),
 };
-/// The syntax of the simulator's `--init theta=0.5,theta'=0`: initial q and q̇ (doubles).
+/// The syntax of the simulator's `--init theta=0.5,theta'=0`: initial q and
+/// q̇ (doubles).
 pub const SIMULATE_INIT: OptionSyntax = OptionSyntax {
     option: "--init",
     example: "--init theta=0.5,theta'=0",

@@ -108,7 +108,8 @@ pub struct Force {
 pub struct Load {
     /// The force F: a vector, or a scalar along the line of the displacement.
     pub force: Value,
-    /// The point of application: a position vector of the same size as the force, or a scalar displacement.
+    /// The point of application: a position vector of the force's size, or a
+    /// scalar displacement.
     pub point: Value,
     /// The whole `load` statement.
     pub span: Span,

@@ -115,7 +115,7 @@ impl Default for IntegratorOptions {
 pub struct Stats {
     /// Accepted steps.
     pub steps: usize,
-    /// Rejected steps (error test or Newton failure).
+    /// Rejected steps, retried with a smaller step.
     pub rejected: usize,
     /// Evaluations of F (including those of finite-difference Jacobians).
     pub rhs_evals: usize,

@@ -46,9 +46,11 @@ use rustc_hash::FxHashMap;
 /// How stable an equilibrium is.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Stability {
-    /// The potential has a strict minimum there: K positive definite (for one coordinate, the first non-vanishing derivative may decide).
+    /// The potential has a strict minimum there: K positive definite (for one
+    /// coordinate, the first non-vanishing derivative may decide).
     Stable,
-    /// A small displacement grows: the potential decreases in a direction that gyroscopic terms cannot stabilize.
+    /// A small displacement grows: the potential decreases in a direction
+    /// that gyroscopic terms cannot stabilize.
     Unstable,
     /// Not decided, with the reason.
     Undecided(String),
