@@ -9,11 +9,14 @@ use std::fmt;
 /// Byte range `start..end` into the scene source.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub struct Span {
+    /// Byte offset of the first byte.
     pub start: usize,
+    /// Byte offset one past the last byte.
     pub end: usize,
 }
 
 impl Span {
+    /// The span `start..end`.
     pub fn new(start: usize, end: usize) -> Span {
         Span { start, end }
     }
@@ -23,22 +26,31 @@ impl Span {
     }
 }
 
+/// Whether a [`Diagnostic`] rejects the input or only points at something worth a look.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Severity {
+    /// The input is rejected.
     Error,
+    /// The input is accepted, but something in it is likely a mistake
+    /// (e.g. a load that does no virtual work).
     Warning,
 }
 
 /// A message about the input, located by a byte span.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Diagnostic {
+    /// Error or warning.
     pub severity: Severity,
+    /// Where in the source, if the message is about one place.
     pub span: Option<Span>,
+    /// What is wrong, in one sentence.
     pub message: String,
+    /// A suggestion for fixing it, when there is one.
     pub hint: Option<String>,
 }
 
 impl Diagnostic {
+    /// An error at `span`.
     pub fn error(span: Span, message: impl Into<String>) -> Diagnostic {
         Diagnostic {
             severity: Severity::Error,
@@ -56,6 +68,7 @@ impl Diagnostic {
             hint: None,
         }
     }
+    /// A warning at `span`.
     pub fn warning(span: Span, message: impl Into<String>) -> Diagnostic {
         Diagnostic {
             severity: Severity::Warning,
@@ -64,6 +77,7 @@ impl Diagnostic {
             hint: None,
         }
     }
+    /// The same diagnostic with a hint attached.
     pub fn with_hint(mut self, hint: impl Into<String>) -> Diagnostic {
         self.hint = Some(hint.into());
         self

@@ -22,6 +22,8 @@
 //! expressions over [`poly`] and [`num`]) → [`mechanics`] → [`solve`] →
 //! [`output`].
 
+#![warn(missing_docs)]
+
 // The public API: the modules along the data's path, and the names a
 // user needs at the root. The modules marked `doc(hidden)` are the engine's
 // internals: public for the tests, benches and fuzz targets of this

@@ -130,12 +130,15 @@ fn split_multiple(c: &Q, multiples: bool) -> (Q, i64) {
     }
 }
 
+/// sin u, expanded into base-angle atoms (exact at multiples of π/12).
 pub fn sin(u: &Expr) -> Expr {
     sin_cos(u).0
 }
+/// cos u, expanded into base-angle atoms (exact at multiples of π/12).
 pub fn cos(u: &Expr) -> Expr {
     sin_cos(u).1
 }
+/// tan u = sin u / cos u; an error where cos u is zero.
 pub fn tan(u: &Expr) -> Result<Expr, MathError> {
     let (s, c) = sin_cos(u);
     s.div(&c)
@@ -489,6 +492,8 @@ fn perfect_square_monomial(p: &Poly) -> Option<Expr> {
 
 // ---------------------------------------------------------------- exp, ln, atan
 
+/// eᵘ: exp(0) = 1, exp(ln x) = x; a polynomial exponent gives a product of
+/// powers of exp atoms.
 pub fn exp(u: &Expr) -> Expr {
     if u.is_zero() {
         return Expr::one();
@@ -521,6 +526,8 @@ fn exp_atom(u: &Expr) -> Expr {
     Expr::var(atom::intern(Atom::Exp(u.clone())))
 }
 
+/// ln u: ln 1 = 0, ln(exp x) = x, otherwise an atom; an error for 0 or a
+/// negative number.
 pub fn ln(u: &Expr) -> Result<Expr, MathError> {
     if u.is_zero() {
         return Err(MathError::new("ln(0) is undefined"));
@@ -541,6 +548,8 @@ pub fn ln(u: &Expr) -> Result<Expr, MathError> {
     Ok(Expr::var(atom::intern(Atom::Ln(u.clone()))))
 }
 
+/// atan u (principal value): exact at multiples of π/12 (atan 1 = π/4),
+/// atan(−u) = −atan u, otherwise an atom.
 pub fn atan(u: &Expr) -> Expr {
     if u.is_zero() {
         return Expr::zero();

@@ -30,6 +30,7 @@ pub struct Names {
 }
 
 impl Names {
+    /// The default notation, no overrides.
     pub fn new() -> Names {
         Names::default()
     }

@@ -35,17 +35,21 @@ use std::sync::Arc;
 /// An error of exact arithmetic: division by zero, an unsupported power, …
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct MathError {
+    /// What went wrong.
     pub message: String,
+    /// A suggestion for the user, when there is one.
     pub hint: Option<String>,
 }
 
 impl MathError {
+    /// An error with a message and no hint.
     pub fn new(message: impl Into<String>) -> MathError {
         MathError {
             message: message.into(),
             hint: None,
         }
     }
+    /// The same error with a hint attached.
     pub fn hint(mut self, h: impl Into<String>) -> MathError {
         self.hint = Some(h.into());
         self
@@ -294,15 +298,19 @@ impl Expr {
         Expr::poly(reduced(p))
     }
 
+    /// The number 0.
     pub fn zero() -> Expr {
         Expr::poly(Poly::zero())
     }
+    /// The number 1.
     pub fn one() -> Expr {
         Expr::poly(Poly::one())
     }
+    /// The integer `n`.
     pub fn int(n: i64) -> Expr {
         Expr::poly(Poly::constant(Q::from_i64(n)))
     }
+    /// The rational number `q`.
     pub fn rational(q: Q) -> Expr {
         Expr::poly(Poly::constant(q))
     }
@@ -322,9 +330,11 @@ impl Expr {
     pub fn coord(name: &str, order: u32) -> Expr {
         Expr::var(atom::coord(name, order))
     }
+    /// The time t.
     pub fn time() -> Expr {
         Expr::var(atom::time())
     }
+    /// The constant π (an atom: kept exact, never a decimal).
     pub fn pi() -> Expr {
         Expr::var(atom::pi())
     }
@@ -337,18 +347,23 @@ impl Expr {
         Arc::as_ptr(&self.0) as usize
     }
 
+    /// The numerator, a polynomial over ℚ in the atoms.
     pub fn num(&self) -> &Poly {
         &self.0.num
     }
+    /// The denominator (leading coefficient 1; exactly 1 for a polynomial).
     pub fn den(&self) -> &Poly {
         &self.0.den
     }
+    /// Whether the expression is 0.
     pub fn is_zero(&self) -> bool {
         self.0.num.is_zero()
     }
+    /// Whether the expression is 1.
     pub fn is_one(&self) -> bool {
         self.0.num.is_one() && self.0.den.is_one()
     }
+    /// Whether the expression is a polynomial in its atoms (denominator 1).
     pub fn is_poly(&self) -> bool {
         self.0.den.is_one()
     }
@@ -402,6 +417,7 @@ impl Expr {
 
     // ------------------------------------------------------------ arithmetic
 
+    /// `self + o`.
     pub fn add(&self, o: &Expr) -> Expr {
         if self.is_zero() {
             return o.clone();
@@ -434,6 +450,7 @@ impl Expr {
         Expr::normalize(n, den)
     }
 
+    /// `−self`.
     pub fn neg(&self) -> Expr {
         Expr::canonical(Rat {
             num: -&self.0.num,
@@ -441,10 +458,12 @@ impl Expr {
         })
     }
 
+    /// `self − o`.
     pub fn sub(&self, o: &Expr) -> Expr {
         self.add(&o.neg())
     }
 
+    /// `self · o`.
     pub fn mul(&self, o: &Expr) -> Expr {
         if self.is_zero() || o.is_zero() {
             return Expr::zero();
@@ -540,6 +559,7 @@ impl Expr {
         Ok(Expr::normalize_reduced(num, den))
     }
 
+    /// `q · self` for a rational number `q`.
     pub fn scale(&self, q: &Q) -> Expr {
         if q.is_zero() {
             return Expr::zero();

@@ -65,6 +65,7 @@ pub(crate) fn expanded_terms(e: &Expr) -> Option<Vec<(bool, Expr)>> {
         .collect()
 }
 
+/// `e` in the notation `st`, collected by coordinate monomials.
 pub fn render(e: &Expr, st: Style) -> String {
     if e.is_zero() {
         return "0".into();
@@ -493,6 +494,8 @@ pub(crate) fn factor_rank(v: Var) -> (u8, u32, String, String) {
     }
 }
 
+/// A power product of atoms in the notation `st`: parameters first,
+/// coordinates last; `1` when empty.
 pub fn mono_str(m: &Mono, st: Style) -> String {
     if m.0.is_empty() {
         return "1".into();

@@ -32,6 +32,7 @@ pub use accelerations::Accelerations;
 /// One equation: `lhs = rhs` for a coordinate.
 #[derive(Clone, Debug)]
 pub struct Equation {
+    /// The name of the coordinate q_k.
     pub coordinate: String,
     /// d/dt(∂E/∂q̇_k) − ∂E/∂q_k.
     pub lhs: Expr,
@@ -44,10 +45,12 @@ pub struct Equation {
 /// Lagrange's equations of a scene, with the mass matrix and forcing.
 #[derive(Clone, Debug)]
 pub struct Lagrange {
+    /// The generalized coordinates q, in declaration order.
     pub coordinates: Vec<String>,
     /// Total kinetic energy E, plus the scene's `lagrangian` terms if any
     /// (the function whose derivatives make the left-hand sides).
     pub kinetic: Expr,
+    /// One equation per coordinate, in the order of `coordinates`.
     pub equations: Vec<Equation>,
     /// M_ij = ∂²E/∂q̇_i∂q̇_j.
     pub mass_matrix: Vec<Vec<Expr>>,
@@ -194,7 +197,9 @@ pub enum Source {
 /// One nonzero contribution to a generalized force.
 #[derive(Clone, Debug)]
 pub struct ForceTerm {
+    /// Where the contribution comes from.
     pub source: Source,
+    /// Its value, a term of Q_k.
     pub value: Expr,
 }
 

@@ -99,6 +99,7 @@ impl Writer {
         }
     }
 
+    /// The LaTeX written so far.
     pub fn finish(self) -> String {
         self.out
     }

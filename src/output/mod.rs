@@ -40,10 +40,16 @@ pub use text::{derive_text, equilibrium_text, forces_text, padded, solutions_tex
 /// The commands of the CLI.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Command {
+    /// `qdot derive`: Lagrange's equations, the mass matrix M and the forcing f.
     Derive,
+    /// `qdot solve`: the accelerations q̈ = M⁻¹f and the scene's `solve` blocks.
     Solve,
+    /// `qdot forces`: the generalized forces Q_k.
     Forces,
+    /// `qdot equilibrium`: the positions of equilibrium at rest and their stability.
     Equilibrium,
+    /// `qdot modes`: small oscillations about an equilibrium (M, C, K, the
+    /// frequencies, the modes, the responses).
     Modes,
     /// LaTeX of the scene's main result (see [`latex::document`]).
     Latex,
@@ -268,7 +274,9 @@ pub use crate::scene::given::parameter_values as parse_set;
 /// Output format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
+    /// Plain text with Unicode notation (θ̈₃, ·, −).
     Text,
+    /// JSON, expressions as strings in qdot's input syntax.
     Json,
     /// amsmath LaTeX (see [`latex`]).
     Latex,

@@ -11,7 +11,9 @@ pub use crate::diag::Span;
 /// An identifier with its position.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Ident {
+    /// The name as written.
     pub name: String,
+    /// Where it is written.
     pub span: Span,
 }
 
@@ -19,7 +21,9 @@ pub struct Ident {
 /// dimension annotation `r: length` (parsed and kept; not yet interpreted).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Decl {
+    /// The declared name.
     pub name: Ident,
+    /// The dimension after the colon (`length` in `r: length`), if any.
     pub dimension: Option<Ident>,
 }
 
@@ -45,6 +49,7 @@ pub enum Role {
 }
 
 impl Role {
+    /// The keyword that introduces the role (`kinetic`, `potential`, …).
     pub fn keyword(self) -> &'static str {
         match self {
             Role::Kinetic => "kinetic",
@@ -56,6 +61,7 @@ impl Role {
             Role::Lagrangian => "lagrangian",
         }
     }
+    /// The role introduced by a keyword, if `s` is one.
     pub fn from_keyword(s: &str) -> Option<Role> {
         Some(match s {
             "kinetic" => Role::Kinetic,
@@ -78,35 +84,72 @@ pub enum Stmt {
     /// `parameters G, g, r`
     Parameters(Vec<Decl>, Span),
     /// `m = G/g`
-    Def { name: Ident, value: Expr, span: Span },
+    Def {
+        /// The name being defined.
+        name: Ident,
+        /// The right-hand side.
+        value: Expr,
+        /// The whole statement.
+        span: Span,
+    },
     /// `kinetic E1 = 1/2*m*y1'^2`; the name is also an ordinary definition.
     Role {
+        /// Which role.
         role: Role,
+        /// The name being defined.
         name: Ident,
+        /// The right-hand side.
         value: Expr,
+        /// The whole statement.
         span: Span,
     },
     /// `force theta: M0*cos(t)` — a generalized force on one coordinate.
     Force {
+        /// The coordinate q_k whose generalized force Q_k receives the value.
         coordinate: Ident,
+        /// The generalized force (after the colon).
         value: Expr,
+        /// The whole statement.
         span: Span,
     },
     /// `load F at P` — a force F (vector or scalar) applied at the point P
     /// (a position vector, or a scalar displacement along F's line).
-    Load { force: Expr, point: Expr, span: Span },
+    Load {
+        /// The force F (a vector, or a scalar along the line of `point`).
+        force: Expr,
+        /// The point of application P (a position vector or a scalar displacement).
+        point: Expr,
+        /// The whole statement.
+        span: Span,
+    },
     /// `torque M on phi` — a moment M doing work on the angle phi.
-    Torque { moment: Expr, angle: Expr, span: Span },
+    Torque {
+        /// The moment M.
+        moment: Expr,
+        /// The angle it does work on.
+        angle: Expr,
+        /// The whole statement.
+        span: Span,
+    },
     /// `solve a, b { lhs = rhs … }` — a system of equations for the unknowns.
     Solve(SolveBlock),
     /// `latex theta3 = "\vartheta_{3}"` — the LaTeX notation of a name.
-    Latex { name: Ident, tex: String, span: Span },
+    Latex {
+        /// The name given notation.
+        name: Ident,
+        /// The LaTeX text between the quotes.
+        tex: String,
+        /// The whole statement.
+        span: Span,
+    },
 }
 
 /// `solve a3, T1 { … }`: unknowns and the equations that determine them.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SolveBlock {
+    /// The names after `solve`, in order.
     pub unknowns: Vec<Ident>,
+    /// The equations between the braces, in order.
     pub equations: Vec<Equation>,
     /// From `solve` to the closing `}`.
     pub span: Span,
@@ -115,13 +158,16 @@ pub struct SolveBlock {
 /// `lhs = rhs`, one equation of a `solve` block.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Equation {
+    /// The left-hand side.
     pub lhs: Expr,
+    /// The right-hand side.
     pub rhs: Expr,
     /// From the start of `lhs` to the end of `rhs`.
     pub span: Span,
 }
 
 impl Stmt {
+    /// The source range of the whole statement.
     pub fn span(&self) -> Span {
         match self {
             Stmt::Coordinates(_, s) | Stmt::Parameters(_, s) => *s,
@@ -139,20 +185,28 @@ impl Stmt {
 /// Binary operators.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum BinOp {
+    /// `+`
     Add,
+    /// `-`
     Sub,
+    /// `*`, also implicit multiplication (`2r`).
     Mul,
+    /// `/`
     Div,
+    /// `^`
     Pow,
 }
 
 /// An expression as written.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Expr {
+    /// What the expression is.
     pub kind: ExprKind,
+    /// Where it is written.
     pub span: Span,
 }
 
+/// The forms of an [`Expr`].
 #[derive(Clone, Debug, PartialEq)]
 pub enum ExprKind {
     /// An exact number: `3`, `0.25` (= 1/4), `1.5e-3` (= 3/2000).

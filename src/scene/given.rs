@@ -20,21 +20,26 @@ pub struct OptionSyntax {
     pub once: Option<&'static str>,
 }
 
+/// The syntax of `--set m=1,g=9.81`: parameter values (doubles).
 pub const SET: OptionSyntax = OptionSyntax {
     option: "--set",
     example: "--set m=1,g=9.81,l=0.5",
     once: Some("give each parameter one value"),
 };
+/// The syntax of `--at th=pi`: coordinate values (exact expressions).
 pub const AT: OptionSyntax = OptionSyntax {
     option: "--at",
     example: "--at th=pi, --init y1=1/10,y1'=0",
     once: Some("give each coordinate one value"),
 };
+/// The syntax of `--init y=1/10,y'=0`: positions and velocities (exact expressions).
 pub const INIT: OptionSyntax = OptionSyntax {
     option: "--init",
     example: "--at th=pi, --init y1=1/10,y1'=0",
     once: Some("give each position and velocity one value"),
 };
+/// The syntax of the simulator's `--init theta=0.5,theta'=0`: initial q and
+/// q̇ (doubles).
 pub const SIMULATE_INIT: OptionSyntax = OptionSyntax {
     option: "--init",
     example: "--init theta=0.5,theta'=0",
@@ -44,8 +49,11 @@ pub const SIMULATE_INIT: OptionSyntax = OptionSyntax {
 /// One `name=value` item: as written (trimmed), its name and its value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct NameValue<'s> {
+    /// The whole item, trimmed (`y' = 0`).
     pub written: &'s str,
+    /// The name before `=`, trimmed (`y'`).
     pub name: &'s str,
+    /// The value after `=`, trimmed (`0`).
     pub value: &'s str,
 }
 

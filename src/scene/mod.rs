@@ -21,14 +21,18 @@ use rustc_hash::FxHashMap;
 /// A generalized coordinate.
 #[derive(Clone, Debug)]
 pub struct Coordinate {
+    /// The name as declared.
     pub name: String,
+    /// Where it is declared.
     pub span: Span,
 }
 
 /// A constant symbol.
 #[derive(Clone, Debug)]
 pub struct Parameter {
+    /// The name as declared.
     pub name: String,
+    /// Where it is declared.
     pub span: Span,
     /// The optional dimension annotation (`r: length`), not yet interpreted.
     pub dimension: Option<String>,
@@ -37,6 +41,7 @@ pub struct Parameter {
 /// The value of a definition: a scalar expression or a vector of them.
 #[derive(Clone, Debug)]
 pub enum Value {
+    /// A single expression.
     Scalar(Expr),
     /// A plane (2) or space (3) vector.
     Vector(Vec<Expr>),
@@ -76,8 +81,11 @@ impl Value {
 /// A named expression.
 #[derive(Clone, Debug)]
 pub struct Definition {
+    /// The defined name.
     pub name: String,
+    /// The evaluated right-hand side.
     pub value: Value,
+    /// Where the name is written.
     pub span: Span,
     /// The role, for `kinetic E1 = …` and the like.
     pub role: Option<Role>,
@@ -86,8 +94,11 @@ pub struct Definition {
 /// A generalized force added to one coordinate's Q.
 #[derive(Clone, Debug)]
 pub struct Force {
+    /// The index of the coordinate q_k in [`Scene::coordinates`].
     pub coordinate: usize,
+    /// The generalized force Q_k it adds.
     pub value: Expr,
+    /// Where the force's expression is written.
     pub span: Span,
 }
 
@@ -95,23 +106,32 @@ pub struct Force {
 /// or both scalars: a force along the line of a scalar displacement).
 #[derive(Clone, Debug)]
 pub struct Load {
+    /// The force F: a vector, or a scalar along the line of the displacement.
     pub force: Value,
+    /// The point of application: a position vector of the force's size, or a
+    /// scalar displacement.
     pub point: Value,
+    /// The whole `load` statement.
     pub span: Span,
 }
 
 /// `torque M on phi`: a moment doing work on an angle.
 #[derive(Clone, Debug)]
 pub struct Torque {
+    /// The moment M about the axis of the angle.
     pub moment: Expr,
+    /// The angle it does work on, a function of the coordinates and t.
     pub angle: Expr,
+    /// The whole `torque` statement.
     pub span: Span,
 }
 
 /// One scalar equation of a `solve` block, as `lhs − rhs = 0`.
 #[derive(Clone, Debug)]
 pub struct SystemEquation {
+    /// `lhs − rhs` of the equation (of one component, for a vector equation).
     pub residual: Expr,
+    /// Where the equation is written.
     pub span: Span,
     /// For a vector equation, which component (0-based) this is.
     pub component: Option<usize>,
@@ -120,8 +140,11 @@ pub struct SystemEquation {
 /// A `solve` block: unknowns and the equations that determine them.
 #[derive(Clone, Debug)]
 pub struct SolveSystem {
+    /// The unknowns after `solve`, in order.
     pub unknowns: Vec<Parameter>,
+    /// The scalar equations, a vector equation contributing one per component.
     pub equations: Vec<SystemEquation>,
+    /// From `solve` to the closing `}`.
     pub span: Span,
 }
 
@@ -135,13 +158,19 @@ pub struct SolveSystem {
 /// q̇ = q̈ = 0.
 #[derive(Clone, Debug, Default)]
 pub struct Scene {
+    /// The scene's source text (spans point into it).
     pub source: String,
+    /// The generalized coordinates q, in declaration order.
     pub coordinates: Vec<Coordinate>,
+    /// The parameters (constant symbols), in declaration order.
     pub parameters: Vec<Parameter>,
     /// Definitions (including role statements) in source order.
     pub definitions: Vec<Definition>,
+    /// The `force q: Q` statements, in source order.
     pub forces: Vec<Force>,
+    /// The `load F at P` statements, in source order.
     pub loads: Vec<Load>,
+    /// The `torque M on phi` statements, in source order.
     pub torques: Vec<Torque>,
     /// The `solve` blocks, in source order.
     pub systems: Vec<SolveSystem>,
@@ -155,8 +184,11 @@ pub struct Scene {
 /// `latex theta3 = "\vartheta_{3}"`: the LaTeX notation of a name.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LatexName {
+    /// The name given notation.
     pub name: String,
+    /// The LaTeX text, as written between the quotes.
     pub tex: String,
+    /// The whole `latex` statement.
     pub span: Span,
 }
 

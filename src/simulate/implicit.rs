@@ -26,15 +26,30 @@ use std::ops::{Add, Div, Mul, Sub};
 #[derive(Clone, Debug, PartialEq)]
 pub enum ImplicitError {
     /// `y0.len()` differs from `System::dim()`.
-    DimensionMismatch { expected: usize, got: usize },
+    DimensionMismatch {
+        /// `System::dim()`.
+        expected: usize,
+        /// `y0.len()`.
+        got: usize,
+    },
     /// A fixed-step method ([`gauss6`]) was called without `IntegratorOptions::dt`.
     MissingStep,
     /// `IntegratorOptions::dt` is not a positive finite number.
     InvalidStep(f64),
     /// `t0` or `t_end` is not finite, or `t_end < t0`.
-    InvalidInterval { t0: f64, t_end: f64 },
+    InvalidInterval {
+        /// The initial time given.
+        t0: f64,
+        /// The final time given.
+        t_end: f64,
+    },
     /// `rtol` must be finite and above 10·ε, `atol` finite and ≥ 0.
-    InvalidTolerance { rtol: f64, atol: f64 },
+    InvalidTolerance {
+        /// The relative tolerance given.
+        rtol: f64,
+        /// The absolute tolerance given.
+        atol: f64,
+    },
     /// The initial state has a non-finite component.
     NotFiniteInitialState,
 }

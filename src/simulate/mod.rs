@@ -43,7 +43,9 @@ pub trait System {
 
 /// A closure as a [`System`]: `FnSystem { dim, f: |t, y, dy| … }`.
 pub struct FnSystem<F: FnMut(f64, &[f64], &mut [f64])> {
+    /// The dimension of y.
     pub dim: usize,
+    /// `f(t, y, dy)` writes F(t, y) into `dy`.
     pub f: F,
 }
 
@@ -76,10 +78,13 @@ pub enum Method {
 /// What to integrate and how precisely.
 #[derive(Clone, Debug)]
 pub struct IntegratorOptions {
+    /// The initial time.
     pub t0: f64,
+    /// The final time (`t_end ≥ t0`).
     pub t_end: f64,
     /// Relative and absolute tolerances of adaptive methods.
     pub rtol: f64,
+    /// The absolute tolerance (`rtol` is the relative one).
     pub atol: f64,
     /// The step of fixed-step methods (RK4, Gauss6); the initial step of
     /// adaptive ones when `Some` (else chosen by Hairer's starting-step rule).
@@ -108,10 +113,15 @@ impl Default for IntegratorOptions {
 /// Work counters, for `--stats` and the benchmarks.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Stats {
+    /// Accepted steps.
     pub steps: usize,
+    /// Rejected steps, retried with a smaller step.
     pub rejected: usize,
+    /// Evaluations of F (including those of finite-difference Jacobians).
     pub rhs_evals: usize,
+    /// Evaluations of the Jacobian ∂F/∂y (implicit methods).
     pub jacobians: usize,
+    /// LU factorizations of the Newton matrices (implicit methods).
     pub factorizations: usize,
 }
 
@@ -121,13 +131,25 @@ pub enum Status {
     /// Reached `t_end`.
     Done,
     /// An event function crossed zero at this time (see `explicit`'s events).
-    Event { t: f64 },
+    Event {
+        /// The time of the crossing.
+        t: f64,
+    },
     /// The step size fell below what f64 can resolve at `t`.
-    StepTooSmall { t: f64 },
+    StepTooSmall {
+        /// The time reached.
+        t: f64,
+    },
     /// `max_steps` reached at `t`.
-    TooManySteps { t: f64 },
+    TooManySteps {
+        /// The time reached.
+        t: f64,
+    },
     /// A non-finite value appeared at `t`.
-    NotFinite { t: f64 },
+    NotFinite {
+        /// The time reached.
+        t: f64,
+    },
 }
 
 /// The recorded trajectory and what it cost.
@@ -137,7 +159,9 @@ pub struct Solution {
     pub t: Vec<f64>,
     /// The state at each recorded time.
     pub y: Vec<Vec<f64>>,
+    /// The work counters.
     pub stats: Stats,
+    /// How the integration ended.
     pub status: Status,
     /// Set by explicit adaptive methods when the stiffness test (Hairer's,
     /// as in DOPRI5/DOP853) fired: the time at which it did.

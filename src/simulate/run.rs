@@ -29,9 +29,13 @@ pub struct Request {
     pub set: FxHashMap<String, f64>,
     /// Initial values: `q` and `q'` for every coordinate.
     pub init: FxHashMap<String, f64>,
+    /// The final time (the run starts at t = 0).
     pub t_end: f64,
+    /// The integration method.
     pub method: Method,
+    /// The relative tolerance of the adaptive methods.
     pub rtol: f64,
+    /// The absolute tolerance of the adaptive methods.
     pub atol: f64,
     /// The step of RK4 and Gauss6 (required for them), the first step of
     /// the adaptive methods.
@@ -76,7 +80,9 @@ pub struct Run {
     pub columns: Vec<String>,
     /// One row per output time.
     pub rows: Vec<Vec<f64>>,
+    /// The integrator's trajectory, work counters and status.
     pub solution: Solution,
+    /// The method used.
     pub method: Method,
     /// Wall time of the integration alone (compilation excluded).
     pub seconds: f64,

@@ -13,7 +13,9 @@
 /// A root enclosed in `[lo, hi]` with a sign change of f.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Enclosure {
+    /// The lower end: f has one sign here.
     pub lo: f64,
+    /// The upper end: f has the opposite sign here.
     pub hi: f64,
 }
 

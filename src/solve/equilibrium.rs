@@ -46,7 +46,11 @@ use rustc_hash::FxHashMap;
 /// How stable an equilibrium is.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Stability {
+    /// The potential has a strict minimum there: K positive definite (for one
+    /// coordinate, the first non-vanishing derivative may decide).
     Stable,
+    /// A small displacement grows: the potential decreases in a direction
+    /// that gyroscopic terms cannot stabilize.
     Unstable,
     /// Not decided, with the reason.
     Undecided(String),
@@ -77,6 +81,7 @@ pub enum Position {
 #[derive(Clone, Debug)]
 #[non_exhaustive]
 pub struct Equilibrium {
+    /// The coordinates' values at the equilibrium.
     pub position: Position,
     /// Coordinates left free (indifferent equilibrium along them).
     pub free: Vec<usize>,
@@ -84,6 +89,7 @@ pub struct Equilibrium {
     pub conditions: Vec<String>,
     /// The numeric values of an exact position, given parameter values.
     pub approx: Option<Vec<f64>>,
+    /// Stable, unstable or undecided (Lagrange–Dirichlet).
     pub stability: Stability,
     /// For one coordinate, the multiplicity of the root of the condition
     /// F = 0 (1 for a simple root; 2 or more where V'' = 0).
@@ -97,6 +103,7 @@ pub struct Equilibrium {
 #[derive(Clone, Debug)]
 #[non_exhaustive]
 pub struct Equilibria {
+    /// The coordinate names, in declaration order (the order of every position).
     pub coordinates: Vec<String>,
     /// Q_k at rest.
     pub forces: Vec<Expr>,
@@ -105,6 +112,7 @@ pub struct Equilibria {
     pub conditions: Vec<Expr>,
     /// Whether the kinetic energy contributes terms at rest.
     pub kinetic_terms: bool,
+    /// The equilibria found.
     pub equilibria: Vec<Equilibrium>,
     /// True when the positions were found in closed form.
     pub exact: bool,

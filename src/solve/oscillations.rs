@@ -37,11 +37,15 @@ pub const LAMBDA: &str = "lambda";
 #[derive(Clone, Debug)]
 #[non_exhaustive]
 pub struct Modes {
+    /// The coordinate names, in declaration order.
     pub coordinates: Vec<String>,
     /// The equilibrium q0.
     pub at: Vec<Expr>,
+    /// M = ∂R/∂q̈ at the equilibrium.
     pub mass: Vec<Vec<Expr>>,
+    /// C = ∂R/∂q̇ at the equilibrium.
     pub damping: Vec<Vec<Expr>>,
+    /// K = ∂R/∂q at the equilibrium.
     pub stiffness: Vec<Vec<Expr>>,
     /// f(t) of M·q̈ + C·q̇ + K·q = f(t).
     pub forcing: Vec<Expr>,
@@ -63,7 +67,9 @@ pub struct Modes {
 #[derive(Clone, Debug)]
 #[non_exhaustive]
 pub struct StandardForm {
+    /// ω², the square of the undamped natural frequency.
     pub omega_squared: Expr,
+    /// The damping constant α (half the coefficient of ẏ).
     pub alpha: Expr,
     /// f(t)/M.
     pub forcing: Expr,

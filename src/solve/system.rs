@@ -37,6 +37,7 @@ pub struct Echelon {
 /// `x` for a rectangular system, with the free unknowns as given symbols.
 #[derive(Clone, Debug)]
 pub struct RectSolution {
+    /// Which unknowns are pivots or free, and which equations are dependent.
     pub shape: Echelon,
     /// One value per unknown; a free unknown's value is its symbol.
     pub values: Vec<Expr>,
