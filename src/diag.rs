@@ -211,7 +211,7 @@ pub enum SourceError {
         /// The path as given.
         path: String,
         /// The error, at the first byte that is not UTF-8.
-        diagnostic: Diagnostic,
+        diagnostic: Box<Diagnostic>,
         /// The file decoded lossily (positions before the byte agree).
         text: String,
     },
@@ -285,7 +285,7 @@ pub fn decode_source(path: &str, bytes: Vec<u8>) -> Result<String, SourceError> 
         Diagnostic::error(Span::new(at, at + '\u{FFFD}'.len_utf8()), message).with_hint(hint);
     Err(SourceError::NotUtf8 {
         path: path.to_string(),
-        diagnostic,
+        diagnostic: Box::new(diagnostic),
         text,
     })
 }

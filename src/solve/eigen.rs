@@ -314,7 +314,7 @@ pub enum EigenError {
         matrix: &'static str,
         /// (i, j) with j < i.
         entry: (usize, usize),
-        /// (matrix[i][j], matrix[j][i]).
+        /// (`matrix[i][j]`, `matrix[j][i]`).
         values: (f64, f64),
     },
     /// M is not positive definite: its Cholesky factorization failed.
