@@ -1490,6 +1490,10 @@ fn cart_pendulum_is_stable_exactly() {
     let md = qdot::solve::oscillations::modes(&s, None, &Default::default()).unwrap();
     assert_eq!(md.stability, qdot::solve::equilibrium::Stability::Stable);
     for w2 in &md.omega_squared {
-        assert_eq!(qdot::solve::equilibrium::sign_exact(w2), Some(1), "{w2}");
+        assert_eq!(
+            qdot::solve::equilibrium::sign_exact(w2),
+            Some(qdot::solve::equilibrium::Sign::Positive),
+            "{w2}"
+        );
     }
 }

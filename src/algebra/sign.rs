@@ -10,8 +10,41 @@ use rustc_hash::FxHashMap;
 /// Parameter values for numeric work (`--set m=1,g=9.81`).
 pub type Values = FxHashMap<String, f64>;
 
-/// +1, −1 or 0 when decided exactly (parameters are positive).
-pub fn sign_exact(e: &Expr) -> Option<i32> {
+/// The sign of a real number.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Sign {
+    /// Less than zero.
+    Negative,
+    /// Zero.
+    Zero,
+    /// Greater than zero.
+    Positive,
+}
+
+impl Sign {
+    /// The sign of a nonzero `x`: positive or negative (not zero).
+    fn of_nonzero(x: f64) -> Sign {
+        if x > 0.0 {
+            Sign::Positive
+        } else {
+            Sign::Negative
+        }
+    }
+}
+
+impl std::ops::Mul for Sign {
+    type Output = Sign;
+    fn mul(self, other: Sign) -> Sign {
+        match (self, other) {
+            (Sign::Zero, _) | (_, Sign::Zero) => Sign::Zero,
+            (a, b) if a == b => Sign::Positive,
+            _ => Sign::Negative,
+        }
+    }
+}
+
+/// The sign when decided exactly (parameters are positive).
+pub fn sign_exact(e: &Expr) -> Option<Sign> {
     if let Some(q) = e.as_rational() {
         return Some(rational_sign(&q));
     }
@@ -20,14 +53,13 @@ pub fn sign_exact(e: &Expr) -> Option<i32> {
     Some(n * d)
 }
 
-/// −1, 0 or +1.
-fn rational_sign(q: &Q) -> i32 {
+fn rational_sign(q: &Q) -> Sign {
     if q.is_zero() {
-        0
+        Sign::Zero
     } else if q.is_negative() {
-        -1
+        Sign::Negative
     } else {
-        1
+        Sign::Positive
     }
 }
 
@@ -35,7 +67,7 @@ fn rational_sign(q: &Q) -> i32 {
 /// coefficients all have one sign, or which is a positive monomial times
 /// a real number built from radicals (2·g − √2·g = g·(2 − √2)), or
 /// A + B·√P with A and B definite (the roots of a quadratic in ω²).
-fn definite(p: &Poly) -> Option<i32> {
+fn definite(p: &Poly) -> Option<Sign> {
     one_signed(p)
         .or_else(|| radical_number(p))
         .or_else(|| with_one_root(p))
@@ -46,7 +78,7 @@ fn definite(p: &Poly) -> Option<i32> {
 /// With parameter values, the numeric sign comes first: an exact sign is a
 /// claim for all positive parameters, and a radical in it (a discriminant)
 /// can vanish at particular values, where two equilibria merge.
-pub(crate) fn sign_of(e: &Expr, set: &Values) -> Option<i32> {
+pub(crate) fn sign_of(e: &Expr, set: &Values) -> Option<Sign> {
     if let Some(s) = sign_numeric(e, set) {
         return Some(s);
     }
@@ -54,7 +86,7 @@ pub(crate) fn sign_of(e: &Expr, set: &Values) -> Option<i32> {
 }
 
 /// The sign at the given parameter values, if they determine it.
-fn sign_numeric(e: &Expr, set: &Values) -> Option<i32> {
+fn sign_numeric(e: &Expr, set: &Values) -> Option<Sign> {
     if let Some(q) = e.as_rational() {
         return Some(rational_sign(&q));
     }
@@ -83,15 +115,15 @@ fn sign_numeric(e: &Expr, set: &Values) -> Option<i32> {
         })
         .fold(0.0, f64::max);
     if v.abs() <= 1e-12 * scale {
-        return Some(0);
+        return Some(Sign::Zero);
     }
-    Some(if (v > 0.0) == (den > 0.0) { 1 } else { -1 })
+    Some(Sign::of_nonzero(v) * Sign::of_nonzero(den))
 }
 
 /// p = A + B·√P with one radical atom √P (degree 1) and A, B of decided
 /// signs: if they agree, that sign; otherwise A − B·√P has A's sign and
 /// (A + B√P)(A − B√P) = A² − B²·P, so the sign is sign(A)·sign(A² − B²P).
-fn with_one_root(p: &Poly) -> Option<i32> {
+fn with_one_root(p: &Poly) -> Option<Sign> {
     let roots: Vec<Var> = p
         .vars()
         .into_iter()
@@ -125,7 +157,7 @@ fn with_one_root(p: &Poly) -> Option<i32> {
 /// p = (monomial in positive atoms) × (a combination of √n): the sign of
 /// the number, which is nonzero (p is canonical and not zero) and is
 /// evaluated in f64 only when far from 0.
-fn radical_number(p: &Poly) -> Option<i32> {
+fn radical_number(p: &Poly) -> Option<Sign> {
     let mut terms = p.terms().iter();
     let first = terms.next()?.0.clone();
     let g = terms.fold(first, |g, (m, _)| g.gcd(m));
@@ -160,23 +192,27 @@ fn radical_number(p: &Poly) -> Option<i32> {
     if !v.is_finite() || v.abs() <= 1e-9 * scale {
         return None;
     }
-    Some(if v > 0.0 { 1 } else { -1 })
+    Some(Sign::of_nonzero(v))
 }
 
-fn one_signed(p: &Poly) -> Option<i32> {
+fn one_signed(p: &Poly) -> Option<Sign> {
     let positive = |v: Var| {
         matches!(
             atom::atom(v),
             Atom::Param(_) | Atom::Pi | Atom::Root(_) | Atom::SqrtOf(_) | Atom::Exp(_)
         )
     };
-    let mut sign = 0;
+    let mut sign = Sign::Zero;
     for (m, c) in p.terms() {
         if !m.0.iter().all(|&(v, k)| k % 2 == 0 || positive(v)) {
             return None;
         }
-        let sg = if c.is_negative() { -1 } else { 1 };
-        if sign != 0 && sg != sign {
+        let sg = if c.is_negative() {
+            Sign::Negative
+        } else {
+            Sign::Positive
+        };
+        if sign != Sign::Zero && sg != sign {
             return None;
         }
         sign = sg;

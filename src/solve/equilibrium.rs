@@ -34,7 +34,7 @@
 use super::numeric::{find_roots, RootOptions};
 use crate::algebra::linear::det;
 use crate::algebra::sign::sign_of;
-pub use crate::algebra::sign::{sign_exact, Values};
+pub use crate::algebra::sign::{sign_exact, Sign, Values};
 use crate::diag::Diagnostic;
 use crate::expr::atom::{self, Atom};
 use crate::expr::{func, Expr};
@@ -602,7 +602,7 @@ pub(crate) fn quadratic(cs: &[Expr]) -> Option<Vec<ExactRoot>> {
                 return Some(vec![(c1.neg().div(&two_a).ok()?, Vec::new())]);
             }
             let cond = match sign_exact(&disc) {
-                Some(x) if x < 0 => return Some(Vec::new()),
+                Some(Sign::Negative) => return Some(Vec::new()),
                 Some(_) => Vec::new(),
                 None => vec![format!("{} ≥ 0", crate::expr::print::unicode(&disc))],
             };
@@ -698,7 +698,7 @@ fn trig_roots(p: &Poly, s: Var, c: Var) -> Option<Vec<ExactRoot>> {
             let x = b0.neg().div(&a1).ok()?;
             let r = func::atan(&x);
             let other = match sign_exact(&x) {
-                Some(sg) if sg > 0 => r.sub(&pi),
+                Some(Sign::Positive) => r.sub(&pi),
                 _ => r.add(&pi),
             };
             out.push((r, Vec::new()));
@@ -902,7 +902,7 @@ fn classify_exact(
         };
         signs.push(sign_of(&d, set));
     }
-    if n == 1 && signs[0] == Some(0) {
+    if n == 1 && signs[0] == Some(Sign::Zero) {
         return higher_order(&conditions[0], q[0], &vals[0], set);
     }
     if n == 1 && signs[0].is_none() {
@@ -915,8 +915,8 @@ fn classify_exact(
 }
 
 /// Stable / unstable from the signs of the leading minors.
-fn jacobi(signs: &[Option<i32>], gyroscopic: bool) -> Stability {
-    if signs.iter().all(|s| *s == Some(1)) {
+fn jacobi(signs: &[Option<Sign>], gyroscopic: bool) -> Stability {
+    if signs.iter().all(|s| *s == Some(Sign::Positive)) {
         return Stability::Stable;
     }
     if signs.iter().any(|s| s.is_none()) {
@@ -925,12 +925,12 @@ fn jacobi(signs: &[Option<i32>], gyroscopic: bool) -> Stability {
                 .into(),
         );
     }
-    if signs.contains(&Some(0)) {
+    if signs.contains(&Some(Sign::Zero)) {
         return Stability::Undecided(
             "the Hessian is singular here: higher-order terms decide".into(),
         );
     }
-    let mut prev = 1;
+    let mut prev = Sign::Positive;
     let mut negative = 0;
     for s in signs.iter().flatten() {
         if *s != prev {
@@ -955,8 +955,8 @@ fn higher_order(f: &Expr, q: Var, at: &Expr, set: &Values) -> Stability {
             break;
         };
         match sign_of(&v.neg(), set) {
-            Some(0) => continue,
-            Some(s) if order % 2 == 0 && s > 0 => return Stability::Stable,
+            Some(Sign::Zero) => continue,
+            Some(Sign::Positive) if order % 2 == 0 => return Stability::Stable,
             Some(_) => return Stability::Unstable,
             None => break,
         }
@@ -1104,11 +1104,11 @@ fn classify_numeric(k: &[Vec<f64>], gyroscopic: bool) -> Stability {
         let d = det_f64(k[..m].iter().map(|r| r[..m].to_vec()).collect());
         let tol = 1e-9 * scale.powi(m as i32);
         signs.push(Some(if d.abs() <= tol {
-            0
+            Sign::Zero
         } else if d > 0.0 {
-            1
+            Sign::Positive
         } else {
-            -1
+            Sign::Negative
         }));
     }
     jacobi(&signs, gyroscopic)

@@ -21,7 +21,7 @@ use super::equilibrium::quadratic;
 /// The verdict on the linearized system (the same as for equilibria).
 pub use super::equilibrium::Stability;
 use crate::algebra::linear::det;
-use crate::algebra::sign::{sign_exact, sign_of, Values};
+use crate::algebra::sign::{sign_exact, sign_of, Sign, Values};
 use crate::diag::Diagnostic;
 use crate::expr::atom::{self, Atom};
 use crate::expr::{func, Expr};
@@ -186,12 +186,12 @@ pub fn modes(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Modes, 
     let stability = if roots.is_empty() {
         Stability::Undecided("no closed form for the frequencies; see the numeric values".into())
     } else {
-        let signs: Vec<Option<i32>> = roots.iter().map(|r| sign_of(r, set)).collect();
-        if signs.iter().all(|s| *s == Some(1)) {
+        let signs: Vec<Option<Sign>> = roots.iter().map(|r| sign_of(r, set)).collect();
+        if signs.iter().all(|s| *s == Some(Sign::Positive)) {
             Stability::Stable
-        } else if signs.contains(&Some(-1)) {
+        } else if signs.contains(&Some(Sign::Negative)) {
             Stability::Unstable
-        } else if signs.contains(&Some(0)) {
+        } else if signs.contains(&Some(Sign::Zero)) {
             Stability::Undecided("a zero frequency: higher-order terms decide".into())
         } else {
             let undecided: Vec<String> = roots
@@ -425,7 +425,7 @@ fn sort_ascending(roots: &mut [Expr], set: &Values) {
     // insertion sort with a partial comparison
     for i in 1..roots.len() {
         let mut j = i;
-        while j > 0 && sign_of(&roots[j - 1].sub(&roots[j]), set) == Some(1) {
+        while j > 0 && sign_of(&roots[j - 1].sub(&roots[j]), set) == Some(Sign::Positive) {
             roots.swap(j - 1, j);
             j -= 1;
         }
@@ -497,8 +497,8 @@ pub fn standard_form(md: &Modes, set: &Values) -> Option<StandardForm> {
         "undamped".to_string()
     } else {
         match sign_of(&alpha.mul(&alpha).sub(&w2), set) {
-            Some(-1) => "underdamped".into(),
-            Some(0) => "critically damped".into(),
+            Some(Sign::Negative) => "underdamped".into(),
+            Some(Sign::Zero) => "critically damped".into(),
             Some(_) => "overdamped".into(),
             None => "underdamped when α² < ω², overdamped when α² > ω²".to_string(),
         }
@@ -671,7 +671,7 @@ pub fn amplitude_phase(omega_squared: &Expr, y0: &Expr, v0: &Expr) -> Option<(Ex
     let phi = if v0.is_zero() {
         let half_pi = Expr::pi().scale(&Q::new(1, 2).unwrap_or_else(Q::one));
         match sign_exact(y0) {
-            Some(s) if s < 0 => half_pi.neg(),
+            Some(Sign::Negative) => half_pi.neg(),
             _ => half_pi,
         }
     } else {

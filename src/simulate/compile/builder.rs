@@ -100,9 +100,9 @@ impl Node {
 }
 
 /// A power product over node ids (sorted by id, exponents > 0).
-type NMono = SmallVec<[(u32, u32); 4]>;
+type NodeMonomial = SmallVec<[(u32, u32); 4]>;
 /// A polynomial over nodes with f64 coefficients (after constant folding).
-type FPoly = Vec<(NMono, f64)>;
+type NodePoly = Vec<(NodeMonomial, f64)>;
 
 pub(super) struct Builder<'a> {
     pub(super) nodes: Vec<Node>,
@@ -111,7 +111,7 @@ pub(super) struct Builder<'a> {
     pub(super) params: &'a FxHashMap<Var, f64>,
     pub(super) atoms: FxHashMap<Var, u32>,
     pub(super) polys: FxHashMap<Poly, u32>,
-    pub(super) monos: FxHashMap<NMono, u32>,
+    pub(super) monos: FxHashMap<NodeMonomial, u32>,
 }
 
 impl<'a> Builder<'a> {
@@ -151,7 +151,7 @@ impl<'a> Builder<'a> {
         id
     }
 
-    fn konst(&mut self, x: f64) -> u32 {
+    fn constant(&mut self, x: f64) -> u32 {
         // One zero (−0.0 and 0.0 are the same constant here).
         let x = if x == 0.0 { 0.0 } else { x };
         self.node(Node::Const(x.to_bits()))
@@ -166,7 +166,7 @@ impl<'a> Builder<'a> {
 
     fn add(&mut self, a: u32, b: u32) -> u32 {
         match (self.as_const(a), self.as_const(b)) {
-            (Some(x), Some(y)) => self.konst(x + y),
+            (Some(x), Some(y)) => self.constant(x + y),
             (Some(0.0), _) => b,
             (_, Some(0.0)) => a,
             _ => self.node(Node::Add(a.min(b), a.max(b))),
@@ -175,7 +175,7 @@ impl<'a> Builder<'a> {
 
     fn sub(&mut self, a: u32, b: u32) -> u32 {
         match (self.as_const(a), self.as_const(b)) {
-            (Some(x), Some(y)) => self.konst(x - y),
+            (Some(x), Some(y)) => self.constant(x - y),
             (Some(0.0), _) => self.neg(b),
             (_, Some(0.0)) => a,
             _ => self.node(Node::Sub(a, b)),
@@ -184,7 +184,7 @@ impl<'a> Builder<'a> {
 
     fn neg(&mut self, a: u32) -> u32 {
         match self.nodes[a as usize] {
-            Node::Const(b) => self.konst(-f64::from_bits(b)),
+            Node::Const(b) => self.constant(-f64::from_bits(b)),
             Node::Neg(x) => x,
             _ => self.node(Node::Neg(a)),
         }
@@ -192,7 +192,7 @@ impl<'a> Builder<'a> {
 
     fn mul(&mut self, a: u32, b: u32) -> u32 {
         match (self.as_const(a), self.as_const(b)) {
-            (Some(x), Some(y)) => self.konst(x * y),
+            (Some(x), Some(y)) => self.constant(x * y),
             (Some(1.0), _) => b,
             (_, Some(1.0)) => a,
             (Some(-1.0), _) => self.neg(b),
@@ -215,10 +215,10 @@ impl<'a> Builder<'a> {
 
     fn div(&mut self, a: u32, b: u32) -> u32 {
         match (self.as_const(a), self.as_const(b)) {
-            (Some(x), Some(y)) => self.konst(x / y),
+            (Some(x), Some(y)) => self.constant(x / y),
             (_, Some(1.0)) => a,
             (_, Some(y)) if y.is_finite() && y != 0.0 => {
-                let r = self.konst(1.0 / y);
+                let r = self.constant(1.0 / y);
                 self.mul(a, r)
             }
             _ => self.node(Node::Div(a, b)),
@@ -227,10 +227,10 @@ impl<'a> Builder<'a> {
 
     fn powi(&mut self, a: u32, n: u32) -> u32 {
         match n {
-            0 => self.konst(1.0),
+            0 => self.constant(1.0),
             1 => a,
             _ => match self.as_const(a) {
-                Some(x) => self.konst(powi(x, n)),
+                Some(x) => self.constant(powi(x, n)),
                 None => self.node(Node::Powi(a, n)),
             },
         }
@@ -239,7 +239,7 @@ impl<'a> Builder<'a> {
     /// A function of one argument, folded when the argument is constant.
     fn func(&mut self, a: u32, make: fn(u32) -> Node, f: fn(f64) -> f64) -> u32 {
         match self.as_const(a) {
-            Some(x) => self.konst(f(x)),
+            Some(x) => self.constant(f(x)),
             None => self.node(make(a)),
         }
     }
@@ -247,13 +247,13 @@ impl<'a> Builder<'a> {
     // ------------------------------------------------------------ lowering
 
     fn expr(&mut self, e: &Expr) -> Result<u32, CompileError> {
-        let den = self.fpoly(e.den())?;
+        let den = self.node_poly(e.den())?;
         if let Some(c) = constant_of(&den) {
             // A constant denominator folds into the numerator's coefficients.
             if e.den().is_one() {
                 return self.poly(e.num());
             }
-            let mut num = self.fpoly(e.num())?;
+            let mut num = self.node_poly(e.num())?;
             for t in num.iter_mut() {
                 t.1 /= c;
             }
@@ -269,7 +269,7 @@ impl<'a> Builder<'a> {
         if let Some(&id) = self.polys.get(p) {
             return Ok(id);
         }
-        let f = self.fpoly(p)?;
+        let f = self.node_poly(p)?;
         let id = self.horner(f);
         self.polys.insert(p.clone(), id);
         Ok(id)
@@ -277,12 +277,12 @@ impl<'a> Builder<'a> {
 
     /// The terms of `p` over runtime nodes, constant atoms folded into the
     /// coefficients and equal power products merged.
-    fn fpoly(&mut self, p: &Poly) -> Result<FPoly, CompileError> {
-        let mut merged: FxHashMap<NMono, f64> = FxHashMap::default();
-        let mut order: Vec<NMono> = Vec::new();
+    fn node_poly(&mut self, p: &Poly) -> Result<NodePoly, CompileError> {
+        let mut merged: FxHashMap<NodeMonomial, f64> = FxHashMap::default();
+        let mut order: Vec<NodeMonomial> = Vec::new();
         for (m, c) in p.terms() {
             let mut coef = c.to_f64();
-            let mut mono: NMono = SmallVec::new();
+            let mut mono: NodeMonomial = SmallVec::new();
             for &(v, e) in m.0.iter() {
                 let id = self.atom(v)?;
                 match self.as_const(id) {
@@ -316,7 +316,7 @@ impl<'a> Builder<'a> {
         }
         let a = atom::atom(v);
         let id = if let Some(&x) = self.params.get(&v) {
-            self.konst(x)
+            self.constant(x)
         } else if let Some(&slot) = self.inputs.get(&v) {
             slot
         } else {
@@ -331,12 +331,12 @@ impl<'a> Builder<'a> {
                     )))
                 }
                 Atom::Time => return Err(CompileError::NotAnInput("the time t".to_string())),
-                Atom::Pi => self.konst(std::f64::consts::PI),
+                Atom::Pi => self.constant(std::f64::consts::PI),
                 Atom::Root(n) => {
                     let x: f64 = n
                         .parse()
                         .map_err(|_| CompileError::BadRadical(n.to_string()))?;
-                    self.konst(x.sqrt())
+                    self.constant(x.sqrt())
                 }
                 Atom::SqrtOf(u) => {
                     let x = self.expr(u)?;
@@ -380,7 +380,7 @@ impl<'a> Builder<'a> {
     /// A power product, built as (shared prefix) × (last factor).
     fn mono(&mut self, m: &[(u32, u32)]) -> u32 {
         match m {
-            [] => self.konst(1.0),
+            [] => self.constant(1.0),
             [(v, e)] => self.powi(*v, *e),
             _ => {
                 if let Some(&id) = self.monos.get(m) {
@@ -397,15 +397,15 @@ impl<'a> Builder<'a> {
     }
 
     /// Greedy multivariate Horner evaluation of a folded polynomial.
-    fn horner(&mut self, mut p: FPoly) -> u32 {
+    fn horner(&mut self, mut p: NodePoly) -> u32 {
         if p.is_empty() {
-            return self.konst(0.0);
+            return self.constant(0.0);
         }
         if let Some(c) = constant_of(&p) {
-            return self.konst(c);
+            return self.constant(c);
         }
         // The common power product of all terms.
-        let mut g: NMono = p[0].0.clone();
+        let mut g: NodeMonomial = p[0].0.clone();
         for (m, _) in &p[1..] {
             g = mono_gcd(&g, m);
             if g.is_empty() {
@@ -427,14 +427,14 @@ impl<'a> Builder<'a> {
                 t.1 /= c0;
             }
             let rest = self.horner(p);
-            let k = self.konst(c0);
+            let k = self.constant(c0);
             return self.mul(k, rest);
         }
         if p.len() == 1 {
             let (m, c) = &p[0];
             let c = *c;
             let mm = self.mono(m);
-            let k = self.konst(c);
+            let k = self.constant(c);
             return self.mul(k, mm);
         }
         // The variable in most terms.
@@ -450,10 +450,10 @@ impl<'a> Builder<'a> {
             .map(|(v, n)| (*v, *n));
         match best {
             Some((v, n)) if n >= 2 => {
-                let (mut with, mut without): (FPoly, FPoly) = (Vec::new(), Vec::new());
+                let (mut with, mut without): (NodePoly, NodePoly) = (Vec::new(), Vec::new());
                 for (m, c) in p {
                     if m.iter().any(|&(w, _)| w == v) {
-                        let d: NMono = SmallVec::from_slice(&[(v, 1)]);
+                        let d: NodeMonomial = SmallVec::from_slice(&[(v, 1)]);
                         with.push((mono_div(&m, &d), c));
                     } else {
                         without.push((m, c));
@@ -471,30 +471,30 @@ impl<'a> Builder<'a> {
     }
 
     /// Σ cᵢ·mᵢ with shared power products.
-    fn sum_of_terms(&mut self, mut p: FPoly) -> u32 {
+    fn sum_of_terms(&mut self, mut p: NodePoly) -> u32 {
         p.sort_by(|a, b| a.0.cmp(&b.0));
         let mut acc: Option<u32> = None;
         for (m, c) in p {
             let mm = self.mono(&m);
             acc = Some(match acc {
                 None => {
-                    let k = self.konst(c);
+                    let k = self.constant(c);
                     self.mul(k, mm)
                 }
                 Some(a) if c == 1.0 => self.add(a, mm),
                 Some(a) if c == -1.0 => self.sub(a, mm),
                 Some(a) => {
-                    let k = self.konst(c);
+                    let k = self.constant(c);
                     self.mul_add(k, mm, a)
                 }
             });
         }
-        acc.unwrap_or_else(|| self.konst(0.0))
+        acc.unwrap_or_else(|| self.constant(0.0))
     }
 }
 
 /// The value of a polynomial without runtime variables.
-fn constant_of(p: &FPoly) -> Option<f64> {
+fn constant_of(p: &NodePoly) -> Option<f64> {
     if p.iter().all(|(m, _)| m.is_empty()) {
         Some(p.iter().map(|t| t.1).sum())
     } else {
@@ -504,11 +504,11 @@ fn constant_of(p: &FPoly) -> Option<f64> {
 
 /// Merge repeated nodes of a sorted power product (two atoms folded to the
 /// same node).
-fn merge_dups(m: NMono) -> NMono {
+fn merge_dups(m: NodeMonomial) -> NodeMonomial {
     if m.windows(2).all(|w| w[0].0 != w[1].0) {
         return m;
     }
-    let mut out: NMono = SmallVec::new();
+    let mut out: NodeMonomial = SmallVec::new();
     for (v, e) in m {
         match out.last_mut() {
             Some(l) if l.0 == v => l.1 += e,
@@ -518,7 +518,7 @@ fn merge_dups(m: NMono) -> NMono {
     out
 }
 
-fn mono_gcd(a: &NMono, b: &NMono) -> NMono {
+fn mono_gcd(a: &NodeMonomial, b: &NodeMonomial) -> NodeMonomial {
     let mut out = SmallVec::new();
     let (mut i, mut j) = (0, 0);
     while i < a.len() && j < b.len() {
@@ -536,7 +536,7 @@ fn mono_gcd(a: &NMono, b: &NMono) -> NMono {
 }
 
 /// a / b for b dividing a.
-fn mono_div(a: &NMono, b: &NMono) -> NMono {
+fn mono_div(a: &NodeMonomial, b: &NodeMonomial) -> NodeMonomial {
     let mut out = SmallVec::new();
     for &(v, e) in a.iter() {
         let d = b.iter().find(|t| t.0 == v).map_or(0, |t| t.1);
