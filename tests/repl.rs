@@ -505,6 +505,42 @@ fn completion_and_highlighting() {
     );
 }
 
+/// One scanner feeds completion and highlighting: the pieces cover the
+/// line, a `:command` only at its start, a comment to its end.
+#[test]
+fn the_line_scanner_covers_the_line() {
+    use qdot::repl::terminal::{line_tokens, LineTokenKind as K};
+    let line = "x2 = 1.5e3*sin(θ)' # ok";
+    let t = line_tokens(line);
+    let pieces: Vec<(K, &str)> = t.iter().map(|t| (t.kind, &line[t.start..t.end])).collect();
+    assert_eq!(
+        pieces,
+        [
+            (K::Word, "x2"),
+            (K::Other, " "),
+            (K::Other, "="),
+            (K::Other, " "),
+            (K::Number, "1.5e3"),
+            (K::Other, "*"),
+            (K::Word, "sin"),
+            (K::Other, "("),
+            (K::Word, "θ"),
+            (K::Other, ")"),
+            (K::Other, "'"),
+            (K::Other, " "),
+            (K::Comment, "# ok"),
+        ]
+    );
+    let t = line_tokens("  :max-terms 5 a:b");
+    assert_eq!((t[2].kind, t[2].start, t[2].end), (K::Command, 2, 12));
+    assert!(t.iter().skip(3).all(|t| t.kind != K::Command), "{t:?}");
+    // completion of a word after an operator, and of nothing after a space
+    let (start, c) = qdot::repl::terminal::completions("x = 2*si", 8, &[]);
+    assert_eq!((start, c[0].display.as_str()), (6, "sin("));
+    let (_, c) = qdot::repl::terminal::completions("x = ", 4, &[]);
+    assert!(c.is_empty());
+}
+
 #[test]
 fn every_statement_kind_works_as_a_line() {
     let mut s = Session::new();

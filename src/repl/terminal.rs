@@ -313,32 +313,105 @@ impl Completer for ReplHelper {
     }
 }
 
+/// What a piece of a REPL line is, for completion and highlighting.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LineTokenKind {
+    /// A name or keyword: a letter or `_`, then letters, digits and `_`.
+    Word,
+    /// A number: a digit, then ASCII letters, digits and dots (`1.5e3`).
+    Number,
+    /// A `# …` comment, to the end of the line.
+    Comment,
+    /// A `:command` word at the start of the line.
+    Command,
+    /// One other character (operators, brackets, white space).
+    Other,
+}
+
+/// One piece of a REPL line: its kind and byte range.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LineToken {
+    /// What it is.
+    pub kind: LineTokenKind,
+    /// Where it starts (a byte offset).
+    pub start: usize,
+    /// Where it ends (exclusive).
+    pub end: usize,
+}
+
+/// The pieces of a REPL line, in order, covering it: the one scanner of
+/// completion and highlighting. Lenient where the parser is strict (an
+/// unfinished line is still being typed).
+pub fn line_tokens(line: &str) -> Vec<LineToken> {
+    let mut out = Vec::new();
+    let mut it = line.char_indices().peekable();
+    let token = |kind, start, end| LineToken { kind, start, end };
+    while let Some((i, c)) = it.next() {
+        let mut end = i + c.len_utf8();
+        let mut take = |accept: &dyn Fn(char) -> bool| {
+            while let Some(&(j, d)) = it.peek() {
+                if !accept(d) {
+                    break;
+                }
+                end = j + d.len_utf8();
+                it.next();
+            }
+            end
+        };
+        let t = if c == '#' {
+            out.push(token(LineTokenKind::Comment, i, line.len()));
+            break;
+        } else if c == ':' && line[..i].trim().is_empty() {
+            token(
+                LineTokenKind::Command,
+                i,
+                take(&|d| d.is_alphanumeric() || d == '_' || d == '-'),
+            )
+        } else if c.is_alphabetic() || c == '_' {
+            token(
+                LineTokenKind::Word,
+                i,
+                take(&|d| d.is_alphanumeric() || d == '_'),
+            )
+        } else if c.is_ascii_digit() {
+            token(
+                LineTokenKind::Number,
+                i,
+                take(&|d| d.is_ascii_alphanumeric() || d == '.'),
+            )
+        } else {
+            token(LineTokenKind::Other, i, end)
+        };
+        out.push(t);
+    }
+    out
+}
+
 /// The candidates for the word before `pos`: commands after a leading
 /// `:`, otherwise names, functions (with `(`) and keywords.
 pub fn completions(line: &str, pos: usize, names: &[&[String]]) -> (usize, Vec<Pair>) {
     let before = &line[..pos.min(line.len())];
-    let start = before
-        .char_indices()
-        .rev()
-        .take_while(|&(_, c)| c.is_alphanumeric() || c == '_' || c == ':')
-        .last()
-        .map(|(i, _)| i)
-        .unwrap_or(before.len());
+    let last = line_tokens(before).pop();
+    let (start, kind) = match last {
+        Some(t) if t.end == before.len() && t.kind != LineTokenKind::Other => (t.start, t.kind),
+        _ => (before.len(), LineTokenKind::Other),
+    };
     let word = &before[start..];
     let mut out: Vec<Pair> = Vec::new();
-    if word.starts_with(':') && line[..start].trim().is_empty() {
-        for (c, _, _) in COMMANDS {
-            if c.starts_with(word) {
-                out.push(Pair {
-                    display: c.to_string(),
-                    replacement: c.to_string(),
-                });
+    match kind {
+        LineTokenKind::Command => {
+            for (c, _, _) in COMMANDS {
+                if c.starts_with(word) {
+                    out.push(Pair {
+                        display: c.to_string(),
+                        replacement: c.to_string(),
+                    });
+                }
             }
+            return (start, out);
         }
-        return (start, out);
-    }
-    if word.is_empty() {
-        return (start, out);
+        LineTokenKind::Word => {}
+        _ => return (start, Vec::new()),
     }
     for list in names {
         for n in list.iter() {
@@ -408,75 +481,45 @@ pub fn highlight(line: &str, coords: &[String], params: &[String], others: &[Str
         return format!("{COMMAND}{line}{RESET}");
     }
     let mut out = String::with_capacity(line.len() + 32);
-    let mut it = line.char_indices().peekable();
     let mut first_word = true;
-    while let Some((i, c)) = it.next() {
-        if c == '#' {
-            out.push_str(COMMENT);
-            out.push_str(&line[i..]);
-            out.push_str(RESET);
-            break;
-        }
-        if c.is_alphabetic() || c == '_' {
-            let mut end = i + c.len_utf8();
-            while let Some(&(j, d)) = it.peek() {
-                if d.is_alphanumeric() || d == '_' {
-                    end = j + d.len_utf8();
-                    it.next();
+    for t in line_tokens(line) {
+        let text = &line[t.start..t.end];
+        let colour = match t.kind {
+            LineTokenKind::Comment => Some(COMMENT),
+            LineTokenKind::Number => Some(NUMBER),
+            LineTokenKind::Word => {
+                let call = line[t.end..].starts_with('(');
+                if call && functions::builtin(text).is_some() {
+                    Some(FUNCTION)
+                } else if coords.iter().any(|n| n == text) {
+                    Some(COORD)
+                } else if params.iter().any(|n| n == text) {
+                    Some(PARAM)
+                } else if others.iter().any(|n| n == text) {
+                    Some(DEFINED)
+                } else if (first_word || keywords::STOP.contains(&text))
+                    && keywords::all().any(|k| k == text)
+                {
+                    Some(KEYWORD)
                 } else {
-                    break;
+                    None
                 }
             }
-            let w = &line[i..end];
-            let call = line[end..].starts_with('(');
-            let colour = if call && functions::builtin(w).is_some() {
-                Some(FUNCTION)
-            } else if coords.iter().any(|n| n == w) {
-                Some(COORD)
-            } else if params.iter().any(|n| n == w) {
-                Some(PARAM)
-            } else if others.iter().any(|n| n == w) {
-                Some(DEFINED)
-            } else if (first_word || keywords::STOP.contains(&w)) && keywords::all().any(|k| k == w)
-            {
-                Some(KEYWORD)
-            } else {
-                None
-            };
-            first_word = false;
-            match colour {
-                Some(col) => {
-                    out.push_str(col);
-                    out.push_str(w);
-                    out.push_str(RESET);
-                }
-                None => out.push_str(w),
+            LineTokenKind::Command | LineTokenKind::Other => None,
+        };
+        match t.kind {
+            LineTokenKind::Other if text == ";" => first_word = true,
+            LineTokenKind::Other if text.trim().is_empty() => {}
+            _ => first_word = false,
+        }
+        match colour {
+            Some(col) => {
+                out.push_str(col);
+                out.push_str(text);
+                out.push_str(RESET);
             }
-            continue;
+            None => out.push_str(text),
         }
-        if c.is_ascii_digit() {
-            let mut end = i + 1;
-            while let Some(&(j, d)) = it.peek() {
-                if d.is_ascii_alphanumeric() || d == '.' {
-                    end = j + d.len_utf8();
-                    it.next();
-                } else {
-                    break;
-                }
-            }
-            out.push_str(NUMBER);
-            out.push_str(&line[i..end]);
-            out.push_str(RESET);
-            first_word = false;
-            continue;
-        }
-        if !c.is_whitespace() && c != ';' {
-            first_word = false;
-        }
-        if c == ';' {
-            first_word = true;
-        }
-        out.push(c);
     }
     out
 }
