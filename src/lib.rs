@@ -46,6 +46,8 @@ pub mod budget;
 #[doc(hidden)]
 pub mod cancel;
 #[doc(hidden)]
+pub mod dense;
+#[doc(hidden)]
 pub mod gallery;
 #[doc(hidden)]
 pub mod poly;

@@ -6,7 +6,9 @@ use std::path::Path;
 
 /// Layers, lowest first; the modules of one layer do not use each other.
 const LAYERS: &[&[&str]] = &[
-    &["num", "cancel", "budget", "limits", "gallery", "unicode"],
+    &[
+        "num", "cancel", "budget", "limits", "gallery", "unicode", "dense",
+    ],
     &["poly"],
     &["expr"],
     &["algebra"],

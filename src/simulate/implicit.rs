@@ -18,9 +18,9 @@
 #![allow(clippy::excessive_precision)]
 
 use super::{IntegratorOptions, Solution, Stats, Status, System};
+use crate::dense::Lu;
 use nalgebra::Complex;
 use std::fmt;
-use std::ops::{Add, Div, Mul, Sub};
 
 /// Why an implicit integration could not start (invalid input).
 #[derive(Clone, Debug, PartialEq)]
@@ -84,113 +84,6 @@ impl fmt::Display for ImplicitError {
 }
 
 impl std::error::Error for ImplicitError {}
-
-// ---------------------------------------------------------------------------
-// Dense LU with partial pivoting, real or complex, factored in place.
-
-/// The scalars of [`Lu`]: f64 and Complex<f64>.
-trait Scalar:
-    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self>
-{
-    /// A magnitude for pivoting (|re| + |im| for complex, as LINPACK's
-    /// ZGEFA).
-    fn mag(self) -> f64;
-}
-
-impl Scalar for f64 {
-    fn mag(self) -> f64 {
-        self.abs()
-    }
-}
-
-impl Scalar for Complex<f64> {
-    fn mag(self) -> f64 {
-        self.re.abs() + self.im.abs()
-    }
-}
-
-/// A square matrix (row-major) and, after [`Lu::factor`], its LU factors
-/// P·A = L·U (unit lower L below the diagonal, U on and above).
-struct Lu<T> {
-    n: usize,
-    a: Vec<T>,
-    piv: Vec<usize>,
-}
-
-impl<T: Scalar> Lu<T> {
-    fn new(n: usize, zero: T) -> Self {
-        Lu {
-            n,
-            a: vec![zero; n * n],
-            piv: vec![0; n],
-        }
-    }
-
-    /// Factor in place (Golub & Van Loan, Algorithm 3.4.1). False when a
-    /// pivot is zero or not finite (the matrix is singular to working
-    /// precision).
-    fn factor(&mut self) -> bool {
-        let n = self.n;
-        let a = &mut self.a;
-        for k in 0..n {
-            let mut p = k;
-            let mut best = a[k * n + k].mag();
-            for i in k + 1..n {
-                let v = a[i * n + k].mag();
-                if v > best {
-                    best = v;
-                    p = i;
-                }
-            }
-            self.piv[k] = p;
-            if best == 0.0 || !best.is_finite() {
-                return false;
-            }
-            if p != k {
-                for j in 0..n {
-                    a.swap(k * n + j, p * n + j);
-                }
-            }
-            let pivot = a[k * n + k];
-            for i in k + 1..n {
-                let l = a[i * n + k] / pivot;
-                a[i * n + k] = l;
-                if l.mag() != 0.0 {
-                    for j in k + 1..n {
-                        a[i * n + j] = a[i * n + j] - l * a[k * n + j];
-                    }
-                }
-            }
-        }
-        true
-    }
-
-    /// Solve A·x = b in place (after a successful [`Lu::factor`]).
-    fn solve(&self, b: &mut [T]) {
-        let n = self.n;
-        let a = &self.a;
-        for k in 0..n {
-            let p = self.piv[k];
-            if p != k {
-                b.swap(k, p);
-            }
-        }
-        for i in 0..n {
-            let mut s = b[i];
-            for j in 0..i {
-                s = s - a[i * n + j] * b[j];
-            }
-            b[i] = s;
-        }
-        for i in (0..n).rev() {
-            let mut s = b[i];
-            for j in i + 1..n {
-                s = s - a[i * n + j] * b[j];
-            }
-            b[i] = s / a[i * n + i];
-        }
-    }
-}
 
 /// The Jacobian ∂F/∂y at (t, y) into `jac` (row-major): analytic when the
 /// system provides it, else forward differences with Hairer's increments
@@ -1190,33 +1083,5 @@ mod tests {
         // The basis interpolates.
         let l = gauss_basis(GC[1]);
         assert!((l[0]).abs() < 1e-15 && (l[1] - 1.0).abs() < 1e-15 && l[2].abs() < 1e-15);
-    }
-
-    #[test]
-    fn lu_solves_real_and_complex_systems() {
-        let mut lu = Lu::new(3, 0.0);
-        lu.a.copy_from_slice(&[0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0]);
-        assert!(lu.factor());
-        let mut b = [5.0, 3.0, 6.0];
-        lu.solve(&mut b);
-        // A·x = b0 (the zero first pivot forces a row exchange).
-        let a = [0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0];
-        let b0 = [5.0, 3.0, 6.0];
-        for r in 0..3 {
-            let s: f64 = (0..3).map(|c| a[r * 3 + c] * b[c]).sum();
-            assert!((s - b0[r]).abs() < 1e-14);
-        }
-        let mut lu = Lu::new(2, Complex::new(0.0, 0.0));
-        let i = Complex::new(0.0, 1.0);
-        let one = Complex::new(1.0, 0.0);
-        lu.a.copy_from_slice(&[i, one, one, i + one]);
-        assert!(lu.factor());
-        let x = [Complex::new(1.0, -2.0), Complex::new(0.5, 3.0)];
-        let mut b = [i * x[0] + x[1], x[0] + (i + one) * x[1]];
-        lu.solve(&mut b);
-        assert!((b[0] - x[0]).norm() < 1e-15 && (b[1] - x[1]).norm() < 1e-15);
-        let mut s = Lu::new(2, 0.0);
-        s.a.copy_from_slice(&[1.0, 2.0, 2.0, 4.0]);
-        assert!(!s.factor());
     }
 }

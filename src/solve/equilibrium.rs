@@ -35,6 +35,7 @@ use super::numeric::{find_roots, RootOptions};
 use crate::algebra::linear::det;
 use crate::algebra::sign::sign_of;
 pub use crate::algebra::sign::{sign_exact, Sign, Values};
+use crate::dense::Lu;
 use crate::diag::Diagnostic;
 use crate::expr::atom::{self, Atom};
 use crate::expr::{func, Expr};
@@ -1114,28 +1115,14 @@ fn classify_numeric(k: &[Vec<f64>], gyroscopic: bool) -> Stability {
     jacobi(&signs, gyroscopic)
 }
 
-#[allow(clippy::needless_range_loop)] // matrix indices read best as indices
-fn det_f64(mut m: Vec<Vec<f64>>) -> f64 {
-    let n = m.len();
-    let mut d = 1.0;
-    for k in 0..n {
-        let p = (k..n)
-            .max_by(|&a, &b| m[a][k].abs().total_cmp(&m[b][k].abs()))
-            .unwrap_or(k);
-        if m[p][k] == 0.0 {
-            return 0.0;
-        }
-        if p != k {
-            m.swap(p, k);
-            d = -d;
-        }
-        d *= m[k][k];
-        for r in k + 1..n {
-            let f = m[r][k] / m[k][k];
-            for c in k..n {
-                m[r][c] -= f * m[k][c];
-            }
-        }
+/// The determinant of a numeric matrix, by LU with partial pivoting
+/// (0 for a zero pivot).
+fn det_f64(m: Vec<Vec<f64>>) -> f64 {
+    let mut lu = Lu::new(m.len(), 0.0);
+    lu.a = m.concat();
+    if lu.factor() {
+        lu.determinant()
+    } else {
+        0.0
     }
-    d
 }

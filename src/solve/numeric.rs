@@ -96,6 +96,7 @@
 //!   within 16ε of −π is reported as π (so the root π of sin x is π, not −π),
 //!   and −0 is reported as 0. `residual` is max_k |F_k| at the reported x.
 
+use crate::dense::Lu;
 use std::cmp::Ordering;
 use std::f64::consts::{PI, TAU};
 
@@ -633,7 +634,7 @@ fn lexicographic(a: &[f64], b: &[f64]) -> Ordering {
 /// Solves A·x = b by Gaussian elimination with partial pivoting. `None` if A
 /// is (numerically) singular — a pivot ≤ n·ε·max|A_ij| — or not square, or
 /// the result is not finite.
-fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
+fn solve(a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
     let n = b.len();
     if a.len() != n || a.iter().any(|row| row.len() != n) {
         return None;
@@ -642,42 +643,13 @@ fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
     if !(size > 0.0 && size.is_finite()) {
         return None;
     }
-    let tiny = n as f64 * f64::EPSILON * size;
-    for col in 0..n {
-        let mut piv = col;
-        for r in col + 1..n {
-            if a[r][col].abs() > a[piv][col].abs() {
-                piv = r;
-            }
-        }
-        if a[piv][col].abs() <= tiny || a[piv][col].is_nan() {
-            return None;
-        }
-        a.swap(col, piv);
-        b.swap(col, piv);
-        let (top, bottom) = a.split_at_mut(col + 1);
-        let prow = &top[col];
-        let bcol = b[col];
-        for (off, row) in bottom.iter_mut().enumerate() {
-            let factor = row[col] / prow[col];
-            if factor != 0.0 {
-                for (x, p) in row[col..].iter_mut().zip(&prow[col..]) {
-                    *x -= factor * p;
-                }
-                b[col + 1 + off] -= factor * bcol;
-            }
-        }
+    let mut lu = Lu::new(n, 0.0);
+    lu.a = a.concat();
+    if !lu.factor_above(n as f64 * f64::EPSILON * size) {
+        return None;
     }
-    let mut x = vec![0.0; n];
-    for i in (0..n).rev() {
-        let tail: f64 = a[i][i + 1..]
-            .iter()
-            .zip(&x[i + 1..])
-            .map(|(p, q)| p * q)
-            .sum();
-        x[i] = (b[i] - tail) / a[i][i];
-    }
-    x.iter().all(|t| t.is_finite()).then_some(x)
+    lu.solve(&mut b);
+    b.iter().all(|t| t.is_finite()).then_some(b)
 }
 
 /// Levenberg–Marquardt step (AᵀA + μI)·δ = −AᵀF, μ = 10⁻⁶·max_i (AᵀA)_ii,

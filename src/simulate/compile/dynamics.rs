@@ -8,9 +8,9 @@ use crate::simulate::System;
 use rustc_hash::FxHashMap;
 
 use super::builder::compile_with;
-use super::dense::solve_spd;
 use super::error::CompileError;
 use super::program::Program;
+use super::solve_spd;
 
 /// How [`CompiledDynamics`] gets q̈.
 #[derive(Clone, Debug)]

@@ -63,3 +63,15 @@ impl fmt::Display for CompileError {
 }
 
 impl std::error::Error for CompileError {}
+
+impl From<crate::dense::DenseError> for CompileError {
+    fn from(e: crate::dense::DenseError) -> CompileError {
+        match e {
+            crate::dense::DenseError::Shape { .. } => CompileError::Shape(e.to_string()),
+            crate::dense::DenseError::Singular { column } => CompileError::Singular {
+                column,
+                constant_mass: false,
+            },
+        }
+    }
+}

@@ -24,28 +24,31 @@
 //!
 //! [`CompiledDynamics`] evaluates M(q, t) (its upper triangle) and f(q, q̇, t)
 //! of Lagrange's equations in one program and solves M·q̈ = f by
-//! [`solve_spd`] (Cholesky, LU with partial pivoting as fallback; Golub &
-//! Van Loan, Matrix Computations, 4.2 and 3.4), as a [`super::System`] for the
+//! [`solve_spd`] ([`crate::dense`]: Cholesky, LU with partial pivoting as
+//! fallback; Golub & Van Loan, Matrix Computations, 4.2 and 3.4), as a [`super::System`] for the
 //! integrators.
 //!
 //! The stages, one file each: `builder` (expressions to a hash-consed
 //! graph of nodes, with constant folding and Horner schemes), `passes`
 //! (the named passes from that graph to a [`Program`]), `program` (the
-//! instructions and their interpreter), [`dense`] (the f64 solve of
-//! M·q̈ = f), `dynamics` ([`CompiledDynamics`]) and `error`
+//! instructions and their interpreter), `dynamics` ([`CompiledDynamics`]) and `error`
 //! ([`CompileError`]).
 
 mod builder;
-pub mod dense;
 mod dynamics;
 mod error;
 mod passes;
 mod program;
 
 pub use builder::{compile, compile_with, naive_op_count};
-pub use dense::solve_spd;
 pub use dynamics::{state_inputs, Choice, CompiledDynamics, Evaluator};
 pub use error::CompileError;
 #[doc(hidden)]
 pub use program::Instr;
 pub use program::Program;
+
+/// Solve M·x = f in place for a symmetric M ([`crate::dense::solve_spd`]),
+/// with the error as a [`CompileError`].
+pub fn solve_spd(m: &mut [f64], f: &mut [f64], n: usize) -> Result<(), CompileError> {
+    crate::dense::solve_spd(m, f, n).map_err(CompileError::from)
+}

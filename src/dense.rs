@@ -1,0 +1,377 @@
+//! Dense linear algebra in floating point: the one home of qdot's
+//! numeric solvers. LU with partial pivoting, real or complex (the
+//! implicit integrators' Newton systems, Newton's method for equilibria,
+//! determinants of numeric Hessians), and the symmetric solve of
+//! M·q̈ = f (Cholesky, LU as fallback) for the compiled dynamics.
+//!
+//! Floats only: nothing here enters an exact result.
+
+use nalgebra::Complex;
+use std::ops::{Add, Div, Mul, Sub};
+
+/// Why a dense solve failed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DenseError {
+    /// The slices are shorter than an n×n system needs.
+    Shape {
+        /// The size asked for.
+        n: usize,
+    },
+    /// The matrix is singular to working precision: a zero (or not
+    /// finite) pivot in `column`.
+    Singular {
+        /// The column of the pivot.
+        column: usize,
+    },
+}
+
+impl std::fmt::Display for DenseError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            DenseError::Shape { n } => write!(
+                f,
+                "solve_spd: a {n}×{n} system needs {} and {n} values",
+                n * n
+            ),
+            DenseError::Singular { column } => {
+                write!(f, "the matrix is singular (column {column})")
+            }
+        }
+    }
+}
+
+impl std::error::Error for DenseError {}
+
+/// The scalars of [`Lu`]: f64 and Complex<f64>.
+pub trait Scalar:
+    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self>
+{
+    /// A magnitude for pivoting (|re| + |im| for complex, as LINPACK's
+    /// ZGEFA).
+    fn mag(self) -> f64;
+}
+
+impl Scalar for f64 {
+    fn mag(self) -> f64 {
+        self.abs()
+    }
+}
+
+impl Scalar for Complex<f64> {
+    fn mag(self) -> f64 {
+        self.re.abs() + self.im.abs()
+    }
+}
+
+/// A square matrix (row-major) and, after [`Lu::factor`], its LU factors
+/// P·A = L·U (unit lower L below the diagonal, U on and above).
+pub struct Lu<T> {
+    n: usize,
+    /// The matrix, row-major, to fill before [`Lu::factor`]; its factors after.
+    pub a: Vec<T>,
+    piv: Vec<usize>,
+}
+
+impl<T: Scalar> Lu<T> {
+    /// An n×n matrix of zeros.
+    pub fn new(n: usize, zero: T) -> Self {
+        Lu {
+            n,
+            a: vec![zero; n * n],
+            piv: vec![0; n],
+        }
+    }
+
+    /// Factor in place (Golub & Van Loan, Algorithm 3.4.1). False when a
+    /// pivot is zero or not finite (the matrix is singular to working
+    /// precision).
+    pub fn factor(&mut self) -> bool {
+        self.factor_above(0.0)
+    }
+
+    /// [`Lu::factor`], failing also on a pivot of magnitude ≤ `tiny` (a
+    /// relative singularity test).
+    pub fn factor_above(&mut self, tiny: f64) -> bool {
+        let n = self.n;
+        let a = &mut self.a;
+        for k in 0..n {
+            let mut p = k;
+            let mut best = a[k * n + k].mag();
+            for i in k + 1..n {
+                let v = a[i * n + k].mag();
+                if v > best {
+                    best = v;
+                    p = i;
+                }
+            }
+            self.piv[k] = p;
+            if best <= tiny || !best.is_finite() {
+                return false;
+            }
+            if p != k {
+                for j in 0..n {
+                    a.swap(k * n + j, p * n + j);
+                }
+            }
+            let pivot = a[k * n + k];
+            for i in k + 1..n {
+                let l = a[i * n + k] / pivot;
+                a[i * n + k] = l;
+                if l.mag() != 0.0 {
+                    for j in k + 1..n {
+                        a[i * n + j] = a[i * n + j] - l * a[k * n + j];
+                    }
+                }
+            }
+        }
+        true
+    }
+
+    /// Solve A·x = b in place (after a successful [`Lu::factor`]).
+    pub fn solve(&self, b: &mut [T]) {
+        let n = self.n;
+        let a = &self.a;
+        for k in 0..n {
+            let p = self.piv[k];
+            if p != k {
+                b.swap(k, p);
+            }
+        }
+        for i in 0..n {
+            let mut s = b[i];
+            for j in 0..i {
+                s = s - a[i * n + j] * b[j];
+            }
+            b[i] = s;
+        }
+        for i in (0..n).rev() {
+            let mut s = b[i];
+            for j in i + 1..n {
+                s = s - a[i * n + j] * b[j];
+            }
+            b[i] = s / a[i * n + i];
+        }
+    }
+}
+
+impl Lu<f64> {
+    /// The determinant, after a [`Lu::factor`] that succeeded: the product
+    /// of U's diagonal, negated per row swap.
+    pub fn determinant(&self) -> f64 {
+        let n = self.n;
+        let mut d = 1.0;
+        for k in 0..n {
+            if self.piv[k] != k {
+                d = -d;
+            }
+            d *= self.a[k * n + k];
+        }
+        d
+    }
+}
+
+/// Solve M·x = f in place for a symmetric M (n×n, row-major, both
+/// triangles filled): Cholesky M = L·Lᵀ (Golub & Van Loan, Matrix
+/// Computations, 4.2.5), and when M is not numerically positive definite
+/// Gaussian elimination with partial pivoting (3.4) on the restored M.
+/// The solution replaces `f`; `m` is overwritten. Allocation-free.
+/// An error when M is numerically singular (a zero pivot).
+pub fn solve_spd(m: &mut [f64], f: &mut [f64], n: usize) -> Result<(), DenseError> {
+    if m.len() < n * n || f.len() < n {
+        return Err(DenseError::Shape { n });
+    }
+    match cholesky(m, n) {
+        Ok(()) => {
+            cholesky_solve(m, f, n);
+            Ok(())
+        }
+        Err(j) => {
+            restore(m, n, j);
+            gauss_solve(m, f, n)
+        }
+    }
+}
+
+/// In-place Cholesky: L into the lower triangle and the diagonal, the
+/// strict upper triangle untouched. Err(j) when the pivot of column j is
+/// not positive (columns < j are then factored, column j untouched).
+fn cholesky(a: &mut [f64], n: usize) -> Result<(), usize> {
+    let dot = |x: &[f64], y: &[f64]| -> f64 { x.iter().zip(y).map(|(p, q)| p * q).sum() };
+    for j in 0..n {
+        let (done, rest) = a[..n * n].split_at_mut((j + 1) * n);
+        let row_j = &mut done[j * n..];
+        let d = row_j[j] - dot(&row_j[..j], &row_j[..j]);
+        if d.is_nan() || d <= 0.0 {
+            return Err(j);
+        }
+        let d = d.sqrt();
+        row_j[j] = d;
+        let (lj, inv) = (&row_j[..j], 1.0 / d);
+        for row_i in rest.chunks_exact_mut(n) {
+            row_i[j] = (row_i[j] - dot(&row_i[..j], lj)) * inv;
+        }
+    }
+    Ok(())
+}
+
+fn cholesky_solve(l: &[f64], b: &mut [f64], n: usize) {
+    for i in 0..n {
+        let row = &l[i * n..i * n + i];
+        let s: f64 = row.iter().zip(&b[..i]).map(|(p, q)| p * q).sum();
+        b[i] = (b[i] - s) / l[i * n + i];
+    }
+    for i in (0..n).rev() {
+        let mut s = b[i];
+        for k in i + 1..n {
+            s -= l[k * n + i] * b[k];
+        }
+        b[i] = s / l[i * n + i];
+    }
+}
+
+/// Undo a Cholesky factorization that failed at column `j`: the diagonal
+/// entries k < j from the rows of L (M_kk = Σ L_ki²), the lower triangle
+/// from the untouched upper one.
+fn restore(a: &mut [f64], n: usize, j: usize) {
+    for k in 0..j.min(n) {
+        let s: f64 = (0..=k).map(|i| a[k * n + i] * a[k * n + i]).sum();
+        a[k * n + k] = s;
+    }
+    for i in 0..n {
+        for k in 0..i {
+            a[i * n + k] = a[k * n + i];
+        }
+    }
+}
+
+/// Gaussian elimination with partial pivoting on (a | b), in place.
+fn gauss_solve(a: &mut [f64], b: &mut [f64], n: usize) -> Result<(), DenseError> {
+    for j in 0..n {
+        let p = (j..n)
+            .max_by(|&x, &y| a[x * n + j].abs().total_cmp(&a[y * n + j].abs()))
+            .unwrap_or(j);
+        let piv = a[p * n + j];
+        if piv == 0.0 || !piv.is_finite() {
+            return Err(DenseError::Singular { column: j });
+        }
+        if p != j {
+            for k in 0..n {
+                a.swap(j * n + k, p * n + k);
+            }
+            b.swap(j, p);
+        }
+        for i in j + 1..n {
+            let f = a[i * n + j] / piv;
+            if f != 0.0 {
+                for k in j + 1..n {
+                    a[i * n + k] -= f * a[j * n + k];
+                }
+                b[i] -= f * b[j];
+            }
+        }
+    }
+    for i in (0..n).rev() {
+        let mut s = b[i];
+        for k in i + 1..n {
+            s -= a[i * n + k] * b[k];
+        }
+        b[i] = s / a[i * n + i];
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn solve_spd_cholesky_and_fallback() {
+        // SPD: [[4, 2], [2, 3]]·x = [2, 1] → x = [1/2, 0].
+        let mut m = vec![4.0, 2.0, 2.0, 3.0];
+        let mut f = vec![2.0, 1.0];
+        solve_spd(&mut m, &mut f, 2).unwrap();
+        assert!((f[0] - 0.5).abs() < 1e-15 && f[1].abs() < 1e-15);
+        // Symmetric indefinite: [[1, 2], [2, 1]]·x = [3, 3] → x = [1, 1];
+        // Cholesky fails at column 1 and the diagonal is restored.
+        let mut m = vec![1.0, 2.0, 2.0, 1.0];
+        let mut f = vec![3.0, 3.0];
+        solve_spd(&mut m, &mut f, 2).unwrap();
+        assert!((f[0] - 1.0).abs() < 1e-15 && (f[1] - 1.0).abs() < 1e-15);
+        // Zero first pivot: [[0, 1], [1, 0]]·x = [2, 5] → x = [5, 2].
+        let mut m = vec![0.0, 1.0, 1.0, 0.0];
+        let mut f = vec![2.0, 5.0];
+        solve_spd(&mut m, &mut f, 2).unwrap();
+        assert_eq!(f, vec![5.0, 2.0]);
+        // Singular.
+        let mut m = vec![1.0, 1.0, 1.0, 1.0];
+        let mut f = vec![1.0, 2.0];
+        assert_eq!(
+            solve_spd(&mut m, &mut f, 2),
+            Err(DenseError::Singular { column: 1 })
+        );
+        assert!(matches!(
+            solve_spd(&mut m, &mut f, 3),
+            Err(DenseError::Shape { n: 3 })
+        ));
+    }
+
+    #[test]
+    fn restore_recovers_the_matrix() {
+        // 3×3 with positive leading 2×2 minor but indefinite.
+        let orig = [2.0, 1.0, 3.0, 1.0, 2.0, 1.0, 3.0, 1.0, 1.0];
+        let mut a = orig;
+        let j = cholesky(&mut a, 3).unwrap_err();
+        assert_eq!(j, 2);
+        restore(&mut a, 3, j);
+        for (x, y) in a.iter().zip(&orig) {
+            assert!((x - y).abs() < 1e-14, "{a:?}");
+        }
+    }
+
+    #[test]
+    fn lu_solves_real_and_complex_systems() {
+        let mut lu = Lu::new(3, 0.0);
+        lu.a.copy_from_slice(&[0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0]);
+        assert!(lu.factor());
+        let mut b = [5.0, 3.0, 6.0];
+        lu.solve(&mut b);
+        // A·x = b0 (the zero first pivot forces a row exchange).
+        let a = [0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0];
+        let b0 = [5.0, 3.0, 6.0];
+        for r in 0..3 {
+            let s: f64 = (0..3).map(|c| a[r * 3 + c] * b[c]).sum();
+            assert!((s - b0[r]).abs() < 1e-14);
+        }
+        let mut lu = Lu::new(2, Complex::new(0.0, 0.0));
+        let i = Complex::new(0.0, 1.0);
+        let one = Complex::new(1.0, 0.0);
+        lu.a.copy_from_slice(&[i, one, one, i + one]);
+        assert!(lu.factor());
+        let x = [Complex::new(1.0, -2.0), Complex::new(0.5, 3.0)];
+        let mut b = [i * x[0] + x[1], x[0] + (i + one) * x[1]];
+        lu.solve(&mut b);
+        assert!((b[0] - x[0]).norm() < 1e-15 && (b[1] - x[1]).norm() < 1e-15);
+        let mut s = Lu::new(2, 0.0);
+        s.a.copy_from_slice(&[1.0, 2.0, 2.0, 4.0]);
+        assert!(!s.factor());
+    }
+
+    #[test]
+    fn the_determinant_counts_the_row_swaps() {
+        // [[0, 2, 1], [1, 1, 0], [3, 0, 1]]: det = 0·1 − 2·1 + 1·(−3) = −5
+        let mut lu = Lu::new(3, 0.0);
+        lu.a.copy_from_slice(&[0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0]);
+        assert!(lu.factor());
+        assert!(
+            (lu.determinant() + 5.0).abs() < 1e-14,
+            "{}",
+            lu.determinant()
+        );
+        // a relative singularity test refuses a tiny pivot
+        let mut lu = Lu::new(2, 0.0);
+        lu.a.copy_from_slice(&[1.0, 1.0, 1.0, 1.0 + 1e-15]);
+        assert!(lu.factor());
+        lu.a.copy_from_slice(&[1.0, 1.0, 1.0, 1.0 + 1e-15]);
+        assert!(!lu.factor_above(1e-12));
+    }
+}
