@@ -27,10 +27,15 @@ use std::str::FromStr;
 /// * `Big(r)`: `r` is normalized (reduced, positive denominator) and does NOT fit
 ///   the `Small` invariants.
 ///
-/// Construct values through the provided constructors ([`Q::new`], [`Q::from_big`],
-/// …) rather than the variants directly, so that the invariants hold.
+/// The representation is private: values are built by the constructors
+/// ([`Q::new`], [`Q::from_big`], …), so the invariants always hold.
 #[derive(Clone, Debug)]
-pub enum Q {
+pub struct Q(Repr);
+
+/// The representation of a [`Q`], private to it: machine integers when the
+/// value fits, a boxed `BigRational` otherwise.
+#[derive(Clone, Debug)]
+pub(crate) enum Repr {
     /// A reduced fraction `n/d` of machine integers.
     Small(i64, i64),
     /// A value that does not fit `Small`.
@@ -111,6 +116,16 @@ fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
 const F64_EXACT: i64 = 1 << 53;
 
 impl Q {
+    /// `(n, d)` when the value is a fraction of machine integers (the fast
+    /// paths of modular arithmetic).
+    #[inline]
+    pub(crate) fn small(&self) -> Option<(i64, i64)> {
+        match self.0 {
+            Repr::Small(n, d) => Some((n, d)),
+            Repr::Big(_) => None,
+        }
+    }
+
     // -----------------------------------------------------------------------
     // internal constructors
     // -----------------------------------------------------------------------
@@ -119,12 +134,12 @@ impl Q {
     #[inline]
     fn from_reduced_i128(n: i128, d: i128) -> Q {
         if n > i64::MIN as i128 && n <= i64::MAX as i128 && d <= i64::MAX as i128 {
-            Q::Small(n as i64, d as i64)
+            Q(Repr::Small(n as i64, d as i64))
         } else {
-            Q::Big(Box::new(BigRational::new_raw(
+            Q(Repr::Big(Box::new(BigRational::new_raw(
                 BigInt::from(n),
                 BigInt::from(d),
-            )))
+            ))))
         }
     }
 
@@ -149,9 +164,11 @@ impl Q {
     #[inline]
     fn small_int(n: i64) -> Q {
         if n == i64::MIN {
-            Q::Big(Box::new(BigRational::from_integer(BigInt::from(n))))
+            Q(Repr::Big(Box::new(BigRational::from_integer(
+                BigInt::from(n),
+            ))))
         } else {
-            Q::Small(n, 1)
+            Q(Repr::Small(n, 1))
         }
     }
 
@@ -162,13 +179,13 @@ impl Q {
     /// The number 0.
     #[inline]
     pub const fn zero() -> Q {
-        Q::Small(0, 1)
+        Q(Repr::Small(0, 1))
     }
 
     /// The number 1.
     #[inline]
     pub const fn one() -> Q {
-        Q::Small(1, 1)
+        Q(Repr::Small(1, 1))
     }
 
     /// The integer `n`.
@@ -194,40 +211,40 @@ impl Q {
             r
         };
         match (r.numer().to_i64(), r.denom().to_i64()) {
-            (Some(n), Some(d)) if n != i64::MIN => Q::Small(n, d),
-            _ => Q::Big(Box::new(r)),
+            (Some(n), Some(d)) if n != i64::MIN => Q(Repr::Small(n, d)),
+            _ => Q(Repr::Big(Box::new(r))),
         }
     }
 
     /// From a `BigInt`; demoted to `Small` when it fits.
     pub fn from_bigint(n: BigInt) -> Q {
         match n.to_i64() {
-            Some(v) if v != i64::MIN => Q::Small(v, 1),
-            _ => Q::Big(Box::new(BigRational::from_integer(n))),
+            Some(v) if v != i64::MIN => Q(Repr::Small(v, 1)),
+            _ => Q(Repr::Big(Box::new(BigRational::from_integer(n)))),
         }
     }
 
     /// The value as a `BigRational`.
     pub fn to_big(&self) -> BigRational {
-        match self {
-            Q::Small(n, d) => BigRational::new_raw(BigInt::from(*n), BigInt::from(*d)),
-            Q::Big(r) => (**r).clone(),
+        match &self.0 {
+            Repr::Small(n, d) => BigRational::new_raw(BigInt::from(*n), BigInt::from(*d)),
+            Repr::Big(r) => (**r).clone(),
         }
     }
 
     /// The (reduced) numerator; carries the sign.
     pub fn numer(&self) -> BigInt {
-        match self {
-            Q::Small(n, _) => BigInt::from(*n),
-            Q::Big(r) => r.numer().clone(),
+        match &self.0 {
+            Repr::Small(n, _) => BigInt::from(*n),
+            Repr::Big(r) => r.numer().clone(),
         }
     }
 
     /// The (reduced, positive) denominator.
     pub fn denom(&self) -> BigInt {
-        match self {
-            Q::Small(_, d) => BigInt::from(*d),
-            Q::Big(r) => r.denom().clone(),
+        match &self.0 {
+            Repr::Small(_, d) => BigInt::from(*d),
+            Repr::Big(r) => r.denom().clone(),
         }
     }
 
@@ -238,48 +255,48 @@ impl Q {
     /// `self == 0`.
     #[inline]
     pub fn is_zero(&self) -> bool {
-        matches!(self, Q::Small(0, _))
+        matches!(self.0, Repr::Small(0, _))
     }
 
     /// `self == 1`.
     #[inline]
     pub fn is_one(&self) -> bool {
-        matches!(self, Q::Small(1, 1))
+        matches!(self.0, Repr::Small(1, 1))
     }
 
     /// `self` is an integer.
     #[inline]
     pub fn is_integer(&self) -> bool {
-        match self {
-            Q::Small(_, d) => *d == 1,
-            Q::Big(r) => r.denom().is_one(),
+        match &self.0 {
+            Repr::Small(_, d) => *d == 1,
+            Repr::Big(r) => r.denom().is_one(),
         }
     }
 
     /// `self < 0`.
     #[inline]
     pub fn is_negative(&self) -> bool {
-        match self {
-            Q::Small(n, _) => *n < 0,
-            Q::Big(r) => r.numer().is_negative(),
+        match &self.0 {
+            Repr::Small(n, _) => *n < 0,
+            Repr::Big(r) => r.numer().is_negative(),
         }
     }
 
     /// `self > 0`.
     #[inline]
     pub fn is_positive(&self) -> bool {
-        match self {
-            Q::Small(n, _) => *n > 0,
-            Q::Big(r) => r.numer().is_positive(),
+        match &self.0 {
+            Repr::Small(n, _) => *n > 0,
+            Repr::Big(r) => r.numer().is_positive(),
         }
     }
 
     /// -1, 0 or 1.
     #[inline]
     pub fn signum(&self) -> i32 {
-        match self {
-            Q::Small(n, _) => n.signum() as i32,
-            Q::Big(r) => {
+        match &self.0 {
+            Repr::Small(n, _) => n.signum() as i32,
+            Repr::Big(r) => {
                 if r.numer().is_negative() {
                     -1
                 } else {
@@ -295,24 +312,24 @@ impl Q {
 
     /// `|self|`.
     pub fn abs(&self) -> Q {
-        match self {
-            Q::Small(n, d) => Q::Small(n.abs(), *d),
-            Q::Big(r) => Q::Big(Box::new(r.abs())),
+        match &self.0 {
+            Repr::Small(n, d) => Q(Repr::Small(n.abs(), *d)),
+            Repr::Big(r) => Q(Repr::Big(Box::new(r.abs()))),
         }
     }
 
     /// `1/self`, or `None` if `self == 0`.
     pub fn recip(&self) -> Option<Q> {
-        match self {
-            Q::Small(0, _) => None,
-            Q::Small(n, d) => {
+        match &self.0 {
+            Repr::Small(0, _) => None,
+            Repr::Small(n, d) => {
                 if *n < 0 {
-                    Some(Q::Small(-*d, -*n))
+                    Some(Q(Repr::Small(-*d, -*n)))
                 } else {
-                    Some(Q::Small(*d, *n))
+                    Some(Q(Repr::Small(*d, *n)))
                 }
             }
-            Q::Big(r) => Some(Q::from_big(r.recip())),
+            Repr::Big(r) => Some(Q::from_big(r.recip())),
         }
     }
 
@@ -320,9 +337,11 @@ impl Q {
     /// length for big numbers: within 0.31): a power qᵏ has about
     /// k·log₁₀ + 1 digits.
     pub fn log10_size(&self) -> f64 {
-        match self {
-            Q::Small(n, d) => (n.unsigned_abs().max(d.unsigned_abs()) as f64).log10(),
-            Q::Big(r) => r.numer().bits().max(r.denom().bits()) as f64 * std::f64::consts::LOG10_2,
+        match &self.0 {
+            Repr::Small(n, d) => (n.unsigned_abs().max(d.unsigned_abs()) as f64).log10(),
+            Repr::Big(r) => {
+                r.numer().bits().max(r.denom().bits()) as f64 * std::f64::consts::LOG10_2
+            }
         }
     }
 
@@ -368,8 +387,8 @@ impl Q {
     /// Nearest `f64` (correctly rounded for `Big` and for small operands; huge
     /// magnitudes become `±inf`, tiny ones `0`).
     pub fn to_f64(&self) -> f64 {
-        match self {
-            Q::Small(n, d) => {
+        match &self.0 {
+            Repr::Small(n, d) => {
                 if n.abs() <= F64_EXACT && *d <= F64_EXACT {
                     *n as f64 / *d as f64
                 } else {
@@ -378,7 +397,7 @@ impl Q {
                         .unwrap_or(*n as f64 / *d as f64)
                 }
             }
-            Q::Big(r) => r.to_f64().unwrap_or_else(|| {
+            Repr::Big(r) => r.to_f64().unwrap_or_else(|| {
                 // `ratio_to_f64` does not fail for BigInt; keep a fallback anyway.
                 let n = r.numer().to_f64().unwrap_or(f64::NAN);
                 let d = r.denom().to_f64().unwrap_or(f64::NAN);
@@ -389,10 +408,10 @@ impl Q {
 
     /// The value as `i64` if it is an integer that fits.
     pub fn as_i64(&self) -> Option<i64> {
-        match self {
-            Q::Small(n, 1) => Some(*n),
-            Q::Small(..) => None,
-            Q::Big(r) => {
+        match &self.0 {
+            Repr::Small(n, 1) => Some(*n),
+            Repr::Small(..) => None,
+            Repr::Big(r) => {
                 if r.denom().is_one() {
                     r.numer().to_i64()
                 } else {
@@ -405,8 +424,8 @@ impl Q {
     /// Positive rational gcd: `gcd(numerators) / lcm(denominators)`;
     /// `gcd(0, x) == |x|`, `gcd(0, 0) == 0`.
     pub fn gcd(&self, other: &Q) -> Q {
-        match (self, other) {
-            (Q::Small(a, b), Q::Small(c, d)) => {
+        match (&self.0, &other.0) {
+            (Repr::Small(a, b), Repr::Small(c, d)) => {
                 let g = gcd_u64(a.unsigned_abs(), c.unsigned_abs());
                 if g == 0 {
                     return Q::zero();
@@ -433,9 +452,9 @@ impl Q {
 
     /// Floor of the value as a `BigInt`.
     pub fn floor_bigint(&self) -> BigInt {
-        match self {
-            Q::Small(n, d) => BigInt::from(n.div_euclid(*d)),
-            Q::Big(r) => r.floor().to_integer(),
+        match &self.0 {
+            Repr::Small(n, d) => BigInt::from(n.div_euclid(*d)),
+            Repr::Big(r) => r.floor().to_integer(),
         }
     }
 
@@ -446,9 +465,9 @@ impl Q {
     /// The integer value (only meaningful when `is_integer()`), borrowed if big.
     #[inline]
     fn int_cow(&self) -> std::borrow::Cow<'_, BigInt> {
-        match self {
-            Q::Small(n, _) => std::borrow::Cow::Owned(BigInt::from(*n)),
-            Q::Big(r) => std::borrow::Cow::Borrowed(r.numer()),
+        match &self.0 {
+            Repr::Small(n, _) => std::borrow::Cow::Owned(BigInt::from(*n)),
+            Repr::Big(r) => std::borrow::Cow::Borrowed(r.numer()),
         }
     }
 
@@ -465,22 +484,22 @@ impl Q {
                 return Q::from_bigint(iop(&a.int_cow(), &b.int_cow()));
             }
         }
-        match (a, b) {
-            (Q::Big(x), Q::Big(y)) => Q::from_big(op(x, y)),
-            (Q::Big(x), _) => Q::from_big(op(x, &b.to_big())),
-            (_, Q::Big(y)) => Q::from_big(op(&a.to_big(), y)),
+        match (&a.0, &b.0) {
+            (Repr::Big(x), Repr::Big(y)) => Q::from_big(op(x, y)),
+            (Repr::Big(x), _) => Q::from_big(op(x, &b.to_big())),
+            (_, Repr::Big(y)) => Q::from_big(op(&a.to_big(), y)),
             _ => Q::from_big(op(&a.to_big(), &b.to_big())),
         }
     }
 
     #[inline]
     fn add_ref(&self, other: &Q) -> Q {
-        if let (Q::Small(a, b), Q::Small(c, d)) = (self, other) {
+        if let (Repr::Small(a, b), Repr::Small(c, d)) = (&self.0, &other.0) {
             let (a, b, c, d) = (*a, *b, *c, *d);
             if b == d {
                 if b == 1 {
                     return match a.checked_add(c) {
-                        Some(s) if s != i64::MIN => Q::Small(s, 1),
+                        Some(s) if s != i64::MIN => Q(Repr::Small(s, 1)),
                         _ => Q::from_reduced_i128(a as i128 + c as i128, 1),
                     };
                 }
@@ -494,12 +513,12 @@ impl Q {
 
     #[inline]
     fn sub_ref(&self, other: &Q) -> Q {
-        if let (Q::Small(a, b), Q::Small(c, d)) = (self, other) {
+        if let (Repr::Small(a, b), Repr::Small(c, d)) = (&self.0, &other.0) {
             let (a, b, c, d) = (*a, *b, *c, *d);
             if b == d {
                 if b == 1 {
                     return match a.checked_sub(c) {
-                        Some(s) if s != i64::MIN => Q::Small(s, 1),
+                        Some(s) if s != i64::MIN => Q(Repr::Small(s, 1)),
                         _ => Q::from_reduced_i128(a as i128 - c as i128, 1),
                     };
                 }
@@ -513,14 +532,14 @@ impl Q {
 
     #[inline]
     fn mul_ref(&self, other: &Q) -> Q {
-        if let (Q::Small(a, b), Q::Small(c, d)) = (self, other) {
+        if let (Repr::Small(a, b), Repr::Small(c, d)) = (&self.0, &other.0) {
             let (a, b, c, d) = (*a, *b, *c, *d);
             if a == 0 || c == 0 {
                 return Q::zero();
             }
             if b == 1 && d == 1 {
                 return match a.checked_mul(c) {
-                    Some(p) if p != i64::MIN => Q::Small(p, 1),
+                    Some(p) if p != i64::MIN => Q(Repr::Small(p, 1)),
                     _ => Q::from_reduced_i128(a as i128 * c as i128, 1),
                 };
             }
@@ -538,9 +557,9 @@ impl Q {
 
     #[inline]
     fn neg_ref(&self) -> Q {
-        match self {
-            Q::Small(n, d) => Q::Small(-*n, *d),
-            Q::Big(r) => Q::from_big(-(**r).clone()),
+        match &self.0 {
+            Repr::Small(n, d) => Q(Repr::Small(-*n, *d)),
+            Repr::Big(r) => Q::from_big(-(**r).clone()),
         }
     }
 }
@@ -563,7 +582,7 @@ impl From<i64> for Q {
 
 impl From<i32> for Q {
     fn from(n: i32) -> Q {
-        Q::Small(n as i64, 1)
+        Q(Repr::Small(n as i64, 1))
     }
 }
 
@@ -586,9 +605,9 @@ impl From<BigRational> for Q {
 impl PartialEq for Q {
     #[inline]
     fn eq(&self, other: &Q) -> bool {
-        match (self, other) {
-            (Q::Small(a, b), Q::Small(c, d)) => a == c && b == d,
-            (Q::Big(x), Q::Big(y)) => x == y,
+        match (&self.0, &other.0) {
+            (Repr::Small(a, b), Repr::Small(c, d)) => a == c && b == d,
+            (Repr::Big(x), Repr::Big(y)) => x == y,
             // canonical representation: a Big never equals a Small
             _ => false,
         }
@@ -599,13 +618,13 @@ impl Eq for Q {}
 
 impl Hash for Q {
     fn hash<H: Hasher>(&self, state: &mut H) {
-        match self {
-            Q::Small(n, d) => {
+        match &self.0 {
+            Repr::Small(n, d) => {
                 state.write_u8(0);
                 state.write_i64(*n);
                 state.write_i64(*d);
             }
-            Q::Big(r) => {
+            Repr::Big(r) => {
                 state.write_u8(1);
                 r.numer().hash(state);
                 r.denom().hash(state);
@@ -616,8 +635,8 @@ impl Hash for Q {
 
 impl Ord for Q {
     fn cmp(&self, other: &Q) -> Ordering {
-        match (self, other) {
-            (Q::Small(a, b), Q::Small(c, d)) => {
+        match (&self.0, &other.0) {
+            (Repr::Small(a, b), Repr::Small(c, d)) => {
                 if b == d {
                     a.cmp(c)
                 } else {
@@ -647,10 +666,10 @@ impl PartialOrd for Q {
 
 impl fmt::Display for Q {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Q::Small(n, 1) => write!(f, "{n}"),
-            Q::Small(n, d) => write!(f, "{n}/{d}"),
-            Q::Big(r) => {
+        match &self.0 {
+            Repr::Small(n, 1) => write!(f, "{n}"),
+            Repr::Small(n, d) => write!(f, "{n}/{d}"),
+            Repr::Big(r) => {
                 if r.denom().is_one() {
                     write!(f, "{}", r.numer())
                 } else {
@@ -780,9 +799,9 @@ impl Neg for Q {
     type Output = Q;
     #[inline]
     fn neg(self) -> Q {
-        match self {
-            Q::Small(n, d) => Q::Small(-n, d),
-            Q::Big(r) => Q::from_big(-*r),
+        match self.0 {
+            Repr::Small(n, d) => Q(Repr::Small(-n, d)),
+            Repr::Big(r) => Q::from_big(-*r),
         }
     }
 }
@@ -883,14 +902,14 @@ mod tests {
 
     /// Checks the representation invariants.
     fn canonical(x: &Q) -> bool {
-        match x {
-            Q::Small(n, d) => {
+        match &x.0 {
+            Repr::Small(n, d) => {
                 *d > 0
                     && *n != i64::MIN
                     && gcd_u64(n.unsigned_abs(), *d as u64) == 1
                     && (*n != 0 || *d == 1)
             }
-            Q::Big(r) => {
+            Repr::Big(r) => {
                 let fits = matches!((r.numer().to_i64(), r.denom().to_i64()), (Some(n), Some(_)) if n != i64::MIN);
                 !fits && r.denom().is_positive() && r.numer().gcd(r.denom()).is_one()
             }
@@ -943,27 +962,27 @@ mod tests {
     fn overflow_and_demotion() {
         let max = Q::from_i64(i64::MAX);
         let s = &max + &Q::one();
-        assert!(matches!(s, Q::Big(_)));
+        assert!(matches!(s.0, Repr::Big(_)));
         assert_eq!(s.to_string(), "9223372036854775808");
         let back = &s - &Q::one();
-        assert!(matches!(back, Q::Small(..)));
+        assert!(matches!(back.0, Repr::Small(..)));
         assert_eq!(back, max);
         // i64::MIN is not representable as Small
         let m = Q::from_i64(i64::MIN);
-        assert!(matches!(m, Q::Big(_)));
+        assert!(matches!((m).0, Repr::Big(_)));
         assert!(canonical(&m));
         assert_eq!(-(-m.clone()), m);
         assert_eq!(&m + &Q::one(), Q::from_i64(i64::MIN + 1));
-        assert!(matches!(&m + &Q::one(), Q::Small(..)));
+        assert!(matches!((&m + &Q::one()).0, Repr::Small(..)));
         let neg_max = -max.clone();
-        assert!(matches!(&neg_max - &Q::one(), Q::Big(_)));
+        assert!(matches!((&neg_max - &Q::one()).0, Repr::Big(_)));
         assert_eq!(Q::new(i64::MIN, i64::MIN), Some(Q::one()));
         assert_eq!(Q::new(1, i64::MIN).map(|x| canonical(&x)), Some(true));
         let big = Q::from_i64(3).pow(100).expect("pow");
-        assert!(matches!(big, Q::Big(_)));
+        assert!(matches!((big).0, Repr::Big(_)));
         let r = &big / &Q::from_i64(3).pow(99).expect("pow");
         assert_eq!(r, Q::from_i64(3));
-        assert!(matches!(r, Q::Small(..)));
+        assert!(matches!((r).0, Repr::Small(..)));
         let huge = Q::from_i64(10).pow(400).expect("pow");
         assert_eq!(huge.to_f64(), f64::INFINITY);
         let ratio = &huge / &Q::from_i64(10).pow(399).expect("pow");

@@ -110,19 +110,19 @@ pub(super) fn invmod(a: u64, p: u64) -> u64 {
 
 /// `c mod p`, `None` if the denominator vanishes mod `p`.
 pub(super) fn q_mod(c: &Q, p: u64) -> Option<u64> {
-    match c {
-        Q::Small(n, d) => {
+    match c.small() {
+        Some((n, d)) => {
             let nm = n.rem_euclid(p as i64) as u64;
-            if *d == 1 {
+            if d == 1 {
                 return Some(nm);
             }
-            let dm = (*d as u64) % p;
+            let dm = (d as u64) % p;
             if dm == 0 {
                 return None;
             }
             Some(mulmod(nm, invmod(dm, p), p))
         }
-        Q::Big(_) => {
+        None => {
             let pb = BigInt::from(p);
             let nm = c.numer().mod_floor(&pb).to_u64()?;
             let dm = c.denom().mod_floor(&pb).to_u64()?;

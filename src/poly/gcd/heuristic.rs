@@ -43,7 +43,7 @@ pub(super) fn heu_entry(a: &Poly, b: &Poly, vars: &[Var], da: &[u32], db: &[u32]
 
 /// Symmetric residue of the integer `c` modulo the positive integer `m`.
 fn sym_mod(c: &Q, m: &BigInt, m_small: Option<i64>) -> Q {
-    if let (Q::Small(n, 1), Some(ms)) = (c, m_small) {
+    if let (Some((n, 1)), Some(ms)) = (c.small(), m_small) {
         let r = n.rem_euclid(ms);
         return Q::from_i64(if r > ms / 2 { r - ms } else { r });
     }
