@@ -5,10 +5,9 @@ use crate::expr::atom::{self, Atom};
 use crate::expr::Expr;
 use crate::num::Q;
 use crate::poly::{Poly, Var};
-use rustc_hash::FxHashMap;
 
 /// Parameter values for numeric work (`--set m=1,g=9.81`).
-pub type Values = FxHashMap<String, f64>;
+pub type Values = std::collections::BTreeMap<String, f64>;
 
 /// The sign of a real number.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -5,9 +5,9 @@
 //! syntax and refuse it with the same messages.
 
 use super::Scene;
+use crate::algebra::sign::Values;
 use crate::diag::Diagnostic;
 use crate::expr::Expr;
-use rustc_hash::FxHashMap;
 
 /// How an option is written, for its messages.
 #[derive(Clone, Copy, Debug)]
@@ -87,8 +87,8 @@ pub fn name_value_pairs(syntax: OptionSyntax, s: &str) -> Result<Vec<NameValue<'
 }
 
 /// Parse `--set m=1,g=9.81` into parameter values: finite, positive doubles.
-pub fn parameter_values(s: &str) -> Result<FxHashMap<String, f64>, Diagnostic> {
-    let mut out = FxHashMap::default();
+pub fn parameter_values(s: &str) -> Result<Values, Diagnostic> {
+    let mut out = Values::new();
     for NameValue {
         written: part,
         name: k,
@@ -132,8 +132,8 @@ pub fn parameter_values(s: &str) -> Result<FxHashMap<String, f64>, Diagnostic> {
 }
 
 /// The simulator's `--init q=0.5,q'=0` (finite doubles, signs allowed).
-pub fn numeric_initial_values(s: &str) -> Result<FxHashMap<String, f64>, Diagnostic> {
-    let mut out = FxHashMap::default();
+pub fn numeric_initial_values(s: &str) -> Result<Values, Diagnostic> {
+    let mut out = Values::new();
     for NameValue {
         written: part,
         name: k,

@@ -14,6 +14,7 @@ use super::progress::Progress;
 use super::{
     integrate, integrate_with_event, IntegratorOptions, Method, SimError, Solution, Status, System,
 };
+use crate::algebra::sign::Values;
 use crate::diag::Diagnostic;
 use crate::expr::{atom, Expr};
 use crate::parse::ast::Role;
@@ -26,9 +27,9 @@ use std::time::Instant;
 #[derive(Clone, Debug)]
 pub struct Request {
     /// Parameter values (every parameter of the scene needs one).
-    pub set: FxHashMap<String, f64>,
+    pub set: Values,
     /// Initial values: `q` and `q'` for every coordinate.
-    pub init: FxHashMap<String, f64>,
+    pub init: Values,
     /// The final time (the run starts at t = 0).
     pub t_end: f64,
     /// The integration method.
@@ -58,8 +59,8 @@ pub struct Request {
 impl Default for Request {
     fn default() -> Self {
         Request {
-            set: FxHashMap::default(),
-            init: FxHashMap::default(),
+            set: Values::new(),
+            init: Values::new(),
             t_end: 1.0,
             method: Method::Dop853,
             rtol: 1e-8,
