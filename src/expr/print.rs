@@ -521,19 +521,10 @@ fn power_str(v: Var, e: u32, st: Style) -> String {
                 return atom_text(v, AtomText::Unicode).to_string();
             }
             let sup = superscript(e);
-            let a = atom::atom(v);
-            match &a {
-                Atom::Sin(_)
-                | Atom::Cos(_)
-                | Atom::Exp(_)
-                | Atom::Ln(_)
-                | Atom::Atan(_)
-                | Atom::Asin(_)
-                | Atom::Acos(_) => {
-                    let f = fn_name(&a);
-                    format!("{f}{sup}({})", atom_text(v, AtomText::UnicodeArgument))
-                }
-                _ => format!("{}{sup}", atom_text(v, AtomText::Unicode)),
+            // a named function's power goes on its name: sin²(θ)
+            match fn_name(&atom::atom(v)) {
+                "" => format!("{}{sup}", atom_text(v, AtomText::Unicode)),
+                f => format!("{f}{sup}({})", atom_text(v, AtomText::UnicodeArgument)),
             }
         }
     }
@@ -595,15 +586,12 @@ pub fn atom_input(a: &Atom) -> String {
         Atom::Pi => "pi".into(),
         Atom::Root(n) => format!("sqrt({n})"),
         Atom::SqrtOf(u) => format!("sqrt({})", input(u)),
-        Atom::Sin(u)
-        | Atom::Cos(u)
-        | Atom::Exp(u)
-        | Atom::Ln(u)
-        | Atom::Atan(u)
-        | Atom::Asin(u)
-        | Atom::Acos(u) => {
-            format!("{}({})", fn_name(a), input(u))
-        }
+        // sin, cos, exp, ln, atan, asin, acos
+        _ => format!(
+            "{}({})",
+            fn_name(a),
+            a.argument().map(input).unwrap_or_default()
+        ),
     }
 }
 
