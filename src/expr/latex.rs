@@ -577,15 +577,14 @@ impl Tex<'_> {
             Atom::Shown(f) => {
                 let name = if f.cos { "\\cos" } else { "\\sin" };
                 let op = if f.minus { "-" } else { "+" };
-                let wrap = |x: &Expr| {
-                    let s = self.expr(x);
-                    if print::is_sum(&s) {
-                        parens(&s)
-                    } else {
-                        s
-                    }
+                // parentheses only where a sign changes what follows
+                let b = self.expr(&f.b);
+                let b = if print::is_sum(&b) && (f.minus || b.starts_with('-')) {
+                    parens(&b)
+                } else {
+                    b
                 };
-                let angle = format!("{} {op} {}", wrap(&f.a), wrap(&f.b));
+                let angle = format!("{} {op} {b}", self.expr(&f.a));
                 Factor::new(format!("{name}{sup}{}", parens(&angle)), Kind::Func)
             }
             Atom::Root(n) => {

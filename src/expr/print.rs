@@ -718,8 +718,16 @@ fn base_angle(sin: Var) -> Option<Expr> {
 
 /// `a ∓ b` as text, each angle parenthesized when it is a sum.
 fn angle_text(f: &atom::Folded, st: Style) -> String {
-    let wrap = |s: String| if is_sum(&s) { format!("({s})") } else { s };
-    let (a, b) = (wrap(render(&f.a, st)), wrap(render(&f.b, st)));
+    // a sum reads left to right: parentheses only where a sign would change
+    // what follows it (a − (b + c), a + (−b + c))
+    let a = render(&f.a, st);
+    let b = render(&f.b, st);
+    let signed = b.starts_with('-') || b.starts_with('−');
+    let b = if is_sum(&b) && (f.minus || signed) {
+        format!("({b})")
+    } else {
+        b
+    };
     let op = match (f.minus, st) {
         (false, _) => "+",
         (true, Style::Input) => "-",

@@ -950,7 +950,7 @@ fn jacobi(signs: &[Option<Sign>], gyroscopic: bool) -> Stability {
 /// One coordinate with V'' = 0: the first non-vanishing derivative decides.
 fn higher_order(f: &Expr, q: Var, at: &Expr, set: &Values) -> Stability {
     let mut d = f.diff(q); // F' = −V''
-    for order in 3..=MAX_DERIVATIVE_ORDER {
+    for order in 3..=MAX_STABILITY_DERIVATIVE {
         d = d.diff(q); // F^(order−1) = −V^(order)
         let Ok(v) = d.subs(q, at) else {
             break;
@@ -963,26 +963,26 @@ fn higher_order(f: &Expr, q: Var, at: &Expr, set: &Values) -> Stability {
         }
     }
     Stability::Undecided(format!(
-        "V'' = 0 here and the derivatives up to order {MAX_DERIVATIVE_ORDER} do not decide"
+        "V'' = 0 here and the derivatives up to order {MAX_STABILITY_DERIVATIVE} do not decide"
     ))
 }
 
 /// The highest derivative of V the stability test of a degenerate
 /// equilibrium takes (V = (1 + x)¹⁰⁰ needs the 100th).
-const MAX_DERIVATIVE_ORDER: u32 = 202;
+const MAX_STABILITY_DERIVATIVE: u32 = 202;
 
 /// The multiplicity of the root `at` of the condition `f` (one
 /// coordinate): how many of f, f', f'', … vanish there (at most
-/// `MAX_DERIVATIVE_ORDER`).
+/// `MAX_STABILITY_DERIVATIVE`).
 pub fn multiplicity(f: &Expr, q: Var, at: &Expr) -> u32 {
     let mut d = f.clone();
-    for m in 0..MAX_DERIVATIVE_ORDER {
+    for m in 0..MAX_STABILITY_DERIVATIVE {
         match d.subs(q, at) {
             Ok(v) if v.is_zero() => d = d.diff(q),
             _ => return m.max(1),
         }
     }
-    MAX_DERIVATIVE_ORDER
+    MAX_STABILITY_DERIVATIVE
 }
 
 // ---------------------------------------------------------------- numeric

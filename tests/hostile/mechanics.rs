@@ -382,3 +382,27 @@ fn a_taylor_series_about_an_undefined_point_says_so() {
     // about another point it expands
     assert!(scene.expr("taylor(sin(x)/x, x = pi, 1)").is_ok());
 }
+
+/// A folded angle a ± b is written as a lecturer writes it: a sum after
+/// `+` needs no parentheses, after `−` it does (text and LaTeX).
+#[test]
+fn folded_angles_have_parentheses_only_where_a_sign_needs_them() {
+    let src = "coordinates x\nparameters m\nf1 = sin(x) + cos(x)\nkinetic T = 1/2*m*x'^2\npotential V = sin(f1) + cos(f1)\n";
+    let o = qdot_scene("folded", src.as_bytes(), "forces", &[]);
+    assert!(
+        o.stdout
+            .contains("Q_x = −cos(x − (sin(x) + cos(x))) + sin(x + sin(x) + cos(x))"),
+        "{o:?}"
+    );
+    let o = qdot_scene(
+        "folded_tex",
+        src.as_bytes(),
+        "forces",
+        &["--format", "latex"],
+    );
+    assert!(
+        o.stdout
+            .contains(r"Q_{x} &= -\cos(x - (\sin x + \cos x)) + \sin(x + \sin x + \cos x)"),
+        "{o:?}"
+    );
+}
