@@ -42,7 +42,7 @@ impl std::fmt::Display for DenseError {
 
 impl std::error::Error for DenseError {}
 
-/// The scalars of [`Lu`]: f64 and Complex<f64>.
+/// The scalars of [`Lu`]: `f64` and `Complex<f64>`.
 pub trait Scalar:
     Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self>
 {
