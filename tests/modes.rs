@@ -1497,3 +1497,42 @@ fn cart_pendulum_is_stable_exactly() {
         );
     }
 }
+
+/// A characteristic cubic without a λ² term (every potential satisfying
+/// Laplace's equation) has rational roots: found by factoring over ℚ, not
+/// "no closed form". Issue 18's bug.
+#[test]
+fn a_cubic_without_its_square_term_is_factored() {
+    let s = parse(
+        "coordinates x, y, z\nparameters m, k\nkinetic T = 1/2*m*(x'^2 + y'^2 + z'^2)\npotential V = k/2*(2*z^2 - x^2 - y^2)\n",
+    );
+    let md = linearize(&s);
+    assert_list(&s, &md.omega_squared, &["-k/m", "-k/m", "2*k/m"]);
+    assert_consistent(&md);
+    assert_eq!(md.stability, Stability::Unstable);
+}
+
+/// Four equal masses between two walls: det(K − λ·M) factors over ℚ into
+/// two irreducible quadratics, and every ω² is exact,
+/// (3 ± √5)·k/(2m) and (5 ± √5)·k/(2m), in ascending order.
+#[test]
+fn a_chain_of_four_masses_has_exact_frequencies() {
+    let s = parse(
+        "coordinates x1, x2, x3, x4\nparameters m, k\nkinetic T = 1/2*m*(x1'^2 + x2'^2 + x3'^2 + x4'^2)\npotential V = k/2*(x1^2 + (x2 - x1)^2 + (x3 - x2)^2 + (x4 - x3)^2 + x4^2)\n",
+    );
+    let md = linearize(&s);
+    assert_list(
+        &s,
+        &md.omega_squared,
+        &[
+            "(3 - sqrt(5))*k/(2*m)",
+            "(5 - sqrt(5))*k/(2*m)",
+            "(3 + sqrt(5))*k/(2*m)",
+            "(5 + sqrt(5))*k/(2*m)",
+        ],
+    );
+    assert_consistent(&md);
+    assert_eq!(md.stability, Stability::Stable);
+    // the lowest mode: sin(jπ/5) ratios, x2/x1 = 2·cos(π/5) = (1 + √5)/2
+    assert_exact(&s, &md.modes[0][1], "(1 + sqrt(5))/2");
+}

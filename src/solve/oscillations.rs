@@ -164,7 +164,9 @@ pub fn modes(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Modes, 
         .collect();
     let characteristic = det(a).ok_or_else(|| Diagnostic::global("det(K − λ·M) failed"))?;
     let lv = atom::unknown(LAMBDA);
-    let (mut roots, factors) = lambda_roots(&characteristic, lv).unwrap_or_default();
+    let (mut roots, factors) = lambda_roots(&characteristic, lv)
+        .or_else(|| lambda_roots_factored(&characteristic, lv))
+        .unwrap_or_default();
     sort_ascending(&mut roots, set);
     let mut modes: Vec<Vec<Expr>> = Vec::with_capacity(roots.len());
     let mut i = 0;
@@ -320,6 +322,57 @@ fn lambda_roots(p: &Expr, lv: Var) -> Option<(Vec<Expr>, Vec<Expr>)> {
     }
     roots.extend(quad.into_iter().map(|(r, _)| r));
     // the constant content: det = content · Π factors
+    let mut prod = Expr::one();
+    for f in &factors {
+        prod = prod.mul(f);
+    }
+    if let Ok(content) = p.div(&prod) {
+        if !content.is_one() {
+            factors.insert(0, content);
+        }
+    }
+    Some((roots, factors))
+}
+
+/// The roots λ and factors of a polynomial in `lv` from its full
+/// factorization over ℚ: every irreducible factor of degree ≤ 2 in λ is
+/// solved exactly (a quadratic one kept whole for display); `None` when a
+/// factor has degree 3 or more. The path for what [`lambda_roots`] can't
+/// scale: a cubic without a λ² term (V = k/2·(2z² − x² − y²), every
+/// potential satisfying Laplace's equation), quadratic factors irreducible
+/// over ℚ (a chain of four equal masses).
+fn lambda_roots_factored(p: &Expr, lv: Var) -> Option<(Vec<Expr>, Vec<Expr>)> {
+    let lam = Expr::var(lv);
+    let mut roots = Vec::new();
+    let mut factors = Vec::new();
+    for (f, mult) in crate::poly::factor::factor(p.num()).factors {
+        let cs: Vec<Expr> = f.coeffs_in(lv).into_iter().map(Expr::from_poly).collect();
+        match cs.len() {
+            0 | 1 => continue, // free of λ: part of the content
+            2 | 3 => {}
+            _ => return None,
+        }
+        let quad = quadratic(&cs)?;
+        if quad.len() + 1 != cs.len() {
+            return None; // an irreducible quadratic has two distinct roots
+        }
+        for _ in 0..mult {
+            roots.extend(quad.iter().map(|(r, _)| r.clone()));
+            if cs.len() == 2 {
+                factors.push(linear_factor(&lam, &quad[0].0));
+            } else {
+                let monic = cs[0]
+                    .div(&cs[2])
+                    .ok()?
+                    .add(&cs[1].div(&cs[2]).ok()?.mul(&lam))
+                    .add(&lam.mul(&lam));
+                factors.push(clear(&monic));
+            }
+        }
+    }
+    if roots.is_empty() {
+        return None;
+    }
     let mut prod = Expr::one();
     for f in &factors {
         prod = prod.mul(f);
