@@ -1536,3 +1536,31 @@ fn a_chain_of_four_masses_has_exact_frequencies() {
     // the lowest mode: sin(jπ/5) ratios, x2/x1 = 2·cos(π/5) = (1 + √5)/2
     assert_exact(&s, &md.modes[0][1], "(1 + sqrt(5))/2");
 }
+
+/// √(n/d) = √(n·d)/|d|: a denominator of unknown sign (g·M − 6·k·l) is
+/// not taken positive. The amplitude of a rod's free response was printed
+/// negative (−1.1 for 1.1 at M = l = k = g = 1) before.
+#[test]
+fn a_square_root_over_a_denominator_of_unknown_sign_keeps_its_sign() {
+    let s = parse(
+        "coordinates x\nparameters M, l, k, g\nkinetic T = 1/2*M*x'^2\npotential V = 1/2*k*x^2 - M*g*x^2/(12*l)\n",
+    );
+    let md = linearize(&s);
+    let free = free_response(&md, &[ex(&s, "1/10")], &[ex(&s, "1")]).expect("free response");
+    let (a, _) = qdot::solve::oscillations::free_amplitude_phase(&md, &free).expect("A and φ");
+    let at = |v: f64| move |_: &Atom| Some(v);
+    // M = l = k = g = 1: ω² = 5/6, A = √(1/100 + 6/5) = 1.1
+    let got = a.eval_f64(&at(1.0)).expect("numeric");
+    assert!((got - 1.1).abs() < 1e-12, "A = {a} = {got}");
+    // the sign of the canonical denominator (l − M or M − l) is irrelevant
+    let vals = |x: &Atom| match x {
+        Atom::Param(p) if &**p == "M" => Some(1.0),
+        Atom::Param(p) if &**p == "l" => Some(3.0),
+        _ => None,
+    };
+    for src in ["1/(l - M)", "-1/(M - l)", "M/(l - M)", "2*M/(2*l - 2*M)"] {
+        let e = qdot::expr::func::sqrt(&ex(&s, src)).expect("a root");
+        let v = e.eval_f64(&vals).expect("numeric");
+        assert!((v - 0.5f64.sqrt()).abs() < 1e-12, "√({src}) = {e} = {v}");
+    }
+}

@@ -386,7 +386,6 @@ pub fn sqrt(u: &Expr) -> Result<Expr, MathError> {
     }
     // √(n/d) = √(n·d)/d
     let nd = &(u.num() * u.den()) * &Poly::one();
-    let den = Expr::from_poly(u.den().clone());
     // numeric content
     let content = nd.content();
     let mut prim = nd.scale(&Q::one().checked_div(&content).unwrap_or_else(Q::one));
@@ -438,7 +437,25 @@ pub fn sqrt(u: &Expr) -> Result<Expr, MathError> {
         let v = atom::intern_radical(Atom::SqrtOf(Expr::from_poly(prim.clone())), prim);
         Expr::var(v)
     };
-    outside.mul(&inner).div(&den)
+    outside.mul(&inner).div(&abs_of_denominator(u.den()))
+}
+
+/// |d| for a canonical denominator d, the divisor of √(n/d) = √(n·d)/|d|:
+/// d itself when it is positive (monomials in parameters, and sums of
+/// them), −d when it is negative, else √(d²) — the sign of a denominator
+/// such as g·M − 6·k·l is not known, and taking it positive would flip
+/// the root's sign where it is negative.
+fn abs_of_denominator(d: &Poly) -> Expr {
+    let neg = -d;
+    if d.is_one() || certainly_negative(&neg) {
+        Expr::from_poly(d.clone())
+    } else if certainly_negative(d) {
+        Expr::from_poly(neg)
+    } else {
+        let square = d * d;
+        let v = atom::intern_radical(Atom::SqrtOf(Expr::from_poly(square.clone())), square);
+        Expr::var(v)
+    }
 }
 
 /// Whether p < 0 wherever it is defined: every term is ≤ 0 (a negative
