@@ -1564,3 +1564,31 @@ fn a_square_root_over_a_denominator_of_unknown_sign_keeps_its_sign() {
         assert!((v - 0.5f64.sqrt()).abs() < 1e-12, "√({src}) = {e} = {v}");
     }
 }
+
+/// A coefficient whose denominator's first term is negative carries one
+/// sign, outside: the cart with a pendulum printed `x(t) = −−(2·g·k·l·M …`
+/// (JSON `"--(2*g*k…"`) before. Issue 18's case.
+#[test]
+fn a_free_response_never_prints_a_double_minus() {
+    let src = "coordinates x, theta\nparameters M, m, l, k, g\nkinetic T = 1/2*M*x'^2 + 1/2*m*((x' + l*cos(theta)*theta')^2 + (l*sin(theta)*theta')^2)\npotential V = 1/2*k*x^2 - m*g*l*cos(theta)\n";
+    for init in ["x=1/10,x'=0,theta=0,theta'=0", "x=0,x'=1,theta=0,theta'=0"] {
+        for fmt in ["text", "json"] {
+            let (code, out, err) = qdot_on(
+                "modes",
+                "cart",
+                src,
+                "modes",
+                &["--init", init, "--format", fmt],
+            );
+            assert_eq!(code, 0, "{err}");
+            assert!(
+                out.contains("(t) = ") || out.contains("\"free_response\""),
+                "{out}"
+            );
+            assert!(
+                !out.contains("−−") && !out.contains("--") && !out.contains("+ −"),
+                "{out}"
+            );
+        }
+    }
+}

@@ -202,10 +202,25 @@ pub(crate) fn unicode_term(c: &Expr, key: &Mono) -> String {
 
 /// `coef·key`, returning (is negative, text without the sign).
 fn term_with_coef(c: &Expr, key: &Mono, st: Style) -> (bool, String) {
-    // The sign goes outside: the coefficient's first displayed term is positive.
-    let neg = sorted_terms(c.num())
-        .first()
-        .is_some_and(|(_, q)| q.is_negative());
+    let (neg, s) = term_with_coef_signed(c, key, st);
+    // one sign, outside: a product or fraction that still prints with a
+    // leading minus (its content's sign decided on other terms) gives it up
+    match s.strip_prefix('−').or_else(|| s.strip_prefix('-')) {
+        Some(rest) if !is_sum(&s) => (!neg, rest.to_string()),
+        _ => (neg, s),
+    }
+}
+
+/// [`term_with_coef`] before its sign is made the only one.
+fn term_with_coef_signed(c: &Expr, key: &Mono, st: Style) -> (bool, String) {
+    // The sign goes outside: the coefficient's first displayed terms, above
+    // and below, are made positive (a sign on each would print `−−`).
+    let first_negative = |p: &Poly| {
+        sorted_terms(p)
+            .first()
+            .is_some_and(|(_, q)| q.is_negative())
+    };
+    let neg = first_negative(c.num()) != first_negative(c.den());
     let c = if neg { c.neg() } else { c.clone() };
     let body = fraction(c.num(), c.den(), st);
     if key.0.is_empty() {
