@@ -592,7 +592,10 @@ impl Tex<'_> {
                 self.raised(s, e)
             }
             Atom::SqrtOf(u) => {
-                let s = format!("\\sqrt{{{}}}", self.expr(u));
+                let s = match print::square_root_of_square(u) {
+                    Some(q) => format!("\\left|{}\\right|", self.expr(&q)),
+                    None => format!("\\sqrt{{{}}}", self.expr(u)),
+                };
                 self.raised(s, e)
             }
             Atom::Pi => Factor::new(format!("\\pi{sup}"), Kind::Plain),

@@ -618,7 +618,11 @@ fn atom_unicode(a: &Atom) -> String {
         Atom::Time => "t".into(),
         Atom::Pi => "π".into(),
         Atom::Root(n) => format!("√{n}"),
-        Atom::SqrtOf(u) => format!("√({})", unicode(u)),
+        // √(q²) = |q|, as a lecturer writes it (the input syntax keeps sqrt)
+        Atom::SqrtOf(u) => match square_root_of_square(u) {
+            Some(q) => format!("|{}|", unicode(&q)),
+            None => format!("√({})", unicode(u)),
+        },
         _ => format!("{}({})", fn_name(a), unicode_arg(a)),
     }
 }
@@ -856,4 +860,12 @@ pub(crate) fn fold_trig(p: &Poly) -> Option<Poly> {
         }
     }
     Some(Poly::from_terms(out))
+}
+
+/// q when `u` is the polynomial q² (√u = |q|).
+pub(crate) fn square_root_of_square(u: &Expr) -> Option<Expr> {
+    if !u.is_poly() {
+        return None;
+    }
+    u.num().exact_sqrt().map(Expr::from_poly)
 }

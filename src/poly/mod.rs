@@ -39,6 +39,7 @@ mod modular;
 mod monomial;
 mod ops;
 mod packed;
+mod sqrt;
 mod structure;
 
 pub use monomial::{mono_gcd, Mono};

@@ -609,7 +609,7 @@ pub(crate) fn quadratic(cs: &[Expr]) -> Option<Vec<ExactRoot>> {
             };
             // a perfect square P²/D² gives the pair (−c1 ± P/D)/(2c2)
             // whatever the sign of P/D (uncoupled oscillators)
-            let r = match (poly_sqrt(disc.num()), poly_sqrt(disc.den())) {
+            let r = match (disc.num().exact_sqrt(), disc.den().exact_sqrt()) {
                 (Some(p), Some(d)) => Expr::from_parts(p, d).ok()?,
                 _ => func::sqrt(&disc).ok()?,
             };
@@ -620,41 +620,6 @@ pub(crate) fn quadratic(cs: &[Expr]) -> Option<Vec<ExactRoot>> {
         }
         _ => None,
     }
-}
-
-/// The square root P of a polynomial D = P², if it is a perfect square
-/// (by the long-division square root on the lexicographic leading terms).
-pub(crate) fn poly_sqrt(d: &Poly) -> Option<Poly> {
-    if d.is_zero() {
-        return Some(Poly::zero());
-    }
-    let lead = |p: &Poly| p.terms().iter().max_by(|a, b| a.0.cmp(&b.0)).cloned();
-    let (m, c) = lead(d)?;
-    if c.is_negative() || m.0.iter().any(|&(_, e)| e % 2 == 1) {
-        return None;
-    }
-    let (n, dn) = (c.numer(), c.denom());
-    let (rn, rd) = (n.sqrt(), dn.sqrt());
-    if &rn * &rn != n || &rd * &rd != dn {
-        return None;
-    }
-    let half = crate::poly::Mono(m.0.iter().map(|&(v, e)| (v, e / 2)).collect());
-    let sc = Q::from_bigint(rn).checked_div(&Q::from_bigint(rd))?;
-    let two_sc = &sc * &Q::from_i64(2);
-    let mut p = Poly::monomial(half.clone(), sc);
-    for _ in 0..=d.len() + 1 {
-        let r = d - &(&p * &p);
-        if r.is_zero() {
-            return Some(p);
-        }
-        let (rm, rc) = lead(&r)?;
-        let tm = rm.div(&half)?;
-        if tm >= half {
-            return None;
-        }
-        p = &p + &Poly::monomial(tm, rc.checked_div(&two_sc)?);
-    }
-    None
 }
 
 /// Roots of a polynomial in s = sin q, c = cos q.
