@@ -808,7 +808,9 @@ pub fn width(tex: &str) -> f64 {
                     j += 1;
                 }
                 if j == i + 1 {
-                    j += 1; // \\ \, \; \{
+                    // \\ \, \; \{ — or any one character, whole (a user's
+                    // LaTeX name may hold `\é`)
+                    j += tex[i + 1..].chars().next().map_or(0, char::len_utf8);
                 }
                 let cmd = &tex[i + 1..j.min(tex.len())];
                 match cmd {
@@ -855,7 +857,9 @@ pub fn width(tex: &str) -> f64 {
                 let (a, k) = if i + 1 < b.len() && b[i + 1] == b'{' {
                     group(i + 1)
                 } else {
-                    (&tex[i + 1..(i + 2).min(tex.len())], i + 2)
+                    // one character, whole
+                    let end = i + 1 + tex[i + 1..].chars().next().map_or(0, char::len_utf8);
+                    (&tex[i + 1..end], end)
                 };
                 w += width(a) * 0.7;
                 i = k;
@@ -870,8 +874,9 @@ pub fn width(tex: &str) -> f64 {
                 i += 1;
             }
             _ => {
+                // one character, whatever its bytes
                 w += 1.0;
-                i += 1;
+                i += tex[i..].chars().next().map_or(1, char::len_utf8);
             }
         }
     }

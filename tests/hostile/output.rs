@@ -247,3 +247,20 @@ fn the_caret_stays_under_its_column_after_tabs() {
         "{o:?}"
     );
 }
+
+/// The fuzzer's finding: a LaTeX name with a backslash before a non-ASCII
+/// character (`"\é"`), or `^` before one, panicked while measuring the
+/// width of a line (a byte slice inside the character). The equations
+/// print, with the name as written.
+#[test]
+fn a_latex_name_with_a_multibyte_character_after_a_backslash_prints() {
+    for name in [r"\éll", r"\ell^é", "é^é"] {
+        let src = format!(
+            "coordinates theta\nparameters m, g, l\nlatex l = \"{name}\"\nkinetic E = 1/2*m*l^2*theta'^2\npotential V = -m*g*l*cos(theta)\n"
+        );
+        let o = qdot_scene("latex_multibyte", src.as_bytes(), "latex", &["--steps"]);
+        o.assert_clean();
+        assert_eq!(o.code, Some(0), "{name}: {o:?}");
+        assert!(o.stdout.contains(name), "{name}: {o:?}");
+    }
+}
