@@ -452,9 +452,12 @@ fn abs_of_denominator(d: &Poly) -> Expr {
     } else if certainly_negative(d) {
         Expr::from_poly(neg)
     } else {
-        let square = d * d;
+        // |c·p| = |c|·√(p²) with p primitive: the root shows as |g·M − 6·k·l|
+        let c = d.content().abs();
+        let p = d.scale(&Q::one().checked_div(&c).unwrap_or_else(Q::one));
+        let square = &p * &p;
         let v = atom::intern_radical(Atom::SqrtOf(Expr::from_poly(square.clone())), square);
-        Expr::var(v)
+        Expr::var(v).scale(&c)
     }
 }
 
