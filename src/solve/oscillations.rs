@@ -321,9 +321,14 @@ fn lambda_roots(p: &Expr, lv: Var) -> Option<(Vec<Expr>, Vec<Expr>)> {
         }
     }
     roots.extend(quad.into_iter().map(|(r, _)| r));
-    // the constant content: det = content · Π factors
+    with_content(p, &mut factors);
+    Some((roots, factors))
+}
+
+/// The constant content in front of the factors: det = content · Π factors.
+fn with_content(p: &Expr, factors: &mut Vec<Expr>) {
     let mut prod = Expr::one();
-    for f in &factors {
+    for f in factors.iter() {
         prod = prod.mul(f);
     }
     if let Ok(content) = p.div(&prod) {
@@ -331,7 +336,6 @@ fn lambda_roots(p: &Expr, lv: Var) -> Option<(Vec<Expr>, Vec<Expr>)> {
             factors.insert(0, content);
         }
     }
-    Some((roots, factors))
 }
 
 /// The roots λ and factors of a polynomial in `lv` from its full
@@ -373,15 +377,7 @@ fn lambda_roots_factored(p: &Expr, lv: Var) -> Option<(Vec<Expr>, Vec<Expr>)> {
     if roots.is_empty() {
         return None;
     }
-    let mut prod = Expr::one();
-    for f in &factors {
-        prod = prod.mul(f);
-    }
-    if let Ok(content) = p.div(&prod) {
-        if !content.is_one() {
-            factors.insert(0, content);
-        }
-    }
+    with_content(p, &mut factors);
     Some((roots, factors))
 }
 
