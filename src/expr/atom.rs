@@ -221,7 +221,7 @@ impl Table {
     }
 
     fn max_depth(&self, vars: impl Iterator<Item = Var>) -> u32 {
-        vars.filter_map(|v| self.entries.get((v >> 2) as usize))
+        vars.filter_map(|v| self.entry(v))
             .map(|e| e.depth)
             .max()
             .unwrap_or(0)

@@ -213,14 +213,11 @@ fn term_with_coef(c: &Expr, key: &Mono, st: Style) -> (bool, String) {
 
 /// [`term_with_coef`] before its sign is made the only one.
 fn term_with_coef_signed(c: &Expr, key: &Mono, st: Style) -> (bool, String) {
-    // The sign goes outside: the coefficient's first displayed terms, above
-    // and below, are made positive (a sign on each would print `−−`).
-    let first_negative = |p: &Poly| {
-        sorted_terms(p)
-            .first()
-            .is_some_and(|(_, q)| q.is_negative())
-    };
-    let neg = first_negative(c.num()) != first_negative(c.den());
+    // The sign goes outside: the coefficient's first displayed term is
+    // positive (what still prints with a sign, `term_with_coef` takes out).
+    let neg = sorted_terms(c.num())
+        .first()
+        .is_some_and(|(_, q)| q.is_negative());
     let c = if neg { c.neg() } else { c.clone() };
     let body = fraction(c.num(), c.den(), st);
     if key.0.is_empty() {
