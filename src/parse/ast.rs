@@ -18,13 +18,15 @@ pub struct Ident {
 }
 
 /// A declared name in `coordinates …` or `parameters …`, with an optional
-/// dimension annotation `r: length` (parsed and kept; not yet interpreted).
-#[derive(Clone, Debug, PartialEq, Eq)]
+/// dimension annotation (`r: length`, `k: force/length`), interpreted by
+/// the scene's dimension check.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Decl {
     /// The declared name.
     pub name: Ident,
-    /// The dimension after the colon (`length` in `r: length`), if any.
-    pub dimension: Option<Ident>,
+    /// The dimension after the colon (`length` in `r: length`), if any: a
+    /// product of dimension names and their powers, written as an expression.
+    pub dimension: Option<Expr>,
 }
 
 /// The role a named expression plays in Lagrange's equations.

@@ -306,11 +306,11 @@ impl<'s> Parser<'s> {
                 }
             }
         }
-        let end = decls[decls.len() - 1]
+        let last = &decls[decls.len() - 1];
+        let end = last
             .dimension
             .as_ref()
-            .unwrap_or(&decls[decls.len() - 1].name)
-            .span
+            .map_or(last.name.span, |d| d.span)
             .end;
         let span = Span::new(start, end);
         let stmt = if kw == "coordinates" {
@@ -321,12 +321,12 @@ impl<'s> Parser<'s> {
         Ok((i, stmt))
     }
 
-    /// `decl ::= ident ( ws ":" ws ident )?`
+    /// `decl ::= ident ( ws ":" dimension )?`
     pub(super) fn decl(&self, i: &'s str) -> RuleResult<'s, Decl> {
         let (i, name) = self.ident(i)?;
         let j = self.ws(i);
         match j.strip_prefix(':') {
-            Some(k) => match self.ident(k) {
+            Some(k) => match self.dimension(k) {
                 Ok((rest, dim)) => Ok((
                     rest,
                     Decl {
@@ -336,8 +336,8 @@ impl<'s> Parser<'s> {
                 )),
                 Err(nom::Err::Error(_)) => self.fail(self.expected(
                     self.ws(k),
-                    &format!("a dimension name after `{}:`", name.name),
-                    "annotate a dimension like `r: length`",
+                    &format!("a dimension after `{}:`", name.name),
+                    "annotate a dimension like `r: length` or `k: force/length`",
                     None,
                 )),
                 Err(e) => Err(e),
@@ -350,6 +350,12 @@ impl<'s> Parser<'s> {
                 },
             )),
         }
+    }
+
+    /// `dimension ::= ws product`
+    pub(super) fn dimension(&self, i: &'s str) -> RuleResult<'s, Expr> {
+        let (rest, node) = self.product(self.ws(i))?;
+        Ok((rest, *node.e))
     }
 
     /// `role_stmt ::= role ws ident ws "=" ws expr`

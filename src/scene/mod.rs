@@ -7,6 +7,7 @@
 //! `solve` blocks. Values are scalars or vectors ([`Value`]). Every error is
 //! a [`Diagnostic`] pointing into the source.
 
+pub mod dimension;
 mod eval;
 pub mod given;
 mod resolve;
@@ -25,6 +26,8 @@ pub struct Coordinate {
     pub name: String,
     /// Where it is declared.
     pub span: Span,
+    /// The dimension annotation as written (`length` in `x: length`), if any.
+    pub dimension: Option<String>,
 }
 
 /// A constant symbol.
@@ -34,7 +37,8 @@ pub struct Parameter {
     pub name: String,
     /// Where it is declared.
     pub span: Span,
-    /// The optional dimension annotation (`r: length`), not yet interpreted.
+    /// The dimension annotation as written (`force/length` in
+    /// `k: force/length`), if any; [`Scene::dimensions`] has its meaning.
     pub dimension: Option<String>,
 }
 
@@ -179,6 +183,9 @@ pub struct Scene {
     /// The `latex NAME = "…"` statements, in source order (a later one for
     /// the same name wins).
     pub latex_names: Vec<LatexName>,
+    /// The dimensions of the scene's names, when it annotates any
+    /// (`r: length`); the scene was checked then ([`dimension::check`]).
+    pub dimensions: Option<dimension::DimensionReport>,
 }
 
 /// `latex theta3 = "\vartheta_{3}"`: the LaTeX notation of a name.

@@ -48,6 +48,11 @@ impl<'a> Declarations<'a> {
         Ok(d)
     }
 
+    /// The source text of `span`.
+    fn written(&self, span: Span) -> String {
+        self.src[span.start..span.end].to_string()
+    }
+
     fn statement(&mut self, st: &'a Stmt) -> Result<(), Diagnostic> {
         match st {
             Stmt::Coordinates(ds, _) => {
@@ -56,6 +61,7 @@ impl<'a> Declarations<'a> {
                     self.coordinates.push(Coordinate {
                         name: d.name.name.clone(),
                         span: d.name.span,
+                        dimension: d.dimension.as_ref().map(|e| self.written(e.span)),
                     });
                 }
             }
@@ -65,7 +71,7 @@ impl<'a> Declarations<'a> {
                     self.parameters.push(Parameter {
                         name: d.name.name.clone(),
                         span: d.name.span,
-                        dimension: d.dimension.as_ref().map(|i| i.name.clone()),
+                        dimension: d.dimension.as_ref().map(|e| self.written(e.span)),
                     });
                 }
             }
@@ -248,7 +254,20 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
             "the scene has energies but no `coordinates`: there are no equations to derive",
         ));
     }
+    let dimensions = if super::dimension::annotated(stmts) {
+        let constant = |name: &str| {
+            definitions
+                .iter()
+                .find(|d| d.name == name)
+                .and_then(|d| d.value.as_scalar())
+                .and_then(Expr::as_rational)
+        };
+        Some(super::dimension::check(src, stmts, &constant)?)
+    } else {
+        None
+    };
     Ok(Scene {
+        dimensions,
         source: src.to_string(),
         coordinates,
         parameters,

@@ -46,7 +46,7 @@ pub fn sexpr(e: &Expr) -> String {
 fn decls(ds: &[qdot::parse::ast::Decl]) -> String {
     ds.iter()
         .map(|d| match &d.dimension {
-            Some(dim) => format!("{}:{}", d.name.name, dim.name),
+            Some(dim) => format!("{}:{}", d.name.name, sexpr(dim)),
             None => d.name.name.clone(),
         })
         .collect::<Vec<_>>()
@@ -241,7 +241,7 @@ pub fn print_stmt(s: &Stmt) -> String {
     let ds = |ds: &[qdot::parse::ast::Decl]| {
         ds.iter()
             .map(|d| match &d.dimension {
-                Some(dim) => format!("{}: {}", d.name.name, dim.name),
+                Some(dim) => format!("{}: {}", d.name.name, print_full(dim)),
                 None => d.name.name.clone(),
             })
             .collect::<Vec<_>>()

@@ -1,0 +1,218 @@
+//! The dimensions of the built-in functions' results, and what they ask of
+//! their arguments (`parse::functions` is the table of the functions).
+
+use super::form::DimForm;
+use super::walk::{DimValue, Walker, Want, Why};
+use crate::diag::{Diagnostic, Span};
+use crate::num::Q;
+use crate::parse::ast::{Expr, ExprKind, Ident};
+
+type Checked<T> = Result<T, Diagnostic>;
+
+/// The dimension of `f(args)`.
+pub(super) fn call(w: &mut Walker, f: &Ident, args: &[Expr], span: Span) -> Checked<DimValue> {
+    let name = f.name.as_str();
+    match name {
+        "sin" | "cos" | "tan" | "exp" | "ln" | "asin" | "acos" | "atan" => {
+            let want = Want {
+                form: DimForm::one(),
+                why: Why::Argument {
+                    function: name.to_string(),
+                },
+            };
+            for a in args {
+                w.value(a, Some(&want))?;
+            }
+            Ok(DimValue::Scalar(Some(DimForm::one())))
+        }
+        "sqrt" => match args.first() {
+            Some(a) => Ok(power(&w.value(a, None)?, &half())),
+            None => Ok(DimValue::Scalar(None)),
+        },
+        "expand" | "factor" => match args.first() {
+            Some(a) => w.value(a, None),
+            None => Ok(DimValue::Scalar(None)),
+        },
+        "dt" => match args.first() {
+            Some(a) => {
+                let v = w.value(a, None)?;
+                Ok(scale(&v, &Walker::time().pow(&Q::from_i64(-1))))
+            }
+            None => Ok(DimValue::Scalar(None)),
+        },
+        "diff" => match args {
+            [f, x] => {
+                let v = w.value(f, None)?;
+                let by = scalar(&w.value(x, None)?);
+                Ok(match by {
+                    Some(d) => scale(&v, &d.pow(&Q::from_i64(-1))),
+                    None => v,
+                })
+            }
+            _ => Ok(DimValue::Scalar(None)),
+        },
+        "inertia" => match args {
+            [m, x] => {
+                let m = scalar(&w.value(m, None)?);
+                let x = w.value(x, None)?;
+                let t2 = Walker::time().pow(&Q::from_i64(-2));
+                Ok(match m {
+                    Some(m) => scale(&x, &m.mul(&t2)),
+                    None => DimValue::Scalar(None),
+                })
+            }
+            _ => Ok(DimValue::Scalar(None)),
+        },
+        "dot" | "cross" | "norm" => vector_function(w, name, args, span),
+        "subs" => substitution(w, args),
+        "taylor" => taylor(w, args),
+        "series" | "parallel" => {
+            let moves = |n: &str| n == "t" || w.coordinates.contains(n);
+            if name == "series" && crate::scene::is_taylor_form(args, moves) {
+                return taylor(w, args);
+            }
+            springs(w, args)
+        }
+        // unknown functions are reported when the scene is resolved
+        _ => Ok(DimValue::Scalar(None)),
+    }
+}
+
+fn half() -> Q {
+    Q::new(1, 2).unwrap_or_default()
+}
+
+fn power(v: &DimValue, p: &Q) -> DimValue {
+    match v {
+        DimValue::Scalar(t) => DimValue::Scalar(t.as_ref().map(|f| f.pow(p))),
+        DimValue::Vector(c) => {
+            DimValue::Vector(c.iter().map(|t| t.as_ref().map(|f| f.pow(p))).collect())
+        }
+    }
+}
+
+fn scale(v: &DimValue, by: &DimForm) -> DimValue {
+    match v {
+        DimValue::Scalar(t) => DimValue::Scalar(t.as_ref().map(|f| f.mul(by))),
+        DimValue::Vector(c) => {
+            DimValue::Vector(c.iter().map(|t| t.as_ref().map(|f| f.mul(by))).collect())
+        }
+    }
+}
+
+fn scalar(v: &DimValue) -> Option<DimForm> {
+    match v {
+        DimValue::Scalar(t) => t.clone(),
+        DimValue::Vector(_) => None,
+    }
+}
+
+/// The one dimension of a vector's components (dot, cross and norm need
+/// one), or the error at `at`.
+fn common(w: &mut Walker, v: &DimValue, at: &Expr) -> Checked<Option<DimForm>> {
+    let mut first: Option<DimForm> = None;
+    for (k, c) in v.components().iter().enumerate() {
+        let Some(c) = c else { continue };
+        match &first {
+            None => first = Some(c.clone()),
+            Some(f) => {
+                if !w.vars.unify(c, f, at.span) {
+                    let msg = format!(
+                        "the components of this vector differ in dimension: component {} is {}, the first is {}",
+                        k + 1,
+                        w.vars.phrase(c),
+                        w.vars.phrase(f)
+                    );
+                    return Err(w.error(at, msg, c, f));
+                }
+            }
+        }
+    }
+    Ok(first)
+}
+
+fn vector_function(w: &mut Walker, name: &str, args: &[Expr], span: Span) -> Checked<DimValue> {
+    let _ = span;
+    let mut dims = Vec::with_capacity(args.len());
+    let mut len = 0;
+    for a in args {
+        let v = w.value(a, None)?;
+        len = v.components().len();
+        dims.push(common(w, &v, a)?);
+    }
+    let product = match (name, &dims[..]) {
+        ("norm", [a]) => a.clone(),
+        (_, [Some(a), Some(b)]) => Some(a.mul(b)),
+        _ => None,
+    };
+    Ok(if name == "cross" && len == 3 {
+        DimValue::Vector(vec![product; 3])
+    } else {
+        DimValue::Scalar(product)
+    })
+}
+
+/// `subs(f, x = a, …)`: each value has its variable's dimension.
+fn substitution(w: &mut Walker, args: &[Expr]) -> Checked<DimValue> {
+    let Some((f, rest)) = args.split_first() else {
+        return Ok(DimValue::Scalar(None));
+    };
+    let v = w.value(f, None)?;
+    for a in rest {
+        assigned(w, a)?;
+    }
+    Ok(v)
+}
+
+/// `x = a` in `subs` or `taylor`: `a` has `x`'s dimension.
+fn assigned(w: &mut Walker, a: &Expr) -> Checked<()> {
+    let ExprKind::Assign(x, value) = &a.kind else {
+        return Ok(());
+    };
+    if let Some(f) = scalar(&w.value(x, None)?) {
+        let want = Want {
+            form: f,
+            why: Why::Substituted {
+                variable: w.src[x.span.start..x.span.end].to_string(),
+            },
+        };
+        w.value(value, Some(&want))?;
+    }
+    Ok(())
+}
+
+/// `taylor(f, x, n)`, `taylor(f, x = a, n)`, `series(f, x = a, n)`.
+fn taylor(w: &mut Walker, args: &[Expr]) -> Checked<DimValue> {
+    let Some(f) = args.first() else {
+        return Ok(DimValue::Scalar(None));
+    };
+    let v = w.value(f, None)?;
+    if let Some(a) = args.get(1) {
+        assigned(w, a)?;
+    }
+    Ok(v)
+}
+
+/// `series(k1, k2, …)`, `parallel(k1, k2, …)`: springs of one kind.
+fn springs(w: &mut Walker, args: &[Expr]) -> Checked<DimValue> {
+    let mut first: Option<DimForm> = None;
+    for a in args {
+        let Some(f) = scalar(&w.value(a, None)?) else {
+            continue;
+        };
+        match &first {
+            None => first = Some(f),
+            Some(g) => {
+                if !w.vars.unify(&f, g, a.span) {
+                    let msg = format!(
+                        "this spring is {}; the first is {}",
+                        w.vars.phrase(&f),
+                        w.vars.phrase(g)
+                    );
+                    return Err(w.error(a, msg, &f, g));
+                }
+            }
+        }
+    }
+    Ok(DimValue::Scalar(first))
+}

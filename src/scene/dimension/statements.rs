@@ -1,0 +1,182 @@
+//! What each statement asks of dimensions: energies and powers for the
+//! role statements, the conjugate of a coordinate for `force`, work for
+//! `load` and `torque`, like sides for a `solve` equation.
+
+use super::dim::Dimension;
+use super::form::DimForm;
+use super::walk::{DimValue, NameDim, Walker, Want, Why};
+use crate::diag::Diagnostic;
+use crate::parse::ast::{Expr, Ident, Role, SolveBlock};
+
+type Checked<T> = Result<T, Diagnostic>;
+
+/// The dimension a role statement's value has, and what the role is called.
+pub(super) fn role_want(role: Role, name: &str) -> Want {
+    let (dimension, what) = match role {
+        Role::Kinetic => ("energy", "a kinetic energy"),
+        Role::Potential => ("energy", "a potential energy"),
+        Role::ForceFunction => ("energy", "a force function (U = −V, an energy)"),
+        Role::Work => ("energy", "the work of the non-conservative forces"),
+        Role::Lagrangian => ("energy", "a Lagrangian (an energy)"),
+        Role::Dissipation => ("power", "a dissipation function (a power)"),
+        Role::Rayleigh => ("power", "Rayleigh's dissipation function (a power)"),
+    };
+    Want {
+        form: DimForm::known(Dimension::named(dimension)),
+        why: Why::Role {
+            name: name.to_string(),
+            role: what,
+        },
+    }
+}
+
+fn energy() -> DimForm {
+    DimForm::known(Dimension::named("energy"))
+}
+
+/// `force q: Q`: Q·δq is work.
+pub(super) fn force(w: &mut Walker, coordinate: &Ident, value: &Expr) -> Checked<()> {
+    let q = match w.names.get(coordinate.name.as_str()) {
+        Some(NameDim::Fixed(f)) => f.clone(),
+        _ => return Ok(()),
+    };
+    let want = Want {
+        form: energy().div(&q),
+        why: Why::Force {
+            coordinate: coordinate.name.clone(),
+        },
+    };
+    w.value(value, Some(&want))?;
+    Ok(())
+}
+
+/// `load F at P`: F·P is work, component by component.
+pub(super) fn load(w: &mut Walker, force: &Expr, point: &Expr) -> Checked<()> {
+    let f = w.value(force, None)?;
+    let p = w.value(point, None)?;
+    for (fk, pk) in f.components().iter().zip(p.components()) {
+        let (Some(fk), Some(pk)) = (fk, pk) else {
+            continue;
+        };
+        if w.vars.unify(&fk.mul(pk), &energy(), force.span) {
+            continue;
+        }
+        return Err(misapplied(w, (force, fk), (point, pk), Kind::Load));
+    }
+    Ok(())
+}
+
+/// `torque M on phi`: M·phi is work.
+pub(super) fn torque(w: &mut Walker, moment: &Expr, angle: &Expr) -> Checked<()> {
+    let m = w.value(moment, None)?;
+    let a = w.value(angle, None)?;
+    if let (DimValue::Scalar(Some(m)), DimValue::Scalar(Some(a))) = (&m, &a) {
+        if !w.vars.unify(&m.mul(a), &energy(), moment.span) {
+            return Err(misapplied(w, (moment, m), (angle, a), Kind::Torque));
+        }
+    }
+    Ok(())
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Kind {
+    Load,
+    Torque,
+}
+
+/// The error of a load or torque whose work is not an energy: at the
+/// point (or angle) when the force (or moment) is what it should be, else
+/// at the force.
+fn misapplied(
+    w: &Walker,
+    agent: (&Expr, &DimForm),
+    place: (&Expr, &DimForm),
+    kind: Kind,
+) -> Diagnostic {
+    let (agent_dim, place_dim, agent_word, place_word) = match kind {
+        Kind::Load => (
+            "force",
+            "length",
+            "a force",
+            "its point of application: a position (a length)",
+        ),
+        Kind::Torque => (
+            "energy",
+            "dimensionless",
+            "a torque (an energy per radian)",
+            "the angle it turns: dimensionless",
+        ),
+    };
+    let agent_needed = DimForm::known(Dimension::named(agent_dim));
+    let place_needed = DimForm::known(Dimension::named(place_dim));
+    let a = w.vars.normalize(agent.1);
+    let p = w.vars.normalize(place.1);
+    if a == agent_needed {
+        let msg = format!(
+            "this is {}, but {agent_word} acts over {place_word}",
+            w.vars.phrase(&p)
+        );
+        let d = w.error(place.0, msg, &p, &place_needed);
+        return match (kind, p.as_known()) {
+            (Kind::Load, Some(d1)) if d1.is_one() => d.with_hint(
+                "a force on an angle is a torque: write `torque M on theta` with the moment M",
+            ),
+            _ => d,
+        };
+    }
+    let work = a.mul(&p);
+    let msg = if p == place_needed {
+        format!(
+            "this is {}, but a {} acting on {} must be {agent_word}",
+            w.vars.phrase(&a),
+            if kind == Kind::Load { "load" } else { "torque" },
+            if kind == Kind::Load {
+                "a position (a length)"
+            } else {
+                "an angle"
+            },
+        )
+    } else {
+        format!(
+            "this {} does work of dimension {}, not an energy",
+            if kind == Kind::Load { "load" } else { "torque" },
+            w.vars.unicode(&work)
+        )
+    };
+    w.error(agent.0, msg, &a, &agent_needed)
+}
+
+/// A `solve` block: the two sides of each equation alike.
+pub(super) fn solve_block(w: &mut Walker, block: &SolveBlock) -> Checked<()> {
+    for eq in &block.equations {
+        let l = w.value(&eq.lhs, None)?;
+        match &l {
+            DimValue::Scalar(Some(f)) => {
+                let want = Want {
+                    form: f.clone(),
+                    why: Why::OtherSide,
+                };
+                w.value(&eq.rhs, Some(&want))?;
+            }
+            DimValue::Scalar(None) => {
+                w.value(&eq.rhs, None)?;
+            }
+            DimValue::Vector(lc) => {
+                let r = w.value(&eq.rhs, None)?;
+                for (k, (a, b)) in lc.iter().zip(r.components()).enumerate() {
+                    let (Some(a), Some(b)) = (a, b) else { continue };
+                    if !w.vars.unify(b, a, eq.rhs.span) {
+                        let msg = format!(
+                            "component {} of this side is {}; of the other side, {}",
+                            k + 1,
+                            w.vars.phrase(b),
+                            w.vars.phrase(a)
+                        );
+                        return Err(w.error(&eq.rhs, msg, b, a));
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}

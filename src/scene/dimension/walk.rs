@@ -1,0 +1,475 @@
+//! The dimension of every written expression, checked as it is found.
+//!
+//! Checking is bidirectional: where the dimension an expression must have
+//! is known (a role statement's energy, a `force`'s generalized force, one
+//! side of a `solve` equation), it is pushed into sums, through products
+//! with known factors, so a mistake is reported at the term that makes it,
+//! not at the statement. Elsewhere a sum's terms are compared with the
+//! dimension most of them share.
+
+use super::form::{DimForm, DimVar, DimVars};
+use super::hint;
+use crate::diag::Diagnostic;
+use crate::num::Q;
+use crate::parse::ast::{BinOp, Expr, ExprKind};
+use rustc_hash::FxHashMap;
+
+/// The dimension of a value: `None` for the number 0 (of every dimension).
+pub(super) type Term = Option<DimForm>;
+
+/// The dimension of a scalar, or of each component of a vector.
+#[derive(Clone, Debug)]
+pub(super) enum DimValue {
+    Scalar(Term),
+    Vector(Vec<Term>),
+}
+
+impl DimValue {
+    fn one() -> DimValue {
+        DimValue::Scalar(Some(DimForm::one()))
+    }
+    fn map(&self, mut f: impl FnMut(&DimForm) -> DimForm) -> DimValue {
+        match self {
+            DimValue::Scalar(t) => DimValue::Scalar(t.as_ref().map(&mut f)),
+            DimValue::Vector(c) => {
+                DimValue::Vector(c.iter().map(|t| t.as_ref().map(&mut f)).collect())
+            }
+        }
+    }
+    pub fn components(&self) -> &[Term] {
+        match self {
+            DimValue::Scalar(t) => std::slice::from_ref(t),
+            DimValue::Vector(c) => c,
+        }
+    }
+}
+
+/// Why an expression must have a dimension: the end of the message "…;
+/// a force is needed here (WHY)".
+#[derive(Clone, Debug)]
+pub(super) enum Why {
+    /// A role statement: `E1` is a kinetic energy.
+    Role { name: String, role: &'static str },
+    /// `force q: …`: the generalized force conjugate to q.
+    Force { coordinate: String },
+    /// One side of a `solve` equation, of the other side's dimension.
+    OtherSide,
+    /// The argument of a function that needs a pure number.
+    Argument { function: String },
+    /// A power with a symbolic exponent.
+    SymbolicPower,
+    /// The exponent of a power.
+    Exponent,
+    /// A factor of a product whose other factors are known.
+    Factor(Box<Why>),
+    /// The value given to a variable in `subs`/`taylor`.
+    Substituted { variable: String },
+}
+
+impl Why {
+    fn describe(&self) -> String {
+        match self {
+            Why::Role { name, role } => format!("`{name}` is {role}"),
+            Why::Force { coordinate } => format!(
+                "the generalized force on `{coordinate}` does work over δ{coordinate}: an energy per unit of `{coordinate}`"
+            ),
+            Why::OtherSide => "the other side of the equation".into(),
+            Why::Argument { function } => format!("the argument of `{function}`"),
+            Why::SymbolicPower => "the base of a power with a symbolic exponent".into(),
+            Why::Exponent => "an exponent".into(),
+            Why::Factor(w) => format!("{}, with the other factors taken out", w.describe()),
+            Why::Substituted { variable } => format!("the value of `{variable}`"),
+        }
+    }
+}
+
+/// The dimension an expression must have, and why.
+#[derive(Clone, Debug)]
+pub(super) struct Want {
+    pub form: DimForm,
+    pub why: Why,
+}
+
+/// What a name's dimension is.
+#[derive(Clone, Debug)]
+pub(super) enum NameDim {
+    /// A coordinate, parameter or `solve` unknown: declared, or an unknown.
+    Fixed(DimForm),
+    /// A definition, by index.
+    Def(usize),
+    /// `t`.
+    Time,
+    /// `pi`.
+    Pi,
+}
+
+/// The expression checker: names, definitions' dimensions so far, unknowns.
+pub(super) struct Walker<'a> {
+    pub src: &'a str,
+    pub vars: DimVars,
+    pub names: FxHashMap<&'a str, NameDim>,
+    /// The coordinates' names (`series(f, q, n)` is a Taylor series).
+    pub coordinates: rustc_hash::FxHashSet<&'a str>,
+    /// The dimension of each definition, once checked.
+    pub defs: Vec<Option<DimValue>>,
+    /// A definition's value when it is a rational constant (exponents).
+    pub constant: &'a dyn Fn(&str) -> Option<Q>,
+}
+
+type Checked<T> = Result<T, Diagnostic>;
+
+/// `a + b − c` as its terms, left to right (no recursion: sums are
+/// left-leaning trees as deep as they are long).
+fn sum_terms(e: &Expr) -> Vec<&Expr> {
+    let mut out = Vec::new();
+    let mut cur = e;
+    while let ExprKind::Bin(BinOp::Add | BinOp::Sub, a, b) = &cur.kind {
+        out.push(&**b);
+        cur = a;
+    }
+    out.push(cur);
+    out.reverse();
+    out
+}
+
+/// `a·b/c` as its factors with exponents ±1, left to right.
+fn product_factors(e: &Expr) -> Vec<(&Expr, i64)> {
+    let mut out = Vec::new();
+    let mut cur = e;
+    while let ExprKind::Bin(op @ (BinOp::Mul | BinOp::Div), a, b) = &cur.kind {
+        out.push((&**b, if *op == BinOp::Div { -1 } else { 1 }));
+        cur = a;
+    }
+    out.push((cur, 1));
+    out.reverse();
+    out
+}
+
+fn is_sum(e: &Expr) -> bool {
+    match &e.kind {
+        ExprKind::Bin(BinOp::Add | BinOp::Sub, ..) => true,
+        ExprKind::Neg(x) => is_sum(x),
+        _ => false,
+    }
+}
+
+impl<'a> Walker<'a> {
+    pub fn time() -> DimForm {
+        DimForm::known(super::dim::Dimension::named("time"))
+    }
+
+    /// The dimension of `e`, which must be `want`'s when there is one.
+    pub fn value(&mut self, e: &Expr, want: Option<&Want>) -> Checked<DimValue> {
+        self.value_as(e, want, "this")
+    }
+
+    /// [`Walker::value`], naming `e` as `noun` ("this term") in an error.
+    fn value_as(&mut self, e: &Expr, want: Option<&Want>, noun: &str) -> Checked<DimValue> {
+        let v = self.value_inner(e, want)?;
+        if let Some(w) = want {
+            for c in v.components().iter().flatten() {
+                self.expect(c, w, e, noun)?;
+            }
+        }
+        Ok(v)
+    }
+
+    /// Unify `have` with `want`, or the error at `e`.
+    pub fn expect(&mut self, have: &DimForm, want: &Want, e: &Expr, noun: &str) -> Checked<()> {
+        if self.vars.unify(have, &want.form, e.span) {
+            return Ok(());
+        }
+        let needed = self.needed(&want.form);
+        let msg = format!(
+            "{noun} is {}; {needed} is needed here ({})",
+            self.vars.phrase(have),
+            want.why.describe()
+        );
+        Err(self.error(e, msg, have, &want.form))
+    }
+
+    /// "a force", or "a pure number (dimensionless)".
+    pub fn needed(&self, f: &DimForm) -> String {
+        let f = self.vars.normalize(f);
+        match f.as_known() {
+            Some(d) if d.is_one() => "a pure number (dimensionless)".into(),
+            _ => self.vars.phrase(&f),
+        }
+    }
+
+    /// An error at `e` whose dimension `have` should be `want`, with the
+    /// likely fix as its hint.
+    pub fn error(&self, e: &Expr, msg: String, have: &DimForm, want: &DimForm) -> Diagnostic {
+        let d = Diagnostic::error(e.span, msg);
+        match hint::hint(self, e, have, want) {
+            Some(h) => d.with_hint(h),
+            None => d,
+        }
+    }
+
+    fn value_inner(&mut self, e: &Expr, want: Option<&Want>) -> Checked<DimValue> {
+        match &e.kind {
+            ExprKind::Num(q) if q == &num_rational::BigRational::from_integer(0.into()) => {
+                Ok(DimValue::Scalar(None))
+            }
+            ExprKind::Num(_) | ExprKind::Degrees(_) => Ok(DimValue::one()),
+            ExprKind::Name(n) => Ok(self.name(n)),
+            ExprKind::Neg(x) => self.value_as(x, want, "this"),
+            ExprKind::Bin(BinOp::Add | BinOp::Sub, ..) => self.sum(e, want),
+            ExprKind::Bin(BinOp::Mul | BinOp::Div, ..) => self.product(e, want),
+            ExprKind::Bin(BinOp::Pow, base, exp) => self.power(base, exp),
+            ExprKind::Prime(x, k) => {
+                let v = self.value(x, None)?;
+                let t = Self::time().pow(&Q::from_i64(i64::from(*k)));
+                Ok(v.map(|f| f.div(&t)))
+            }
+            ExprKind::Vector(cs) => {
+                let mut out = Vec::with_capacity(cs.len());
+                for c in cs {
+                    match self.value(c, None)? {
+                        DimValue::Scalar(t) => out.push(t),
+                        DimValue::Vector(_) => out.push(None),
+                    }
+                }
+                Ok(DimValue::Vector(out))
+            }
+            ExprKind::Call(f, args) => super::call::call(self, f, args, e.span),
+            ExprKind::Assign(_, v) => self.value(v, None),
+        }
+    }
+
+    /// The dimension of a name.
+    pub fn name(&mut self, n: &str) -> DimValue {
+        match self.names.get(n) {
+            Some(NameDim::Fixed(f)) => DimValue::Scalar(Some(f.clone())),
+            Some(NameDim::Def(i)) => match self.defs.get(*i).cloned().flatten() {
+                Some(v) => v,
+                // not checked yet: only where the scene itself failed to
+                // resolve, which is reported before dimensions are checked
+                None => DimValue::Scalar(Some(DimForm::var(self.vars.fresh(n)))),
+            },
+            Some(NameDim::Time) => DimValue::Scalar(Some(Self::time())),
+            Some(NameDim::Pi) => DimValue::one(),
+            None => DimValue::Scalar(Some(DimForm::var(self.vars.fresh(n)))),
+        }
+    }
+
+    /// The unknown that stands for a name's dimension, if it has one.
+    pub fn unknown_of(&self, n: &str) -> Option<DimVar> {
+        match self.names.get(n) {
+            Some(NameDim::Fixed(f)) => match &f.vars[..] {
+                [(v, c)] if c.is_one() && f.base.is_one() => Some(*v),
+                _ => None,
+            },
+            _ => None,
+        }
+    }
+
+    /// A sum: every term of one dimension, `want`'s when there is one.
+    fn sum(&mut self, e: &Expr, want: Option<&Want>) -> Checked<DimValue> {
+        let terms = sum_terms(e);
+        if let Some(w) = want {
+            let mut out = DimValue::Scalar(None);
+            for t in terms {
+                let v = self.value_as(t, Some(w), "this term")?;
+                if let DimValue::Vector(_) = v {
+                    out = v;
+                } else if matches!(v, DimValue::Scalar(Some(_))) {
+                    out = v;
+                }
+            }
+            return Ok(out);
+        }
+        let mut values = Vec::with_capacity(terms.len());
+        for t in &terms {
+            values.push(self.value(t, None)?);
+        }
+        let width = values
+            .iter()
+            .map(|v| v.components().len())
+            .max()
+            .unwrap_or(1);
+        let mut result = Vec::with_capacity(width);
+        for k in 0..width {
+            let column: Vec<(&Expr, &DimForm)> = terms
+                .iter()
+                .zip(&values)
+                .filter_map(|(t, v)| {
+                    v.components()
+                        .get(k)
+                        .and_then(|c| c.as_ref())
+                        .map(|c| (*t, c))
+                })
+                .collect();
+            result.push(self.same_dimension(&column)?);
+        }
+        Ok(match values.first() {
+            Some(DimValue::Vector(_)) => DimValue::Vector(result),
+            _ => DimValue::Scalar(result.pop().flatten()),
+        })
+    }
+
+    /// The terms of a sum share one dimension: the one most of the known
+    /// terms have (the first on a tie), or the first term's.
+    fn same_dimension(&mut self, terms: &[(&Expr, &DimForm)]) -> Checked<Term> {
+        let normal: Vec<DimForm> = terms.iter().map(|(_, f)| self.vars.normalize(f)).collect();
+        let mut best: Option<(usize, usize)> = None; // (index, votes)
+        for (i, f) in normal.iter().enumerate() {
+            if f.as_known().is_none() {
+                continue;
+            }
+            let votes = normal.iter().filter(|g| *g == f).count();
+            if best.is_none_or(|(_, b)| votes > b) {
+                best = Some((i, votes));
+            }
+        }
+        let Some(reference) = best.map(|(i, _)| i).or((!normal.is_empty()).then_some(0)) else {
+            return Ok(None);
+        };
+        let r = normal[reference].clone();
+        for (i, (t, f)) in terms.iter().enumerate() {
+            if i == reference || self.vars.unify(f, &r, t.span) {
+                continue;
+            }
+            let others = if terms.len() == 2 {
+                "the other term is"
+            } else {
+                "the other terms are"
+            };
+            let msg = format!(
+                "this term is {}; {others} {}",
+                self.vars.phrase(f),
+                if terms.len() == 2 {
+                    self.vars.phrase(&r)
+                } else {
+                    self.vars.plural(&r)
+                }
+            );
+            return Err(self.error(t, msg, f, &r));
+        }
+        Ok(Some(r))
+    }
+
+    /// A product: the dimensions multiply. With `want` known and exactly
+    /// one factor a sum, the sum is checked against what the other factors
+    /// leave, so its wrong term is found.
+    fn product(&mut self, e: &Expr, want: Option<&Want>) -> Checked<DimValue> {
+        let factors = product_factors(e);
+        let sums: Vec<usize> = (0..factors.len())
+            .filter(|&i| is_sum(factors[i].0))
+            .collect();
+        let pushed = match (want, &sums[..]) {
+            (Some(_), [s]) => Some(*s),
+            _ => None,
+        };
+        let mut values: Vec<Option<DimValue>> = vec![None; factors.len()];
+        for (i, (f, _)) in factors.iter().enumerate() {
+            if Some(i) != pushed {
+                values[i] = Some(self.value(f, None)?);
+            }
+        }
+        if let (Some(s), Some(w)) = (pushed, want) {
+            // the other factors' product, when every one is a known scalar
+            let mut rest = Some(DimForm::one());
+            for (i, (_, p)) in factors.iter().enumerate() {
+                if i == s {
+                    continue;
+                }
+                rest = match (&rest, &values[i]) {
+                    (Some(r), Some(DimValue::Scalar(Some(f)))) => {
+                        Some(r.mul(&self.vars.normalize(f).pow(&Q::from_i64(*p))))
+                    }
+                    _ => None,
+                };
+            }
+            let inner = rest.map(|r| {
+                let need = w.form.div(&r).pow(&Q::from_i64(factors[s].1));
+                Want {
+                    form: need,
+                    why: Why::Factor(Box::new(w.why.clone())),
+                }
+            });
+            values[s] = Some(self.value(factors[s].0, inner.as_ref())?);
+        }
+        let mut out = DimValue::one();
+        for ((_, p), v) in factors.iter().zip(values) {
+            let v = v.unwrap_or(DimValue::Scalar(None));
+            out = multiply(&out, &v, *p);
+        }
+        Ok(out)
+    }
+
+    /// `base^exp`: a rational exponent scales the dimension; any other
+    /// needs a dimensionless base.
+    fn power(&mut self, base: &Expr, exp: &Expr) -> Checked<DimValue> {
+        if let Some(q) = self.constant(exp) {
+            let b = self.value(base, None)?;
+            return Ok(match &b {
+                DimValue::Scalar(None) if q.is_positive() => b,
+                _ => b.map(|f| f.pow(&q)),
+            });
+        }
+        let one = DimForm::one();
+        self.value(
+            base,
+            Some(&Want {
+                form: one.clone(),
+                why: Why::SymbolicPower,
+            }),
+        )?;
+        self.value(
+            exp,
+            Some(&Want {
+                form: one,
+                why: Why::Exponent,
+            }),
+        )?;
+        Ok(DimValue::one())
+    }
+
+    /// The value of `e` when it is a rational constant.
+    pub fn constant(&self, e: &Expr) -> Option<Q> {
+        match &e.kind {
+            ExprKind::Num(q) => Some(Q::from_big(q.clone())),
+            ExprKind::Neg(x) => self.constant(x).map(|q| -q),
+            ExprKind::Name(n) => (self.constant)(n),
+            ExprKind::Bin(op, a, b) => {
+                let (mut x, y) = (self.constant(a)?, self.constant(b)?);
+                match op {
+                    BinOp::Add => x += y,
+                    BinOp::Sub => x -= y,
+                    BinOp::Mul => x *= y,
+                    BinOp::Div => x = x.checked_div(&y)?,
+                    BinOp::Pow => {
+                        let k = y.as_i64().filter(|k| k.abs() <= 64)?;
+                        x = x.pow(i32::try_from(k).ok()?)?;
+                    }
+                }
+                Some(x)
+            }
+            _ => None,
+        }
+    }
+}
+
+/// `a · b^p` for dimensions of values (a zero factor makes the product 0).
+fn multiply(a: &DimValue, b: &DimValue, p: i64) -> DimValue {
+    let p = Q::from_i64(p);
+    let times = |x: &Term, y: &Term| -> Term {
+        match (x, y) {
+            (Some(x), Some(y)) => Some(x.mul(&y.pow(&p))),
+            _ => None,
+        }
+    };
+    match (a, b) {
+        (DimValue::Scalar(x), DimValue::Scalar(y)) => DimValue::Scalar(times(x, y)),
+        (DimValue::Scalar(x), DimValue::Vector(c)) => {
+            DimValue::Vector(c.iter().map(|y| times(x, y)).collect())
+        }
+        (DimValue::Vector(c), DimValue::Scalar(y)) => {
+            DimValue::Vector(c.iter().map(|x| times(x, y)).collect())
+        }
+        // vector × vector is refused by the evaluator before this runs
+        (DimValue::Vector(c), DimValue::Vector(_)) => DimValue::Vector(vec![None; c.len()]),
+    }
+}
