@@ -35,6 +35,12 @@ enum Fmt {
     Latex,
 }
 
+#[derive(Clone, Copy, ValueEnum)]
+enum CheckFmt {
+    Text,
+    Json,
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// The interactive session: build a scene line by line, ask for
@@ -150,6 +156,14 @@ enum Command {
         #[arg(long = "stop-when")]
         stop_when: Option<String>,
     },
+    /// The dimension of every name, declared or found, and of the results;
+    /// an error at the first term of the wrong dimension.
+    Check {
+        /// The scene file (.qd).
+        file: String,
+        #[arg(long, value_enum, default_value = "text")]
+        format: CheckFmt,
+    },
     /// Equilibrium positions (Q_k = 0) and their stability.
     Equilibrium {
         /// The scene file (.qd).
@@ -213,6 +227,13 @@ fn main() -> ExitCode {
         Command::Derive { file, format } => (output::Command::Derive, file, *format, None),
         Command::Solve { file, format } => (output::Command::Solve, file, *format, None),
         Command::Forces { file, format } => (output::Command::Forces, file, *format, None),
+        Command::Check { file, format } => {
+            let fmt = match format {
+                CheckFmt::Text => Fmt::Text,
+                CheckFmt::Json => Fmt::Json,
+            };
+            (output::Command::Check, file, fmt, None)
+        }
         Command::Equilibrium { file, format, set } => {
             (output::Command::Equilibrium, file, *format, set.as_deref())
         }

@@ -27,13 +27,15 @@ use crate::solve::equilibrium::{self, Equilibria, Position, Values};
 use crate::solve::system::{self};
 use serde_json::{json, Map};
 
+mod dimensions;
 mod json;
 pub mod latex;
 mod modes;
 mod text;
 
+pub use dimensions::{check_json, check_text, dimensions_json};
+use json::named;
 pub use json::{derive_json, equilibrium_json, modes_json, solutions_json, solve_json};
-use json::{json_string, named};
 pub use modes::modes_text;
 pub use text::{derive_text, equilibrium_text, forces_text, padded, solutions_text, solve_text};
 
@@ -53,6 +55,8 @@ pub enum Command {
     Modes,
     /// LaTeX of the scene's main result (see [`latex::document`]).
     Latex,
+    /// `qdot check`: the dimension of every name and result (text or JSON).
+    Check,
 }
 
 /// CommandOptions of the commands beyond the file and the format.
@@ -125,6 +129,13 @@ fn run_unbounded(
 ) -> Result<(String, Vec<Diagnostic>), Diagnostic> {
     let set = &opts.set;
     let scene = Scene::parse(src)?;
+    // every JSON object of an annotated scene carries its `dimensions`
+    let json_string = |mut m: Map<String, serde_json::Value>| {
+        if let Some(d) = &scene.dimensions {
+            m.insert("dimensions".into(), dimensions_json(d));
+        }
+        json::json_string(m)
+    };
     let out = match cmd {
         Command::Derive => {
             let lag = scene.lagrange()?;
@@ -246,6 +257,13 @@ fn run_unbounded(
         Command::Latex => {
             check_set(&scene, set)?;
             latex::document(&scene, opts)?
+        }
+        Command::Check => {
+            let report = scene.dimension_report()?;
+            match fmt {
+                Format::Json => json::json_string(check_json(&scene, &report)),
+                _ => check_text(&scene, &report),
+            }
         }
     };
     Ok((out, scene.warnings.clone()))

@@ -331,6 +331,18 @@ impl Scene {
         Ok((v, std::mem::take(&mut ev.warnings)))
     }
 
+    /// The dimensions of the scene's names: [`Scene::dimensions`] when the
+    /// scene annotates any, else found from the scene alone (relative to
+    /// the dimensions it leaves free; a contradiction is still an error).
+    pub fn dimension_report(&self) -> Result<dimension::DimensionReport, Diagnostic> {
+        if let Some(d) = &self.dimensions {
+            return Ok(d.clone());
+        }
+        let stmts = crate::parse::parse_scene(&self.source)?;
+        let constant = |name: &str| self.definition(name).and_then(Expr::as_rational);
+        dimension::check(&self.source, &stmts, &constant)
+    }
+
     /// The definitions playing `role`, in source order.
     pub fn role(&self, role: Role) -> impl Iterator<Item = &Definition> {
         self.definitions
