@@ -9,6 +9,7 @@ mod stress_common;
 mod book;
 mod cli;
 mod compile;
+mod dimensions;
 mod equilibrium;
 mod factor;
 mod fuzz_regressions;

@@ -36,7 +36,21 @@ fn kind_title(kind: DimensionedName) -> &'static str {
 
 fn source_text(scene: &Scene, n: &NamedDimension) -> String {
     match &n.source {
-        DimensionSource::Declared => "declared".into(),
+        DimensionSource::Declared => {
+            let written = scene
+                .coordinates
+                .iter()
+                .find(|c| c.name == n.name)
+                .and_then(|c| c.dimension.as_ref())
+                .or_else(|| {
+                    let p = scene.parameters.iter().find(|p| p.name == n.name);
+                    p.and_then(|p| p.dimension.as_ref())
+                });
+            match written {
+                Some(w) if *w != n.text => format!("declared as {w}"),
+                _ => "declared".into(),
+            }
+        }
         DimensionSource::Inferred(at) => {
             let (line, col) = crate::diag::Diagnostic::line_col(&scene.source, at.start);
             format!("found at {line}:{col}")

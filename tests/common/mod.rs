@@ -281,3 +281,19 @@ pub fn print_stmt(s: &Stmt) -> String {
         }
     }
 }
+
+/// The keys of a command's JSON for `scene`: `base`, then `dimensions`
+/// when the scene annotates a dimension; the `dimensions` value is checked
+/// against the library's report.
+pub fn contract_keys<'a>(
+    v: &serde_json::Value,
+    scene: &qdot::Scene,
+    base: &[&'a str],
+) -> Vec<&'a str> {
+    let mut want = base.to_vec();
+    if let Some(report) = &scene.dimensions {
+        want.push("dimensions");
+        assert_eq!(v["dimensions"], qdot::output::dimensions_json(report));
+    }
+    want
+}

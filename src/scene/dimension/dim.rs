@@ -212,8 +212,9 @@ impl Dimension {
             return n.to_string();
         }
         let nonzero = self.exponents.iter().filter(|e| !e.is_zero()).count();
-        if nonzero == 1 {
-            // time⁻² reads better than frequency·time⁻¹
+        if nonzero <= 2 {
+            // time⁻² and length·time read better than frequency·time⁻¹
+            // and velocity·time²
         } else if let Some((name, base, e)) = self.named_times_base() {
             return factors(
                 &[

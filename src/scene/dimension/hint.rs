@@ -84,6 +84,14 @@ fn by_ratio(ratio: &Dimension, written: &[Written]) -> Option<String> {
             ));
         }
     }
+    if *ratio == inverse(&named("area")) {
+        if let Some(x) = with_dim(&named("mass")) {
+            return Some(format!(
+                "`{}` is a mass: a rotation needs a moment of inertia (`{}*l^2`, an inertia)",
+                x.text, x.text
+            ));
+        }
+    }
     for x in written {
         let Some(d) = &x.dimension else { continue };
         if d.is_one() {
@@ -117,9 +125,15 @@ fn by_ratio(ratio: &Dimension, written: &[Written]) -> Option<String> {
         );
     }
     let length = named("length");
-    if *ratio == length || *ratio == inverse(&length) {
+    if *ratio == length {
         return Some(
-            "the two differ by a length: an angle where a length belongs (an arc is r*theta), or the other way round?"
+            "one length too many: a moment (force × arm) where a force belongs, or a length where an angle belongs?"
+                .into(),
+        );
+    }
+    if *ratio == inverse(&length) {
+        return Some(
+            "one length short: a force where a moment belongs, or an angle where a length belongs (an arc is r*theta)?"
                 .into(),
         );
     }

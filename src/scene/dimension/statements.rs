@@ -6,7 +6,7 @@ use super::dim::Dimension;
 use super::form::DimForm;
 use super::walk::{DimValue, NameDim, Walker, Want, Why};
 use crate::diag::Diagnostic;
-use crate::parse::ast::{Expr, Ident, Role, SolveBlock};
+use crate::parse::ast::{Equation, Expr, ExprKind, Ident, Role, SolveBlock};
 
 type Checked<T> = Result<T, Diagnostic>;
 
@@ -146,9 +146,17 @@ fn misapplied(
     w.error(agent.0, msg, &a, &agent_needed)
 }
 
-/// A `solve` block: the two sides of each equation alike.
+/// A `solve` block: the two sides of each equation alike. Equations with
+/// fewer unknowns go first: they decide the unknowns' dimensions, so a
+/// wrong term elsewhere is reported where it is written.
 pub(super) fn solve_block(w: &mut Walker, block: &SolveBlock) -> Checked<()> {
-    for eq in &block.equations {
+    let mut order: Vec<(usize, &Equation)> = block
+        .equations
+        .iter()
+        .map(|eq| (unknowns_in(block, eq), eq))
+        .collect();
+    order.sort_by_key(|(n, _)| *n);
+    for (_, eq) in order {
         let l = w.value(&eq.lhs, None)?;
         match &l {
             DimValue::Scalar(Some(f)) => {
@@ -166,17 +174,45 @@ pub(super) fn solve_block(w: &mut Walker, block: &SolveBlock) -> Checked<()> {
                 for (k, (a, b)) in lc.iter().zip(r.components()).enumerate() {
                     let (Some(a), Some(b)) = (a, b) else { continue };
                     if !w.vars.unify(b, a, eq.rhs.span) {
+                        // at the component itself when it is written out
+                        let at = match &eq.rhs.kind {
+                            ExprKind::Vector(cs) if cs.len() > k => &cs[k],
+                            _ => &eq.rhs,
+                        };
                         let msg = format!(
                             "component {} of this side is {}; of the other side, {}",
                             k + 1,
                             w.vars.phrase(b),
                             w.vars.phrase(a)
                         );
-                        return Err(w.error(&eq.rhs, msg, b, a));
+                        return Err(w.error(at, msg, b, a));
                     }
                 }
             }
         }
     }
     Ok(())
+}
+
+/// How many of the block's unknowns an equation names.
+fn unknowns_in(block: &SolveBlock, eq: &Equation) -> usize {
+    let mut seen: Vec<&str> = Vec::new();
+    let mut stack = vec![&eq.lhs, &eq.rhs];
+    while let Some(e) = stack.pop() {
+        match &e.kind {
+            ExprKind::Name(n) => {
+                if block.unknowns.iter().any(|u| u.name == *n) && !seen.contains(&n.as_str()) {
+                    seen.push(n);
+                }
+            }
+            ExprKind::Neg(x) | ExprKind::Prime(x, _) => stack.push(x),
+            ExprKind::Bin(_, a, b) | ExprKind::Assign(a, b) => {
+                stack.push(a);
+                stack.push(b);
+            }
+            ExprKind::Call(_, args) | ExprKind::Vector(args) => stack.extend(args),
+            ExprKind::Num(_) | ExprKind::Degrees(_) => {}
+        }
+    }
+    seen.len()
 }
