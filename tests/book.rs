@@ -1,7 +1,8 @@
 //! The book shows qdot's real output: every ```text (or ```latex) block
 //! preceded by a `<!-- qdot ARGS -->` comment must equal what `qdot ARGS`
 //! prints (run from the repository root; `ARGS < FILE` feeds FILE to
-//! stdin, for REPL transcripts), and the text between
+//! stdin, for REPL transcripts; `ARGS 2>&1` shows an error, and qdot
+//! must fail), and the text between
 //! `<!-- qdot-math ARGS -->` and `<!-- /qdot-math -->` must be qdot's LaTeX
 //! output made into Markdown that MathJax renders ([`mathjax`]).
 //! `QDOT_BLESS=1 cargo test --release --test it book::` rewrites the blocks from the
@@ -9,8 +10,20 @@
 
 use std::process::Command;
 
-/// `qdot ARGS`; `ARGS < FILE` feeds the file to stdin (a REPL session).
+/// `qdot ARGS`; `ARGS < FILE` feeds the file to stdin (a REPL session);
+/// `ARGS 2>&1` shows an error: stdout then stderr, and exit status 1.
 fn run(args: &str) -> String {
+    if let Some(args) = args.strip_suffix("2>&1") {
+        let out = Command::new(env!("CARGO_BIN_EXE_qdot"))
+            .args(args.split_whitespace())
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .stdin(std::process::Stdio::null())
+            .output()
+            .expect("qdot runs");
+        assert_eq!(out.status.code(), Some(1), "qdot {args}: an error was expected");
+        return String::from_utf8_lossy(&out.stdout).into_owned()
+            + &String::from_utf8_lossy(&out.stderr);
+    }
     let (args, input) = match args.split_once(" < ") {
         Some((a, f)) => (a, Some(f.trim())),
         None => (args, None),

@@ -271,3 +271,60 @@ proptest! {
         prop_assert_eq!(&bad[at.start..at.end], term.as_str(), "{}", err.message);
     }
 }
+
+/// The book's table of dimension names is `DIMENSION_NAMES`, row by row.
+#[test]
+fn book_table_is_the_table() {
+    let page = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/book/src/dimensions.md"
+    ))
+    .unwrap();
+    let table = page
+        .split("<!-- dimension-names -->")
+        .nth(1)
+        .and_then(|t| t.split("<!-- /dimension-names -->").next())
+        .expect("the marked table");
+    let rows: Vec<String> = table
+        .lines()
+        .filter(|l| l.starts_with("| `"))
+        .map(str::to_string)
+        .collect();
+    let want: Vec<String> = DIMENSION_NAMES
+        .iter()
+        .map(|d| {
+            let kind = match d.kind {
+                dimension::DimensionNameKind::Base => "base",
+                dimension::DimensionNameKind::Derived => "derived",
+                dimension::DimensionNameKind::Synonym => "synonym",
+                dimension::DimensionNameKind::Unit => "unit",
+            };
+            let dim = Dimension::from_small(d.exponents);
+            let shown = factors_ascii(&dim);
+            format!("| `{}` | {shown} | {kind} |", d.name)
+        })
+        .collect();
+    pretty_assertions::assert_eq!(rows, want);
+}
+
+/// A dimension in base dimensions only, annotation syntax.
+fn factors_ascii(d: &Dimension) -> String {
+    let e = d.exponents();
+    let mut num = Vec::new();
+    let mut den = Vec::new();
+    for (i, name) in dimension::BASE_DIMENSIONS.iter().enumerate() {
+        let x = e[i].as_i64().unwrap();
+        let p = |k: i64| if k == 1 { name.to_string() } else { format!("{name}^{k}") };
+        if x > 0 {
+            num.push(p(x));
+        } else if x < 0 {
+            den.push(p(-x));
+        }
+    }
+    let mut s = if num.is_empty() { "1".to_string() } else { num.join("*") };
+    for d in den {
+        s.push('/');
+        s.push_str(&d);
+    }
+    s
+}
