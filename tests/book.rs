@@ -20,7 +20,11 @@ fn run(args: &str) -> String {
             .stdin(std::process::Stdio::null())
             .output()
             .expect("qdot runs");
-        assert_eq!(out.status.code(), Some(1), "qdot {args}: an error was expected");
+        assert_eq!(
+            out.status.code(),
+            Some(1),
+            "qdot {args}: an error was expected"
+        );
         return String::from_utf8_lossy(&out.stdout).into_owned()
             + &String::from_utf8_lossy(&out.stderr);
     }

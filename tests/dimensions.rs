@@ -135,7 +135,7 @@ fn examples_are_annotated_and_clean() {
                     "{}: {} is {}",
                     path.display(),
                     name.name,
-                    name.text
+                    name.text()
                 );
             }
         }
@@ -181,11 +181,8 @@ fn unannotated_scenes_are_unchanged() {
     assert_eq!(k.source, DimensionSource::Free);
     assert!(k.dimension.is_none());
     let x = report.names.iter().find(|n| n.name == "x").unwrap();
-    assert!(
-        x.text.contains("dim(") && x.text.contains("energy"),
-        "{}",
-        x.text
-    );
+    let text = x.text();
+    assert!(text.contains("dim(") && text.contains("energy"), "{text}");
     // one annotation turns the check on: k*x is then not an energy
     let annotated = src.replace("parameters m, k", "parameters m: mass, k: stiffness");
     let err = Scene::parse(&annotated).unwrap_err();
@@ -314,17 +311,48 @@ fn factors_ascii(d: &Dimension) -> String {
     let mut den = Vec::new();
     for (i, name) in dimension::BASE_DIMENSIONS.iter().enumerate() {
         let x = e[i].as_i64().unwrap();
-        let p = |k: i64| if k == 1 { name.to_string() } else { format!("{name}^{k}") };
+        let p = |k: i64| {
+            if k == 1 {
+                name.to_string()
+            } else {
+                format!("{name}^{k}")
+            }
+        };
         if x > 0 {
             num.push(p(x));
         } else if x < 0 {
             den.push(p(-x));
         }
     }
-    let mut s = if num.is_empty() { "1".to_string() } else { num.join("*") };
+    let mut s = if num.is_empty() {
+        "1".to_string()
+    } else {
+        num.join("*")
+    };
     for d in den {
         s.push('/');
         s.push_str(&d);
     }
     s
+}
+
+/// Definitions may refer forward: the check then takes them in dependency
+/// order, and finds the same dimensions and the same errors.
+#[test]
+fn forward_references() {
+    let ok = "coordinates x: length\nparameters m: mass, k: stiffness\nkinetic E = 1/2*m*v^2\npotential V = 1/2*k*x^2\nv = x'\n";
+    let report = Scene::parse(ok).unwrap().dimensions.unwrap();
+    assert_eq!(
+        report.of("v"),
+        Some(&Dimension::from_small([0, 1, -1, 0, 0]))
+    );
+    let bad = ok.replace("v = x'", "v = x");
+    let err = Scene::parse(&bad).unwrap_err();
+    let at = err.span.unwrap();
+    assert_eq!(&bad[at.start..at.end], "1/2*m*v^2", "{}", err.message);
+    assert!(
+        err.message.contains("an energy is needed"),
+        "{}",
+        err.message
+    );
 }

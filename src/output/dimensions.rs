@@ -47,7 +47,7 @@ fn source_text(scene: &Scene, n: &NamedDimension) -> String {
                     p.and_then(|p| p.dimension.as_ref())
                 });
             match written {
-                Some(w) if *w != n.text => format!("declared as {w}"),
+                Some(w) if *w != n.text() => format!("declared as {w}"),
                 _ => "declared".into(),
             }
         }
@@ -75,7 +75,7 @@ pub fn check_text(scene: &Scene, report: &DimensionReport) -> String {
     let dim_width = report
         .names
         .iter()
-        .map(|n| n.text.chars().count())
+        .map(|n| n.text().chars().count())
         .max()
         .unwrap_or(1);
     let kinds = [
@@ -96,7 +96,7 @@ pub fn check_text(scene: &Scene, report: &DimensionReport) -> String {
                 "  {}  {}  {}  {}",
                 padded(title, 14),
                 padded(shown, width),
-                padded(&n.text, dim_width),
+                padded(&n.text(), dim_width),
                 source_text(scene, n)
             );
             out.push_str(line.trim_end());

@@ -10,9 +10,80 @@ pub const BASE_DIMENSIONS: [&str; 5] = ["mass", "length", "time", "charge", "tem
 /// A physical dimension: mass^a·length^b·time^c·charge^d·temperature^e with
 /// rational exponents (a dimensionless quantity, an angle among them, has
 /// every exponent 0).
-#[derive(Clone, Debug, PartialEq, Eq, Hash, Default)]
+///
+/// Invariant: exponents are fractions of 32-bit integers in lowest terms.
+/// An operation whose exact result leaves that range marks the dimension
+/// `overflow`; such a dimension is never one, and unification refuses it,
+/// so it can only end in an error, never in a wrong answer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub struct Dimension {
-    exponents: [Q; 5],
+    exponents: [Exponent; 5],
+    overflow: bool,
+}
+
+/// A rational exponent n/d in lowest terms, d > 0 (0 is 0/1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+struct Exponent {
+    n: i32,
+    d: i32,
+}
+
+impl Default for Exponent {
+    fn default() -> Exponent {
+        Exponent { n: 0, d: 1 }
+    }
+}
+
+impl Exponent {
+    /// n/d in lowest terms, if it fits.
+    fn new(n: i64, d: i64) -> Option<Exponent> {
+        if d == 1 {
+            return Some(Exponent {
+                n: i32::try_from(n).ok()?,
+                d: 1,
+            });
+        }
+        if d == 0 {
+            return None;
+        }
+        let (n, d) = if d < 0 {
+            (n.checked_neg()?, d.checked_neg()?)
+        } else {
+            (n, d)
+        };
+        // both fit in i64 and d > 0, so the gcd does too
+        let g = crate::num::gcd_u64(n.unsigned_abs(), d.unsigned_abs()).max(1) as i64;
+        let (n, d) = (n / g, d / g);
+        Some(Exponent {
+            n: i32::try_from(n).ok()?,
+            d: i32::try_from(d).ok()?,
+        })
+    }
+    fn add(self, o: Exponent) -> Option<Exponent> {
+        if self.d == 1 && o.d == 1 {
+            return Some(Exponent {
+                n: self.n.checked_add(o.n)?,
+                d: 1,
+            });
+        }
+        let (a, b, c, d) = (self.n as i64, self.d as i64, o.n as i64, o.d as i64);
+        Exponent::new(a * d + c * b, b * d)
+    }
+    fn mul(self, o: Exponent) -> Option<Exponent> {
+        if self.d == 1 && o.d == 1 {
+            return Some(Exponent {
+                n: self.n.checked_mul(o.n)?,
+                d: 1,
+            });
+        }
+        Exponent::new(self.n as i64 * o.n as i64, self.d as i64 * o.d as i64)
+    }
+    fn is_zero(self) -> bool {
+        self.n == 0
+    }
+    fn to_q(self) -> Q {
+        Q::new(self.n as i64, self.d as i64).unwrap_or_default()
+    }
 }
 
 /// What a name of the table is.
@@ -120,46 +191,81 @@ impl Dimension {
     /// temperature).
     pub fn from_small(e: [i8; 5]) -> Dimension {
         Dimension {
-            exponents: e.map(|x| Q::from_i64(x as i64)),
+            exponents: e.map(|x| Exponent { n: x as i32, d: 1 }),
+            overflow: false,
         }
     }
 
-    /// One of the named dimensions of the table (`"force"`); panics on a
-    /// name the table lacks, so only for names written in qdot's code.
+    /// The named dimension of the table (`"force"`); panics on a name the
+    /// table lacks, so only for names written in qdot's code.
     pub(crate) fn named(name: &str) -> Dimension {
         // ok: the callers pass names of DIMENSION_NAMES (a unit test checks them)
         dimension_named(name).expect("a name of DIMENSION_NAMES")
     }
 
     /// The exponents of mass, length, time, charge and temperature.
-    pub fn exponents(&self) -> &[Q; 5] {
-        &self.exponents
+    pub fn exponents(&self) -> [Q; 5] {
+        self.exponents.map(Exponent::to_q)
+    }
+
+    /// Whether an exponent left the range qdot keeps exactly (|n|, d <
+    /// 2³¹); such a dimension is refused wherever it is used.
+    pub fn overflowed(&self) -> bool {
+        self.overflow
     }
 
     /// Whether this is the dimension of a pure number.
     pub fn is_one(&self) -> bool {
-        self.exponents.iter().all(Q::is_zero)
+        !self.overflow && self.exponents.iter().all(|e| e.is_zero())
     }
 
-    /// The product of two dimensions.
-    pub fn mul(&self, other: &Dimension) -> Dimension {
-        let mut r = self.clone();
-        for (a, b) in r.exponents.iter_mut().zip(&other.exponents) {
-            *a += b;
+    fn zip(
+        &self,
+        other: &Dimension,
+        f: impl Fn(Exponent, Exponent) -> Option<Exponent>,
+    ) -> Dimension {
+        let mut r = Dimension {
+            overflow: self.overflow || other.overflow,
+            ..*self
+        };
+        for (a, b) in r.exponents.iter_mut().zip(other.exponents) {
+            match f(*a, b) {
+                Some(x) => *a = x,
+                None => r.overflow = true,
+            }
         }
         r
     }
 
+    /// The product of two dimensions.
+    pub fn mul(&self, other: &Dimension) -> Dimension {
+        self.zip(other, Exponent::add)
+    }
+
     /// The quotient of two dimensions.
     pub fn div(&self, other: &Dimension) -> Dimension {
-        self.mul(&other.pow(&Q::from_i64(-1)))
+        self.zip(other, |a, b| {
+            a.add(Exponent {
+                n: b.n.checked_neg()?,
+                d: b.d,
+            })
+        })
     }
 
     /// This dimension to a rational power.
     pub fn pow(&self, p: &Q) -> Dimension {
-        let mut r = self.clone();
+        let Some(p) = p.small().and_then(|(n, d)| Exponent::new(n, d)) else {
+            return Dimension {
+                overflow: true,
+                ..*self
+            };
+        };
+        let mut r = *self;
         for a in r.exponents.iter_mut() {
-            *a *= p;
+            match a.mul(p) {
+                Some(x) => *a = x,
+                None => r.overflow = true,
+            }
         }
         r
     }
@@ -184,8 +290,9 @@ impl Dimension {
             let rest = self.div(&named);
             let nonzero: Vec<usize> = (0..5).filter(|&i| !rest.exponents[i].is_zero()).collect();
             if let [i] = nonzero[..] {
-                if let Some(e) = rest.exponents[i].as_i64().filter(|e| e.abs() <= 2) {
-                    return Some((d.name, i, e));
+                let e = rest.exponents[i];
+                if e.d == 1 && e.n.abs() <= 2 {
+                    return Some((d.name, i, e.n as i64));
                 }
             }
         }
@@ -208,6 +315,9 @@ impl Dimension {
     }
 
     fn written(&self, ascii: bool) -> String {
+        if self.overflow {
+            return "(an exponent beyond 2^31)".into();
+        }
         if let Some(n) = self.name() {
             return n.to_string();
         }
@@ -226,7 +336,7 @@ impl Dimension {
         }
         let fs: Vec<(String, Q)> = (0..5)
             .filter(|&i| !self.exponents[i].is_zero())
-            .map(|i| (BASE_DIMENSIONS[i].to_string(), self.exponents[i].clone()))
+            .map(|i| (BASE_DIMENSIONS[i].to_string(), self.exponents[i].to_q()))
             .collect();
         factors(&fs, ascii)
     }
@@ -234,6 +344,9 @@ impl Dimension {
     /// "a force", "an energy", "dimensionless", "of dimension mass·time⁻³":
     /// the dimension after "this is".
     pub fn phrase(&self) -> String {
+        if self.overflow {
+            return "of a dimension with an exponent beyond 2^31".into();
+        }
         if self.is_one() {
             return "dimensionless".into();
         }
@@ -246,6 +359,9 @@ impl Dimension {
     /// "forces", "energies", "dimensionless", "of dimension mass·time⁻³":
     /// the dimension after "the others are".
     pub fn plural(&self) -> String {
+        if self.overflow {
+            return "of a dimension with an exponent beyond 2^31".into();
+        }
         if self.is_one() {
             return "dimensionless".into();
         }

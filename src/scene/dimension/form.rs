@@ -50,6 +50,12 @@ impl DimForm {
     }
 
     pub fn mul(&self, other: &DimForm) -> DimForm {
+        if other.vars.is_empty() {
+            return DimForm {
+                base: self.base.mul(&other.base),
+                vars: self.vars.clone(),
+            };
+        }
         let mut vars = Vec::with_capacity(self.vars.len() + other.vars.len());
         let (mut i, mut j) = (0, 0);
         while i < self.vars.len() || j < other.vars.len() {
@@ -89,6 +95,12 @@ impl DimForm {
     }
 
     pub fn div(&self, other: &DimForm) -> DimForm {
+        if other.vars.is_empty() {
+            return DimForm {
+                base: self.base.div(&other.base),
+                vars: self.vars.clone(),
+            };
+        }
         self.mul(&other.pow(&Q::from_i64(-1)))
     }
 
@@ -149,7 +161,7 @@ impl DimVars {
         if f.vars.iter().all(|(v, _)| self.solved[*v].is_none()) {
             return f.clone();
         }
-        let mut out = DimForm::known(f.base.clone());
+        let mut out = DimForm::known(f.base);
         for (v, c) in &f.vars {
             out = match &self.solved[*v] {
                 Some(s) => out.mul(&s.form.pow(c)),
@@ -164,6 +176,9 @@ impl DimVars {
     /// their known parts only).
     pub fn unify(&mut self, a: &DimForm, b: &DimForm, at: Span) -> bool {
         let d = self.normalize(&a.div(b));
+        if d.base.overflowed() {
+            return false;
+        }
         let Some((v, c)) = d.vars.first().cloned() else {
             return d.base.is_one();
         };

@@ -69,9 +69,9 @@ pub struct NamedDimension {
     /// Its dimension, when the scene decides it (a vector's components
     /// share it).
     pub dimension: Option<Dimension>,
-    /// The dimension as text: `length`, `energy·length⁻¹`, `dim(x)·length`
-    /// when it depends on a free one, `free`.
-    pub text: String,
+    /// Where the scene leaves the dimension undecided: how it depends on
+    /// the free ones (`dim(x)·length`), or `free`.
+    pub relative: Option<String>,
     /// Declared, inferred, defined or free.
     pub source: DimensionSource,
 }
@@ -82,6 +82,18 @@ pub struct NamedDimension {
 pub struct DimensionReport {
     /// Every name with its dimension.
     pub names: Vec<NamedDimension>,
+}
+
+impl NamedDimension {
+    /// The dimension as text: `length`, `force·length²`, `dim(x)·length`
+    /// when it depends on a free one, `free`.
+    pub fn text(&self) -> String {
+        match (&self.dimension, &self.relative) {
+            (Some(d), _) => d.unicode(),
+            (None, Some(r)) => r.clone(),
+            (None, None) => "any (zero)".into(),
+        }
+    }
 }
 
 impl DimensionReport {
@@ -116,6 +128,27 @@ pub fn check(
     stmts: &[Stmt],
     constant: &dyn Fn(&str) -> Option<Q>,
 ) -> Result<DimensionReport, Diagnostic> {
+    // Definitions in source order first: scenes rarely refer forward, and
+    // the dependency order costs a second walk of every definition.
+    match attempt(src, stmts, constant, false) {
+        Ok(Some(r)) => Ok(r),
+        Err((e, false)) => Err(e),
+        Ok(None) | Err((_, true)) => match attempt(src, stmts, constant, true) {
+            Ok(r) => Ok(r.unwrap_or_default()),
+            Err((e, _)) => Err(e),
+        },
+    }
+}
+
+/// One pass over the statements, definitions in source order or in
+/// dependency order: the report, or `None` (or an error marked `true`)
+/// when a definition in source order used one not checked yet.
+fn attempt(
+    src: &str,
+    stmts: &[Stmt],
+    constant: &dyn Fn(&str) -> Option<Q>,
+    by_dependency: bool,
+) -> Result<Option<DimensionReport>, (Diagnostic, bool)> {
     let mut w = Walker {
         src,
         vars: form::DimVars::default(),
@@ -123,7 +156,25 @@ pub fn check(
         coordinates: FxHashSet::default(),
         defs: Vec::new(),
         constant,
+        forward: false,
     };
+    let forward = |w: &Walker| !by_dependency && w.forward;
+    match walk_statements(&mut w, stmts, by_dependency) {
+        Ok(_) if forward(&w) => Ok(None),
+        Ok(order) => Ok(Some(report(&mut w, &order))),
+        Err(e) => {
+            let f = forward(&w);
+            Err((e, f))
+        }
+    }
+}
+
+/// The names in report order, after checking every statement.
+fn walk_statements<'a>(
+    w: &mut Walker<'a>,
+    stmts: &'a [Stmt],
+    by_dependency: bool,
+) -> Result<Vec<(&'a str, DimensionedName, Option<bool>)>, Diagnostic> {
     let mut order: Vec<(&str, DimensionedName, Option<bool>)> = Vec::new();
     let mut definitions: Vec<(&ast::Ident, &ast::Expr, Option<Role>)> = Vec::new();
     for st in stmts {
@@ -168,7 +219,12 @@ pub fn check(
     w.names.insert("t", NameDim::Time);
     w.names.insert("pi", NameDim::Pi);
     w.defs = vec![None; definitions.len()];
-    for i in dependency_order(&w.names, &definitions) {
+    let sequence = if by_dependency {
+        dependency_order(&w.names, &definitions)
+    } else {
+        (0..definitions.len()).collect()
+    };
+    for i in sequence {
         let (name, body, role) = definitions[i];
         let want = role.map(|r| statements::role_want(r, &name.name));
         let v = w.value(body, want.as_ref())?;
@@ -178,14 +234,14 @@ pub fn check(
         match st {
             Stmt::Force {
                 coordinate, value, ..
-            } => statements::force(&mut w, coordinate, value)?,
-            Stmt::Load { force, point, .. } => statements::load(&mut w, force, point)?,
-            Stmt::Torque { moment, angle, .. } => statements::torque(&mut w, moment, angle)?,
-            Stmt::Solve(b) => statements::solve_block(&mut w, b)?,
+            } => statements::force(w, coordinate, value)?,
+            Stmt::Load { force, point, .. } => statements::load(w, force, point)?,
+            Stmt::Torque { moment, angle, .. } => statements::torque(w, moment, angle)?,
+            Stmt::Solve(b) => statements::solve_block(w, b)?,
             _ => {}
         }
     }
-    Ok(report(&mut w, &order))
+    Ok(order)
 }
 
 /// The definitions in an order where each comes after those it uses
@@ -264,18 +320,19 @@ fn report(w: &mut Walker, order: &[(&str, DimensionedName, Option<bool>)]) -> Di
             },
             (Some(false), None) => DimensionSource::Free,
         };
-        let text = match &form {
-            Some(f) => match w.unknown_of(name) {
+        let relative = match &form {
+            Some(_) if dimension.is_some() => None,
+            Some(f) => Some(match w.unknown_of(name) {
                 Some(v) if f == &DimForm::var(v) => "free".to_string(),
                 _ => w.vars.unicode(f),
-            },
-            None => "any (zero)".to_string(),
+            }),
+            None => None,
         };
         names.push(NamedDimension {
             name: name.to_string(),
             kind,
             dimension,
-            text,
+            relative,
             source,
         });
     }

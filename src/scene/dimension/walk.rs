@@ -114,6 +114,8 @@ pub(super) struct Walker<'a> {
     pub defs: Vec<Option<DimValue>>,
     /// A definition's value when it is a rational constant (exponents).
     pub constant: &'a dyn Fn(&str) -> Option<Q>,
+    /// Whether a definition was used before it was checked.
+    pub forward: bool,
 }
 
 type Checked<T> = Result<T, Diagnostic>;
@@ -155,7 +157,7 @@ fn is_sum(e: &Expr) -> bool {
 
 impl<'a> Walker<'a> {
     pub fn time() -> DimForm {
-        DimForm::known(super::dim::Dimension::named("time"))
+        DimForm::known(super::dim::Dimension::from_small([0, 0, 1, 0, 0]))
     }
 
     /// The dimension of `e`, which must be `want`'s when there is one.
@@ -244,9 +246,12 @@ impl<'a> Walker<'a> {
             Some(NameDim::Fixed(f)) => DimValue::Scalar(Some(f.clone())),
             Some(NameDim::Def(i)) => match self.defs.get(*i).cloned().flatten() {
                 Some(v) => v,
-                // not checked yet: only where the scene itself failed to
-                // resolve, which is reported before dimensions are checked
-                None => DimValue::Scalar(Some(DimForm::var(self.vars.fresh(n)))),
+                // not checked yet (a forward reference, in source order):
+                // the pass is done again in dependency order
+                None => {
+                    self.forward = true;
+                    DimValue::Scalar(Some(DimForm::var(self.vars.fresh(n))))
+                }
             },
             Some(NameDim::Time) => DimValue::Scalar(Some(Self::time())),
             Some(NameDim::Pi) => DimValue::one(),
@@ -454,10 +459,10 @@ impl<'a> Walker<'a> {
 
 /// `a · b^p` for dimensions of values (a zero factor makes the product 0).
 fn multiply(a: &DimValue, b: &DimValue, p: i64) -> DimValue {
-    let p = Q::from_i64(p);
     let times = |x: &Term, y: &Term| -> Term {
         match (x, y) {
-            (Some(x), Some(y)) => Some(x.mul(&y.pow(&p))),
+            (Some(x), Some(y)) if p == 1 => Some(x.mul(y)),
+            (Some(x), Some(y)) => Some(x.div(y)),
             _ => None,
         }
     };
