@@ -140,6 +140,10 @@ pub fn check(
     }
 }
 
+/// A name of the report: its kind, and whether it was annotated (`None`
+/// for a definition).
+type ReportRow<'a> = (&'a str, DimensionedName, Option<bool>);
+
 /// One pass over the statements, definitions in source order or in
 /// dependency order: the report, or `None` (or an error marked `true`)
 /// when a definition in source order used one not checked yet.
@@ -174,8 +178,8 @@ fn walk_statements<'a>(
     w: &mut Walker<'a>,
     stmts: &'a [Stmt],
     by_dependency: bool,
-) -> Result<Vec<(&'a str, DimensionedName, Option<bool>)>, Diagnostic> {
-    let mut order: Vec<(&str, DimensionedName, Option<bool>)> = Vec::new();
+) -> Result<Vec<ReportRow<'a>>, Diagnostic> {
+    let mut order: Vec<ReportRow> = Vec::new();
     let mut definitions: Vec<(&ast::Ident, &ast::Expr, Option<Role>)> = Vec::new();
     for st in stmts {
         match st {
@@ -300,7 +304,7 @@ fn dependency_order(
     order
 }
 
-fn report(w: &mut Walker, order: &[(&str, DimensionedName, Option<bool>)]) -> DimensionReport {
+fn report(w: &mut Walker, order: &[ReportRow]) -> DimensionReport {
     let mut names = Vec::with_capacity(order.len());
     for &(name, kind, declared) in order {
         let value = w.name(name);
