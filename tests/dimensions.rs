@@ -356,3 +356,36 @@ fn forward_references() {
         err.message
     );
 }
+
+/// Products and sums as long as the parser allows are checked without
+/// exhausting the stack (a test thread's 2 MiB).
+#[test]
+fn long_products_and_sums() {
+    let n = 990;
+    let product = vec!["a"; n].join("*");
+    let quotient = vec!["a"; n].join("/");
+    let sum = vec!["x"; n].join(" + ");
+    let src = format!(
+        "coordinates x: length\nparameters m: mass, a: 1\nkinetic E = 1/2*m*x'^2\nV1 = {product}*x\nV2 = {quotient}/x\nV3 = m*({sum})\nV4 = {product}*m*x^2/x\n"
+    );
+    let report = Scene::parse(&src).unwrap().dimensions.unwrap();
+    assert_eq!(
+        report.of("V1"),
+        Some(&Dimension::from_small([0, 1, 0, 0, 0]))
+    );
+    assert_eq!(
+        report.of("V2"),
+        Some(&Dimension::from_small([0, -1, 0, 0, 0]))
+    );
+    assert_eq!(
+        report.of("V3"),
+        Some(&Dimension::from_small([1, 1, 0, 0, 0]))
+    );
+    let bad = format!("{src}potential V = {product}*m*x\n");
+    let err = Scene::parse(&bad).unwrap_err();
+    assert!(
+        err.message.contains("an energy is needed"),
+        "{}",
+        err.message
+    );
+}

@@ -3,7 +3,11 @@ fn main() {
     let stmts = qdot::parse::parse_scene(&src).unwrap();
     let scene = qdot::Scene::parse(&src).unwrap();
     let constant = |n: &str| scene.definition(n).and_then(qdot::Expr::as_rational);
-    for _ in 0..20000 {
+    let n: usize = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(20000);
+    for _ in 0..n {
         std::hint::black_box(qdot::scene::dimension::check(&src, &stmts, &constant).unwrap());
     }
 }

@@ -11,79 +11,59 @@ pub const BASE_DIMENSIONS: [&str; 5] = ["mass", "length", "time", "charge", "tem
 /// rational exponents (a dimensionless quantity, an angle among them, has
 /// every exponent 0).
 ///
-/// Invariant: exponents are fractions of 32-bit integers in lowest terms.
-/// An operation whose exact result leaves that range marks the dimension
+/// Invariant: the exponents are `num[i]/den` with `den > 0` and
+/// gcd(den, num…) = 1, so equal dimensions are equal values. An operation
+/// whose exact result leaves 32-bit integers marks the dimension
 /// `overflow`; such a dimension is never one, and unification refuses it,
 /// so it can only end in an error, never in a wrong answer.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Dimension {
-    exponents: [Exponent; 5],
+    num: [i32; 5],
+    den: i32,
     overflow: bool,
 }
 
-/// A rational exponent n/d in lowest terms, d > 0 (0 is 0/1).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-struct Exponent {
-    n: i32,
-    d: i32,
-}
-
-impl Default for Exponent {
-    fn default() -> Exponent {
-        Exponent { n: 0, d: 1 }
+impl Default for Dimension {
+    fn default() -> Dimension {
+        Dimension {
+            num: [0; 5],
+            den: 1,
+            overflow: false,
+        }
     }
 }
 
-impl Exponent {
-    /// n/d in lowest terms, if it fits.
-    fn new(n: i64, d: i64) -> Option<Exponent> {
-        if d == 1 {
-            return Some(Exponent {
-                n: i32::try_from(n).ok()?,
-                d: 1,
-            });
+/// i64 exponents over a common denominator, reduced and fitted to i32
+/// (`None` when they do not fit).
+fn reduced(num: [i64; 5], den: i64) -> Option<Dimension> {
+    let (num, den) = if den < 0 {
+        (num.map(|n| n.checked_neg()), den.checked_neg()?)
+    } else {
+        (num.map(Some), den)
+    };
+    let mut n = [0i64; 5];
+    for (x, y) in n.iter_mut().zip(num) {
+        *x = y?;
+    }
+    if den == 0 {
+        return None;
+    }
+    let mut g = den.unsigned_abs();
+    if g != 1 {
+        for x in n {
+            g = crate::num::gcd_u64(g, x.unsigned_abs());
         }
-        if d == 0 {
-            return None;
-        }
-        let (n, d) = if d < 0 {
-            (n.checked_neg()?, d.checked_neg()?)
-        } else {
-            (n, d)
-        };
-        // both fit in i64 and d > 0, so the gcd does too
-        let g = crate::num::gcd_u64(n.unsigned_abs(), d.unsigned_abs()).max(1) as i64;
-        let (n, d) = (n / g, d / g);
-        Some(Exponent {
-            n: i32::try_from(n).ok()?,
-            d: i32::try_from(d).ok()?,
-        })
     }
-    fn add(self, o: Exponent) -> Option<Exponent> {
-        if self.d == 1 && o.d == 1 {
-            return Some(Exponent {
-                n: self.n.checked_add(o.n)?,
-                d: 1,
-            });
-        }
-        let (a, b, c, d) = (self.n as i64, self.d as i64, o.n as i64, o.d as i64);
-        Exponent::new(a * d + c * b, b * d)
+    let g = g.max(1) as i64;
+    let mut out = Dimension {
+        num: [0; 5],
+        den: i32::try_from(den / g).ok()?,
+        overflow: false,
+    };
+    for (o, x) in out.num.iter_mut().zip(n) {
+        *o = i32::try_from(x / g).ok()?;
     }
-    fn mul(self, o: Exponent) -> Option<Exponent> {
-        if self.d == 1 && o.d == 1 {
-            return Some(Exponent {
-                n: self.n.checked_mul(o.n)?,
-                d: 1,
-            });
-        }
-        Exponent::new(self.n as i64 * o.n as i64, self.d as i64 * o.d as i64)
-    }
-    fn is_zero(self) -> bool {
-        self.n == 0
-    }
-    fn to_q(self) -> Q {
-        Q::new(self.n as i64, self.d as i64).unwrap_or_default()
-    }
+    Some(out)
 }
 
 /// What a name of the table is.
@@ -191,7 +171,8 @@ impl Dimension {
     /// temperature).
     pub fn from_small(e: [i8; 5]) -> Dimension {
         Dimension {
-            exponents: e.map(|x| Exponent { n: x as i32, d: 1 }),
+            num: e.map(i32::from),
+            den: 1,
             overflow: false,
         }
     }
@@ -203,71 +184,107 @@ impl Dimension {
         dimension_named(name).expect("a name of DIMENSION_NAMES")
     }
 
-    /// The exponents of mass, length, time, charge and temperature.
-    pub fn exponents(&self) -> [Q; 5] {
-        self.exponents.map(Exponent::to_q)
+    /// The exponent of base dimension `i` (0 mass … 4 temperature).
+    fn exponent(&self, i: usize) -> Q {
+        Q::new(i64::from(self.num[i]), i64::from(self.den)).unwrap_or_default()
     }
 
-    /// Whether an exponent left the range qdot keeps exactly (|n|, d <
-    /// 2³¹); such a dimension is refused wherever it is used.
+    /// The exponents of mass, length, time, charge and temperature.
+    pub fn exponents(&self) -> [Q; 5] {
+        [0, 1, 2, 3, 4].map(|i| self.exponent(i))
+    }
+
+    /// Whether an exponent left the range qdot keeps exactly (32-bit
+    /// numerators and denominators); such a dimension is refused wherever
+    /// it is used.
     pub fn overflowed(&self) -> bool {
         self.overflow
     }
 
     /// Whether this is the dimension of a pure number.
     pub fn is_one(&self) -> bool {
-        !self.overflow && self.exponents.iter().all(|e| e.is_zero())
+        !self.overflow && self.num == [0; 5]
     }
 
-    fn zip(
-        &self,
-        other: &Dimension,
-        f: impl Fn(Exponent, Exponent) -> Option<Exponent>,
-    ) -> Dimension {
-        let mut r = Dimension {
-            overflow: self.overflow || other.overflow,
+    fn overflowing(&self) -> Dimension {
+        Dimension {
+            overflow: true,
             ..*self
-        };
-        for (a, b) in r.exponents.iter_mut().zip(other.exponents) {
-            match f(*a, b) {
-                Some(x) => *a = x,
-                None => r.overflow = true,
-            }
         }
-        r
+    }
+
+    /// `self · other^sign`, sign ±1.
+    fn combine(&self, other: &Dimension, sign: i64) -> Dimension {
+        let flag = self.overflow || other.overflow;
+        if self.den == 1 && other.den == 1 {
+            let mut r = *self;
+            r.overflow = flag;
+            for (a, b) in r.num.iter_mut().zip(other.num) {
+                let b = if sign < 0 { b.checked_neg() } else { Some(b) };
+                match b.and_then(|b| a.checked_add(b)) {
+                    Some(x) => *a = x,
+                    None => return self.overflowing(),
+                }
+            }
+            return r;
+        }
+        let (d1, d2) = (i64::from(self.den), i64::from(other.den));
+        let mut num = [0i64; 5];
+        for (i, n) in num.iter_mut().enumerate() {
+            *n = i64::from(self.num[i]) * d2 + sign * i64::from(other.num[i]) * d1;
+        }
+        match reduced(num, d1 * d2) {
+            Some(mut r) => {
+                r.overflow = flag;
+                r
+            }
+            None => self.overflowing(),
+        }
     }
 
     /// The product of two dimensions.
     pub fn mul(&self, other: &Dimension) -> Dimension {
-        self.zip(other, Exponent::add)
+        self.combine(other, 1)
     }
 
     /// The quotient of two dimensions.
     pub fn div(&self, other: &Dimension) -> Dimension {
-        self.zip(other, |a, b| {
-            a.add(Exponent {
-                n: b.n.checked_neg()?,
-                d: b.d,
-            })
-        })
+        self.combine(other, -1)
     }
 
     /// This dimension to a rational power.
     pub fn pow(&self, p: &Q) -> Dimension {
-        let Some(p) = p.small().and_then(|(n, d)| Exponent::new(n, d)) else {
-            return Dimension {
-                overflow: true,
-                ..*self
-            };
+        let Some((pn, pd)) = p.small() else {
+            return self.overflowing();
         };
-        let mut r = *self;
-        for a in r.exponents.iter_mut() {
-            match a.mul(p) {
-                Some(x) => *a = x,
-                None => r.overflow = true,
+        if self.den == 1 && pd == 1 {
+            let mut r = *self;
+            for a in r.num.iter_mut() {
+                match i32::try_from(pn).ok().and_then(|p| a.checked_mul(p)) {
+                    Some(x) => *a = x,
+                    None => return self.overflowing(),
+                }
+            }
+            return r;
+        }
+        let num = self.num.map(|n| i64::from(n).checked_mul(pn));
+        let mut n = [0i64; 5];
+        for (x, y) in n.iter_mut().zip(num) {
+            match y {
+                Some(y) => *x = y,
+                None => return self.overflowing(),
             }
         }
-        r
+        match i64::from(self.den)
+            .checked_mul(pd)
+            .and_then(|d| reduced(n, d))
+        {
+            Some(mut r) => {
+                r.overflow = self.overflow;
+                r
+            }
+            None => self.overflowing(),
+        }
     }
 
     /// The name qdot prints for this dimension when the table has one.
@@ -288,11 +305,10 @@ impl Dimension {
                 continue;
             }
             let rest = self.div(&named);
-            let nonzero: Vec<usize> = (0..5).filter(|&i| !rest.exponents[i].is_zero()).collect();
+            let nonzero: Vec<usize> = (0..5).filter(|&i| rest.num[i] != 0).collect();
             if let [i] = nonzero[..] {
-                let e = rest.exponents[i];
-                if e.d == 1 && e.n.abs() <= 2 {
-                    return Some((d.name, i, e.n as i64));
+                if rest.den == 1 && rest.num[i].abs() <= 2 {
+                    return Some((d.name, i, i64::from(rest.num[i])));
                 }
             }
         }
@@ -321,7 +337,7 @@ impl Dimension {
         if let Some(n) = self.name() {
             return n.to_string();
         }
-        let nonzero = self.exponents.iter().filter(|e| !e.is_zero()).count();
+        let nonzero = self.num.iter().filter(|e| **e != 0).count();
         if nonzero <= 2 {
             // time⁻² and length·time read better than frequency·time⁻¹
             // and velocity·time²
@@ -335,8 +351,8 @@ impl Dimension {
             );
         }
         let fs: Vec<(String, Q)> = (0..5)
-            .filter(|&i| !self.exponents[i].is_zero())
-            .map(|i| (BASE_DIMENSIONS[i].to_string(), self.exponents[i].to_q()))
+            .filter(|&i| self.num[i] != 0)
+            .map(|i| (BASE_DIMENSIONS[i].to_string(), self.exponent(i)))
             .collect();
         factors(&fs, ascii)
     }

@@ -175,6 +175,9 @@ impl DimVars {
     /// have one; `false` when they cannot be (both normalized then differ in
     /// their known parts only).
     pub fn unify(&mut self, a: &DimForm, b: &DimForm, at: Span) -> bool {
+        if a.vars.is_empty() && b.vars.is_empty() {
+            return a.base == b.base && !a.base.overflowed();
+        }
         let d = self.normalize(&a.div(b));
         if d.base.overflowed() {
             return false;

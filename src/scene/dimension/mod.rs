@@ -179,8 +179,10 @@ fn walk_statements<'a>(
     stmts: &'a [Stmt],
     by_dependency: bool,
 ) -> Result<Vec<ReportRow<'a>>, Diagnostic> {
-    let mut order: Vec<ReportRow> = Vec::new();
-    let mut definitions: Vec<(&ast::Ident, &ast::Expr, Option<Role>)> = Vec::new();
+    let mut order: Vec<ReportRow> = Vec::with_capacity(stmts.len() + 8);
+    let mut definitions: Vec<(&ast::Ident, &ast::Expr, Option<Role>)> =
+        Vec::with_capacity(stmts.len());
+    w.names.reserve(stmts.len() + 8);
     for st in stmts {
         match st {
             Stmt::Coordinates(ds, _) | Stmt::Parameters(ds, _) => {

@@ -359,14 +359,30 @@ impl<'a> Walker<'a> {
     /// one factor a sum, the sum is checked against what the other factors
     /// leave, so its wrong term is found.
     fn product(&mut self, e: &Expr, want: Option<&Want>) -> Checked<DimValue> {
+        if want.is_none() {
+            // the common case: the dimensions multiply (a product is a
+            // left-leaning tree, as deep as it is long, like the syntax)
+            if let ExprKind::Bin(op, a, b) = &e.kind {
+                let l = self.value(a, None)?;
+                let r = self.value(b, None)?;
+                return Ok(multiply(&l, &r, if *op == BinOp::Div { -1 } else { 1 }));
+            }
+        }
         let factors = product_factors(e);
-        let sums: Vec<usize> = (0..factors.len())
-            .filter(|&i| is_sum(factors[i].0))
-            .collect();
-        let pushed = match (want, &sums[..]) {
-            (Some(_), [s]) => Some(*s),
+        let mut sums = factors.iter().enumerate().filter(|(_, f)| is_sum(f.0));
+        let pushed = match (want, sums.next(), sums.next()) {
+            (Some(_), Some((s, _)), None) => Some(s),
             _ => None,
         };
+        if pushed.is_none() {
+            // the common case: the dimensions multiply, left to right
+            let mut out = DimValue::one();
+            for (f, p) in &factors {
+                let v = self.value(f, None)?;
+                out = multiply(&out, &v, *p);
+            }
+            return Ok(out);
+        }
         let mut values: Vec<Option<DimValue>> = vec![None; factors.len()];
         for (i, (f, _)) in factors.iter().enumerate() {
             if Some(i) != pushed {
