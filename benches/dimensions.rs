@@ -1,6 +1,7 @@
 //! Criterion benchmark of the dimension check (issue 19: it must cost at
 //! most 10% of `solve`): on each seed example, the check alone
-//! (`scene::dimension::check` on the parsed statements) beside the whole
+//! (`scene::dimension::validate` on the parsed statements, what every
+//! command runs on an annotated scene) beside the whole
 //! `qdot solve` run of the same annotated scene, in one run.
 
 #[global_allocator]
@@ -23,10 +24,8 @@ fn dimensions(c: &mut Criterion) {
         let constant = |n: &str| scene.definition(n).and_then(qdot::Expr::as_rational);
         g.bench_function(format!("check/{name}"), |b| {
             b.iter(|| {
-                black_box(
-                    qdot::scene::dimension::check(black_box(&src), &stmts, &constant)
-                        .expect("checks"),
-                )
+                qdot::scene::dimension::validate(black_box(&src), &stmts, &constant)
+                    .expect("checks")
             })
         });
         // statics alone (seed 23.1) has nothing to solve: its command is `equilibrium`

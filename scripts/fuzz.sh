@@ -114,14 +114,14 @@ seed_name() { basename "$1" | sed 's/\.[a-z]*$//'; }
 # The parameters of a scene, each set to 1: "m=1,g=1" (for --set).
 ones() {
     sed -n 's/#.*//; s/^[[:space:]]*parameters[[:space:]]\+//p' "$1" |
-        tr ',' '\n' | tr -d ' \t' | sed '/^$/d; s/$/=1/' | paste -sd, -
+        tr ',' '\n' | tr -d ' \t' | sed '/^$/d; s/:.*//; s/$/=1/' | paste -sd, -
 }
 
 seeds() {
     local c=fuzz/corpus
     mkdir -p "$c/parse" "$c/pipeline" "$c/repl" "$c/simulate"
     rm -f "$c"/*/seed-*
-    local scenes=(examples/*.qd book/scenes/*.qd)
+    local scenes=(examples/*.qd book/scenes/*.qd tests/data/dimensions/*/*.qd)
     for f in "${scenes[@]}"; do
         local n
         n=$(seed_name "$f")
@@ -133,6 +133,7 @@ seeds() {
         { echo "#@ latex latex"; cat "$f"; } >"$c/pipeline/seed-$n-latex"
         { echo "#@ equilibrium json $(ones "$f")"; cat "$f"; } >"$c/pipeline/seed-$n-equilibrium"
         { echo "#@ modes text"; cat "$f"; } >"$c/pipeline/seed-$n-modes"
+        { echo "#@ check json"; cat "$f"; } >"$c/pipeline/seed-$n-check"
         # repl: the scene's lines, then the commands
         { cat "$f"; printf ':solve\n:equations\n:format json\n:forces\n:format latex\n:show\n:undo\n:scene\n:reset\n'; } \
             >"$c/repl/seed-$n"

@@ -105,7 +105,7 @@ fn right_scenes_are_accepted() {
                 continue;
             }
         };
-        assert!(scene.dimensions.is_some(), "{}", case.display());
+        assert!(scene.dimensions_checked, "{}", case.display());
         let (text, _) =
             output::run(Command::Check, &src, Format::Text, &Default::default()).unwrap();
         blessed(case, &text, &mut failures);
@@ -127,7 +127,8 @@ fn examples_are_annotated_and_clean() {
         n += 1;
         let src = std::fs::read_to_string(&path).unwrap();
         let scene = Scene::parse(&src).unwrap();
-        let report = scene.dimensions.as_ref().expect("annotated");
+        assert!(scene.dimensions_checked);
+        let report = scene.dimension_report().unwrap();
         for name in &report.names {
             if name.kind != dimension::DimensionedName::Definition {
                 assert!(
@@ -172,7 +173,7 @@ fn seed_23_4_dimensions() {
 fn unannotated_scenes_are_unchanged() {
     let src = "coordinates x\nparameters m, k\nkinetic E = 1/2*m*x'^2\npotential V = 1/2*k*x\n";
     let scene = Scene::parse(src).unwrap();
-    assert!(scene.dimensions.is_none());
+    assert!(!scene.dimensions_checked);
     let (json, _) = output::run(Command::Derive, src, Format::Json, &Default::default()).unwrap();
     assert!(!json.contains("dimensions"));
     let report = scene.dimension_report().unwrap();
@@ -201,7 +202,7 @@ fn inference_reports_where() {
     let hint = err.hint.unwrap();
     assert!(hint.contains("`x` is a length, found from 3:13"), "{hint}");
     let ok = "coordinates x\nparameters m: mass, g: acceleration\nkinetic E = 1/2*m*x'^2\npotential V = m*g*x\n";
-    let report = Scene::parse(ok).unwrap().dimensions.unwrap();
+    let report = Scene::parse(ok).unwrap().dimension_report().unwrap();
     let x = &report.names[0];
     assert_eq!(x.dimension, Some(Dimension::from_small([0, 1, 0, 0, 0])));
     assert!(matches!(x.source, DimensionSource::Inferred(_)));
@@ -220,7 +221,7 @@ fn names_read_back() {
 /// The dimension `d` read back from its annotation syntax.
 fn read_back(ascii: &str) -> Dimension {
     let src = format!("parameters p: {ascii}\nx = p\n");
-    let report = Scene::parse(&src).unwrap().dimensions.unwrap();
+    let report = Scene::parse(&src).unwrap().dimension_report().unwrap();
     report.of("p").cloned().unwrap()
 }
 
@@ -341,7 +342,7 @@ fn factors_ascii(d: &Dimension) -> String {
 #[test]
 fn forward_references() {
     let ok = "coordinates x: length\nparameters m: mass, k: stiffness\nkinetic E = 1/2*m*v^2\npotential V = 1/2*k*x^2\nv = x'\n";
-    let report = Scene::parse(ok).unwrap().dimensions.unwrap();
+    let report = Scene::parse(ok).unwrap().dimension_report().unwrap();
     assert_eq!(
         report.of("v"),
         Some(&Dimension::from_small([0, 1, -1, 0, 0]))
@@ -368,7 +369,7 @@ fn long_products_and_sums() {
     let src = format!(
         "coordinates x: length\nparameters m: mass, a: 1\nkinetic E = 1/2*m*x'^2\nV1 = {product}*x\nV2 = {quotient}/x\nV3 = m*({sum})\nV4 = {product}*m*x^2/x\n"
     );
-    let report = Scene::parse(&src).unwrap().dimensions.unwrap();
+    let report = Scene::parse(&src).unwrap().dimension_report().unwrap();
     assert_eq!(
         report.of("V1"),
         Some(&Dimension::from_small([0, 1, 0, 0, 0]))

@@ -54,6 +54,7 @@ fn header(src: &str) -> (Command, Format, Option<&str>) {
         Some("equilibrium") => Command::Equilibrium,
         Some("modes") => Command::Modes,
         Some("latex") => Command::Latex,
+        Some("check") => Command::Check,
         _ => Command::Solve,
     };
     let fmt = match words.next() {

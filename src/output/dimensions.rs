@@ -63,7 +63,7 @@ fn source_text(scene: &Scene, n: &NamedDimension) -> String {
 /// The text of `qdot check`.
 pub fn check_text(scene: &Scene, report: &DimensionReport) -> String {
     let mut out = String::from("Dimensions\n");
-    if scene.dimensions.is_none() {
+    if !scene.dimensions_checked {
         out.push_str("  (no annotation: dimensions are relative to the free ones; annotate one to check every command)\n");
     }
     let names: Vec<String> = report

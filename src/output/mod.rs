@@ -15,6 +15,11 @@
 //!   the reason when undecided, existence conditions), `approx` (parallel:
 //!   the numeric values of an exact position under `--set`, else null).
 //!   A check of a vector equation also has `component` ("x", "y", "z").
+//! * `check`: `dimensions`, `definitions`, `sources`, `accelerations`,
+//!   `generalized_forces` (dimensions as strings in annotation syntax, or
+//!   null where the scene leaves one free);
+//! * every command, for a scene that annotates a dimension: `dimensions`
+//!   last (coordinate, parameter, `solve` unknown → dimension or null).
 //!
 //! Every expression string is in qdot's input syntax and re-parses to the
 //! same expression.
@@ -130,18 +135,21 @@ fn run_unbounded(
     let set = &opts.set;
     let scene = Scene::parse(src)?;
     // every JSON object of an annotated scene carries its `dimensions`
-    let json_string = |mut m: Map<String, serde_json::Value>| {
-        if let Some(d) = &scene.dimensions {
-            m.insert("dimensions".into(), dimensions_json(d));
+    let json_string = |mut m: Map<String, serde_json::Value>| -> Result<String, Diagnostic> {
+        if scene.dimensions_checked {
+            m.insert(
+                "dimensions".into(),
+                dimensions_json(&scene.dimension_report()?),
+            );
         }
-        json::json_string(m)
+        Ok(json::json_string(m))
     };
     let out = match cmd {
         Command::Derive => {
             let lag = scene.lagrange()?;
             match fmt {
                 Format::Text => derive_text(&lag),
-                Format::Json => json_string(derive_json(&lag)),
+                Format::Json => json_string(derive_json(&lag))?,
                 Format::Latex => latex::write(&scene, |w| w.derive(&lag)),
             }
         }
@@ -188,7 +196,7 @@ fn run_unbounded(
                     if !blocks.is_empty() {
                         solutions_json(&scene, &blocks, &mut m);
                     }
-                    json_string(m)
+                    json_string(m)?
                 }
             }
         }
@@ -208,7 +216,7 @@ fn run_unbounded(
                     let mut m = Map::new();
                     m.insert("coordinates".into(), json!(names));
                     m.insert("generalized_forces".into(), named(&names, &q));
-                    json_string(m)
+                    json_string(m)?
                 }
             }
         }
@@ -241,7 +249,7 @@ fn run_unbounded(
             };
             match fmt {
                 Format::Text => modes_text(&md, set, free.as_deref()),
-                Format::Json => json_string(modes_json(&md, set, free.as_deref())),
+                Format::Json => json_string(modes_json(&md, set, free.as_deref()))?,
                 Format::Latex => latex::write(&scene, |w| w.modes(&md)),
             }
         }
@@ -250,7 +258,7 @@ fn run_unbounded(
             let eq = equilibrium::equilibria(&scene, set)?;
             match fmt {
                 Format::Text => equilibrium_text(&eq),
-                Format::Json => json_string(equilibrium_json(&eq)),
+                Format::Json => json_string(equilibrium_json(&eq))?,
                 Format::Latex => latex::write(&scene, |w| w.equilibrium(&eq)),
             }
         }

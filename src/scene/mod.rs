@@ -183,9 +183,10 @@ pub struct Scene {
     /// The `latex NAME = "…"` statements, in source order (a later one for
     /// the same name wins).
     pub latex_names: Vec<LatexName>,
-    /// The dimensions of the scene's names, when it annotates any
-    /// (`r: length`); the scene was checked then ([`dimension::check`]).
-    pub dimensions: Option<dimension::DimensionReport>,
+    /// Whether the scene annotates a dimension (`r: length`): it was
+    /// checked then ([`dimension::validate`]), and
+    /// [`Scene::dimension_report`] gives every name's dimension.
+    pub dimensions_checked: bool,
 }
 
 /// `latex theta3 = "\vartheta_{3}"`: the LaTeX notation of a name.
@@ -331,13 +332,10 @@ impl Scene {
         Ok((v, std::mem::take(&mut ev.warnings)))
     }
 
-    /// The dimensions of the scene's names: [`Scene::dimensions`] when the
-    /// scene annotates any, else found from the scene alone (relative to
-    /// the dimensions it leaves free; a contradiction is still an error).
+    /// The dimensions of the scene's names, declared or found (for a scene
+    /// without annotations, relative to the dimensions it leaves free; a
+    /// contradiction is still an error).
     pub fn dimension_report(&self) -> Result<dimension::DimensionReport, Diagnostic> {
-        if let Some(d) = &self.dimensions {
-            return Ok(d.clone());
-        }
         let stmts = crate::parse::parse_scene(&self.source)?;
         let constant = |name: &str| self.definition(name).and_then(Expr::as_rational);
         dimension::check(&self.source, &stmts, &constant)

@@ -254,7 +254,8 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
             "the scene has energies but no `coordinates`: there are no equations to derive",
         ));
     }
-    let dimensions = if super::dimension::annotated(stmts) {
+    let dimensions_checked = super::dimension::annotated(stmts);
+    if dimensions_checked {
         let constant = |name: &str| {
             definitions
                 .iter()
@@ -262,12 +263,10 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
                 .and_then(|d| d.value.as_scalar())
                 .and_then(Expr::as_rational)
         };
-        Some(super::dimension::check(src, stmts, &constant)?)
-    } else {
-        None
-    };
+        super::dimension::validate(src, stmts, &constant)?;
+    }
     Ok(Scene {
-        dimensions,
+        dimensions_checked,
         source: src.to_string(),
         coordinates,
         parameters,

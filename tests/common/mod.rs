@@ -291,9 +291,10 @@ pub fn contract_keys<'a>(
     base: &[&'a str],
 ) -> Vec<&'a str> {
     let mut want = base.to_vec();
-    if let Some(report) = &scene.dimensions {
+    if scene.dimensions_checked {
         want.push("dimensions");
-        assert_eq!(v["dimensions"], qdot::output::dimensions_json(report));
+        let report = scene.dimension_report().unwrap();
+        assert_eq!(v["dimensions"], qdot::output::dimensions_json(&report));
     }
     want
 }

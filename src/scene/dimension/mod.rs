@@ -128,12 +128,31 @@ pub fn check(
     stmts: &[Stmt],
     constant: &dyn Fn(&str) -> Option<Q>,
 ) -> Result<DimensionReport, Diagnostic> {
+    check_with(src, stmts, constant, true)
+}
+
+/// [`check`] without building the report: what every command runs on an
+/// annotated scene.
+pub fn validate(
+    src: &str,
+    stmts: &[Stmt],
+    constant: &dyn Fn(&str) -> Option<Q>,
+) -> Result<(), Diagnostic> {
+    check_with(src, stmts, constant, false).map(|_| ())
+}
+
+fn check_with(
+    src: &str,
+    stmts: &[Stmt],
+    constant: &dyn Fn(&str) -> Option<Q>,
+    with_report: bool,
+) -> Result<DimensionReport, Diagnostic> {
     // Definitions in source order first: scenes rarely refer forward, and
     // the dependency order costs a second walk of every definition.
-    match attempt(src, stmts, constant, false) {
+    match attempt(src, stmts, constant, false, with_report) {
         Ok(Some(r)) => Ok(r),
         Err((e, false)) => Err(e),
-        Ok(None) | Err((_, true)) => match attempt(src, stmts, constant, true) {
+        Ok(None) | Err((_, true)) => match attempt(src, stmts, constant, true, with_report) {
             Ok(r) => Ok(r.unwrap_or_default()),
             Err((e, _)) => Err(e),
         },
@@ -152,6 +171,7 @@ fn attempt(
     stmts: &[Stmt],
     constant: &dyn Fn(&str) -> Option<Q>,
     by_dependency: bool,
+    with_report: bool,
 ) -> Result<Option<DimensionReport>, (Diagnostic, bool)> {
     let mut w = Walker {
         src,
@@ -165,7 +185,8 @@ fn attempt(
     let forward = |w: &Walker| !by_dependency && w.forward;
     match walk_statements(&mut w, stmts, by_dependency) {
         Ok(_) if forward(&w) => Ok(None),
-        Ok(order) => Ok(Some(report(&mut w, &order))),
+        Ok(order) if with_report => Ok(Some(report(&mut w, &order))),
+        Ok(_) => Ok(Some(DimensionReport::default())),
         Err(e) => {
             let f = forward(&w);
             Err((e, f))

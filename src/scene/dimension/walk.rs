@@ -289,6 +289,9 @@ impl<'a> Walker<'a> {
         for t in &terms {
             values.push(self.value(t, None)?);
         }
+        if let Some(same) = same_known(&values) {
+            return Ok(same);
+        }
         let width = values
             .iter()
             .map(|v| v.components().len())
@@ -471,6 +474,24 @@ impl<'a> Walker<'a> {
             _ => None,
         }
     }
+}
+
+/// The common value of scalar terms that all have one known dimension
+/// (the usual sum), without the bookkeeping of [`Walker::same_dimension`].
+fn same_known(values: &[DimValue]) -> Option<DimValue> {
+    let mut common: Option<&DimForm> = None;
+    for v in values {
+        match v {
+            DimValue::Scalar(None) => {}
+            DimValue::Scalar(Some(f)) if f.vars.is_empty() => match common {
+                None => common = Some(f),
+                Some(c) if c.base == f.base && !f.base.overflowed() => {}
+                Some(_) => return None,
+            },
+            _ => return None,
+        }
+    }
+    Some(DimValue::Scalar(common.cloned()))
 }
 
 /// `a · b^p` for dimensions of values (a zero factor makes the product 0).
