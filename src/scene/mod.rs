@@ -38,7 +38,7 @@ pub struct Parameter {
     /// Where it is declared.
     pub span: Span,
     /// The dimension annotation as written (`force/length` in
-    /// `k: force/length`), if any; [`Scene::dimensions`] has its meaning.
+    /// `k: force/length`), if any; [`Scene::dimension_report`] has its meaning.
     pub dimension: Option<String>,
 }
 
