@@ -27,7 +27,7 @@ pub use dim::{
 
 use crate::diag::{Diagnostic, Span};
 use crate::num::Q;
-use crate::parse::ast::{self, ExprKind, Role, Stmt};
+use crate::parse::ast::{self, Role, Stmt};
 use form::DimForm;
 use rustc_hash::{FxHashMap, FxHashSet};
 use walk::{NameDim, Walker};
@@ -280,23 +280,11 @@ fn dependency_order(
 ) -> Vec<usize> {
     let uses = |i: usize| -> Vec<usize> {
         let mut out = Vec::new();
-        let mut stack = vec![definitions[i].1];
-        while let Some(e) = stack.pop() {
-            match &e.kind {
-                ExprKind::Name(n) => {
-                    if let Some(NameDim::Def(j)) = names.get(n.as_str()) {
-                        out.push(*j);
-                    }
-                }
-                ExprKind::Neg(x) | ExprKind::Prime(x, _) => stack.push(x),
-                ExprKind::Bin(_, a, b) | ExprKind::Assign(a, b) => {
-                    stack.push(a);
-                    stack.push(b);
-                }
-                ExprKind::Call(_, args) | ExprKind::Vector(args) => stack.extend(args),
-                ExprKind::Num(_) | ExprKind::Degrees(_) => {}
+        walk::for_each_name(&[definitions[i].1], |n| {
+            if let Some(NameDim::Def(j)) = names.get(n) {
+                out.push(*j);
             }
-        }
+        });
         out
     };
     let mut state = vec![0u8; definitions.len()]; // 0 new, 1 open, 2 done

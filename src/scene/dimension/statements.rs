@@ -197,22 +197,10 @@ pub(super) fn solve_block(w: &mut Walker, block: &SolveBlock) -> Checked<()> {
 /// How many of the block's unknowns an equation names.
 fn unknowns_in(block: &SolveBlock, eq: &Equation) -> usize {
     let mut seen: Vec<&str> = Vec::new();
-    let mut stack = vec![&eq.lhs, &eq.rhs];
-    while let Some(e) = stack.pop() {
-        match &e.kind {
-            ExprKind::Name(n) => {
-                if block.unknowns.iter().any(|u| u.name == *n) && !seen.contains(&n.as_str()) {
-                    seen.push(n);
-                }
-            }
-            ExprKind::Neg(x) | ExprKind::Prime(x, _) => stack.push(x),
-            ExprKind::Bin(_, a, b) | ExprKind::Assign(a, b) => {
-                stack.push(a);
-                stack.push(b);
-            }
-            ExprKind::Call(_, args) | ExprKind::Vector(args) => stack.extend(args),
-            ExprKind::Num(_) | ExprKind::Degrees(_) => {}
+    super::walk::for_each_name(&[&eq.lhs, &eq.rhs], |n| {
+        if block.unknowns.iter().any(|u| u.name == n) && !seen.contains(&n) {
+            seen.push(n);
         }
-    }
+    });
     seen.len()
 }

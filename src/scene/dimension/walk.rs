@@ -147,6 +147,24 @@ fn product_factors(e: &Expr) -> Vec<(&Expr, i64)> {
     out
 }
 
+/// Call `f` on every name written in `roots`, in no particular order
+/// (an explicit stack: no recursion over the syntax's depth).
+pub(super) fn for_each_name<'e>(roots: &[&'e Expr], mut f: impl FnMut(&'e str)) {
+    let mut stack: Vec<&Expr> = roots.to_vec();
+    while let Some(e) = stack.pop() {
+        match &e.kind {
+            ExprKind::Name(n) => f(n),
+            ExprKind::Neg(x) | ExprKind::Prime(x, _) => stack.push(x),
+            ExprKind::Bin(_, a, b) | ExprKind::Assign(a, b) => {
+                stack.push(a);
+                stack.push(b);
+            }
+            ExprKind::Call(_, args) | ExprKind::Vector(args) => stack.extend(args),
+            ExprKind::Num(_) | ExprKind::Degrees(_) => {}
+        }
+    }
+}
+
 fn is_sum(e: &Expr) -> bool {
     match &e.kind {
         ExprKind::Bin(BinOp::Add | BinOp::Sub, ..) => true,
