@@ -18,10 +18,10 @@ struct ResultDimensions {
 
 fn results(report: &DimensionReport, coordinate: &str) -> ResultDimensions {
     let q = report.of(coordinate);
-    let time2 = Dimension::named("time").mul(&Dimension::named("time"));
+    let time2 = Dimension::TIME.mul(&Dimension::TIME);
     ResultDimensions {
         acceleration: q.map(|d| d.div(&time2)),
-        force: q.map(|d| Dimension::named("energy").div(d)),
+        force: q.map(|d| Dimension::ENERGY.div(d)),
     }
 }
 

@@ -177,12 +177,32 @@ impl Dimension {
         }
     }
 
-    /// The named dimension of the table (`"force"`); panics on a name the
-    /// table lacks, so only for names written in qdot's code.
-    pub(crate) fn named(name: &str) -> Dimension {
-        // ok: the callers pass names of DIMENSION_NAMES (a unit test checks them)
-        dimension_named(name).expect("a name of DIMENSION_NAMES")
+    const fn integer(num: [i32; 5]) -> Dimension {
+        Dimension {
+            num,
+            den: 1,
+            overflow: false,
+        }
     }
+
+    /// A pure number (and an angle).
+    pub const ONE: Dimension = Dimension::integer([0, 0, 0, 0, 0]);
+    /// mass
+    pub const MASS: Dimension = Dimension::integer([1, 0, 0, 0, 0]);
+    /// length
+    pub const LENGTH: Dimension = Dimension::integer([0, 1, 0, 0, 0]);
+    /// time
+    pub const TIME: Dimension = Dimension::integer([0, 0, 1, 0, 0]);
+    /// length²
+    pub const AREA: Dimension = Dimension::integer([0, 2, 0, 0, 0]);
+    /// length·time⁻²
+    pub const ACCELERATION: Dimension = Dimension::integer([0, 1, -2, 0, 0]);
+    /// mass·length·time⁻²
+    pub const FORCE: Dimension = Dimension::integer([1, 1, -2, 0, 0]);
+    /// mass·length²·time⁻²
+    pub const ENERGY: Dimension = Dimension::integer([1, 2, -2, 0, 0]);
+    /// mass·length²·time⁻³
+    pub const POWER: Dimension = Dimension::integer([1, 2, -3, 0, 0]);
 
     /// The exponent of base dimension `i` (0 mass … 4 temperature).
     fn exponent(&self, i: usize) -> Q {
@@ -484,28 +504,30 @@ mod tests {
                 a.name
             );
         }
-        for name in [
-            "force",
-            "energy",
-            "length",
-            "time",
-            "acceleration",
-            "power",
-            "mass",
+        // the constants are the table's dimensions of those names
+        for (name, d) in [
+            ("dimensionless", Dimension::ONE),
+            ("mass", Dimension::MASS),
+            ("length", Dimension::LENGTH),
+            ("time", Dimension::TIME),
+            ("area", Dimension::AREA),
+            ("acceleration", Dimension::ACCELERATION),
+            ("force", Dimension::FORCE),
+            ("energy", Dimension::ENERGY),
+            ("power", Dimension::POWER),
         ] {
-            assert_eq!(Dimension::named(name).name(), Some(name));
+            assert_eq!(dimension_named(name), Some(d));
+            assert_eq!(d.name(), Some(name));
         }
     }
 
     #[test]
     fn printing() {
-        let f = Dimension::named("force");
-        let l = Dimension::named("length");
+        let f = Dimension::FORCE;
+        let l = Dimension::LENGTH;
         assert_eq!(f.div(&l).unicode(), "stiffness");
         assert_eq!(
-            Dimension::named("energy")
-                .div(&l.pow(&Q::from_i64(3)))
-                .unicode(),
+            Dimension::ENERGY.div(&l.pow(&Q::from_i64(3))).unicode(),
             "pressure"
         );
         assert_eq!(f.mul(&l).mul(&l).mul(&l).unicode(), "energy·length²");
@@ -515,8 +537,8 @@ mod tests {
         assert_eq!(odd.ascii(), "mass*length^3/time^5");
         assert_eq!(l.pow(&Q::new(1, 2).unwrap()).ascii(), "length^(1/2)");
         assert_eq!(Dimension::one().phrase(), "dimensionless");
-        assert_eq!(Dimension::named("energy").phrase(), "an energy");
-        assert_eq!(Dimension::named("energy").plural(), "energies");
-        assert_eq!(Dimension::named("mass").plural(), "masses");
+        assert_eq!(Dimension::ENERGY.phrase(), "an energy");
+        assert_eq!(Dimension::ENERGY.plural(), "energies");
+        assert_eq!(Dimension::MASS.plural(), "masses");
     }
 }

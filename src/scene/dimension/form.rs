@@ -249,8 +249,8 @@ mod tests {
         let mut vars = DimVars::default();
         let x = vars.fresh("x");
         let y = vars.fresh("y");
-        let l = DimForm::known(Dimension::named("length"));
-        let t = DimForm::known(Dimension::named("time"));
+        let l = DimForm::known(Dimension::LENGTH);
+        let t = DimForm::known(Dimension::TIME);
         // y = x·time, then x = length  ⇒  y = length·time
         assert!(vars.unify(&DimForm::var(y), &DimForm::var(x).mul(&t), Span::default()));
         assert!(vars.unify(

@@ -65,27 +65,26 @@ fn by_ratio(ratio: &Dimension, written: &[Written]) -> Option<String> {
     if ratio.is_one() {
         return None;
     }
-    let named = |n: &str| Dimension::named(n);
     let inverse = |d: &Dimension| d.pow(&Q::from_i64(-1));
     let with_dim = |d: &Dimension| written.iter().find(|x| x.dimension.as_ref() == Some(d));
-    if *ratio == named("acceleration") {
-        if let Some(x) = with_dim(&named("force")) {
+    if *ratio == Dimension::ACCELERATION {
+        if let Some(x) = with_dim(&Dimension::FORCE) {
             return Some(format!(
                 "`{}` is a weight (a force): the mass is {}/g",
                 x.text, x.text
             ));
         }
     }
-    if *ratio == inverse(&named("acceleration")) {
-        if let Some(x) = with_dim(&named("mass")) {
+    if *ratio == inverse(&Dimension::ACCELERATION) {
+        if let Some(x) = with_dim(&Dimension::MASS) {
             return Some(format!(
                 "`{}` is a mass: its weight (a force) is {}*g",
                 x.text, x.text
             ));
         }
     }
-    if *ratio == inverse(&named("area")) {
-        if let Some(x) = with_dim(&named("mass")) {
+    if *ratio == inverse(&Dimension::AREA) {
+        if let Some(x) = with_dim(&Dimension::MASS) {
             return Some(format!(
                 "`{}` is a mass: a rotation needs a moment of inertia (`{}*l^2`, an inertia)",
                 x.text, x.text
@@ -111,7 +110,7 @@ fn by_ratio(ratio: &Dimension, written: &[Written]) -> Option<String> {
             return Some(format!("one factor of `{}` too many", x.text));
         }
     }
-    let time = named("time");
+    let time = Dimension::TIME;
     if *ratio == inverse(&time) {
         return Some(
             "one time derivative (') too many, or a stiffness where a damping coefficient belongs?"
@@ -124,7 +123,7 @@ fn by_ratio(ratio: &Dimension, written: &[Written]) -> Option<String> {
                 .into(),
         );
     }
-    let length = named("length");
+    let length = Dimension::LENGTH;
     if *ratio == length {
         return Some(
             "one length too many: a moment (force × arm) where a force belongs, or a length where an angle belongs?"

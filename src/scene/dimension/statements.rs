@@ -13,16 +13,19 @@ type Checked<T> = Result<T, Diagnostic>;
 /// The dimension a role statement's value has, and what the role is called.
 pub(super) fn role_want(role: Role, name: &str) -> Want {
     let (dimension, what) = match role {
-        Role::Kinetic => ("energy", "a kinetic energy"),
-        Role::Potential => ("energy", "a potential energy"),
-        Role::ForceFunction => ("energy", "a force function (U = −V, an energy)"),
-        Role::Work => ("energy", "the work of the non-conservative forces"),
-        Role::Lagrangian => ("energy", "a Lagrangian (an energy)"),
-        Role::Dissipation => ("power", "a dissipation function (a power)"),
-        Role::Rayleigh => ("power", "Rayleigh's dissipation function (a power)"),
+        Role::Kinetic => (Dimension::ENERGY, "a kinetic energy"),
+        Role::Potential => (Dimension::ENERGY, "a potential energy"),
+        Role::ForceFunction => (Dimension::ENERGY, "a force function (U = −V, an energy)"),
+        Role::Work => (Dimension::ENERGY, "the work of the non-conservative forces"),
+        Role::Lagrangian => (Dimension::ENERGY, "a Lagrangian (an energy)"),
+        Role::Dissipation => (Dimension::POWER, "a dissipation function (a power)"),
+        Role::Rayleigh => (
+            Dimension::POWER,
+            "Rayleigh's dissipation function (a power)",
+        ),
     };
     Want {
-        form: DimForm::known(Dimension::named(dimension)),
+        form: DimForm::known(dimension),
         why: Why::Role {
             name: name.to_string(),
             role: what,
@@ -31,7 +34,7 @@ pub(super) fn role_want(role: Role, name: &str) -> Want {
 }
 
 fn energy() -> DimForm {
-    DimForm::known(Dimension::named("energy"))
+    DimForm::known(Dimension::ENERGY)
 }
 
 /// `force q: Q`: Q·δq is work.
@@ -95,20 +98,20 @@ fn misapplied(
 ) -> Diagnostic {
     let (agent_dim, place_dim, agent_word, place_word) = match kind {
         Kind::Load => (
-            "force",
-            "length",
+            Dimension::FORCE,
+            Dimension::LENGTH,
             "a force",
             "its point of application: a position (a length)",
         ),
         Kind::Torque => (
-            "energy",
-            "dimensionless",
+            Dimension::ENERGY,
+            Dimension::ONE,
             "a torque (an energy per radian)",
             "the angle it turns: dimensionless",
         ),
     };
-    let agent_needed = DimForm::known(Dimension::named(agent_dim));
-    let place_needed = DimForm::known(Dimension::named(place_dim));
+    let agent_needed = DimForm::known(agent_dim);
+    let place_needed = DimForm::known(place_dim);
     let a = w.vars.normalize(agent.1);
     let p = w.vars.normalize(place.1);
     if a == agent_needed {

@@ -175,7 +175,7 @@ fn is_sum(e: &Expr) -> bool {
 
 impl<'a> Walker<'a> {
     pub fn time() -> DimForm {
-        DimForm::known(super::dim::Dimension::from_small([0, 0, 1, 0, 0]))
+        DimForm::known(super::dim::Dimension::TIME)
     }
 
     /// The dimension of `e`, which must be `want`'s when there is one.
