@@ -85,16 +85,7 @@ impl Diagnostic {
 
     /// 1-based (line, column) of a byte offset; columns count characters.
     pub fn line_col(src: &str, offset: usize) -> (usize, usize) {
-        let offset = offset.min(src.len());
-        let mut off = offset;
-        while off > 0 && !src.is_char_boundary(off) {
-            off -= 1;
-        }
-        let before = &src[..off];
-        let line = before.matches('\n').count() + 1;
-        let line_start = before.rfind('\n').map(|i| i + 1).unwrap_or(0);
-        let col = src[line_start..off].chars().count() + 1;
-        (line, col)
+        LineIndex::new(src).line_col(offset)
     }
 
     /// Render as
@@ -317,3 +308,32 @@ impl fmt::Display for Diagnostic {
 }
 
 impl std::error::Error for Diagnostic {}
+
+/// Where a source's lines start, for many (line, column) lookups in one
+/// source (one search each, not a scan from the start).
+pub struct LineIndex<'a> {
+    src: &'a str,
+    starts: Vec<usize>,
+}
+
+impl<'a> LineIndex<'a> {
+    /// The index of `src`'s lines.
+    pub fn new(src: &'a str) -> LineIndex<'a> {
+        let starts = std::iter::once(0)
+            .chain(src.match_indices('\n').map(|(i, _)| i + 1))
+            .collect();
+        LineIndex { src, starts }
+    }
+
+    /// 1-based (line, column) of a byte offset; columns count characters.
+    pub fn line_col(&self, offset: usize) -> (usize, usize) {
+        let src = self.src;
+        let mut off = offset.min(src.len());
+        while off > 0 && !src.is_char_boundary(off) {
+            off -= 1;
+        }
+        let line = self.starts.partition_point(|&s| s <= off);
+        let line_start = self.starts[line - 1];
+        (line, src[line_start..off].chars().count() + 1)
+    }
+}

@@ -7,6 +7,12 @@
 //! raise for a real problem can be raised (`--max-terms`, `--max-steps`);
 //! the others bound input no scene needs.
 
+/// The most substitutions the dimension check makes while it solves for
+/// the dimensions of names nobody annotated (each found dimension is put
+/// into the earlier ones that use it). Real scenes need a few per name;
+/// only many names defined by chains of each other come near it.
+pub const MAX_DIMENSION_WORK: u64 = 10_000_000;
+
 /// Deepest nesting of functions in one value (`sin(sin(…))`, directly or
 /// through definitions). Each level is an atom whose argument holds the
 /// next, and walks over atoms recurse; no mechanics needs more than a few.

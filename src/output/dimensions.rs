@@ -3,6 +3,7 @@
 //! `dimensions` key every JSON output of an annotated scene carries.
 
 use super::text::padded;
+use crate::diag::LineIndex;
 use crate::expr::print::pretty_name;
 use crate::scene::dimension::{
     Dimension, DimensionReport, DimensionSource, DimensionedName, NamedDimension,
@@ -34,25 +35,14 @@ fn kind_title(kind: DimensionedName) -> &'static str {
     }
 }
 
-fn source_text(scene: &Scene, n: &NamedDimension) -> String {
+fn source_text(lines: &LineIndex, n: &NamedDimension) -> String {
     match &n.source {
-        DimensionSource::Declared => {
-            let written = scene
-                .coordinates
-                .iter()
-                .find(|c| c.name == n.name)
-                .and_then(|c| c.dimension.as_ref())
-                .or_else(|| {
-                    let p = scene.parameters.iter().find(|p| p.name == n.name);
-                    p.and_then(|p| p.dimension.as_ref())
-                });
-            match written {
-                Some(w) if *w != n.text() => format!("declared as {w}"),
-                _ => "declared".into(),
-            }
+        DimensionSource::Declared(written) if *written != n.text() => {
+            format!("declared as {written}")
         }
+        DimensionSource::Declared(_) => "declared".into(),
         DimensionSource::Inferred(at) => {
-            let (line, col) = crate::diag::Diagnostic::line_col(&scene.source, at.start);
+            let (line, col) = lines.line_col(at.start);
             format!("found at {line}:{col}")
         }
         DimensionSource::Defined => String::new(),
@@ -63,6 +53,7 @@ fn source_text(scene: &Scene, n: &NamedDimension) -> String {
 /// The text of `qdot check`.
 pub fn check_text(scene: &Scene, report: &DimensionReport) -> String {
     let mut out = String::from("Dimensions\n");
+    let lines = LineIndex::new(&scene.source);
     if !scene.dimensions_checked {
         out.push_str("  (no annotation: dimensions are relative to the free ones; annotate one to check every command)\n");
     }
@@ -97,7 +88,7 @@ pub fn check_text(scene: &Scene, report: &DimensionReport) -> String {
                 padded(title, 14),
                 padded(shown, width),
                 padded(&n.text(), dim_width),
-                source_text(scene, n)
+                source_text(&lines, n)
             );
             out.push_str(line.trim_end());
             out.push('\n');
@@ -167,7 +158,7 @@ pub fn check_json(scene: &Scene, report: &DimensionReport) -> Map<String, Value>
             defs.insert(n.name.clone(), ascii(n.dimension.as_ref()));
         }
         let s = match n.source {
-            DimensionSource::Declared => "declared",
+            DimensionSource::Declared(_) => "declared",
             DimensionSource::Inferred(_) => "inferred",
             DimensionSource::Defined => "defined",
             DimensionSource::Free => "free",

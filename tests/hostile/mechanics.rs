@@ -406,3 +406,45 @@ fn folded_angles_have_parentheses_only_where_a_sign_needs_them() {
         "{o:?}"
     );
 }
+
+/// The dimension check is linear in the scene: 100,000 names whose
+/// dimensions are found from each other (each one substituted into every
+/// earlier solution took minutes), all of them annotated, and long sums
+/// whose terms vote on their dimension.
+#[test]
+fn the_dimension_check_scales() {
+    let n = 100_000;
+    let params: Vec<String> = (0..n).map(|i| format!("p{i}")).collect();
+    let chain: String = (1..n)
+        .map(|i| format!("x{i} = p{i} + p{}\n", i - 1))
+        .collect();
+    let found = format!(
+        "coordinates q\nparameters p0: length, {}\n{chain}",
+        params[1..].join(", ")
+    );
+    let o = qdot_scene("dimension_chain", found.as_bytes(), "check", &[]);
+    o.assert_clean();
+    assert_eq!(o.code, Some(0), "{o:?}");
+    assert!(o.stdout.contains("found at"));
+    let annotated: Vec<String> = params.iter().map(|p| format!("{p}: length")).collect();
+    let declared = format!(
+        "coordinates q: length\nparameters {}\n{chain}",
+        annotated.join(", ")
+    );
+    let o = qdot_scene("dimension_declared", declared.as_bytes(), "check", &[]);
+    o.assert_clean();
+    assert_eq!(o.code, Some(0), "{o:?}");
+    // 999 known terms and one unknown, in 2,000 statements
+    let terms = vec!["a"; 999].join(" + ");
+    let sums: String = (0..2000)
+        .map(|i| format!("s{i} = {terms} + b{i}\n"))
+        .collect();
+    let bs: Vec<String> = (0..2000).map(|i| format!("b{i}")).collect();
+    let voting = format!(
+        "coordinates q\nparameters a: length, {}\n{sums}",
+        bs.join(", ")
+    );
+    let o = qdot_scene("dimension_votes", voting.as_bytes(), "check", &[]);
+    o.assert_clean();
+    assert_eq!(o.code, Some(0), "{o:?}");
+}

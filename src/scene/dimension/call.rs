@@ -3,14 +3,14 @@
 
 use super::form::DimForm;
 use super::walk::{DimValue, Walker, Want, Why};
-use crate::diag::{Diagnostic, Span};
+use crate::diag::Diagnostic;
 use crate::num::Q;
 use crate::parse::ast::{Expr, ExprKind, Ident};
 
 type Checked<T> = Result<T, Diagnostic>;
 
 /// The dimension of `f(args)`.
-pub(super) fn call(w: &mut Walker, f: &Ident, args: &[Expr], span: Span) -> Checked<DimValue> {
+pub(super) fn call(w: &mut Walker, f: &Ident, args: &[Expr]) -> Checked<DimValue> {
     let name = f.name.as_str();
     match name {
         "sin" | "cos" | "tan" | "exp" | "ln" | "asin" | "acos" | "atan" => {
@@ -26,7 +26,7 @@ pub(super) fn call(w: &mut Walker, f: &Ident, args: &[Expr], span: Span) -> Chec
             Ok(DimValue::Scalar(Some(DimForm::one())))
         }
         "sqrt" => match args.first() {
-            Some(a) => Ok(power(&w.value(a, None)?, &half())),
+            Some(a) => Ok(w.value(a, None)?.map(|f| f.pow(&half()))),
             None => Ok(DimValue::Scalar(None)),
         },
         "expand" | "factor" => match args.first() {
@@ -36,7 +36,7 @@ pub(super) fn call(w: &mut Walker, f: &Ident, args: &[Expr], span: Span) -> Chec
         "dt" => match args.first() {
             Some(a) => {
                 let v = w.value(a, None)?;
-                Ok(scale(&v, &Walker::time().pow(&Q::from_i64(-1))))
+                Ok(v.map(|f| f.div(&Walker::time())))
             }
             None => Ok(DimValue::Scalar(None)),
         },
@@ -45,7 +45,7 @@ pub(super) fn call(w: &mut Walker, f: &Ident, args: &[Expr], span: Span) -> Chec
                 let v = w.value(f, None)?;
                 let by = scalar(&w.value(x, None)?);
                 Ok(match by {
-                    Some(d) => scale(&v, &d.pow(&Q::from_i64(-1))),
+                    Some(d) => v.map(|f| f.div(&d)),
                     None => v,
                 })
             }
@@ -57,13 +57,13 @@ pub(super) fn call(w: &mut Walker, f: &Ident, args: &[Expr], span: Span) -> Chec
                 let x = w.value(x, None)?;
                 let t2 = Walker::time().pow(&Q::from_i64(-2));
                 Ok(match m {
-                    Some(m) => scale(&x, &m.mul(&t2)),
+                    Some(m) => x.map(|f| f.mul(&m).mul(&t2)),
                     None => DimValue::Scalar(None),
                 })
             }
             _ => Ok(DimValue::Scalar(None)),
         },
-        "dot" | "cross" | "norm" => vector_function(w, name, args, span),
+        "dot" | "cross" | "norm" => vector_function(w, name, args),
         "subs" => substitution(w, args),
         "taylor" => taylor(w, args),
         "series" | "parallel" => {
@@ -80,24 +80,6 @@ pub(super) fn call(w: &mut Walker, f: &Ident, args: &[Expr], span: Span) -> Chec
 
 fn half() -> Q {
     Q::new(1, 2).unwrap_or_default()
-}
-
-fn power(v: &DimValue, p: &Q) -> DimValue {
-    match v {
-        DimValue::Scalar(t) => DimValue::Scalar(t.as_ref().map(|f| f.pow(p))),
-        DimValue::Vector(c) => {
-            DimValue::Vector(c.iter().map(|t| t.as_ref().map(|f| f.pow(p))).collect())
-        }
-    }
-}
-
-fn scale(v: &DimValue, by: &DimForm) -> DimValue {
-    match v {
-        DimValue::Scalar(t) => DimValue::Scalar(t.as_ref().map(|f| f.mul(by))),
-        DimValue::Vector(c) => {
-            DimValue::Vector(c.iter().map(|t| t.as_ref().map(|f| f.mul(by))).collect())
-        }
-    }
 }
 
 fn scalar(v: &DimValue) -> Option<DimForm> {
@@ -131,8 +113,7 @@ fn common(w: &mut Walker, v: &DimValue, at: &Expr) -> Checked<Option<DimForm>> {
     Ok(first)
 }
 
-fn vector_function(w: &mut Walker, name: &str, args: &[Expr], span: Span) -> Checked<DimValue> {
-    let _ = span;
+fn vector_function(w: &mut Walker, name: &str, args: &[Expr]) -> Checked<DimValue> {
     let mut dims = Vec::with_capacity(args.len());
     let mut len = 0;
     for a in args {

@@ -170,11 +170,7 @@ impl Dimension {
     /// A dimension from integer exponents (mass, length, time, charge,
     /// temperature).
     pub fn from_small(e: [i8; 5]) -> Dimension {
-        Dimension {
-            num: e.map(i32::from),
-            den: 1,
-            overflow: false,
-        }
+        Dimension::integer(e.map(i32::from))
     }
 
     const fn integer(num: [i32; 5]) -> Dimension {

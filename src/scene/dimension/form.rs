@@ -137,10 +137,19 @@ pub(super) struct Solution {
 }
 
 /// The unknown dimensions of a scene and what is known of them.
+///
+/// Invariant: a solution mentions only unknowns not solved yet (each new
+/// solution is substituted into the earlier ones that mention it, found
+/// through `users`, so the substitution costs what it changes, not the
+/// number of unknowns).
 #[derive(Default)]
 pub(super) struct DimVars {
     names: Vec<String>,
     solved: Vec<Option<Solution>>,
+    /// For each unknown, the solved unknowns whose solution may mention it.
+    users: Vec<Vec<DimVar>>,
+    /// Unknowns substituted so far, against `MAX_DIMENSION_WORK`.
+    work: u64,
 }
 
 impl DimVars {
@@ -148,6 +157,7 @@ impl DimVars {
     pub fn fresh(&mut self, name: &str) -> DimVar {
         self.names.push(name.to_string());
         self.solved.push(None);
+        self.users.push(Vec::new());
         self.names.len() - 1
     }
 
@@ -171,10 +181,19 @@ impl DimVars {
         out
     }
 
+    /// Whether unification gave up on `MAX_DIMENSION_WORK` (every later
+    /// unification fails, and the walker reports the limit).
+    pub fn exhausted(&self) -> bool {
+        self.work > crate::limits::MAX_DIMENSION_WORK
+    }
+
     /// Make `a` and `b` the same dimension, solving for an unknown when they
     /// have one; `false` when they cannot be (both normalized then differ in
-    /// their known parts only).
+    /// their known parts only) or the work limit is reached.
     pub fn unify(&mut self, a: &DimForm, b: &DimForm, at: Span) -> bool {
+        if self.exhausted() {
+            return false;
+        }
         if a.vars.is_empty() && b.vars.is_empty() {
             return a.base == b.base && !a.base.overflowed();
         }
@@ -192,13 +211,24 @@ impl DimVars {
         };
         let form = rest.pow(&-inv);
         debug_assert!(!form.mentions(v));
-        for s in self.solved.iter_mut().flatten() {
-            if let Some(k) = s.form.vars.iter().position(|(w, _)| *w == v) {
-                let e = s.form.vars[k].1.clone();
-                let mut without = s.form.clone();
-                without.vars.remove(k);
-                s.form = without.mul(&form.pow(&e));
+        for u in std::mem::take(&mut self.users[v]) {
+            let Some(s) = self.solved[u].as_mut() else {
+                continue;
+            };
+            let Some(k) = s.form.vars.iter().position(|(w, _)| *w == v) else {
+                continue; // listed twice, already substituted
+            };
+            self.work += 1 + form.vars.len() as u64;
+            let e = s.form.vars[k].1.clone();
+            let mut without = s.form.clone();
+            without.vars.remove(k);
+            s.form = without.mul(&form.pow(&e));
+            for (w, _) in &form.vars {
+                self.users[*w].push(u);
             }
+        }
+        for (w, _) in &form.vars {
+            self.users[*w].push(v);
         }
         self.solved[v] = Some(Solution { form, at });
         true
@@ -263,5 +293,16 @@ mod tests {
         // a conflict: y is not a length
         assert!(!vars.unify(&DimForm::var(y), &l, Span::default()));
         assert_eq!(vars.unicode(&DimForm::var(y)), "length·time");
+    }
+
+    #[test]
+    fn past_the_work_limit_nothing_unifies() {
+        let mut vars = DimVars::default();
+        let x = vars.fresh("x");
+        vars.work = crate::limits::MAX_DIMENSION_WORK + 1;
+        assert!(vars.exhausted());
+        let l = DimForm::known(Dimension::LENGTH);
+        assert!(!vars.unify(&DimForm::var(x), &l, Span::default()));
+        assert!(!vars.unify(&l, &l, Span::default()));
     }
 }

@@ -48,8 +48,9 @@ pub enum DimensionedName {
 /// How a name's dimension became known.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum DimensionSource {
-    /// Annotated in its declaration.
-    Declared,
+    /// Annotated in its declaration (the annotation as written, e.g.
+    /// `N*m/rad`).
+    Declared(String),
     /// Found from the expression at this span.
     Inferred(Span),
     /// The dimension of its definition's expression.
@@ -159,9 +160,9 @@ fn check_with(
     }
 }
 
-/// A name of the report: its kind, and whether it was annotated (`None`
-/// for a definition).
-type ReportRow<'a> = (&'a str, DimensionedName, Option<bool>);
+/// A name of the report: its kind, and its annotation's span (`Some(None)`
+/// for a name not annotated, `None` for a definition).
+type ReportRow<'a> = (&'a str, DimensionedName, Option<Option<Span>>);
 
 /// One pass over the statements, definitions in source order or in
 /// dependency order: the report, or `None` (or an error marked `true`)
@@ -221,7 +222,7 @@ fn walk_statements<'a>(
                         None => DimForm::var(w.vars.fresh(n)),
                     };
                     w.names.insert(n, NameDim::Fixed(f));
-                    order.push((n, kind, Some(d.dimension.is_some())));
+                    order.push((n, kind, Some(d.dimension.as_ref().map(|e| e.span))));
                 }
             }
             Stmt::Def { name, value, .. } => definitions.push((name, value, None)),
@@ -233,7 +234,7 @@ fn walk_statements<'a>(
                     let n = u.name.as_str();
                     let v = w.vars.fresh(n);
                     w.names.insert(n, NameDim::Fixed(DimForm::var(v)));
-                    order.push((n, DimensionedName::Unknown, Some(false)));
+                    order.push((n, DimensionedName::Unknown, Some(None)));
                 }
             }
             _ => {}
@@ -317,7 +318,7 @@ fn dependency_order(
 
 fn report(w: &mut Walker, order: &[ReportRow]) -> DimensionReport {
     let mut names = Vec::with_capacity(order.len());
-    for &(name, kind, declared) in order {
+    for &(name, kind, ref declared) in order {
         let value = w.name(name);
         let form = value
             .components()
@@ -327,13 +328,13 @@ fn report(w: &mut Walker, order: &[ReportRow]) -> DimensionReport {
             .map(|f| w.vars.normalize(f));
         let dimension = form.as_ref().and_then(|f| f.as_known().cloned());
         let source = match (declared, &dimension) {
-            (Some(true), _) => DimensionSource::Declared,
+            (Some(Some(at)), _) => DimensionSource::Declared(w.src[at.start..at.end].to_string()),
             (None, _) => DimensionSource::Defined,
-            (Some(false), Some(_)) => match w.unknown_of(name).and_then(|v| w.vars.solution(v)) {
+            (Some(None), Some(_)) => match w.unknown_of(name).and_then(|v| w.vars.solution(v)) {
                 Some(s) => DimensionSource::Inferred(s.at),
                 None => DimensionSource::Free,
             },
-            (Some(false), None) => DimensionSource::Free,
+            (Some(None), None) => DimensionSource::Free,
         };
         let relative = match &form {
             Some(_) if dimension.is_some() => None,

@@ -7,6 +7,7 @@
 //! not at the statement. Elsewhere a sum's terms are compared with the
 //! dimension most of them share.
 
+use super::dim::Dimension;
 use super::form::{DimForm, DimVar, DimVars};
 use super::hint;
 use crate::diag::Diagnostic;
@@ -28,7 +29,8 @@ impl DimValue {
     fn one() -> DimValue {
         DimValue::Scalar(Some(DimForm::one()))
     }
-    fn map(&self, mut f: impl FnMut(&DimForm) -> DimForm) -> DimValue {
+    /// `f` applied to the dimension of each component (zero stays zero).
+    pub fn map(&self, mut f: impl FnMut(&DimForm) -> DimForm) -> DimValue {
         match self {
             DimValue::Scalar(t) => DimValue::Scalar(t.as_ref().map(&mut f)),
             DimValue::Vector(c) => {
@@ -220,6 +222,16 @@ impl<'a> Walker<'a> {
     /// An error at `e` whose dimension `have` should be `want`, with the
     /// likely fix as its hint.
     pub fn error(&self, e: &Expr, msg: String, have: &DimForm, want: &DimForm) -> Diagnostic {
+        if self.vars.exhausted() {
+            return Diagnostic::error(
+                e.span,
+                format!(
+                    "the dimension check gave up here: finding the dimensions of the names nobody annotated took more than {} substitutions",
+                    crate::budget::grouped(crate::limits::MAX_DIMENSION_WORK as usize)
+                ),
+            )
+            .with_hint("annotate the names whose dimensions are found from each other (`p: length`), or remove every annotation to skip the check");
+        }
         let d = Diagnostic::error(e.span, msg);
         match hint::hint(self, e, have, want) {
             Some(h) => d.with_hint(h),
@@ -229,9 +241,7 @@ impl<'a> Walker<'a> {
 
     fn value_inner(&mut self, e: &Expr, want: Option<&Want>) -> Checked<DimValue> {
         match &e.kind {
-            ExprKind::Num(q) if q == &num_rational::BigRational::from_integer(0.into()) => {
-                Ok(DimValue::Scalar(None))
-            }
+            ExprKind::Num(q) if num_traits::Zero::is_zero(q) => Ok(DimValue::Scalar(None)),
             ExprKind::Num(_) | ExprKind::Degrees(_) => Ok(DimValue::one()),
             ExprKind::Name(n) => Ok(self.name(n)),
             ExprKind::Neg(x) => self.value_as(x, want, "this"),
@@ -253,7 +263,7 @@ impl<'a> Walker<'a> {
                 }
                 Ok(DimValue::Vector(out))
             }
-            ExprKind::Call(f, args) => super::call::call(self, f, args, e.span),
+            ExprKind::Call(f, args) => super::call::call(self, f, args),
             ExprKind::Assign(_, v) => self.value(v, None),
         }
     }
@@ -295,9 +305,7 @@ impl<'a> Walker<'a> {
             let mut out = DimValue::Scalar(None);
             for t in terms {
                 let v = self.value_as(t, Some(w), "this term")?;
-                if let DimValue::Vector(_) = v {
-                    out = v;
-                } else if matches!(v, DimValue::Scalar(Some(_))) {
+                if !matches!(v, DimValue::Scalar(None)) {
                     out = v;
                 }
             }
@@ -339,17 +347,19 @@ impl<'a> Walker<'a> {
     /// terms have (the first on a tie), or the first term's.
     fn same_dimension(&mut self, terms: &[(&Expr, &DimForm)]) -> Checked<Term> {
         let normal: Vec<DimForm> = terms.iter().map(|(_, f)| self.vars.normalize(f)).collect();
-        let mut best: Option<(usize, usize)> = None; // (index, votes)
+        // votes of the known dimensions: (first term, count)
+        let mut votes: FxHashMap<Dimension, (usize, usize)> = FxHashMap::default();
         for (i, f) in normal.iter().enumerate() {
-            if f.as_known().is_none() {
-                continue;
-            }
-            let votes = normal.iter().filter(|g| *g == f).count();
-            if best.is_none_or(|(_, b)| votes > b) {
-                best = Some((i, votes));
+            if let Some(d) = f.as_known() {
+                votes.entry(*d).or_insert((i, 0)).1 += 1;
             }
         }
-        let Some(reference) = best.map(|(i, _)| i).or((!normal.is_empty()).then_some(0)) else {
+        // the most votes; on a tie, the first term
+        let best = votes
+            .values()
+            .max_by(|a, b| a.1.cmp(&b.1).then(b.0.cmp(&a.0)))
+            .map(|&(i, _)| i);
+        let Some(reference) = best.or((!normal.is_empty()).then_some(0)) else {
             return Ok(None);
         };
         let r = normal[reference].clone();
