@@ -609,6 +609,20 @@ impl Writer {
                     parts.join(" \\\\ ")
                 )
             }
+            crate::scene::Value::Rotation(r) => {
+                let rows: Vec<String> = r
+                    .matrix()
+                    .iter()
+                    .map(|row| {
+                        let cells: Vec<String> = row.iter().map(|e| self.tex(e)).collect();
+                        cells.join(" & ")
+                    })
+                    .collect();
+                format!(
+                    "\\begin{{pmatrix}} {} \\end{{pmatrix}}",
+                    rows.join(" \\\\ ")
+                )
+            }
         }
     }
 

@@ -135,6 +135,27 @@ pub enum Stmt {
     },
     /// `solve a, b { lhs = rhs … }` — a system of equations for the unknowns.
     Solve(SolveBlock),
+    /// `frame B = rot(z, phi) * rot(x, theta)` — a named rotation: the
+    /// orientation of a frame in the ground frame. The name is also an
+    /// ordinary definition, whose value must be a rotation.
+    Frame {
+        /// The frame's name.
+        name: Ident,
+        /// The rotation.
+        value: Expr,
+        /// The whole statement.
+        span: Span,
+    },
+    /// `body top: mass m, inertia [A, A, C], frame B, at P` or
+    /// `particle p: mass m, at P` — its kinetic energy joins E.
+    Body(BodyStmt),
+    /// `gravity [0, -g]` — V = −Σ M·G·P over every body and particle.
+    Gravity {
+        /// The acceleration of gravity G, a vector.
+        value: Expr,
+        /// The whole statement.
+        span: Span,
+    },
     /// `latex theta3 = "\vartheta_{3}"` — the LaTeX notation of a name.
     Latex {
         /// The name given notation.
@@ -144,6 +165,89 @@ pub enum Stmt {
         /// The whole statement.
         span: Span,
     },
+}
+
+/// A rigid body or a particle: `body NAME: property, …`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BodyStmt {
+    /// `body` or `particle`.
+    pub kind: BodyKind,
+    /// The body's name.
+    pub name: Ident,
+    /// The properties after the colon, in the order written.
+    pub properties: Vec<BodyProperty>,
+    /// The whole statement.
+    pub span: Span,
+}
+
+/// The keyword of a [`BodyStmt`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum BodyKind {
+    /// `body`: mass, inertia, a frame (space) or an angle (plane), a position.
+    Rigid,
+    /// `particle`: mass and position.
+    Particle,
+}
+
+impl BodyKind {
+    /// The keyword: `body` or `particle`.
+    pub fn keyword(self) -> &'static str {
+        match self {
+            BodyKind::Rigid => "body",
+            BodyKind::Particle => "particle",
+        }
+    }
+}
+
+/// One `key value` of a body statement (`mass m`, `at [x, y]`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BodyProperty {
+    /// Which property.
+    pub key: PropertyKey,
+    /// Where the key word is written.
+    pub key_span: Span,
+    /// Its value.
+    pub value: Expr,
+}
+
+/// The properties a body statement may give.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PropertyKey {
+    /// `mass M`.
+    Mass,
+    /// `inertia I`: a number (plane), `[I1, I2, I3]` or a symmetric 3×3.
+    Inertia,
+    /// `frame F`: the body's orientation (a rotation).
+    Frame,
+    /// `angle theta`: the body's angle in the plane.
+    Angle,
+    /// `at P`: the centre of mass.
+    At,
+}
+
+impl PropertyKey {
+    /// Every property, in the order the book lists them.
+    pub const ALL: [PropertyKey; 5] = [
+        PropertyKey::Mass,
+        PropertyKey::Inertia,
+        PropertyKey::Frame,
+        PropertyKey::Angle,
+        PropertyKey::At,
+    ];
+    /// The key word.
+    pub fn keyword(self) -> &'static str {
+        match self {
+            PropertyKey::Mass => "mass",
+            PropertyKey::Inertia => "inertia",
+            PropertyKey::Frame => "frame",
+            PropertyKey::Angle => "angle",
+            PropertyKey::At => "at",
+        }
+    }
+    /// The property named `word`, if any.
+    pub fn from_keyword(word: &str) -> Option<PropertyKey> {
+        PropertyKey::ALL.into_iter().find(|k| k.keyword() == word)
+    }
 }
 
 /// `solve a3, T1 { … }`: unknowns and the equations that determine them.
@@ -178,8 +282,11 @@ impl Stmt {
             | Stmt::Force { span, .. }
             | Stmt::Load { span, .. }
             | Stmt::Torque { span, .. }
-            | Stmt::Latex { span, .. } => *span,
+            | Stmt::Latex { span, .. }
+            | Stmt::Frame { span, .. }
+            | Stmt::Gravity { span, .. } => *span,
             Stmt::Solve(b) => b.span,
+            Stmt::Body(b) => b.span,
         }
     }
 }
@@ -227,6 +334,8 @@ pub enum ExprKind {
     Prime(Box<Expr>, u32),
     /// `[x, y]` or `[x, y, z]`: a vector literal (at least one component).
     Vector(Vec<Expr>),
+    /// `P[k]`: the k-th component (1-based) of a vector.
+    Index(Box<Expr>, Box<Expr>),
     /// `x = value`: a call argument that names a value (`subs(E, x = 0)`,
     /// `taylor(f, x = a, 3)`); only inside call arguments.
     Assign(Box<Expr>, Box<Expr>),

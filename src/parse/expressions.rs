@@ -230,16 +230,25 @@ impl<'s> Parser<'s> {
         }
     }
 
-    /// `postfix ::= atom ( ws "'" )*`
+    /// `postfix ::= atom ( ws "'" | index )*`
     ///
     /// `i` is after white space: [`Parser::power`] is only called there.
     #[cfg_attr(not(debug_assertions), inline(always))]
     pub(super) fn postfix(&self, i: &'s str) -> RuleResult<'s, Node> {
         let start = i;
-        let (mut i, a) = self.atom(start)?;
+        let (mut i, mut a) = self.atom(start)?;
         let mut order: u32 = 0;
         let mut first_prime = None;
         loop {
+            if i.starts_with('[') {
+                // the primes so far apply before the index: `P'[1]`
+                a = self.primed(start, a, order, first_prime.take(), i)?;
+                order = 0;
+                let (rest, indexed) = self.index(i, a)?;
+                a = indexed;
+                i = rest;
+                continue;
+            }
             let j = self.ws(i);
             match j.strip_prefix('\'') {
                 Some(k) => {
@@ -250,8 +259,22 @@ impl<'s> Parser<'s> {
                 None => break,
             }
         }
-        let Some(prime_span) = first_prime else {
-            return Ok((i, a));
+        let node = self.primed(start, a, order, first_prime, i)?;
+        Ok((i, node))
+    }
+
+    /// `a` with `order` primes (the first at `prime_span`) ending before `i`.
+    #[cfg_attr(not(debug_assertions), inline(always))]
+    fn primed(
+        &self,
+        start: &'s str,
+        a: Node,
+        order: u32,
+        prime_span: Option<Span>,
+        i: &'s str,
+    ) -> Result<Node, nom::Err<RuleError>> {
+        let Some(prime_span) = prime_span else {
+            return Ok(a);
         };
         let is_group = start.starts_with('(');
         if !is_group && matches!(a.e.kind, ExprKind::Num(_) | ExprKind::Degrees(_)) {
@@ -262,10 +285,49 @@ impl<'s> Parser<'s> {
         }
         let span = Span::new(a.outer.start, self.pos(i));
         let d = a.d + 1;
-        Ok((
-            i,
-            self.node(ExprKind::Prime(a.e, order), span, d, prime_span)?,
-        ))
+        self.node(ExprKind::Prime(a.e, order), span, d, prime_span)
+    }
+
+    /// `index ::= "[" ws_nl expr ws_nl "]"` right after an operand (no
+    /// space: `P[2]`), the component of a vector.
+    #[inline(never)]
+    pub(super) fn index(&self, i: &'s str, a: Node) -> RuleResult<'s, Node> {
+        let open = self.pos(i);
+        let _p = self.open_paren();
+        let k = self.ws_nl(&i[1..]);
+        let (rest, ix) =
+            match self.expr(k) {
+                Ok(x) => x,
+                Err(nom::Err::Error(_)) => return self.fail(self.expected(
+                    k,
+                    "a component number after `[`",
+                    "`P[k]` is the k-th component of the vector P, counted from 1: `P[1]`, `P[2]`",
+                    None,
+                )),
+                Err(e) => return Err(e),
+            };
+        let j = self.ws_nl(rest);
+        let Some(after) = j.strip_prefix(']') else {
+            if j.starts_with(',') {
+                return self.fail(
+                    Diagnostic::error(self.token(j).0, "one component number between `[` and `]`")
+                        .with_hint("`P[k]` takes one component; a vector literal needs a space or an operator before it"),
+                );
+            }
+            if j.is_empty() {
+                return Err(unclosed_bracket(open));
+            }
+            return self.fail(self.expected(
+                j,
+                "`]` after the component number",
+                "`P[k]` is the k-th component of the vector P: `P[1]`",
+                None,
+            ));
+        };
+        let span = Span::new(a.outer.start, self.pos(after));
+        let d = a.d.max(ix.d) + 1;
+        let at = Span::new(open, open + 1);
+        Ok((after, self.node(ExprKind::Index(a.e, ix.e), span, d, at)?))
     }
 
     /// `atom ::= literal | call | name | group | vector`

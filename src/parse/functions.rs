@@ -47,6 +47,26 @@ pub const FUNCTIONS: &[BuiltinFunction] = &[
     f("cross", 2, "two vectors: dot(a, b), cross(a, b)"),
     f("norm", 1, ONE),
     f(
+        "rot",
+        2,
+        "rot(AXIS, ANGLE): AXIS is x, y, z or a unit vector [ux, uy, uz]",
+    ),
+    f(
+        "axis",
+        2,
+        "axis(F, k) is the k-th unit vector (k = 1, 2, 3) of the frame F",
+    ),
+    f(
+        "express",
+        2,
+        "express(v, F) is the components of the vector v along the axes of the frame F",
+    ),
+    f(
+        "omega",
+        1,
+        "omega(F) is the angular velocity of the frame F",
+    ),
+    f(
         "inertia",
         2,
         "inertia(m, x) is m·x'' for a mass m (or moment of inertia) and a coordinate or point x",

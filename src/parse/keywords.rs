@@ -42,10 +42,21 @@ pub const STATEMENT: &[&str] = &[
     "torque",
     "solve",
     "latex",
+    "frame",
+    "body",
+    "particle",
+    "gravity",
 ];
 
 /// The stop words inside `load … at …` and `torque … on …`.
 pub const STOP: &[&str] = &["at", "on"];
+
+/// The property words of `body` and `particle` (`mass m, at P`).
+pub fn body_properties() -> impl Iterator<Item = &'static str> {
+    super::ast::PropertyKey::ALL
+        .into_iter()
+        .map(|k| k.keyword())
+}
 
 /// Every keyword that starts a statement: declarations, roles, the rest.
 pub fn statement_keywords() -> impl Iterator<Item = &'static str> {
@@ -58,7 +69,9 @@ pub fn statement_keywords() -> impl Iterator<Item = &'static str> {
 
 /// Every keyword, the stop words included.
 pub fn all() -> impl Iterator<Item = &'static str> {
-    statement_keywords().chain(STOP.iter().copied())
+    statement_keywords()
+        .chain(STOP.iter().copied())
+        .chain(body_properties().filter(|w| !STOP.contains(w) && !STATEMENT.contains(w)))
 }
 
 /// The statement keyword `word` is most likely a misspelling of: within

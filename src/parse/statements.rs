@@ -143,7 +143,7 @@ impl<'s> Parser<'s> {
         }
     }
 
-    /// `statement ::= declaration | role_stmt | force_stmt | load_stmt | torque_stmt | solve_block | latex_stmt | definition`
+    /// `statement ::= declaration | role_stmt | force_stmt | load_stmt | torque_stmt | solve_block | latex_stmt | frame_stmt | body_stmt | gravity_stmt | definition`
     ///
     /// Keywords do not reserve names: the tokens after the first identifier
     /// decide (see the grammar).
@@ -190,6 +190,9 @@ impl<'s> Parser<'s> {
                 }
             }
             "load" if !next_is_eq => self.load_stmt(i),
+            "frame" if next_is_ident => self.frame_stmt(i),
+            "body" | "particle" if next_is_ident => self.body_stmt(i),
+            "gravity" if !next_is_eq => self.gravity_stmt(i),
             "torque" if !next_is_eq => self.torque_stmt(i),
             "solve" if !next_is_eq => self.solve_block(i),
             "latex" if !next_is_eq => {

@@ -460,6 +460,17 @@ impl Session {
                             .collect::<Vec<_>>()
                             .join(", ")
                     ),
+                    Value::Rotation(r) => {
+                        let rows: Vec<String> = r
+                            .matrix()
+                            .iter()
+                            .map(|row| {
+                                let c: Vec<String> = row.iter().map(|e| layout.text(e)).collect();
+                                format!("[{}]", c.join(", "))
+                            })
+                            .collect();
+                        format!("rotation [{}]", rows.join(", "))
+                    }
                 };
                 match name {
                     Some(n) => format!("{} = {body}\n", print::pretty_name(n, 0)),
@@ -477,6 +488,7 @@ impl Session {
                             .collect::<Vec<_>>()
                             .join(" \\\\ ")
                     ),
+                    Value::Rotation(r) => rotation_latex(r, |e| layout.latex(e, &names)),
                 };
                 match name {
                     Some(n) => format!("{} = {body}\n", names.symbol(n, 0)),
@@ -489,6 +501,18 @@ impl Session {
                     Value::Vector(c) => serde_json::Value::Array(
                         c.iter()
                             .map(|e| serde_json::Value::String(print::input(e)))
+                            .collect(),
+                    ),
+                    Value::Rotation(r) => serde_json::Value::Array(
+                        r.matrix()
+                            .iter()
+                            .map(|row| {
+                                serde_json::Value::Array(
+                                    row.iter()
+                                        .map(|e| serde_json::Value::String(print::input(e)))
+                                        .collect(),
+                                )
+                            })
                             .collect(),
                     ),
                 };
@@ -623,6 +647,7 @@ impl Session {
                             .collect::<Vec<_>>()
                             .join(" \\\\ ")
                     ),
+                    Value::Rotation(r) => rotation_latex(r, |e| tex::latex_with(e, &names)),
                 })
             }
             ("last", None) => Response::error("error: there is no result yet"),
@@ -935,7 +960,24 @@ fn value_input(v: &Value) -> String {
             "[{}]",
             c.iter().map(print::input).collect::<Vec<_>>().join(", ")
         ),
+        Value::Rotation(r) => format!("({})", r.to_input()),
     }
+}
+
+/// A rotation's matrix as a LaTeX `pmatrix`.
+fn rotation_latex(
+    r: &crate::scene::Rotation,
+    tex: impl Fn(&crate::expr::Expr) -> String,
+) -> String {
+    let rows: Vec<String> = r
+        .matrix()
+        .iter()
+        .map(|row| row.iter().map(&tex).collect::<Vec<_>>().join(" & "))
+        .collect();
+    format!(
+        "\\begin{{pmatrix}} {} \\end{{pmatrix}}",
+        rows.join(" \\\\ ")
+    )
 }
 
 /// Whether `text` is a whole entry, or the user is still typing one: an

@@ -11,12 +11,14 @@ pub mod dimension;
 mod eval;
 pub mod given;
 mod resolve;
+pub mod rotation;
 
-pub(crate) use eval::is_taylor_form;
+pub(crate) use eval::{axis_name, is_taylor_form};
 
 use crate::diag::Diagnostic;
 use crate::expr::Expr;
 use crate::parse::ast::{self, Role, Span, Stmt};
+pub use rotation::Rotation;
 use rustc_hash::FxHashMap;
 
 /// A generalized coordinate.
@@ -42,13 +44,16 @@ pub struct Parameter {
     pub dimension: Option<String>,
 }
 
-/// The value of a definition: a scalar expression or a vector of them.
+/// The value of a definition: a scalar expression, a vector of them, or
+/// a rotation (a frame's orientation).
 #[derive(Clone, Debug)]
 pub enum Value {
     /// A single expression.
     Scalar(Expr),
     /// A plane (2) or space (3) vector.
     Vector(Vec<Expr>),
+    /// A rotation: `rot(z, phi) * rot(x, theta)`, a `frame`.
+    Rotation(Box<Rotation>),
 }
 
 impl Value {
@@ -56,28 +61,34 @@ impl Value {
     pub fn as_scalar(&self) -> Option<&Expr> {
         match self {
             Value::Scalar(e) => Some(e),
-            Value::Vector(_) => None,
+            Value::Vector(_) | Value::Rotation(_) => None,
         }
     }
-    /// The components: one for a scalar.
+    /// The components: one for a scalar, the nine entries of a rotation's
+    /// matrix row by row.
     pub fn components(&self) -> &[Expr] {
         match self {
             Value::Scalar(e) => std::slice::from_ref(e),
             Value::Vector(c) => c,
+            Value::Rotation(r) => r.entries(),
         }
     }
-    /// Apply `f` to every component.
+    /// Apply `f` to every component of a number or a vector; a rotation
+    /// is returned as it is (the evaluator refuses to negate,
+    /// differentiate or substitute into a rotation before it gets here).
     pub fn map(&self, mut f: impl FnMut(&Expr) -> Expr) -> Value {
         match self {
             Value::Scalar(e) => Value::Scalar(f(e)),
             Value::Vector(c) => Value::Vector(c.iter().map(f).collect()),
+            Value::Rotation(r) => Value::Rotation(r.clone()),
         }
     }
-    /// "a number" / "a vector with 2 components", for messages.
+    /// "a number" / "a vector with 2 components" / "a rotation", for messages.
     pub fn describe(&self) -> String {
         match self {
             Value::Scalar(_) => "a number".into(),
             Value::Vector(c) => format!("a vector with {} components", c.len()),
+            Value::Rotation(_) => "a rotation (a frame)".into(),
         }
     }
 }
@@ -254,6 +265,8 @@ pub(crate) enum Binding {
     Unknown,
     Coord,
     Def(usize),
+    /// A `body` or `particle` name: not a value.
+    Body,
     Time,
     Pi,
 }
@@ -353,7 +366,7 @@ impl Scene {
         self.role(role).fold(Expr::zero(), |acc, d| match &d.value {
             Value::Scalar(e) => acc.add(e),
             // role statements are checked to be scalars when the scene is built
-            Value::Vector(_) => acc,
+            Value::Vector(_) | Value::Rotation(_) => acc,
         })
     }
 

@@ -64,6 +64,7 @@ pub(super) fn call(w: &mut Walker, f: &Ident, args: &[Expr]) -> Checked<DimValue
             _ => Ok(DimValue::Scalar(None)),
         },
         "dot" | "cross" | "norm" => vector_function(w, name, args),
+        "rot" | "axis" | "express" | "omega" => frame_function(w, name, args),
         "subs" => substitution(w, args),
         "taylor" => taylor(w, args),
         "series" | "parallel" => {
@@ -74,6 +75,47 @@ pub(super) fn call(w: &mut Walker, f: &Ident, args: &[Expr]) -> Checked<DimValue
             springs(w, args)
         }
         // unknown functions are reported when the scene is resolved
+        _ => Ok(DimValue::Scalar(None)),
+    }
+}
+
+/// A rotation's dimensions: its matrix, nine pure numbers.
+pub(super) fn rotation() -> DimValue {
+    DimValue::Vector(vec![Some(DimForm::one()); 9])
+}
+
+/// `rot(AXIS, ANGLE)` (a pure number), `axis(F, k)` (pure numbers),
+/// `express(v, F)` (v's dimension) and `omega(F)` (per time).
+fn frame_function(w: &mut Walker, name: &str, args: &[Expr]) -> Checked<DimValue> {
+    match (name, args) {
+        ("rot", [axis, angle]) => {
+            if crate::scene::axis_name(args).is_none() {
+                w.value(axis, None)?;
+            }
+            let want = Want {
+                form: DimForm::one(),
+                why: Why::Argument {
+                    function: "rot".to_string(),
+                },
+            };
+            w.value(angle, Some(&want))?;
+            Ok(rotation())
+        }
+        ("axis", [f, _]) => {
+            w.value(f, None)?;
+            Ok(DimValue::Vector(vec![Some(DimForm::one()); 3]))
+        }
+        ("express", [v, f]) => {
+            w.value(f, None)?;
+            let v = w.value(v, None)?;
+            let d = common(w, &v, &args[0])?;
+            Ok(DimValue::Vector(vec![d; 3]))
+        }
+        ("omega", [f]) => {
+            w.value(f, None)?;
+            let per_time = DimForm::one().div(&Walker::time());
+            Ok(DimValue::Vector(vec![Some(per_time); 3]))
+        }
         _ => Ok(DimValue::Scalar(None)),
     }
 }

@@ -199,6 +199,8 @@ impl Dimension {
     pub const ENERGY: Dimension = Dimension::integer([1, 2, -2, 0, 0]);
     /// mass·length²·time⁻³
     pub const POWER: Dimension = Dimension::integer([1, 2, -3, 0, 0]);
+    /// mass·length² (a moment of inertia).
+    pub const MOMENT_OF_INERTIA: Dimension = Dimension::integer([1, 2, 0, 0, 0]);
 
     /// The exponent of base dimension `i` (0 mass … 4 temperature).
     fn exponent(&self, i: usize) -> Q {

@@ -225,7 +225,9 @@ fn walk_statements<'a>(
                     order.push((n, kind, Some(d.dimension.as_ref().map(|e| e.span))));
                 }
             }
-            Stmt::Def { name, value, .. } => definitions.push((name, value, None)),
+            Stmt::Def { name, value, .. } | Stmt::Frame { name, value, .. } => {
+                definitions.push((name, value, None))
+            }
             Stmt::Role {
                 role, name, value, ..
             } => definitions.push((name, value, Some(*role))),
@@ -266,6 +268,8 @@ fn walk_statements<'a>(
             Stmt::Load { force, point, .. } => statements::load(w, force, point)?,
             Stmt::Torque { moment, angle, .. } => statements::torque(w, moment, angle)?,
             Stmt::Solve(b) => statements::solve_block(w, b)?,
+            Stmt::Body(b) => statements::body(w, b)?,
+            Stmt::Gravity { value, .. } => statements::gravity(w, value)?,
             _ => {}
         }
     }

@@ -6,7 +6,7 @@ use super::dim::Dimension;
 use super::form::DimForm;
 use super::walk::{DimValue, NameDim, Walker, Want, Why};
 use crate::diag::Diagnostic;
-use crate::parse::ast::{Equation, Expr, ExprKind, Ident, Role, SolveBlock};
+use crate::parse::ast::{BodyStmt, Equation, Expr, ExprKind, Ident, PropertyKey, Role, SolveBlock};
 
 type Checked<T> = Result<T, Diagnostic>;
 
@@ -206,4 +206,64 @@ fn unknowns_in(block: &SolveBlock, eq: &Equation) -> usize {
         }
     });
     seen.len()
+}
+
+/// `body`/`particle`: a mass, a moment of inertia per entry, a length
+/// per component of the position, a pure number for a plane angle.
+pub(super) fn body(w: &mut Walker, b: &BodyStmt) -> Checked<()> {
+    let name = &b.name.name;
+    for p in &b.properties {
+        let (dimension, what) = match p.key {
+            PropertyKey::Mass => (Dimension::MASS, format!("the mass of `{name}`")),
+            PropertyKey::Inertia => (
+                Dimension::MOMENT_OF_INERTIA,
+                format!("the inertia of `{name}` (mass·length²)"),
+            ),
+            PropertyKey::At => (Dimension::LENGTH, format!("the position of `{name}`")),
+            PropertyKey::Angle => (Dimension::ONE, format!("the angle of `{name}`")),
+            PropertyKey::Frame => {
+                w.value(&p.value, None)?;
+                continue;
+            }
+        };
+        let want = Want {
+            form: DimForm::known(dimension),
+            why: Why::Property { what },
+        };
+        // an inertia matrix `[[…], …]`: each entry
+        match &p.value.kind {
+            ExprKind::Vector(rows)
+                if rows.iter().any(|r| matches!(r.kind, ExprKind::Vector(_))) =>
+            {
+                for r in rows {
+                    match &r.kind {
+                        ExprKind::Vector(items) => {
+                            for it in items {
+                                w.value(it, Some(&want))?;
+                            }
+                        }
+                        _ => {
+                            w.value(r, Some(&want))?;
+                        }
+                    }
+                }
+            }
+            _ => {
+                w.value(&p.value, Some(&want))?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `gravity G`: an acceleration per component.
+pub(super) fn gravity(w: &mut Walker, value: &Expr) -> Checked<()> {
+    let want = Want {
+        form: DimForm::known(Dimension::ACCELERATION),
+        why: Why::Property {
+            what: "gravity is an acceleration".to_string(),
+        },
+    };
+    w.value(value, Some(&want))?;
+    Ok(())
 }

@@ -66,6 +66,8 @@ pub(super) enum Why {
     Factor(Box<Why>),
     /// The value given to a variable in `subs`/`taylor`.
     Substituted { variable: String },
+    /// A property of a body (`the mass of `top``) or gravity.
+    Property { what: String },
 }
 
 impl Why {
@@ -81,6 +83,7 @@ impl Why {
             Why::Exponent => "an exponent".into(),
             Why::Factor(w) => format!("{}, with the other factors taken out", w.describe()),
             Why::Substituted { variable } => format!("the value of `{variable}`"),
+            Why::Property { what } => what.clone(),
         }
     }
 }
@@ -157,9 +160,15 @@ pub(super) fn for_each_name<'e>(roots: &[&'e Expr], mut f: impl FnMut(&'e str)) 
         match &e.kind {
             ExprKind::Name(n) => f(n),
             ExprKind::Neg(x) | ExprKind::Prime(x, _) => stack.push(x),
-            ExprKind::Bin(_, a, b) | ExprKind::Assign(a, b) => {
+            ExprKind::Bin(_, a, b) | ExprKind::Assign(a, b) | ExprKind::Index(a, b) => {
                 stack.push(a);
                 stack.push(b);
+            }
+            // `rot(x, a)`: the axis names x, y, z are no names of the scene
+            ExprKind::Call(f, args)
+                if f.name == "rot" && crate::scene::axis_name(args).is_some() =>
+            {
+                stack.extend(&args[1..])
             }
             ExprKind::Call(_, args) | ExprKind::Vector(args) => stack.extend(args),
             ExprKind::Num(_) | ExprKind::Degrees(_) => {}
@@ -265,6 +274,18 @@ impl<'a> Walker<'a> {
             }
             ExprKind::Call(f, args) => super::call::call(self, f, args),
             ExprKind::Assign(_, v) => self.value(v, None),
+            ExprKind::Index(v, k) => {
+                let v = self.value(v, None)?;
+                let k = match &k.kind {
+                    ExprKind::Num(q) if q.is_integer() => q.to_integer().try_into().ok(),
+                    _ => None,
+                };
+                let c = v.components();
+                Ok(DimValue::Scalar(match k {
+                    Some(k) if (1..=c.len()).contains(&k) => c[k - 1].clone(),
+                    _ => None,
+                }))
+            }
         }
     }
 
@@ -539,6 +560,12 @@ fn multiply(a: &DimValue, b: &DimValue, p: i64) -> DimValue {
         (DimValue::Vector(c), DimValue::Scalar(y)) => {
             DimValue::Vector(c.iter().map(|x| times(x, y)).collect())
         }
+        // a rotation (nine pure numbers) composes with a rotation and
+        // turns a space vector (of one dimension: its components mix)
+        (DimValue::Vector(c), DimValue::Vector(d)) if c.len() == 9 => match d.len() {
+            9 => DimValue::Vector(d.clone()),
+            _ => DimValue::Vector(vec![d.iter().flatten().next().cloned(); d.len()]),
+        },
         // vector × vector is refused by the evaluator before this runs
         (DimValue::Vector(c), DimValue::Vector(_)) => DimValue::Vector(vec![None; c.len()]),
     }

@@ -1,5 +1,8 @@
 //! Evaluation of syntax trees into canonical expressions.
 
+mod frames;
+pub(crate) use frames::axis_name;
+
 use super::{Binding, Value};
 use crate::diag::Diagnostic;
 use crate::expr::atom::{self, Atom};
@@ -153,9 +156,13 @@ impl<'a> SyntaxEvaluator<'a> {
                     }
                 }
                 ExprKind::Neg(x) | ExprKind::Prime(x, _) => stack.push(x),
-                ExprKind::Bin(_, a, b) => {
+                ExprKind::Bin(_, a, b) | ExprKind::Index(a, b) => {
                     stack.push(b);
                     stack.push(a);
+                }
+                // `rot(x, a)`: the axis names x, y, z are no definitions
+                ExprKind::Call(f, args) if f.name == "rot" && frames::axis_name(args).is_some() => {
+                    stack.extend(args[1..].iter().rev())
                 }
                 // `x = a` in a call: the name on the left is not evaluated
                 ExprKind::Assign(_, b) => stack.push(b),
@@ -221,10 +228,15 @@ impl<'a> SyntaxEvaluator<'a> {
                 ),
             )
             .with_hint(HINT_VECTOR)),
+            Value::Rotation(_) => Err(Diagnostic::error(
+                span,
+                format!("expected {what}, found a rotation (a frame)"),
+            )
+            .with_hint(frames::HINT_ROTATION)),
         }
     }
 
-    /// A scalar or a vector.
+    /// A scalar, a vector or a rotation.
     pub fn value(&mut self, e: &ast::Expr) -> Result<Value, Diagnostic> {
         match &e.kind {
             ExprKind::Num(r) => Ok(Value::Scalar(Expr::rational(Q::from_big(r.clone())))),
@@ -234,7 +246,12 @@ impl<'a> SyntaxEvaluator<'a> {
                 Ok(Value::Scalar(Expr::pi().scale(&k)))
             }
             ExprKind::Name(n) => self.name(n, e.span),
-            ExprKind::Neg(x) => Ok(self.value(x)?.map(|c| c.neg())),
+            ExprKind::Neg(x) => {
+                let v = self.value(x)?;
+                frames::not_a_rotation(&v, x.span, "can't be negated")?;
+                Ok(v.map(|c| c.neg()))
+            }
+            ExprKind::Index(v, k) => self.index(v, k),
             ExprKind::Bin(op, a, b) => {
                 let x = self.value(a)?;
                 if *op == BinOp::Pow {
@@ -246,6 +263,13 @@ impl<'a> SyntaxEvaluator<'a> {
                                 "a vector can't be raised to a power",
                             )
                             .with_hint("for the squared length of a vector v write dot(v, v)"))
+                        }
+                        Value::Rotation(_) => {
+                            return Err(Diagnostic::error(
+                                a.span,
+                                "a rotation can't be raised to a power",
+                            )
+                            .with_hint("compose rotations with `*`: rot(z, a) * rot(z, b)"))
                         }
                     };
                     return Ok(Value::Scalar(self.pow(&x, b, e.span)?));
@@ -279,10 +303,8 @@ impl<'a> SyntaxEvaluator<'a> {
             }
             ExprKind::Prime(x, order) => {
                 let v = self.value(x)?;
-                let moving = match &v {
-                    Value::Scalar(s) => s.is_time_dependent(),
-                    Value::Vector(c) => c.iter().any(|s| s.is_time_dependent()),
-                };
+                frames::not_a_rotation(&v, x.span, "has no time derivative `'`; its angular velocity is omega(F)")?;
+                let moving = v.components().iter().any(|s| s.is_time_dependent());
                 if !moving {
                     let what = match &x.kind {
                         ExprKind::Name(n) => format!("`{n}`"),
@@ -354,6 +376,9 @@ impl<'a> SyntaxEvaluator<'a> {
                     .with_hint("check the definitions it uses")
             })
         };
+        if matches!(x, Value::Rotation(_)) || matches!(y, Value::Rotation(_)) {
+            return frames::rotation_binary(op, x, y, a, b);
+        }
         match (op, x, y) {
             (BinOp::Add, Value::Scalar(x), Value::Scalar(y)) => Ok(Value::Scalar(x.add(&y))),
             (BinOp::Sub, Value::Scalar(x), Value::Scalar(y)) => Ok(Value::Scalar(x.sub(&y))),
@@ -415,6 +440,9 @@ impl<'a> SyntaxEvaluator<'a> {
                     .with_hint("divide by a number, such as norm(v)"))
             }
             (BinOp::Pow, ..) => Err(Diagnostic::global("internal: power on a vector")),
+            (_, Value::Rotation(_), _) | (_, _, Value::Rotation(_)) => Err(Diagnostic::global(
+                "internal: a rotation in vector arithmetic",
+            )),
         }
     }
 
@@ -438,6 +466,11 @@ impl<'a> SyntaxEvaluator<'a> {
                 self.atoms.insert(key.as_str(), e.clone());
                 Ok(Value::Scalar(e))
             }
+            Some((_, (Binding::Body, _))) => Err(Diagnostic::error(
+                span,
+                format!("`{n}` is a body, not a value"),
+            )
+            .with_hint(format!("use its position or its frame; its kinetic energy is `E_{n}`, outside the scene (the REPL, `--at`)"))),
             Some((_, (Binding::Time, _))) => Ok(Value::Scalar(Expr::time())),
             Some((_, (Binding::Pi, _))) => Ok(Value::Scalar(Expr::pi())),
             Some((_, (Binding::Def(i), _))) => {
@@ -615,11 +648,12 @@ impl<'a> SyntaxEvaluator<'a> {
             .with_hint(builtin.usage));
         }
         match f.name.as_str() {
+            "rot" | "axis" | "express" | "omega" => return self.frame_call(f, args),
             "dot" | "cross" => return self.vector_product(f, args, span),
             "norm" => {
                 let v = self.value(&args[0])?;
                 let Value::Vector(c) = v else {
-                    return Err(Diagnostic::error(args[0].span, "norm needs a vector, found a number")
+                    return Err(Diagnostic::error(args[0].span, format!("norm needs a vector, found {}", v.describe()))
                         .with_hint("the absolute value of a number is not exact-friendly; write sqrt(x^2) for a positive x"));
                 };
                 let sq = c.iter().fold(Expr::zero(), |acc, x| acc.add(&x.mul(x)));
@@ -629,10 +663,21 @@ impl<'a> SyntaxEvaluator<'a> {
             }
             "diff" => {
                 let v = self.variable(&args[1], "diff")?;
-                return Ok(self.value(&args[0])?.map(|c| c.diff(v)));
+                let x = self.value(&args[0])?;
+                frames::not_a_rotation(
+                    &x,
+                    args[0].span,
+                    "can't be differentiated; its angular velocity is omega(F)",
+                )?;
+                return Ok(x.map(|c| c.diff(v)));
             }
             "dt" => {
                 let v = self.value(&args[0])?;
+                frames::not_a_rotation(
+                    &v,
+                    args[0].span,
+                    "has no time derivative; its angular velocity is omega(F)",
+                )?;
                 self.check_derivative_order(&v, 1, span)?;
                 return Ok(v.map(|c| c.dt()));
             }
@@ -643,10 +688,12 @@ impl<'a> SyntaxEvaluator<'a> {
             "inertia" => {
                 let m = self.expr(&args[0])?;
                 let x = self.value(&args[1])?;
-                let moving = match &x {
-                    Value::Scalar(s) => s.is_time_dependent(),
-                    Value::Vector(c) => c.iter().any(|s| s.is_time_dependent()),
-                };
+                frames::not_a_rotation(
+                    &x,
+                    args[1].span,
+                    "has no inertia force; a body's inertia is given in a `body` statement",
+                )?;
+                let moving = x.components().iter().any(|s| s.is_time_dependent());
                 if !moving {
                     return Err(Diagnostic::error(
                         args[1].span,
@@ -729,13 +776,18 @@ impl<'a> SyntaxEvaluator<'a> {
             }
         }
         let target = self.value(&args[0])?;
+        frames::not_a_rotation(
+            &target,
+            args[0].span,
+            "can't be substituted into; substitute in its angles",
+        )?;
         let mut out = Vec::with_capacity(target.components().len());
         for c in target.components() {
             out.push(c.subs_many(&map).map_err(|m| self.err(span, m))?);
         }
         Ok(match target {
             Value::Scalar(_) => Value::Scalar(out.remove(0)),
-            Value::Vector(_) => Value::Vector(out),
+            _ => Value::Vector(out),
         })
     }
 
@@ -772,6 +824,11 @@ impl<'a> SyntaxEvaluator<'a> {
                 .with_hint("taylor(sin(x), x, 5) keeps the powers x⁰ … x⁵")
             })?;
         let f = self.value(&args[0])?;
+        frames::not_a_rotation(
+            &f,
+            args[0].span,
+            "has no Taylor series here; expand its angles",
+        )?;
         let dx = Expr::var(v).sub(&a);
         let mut out = Vec::with_capacity(f.components().len());
         for c in f.components() {
@@ -810,7 +867,7 @@ impl<'a> SyntaxEvaluator<'a> {
         }
         Ok(match f {
             Value::Scalar(_) => Value::Scalar(out.remove(0)),
-            Value::Vector(_) => Value::Vector(out),
+            _ => Value::Vector(out),
         })
     }
 
@@ -839,12 +896,12 @@ impl<'a> SyntaxEvaluator<'a> {
         for a in args {
             match self.value(a)? {
                 Value::Vector(c) => vs.push(c),
-                Value::Scalar(_) => {
+                v @ (Value::Scalar(_) | Value::Rotation(_)) => {
                     return Err(Diagnostic::error(
                         a.span,
-                        format!("`{}` needs two vectors, and this is a number", f.name),
+                        format!("`{}` needs two vectors, and this is {}", f.name, v.describe()),
                     )
-                    .with_hint("write vectors as [x, y] or [x, y, z]"))
+                    .with_hint("write vectors as [x, y] or [x, y, z]; axis(F, k) is the k-th unit vector of a frame F"))
                 }
             }
         }

@@ -14,6 +14,8 @@ use crate::parse::ast::{self, Role, Span, Stmt};
 use crate::poly::Var;
 use rustc_hash::FxHashMap;
 
+mod bodies;
+
 /// A definition as written: its name, its body and its role, if any.
 type DefinitionAst<'a> = (&'a ast::Ident, &'a ast::Expr, Option<Role>);
 
@@ -27,6 +29,8 @@ struct Declarations<'a> {
     forces: Vec<(&'a ast::Ident, &'a ast::Expr)>,
     /// The unknowns of each `solve` block, in order.
     unknowns: Vec<Vec<Parameter>>,
+    /// The indices in `definitions` of the `frame` statements.
+    frames: Vec<usize>,
 }
 
 impl<'a> Declarations<'a> {
@@ -39,10 +43,12 @@ impl<'a> Declarations<'a> {
             definitions: Vec::new(),
             forces: Vec::new(),
             unknowns: Vec::new(),
+            frames: Vec::new(),
         };
         for st in stmts {
             d.statement(st)?;
         }
+        d.reserve_body_energies(stmts)?;
         d.names.insert("t".into(), (Binding::Time, Span::default()));
         d.names.insert("pi".into(), (Binding::Pi, Span::default()));
         Ok(d)
@@ -88,7 +94,14 @@ impl<'a> Declarations<'a> {
             Stmt::Force {
                 coordinate, value, ..
             } => self.forces.push((coordinate, value)),
-            Stmt::Load { .. } | Stmt::Torque { .. } | Stmt::Latex { .. } => {}
+            Stmt::Frame { name, value, .. } => {
+                self.frames.push(self.definitions.len());
+                self.declare(name, Binding::Def(self.definitions.len()))?;
+                self.definitions.push((name, value, None));
+            }
+            Stmt::Body(b) => self.declare(&b.name, Binding::Body)?,
+            Stmt::Load { .. } | Stmt::Torque { .. } | Stmt::Latex { .. } | Stmt::Gravity { .. } => {
+            }
             Stmt::Solve(block) => {
                 let mut us = Vec::with_capacity(block.unknowns.len());
                 for u in &block.unknowns {
@@ -134,6 +147,7 @@ impl<'a> Declarations<'a> {
         prev_span: Span,
     ) -> Diagnostic {
         let what = match prev {
+            Binding::Body => "a body",
             Binding::Param => "a parameter",
             Binding::Coord => "a coordinate",
             Binding::Unknown => "an unknown of a `solve` block",
@@ -176,6 +190,11 @@ struct Resolver<'d> {
     torques: Vec<Torque>,
     systems: Vec<SolveSystem>,
     warnings: Vec<Diagnostic>,
+    /// The bodies and particles, in source order.
+    bodies: Vec<bodies::ResolvedBody>,
+    /// Their kinetic energies and gravity's potential on each (`E_top`,
+    /// `V_top`), definitions with a role.
+    body_energies: Vec<Definition>,
 }
 
 pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, Diagnostic> {
@@ -199,6 +218,8 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
         torques: Vec::new(),
         systems: Vec::new(),
         warnings: Vec::new(),
+        bodies: Vec::new(),
+        body_energies: Vec::new(),
     };
     let mut definitions = Vec::with_capacity(decl.definitions.len());
     for (i, &(name, body, role)) in decl.definitions.iter().enumerate() {
@@ -213,6 +234,9 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
             role,
         });
     }
+    for &i in &decl.frames {
+        bodies::frame_value(decl.definitions[i].1, &definitions[i].value)?;
+    }
     let forces = r.forces(&decl.forces)?;
     let mut blocks = decl.unknowns.iter().cloned();
     for st in stmts {
@@ -224,9 +248,12 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
                 span,
             } => r.torque(moment, angle, *span)?,
             Stmt::Solve(block) => r.solve_block(block, blocks.next().unwrap_or_default())?,
+            Stmt::Body(b) => r.body(b)?,
             _ => {}
         }
     }
+    r.gravity(stmts)?;
+    definitions.append(&mut r.body_energies);
     let Resolver {
         ev,
         loads,
@@ -289,13 +316,13 @@ fn role_value_allowed(
     value: &Value,
 ) -> Result<(), Diagnostic> {
     let e = match value {
-        Value::Vector(c) => return Err(Diagnostic::error(
+        v @ (Value::Vector(_) | Value::Rotation(_)) => return Err(Diagnostic::error(
             body.span,
             format!(
-                "`{} {}` must be a number, but this is a vector with {} components",
+                "`{} {}` must be a number, but this is {}",
                 role.keyword(),
                 name.name,
-                c.len()
+                v.describe()
             ),
         )
         .with_hint(match role {
@@ -376,6 +403,17 @@ impl Resolver<'_> {
     fn load(&mut self, force: &ast::Expr, point: &ast::Expr, span: Span) -> Result<(), Diagnostic> {
         let f = self.ev.value(force)?;
         let p = self.ev.value(point)?;
+        for (v, e, what) in [(&f, force, "force"), (&p, point, "point")] {
+            if let Value::Rotation(_) = v {
+                return Err(Diagnostic::error(
+                    e.span,
+                    format!("a load's {what} is a vector or a number, and this is a rotation"),
+                )
+                .with_hint(
+                    "axis(F, k) is the k-th unit vector of a frame F: `load -m*g*axis(B, 3) at P`",
+                ));
+            }
+        }
         match (&f, &p) {
             (Value::Vector(a), Value::Vector(b)) if a.len() != b.len() => {
                 return Err(Diagnostic::error(
@@ -428,7 +466,7 @@ impl Resolver<'_> {
     ) -> Result<(), Diagnostic> {
         let m = match self.ev.value(moment)? {
             Value::Scalar(m) => m,
-            m @ Value::Vector(_) => return Err(Diagnostic::error(
+            m @ (Value::Vector(_) | Value::Rotation(_)) => return Err(Diagnostic::error(
                 moment.span,
                 format!(
                     "a torque is a number (the moment about the axis of its angle), found {}",
@@ -441,7 +479,7 @@ impl Resolver<'_> {
         };
         let a = match self.ev.value(angle)? {
             Value::Scalar(a) => a,
-            a @ Value::Vector(_) => {
+            a @ (Value::Vector(_) | Value::Rotation(_)) => {
                 return Err(Diagnostic::error(
                     angle.span,
                     format!(
@@ -481,6 +519,17 @@ impl Resolver<'_> {
         for eq in &block.equations {
             let l = self.ev.value(&eq.lhs)?;
             let r = self.ev.value(&eq.rhs)?;
+            for (v, side) in [(&l, &eq.lhs), (&r, &eq.rhs)] {
+                if let Value::Rotation(_) = v {
+                    return Err(Diagnostic::error(
+                        side.span,
+                        "a `solve` equation is between numbers or vectors, and this is a rotation",
+                    )
+                    .with_hint(
+                        "compare a frame's axes or components instead: axis(B, 3) = [0, 0, 1]",
+                    ));
+                }
+            }
             for side in [&l, &r] {
                 forces_in_order(side.components(), eq.span, "a `solve` equation")?;
             }
@@ -602,7 +651,7 @@ fn second_prime_span(e: &ast::Expr) -> Option<Span> {
                 stack.push((inner, primes + k));
             }
             K::Neg(x) => stack.push((x, primes)),
-            K::Bin(_, a, b) | K::Assign(a, b) => {
+            K::Bin(_, a, b) | K::Assign(a, b) | K::Index(a, b) => {
                 stack.push((b, primes));
                 stack.push((a, primes));
             }

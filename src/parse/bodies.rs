@@ -1,0 +1,164 @@
+//! The statement rules of bodies in space and in the plane: `frame`,
+//! `body`/`particle` and `gravity`.
+
+use super::ast::{BodyKind, BodyProperty, BodyStmt, PropertyKey};
+use super::*;
+
+impl<'s> Parser<'s> {
+    /// `frame_stmt ::= "frame" ws ident ws "=" ws expr`
+    #[inline(never)]
+    pub(super) fn frame_stmt(&self, i: &'s str) -> RuleResult<'s, Stmt> {
+        let i = self.ws(i);
+        let start = self.pos(i);
+        let Some(rest) = i.strip_prefix("frame") else {
+            return self.nothing(i);
+        };
+        let (rest, name) = self.ident(rest)?;
+        let rest = match self.equals(rest) {
+            Ok(k) => k,
+            Err(j) => {
+                let head = format!("frame {}", name.name);
+                let hint = format!(
+                    "a frame is named like `frame {} = rot(z, phi) * rot(x, theta)`",
+                    name.name
+                );
+                return Err(self.equals_error(j, &head, &hint));
+            }
+        };
+        let (rest, (value, outer)) = self.rhs(rest, "=")?;
+        let span = Span::new(start, outer.end);
+        Ok((rest, Stmt::Frame { name, value, span }))
+    }
+
+    /// `gravity_stmt ::= "gravity" ws expr`
+    #[inline(never)]
+    pub(super) fn gravity_stmt(&self, i: &'s str) -> RuleResult<'s, Stmt> {
+        let i = self.ws(i);
+        let start = self.pos(i);
+        let Some(rest) = i.strip_prefix("gravity") else {
+            return self.nothing(i);
+        };
+        let kw = Span::new(start, start + "gravity".len());
+        let (rest, value) = match self.expr(rest) {
+            Ok((rest, node)) => (rest, node),
+            Err(nom::Err::Error(_)) => {
+                return self.fail(self.expected(
+                    self.ws(rest),
+                    "the acceleration of gravity after `gravity`",
+                    "write it as a vector, `gravity [0, -g]` in the plane or `gravity [0, 0, -g]` in space; to define a name `gravity`, write `gravity = expression`",
+                    Some(kw),
+                ))
+            }
+            Err(e) => return Err(e),
+        };
+        let span = Span::new(start, value.outer.end);
+        Ok((
+            rest,
+            Stmt::Gravity {
+                value: *value.e,
+                span,
+            },
+        ))
+    }
+
+    /// `body_stmt ::= ( "body" | "particle" ) ws ident ws ":" ws property ( ws "," ws property )*`
+    #[inline(never)]
+    pub(super) fn body_stmt(&self, i: &'s str) -> RuleResult<'s, Stmt> {
+        let i = self.ws(i);
+        let start = self.pos(i);
+        let (rest, kind) = if let Some(rest) = i.strip_prefix("body") {
+            (rest, BodyKind::Rigid)
+        } else if let Some(rest) = i.strip_prefix("particle") {
+            (rest, BodyKind::Particle)
+        } else {
+            return self.nothing(i);
+        };
+        let (rest, name) = self.ident(rest)?;
+        let example = body_example(kind, &name.name);
+        let j = self.ws(rest);
+        let Some(mut rest) = j.strip_prefix(':') else {
+            return self.fail(self.expected(
+                j,
+                &format!("`:` after `{} {}`", kind.keyword(), name.name),
+                &format!("a {} is written `{example}`", kind.keyword()),
+                None,
+            ));
+        };
+        let mut properties = Vec::new();
+        loop {
+            let (after, p) = self.property(rest, kind, &example)?;
+            properties.push(p);
+            let j = self.ws(after);
+            match j.strip_prefix(',') {
+                Some(k) => rest = k,
+                None => {
+                    rest = after;
+                    break;
+                }
+            }
+        }
+        let end = properties
+            .last()
+            .map_or(name.span.end, |p| p.value.span.end);
+        let span = Span::new(start, end);
+        Ok((
+            rest,
+            Stmt::Body(BodyStmt {
+                kind,
+                name,
+                properties,
+                span,
+            }),
+        ))
+    }
+
+    /// `property ::= ( "mass" | "inertia" | "frame" | "angle" | "at" ) ws expr`
+    pub(super) fn property(
+        &self,
+        i: &'s str,
+        kind: BodyKind,
+        example: &str,
+    ) -> RuleResult<'s, BodyProperty> {
+        let j = self.ws(i);
+        let len = ident_len(j);
+        let key = PropertyKey::from_keyword(&j[..len]);
+        let Some(key) = key.filter(|_| len > 0) else {
+            let words: Vec<&str> = PropertyKey::ALL.iter().map(|k| k.keyword()).collect();
+            return self.fail(self.expected(
+                j,
+                &format!("a property of the {}", kind.keyword()),
+                &format!("the properties are {}: `{example}`", words.join(", ")),
+                None,
+            ));
+        };
+        let key_span = Span::new(self.pos(j), self.pos(j) + len);
+        let rest = &j[len..];
+        match self.expr(rest) {
+            Ok((rest, node)) => Ok((
+                rest,
+                BodyProperty {
+                    key,
+                    key_span,
+                    value: *node.e,
+                },
+            )),
+            Err(nom::Err::Error(_)) => self.fail(self.expected(
+                self.ws(rest),
+                &format!("a value after `{}`", key.keyword()),
+                &format!("a {} is written `{example}`", kind.keyword()),
+                Some(key_span),
+            )),
+            Err(e) => Err(e),
+        }
+    }
+}
+
+/// How a body or particle named `name` is written, for hints.
+fn body_example(kind: BodyKind, name: &str) -> String {
+    match kind {
+        BodyKind::Rigid => {
+            format!("body {name}: mass m, inertia [A, A, C], frame B, at P")
+        }
+        BodyKind::Particle => format!("particle {name}: mass m, at P"),
+    }
+}
