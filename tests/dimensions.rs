@@ -18,37 +18,10 @@ use std::path::{Path, PathBuf};
 const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/dimensions");
 
 fn cases(dir: &str) -> Vec<PathBuf> {
-    let mut v: Vec<PathBuf> = std::fs::read_dir(Path::new(DATA).join(dir))
-        .expect("the cases' directory")
-        .map(|e| e.expect("an entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "qd"))
-        .collect();
-    v.sort();
-    v
+    crate::common::cases(&Path::new(DATA).join(dir))
 }
 
-/// Compare `actual` with the blessed file beside `case`, or write it.
-fn blessed(case: &Path, actual: &str, failures: &mut Vec<String>) {
-    let txt = case.with_extension("txt");
-    if std::env::var_os("QDOT_BLESS").is_some() {
-        if std::fs::read_to_string(&txt).ok().as_deref() != Some(actual) {
-            std::fs::write(&txt, actual).expect("write the blessed output");
-        }
-        return;
-    }
-    match std::fs::read_to_string(&txt) {
-        Ok(expected) if expected == actual => {}
-        Ok(expected) => {
-            eprintln!(
-                "{}: differs (< blessed, > now):\n{}",
-                case.display(),
-                pretty_assertions::StrComparison::new(&expected, &actual)
-            );
-            failures.push(format!("{}: differs from its .txt", case.display()));
-        }
-        Err(_) => failures.push(format!("{}: no blessed .txt", case.display())),
-    }
-}
+use crate::common::blessed;
 
 fn file_name(p: &Path) -> String {
     p.file_name().unwrap().to_string_lossy().into_owned()

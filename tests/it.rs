@@ -12,6 +12,7 @@ mod compile;
 mod dimensions;
 mod equilibrium;
 mod factor;
+mod frames;
 mod fuzz_regressions;
 mod hostile;
 // the hostile modules say `crate::bound` (they were a crate of their own)

@@ -39,7 +39,7 @@ fn check_expr_spans(src: &str, e: &Expr) -> Result<(), TestCaseError> {
             prop_assert!(e.span.start <= x.span.start && x.span.end <= e.span.end);
             check_expr_spans(src, x)
         }
-        ExprKind::Bin(_, a, b) => {
+        ExprKind::Bin(_, a, b) | ExprKind::Index(a, b) => {
             prop_assert!(e.span.start <= a.span.start && b.span.end <= e.span.end);
             check_expr_spans(src, a)?;
             check_expr_spans(src, b)
@@ -75,7 +75,17 @@ fn check_scene(src: &str) -> Result<Option<Vec<Stmt>>, TestCaseError> {
                 match s {
                     Stmt::Def { value, .. }
                     | Stmt::Role { value, .. }
-                    | Stmt::Force { value, .. } => check_expr_spans(src, value)?,
+                    | Stmt::Force { value, .. }
+                    | Stmt::Frame { value, .. }
+                    | Stmt::Gravity { value, .. } => check_expr_spans(src, value)?,
+                    Stmt::Body(b) => {
+                        for p in &b.properties {
+                            prop_assert!(b.span.start < p.key_span.start);
+                            prop_assert!(p.key_span.end < p.value.span.start);
+                            prop_assert!(p.value.span.end <= b.span.end);
+                            check_expr_spans(src, &p.value)?;
+                        }
+                    }
                     Stmt::Coordinates(ds, _) | Stmt::Parameters(ds, _) => {
                         prop_assert!(!ds.is_empty());
                     }

@@ -78,7 +78,9 @@ fn eval_ast(e: &Ast, env: &dyn Fn(&str) -> f64) -> f64 {
                 _ => f64::NAN,
             }
         }
-        ExprKind::Prime(..) | ExprKind::Vector(_) | ExprKind::Assign(..) => f64::NAN,
+        ExprKind::Prime(..) | ExprKind::Vector(_) | ExprKind::Assign(..) | ExprKind::Index(..) => {
+            f64::NAN
+        }
     }
 }
 

@@ -148,7 +148,7 @@ fn run_unbounded(
         Command::Derive => {
             let lag = scene.lagrange()?;
             match fmt {
-                Format::Text => derive_text(&lag),
+                Format::Text => text::bodies_text(&scene) + &derive_text(&lag),
                 Format::Json => json_string(derive_json(&lag))?,
                 Format::Latex => latex::write(&scene, |w| w.derive(&lag)),
             }
@@ -170,7 +170,7 @@ fn run_unbounded(
             match fmt {
                 Format::Text => {
                     let mut out = match &lag {
-                        Some((l, acc)) => solve_text(l, acc),
+                        Some((l, acc)) => text::bodies_text(&scene) + &solve_text(l, acc),
                         None => String::new(),
                     };
                     if !blocks.is_empty() {

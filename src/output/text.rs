@@ -40,6 +40,45 @@ pub fn derive_text(l: &Lagrange) -> String {
     out
 }
 
+/// The energies the `body`, `particle` and `gravity` statements
+/// contribute, each with the statement that gives it (empty for a scene
+/// without them).
+pub fn bodies_text(scene: &Scene) -> String {
+    if scene.bodies.is_empty() {
+        return String::new();
+    }
+    let line =
+        |span: crate::diag::Span| crate::diag::Diagnostic::line_col(&scene.source, span.start).0;
+    let mut out = String::from(
+        "Energies of the bodies  E = Σ E_body, V = Σ V_body + …
+",
+    );
+    for b in &scene.bodies {
+        out.push_str(&format!(
+            "  {} {} (line {})
+",
+            b.kind.keyword(),
+            b.name,
+            line(b.span)
+        ));
+        let energies =
+            std::iter::once((&b.kinetic, None)).chain(b.gravity.iter().map(|g| (g, scene.gravity)));
+        for (name, from) in energies {
+            let Some(value) = scene.definition(name) else {
+                continue;
+            };
+            let from = from.map_or(String::new(), |s| format!("  (gravity, line {})", line(s)));
+            out.push_str(&format!(
+                "    {} = {}{from}\n",
+                pretty_name(name, 0),
+                as_unicode(value)
+            ));
+        }
+    }
+    out.push('\n');
+    out
+}
+
 /// The text of `qdot solve`: the accelerations, after the equations.
 pub fn solve_text(l: &Lagrange, acc: &crate::mechanics::Accelerations) -> String {
     let mut out = derive_text(l);

@@ -91,9 +91,23 @@ impl<'s> Parser<'s> {
             let j = self.ws(after);
             match j.strip_prefix(',') {
                 Some(k) => rest = k,
-                None => {
+                None if matches!(j.as_bytes().first(), None | Some(b'\n' | b';')) => {
                     rest = after;
                     break;
+                }
+                None => {
+                    let len = ident_len(j);
+                    let hint = if len > 0 && PropertyKey::from_keyword(&j[..len]).is_some() {
+                        "separate the properties with commas: `mass m, at P`".to_string()
+                    } else {
+                        format!("a {} is written `{example}`", kind.keyword())
+                    };
+                    return self.fail(self.expected(
+                        j,
+                        &format!("`,` after the {}", p_key_noun(&properties)),
+                        &hint,
+                        None,
+                    ));
                 }
             }
         }
@@ -133,7 +147,12 @@ impl<'s> Parser<'s> {
         };
         let key_span = Span::new(self.pos(j), self.pos(j) + len);
         let rest = &j[len..];
-        match self.expr(rest) {
+        // the value ends where another operand would follow (`mass m at P`
+        // is a missing comma, said by the caller)
+        self.stop.set(true);
+        let value = self.expr(rest);
+        self.stop.set(false);
+        match value {
             Ok((rest, node)) => Ok((
                 rest,
                 BodyProperty {
@@ -150,6 +169,15 @@ impl<'s> Parser<'s> {
             )),
             Err(e) => Err(e),
         }
+    }
+}
+
+/// "mass" / "position": the last property parsed, for messages.
+fn p_key_noun(properties: &[BodyProperty]) -> &'static str {
+    match properties.last().map(|p| p.key) {
+        Some(PropertyKey::At) => "position",
+        Some(k) => k.keyword(),
+        None => "name",
     }
 }
 

@@ -240,7 +240,11 @@ impl<'s> Parser<'s> {
         let mut order: u32 = 0;
         let mut first_prime = None;
         loop {
-            if i.starts_with('[') {
+            // `2[a]` stays two operands side by side: a number has no components
+            let number = matches!(a.e.kind, ExprKind::Num(_) | ExprKind::Degrees(_))
+                && order == 0
+                && !start.starts_with('(');
+            if i.starts_with('[') && !number {
                 // the primes so far apply before the index: `P'[1]`
                 a = self.primed(start, a, order, first_prime.take(), i)?;
                 order = 0;

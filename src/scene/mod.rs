@@ -163,6 +163,22 @@ pub struct SolveSystem {
     pub span: Span,
 }
 
+/// A `body` or `particle` statement: its energies are the definitions
+/// `E_NAME` (kinetic) and, with `gravity`, `V_NAME` (potential).
+#[derive(Clone, Debug)]
+pub struct Body {
+    /// The body's name.
+    pub name: String,
+    /// `body` or `particle`.
+    pub kind: ast::BodyKind,
+    /// The whole statement.
+    pub span: Span,
+    /// The name of its kinetic energy among the definitions.
+    pub kinetic: String,
+    /// The name of gravity's potential on it, when the scene has gravity.
+    pub gravity: Option<String>,
+}
+
 /// A resolved scene (`Scene::default()` is the empty scene).
 ///
 /// Invariant (checked by the resolver): energies and the Lagrangian
@@ -189,6 +205,10 @@ pub struct Scene {
     pub torques: Vec<Torque>,
     /// The `solve` blocks, in source order.
     pub systems: Vec<SolveSystem>,
+    /// The `body` and `particle` statements, in source order.
+    pub bodies: Vec<Body>,
+    /// The `gravity` statement, if any.
+    pub gravity: Option<Span>,
     /// Things worth a look that do not stop the computation.
     pub warnings: Vec<Diagnostic>,
     /// The `latex NAME = "…"` statements, in source order (a later one for

@@ -40,7 +40,17 @@ pub fn sexpr(e: &Expr) -> String {
         ExprKind::Prime(x, n) => format!("(' {} {n})", sexpr(x)),
         ExprKind::Vector(cs) => format!("[{}]", cs.iter().map(sexpr).collect::<Vec<_>>().join(" ")),
         ExprKind::Assign(a, b) => format!("(= {} {})", sexpr(a), sexpr(b)),
+        ExprKind::Index(a, b) => format!("(index {} {})", sexpr(a), sexpr(b)),
     }
+}
+
+/// The properties of a body statement, as `(mass m) (at P)`.
+fn properties(b: &qdot::parse::ast::BodyStmt, show: impl Fn(&Expr) -> String, sep: &str) -> String {
+    b.properties
+        .iter()
+        .map(|p| format!("{} {}", p.key.keyword(), show(&p.value)))
+        .collect::<Vec<_>>()
+        .join(sep)
 }
 
 fn decls(ds: &[qdot::parse::ast::Decl]) -> String {
@@ -69,6 +79,14 @@ pub fn stmt_sexpr(s: &Stmt) -> String {
         Stmt::Torque { moment, angle, .. } => {
             format!("(torque {} {})", sexpr(moment), sexpr(angle))
         }
+        Stmt::Frame { name, value, .. } => format!("(frame {} {})", name.name, sexpr(value)),
+        Stmt::Gravity { value, .. } => format!("(gravity {})", sexpr(value)),
+        Stmt::Body(b) => format!(
+            "({} {} ({}))",
+            b.kind.keyword(),
+            b.name.name,
+            properties(b, sexpr, ") (")
+        ),
         Stmt::Solve(b) => {
             let mut s = format!(
                 "(solve ({})",
@@ -233,6 +251,13 @@ pub fn print_full(e: &Expr) -> String {
             cs.iter().map(print_full).collect::<Vec<_>>().join(", ")
         ),
         ExprKind::Assign(a, b) => format!("{} = {}", print_full(a), print_full(b)),
+        ExprKind::Index(a, b) => {
+            let inner = match &a.kind {
+                ExprKind::Name(_) | ExprKind::Call(..) | ExprKind::Vector(_) => print_full(a),
+                _ => format!("({})", print_full(a)),
+            };
+            format!("{inner}[{}]", print_full(b))
+        }
     }
 }
 
@@ -264,6 +289,14 @@ pub fn print_stmt(s: &Stmt) -> String {
         Stmt::Torque { moment, angle, .. } => {
             format!("torque {} on {}", print_full(moment), print_full(angle))
         }
+        Stmt::Frame { name, value, .. } => format!("frame {} = {}", name.name, print_full(value)),
+        Stmt::Gravity { value, .. } => format!("gravity {}", print_full(value)),
+        Stmt::Body(b) => format!(
+            "{} {}: {}",
+            b.kind.keyword(),
+            b.name.name,
+            properties(b, print_full, ", ")
+        ),
         Stmt::Solve(b) => {
             let names = b
                 .unknowns
@@ -297,4 +330,39 @@ pub fn contract_keys<'a>(
         assert_eq!(v["dimensions"], qdot::output::dimensions_json(&report));
     }
     want
+}
+
+/// The `.qd` files of a directory of cases, sorted.
+pub fn cases(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut v: Vec<std::path::PathBuf> = std::fs::read_dir(dir)
+        .expect("the cases' directory")
+        .map(|e| e.expect("an entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "qd"))
+        .collect();
+    v.sort();
+    v
+}
+
+/// Compare `actual` with the blessed `.txt` beside `case`, or write it
+/// under `QDOT_BLESS=1`; a difference is printed and pushed to `failures`.
+pub fn blessed(case: &std::path::Path, actual: &str, failures: &mut Vec<String>) {
+    let txt = case.with_extension("txt");
+    if std::env::var_os("QDOT_BLESS").is_some() {
+        if std::fs::read_to_string(&txt).ok().as_deref() != Some(actual) {
+            std::fs::write(&txt, actual).expect("write the blessed output");
+        }
+        return;
+    }
+    match std::fs::read_to_string(&txt) {
+        Ok(expected) if expected == actual => {}
+        Ok(expected) => {
+            eprintln!(
+                "{}: differs (< blessed, > now):\n{}",
+                case.display(),
+                pretty_assertions::StrComparison::new(&expected, &actual)
+            );
+            failures.push(format!("{}: differs from its .txt", case.display()));
+        }
+        Err(_) => failures.push(format!("{}: no blessed .txt", case.display())),
+    }
 }

@@ -106,7 +106,7 @@ impl SyntaxEvaluator<'_> {
             "rot" => self.rot(args),
             "axis" => {
                 let r = self.rotation(&args[0], "axis")?;
-                let k = self.component_number(&args[1], 3, "axis")?;
+                let k = self.component_number(&args[1], 3, "a frame has the axes")?;
                 Ok(Value::Vector(r.axis(k).to_vec()))
             }
             "express" => {
@@ -136,6 +136,15 @@ impl SyntaxEvaluator<'_> {
     fn rot(&mut self, args: &[ast::Expr]) -> Result<Value, Diagnostic> {
         let axis = match axis_name(args) {
             Some(k) => Rotation::unit(k),
+            None if matches!(&args[0].kind, ExprKind::Name(n) if !self.names.contains_key(n.as_str())) => {
+                return Err(Diagnostic::error(
+                    args[0].span,
+                    "the axis of a rotation is x, y, z or a unit vector [ux, uy, uz]",
+                )
+                .with_hint(
+                    "rot(z, phi) turns by phi about z; rot([0, 3/5, 4/5], a) about a unit vector",
+                ))
+            }
             None => {
                 let v = self.value(&args[0])?;
                 match (&v, space(v.components())) {
@@ -206,7 +215,7 @@ impl SyntaxEvaluator<'_> {
             .ok_or_else(|| {
                 Diagnostic::error(
                     e.span,
-                    format!("{what} needs a component number from 1 to {n} here"),
+                    format!("{what} 1 to {n}, and this is not one of them"),
                 )
                 .with_hint(
                     "components are counted from 1: P[1] is the first (x), P[3] the third (z)",
@@ -233,7 +242,7 @@ impl SyntaxEvaluator<'_> {
                 .with_hint("P[k] is the k-th component of a vector P, counted from 1"))
             }
         };
-        let i = self.component_number(k, c.len(), "a vector's component")?;
+        let i = self.component_number(k, c.len(), "this vector has the components")?;
         Ok(Value::Scalar(c[i].clone()))
     }
 }

@@ -24,7 +24,7 @@ pub(crate) fn gravity_name(name: &str) -> String {
 /// A body or particle, resolved.
 #[derive(Clone, Debug)]
 pub(super) struct ResolvedBody {
-    name: String,
+    pub(super) info: crate::scene::Body,
     mass: Expr,
     /// The centre of mass: 2 or 3 components.
     position: Vec<Expr>,
@@ -208,7 +208,13 @@ impl Resolver<'_> {
             role: Some(Role::Kinetic),
         });
         self.bodies.push(ResolvedBody {
-            name: b.name.name.clone(),
+            info: crate::scene::Body {
+                name: b.name.name.clone(),
+                kind: b.kind,
+                span: b.span,
+                kinetic: kinetic_name(&b.name.name),
+                gravity: None,
+            },
             mass: m,
             position,
         });
@@ -335,9 +341,8 @@ impl Resolver<'_> {
                 }
                 for (i, j) in [(0, 1), (0, 2), (1, 2)] {
                     if !m[i][j].equals(&m[j][i]) {
-                        let ExprKind::Vector(r) = &rows[j].kind else { continue };
                         let ExprKind::Vector(ri) = &rows[i].kind else { continue };
-                        let at = ri[j].span.to(r[i].span);
+                        let at = ri[j].span;
                         return Err(Diagnostic::error(
                             at,
                             format!(
@@ -357,7 +362,11 @@ impl Resolver<'_> {
             _ => match self.ev.value(e)? {
                 Value::Vector(c) if c.len() == 3 => {
                     for (k, c) in c.into_iter().enumerate() {
-                        self.moment(&c, e.span)?;
+                        let at = match &e.kind {
+                            ExprKind::Vector(items) => items[k].span,
+                            _ => e.span,
+                        };
+                        self.moment(&c, at)?;
                         m[k][k] = c;
                     }
                 }
@@ -385,6 +394,7 @@ impl Resolver<'_> {
                     .with_hint("one `gravity` statement acts on every body and particle"));
             }
             found = Some(*span);
+            self.gravity = Some(*span);
             let g = match self.ev.value(value)? {
                 Value::Vector(c) => c,
                 v => {
@@ -404,14 +414,14 @@ impl Resolver<'_> {
                         .with_hint("declare them with `body` or `particle`; a hand-written potential is `potential V = m*g*y`"),
                 );
             }
-            for b in &self.bodies {
+            for b in &mut self.bodies {
                 if b.position.len() != g.len() {
                     return Err(Diagnostic::error(
                         value.span,
                         format!(
                             "gravity has {} components and the position of `{}` {}",
                             g.len(),
-                            b.name,
+                            b.info.name,
                             b.position.len()
                         ),
                     )
@@ -421,8 +431,9 @@ impl Resolver<'_> {
                     .iter()
                     .zip(&b.position)
                     .fold(Expr::zero(), |s, (gc, p)| s.add(&gc.mul(p)));
+                b.info.gravity = Some(gravity_name(&b.info.name));
                 self.body_energies.push(Definition {
-                    name: gravity_name(&b.name),
+                    name: gravity_name(&b.info.name),
                     value: Value::Scalar(b.mass.mul(&work).neg()),
                     span: *span,
                     role: Some(Role::Potential),

@@ -195,6 +195,8 @@ struct Resolver<'d> {
     /// Their kinetic energies and gravity's potential on each (`E_top`,
     /// `V_top`), definitions with a role.
     body_energies: Vec<Definition>,
+    /// The `gravity` statement.
+    gravity: Option<Span>,
 }
 
 pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, Diagnostic> {
@@ -220,6 +222,7 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
         warnings: Vec::new(),
         bodies: Vec::new(),
         body_energies: Vec::new(),
+        gravity: None,
     };
     let mut definitions = Vec::with_capacity(decl.definitions.len());
     for (i, &(name, body, role)) in decl.definitions.iter().enumerate() {
@@ -260,8 +263,11 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
         torques,
         systems,
         mut warnings,
+        bodies,
+        gravity,
         ..
     } = r;
+    let bodies = bodies.into_iter().map(|b| b.info).collect();
     warnings.extend(ev.warnings);
     let Declarations {
         coordinates,
@@ -302,6 +308,8 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
         loads,
         torques,
         systems,
+        bodies,
+        gravity,
         warnings,
         latex_names,
     })
