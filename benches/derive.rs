@@ -11,6 +11,9 @@
 //!   forcing) of the n-link pendulum chain, n = 2…12 — measured side by side
 //!   with ../shared/anchors/symengine_npendulum.py (`scripts/anchors.sh`).
 //! * `npendulum/solve/<n>`: the exact accelerations in lowest terms.
+//! * `frames/heavy_top`: the heavy top end to end (target: under 1 ms);
+//!   `frames/chain3d/<n>`: the equations of n rods in space, beside SymPy's
+//!   LagrangesMethod (`scripts/anchor_frames.py`).
 
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
@@ -116,5 +119,38 @@ fn npendulum(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, seeds, equilibria, modes, npendulum);
+/// Frames and rigid bodies: the heavy top end to end (parse → equations →
+/// accelerations), and the equations of the chain of n rods in space
+/// (`qdot::gallery::rod_chain_3d`) beside SymPy's LagrangesMethod on the
+/// same system (`scripts/anchor_frames.py`, run by `scripts/anchors.sh`).
+fn frames(c: &mut Criterion) {
+    let mut g = c.benchmark_group("frames");
+    let top = std::fs::read_to_string(format!(
+        "{}/examples/heavy_top.qd",
+        concat!(env!("CARGO_MANIFEST_DIR"), "/..")
+    ))
+    .expect("example exists");
+    g.bench_function("heavy_top", |b| {
+        b.iter(|| {
+            let s = Scene::parse(black_box(&top)).expect("parses");
+            let l = s.lagrange().expect("derives");
+            black_box(l.accelerations().expect("solves"))
+        })
+    });
+    g.finish();
+    let mut g = c.benchmark_group("frames/chain3d");
+    g.sample_size(10);
+    for n in [2usize, 3, 5, 10] {
+        let src = qdot::gallery::rod_chain_3d(n);
+        g.bench_with_input(BenchmarkId::from_parameter(n), &src, |b, src| {
+            b.iter(|| {
+                let s = Scene::parse(black_box(src)).expect("parses");
+                black_box(s.lagrange().expect("derives"))
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, seeds, equilibria, modes, npendulum, frames);
 criterion_main!(benches);

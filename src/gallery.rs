@@ -44,3 +44,31 @@ pub fn pendulum_chain(n: usize) -> String {
     }
     s
 }
+
+/// A chain of `n` rods in space, each hinged to the end of the one above
+/// about an axis turned with it (x, y, x, y, …): n rigid bodies with
+/// principal moments [A, A, C], the benchmark of frames and bodies
+/// (`scripts/anchor_frames.py` builds the same system in SymPy).
+pub fn rod_chain_3d(n: usize) -> String {
+    let mut s = format!("# {n} rods in space, hinged about alternating x and y axes\n");
+    let qs: Vec<String> = (1..=n).map(|i| format!("q{i}")).collect();
+    s.push_str(&format!("coordinates {}\n", qs.join(", ")));
+    s.push_str("parameters m, A, C, l, g\n");
+    for i in 1..=n {
+        let axis = if i % 2 == 1 { "x" } else { "y" };
+        if i == 1 {
+            s.push_str(&format!("frame B1 = rot({axis}, q1)\n"));
+            s.push_str("body b1: mass m, inertia [A, A, C], frame B1, at -l/2*axis(B1, 3)\n");
+            s.push_str("P1 = -l*axis(B1, 3)\n");
+        } else {
+            let p = i - 1;
+            s.push_str(&format!("frame B{i} = B{p} * rot({axis}, q{i})\n"));
+            s.push_str(&format!(
+                "body b{i}: mass m, inertia [A, A, C], frame B{i}, at P{p} - l/2*axis(B{i}, 3)\n"
+            ));
+            s.push_str(&format!("P{i} = P{p} - l*axis(B{i}, 3)\n"));
+        }
+    }
+    s.push_str("gravity [0, 0, -g]\n");
+    s
+}
