@@ -155,6 +155,10 @@ enum Command {
         /// (located on the dense output of dopri5, dop853, vern7 or rk4).
         #[arg(long = "stop-when")]
         stop_when: Option<String>,
+        /// The definition of a given function of time (`functions s` in the
+        /// scene), once per function: --function "s=1/10*sin(2*t)"
+        #[arg(long = "function")]
+        function: Vec<String>,
     },
     /// The dimension of every name, declared or found, and of the results;
     /// an error at the first term of the wrong dimension.
@@ -202,6 +206,7 @@ fn main() -> ExitCode {
             stats,
             plot,
             stop_when,
+            function,
         } => {
             return simulate(
                 file,
@@ -215,6 +220,7 @@ fn main() -> ExitCode {
                     points: *points,
                     max_steps: *max_steps,
                     stop_when: stop_when.clone(),
+                    functions: function.clone(),
                     progress: std::io::IsTerminal::is_terminal(&std::io::stderr()),
                     ..Default::default()
                 },

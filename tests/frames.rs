@@ -207,3 +207,63 @@ fn body_energies_are_named_definitions() {
         "{tex}"
     );
 }
+
+const SUPPORT: &str = "coordinates theta
+parameters m, l, g
+functions s
+particle bob: mass m, at [s(t) + l*sin(theta), -l*cos(theta)]
+gravity [0, -g]
+";
+
+/// A given function of time: its derivatives stay symbolic in the
+/// equations, and `simulate` runs with its definition exactly as with the
+/// definition written into the scene.
+#[test]
+fn given_functions_of_time() {
+    let s = scene(SUPPORT);
+    let acc = s.lagrange().unwrap().accelerations().unwrap();
+    let want = s.expr("-s''*cos(theta)/l - g/l*sin(theta)").unwrap();
+    assert!(acc.iter().next().unwrap().1.equals(&want));
+    // `s` and `s(t)` are one thing; s(2*t) is refused
+    assert!(s.expr("s(t) - s").unwrap().is_zero());
+    let err = Scene::parse(&SUPPORT.replace("s(t)", "s(2*t)")).unwrap_err();
+    assert!(
+        err.message.contains("given function of time"),
+        "{}",
+        err.message
+    );
+    let written = SUPPORT
+        .replace("functions s\n", "")
+        .replace("s(t)", "(1/10*sin(2*t))");
+    let req = |functions: Vec<String>| qdot::simulate::run::Request {
+        set: [("m", 1.0), ("l", 1.0), ("g", 9.81)]
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), v))
+            .collect(),
+        init: [("theta", 0.1), ("theta'", 0.0)]
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), v))
+            .collect(),
+        t_end: 2.0,
+        functions,
+        ..Default::default()
+    };
+    let a = qdot::simulate::run::simulate(SUPPORT, &req(vec!["s=1/10*sin(2*t)".into()])).unwrap();
+    let b = qdot::simulate::run::simulate(&written, &req(vec![])).unwrap();
+    let (ra, rb) = (a.rows.last().unwrap(), b.rows.last().unwrap());
+    for (x, y) in ra.iter().zip(rb) {
+        assert!((x - y).abs() <= 1e-12 * (1.0 + y.abs()), "{ra:?} vs {rb:?}");
+    }
+    let missing = qdot::simulate::run::simulate(SUPPORT, &req(vec![])).unwrap_err();
+    assert!(
+        missing.message.contains("needs a definition"),
+        "{}",
+        missing.message
+    );
+    let moving = qdot::simulate::run::simulate(SUPPORT, &req(vec!["s=theta".into()])).unwrap_err();
+    assert!(
+        moving.message.contains("t and the parameters"),
+        "{}",
+        moving.message
+    );
+}

@@ -86,7 +86,7 @@ fn check_scene(src: &str) -> Result<Option<Vec<Stmt>>, TestCaseError> {
                             check_expr_spans(src, &p.value)?;
                         }
                     }
-                    Stmt::Coordinates(ds, _) | Stmt::Parameters(ds, _) => {
+                    Stmt::Coordinates(ds, _) | Stmt::Parameters(ds, _) | Stmt::Functions(ds, _) => {
                         prop_assert!(!ds.is_empty());
                     }
                     Stmt::Latex { name, tex, span } => {

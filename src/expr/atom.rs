@@ -49,6 +49,9 @@ pub enum Atom {
     Unknown(Arc<str>),
     /// A generalized coordinate's `order`-th time derivative.
     Coord(Arc<str>, u32),
+    /// A given function of time's `order`-th derivative (`functions f`:
+    /// a support's motion, a control input): prescribed, not a coordinate.
+    Given(Arc<str>, u32),
     /// Time `t`.
     Time,
     /// π.
@@ -179,7 +182,7 @@ impl Table {
                 (depth, 1 + self.written_size(u), highest, moving)
             }
             (Atom::Coord(name, k), None) => (0, 1, Some((name.clone(), *k)), true),
-            (Atom::Time, None) => (0, 1, None, true),
+            (Atom::Time | Atom::Given(..), None) => (0, 1, None, true),
             (Atom::Shown(f), None) => (
                 0,
                 1 + self.written_size(&f.a) + self.written_size(&f.b),
@@ -364,6 +367,9 @@ pub fn unknown(name: &str) -> Var {
 }
 pub fn coord(name: &str, order: u32) -> Var {
     intern(Atom::Coord(Arc::from(name), order))
+}
+pub fn given(name: &str, order: u32) -> Var {
+    intern(Atom::Given(Arc::from(name), order))
 }
 pub fn time() -> Var {
     intern(Atom::Time)

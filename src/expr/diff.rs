@@ -58,8 +58,9 @@ fn compute_atom_derivative(a: Var, wrt: Wrt) -> Option<Expr> {
     };
     match (&at, wrt) {
         (Atom::Param(_) | Atom::Unknown(_) | Atom::Pi | Atom::Root(_) | Atom::Shown(..), _) => None,
-        (Atom::Coord(..) | Atom::Time, Wrt::Var(_)) => None,
+        (Atom::Coord(..) | Atom::Given(..) | Atom::Time, Wrt::Var(_)) => None,
         (Atom::Coord(name, k), Wrt::Time) => Some(Expr::var(atom::coord(name, k + 1))),
+        (Atom::Given(name, k), Wrt::Time) => Some(Expr::var(atom::given(name, k + 1))),
         (Atom::Time, Wrt::Time) => Some(Expr::one()),
         (Atom::Sin(u), _) => {
             let du = inner_d(u)?;

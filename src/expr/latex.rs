@@ -603,7 +603,7 @@ impl Tex<'_> {
             Atom::Param(n) | Atom::Unknown(n) => {
                 Factor::new(format!("{}{sup}", self.names.symbol(n, 0)), Kind::Plain)
             }
-            Atom::Coord(n, k) => {
+            Atom::Coord(n, k) | Atom::Given(n, k) => {
                 Factor::new(format!("{}{sup}", self.names.symbol(n, *k)), Kind::Plain)
             }
         }
@@ -625,7 +625,12 @@ impl Tex<'_> {
         let simple = u.as_var().is_some_and(|v| {
             matches!(
                 atom::atom(v),
-                Atom::Param(_) | Atom::Unknown(_) | Atom::Coord(..) | Atom::Time | Atom::Pi
+                Atom::Param(_)
+                    | Atom::Unknown(_)
+                    | Atom::Coord(..)
+                    | Atom::Given(..)
+                    | Atom::Time
+                    | Atom::Pi
             )
         });
         if simple {

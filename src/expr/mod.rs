@@ -330,6 +330,10 @@ impl Expr {
     pub fn coord(name: &str, order: u32) -> Expr {
         Expr::var(atom::coord(name, order))
     }
+    /// The `order`-th derivative of the given function of time `name`.
+    pub fn given(name: &str, order: u32) -> Expr {
+        Expr::var(atom::given(name, order))
+    }
     /// The time t.
     pub fn time() -> Expr {
         Expr::var(atom::time())

@@ -151,7 +151,7 @@ pub(crate) fn collect(num: &Poly, den: &Poly) -> Option<Vec<(Mono, Expr)>> {
 /// Coordinates, their derivatives, time and anything built on them.
 fn is_dynamic(v: Var) -> bool {
     match atom::atom(v) {
-        Atom::Coord(..) | Atom::Time => true,
+        Atom::Coord(..) | Atom::Given(..) | Atom::Time => true,
         Atom::Param(_) | Atom::Unknown(_) | Atom::Pi | Atom::Root(_) => false,
         _ => Expr::var(v).is_time_dependent(),
     }
@@ -503,6 +503,7 @@ pub(crate) fn factor_rank(v: Var) -> (u8, u32, String, String) {
         | Atom::Acos(_)
         | Atom::Shown(..) => (4, 0, name.0, name.1),
         Atom::Coord(_, k) => (5, k, name.0, name.1),
+        Atom::Given(_, k) => (3, k, name.0, name.1),
     }
 }
 
@@ -593,7 +594,7 @@ pub fn atom_input(a: &Atom) -> String {
     match a {
         Atom::Shown(f) => folded_text(f, Style::Input),
         Atom::Param(n) | Atom::Unknown(n) => n.to_string(),
-        Atom::Coord(n, k) => format!("{n}{}", "'".repeat(*k as usize)),
+        Atom::Coord(n, k) | Atom::Given(n, k) => format!("{n}{}", "'".repeat(*k as usize)),
         Atom::Time => "t".into(),
         Atom::Pi => "pi".into(),
         Atom::Root(n) => format!("sqrt({n})"),
@@ -611,7 +612,7 @@ fn atom_unicode(a: &Atom) -> String {
     match a {
         Atom::Shown(f) => folded_text(f, Style::Unicode),
         Atom::Param(n) | Atom::Unknown(n) => pretty_name(n, 0),
-        Atom::Coord(n, k) => pretty_name(n, *k),
+        Atom::Coord(n, k) | Atom::Given(n, k) => pretty_name(n, *k),
         Atom::Time => "t".into(),
         Atom::Pi => "π".into(),
         Atom::Root(n) => format!("√{n}"),

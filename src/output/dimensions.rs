@@ -30,6 +30,7 @@ fn kind_title(kind: DimensionedName) -> &'static str {
     match kind {
         DimensionedName::Coordinate => "coordinates",
         DimensionedName::Parameter => "parameters",
+        DimensionedName::Function => "functions",
         DimensionedName::Unknown => "solve unknowns",
         DimensionedName::Definition => "definitions",
     }
@@ -72,6 +73,7 @@ pub fn check_text(scene: &Scene, report: &DimensionReport) -> String {
     let kinds = [
         DimensionedName::Coordinate,
         DimensionedName::Parameter,
+        DimensionedName::Function,
         DimensionedName::Unknown,
         DimensionedName::Definition,
     ];

@@ -85,6 +85,9 @@ pub enum Stmt {
     Coordinates(Vec<Decl>, Span),
     /// `parameters G, g, r`
     Parameters(Vec<Decl>, Span),
+    /// `functions s, u` — given functions of time (a support's motion, a
+    /// control input): written `s` or `s(t)`, their derivatives `s'`, `s''`.
+    Functions(Vec<Decl>, Span),
     /// `m = G/g`
     Def {
         /// The name being defined.
@@ -276,7 +279,7 @@ impl Stmt {
     /// The source range of the whole statement.
     pub fn span(&self) -> Span {
         match self {
-            Stmt::Coordinates(_, s) | Stmt::Parameters(_, s) => *s,
+            Stmt::Coordinates(_, s) | Stmt::Parameters(_, s) | Stmt::Functions(_, s) => *s,
             Stmt::Def { span, .. }
             | Stmt::Role { span, .. }
             | Stmt::Force { span, .. }

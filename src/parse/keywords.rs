@@ -46,6 +46,7 @@ pub const STATEMENT: &[&str] = &[
     "body",
     "particle",
     "gravity",
+    "functions",
 ];
 
 /// The stop words inside `load … at …` and `torque … on …`.

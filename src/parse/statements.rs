@@ -160,7 +160,7 @@ impl<'s> Parser<'s> {
         let next_is_eq = next.starts_with('=');
         let at_end = matches!(next.as_bytes().first(), None | Some(b'\n' | b';'));
         match word {
-            "coordinates" | "parameters" if !next_is_eq => {
+            "coordinates" | "parameters" | "functions" if !next_is_eq => {
                 if next_is_ident {
                     self.declaration(i)
                 } else if at_end {
@@ -255,7 +255,7 @@ impl<'s> Parser<'s> {
         }
     }
 
-    /// `declaration ::= ( "coordinates" | "parameters" ) ws decl ( ws "," ws decl )*`
+    /// `declaration ::= ( "coordinates" | "parameters" | "functions" ) ws decl ( ws "," ws decl )*`
     pub(super) fn declaration(&self, i: &'s str) -> RuleResult<'s, Stmt> {
         let i = self.ws(i);
         let start = self.pos(i);
@@ -263,6 +263,8 @@ impl<'s> Parser<'s> {
             (rest, "coordinates")
         } else if let Some(rest) = i.strip_prefix("parameters") {
             (rest, "parameters")
+        } else if let Some(rest) = i.strip_prefix("functions") {
+            (rest, "functions")
         } else {
             return self.nothing(i);
         };
@@ -316,10 +318,10 @@ impl<'s> Parser<'s> {
             .map_or(last.name.span, |d| d.span)
             .end;
         let span = Span::new(start, end);
-        let stmt = if kw == "coordinates" {
-            Stmt::Coordinates(decls, span)
-        } else {
-            Stmt::Parameters(decls, span)
+        let stmt = match kw {
+            "coordinates" => Stmt::Coordinates(decls, span),
+            "functions" => Stmt::Functions(decls, span),
+            _ => Stmt::Parameters(decls, span),
         };
         Ok((i, stmt))
     }

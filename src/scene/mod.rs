@@ -32,6 +32,18 @@ pub struct Coordinate {
     pub dimension: Option<String>,
 }
 
+/// A given function of time (`functions s`): prescribed, not a coordinate;
+/// its derivatives stay symbolic, and `simulate` needs its definition.
+#[derive(Clone, Debug)]
+pub struct GivenFunction {
+    /// The name as declared.
+    pub name: String,
+    /// Where it is declared.
+    pub span: Span,
+    /// The dimension annotation as written, if any.
+    pub dimension: Option<String>,
+}
+
 /// A constant symbol.
 #[derive(Clone, Debug)]
 pub struct Parameter {
@@ -195,6 +207,8 @@ pub struct Scene {
     pub coordinates: Vec<Coordinate>,
     /// The parameters (constant symbols), in declaration order.
     pub parameters: Vec<Parameter>,
+    /// The given functions of time, in declaration order.
+    pub functions: Vec<GivenFunction>,
     /// Definitions (including role statements) in source order.
     pub definitions: Vec<Definition>,
     /// The `force q: Q` statements, in source order.
@@ -287,6 +301,8 @@ pub(crate) enum Binding {
     Def(usize),
     /// A `body` or `particle` name: not a value.
     Body,
+    /// A given function of time.
+    Given,
     Time,
     Pi,
 }
@@ -341,6 +357,9 @@ impl Scene {
         }
         for p in &self.parameters {
             names.insert(p.name.clone(), (Binding::Param, p.span));
+        }
+        for f in &self.functions {
+            names.insert(f.name.clone(), (Binding::Given, f.span));
         }
         for (i, d) in self.definitions.iter().enumerate() {
             names.insert(d.name.clone(), (Binding::Def(i), d.span));

@@ -16,6 +16,7 @@
 
 pub mod elliptic;
 pub mod explicit;
+pub mod given;
 pub mod implicit;
 #[cfg(feature = "cli")]
 pub mod plot;

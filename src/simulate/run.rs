@@ -49,6 +49,9 @@ pub struct Request {
     /// `--stop-when`: `lhs = rhs` (or one expression, = 0) in the scene's
     /// names; the run ends where it first changes sign.
     pub stop_when: Option<String>,
+    /// `--function s=EXPR`: the definition of each given function of time
+    /// (an expression in t and the parameters), as written.
+    pub functions: Vec<String>,
     /// Show a progress bar on standard error when the integration lasts
     /// more than half a second (`simulate::progress`, with the `cli`
     /// feature); the command line sets it when standard error is a
@@ -69,6 +72,7 @@ impl Default for Request {
             points: 101,
             max_steps: crate::limits::DEFAULT_MAX_STEPS,
             stop_when: None,
+            functions: Vec::new(),
             progress: false,
         }
     }
@@ -264,7 +268,7 @@ pub use crate::scene::given::numeric_initial_values as parse_init;
 /// Simulate the scene `src` as `req` asks.
 pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
     let scene = Scene::parse(src)?;
-    let lag = scene.lagrange()?;
+    let lag = super::given::defined(&scene, scene.lagrange()?, &req.functions)?;
     let names: Vec<String> = lag.coordinates.clone();
     let params = parameter_values(&scene, req)?;
     let y0 = initial_values(&names, req)?;
@@ -421,7 +425,8 @@ pub fn conserved_quantity(
         .any(|r| scene.has_role(r))
         || !scene.forces.is_empty()
         || !scene.loads.is_empty()
-        || !scene.torques.is_empty();
+        || !scene.torques.is_empty()
+        || !scene.functions.is_empty();
     if non_conservative {
         return Ok(None);
     }

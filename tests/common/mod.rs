@@ -68,6 +68,7 @@ pub fn stmt_sexpr(s: &Stmt) -> String {
         Stmt::Latex { name, tex, .. } => format!("(latex {} {tex:?})", name.name),
         Stmt::Coordinates(ds, _) => format!("(coordinates {})", decls(ds)),
         Stmt::Parameters(ds, _) => format!("(parameters {})", decls(ds)),
+        Stmt::Functions(ds, _) => format!("(functions {})", decls(ds)),
         Stmt::Def { name, value, .. } => format!("(def {} {})", name.name, sexpr(value)),
         Stmt::Role {
             role, name, value, ..
@@ -276,6 +277,7 @@ pub fn print_stmt(s: &Stmt) -> String {
         Stmt::Latex { name, tex, .. } => format!("latex {} = \"{tex}\"", name.name),
         Stmt::Coordinates(d, _) => format!("coordinates {}", ds(d)),
         Stmt::Parameters(d, _) => format!("parameters {}", ds(d)),
+        Stmt::Functions(d, _) => format!("functions {}", ds(d)),
         Stmt::Def { name, value, .. } => format!("{} = {}", name.name, print_full(value)),
         Stmt::Role {
             role, name, value, ..

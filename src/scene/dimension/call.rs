@@ -74,8 +74,12 @@ pub(super) fn call(w: &mut Walker, f: &Ident, args: &[Expr]) -> Checked<DimValue
             }
             springs(w, args)
         }
+        // a given function `s(t)` has its declared or found dimension;
         // unknown functions are reported when the scene is resolved
-        _ => Ok(DimValue::Scalar(None)),
+        _ => Ok(match w.names.get(name) {
+            Some(super::walk::NameDim::Fixed(_)) => w.name(name),
+            _ => DimValue::Scalar(None),
+        }),
     }
 }
 

@@ -39,6 +39,8 @@ pub enum DimensionedName {
     Coordinate,
     /// A parameter.
     Parameter,
+    /// A given function of time.
+    Function,
     /// A definition (role statements included).
     Definition,
     /// A `solve` unknown.
@@ -115,7 +117,7 @@ impl DimensionReport {
 /// Whether any declaration carries a dimension annotation.
 pub fn annotated(stmts: &[Stmt]) -> bool {
     stmts.iter().any(|s| match s {
-        Stmt::Coordinates(ds, _) | Stmt::Parameters(ds, _) => {
+        Stmt::Coordinates(ds, _) | Stmt::Parameters(ds, _) | Stmt::Functions(ds, _) => {
             ds.iter().any(|d| d.dimension.is_some())
         }
         _ => false,
@@ -207,13 +209,15 @@ fn walk_statements<'a>(
     w.names.reserve(stmts.len() + 8);
     for st in stmts {
         match st {
-            Stmt::Coordinates(ds, _) | Stmt::Parameters(ds, _) => {
-                let kind = if matches!(st, Stmt::Coordinates(..)) {
-                    w.coordinates
-                        .extend(ds.iter().map(|d| d.name.name.as_str()));
-                    DimensionedName::Coordinate
-                } else {
-                    DimensionedName::Parameter
+            Stmt::Coordinates(ds, _) | Stmt::Parameters(ds, _) | Stmt::Functions(ds, _) => {
+                let kind = match st {
+                    Stmt::Coordinates(..) => {
+                        w.coordinates
+                            .extend(ds.iter().map(|d| d.name.name.as_str()));
+                        DimensionedName::Coordinate
+                    }
+                    Stmt::Functions(..) => DimensionedName::Function,
+                    _ => DimensionedName::Parameter,
                 };
                 for d in ds {
                     let n = d.name.name.as_str();

@@ -466,6 +466,11 @@ impl<'a> SyntaxEvaluator<'a> {
                 self.atoms.insert(key.as_str(), e.clone());
                 Ok(Value::Scalar(e))
             }
+            Some((key, (Binding::Given, _))) => {
+                let e = Expr::given(n, 0);
+                self.atoms.insert(key.as_str(), e.clone());
+                Ok(Value::Scalar(e))
+            }
             Some((_, (Binding::Body, _))) => Err(Diagnostic::error(
                 span,
                 format!("`{n}` is a body, not a value"),
@@ -604,6 +609,19 @@ impl<'a> SyntaxEvaluator<'a> {
         args: &[ast::Expr],
         span: Span,
     ) -> Result<Value, Diagnostic> {
+        if let Some((Binding::Given, _)) = self.names.get(&f.name) {
+            // `s(t)`: the given function itself, as `s`
+            return match args {
+                [a] if matches!(&a.kind, ExprKind::Name(n) if n == "t") => {
+                    Ok(Value::Scalar(Expr::given(&f.name, 0)))
+                }
+                _ => Err(Diagnostic::error(
+                    span,
+                    format!("`{}` is a given function of time: write `{0}(t)` or `{0}`", f.name),
+                )
+                .with_hint(format!("its derivatives are `{0}'`, `{0}''`; a function of anything but t is not supported", f.name))),
+            };
+        }
         let Some(builtin) = functions::builtin(&f.name) else {
             let list: Vec<&str> = functions::names().collect();
             let hint = if self.names.contains_key(&f.name) {

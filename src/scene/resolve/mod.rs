@@ -5,8 +5,8 @@
 
 use super::eval::SyntaxEvaluator;
 use super::{
-    first_unknown, latex_names, Binding, Coordinate, Definition, Force, Load, Parameter, Scene,
-    SolveSystem, SystemEquation, Torque, Value,
+    first_unknown, latex_names, Binding, Coordinate, Definition, Force, GivenFunction, Load,
+    Parameter, Scene, SolveSystem, SystemEquation, Torque, Value,
 };
 use crate::diag::Diagnostic;
 use crate::expr::Expr;
@@ -25,6 +25,7 @@ struct Declarations<'a> {
     names: FxHashMap<String, (Binding, Span)>,
     coordinates: Vec<Coordinate>,
     parameters: Vec<Parameter>,
+    functions: Vec<GivenFunction>,
     definitions: Vec<DefinitionAst<'a>>,
     forces: Vec<(&'a ast::Ident, &'a ast::Expr)>,
     /// The unknowns of each `solve` block, in order.
@@ -40,6 +41,7 @@ impl<'a> Declarations<'a> {
             names: FxHashMap::default(),
             coordinates: Vec::new(),
             parameters: Vec::new(),
+            functions: Vec::new(),
             definitions: Vec::new(),
             forces: Vec::new(),
             unknowns: Vec::new(),
@@ -75,6 +77,16 @@ impl<'a> Declarations<'a> {
                 for d in ds {
                     self.declare(&d.name, Binding::Param)?;
                     self.parameters.push(Parameter {
+                        name: d.name.name.clone(),
+                        span: d.name.span,
+                        dimension: d.dimension.as_ref().map(|e| self.written(e.span)),
+                    });
+                }
+            }
+            Stmt::Functions(ds, _) => {
+                for d in ds {
+                    self.declare(&d.name, Binding::Given)?;
+                    self.functions.push(GivenFunction {
                         name: d.name.name.clone(),
                         span: d.name.span,
                         dimension: d.dimension.as_ref().map(|e| self.written(e.span)),
@@ -148,6 +160,7 @@ impl<'a> Declarations<'a> {
     ) -> Diagnostic {
         let what = match prev {
             Binding::Body => "a body",
+            Binding::Given => "a given function of time",
             Binding::Param => "a parameter",
             Binding::Coord => "a coordinate",
             Binding::Unknown => "an unknown of a `solve` block",
@@ -272,6 +285,7 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
     let Declarations {
         coordinates,
         parameters,
+        functions,
         ..
     } = decl;
     let latex_names = latex_names(
@@ -303,6 +317,7 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
         source: src.to_string(),
         coordinates,
         parameters,
+        functions,
         definitions,
         forces,
         loads,

@@ -331,6 +331,12 @@ impl<'a> Builder<'a> {
                     )))
                 }
                 Atom::Time => return Err(CompileError::NotAnInput("the time t".to_string())),
+                Atom::Given(name, k) => {
+                    return Err(CompileError::UndefinedFunction(format!(
+                        "{name}{}",
+                        "'".repeat(*k as usize)
+                    )))
+                }
                 Atom::Pi => self.constant(std::f64::consts::PI),
                 Atom::Root(n) => {
                     let x: f64 = n

@@ -15,6 +15,9 @@ pub enum CompileError {
     /// A coordinate, one of its derivatives, or the time, used but not
     /// an input: described as `the coordinate x'` or `the time t`.
     NotAnInput(String),
+    /// A given function of time (or one of its derivatives) with no
+    /// definition: `f''`.
+    UndefinedFunction(String),
     /// A √n whose n is not an integer (the atom table is inconsistent).
     BadRadical(String),
     /// An atom that exists only in printed output reached the compiler.
@@ -44,6 +47,9 @@ impl fmt::Display for CompileError {
                 write!(f, "the parameter {name} has no value and is not an input")
             }
             CompileError::NotAnInput(what) => write!(f, "{what} is not an input"),
+            CompileError::UndefinedFunction(name) => {
+                write!(f, "the given function {name} has no definition")
+            }
             CompileError::BadRadical(n) => write!(f, "bad radical √{n}"),
             CompileError::PrintOnly => f.write_str("a print-only atom cannot be evaluated"),
             CompileError::Shape(expected) => f.write_str(expected),
