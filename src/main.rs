@@ -271,7 +271,7 @@ fn main() -> ExitCode {
         Fmt::Json => Format::Json,
         Fmt::Latex => Format::Latex,
     };
-    let set = match set.map(output::parse_set).transpose() {
+    let set = match set.map(output::parse_set_any_sign).transpose() {
         Ok(s) => s.unwrap_or_default(),
         Err(d) => {
             eprint!("{}", d.render(file, ""));
@@ -343,7 +343,7 @@ fn simulate(
         Ok(m) => req.method = m,
         Err(d) => return fail(d, ""),
     }
-    match set.map(output::parse_set).transpose() {
+    match set.map(output::parse_set_any_sign).transpose() {
         Ok(s) => req.set = s.unwrap_or_default(),
         Err(d) => return fail(d, ""),
     }

@@ -6,6 +6,7 @@
 mod common;
 mod stress_common;
 
+mod assumptions;
 mod book;
 mod cli;
 mod compile;

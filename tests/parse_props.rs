@@ -78,6 +78,15 @@ fn check_scene(src: &str) -> Result<Option<Vec<Stmt>>, TestCaseError> {
                     | Stmt::Force { value, .. }
                     | Stmt::Frame { value, .. }
                     | Stmt::Gravity { value, .. } => check_expr_spans(src, value)?,
+                    Stmt::Assume(facts, span) => {
+                        prop_assert!(src[span.start..].starts_with("assume"));
+                        for f in facts {
+                            if let qdot::parse::ast::Fact::Order { greater, less, .. } = f {
+                                check_expr_spans(src, greater)?;
+                                check_expr_spans(src, less)?;
+                            }
+                        }
+                    }
                     Stmt::Body(b) => {
                         for p in &b.properties {
                             prop_assert!(b.span.start < p.key_span.start);

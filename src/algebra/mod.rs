@@ -3,5 +3,6 @@
 //! expression into coefficients, signs. It sits below `mechanics` and
 //! `solve` so that neither imports the other's helpers.
 
+pub mod assume;
 pub mod linear;
 pub mod sign;

@@ -42,8 +42,14 @@ impl std::ops::Mul for Sign {
     }
 }
 
-/// The sign when decided exactly (parameters are positive).
+/// The sign when decided exactly: for every positive value of the
+/// parameters, under the assumptions in force ([`super::assume`]).
 pub fn sign_exact(e: &Expr) -> Option<Sign> {
+    super::assume::decide(e, sign_positive)
+}
+
+/// The sign when decided exactly for every positive value of the parameters.
+fn sign_positive(e: &Expr) -> Option<Sign> {
     if let Some(q) = e.as_rational() {
         return Some(rational_sign(&q));
     }

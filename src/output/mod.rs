@@ -132,8 +132,19 @@ fn run_unbounded(
     fmt: Format,
     opts: &CommandOptions,
 ) -> Result<(String, Vec<Diagnostic>), Diagnostic> {
-    let set = &opts.set;
     let scene = Scene::parse(src)?;
+    crate::algebra::assume::assuming(&scene.assumptions, || run_scene(cmd, &scene, fmt, opts))
+}
+
+/// [`run_unbounded`] once the scene is parsed, its assumptions in force.
+fn run_scene(
+    cmd: Command,
+    scene: &Scene,
+    fmt: Format,
+    opts: &CommandOptions,
+) -> Result<(String, Vec<Diagnostic>), Diagnostic> {
+    let set = &opts.set;
+    crate::scene::given::parameter_signs(scene, set)?;
     // every JSON object of an annotated scene carries its `dimensions`
     let json_string = |mut m: Map<String, serde_json::Value>| -> Result<String, Diagnostic> {
         if scene.dimensions_checked {
@@ -148,9 +159,9 @@ fn run_unbounded(
         Command::Derive => {
             let lag = scene.lagrange()?;
             match fmt {
-                Format::Text => text::bodies_text(&scene) + &derive_text(&lag),
+                Format::Text => text::bodies_text(scene) + &derive_text(&lag),
                 Format::Json => json_string(derive_json(&lag))?,
-                Format::Latex => latex::write(&scene, |w| w.derive(&lag)),
+                Format::Latex => latex::write(scene, |w| w.derive(&lag)),
             }
         }
         Command::Solve => {
@@ -166,27 +177,27 @@ fn run_unbounded(
             } else {
                 None
             };
-            let blocks = system::solve_scene(&scene)?;
+            let blocks = system::solve_scene(scene)?;
             match fmt {
                 Format::Text => {
                     let mut out = match &lag {
-                        Some((l, acc)) => text::bodies_text(&scene) + &solve_text(l, acc),
+                        Some((l, acc)) => text::bodies_text(scene) + &solve_text(l, acc),
                         None => String::new(),
                     };
                     if !blocks.is_empty() {
                         if !out.is_empty() {
                             out.push('\n');
                         }
-                        out.push_str(&solutions_text(&scene, &blocks));
+                        out.push_str(&solutions_text(scene, &blocks));
                     }
                     out
                 }
-                Format::Latex => latex::write(&scene, |w| {
+                Format::Latex => latex::write(scene, |w| {
                     if let Some((l, acc)) = &lag {
                         w.equations(l);
                         w.accelerations(acc);
                     }
-                    w.blocks(&scene, &blocks);
+                    w.blocks(scene, &blocks);
                 }),
                 Format::Json => {
                     let mut m = match &lag {
@@ -194,14 +205,14 @@ fn run_unbounded(
                         None => Map::new(),
                     };
                     if !blocks.is_empty() {
-                        solutions_json(&scene, &blocks, &mut m);
+                        solutions_json(scene, &blocks, &mut m);
                     }
                     json_string(m)?
                 }
             }
         }
         Command::Forces => {
-            let q = crate::mechanics::generalized_forces(&scene);
+            let q = crate::mechanics::generalized_forces(scene);
             if scene.coordinates.is_empty() {
                 return Err(Diagnostic::global(
                     "the scene declares no coordinates, so there are no generalized forces",
@@ -211,7 +222,7 @@ fn run_unbounded(
             let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
             match fmt {
                 Format::Text => forces_text(&names, &q),
-                Format::Latex => latex::write(&scene, |w| w.forces(&names, &q)),
+                Format::Latex => latex::write(scene, |w| w.forces(&names, &q)),
                 Format::Json => {
                     let mut m = Map::new();
                     m.insert("coordinates".into(), json!(names));
@@ -221,7 +232,7 @@ fn run_unbounded(
             }
         }
         Command::Modes => {
-            check_set(&scene, set)?;
+            check_set(scene, set)?;
             let at = match &opts.at {
                 Some(a) => Some(scene.coordinate_values(a)?),
                 None => None,
@@ -239,7 +250,7 @@ fn run_unbounded(
                     }
                 }
             }
-            let md = crate::solve::oscillations::modes(&scene, at.as_deref(), set)?;
+            let md = crate::solve::oscillations::modes(scene, at.as_deref(), set)?;
             let free = match &opts.init {
                 Some(i) => {
                     let (q0, v0) = scene.initial_conditions(i)?;
@@ -250,27 +261,27 @@ fn run_unbounded(
             match fmt {
                 Format::Text => modes_text(&md, set, free.as_deref()),
                 Format::Json => json_string(modes_json(&md, set, free.as_deref()))?,
-                Format::Latex => latex::write(&scene, |w| w.modes(&md)),
+                Format::Latex => latex::write(scene, |w| w.modes(&md)),
             }
         }
         Command::Equilibrium => {
-            check_set(&scene, set)?;
-            let eq = equilibrium::equilibria(&scene, set)?;
+            check_set(scene, set)?;
+            let eq = equilibrium::equilibria(scene, set)?;
             match fmt {
                 Format::Text => equilibrium_text(&eq),
                 Format::Json => json_string(equilibrium_json(&eq))?,
-                Format::Latex => latex::write(&scene, |w| w.equilibrium(&eq)),
+                Format::Latex => latex::write(scene, |w| w.equilibrium(&eq)),
             }
         }
         Command::Latex => {
-            check_set(&scene, set)?;
-            latex::document(&scene, opts)?
+            check_set(scene, set)?;
+            latex::document(scene, opts)?
         }
         Command::Check => {
             let report = scene.dimension_report()?;
             match fmt {
-                Format::Json => json::json_string(check_json(&scene, &report)),
-                _ => check_text(&scene, &report),
+                Format::Json => json::json_string(check_json(scene, &report)),
+                _ => check_text(scene, &report),
             }
         }
     };
@@ -296,6 +307,7 @@ fn check_set(scene: &Scene, set: &Values) -> Result<(), Diagnostic> {
 }
 
 pub use crate::scene::given::parameter_values as parse_set;
+pub use crate::scene::given::parameter_values_any_sign as parse_set_any_sign;
 
 /// Output format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

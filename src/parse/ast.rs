@@ -152,6 +152,9 @@ pub enum Stmt {
     /// `body top: mass m, inertia [A, A, C], frame B, at P` or
     /// `particle p: mass m, at P` — its kinetic energy joins E.
     Body(BodyStmt),
+    /// `assume e real, R > r` — what the scene assumes beyond "every
+    /// parameter is positive".
+    Assume(Vec<Fact>, Span),
     /// `gravity [0, -g]` — V = −Σ M·G·P over every body and particle.
     Gravity {
         /// The acceleration of gravity G, a vector.
@@ -166,6 +169,22 @@ pub enum Stmt {
         /// The LaTeX text between the quotes.
         tex: String,
         /// The whole statement.
+        span: Span,
+    },
+}
+
+/// One fact of an `assume` statement.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Fact {
+    /// `e real`: the parameter e may have either sign (or be 0).
+    Real(Ident),
+    /// `R > r` (or `r < R`): `greater` exceeds `less`.
+    Order {
+        /// The larger side.
+        greater: Expr,
+        /// The smaller side.
+        less: Expr,
+        /// The whole fact.
         span: Span,
     },
 }
@@ -290,6 +309,7 @@ impl Stmt {
             | Stmt::Gravity { span, .. } => *span,
             Stmt::Solve(b) => b.span,
             Stmt::Body(b) => b.span,
+            Stmt::Assume(_, s) => *s,
         }
     }
 }

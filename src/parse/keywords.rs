@@ -47,6 +47,7 @@ pub const STATEMENT: &[&str] = &[
     "particle",
     "gravity",
     "functions",
+    "assume",
 ];
 
 /// The stop words inside `load … at …` and `torque … on …`.

@@ -28,6 +28,7 @@
 // rustfmt would re-wrap its `Stmt::Def` variant, so it is not formatted here.
 #[rustfmt::skip]
 pub mod ast;
+mod assume;
 mod bodies;
 mod chars;
 mod expressions;

@@ -143,7 +143,7 @@ impl<'s> Parser<'s> {
         }
     }
 
-    /// `statement ::= declaration | role_stmt | force_stmt | load_stmt | torque_stmt | solve_block | latex_stmt | frame_stmt | body_stmt | gravity_stmt | definition`
+    /// `statement ::= declaration | role_stmt | force_stmt | load_stmt | torque_stmt | solve_block | latex_stmt | frame_stmt | body_stmt | gravity_stmt | assume_stmt | definition`
     ///
     /// Keywords do not reserve names: the tokens after the first identifier
     /// decide (see the grammar).
@@ -193,6 +193,7 @@ impl<'s> Parser<'s> {
             "frame" if next_is_ident => self.frame_stmt(i),
             "body" | "particle" if next_is_ident => self.body_stmt(i),
             "gravity" if !next_is_eq => self.gravity_stmt(i),
+            "assume" if !next_is_eq => self.assume_stmt(i),
             "torque" if !next_is_eq => self.torque_stmt(i),
             "solve" if !next_is_eq => self.solve_block(i),
             "latex" if !next_is_eq => {

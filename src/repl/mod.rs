@@ -853,7 +853,8 @@ fn parse_options(args: &str, cmd: Command, opts: &mut CommandOptions) -> Result<
         };
         match key.as_str() {
             "set" => {
-                opts.set = output::parse_set(&value).map_err(|d| d.render("--set", &value))?;
+                opts.set =
+                    output::parse_set_any_sign(&value).map_err(|d| d.render("--set", &value))?;
             }
             "at" => opts.at = Some(value),
             _ => opts.init = Some(value),

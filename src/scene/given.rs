@@ -88,6 +88,39 @@ pub fn name_value_pairs(syntax: OptionSyntax, s: &str) -> Result<Vec<NameValue<'
 
 /// Parse `--set m=1,g=9.81` into parameter values: finite, positive doubles.
 pub fn parameter_values(s: &str) -> Result<Values, Diagnostic> {
+    let out = parameter_values_any_sign(s)?;
+    for (k, &v) in &out {
+        if v <= 0.0 {
+            return Err(not_positive(k, v));
+        }
+    }
+    Ok(out)
+}
+
+/// The error for `--set k=v` with v ≤ 0 for a positive parameter.
+fn not_positive(k: &str, v: f64) -> Diagnostic {
+    Diagnostic::global(format!("`--set {k}={v}`: parameters are positive, and {v} is not"))
+        .with_hint("qdot takes every parameter to be positive; write a negative quantity as −p in the scene, or `assume p real`")
+}
+
+/// An error unless every value of `set` for a parameter of `scene` is
+/// positive, but for the parameters the scene assumes `real`.
+pub fn parameter_signs(scene: &Scene, set: &Values) -> Result<(), Diagnostic> {
+    for (k, &v) in set {
+        let real = scene
+            .assumptions
+            .real
+            .contains(&crate::expr::atom::param(k));
+        if v <= 0.0 && !real {
+            return Err(not_positive(k, v));
+        }
+    }
+    Ok(())
+}
+
+/// Parse `--set m=1,g=-9.81` into finite doubles of either sign (the
+/// scene decides which may be negative: [`parameter_signs`]).
+pub fn parameter_values_any_sign(s: &str) -> Result<Values, Diagnostic> {
     let mut out = Values::new();
     for NameValue {
         written: part,
@@ -119,12 +152,6 @@ pub fn parameter_values(s: &str) -> Result<Values, Diagnostic> {
                 "`--set {part}`: `{v_text}` is below the smallest double (about 4.9e-324)"
             ))
             .with_hint("numeric work is done in doubles; rescale the units"));
-        }
-        if v <= 0.0 {
-            return Err(Diagnostic::global(format!(
-                "`--set {part}`: parameters are positive, and {v} is not"
-            ))
-            .with_hint("qdot takes every parameter to be positive; write a negative quantity as −p in the scene"));
         }
         out.insert(k.to_string(), v);
     }

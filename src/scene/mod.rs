@@ -223,6 +223,8 @@ pub struct Scene {
     pub bodies: Vec<Body>,
     /// The `gravity` statement, if any.
     pub gravity: Option<Span>,
+    /// What the scene assumes beyond positive parameters (`assume`).
+    pub assumptions: crate::algebra::assume::Assumptions,
     /// Things worth a look that do not stop the computation.
     pub warnings: Vec<Diagnostic>,
     /// The `latex NAME = "…"` statements, in source order (a later one for

@@ -103,6 +103,7 @@ pub struct Run {
 /// The value of every parameter of the scene from `--set`, and nothing
 /// else.
 fn parameter_values(scene: &Scene, req: &Request) -> Result<FxHashMap<Var, f64>, Diagnostic> {
+    crate::scene::given::parameter_signs(scene, &req.set)?;
     let mut params: FxHashMap<Var, f64> = FxHashMap::default();
     let mut missing: Vec<String> = Vec::new();
     for p in &scene.parameters {

@@ -121,6 +121,11 @@ pub struct Equilibria {
 
 /// Find and classify the equilibria of a scene.
 pub fn equilibria(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic> {
+    crate::algebra::assume::assuming(&scene.assumptions, || equilibria_assumed(scene, set))
+}
+
+/// [`equilibria`] with the scene's assumptions in force.
+fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic> {
     let _context = crate::budget::enter(|| "finding the equilibria".into(), None);
     let n = scene.coordinates.len();
     if n == 0 {

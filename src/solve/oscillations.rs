@@ -94,6 +94,11 @@ fn math(m: crate::expr::MathError) -> Diagnostic {
 
 /// Linearize about `at` (default q = 0) and find the modes.
 pub fn modes(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Modes, Diagnostic> {
+    crate::algebra::assume::assuming(&scene.assumptions, || modes_assumed(scene, at, set))
+}
+
+/// [`modes`] with the scene's assumptions in force.
+fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Modes, Diagnostic> {
     let _context = crate::budget::enter(
         || "linearizing about the equilibrium for the small oscillations".into(),
         None,

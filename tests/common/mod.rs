@@ -44,6 +44,24 @@ pub fn sexpr(e: &Expr) -> String {
     }
 }
 
+/// The facts of an `assume` statement, `e real` and `R > r` each.
+fn facts_text(
+    facts: &[qdot::parse::ast::Fact],
+    show: impl Fn(&Expr) -> String,
+    sep: &str,
+) -> String {
+    facts
+        .iter()
+        .map(|f| match f {
+            qdot::parse::ast::Fact::Real(n) => format!("{} real", n.name),
+            qdot::parse::ast::Fact::Order { greater, less, .. } => {
+                format!("{} > {}", show(greater), show(less))
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(sep)
+}
+
 /// The properties of a body statement, as `(mass m) (at P)`.
 fn properties(b: &qdot::parse::ast::BodyStmt, show: impl Fn(&Expr) -> String, sep: &str) -> String {
     b.properties
@@ -82,6 +100,7 @@ pub fn stmt_sexpr(s: &Stmt) -> String {
         }
         Stmt::Frame { name, value, .. } => format!("(frame {} {})", name.name, sexpr(value)),
         Stmt::Gravity { value, .. } => format!("(gravity {})", sexpr(value)),
+        Stmt::Assume(facts, _) => format!("(assume {})", facts_text(facts, sexpr, " ")),
         Stmt::Body(b) => format!(
             "({} {} ({}))",
             b.kind.keyword(),
@@ -293,6 +312,7 @@ pub fn print_stmt(s: &Stmt) -> String {
         }
         Stmt::Frame { name, value, .. } => format!("frame {} = {}", name.name, print_full(value)),
         Stmt::Gravity { value, .. } => format!("gravity {}", print_full(value)),
+        Stmt::Assume(facts, _) => format!("assume {}", facts_text(facts, print_full, ", ")),
         Stmt::Body(b) => format!(
             "{} {}: {}",
             b.kind.keyword(),

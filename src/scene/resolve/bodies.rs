@@ -231,8 +231,9 @@ impl Resolver<'_> {
             )
             .with_hint("a body's mass is a parameter or a number"));
         }
-        if sign_exact(&m) != Some(Sign::Positive) {
-            let why = match sign_exact(&m) {
+        let sign = crate::algebra::assume::assuming(&self.assumed, || sign_exact(&m));
+        if sign != Some(Sign::Positive) {
+            let why = match sign {
                 Some(Sign::Zero) => "this one is 0".to_string(),
                 Some(Sign::Negative) => "this one is negative".to_string(),
                 _ => format!("qdot can't tell that {} is", m.to_input()),
@@ -300,7 +301,8 @@ impl Resolver<'_> {
             return Err(Diagnostic::error(span, "a moment of inertia must be constant, and this one changes with time")
                 .with_hint("the inertia is about the centre of mass along the body's own axes, which turn with it"));
         }
-        if sign_exact(j) == Some(Sign::Negative) {
+        if crate::algebra::assume::assuming(&self.assumed, || sign_exact(j)) == Some(Sign::Negative)
+        {
             return Err(Diagnostic::error(
                 span,
                 format!(

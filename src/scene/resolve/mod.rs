@@ -14,6 +14,7 @@ use crate::parse::ast::{self, Role, Span, Stmt};
 use crate::poly::Var;
 use rustc_hash::FxHashMap;
 
+mod assume;
 mod bodies;
 
 /// A definition as written: its name, its body and its role, if any.
@@ -112,8 +113,11 @@ impl<'a> Declarations<'a> {
                 self.definitions.push((name, value, None));
             }
             Stmt::Body(b) => self.declare(&b.name, Binding::Body)?,
-            Stmt::Load { .. } | Stmt::Torque { .. } | Stmt::Latex { .. } | Stmt::Gravity { .. } => {
-            }
+            Stmt::Load { .. }
+            | Stmt::Torque { .. }
+            | Stmt::Latex { .. }
+            | Stmt::Gravity { .. }
+            | Stmt::Assume(..) => {}
             Stmt::Solve(block) => {
                 let mut us = Vec::with_capacity(block.unknowns.len());
                 for u in &block.unknowns {
@@ -210,6 +214,8 @@ struct Resolver<'d> {
     body_energies: Vec<Definition>,
     /// The `gravity` statement.
     gravity: Option<Span>,
+    /// The scene's assumptions, once read.
+    assumed: crate::algebra::assume::Assumptions,
 }
 
 pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, Diagnostic> {
@@ -236,6 +242,7 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
         bodies: Vec::new(),
         body_energies: Vec::new(),
         gravity: None,
+        assumed: Default::default(),
     };
     let mut definitions = Vec::with_capacity(decl.definitions.len());
     for (i, &(name, body, role)) in decl.definitions.iter().enumerate() {
@@ -253,6 +260,8 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
     for &i in &decl.frames {
         bodies::frame_value(decl.definitions[i].1, &definitions[i].value)?;
     }
+    let assumptions = r.assumptions(stmts, &decl.parameters)?;
+    r.assumed = assumptions.clone();
     let forces = r.forces(&decl.forces)?;
     let mut blocks = decl.unknowns.iter().cloned();
     for st in stmts {
@@ -325,6 +334,7 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
         systems,
         bodies,
         gravity,
+        assumptions,
         warnings,
         latex_names,
     })
