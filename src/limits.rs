@@ -13,6 +13,11 @@
 /// only many names defined by chains of each other come near it.
 pub const MAX_DIMENSION_WORK: u64 = 10_000_000;
 
+/// The most parameters of either sign (`assume e real`) one sign decision
+/// splits into cases (3ᵏ of them: positive, negative, zero); past it the
+/// sign is left undecided, which the solvers report as such.
+pub const MAX_REAL_CASES: usize = 4;
+
 /// Deepest nesting of functions in one value (`sin(sin(…))`, directly or
 /// through definitions). Each level is an atom whose argument holds the
 /// next, and walks over atoms recurse; no mechanics needs more than a few.

@@ -554,8 +554,12 @@ fn equilibrium_command_line() {
     // --set belongs to `equilibrium` only
     let (code, _, _) = qdot(&["solve", "examples/seed_23_1.qd", "--set", "G=1"]);
     assert_eq!(code, 2);
-    // --set errors are reported before the file is read
-    let (code, _, err) = qdot(&["equilibrium", "no/such/file.qd", "--set", "G=-1"]);
+    // malformed --set values are reported before the file is read; a
+    // value's sign needs the scene (`assume G real` allows a negative one)
+    let (code, _, err) = qdot(&["equilibrium", "no/such/file.qd", "--set", "G=x"]);
+    assert_eq!(code, 1);
+    assert!(err.starts_with("error: `--set G=x`: `x` is not a number\n"), "{err}");
+    let (code, _, err) = qdot(&["equilibrium", "examples/seed_23_1.qd", "--set", "G=-1"]);
     assert_eq!(code, 1);
     assert!(
         err.starts_with("error: `--set G=-1`: parameters are positive, and -1 is not\n"),

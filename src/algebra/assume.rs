@@ -24,9 +24,7 @@ use rustc_hash::FxHashMap;
 use std::cell::RefCell;
 use std::rc::Rc;
 
-/// At most this many parameters of either sign are split into cases in
-/// one decision (3ᵏ cases); beyond it the sign is left undecided.
-const MAX_REAL_CASES: usize = 4;
+use crate::limits::MAX_REAL_CASES;
 
 /// What a scene assumes (see the module docs).
 #[derive(Clone, Debug, Default)]
