@@ -121,7 +121,7 @@ seeds() {
     local c=fuzz/corpus
     mkdir -p "$c/parse" "$c/pipeline" "$c/repl" "$c/simulate"
     rm -f "$c"/*/seed-*
-    local scenes=(examples/*.qd book/scenes/*.qd tests/data/dimensions/*/*.qd)
+    local scenes=(examples/*.qd book/scenes/*.qd tests/data/dimensions/*/*.qd tests/data/frames/*/*.qd)
     for f in "${scenes[@]}"; do
         local n
         n=$(seed_name "$f")

@@ -558,7 +558,10 @@ fn equilibrium_command_line() {
     // value's sign needs the scene (`assume G real` allows a negative one)
     let (code, _, err) = qdot(&["equilibrium", "no/such/file.qd", "--set", "G=x"]);
     assert_eq!(code, 1);
-    assert!(err.starts_with("error: `--set G=x`: `x` is not a number\n"), "{err}");
+    assert!(
+        err.starts_with("error: `--set G=x`: `x` is not a number\n"),
+        "{err}"
+    );
     let (code, _, err) = qdot(&["equilibrium", "examples/seed_23_1.qd", "--set", "G=-1"]);
     assert_eq!(code, 1);
     assert!(
