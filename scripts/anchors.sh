@@ -29,3 +29,12 @@ echo "# Kinetostatic solve blocks, equilibria and modes: qdot (criterion) and Sy
 cargo bench -q -p qdot-benches --bench derive -- "seed/seed_2[12]_[12]_kinetostatic|equilibrium/seed_23_1|modes/" \
   --warm-up-time 1 --measurement-time 4 2>&1 | grep -E "time:" -B1 | grep -vE "^--|Warming|Collecting|Analyzing"
 "$PY" scripts/anchor_kinetostatic.py 10
+
+echo
+echo "# Frames and rigid bodies: the heavy top and the chain of n rods in space (qdot criterion), SymPy LagrangesMethod on the same chain, same run"
+FRAMES_NMAX=${FRAMES_NMAX:-5}
+cargo bench -q -p qdot-benches --bench derive -- "frames/heavy_top|frames/chain3d/[235]$" \
+  --warm-up-time 1 --measurement-time 4 2>&1 | grep -E "time:" -B1 | grep -vE "^--|Warming|Collecting|Analyzing"
+for n in 2 3 5 10; do
+  [ "$n" -le "$FRAMES_NMAX" ] && "$PY" scripts/anchor_frames.py --n "$n"
+done

@@ -13,6 +13,12 @@
 /// only many names defined by chains of each other come near it.
 pub const MAX_DIMENSION_WORK: u64 = 10_000_000;
 
+/// The most elementary turns one rotation is made of (`rot(z, a) *
+/// rot(x, b) * …`, through frames built on frames). Each composition
+/// copies the sequence (its angular velocity is built from it); a chain
+/// of a thousand frames is already far past any mechanism.
+pub const MAX_ROTATION_TURNS: usize = 1_000;
+
 /// The most parameters of either sign (`assume e real`) one sign decision
 /// splits into cases (3ᵏ of them: positive, negative, zero); past it the
 /// sign is left undecided, which the solvers report as such.

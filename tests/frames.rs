@@ -267,3 +267,34 @@ fn given_functions_of_time() {
         moving.message
     );
 }
+
+/// Hostile frames: a chain of frames past the limit of turns, and turns
+/// about many different constant angles (whose matrix doubles in size per
+/// turn), stop with an error, quickly and in bounded memory.
+#[test]
+fn hostile_chains_of_frames_are_refused() {
+    let chain = |n: usize, angle: &dyn Fn(usize) -> String| {
+        let mut s = String::from("coordinates q\nparameters m\nframe B0 = rot(z, q)\n");
+        for i in 1..n {
+            s.push_str(&format!("frame B{i} = B{} * rot(x, {})\n", i - 1, angle(i)));
+        }
+        s.push_str(&format!("particle p: mass m, at axis(B{}, 3)\n", n - 1));
+        s
+    };
+    let many = chain(5000, &|_| "0".to_string());
+    let err = output::run(Command::Derive, &many, Format::Text, &Default::default()).unwrap_err();
+    assert!(
+        err.message.contains("more than 1,000 turns")
+            || err.message.contains("more than 1000 turns"),
+        "{}",
+        err.message
+    );
+    let growing = chain(3000, &|i| format!("{i}/1000"));
+    let err =
+        output::run(Command::Derive, &growing, Format::Text, &Default::default()).unwrap_err();
+    assert!(
+        err.message.starts_with("expression too large"),
+        "{}",
+        err.message
+    );
+}

@@ -43,9 +43,12 @@ pub struct Rotation {
     entries: Vec<Expr>,
 }
 
-/// Why a turn can't be built.
+/// Why a turn can't be built, or two rotations composed.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum TurnError {
+    /// The composition would have more than
+    /// [`crate::limits::MAX_ROTATION_TURNS`] turns.
+    TooManyTurns,
     /// The axis is not of length 1: the squared length it has.
     NotUnit(String),
     /// The axis changes with time.
@@ -106,7 +109,7 @@ impl Rotation {
     }
 
     /// The turn by `angle` about `axis`, a constant unit vector (Rodrigues:
-    /// R = cos θ·I + sin θ·[u]× + (1 − cos θ)·u·uᵀ).
+    /// R = cos θ·I + sin θ·\[u\]× + (1 − cos θ)·u·uᵀ).
     pub fn turn(axis: [Expr; 3], angle: Expr) -> Result<Rotation, TurnError> {
         if axis.iter().any(Expr::is_time_dependent) {
             return Err(TurnError::Moving);
@@ -149,8 +152,13 @@ impl Rotation {
     }
 
     /// `self * other`: first this rotation, then `other` about the turned
-    /// axes (the body-fixed sequence).
-    pub fn then(&self, other: &Rotation) -> Rotation {
+    /// axes (the body-fixed sequence). Its entries are counted against the
+    /// work budget ([`crate::budget`]): products of many turns about
+    /// different constant angles double in size with each turn.
+    pub fn then(&self, other: &Rotation) -> Result<Rotation, TurnError> {
+        if self.turns.len() + other.turns.len() > crate::limits::MAX_ROTATION_TURNS {
+            return Err(TurnError::TooManyTurns);
+        }
         let matrix = if self.turns.is_empty() {
             other.matrix.clone()
         } else if other.turns.is_empty() {
@@ -158,13 +166,18 @@ impl Rotation {
         } else {
             product(&self.matrix, &other.matrix)
         };
+        let entries = entries_of(&matrix);
+        // a rotation is nine entries, each multiplied into every vector it
+        // turns: it gets an eighth of the budget
+        let terms: usize = entries.iter().map(|e| e.num().len() + e.den().len()).sum();
+        crate::budget::check_terms(terms.saturating_mul(8));
         let mut turns = self.turns.clone();
         turns.extend(other.turns.iter().cloned());
-        Rotation {
-            entries: entries_of(&matrix),
+        Ok(Rotation {
+            entries,
             turns,
             matrix,
-        }
+        })
     }
 
     /// The matrix R (columns: the frame's unit vectors in ground components).
@@ -256,7 +269,7 @@ impl Rotation {
         let mut r = Rotation::identity();
         for t in &self.turns {
             let axis = [f(&t.axis[0]), f(&t.axis[1]), f(&t.axis[2])];
-            r = r.then(&Rotation::turn(axis, f(&t.angle))?);
+            r = r.then(&Rotation::turn(axis, f(&t.angle))?)?;
         }
         Ok(r)
     }
@@ -291,7 +304,9 @@ mod tests {
         for seq in [[2, 0, 2], [0, 1, 2]] {
             let r = turn(seq[0], "p")
                 .then(&turn(seq[1], "q"))
-                .then(&turn(seq[2], "s"));
+                .unwrap()
+                .then(&turn(seq[2], "s"))
+                .unwrap();
             let m = r.matrix();
             let rd: Matrix3 = std::array::from_fn(|i| std::array::from_fn(|j| m[i][j].dt()));
             let rt: Matrix3 = std::array::from_fn(|i| std::array::from_fn(|j| m[j][i].clone()));
@@ -306,7 +321,11 @@ mod tests {
     /// (φ̇ sin θ sin ψ + θ̇ cos ψ, φ̇ sin θ cos ψ − θ̇ sin ψ, φ̇ cos θ + ψ̇).
     #[test]
     fn euler_313_table() {
-        let r = turn(2, "phi").then(&turn(0, "th")).then(&turn(2, "psi"));
+        let r = turn(2, "phi")
+            .then(&turn(0, "th"))
+            .unwrap()
+            .then(&turn(2, "psi"))
+            .unwrap();
         let (s, c) = (
             |n: &str| func::sin(&angle(n)),
             |n: &str| func::cos(&angle(n)),

@@ -49,9 +49,17 @@ pub(super) fn rotation_binary(
 ) -> Result<Value, Diagnostic> {
     let span = a.span.to(b.span);
     match (op, &x, &y) {
-        (BinOp::Mul, Value::Rotation(r), Value::Rotation(s)) => {
-            Ok(Value::Rotation(Box::new(r.then(s))))
-        }
+        (BinOp::Mul, Value::Rotation(r), Value::Rotation(s)) => match r.then(s) {
+            Ok(t) => Ok(Value::Rotation(Box::new(t))),
+            Err(_) => Err(Diagnostic::error(
+                span,
+                format!(
+                    "this rotation would be made of more than {} turns",
+                    crate::limits::MAX_ROTATION_TURNS
+                ),
+            )
+            .with_hint("a frame built on frames copies their turns; no mechanism needs this many")),
+        },
         (BinOp::Mul, Value::Rotation(r), Value::Vector(v)) => match space(v) {
             Some(v) => Ok(Value::Vector(r.to_ground(&v).to_vec())),
             None => Err(Diagnostic::error(
@@ -178,6 +186,7 @@ impl SyntaxEvaluator<'_> {
                     format!("the axis of a rotation must be a unit vector; the squared length of this one is {length2}"),
                 )
                 .with_hint("divide it by its length: rot([1, 1, 0]/sqrt(2), a)"),
+                TurnError::TooManyTurns => Diagnostic::global("internal: one turn is too many"),
                 TurnError::Moving => Diagnostic::error(
                     args[0].span,
                     "the axis of a rotation must be constant, and this one moves",
