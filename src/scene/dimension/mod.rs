@@ -274,6 +274,7 @@ fn walk_statements<'a>(
             Stmt::Solve(b) => statements::solve_block(w, b)?,
             Stmt::Body(b) => statements::body(w, b)?,
             Stmt::Gravity { value, .. } => statements::gravity(w, value)?,
+            Stmt::Assume(facts, _) => statements::assumption(w, facts)?,
             _ => {}
         }
     }

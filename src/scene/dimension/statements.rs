@@ -267,3 +267,25 @@ pub(super) fn gravity(w: &mut Walker, value: &Expr) -> Checked<()> {
     w.value(value, Some(&want))?;
     Ok(())
 }
+
+/// `assume a > b`: both sides alike (`e real` asks nothing).
+pub(super) fn assumption(w: &mut Walker, facts: &[crate::parse::ast::Fact]) -> Checked<()> {
+    for f in facts {
+        let crate::parse::ast::Fact::Order { greater, less, .. } = f else {
+            continue;
+        };
+        match w.value(greater, None)? {
+            DimValue::Scalar(Some(g)) => {
+                let want = Want {
+                    form: g,
+                    why: Why::Compared,
+                };
+                w.value(less, Some(&want))?;
+            }
+            _ => {
+                w.value(less, None)?;
+            }
+        }
+    }
+    Ok(())
+}

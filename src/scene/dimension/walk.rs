@@ -56,6 +56,8 @@ pub(super) enum Why {
     Force { coordinate: String },
     /// One side of a `solve` equation, of the other side's dimension.
     OtherSide,
+    /// One side of an `assume` order fact, of the other side's dimension.
+    Compared,
     /// The argument of a function that needs a pure number.
     Argument { function: String },
     /// A power with a symbolic exponent.
@@ -78,6 +80,7 @@ impl Why {
                 "the generalized force on `{coordinate}` does work over δ{coordinate}: an energy per unit of `{coordinate}`"
             ),
             Why::OtherSide => "the other side of the equation".into(),
+            Why::Compared => "the other side of the comparison".into(),
             Why::Argument { function } => format!("the argument of `{function}`"),
             Why::SymbolicPower => "the base of a power with a symbolic exponent".into(),
             Why::Exponent => "an exponent".into(),
