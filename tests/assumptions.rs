@@ -108,3 +108,20 @@ fn wrong_facts_are_refused() {
         assert!(err.message.contains(message), "{src}: {}", err.message);
     }
 }
+
+/// √(q²) is q where the facts make q positive, −q where negative, and
+/// |q| otherwise: in definitions and in expressions typed later.
+#[test]
+fn square_roots_of_squares() {
+    let s = Scene::parse(
+        "parameters R, r, a\nassume R > r\nd = sqrt((R - r)^2)\nn = sqrt((r - R)^2)\nu = ((a - r)^2)^(1/2)\n",
+    )
+    .unwrap();
+    let want = s.expr("R - r").unwrap();
+    assert!(s.definition("d").unwrap().equals(&want));
+    assert!(s.definition("n").unwrap().equals(&want));
+    assert!(s.expr("sqrt((r - R)^2)").unwrap().equals(&want));
+    // a − r has no decided sign: it stays √((a − r)²), printed |a − r|
+    assert!(!s.definition("u").unwrap().equals(&s.expr("a - r").unwrap()));
+    assert!(s.definition("u").unwrap().to_unicode().starts_with('|'));
+}

@@ -382,6 +382,7 @@ impl Scene {
             values.push(v.clone());
         }
         let mut ev = eval::SyntaxEvaluator::with_values(&names, values);
+        ev.assumed = self.assumptions.clone();
         let v = ev.value(e)?;
         Ok((v, std::mem::take(&mut ev.warnings)))
     }

@@ -32,6 +32,9 @@ pub(crate) struct SyntaxEvaluator<'a> {
     /// value is kept alive beside its derivative so its id stays unique).
     derivatives: FxHashMap<(usize, u32), (Expr, Expr)>,
     pub warnings: Vec<Diagnostic>,
+    /// The scene's `assume` facts, once read: √(q²) is q where they make
+    /// q positive (−q where negative).
+    pub assumed: crate::algebra::assume::Assumptions,
 }
 
 /// The functions of the language and their numbers of arguments.
@@ -74,7 +77,30 @@ impl<'a> SyntaxEvaluator<'a> {
             atoms: FxHashMap::default(),
             derivatives: FxHashMap::default(),
             warnings: Vec::new(),
+            assumed: Default::default(),
         }
+    }
+
+    /// √x, with √(q²) = ±q where the scene's assumptions decide q's sign.
+    fn root(&self, x: &Expr) -> Result<Expr, MathError> {
+        let r = func::sqrt(x)?;
+        if self.assumed.is_empty() {
+            return Ok(r);
+        }
+        let Some(atom::Atom::SqrtOf(u)) = r.as_var().map(atom::atom) else {
+            return Ok(r);
+        };
+        let Some(q) = crate::expr::print::square_root_of_square(&u) else {
+            return Ok(r);
+        };
+        let sign = crate::algebra::assume::assuming(&self.assumed, || {
+            crate::algebra::sign::sign_exact(&q)
+        });
+        Ok(match sign {
+            Some(crate::algebra::sign::Sign::Positive) => q,
+            Some(crate::algebra::sign::Sign::Negative) => q.neg(),
+            _ => r,
+        })
     }
 
     /// An evaluator whose definitions are already known.
@@ -90,6 +116,7 @@ impl<'a> SyntaxEvaluator<'a> {
             atoms: FxHashMap::default(),
             derivatives: FxHashMap::default(),
             warnings: Vec::new(),
+            assumed: Default::default(),
         }
     }
 
@@ -542,7 +569,7 @@ impl<'a> SyntaxEvaluator<'a> {
                 .as_i64()
                 .filter(|n| n.abs() <= 10_000)
                 .ok_or_else(|| Diagnostic::error(exp.span, format!("exponent {q} is too large")))?;
-            let r = func::sqrt(base).map_err(|m| self.err(span, m))?;
+            let r = self.root(base).map_err(|m| self.err(span, m))?;
             bounded_functions(std::slice::from_ref(&r), span)?;
             return r.powi(n).map_err(|m| self.err(span, m));
         }
@@ -730,7 +757,7 @@ impl<'a> SyntaxEvaluator<'a> {
             "sin" => Ok(func::sin(&x)),
             "cos" => Ok(func::cos(&x)),
             "tan" => func::tan(&x),
-            "sqrt" => func::sqrt(&x),
+            "sqrt" => self.root(&x),
             "exp" => Ok(func::exp(&x)),
             "ln" => func::ln(&x),
             "asin" => func::asin(&x),

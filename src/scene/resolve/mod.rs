@@ -244,6 +244,11 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
         gravity: None,
         assumed: Default::default(),
     };
+    // the facts first, so that √(q²) in the definitions sees them (a
+    // definition a fact uses is evaluated before the facts exist)
+    let assumptions = r.assumptions(stmts, &decl.parameters)?;
+    r.assumed = assumptions.clone();
+    r.ev.assumed = assumptions.clone();
     let mut definitions = Vec::with_capacity(decl.definitions.len());
     for (i, &(name, body, role)) in decl.definitions.iter().enumerate() {
         let value = r.ev.definition(i)?;
@@ -260,8 +265,6 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
     for &i in &decl.frames {
         bodies::frame_value(decl.definitions[i].1, &definitions[i].value)?;
     }
-    let assumptions = r.assumptions(stmts, &decl.parameters)?;
-    r.assumed = assumptions.clone();
     let forces = r.forces(&decl.forces)?;
     let mut blocks = decl.unknowns.iter().cloned();
     for st in stmts {
