@@ -28,6 +28,20 @@ With --repeat R the system is derived R times, each time from a cleared
 SymPy cache (cold, like the first run), and the best time of each part is
 reported.
 
+Figures measured on this project's 2-core machine (SymPy 1.14, 2026-11, one
+cold run each, for orientation only: always measure qdot and the anchor in
+the same run):  n = 2: 0.32 s,  3: 1.8 s,  4: 8.6 s,  5: 33 s (37.4 s in a
+second run on a loaded machine),  6: 104 s,  7: 292 s,  8: 726 s;  n = 10 had
+not finished after 84 wall / 81 CPU minutes (killed).
+The time is spent in form_lagranges_equations (d/dt of the unexpanded
+Lagrangian's partial derivatives); building the model takes < 1 s.
+
+qdot on the same system (criterion, benches/derive.rs group `frames`, one
+run): heavy_top 307 us; chain3d n = 2: 111 us, 3: 441 us, 5: 8.3 ms
+(about 4,500x SymPy's 37.4 s); n = 10: about 35 s for a CLI derive, which
+stops at the print budget after expanding 6.7 M symbols, so the ratio there
+is more than 140x (SymPy did not finish in 84 minutes).
+
 Usage:
     python3 scripts/anchor_frames.py --n 10 [--repeat 3]
         prints one JSON line {"n": 10, "equations_s": ..., "mass_matrix_s": ...}
