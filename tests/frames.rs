@@ -208,6 +208,38 @@ fn body_energies_are_named_definitions() {
     );
 }
 
+/// The JSON of a scene with bodies names each body's statement and
+/// energies (`bodies`); without gravity a body has no potential.
+#[test]
+fn bodies_in_json() {
+    let json = |src: &str, cmd| {
+        let (out, _) = output::run_with(cmd, src, Format::Json, &Default::default()).expect("runs");
+        serde_json::from_str::<serde_json::Value>(&out).expect("JSON")
+    };
+    let s = scene(TOP_FRAMES);
+    for cmd in [Command::Derive, Command::Solve] {
+        let v = json(TOP_FRAMES, cmd);
+        let b = &v["bodies"][0];
+        assert_eq!(v["bodies"].as_array().map(Vec::len), Some(1));
+        assert_eq!(
+            (&b["name"], &b["kind"], &b["line"]),
+            (&"top".into(), &"body".into(), &4.into())
+        );
+        assert_eq!(b["kinetic"]["name"], "E_top");
+        assert_eq!(b["potential"]["name"], "V_top");
+        let read = |k: &str| s.expr(b[k]["value"].as_str().expect("a string")).unwrap();
+        assert!(read("potential").equals(&s.expr("m*g*l*cos(theta)").unwrap()));
+        let e = "(A + m*l^2)/2*(theta'^2 + sin(theta)^2*phi'^2) + C/2*(psi' + cos(theta)*phi')^2";
+        assert!(read("kinetic").equals(&s.expr(e).unwrap()));
+    }
+    let free = "coordinates x, y\nparameters m\nparticle p: mass m, at [x, y]\n";
+    let v = json(free, Command::Derive);
+    assert_eq!(v["bodies"][0]["kind"], "particle");
+    assert_eq!(v["bodies"][0]["potential"], serde_json::Value::Null);
+    let old = "coordinates x\nparameters m, k\nkinetic E = m*x'^2/2\npotential V = k*x^2/2\n";
+    assert!(json(old, Command::Derive).get("bodies").is_none());
+}
+
 const SUPPORT: &str = "coordinates theta
 parameters m, l, g
 functions s

@@ -51,6 +51,33 @@ pub fn derive_json(l: &Lagrange) -> Map<String, Value> {
     m
 }
 
+/// The `bodies` key of a scene with `body`, `particle` or `gravity`
+/// statements: one object per body in statement order, with the definition
+/// that holds its kinetic energy and, under gravity, its potential.
+pub fn bodies_json(scene: &Scene) -> Value {
+    let line =
+        |span: crate::diag::Span| crate::diag::Diagnostic::line_col(&scene.source, span.start).0;
+    let energy = |name: &str| match scene.definition(name) {
+        Some(value) => json!({"name": name, "value": as_input(value)}),
+        None => Value::Null,
+    };
+    Value::Array(
+        scene
+            .bodies
+            .iter()
+            .map(|b| {
+                json!({
+                    "name": b.name,
+                    "kind": b.kind.keyword(),
+                    "line": line(b.span),
+                    "kinetic": energy(&b.kinetic),
+                    "potential": b.gravity.as_deref().map_or(Value::Null, energy),
+                })
+            })
+            .collect(),
+    )
+}
+
 /// The JSON of `qdot solve`: derive's keys plus `accelerations`.
 pub fn solve_json(l: &Lagrange, acc: &crate::mechanics::Accelerations) -> Map<String, Value> {
     let mut m = derive_json(l);

@@ -18,6 +18,9 @@
 //! * `check`: `dimensions`, `definitions`, `sources`, `accelerations`,
 //!   `generalized_forces` (dimensions as strings in annotation syntax, or
 //!   null where the scene leaves one free);
+//! * every command but `check`, for a scene with `body`, `particle` or `gravity`
+//!   statements: `bodies` (a list of `{"name", "kind", "line", "kinetic",
+//!   "potential"}`, the energies as `{"name", "value"}` or null);
 //! * every command, for a scene that annotates a dimension: `dimensions`
 //!   last (coordinate, parameter, `solve` unknown → dimension or null).
 //!
@@ -40,7 +43,9 @@ mod text;
 
 pub use dimensions::{check_json, check_text, dimensions_json};
 use json::named;
-pub use json::{derive_json, equilibrium_json, modes_json, solutions_json, solve_json};
+pub use json::{
+    bodies_json, derive_json, equilibrium_json, modes_json, solutions_json, solve_json,
+};
 pub use modes::modes_text;
 pub use text::{derive_text, equilibrium_text, forces_text, padded, solutions_text, solve_text};
 
@@ -136,6 +141,22 @@ fn run_unbounded(
     crate::algebra::assume::assuming(&scene.assumptions, || run_scene(cmd, &scene, fmt, opts))
 }
 
+/// A command's JSON object as text, with the keys every command of this
+/// scene carries: `bodies` for a scene with bodies, `dimensions` (last)
+/// for an annotated one.
+fn scene_json(scene: &Scene, mut m: Map<String, serde_json::Value>) -> Result<String, Diagnostic> {
+    if !scene.bodies.is_empty() {
+        m.insert("bodies".into(), json::bodies_json(scene));
+    }
+    if scene.dimensions_checked {
+        m.insert(
+            "dimensions".into(),
+            dimensions_json(&scene.dimension_report()?),
+        );
+    }
+    Ok(json::json_string(m))
+}
+
 /// [`run_unbounded`] once the scene is parsed, its assumptions in force.
 fn run_scene(
     cmd: Command,
@@ -145,16 +166,7 @@ fn run_scene(
 ) -> Result<(String, Vec<Diagnostic>), Diagnostic> {
     let set = &opts.set;
     crate::scene::given::parameter_signs(scene, set)?;
-    // every JSON object of an annotated scene carries its `dimensions`
-    let json_string = |mut m: Map<String, serde_json::Value>| -> Result<String, Diagnostic> {
-        if scene.dimensions_checked {
-            m.insert(
-                "dimensions".into(),
-                dimensions_json(&scene.dimension_report()?),
-            );
-        }
-        Ok(json::json_string(m))
-    };
+    let json_string = |m| scene_json(scene, m);
     let out = match cmd {
         Command::Derive => {
             let lag = scene.lagrange()?;

@@ -49,14 +49,10 @@ pub fn bodies_text(scene: &Scene) -> String {
     }
     let line =
         |span: crate::diag::Span| crate::diag::Diagnostic::line_col(&scene.source, span.start).0;
-    let mut out = String::from(
-        "Energies of the bodies  E = Σ E_body, V = Σ V_body + …
-",
-    );
+    let mut out = String::from("Energies of the bodies  E = Σ E_body, V = Σ V_body + …\n");
     for b in &scene.bodies {
         out.push_str(&format!(
-            "  {} {} (line {})
-",
+            "  {} {} (line {})\n",
             b.kind.keyword(),
             b.name,
             line(b.span)

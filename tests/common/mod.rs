@@ -346,6 +346,10 @@ pub fn contract_keys<'a>(
     base: &[&'a str],
 ) -> Vec<&'a str> {
     let mut want = base.to_vec();
+    if !scene.bodies.is_empty() {
+        want.push("bodies");
+        assert_eq!(v["bodies"], qdot::output::bodies_json(scene));
+    }
     if scene.dimensions_checked {
         want.push("dimensions");
         let report = scene.dimension_report().unwrap();
