@@ -694,11 +694,15 @@ pub fn pretty_name(name: &str, dots: u32) -> String {
     } else {
         (base, digits)
     };
-    let base = GREEK
-        .iter()
-        .find(|(k, _)| *k == base)
-        .map(|(_, g)| g.to_string())
-        .unwrap_or_else(|| base.to_string());
+    let greek = |b: &str| GREEK.iter().find(|(k, _)| *k == b).map(|(_, g)| *g);
+    // `lambda_rod` (a constraint's multiplier) reads λ_rod
+    let base = match (greek(base), base.split_once('_')) {
+        (Some(g), _) => g.to_string(),
+        (None, Some((head, tail))) if !tail.is_empty() && greek(head).is_some() => {
+            format!("{}_{tail}", greek(head).unwrap_or(head))
+        }
+        _ => base.to_string(),
+    };
     let mark = match dots {
         0 => String::new(),
         1 => "\u{307}".into(),

@@ -17,6 +17,8 @@ use crate::expr::Expr;
 pub struct Accelerations {
     coordinates: Vec<String>,
     values: Vec<Expr>,
+    /// The constraints' multipliers (name, λ), in constraint order.
+    multipliers: Vec<(String, Expr)>,
 }
 
 impl Accelerations {
@@ -26,7 +28,21 @@ impl Accelerations {
         Accelerations {
             coordinates,
             values,
+            multipliers: Vec::new(),
         }
+    }
+
+    /// Attach the multipliers λ of the constraints (same length as `names`).
+    pub(crate) fn set_multipliers(&mut self, names: Vec<String>, values: Vec<Expr>) {
+        debug_assert_eq!(names.len(), values.len());
+        self.multipliers = names.into_iter().zip(values).collect();
+    }
+
+    /// The Lagrange multipliers (name, λ) of the scene's constraints, in
+    /// their order: λ_j·a_jk is the generalized force of constraint j on
+    /// q_k. Empty without constraints.
+    pub fn multipliers(&self) -> &[(String, Expr)] {
+        &self.multipliers
     }
 
     /// q̈ of the coordinate `name`, if it is one.

@@ -20,6 +20,7 @@
 //! and their q̈ terms join M.
 
 mod accelerations;
+mod constraints;
 
 pub use crate::algebra::linear::split_linear;
 use crate::diag::Diagnostic;
@@ -28,6 +29,7 @@ use crate::parse::ast::Role;
 use crate::poly::Var;
 use crate::scene::Scene;
 pub use accelerations::Accelerations;
+pub use constraints::ConstraintRows;
 
 /// One equation: `lhs = rhs` for a coordinate.
 #[derive(Clone, Debug)]
@@ -54,8 +56,11 @@ pub struct Lagrange {
     pub equations: Vec<Equation>,
     /// M_ij = ∂²E/∂q̇_i∂q̇_j.
     pub mass_matrix: Vec<Vec<Expr>>,
-    /// f with M·q̈ = f.
+    /// f with M·q̈ = f (+ Aᵀ·λ with constraints).
     pub forcing: Vec<Expr>,
+    /// The scene's constraints at the level of the accelerations (empty
+    /// without `constraint` statements).
+    pub constraints: ConstraintRows,
 }
 
 impl Lagrange {
@@ -94,10 +99,11 @@ impl Lagrange {
         let mentions = crate::expr::diff::vars_depend_on;
         let forces = generalized_force_terms(scene);
 
+        let constraints = ConstraintRows::of(scene, &qd, &qdd)?;
         let mut equations = Vec::with_capacity(n);
         let mut mass = vec![vec![Expr::zero(); n]; n];
         let mut forcing = Vec::with_capacity(n);
-        for (k, rhs_terms) in forces.into_iter().enumerate() {
+        for (k, mut rhs_terms) in forces.into_iter().enumerate() {
             let rhs = sum_terms(&rhs_terms);
             let p = if mentions(&e_vars, qd[k]) {
                 e.diff(qd[k])
@@ -115,6 +121,15 @@ impl Lagrange {
                 mass[k][j] = m;
             }
             forcing.push(rest.neg());
+            // the constraint forces join Q after the split: f keeps no λ
+            let mut rhs = rhs;
+            for (j, value) in constraints.force_terms(k) {
+                rhs = rhs.add(&value);
+                rhs_terms.push(ForceTerm {
+                    source: Source::Constraint(j),
+                    value,
+                });
+            }
             equations.push(Equation {
                 coordinate: names[k].clone(),
                 lhs,
@@ -134,11 +149,31 @@ impl Lagrange {
             equations,
             mass_matrix: mass,
             forcing,
+            constraints,
         })
     }
 
-    /// The exact accelerations q̈ = M⁻¹·f.
+    /// The exact accelerations q̈ = M⁻¹·f; with constraints, q̈ and the
+    /// multipliers λ of the augmented system (see [`ConstraintRows`]).
     pub fn accelerations(&self) -> Result<Accelerations, Diagnostic> {
+        if !self.constraints.is_empty() {
+            let _context = crate::budget::enter(
+                || {
+                    "solving M·q̈ − Aᵀ·λ = f, A·q̈ = γ for the accelerations and the multipliers"
+                        .into()
+                },
+                None,
+            );
+            let (acc, lambda) = constraints::solve_augmented(
+                &self.coordinates,
+                &self.mass_matrix,
+                &self.forcing,
+                &self.constraints,
+            )?;
+            let mut a = Accelerations::new(self.coordinates.clone(), acc);
+            a.set_multipliers(self.constraints.multipliers.clone(), lambda);
+            return Ok(a);
+        }
         let _context =
             crate::budget::enter(|| "solving M·q̈ = f for the accelerations".into(), None);
         let sol = crate::algebra::linear::solve(&self.mass_matrix, &self.forcing).map_err(|e| {
@@ -192,6 +227,8 @@ pub enum Source {
     Load(usize),
     /// M·∂φ/∂q_k for the i-th torque.
     Torque(usize),
+    /// λ_j·a_jk: the generalized force of the j-th constraint.
+    Constraint(usize),
 }
 
 /// One nonzero contribution to a generalized force.

@@ -86,7 +86,35 @@ pub fn solve_json(l: &Lagrange, acc: &crate::mechanics::Accelerations) -> Map<St
         a.insert(q.to_string(), Value::String(as_input(e)));
     }
     m.insert("accelerations".into(), Value::Object(a));
+    if !acc.multipliers().is_empty() {
+        let mut mult = Map::new();
+        for (name, e) in acc.multipliers() {
+            mult.insert(name.clone(), Value::String(as_input(e)));
+        }
+        m.insert("multipliers".into(), Value::Object(mult));
+    }
     m
+}
+
+/// The `constraints` key of a scene with `constraint` statements: one
+/// object per constraint, in order.
+pub fn constraints_json(scene: &Scene) -> Value {
+    Value::Array(
+        scene
+            .constraints
+            .iter()
+            .map(|c| {
+                json!({
+                    "name": c.name,
+                    "multiplier": c.multiplier,
+                    "kind": if c.holonomic { "holonomic" } else { "velocity" },
+                    "expression": as_input(&c.expression),
+                    "coefficients": c.coefficients.iter().map(as_input).collect::<Vec<_>>(),
+                    "rest": as_input(&c.rest),
+                })
+            })
+            .collect(),
+    )
 }
 
 /// Add `solutions`, `free_unknowns` and `checks` to a JSON object.

@@ -687,6 +687,20 @@ impl Writer {
                     format!("M_{{{k}}} {}", d(&format!("\\varphi_{{{k}}}"), &q)),
                 )]
             }
+            Source::Constraint(j) => {
+                // λ_j·∂g_j/∂q_k for a holonomic g_j = 0, λ_j·a_jk otherwise
+                let Some(c) = scene.constraints.get(j) else {
+                    return Vec::new();
+                };
+                let lambda = self.sym(&c.multiplier, 0);
+                let k = j + 1;
+                let factor = if c.holonomic {
+                    d(&format!("g_{{{k}}}"), &q)
+                } else {
+                    format!("a_{{{k},{q}}}")
+                };
+                vec![(false, format!("{lambda} {factor}"))]
+            }
         }
     }
 }

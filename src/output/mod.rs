@@ -21,6 +21,11 @@
 //! * every command but `check`, for a scene with `body`, `particle` or `gravity`
 //!   statements: `bodies` (a list of `{"name", "kind", "line", "kinetic",
 //!   "potential"}`, the energies as `{"name", "value"}` or null);
+//! * every command but `check`, for a scene with `constraint` statements:
+//!   `constraints` (a list of `{"name", "multiplier", "kind", "expression",
+//!   "coefficients", "rest"}`: kind "holonomic" or "velocity", the
+//!   constraint a·q̇ + b = 0 as its coefficients a per coordinate and b);
+//!   `solve` adds `multipliers` (multiplier → λ, after `accelerations`);
 //! * every command, for a scene that annotates a dimension: `dimensions`
 //!   last (coordinate, parameter, `solve` unknown → dimension or null).
 //!
@@ -44,7 +49,8 @@ mod text;
 pub use dimensions::{check_json, check_text, dimensions_json};
 use json::named;
 pub use json::{
-    bodies_json, derive_json, equilibrium_json, modes_json, solutions_json, solve_json,
+    bodies_json, constraints_json, derive_json, equilibrium_json, modes_json, solutions_json,
+    solve_json,
 };
 pub use modes::modes_text;
 pub use text::{derive_text, equilibrium_text, forces_text, padded, solutions_text, solve_text};
@@ -147,6 +153,9 @@ fn run_unbounded(
 fn scene_json(scene: &Scene, mut m: Map<String, serde_json::Value>) -> Result<String, Diagnostic> {
     if !scene.bodies.is_empty() {
         m.insert("bodies".into(), json::bodies_json(scene));
+    }
+    if !scene.constraints.is_empty() {
+        m.insert("constraints".into(), json::constraints_json(scene));
     }
     if scene.dimensions_checked {
         m.insert(

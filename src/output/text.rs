@@ -37,7 +37,52 @@ pub fn derive_text(l: &Lagrange) -> String {
             as_unicode(f)
         ));
     }
+    constraints_text(&mut out, l);
     out
+}
+
+/// The constraints at the level of the accelerations, A·q̈ = γ, and the
+/// multipliers they bring (nothing without constraints).
+fn constraints_text(out: &mut String, l: &Lagrange) {
+    let rows = &l.constraints;
+    if rows.is_empty() {
+        return;
+    }
+    out.push_str(
+        "
+Constraints  A·q̈ = γ  (constraint j adds λ_j·A_jk to Q_k)
+",
+    );
+    let q: Vec<String> = l.coordinates.iter().map(|c| pretty_name(c, 0)).collect();
+    for (j, label) in rows.labels.iter().enumerate() {
+        let kind = if rows.holonomic[j] {
+            "holonomic"
+        } else {
+            "in the velocities"
+        };
+        out.push_str(&format!(
+            "  {} ({kind}), multiplier {}
+",
+            label.trim_matches('`'),
+            pretty_name(&rows.multipliers[j], 0)
+        ));
+        let row: Vec<String> = rows.matrix[j]
+            .iter()
+            .zip(&q)
+            .filter(|(a, _)| !a.is_zero())
+            .map(|(a, q)| format!("A_{q} = {}", as_unicode(a)))
+            .collect();
+        out.push_str(&format!(
+            "    {}
+",
+            row.join(", ")
+        ));
+        out.push_str(&format!(
+            "    γ = {}
+",
+            as_unicode(&rows.forcing[j])
+        ));
+    }
 }
 
 /// The energies the `body`, `particle` and `gravity` statements
@@ -81,6 +126,12 @@ pub fn solve_text(l: &Lagrange, acc: &crate::mechanics::Accelerations) -> String
     out.push_str("\nAccelerations\n");
     for (q, e) in acc {
         out.push_str(&format!("  {} = {}\n", pretty_name(q, 2), as_unicode(e)));
+    }
+    if !acc.multipliers().is_empty() {
+        out.push_str("\nMultipliers  (λ_j·A_jk is the generalized constraint force on q_k)\n");
+        for (name, e) in acc.multipliers() {
+            out.push_str(&format!("  {} = {}\n", pretty_name(name, 0), as_unicode(e)));
+        }
     }
     out
 }

@@ -152,6 +152,16 @@ pub enum Stmt {
     /// `body top: mass m, inertia [A, A, C], frame B, at P` or
     /// `particle p: mass m, at P` — its kinetic energy joins E.
     Body(BodyStmt),
+    /// `constraint rod: x^2 + y^2 = l^2` — a holonomic constraint or one
+    /// linear in the velocities, with a Lagrange multiplier.
+    Constraint {
+        /// The name after `constraint`, when one is given (`rod`).
+        name: Option<Ident>,
+        /// The constraint `lhs = rhs`.
+        equation: Equation,
+        /// The whole statement.
+        span: Span,
+    },
     /// `assume e real, R > r` — what the scene assumes beyond "every
     /// parameter is positive".
     Assume(Vec<Fact>, Span),
@@ -306,7 +316,8 @@ impl Stmt {
             | Stmt::Torque { span, .. }
             | Stmt::Latex { span, .. }
             | Stmt::Frame { span, .. }
-            | Stmt::Gravity { span, .. } => *span,
+            | Stmt::Gravity { span, .. }
+            | Stmt::Constraint { span, .. } => *span,
             Stmt::Solve(b) => b.span,
             Stmt::Body(b) => b.span,
             Stmt::Assume(_, s) => *s,

@@ -48,6 +48,7 @@ pub const STATEMENT: &[&str] = &[
     "gravity",
     "functions",
     "assume",
+    "constraint",
 ];
 
 /// The stop words inside `load … at …` and `torque … on …`.

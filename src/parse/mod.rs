@@ -31,6 +31,7 @@ pub mod ast;
 mod assume;
 mod bodies;
 mod chars;
+mod constraint;
 mod expressions;
 mod failure;
 pub mod functions;

@@ -223,6 +223,8 @@ pub struct Scene {
     pub bodies: Vec<Body>,
     /// The `gravity` statement, if any.
     pub gravity: Option<Span>,
+    /// The `constraint` statements, in source order.
+    pub constraints: Vec<Constraint>,
     /// What the scene assumes beyond positive parameters (`assume`).
     pub assumptions: crate::algebra::assume::Assumptions,
     /// Things worth a look that do not stop the computation.
@@ -234,6 +236,41 @@ pub struct Scene {
     /// checked then ([`dimension::validate`]), and
     /// [`Scene::dimension_report`] gives every name's dimension.
     pub dimensions_checked: bool,
+}
+
+/// A `constraint` statement, resolved. At the velocity level it reads
+/// Σ a_k·q̇_k + b = 0 (a holonomic g(q, t) = 0 differentiated once), and
+/// its multiplier λ adds λ·a_k to the generalized force on q_k.
+///
+/// Invariant (checked by the resolver): `coefficients` has one entry per
+/// coordinate, not all zero; they and `rest` depend on q and t only.
+#[derive(Clone, Debug)]
+pub struct Constraint {
+    /// The name after `constraint`, when one is given.
+    pub name: Option<String>,
+    /// The multiplier's name: `lambda_NAME`, or `lambdaK` for the K-th
+    /// constraint (1-based) when it has no name.
+    pub multiplier: String,
+    /// True when the constraint has no velocities: g(q, t) = 0.
+    pub holonomic: bool,
+    /// lhs − rhs as written: g(q, t), or a·q̇ + b.
+    pub expression: Expr,
+    /// a_k, per coordinate in declaration order.
+    pub coefficients: Vec<Expr>,
+    /// b.
+    pub rest: Expr,
+    /// The whole statement.
+    pub span: Span,
+}
+
+impl Constraint {
+    /// How the constraint is named in messages: `rod`, or `#2`.
+    pub fn label(&self, index: usize) -> String {
+        match &self.name {
+            Some(n) => format!("`{n}`"),
+            None => format!("#{}", index + 1),
+        }
+    }
 }
 
 /// `latex theta3 = "\vartheta_{3}"`: the LaTeX notation of a name.
@@ -305,6 +342,9 @@ pub(crate) enum Binding {
     Body,
     /// A given function of time.
     Given,
+    /// The Lagrange multiplier of a `constraint` (`lambda_rod`): found by
+    /// solving, not a value in the scene.
+    Multiplier,
     Time,
     Pi,
 }
@@ -372,6 +412,10 @@ impl Scene {
             for u in &sys.unknowns {
                 names.insert(u.name.clone(), (Binding::Unknown, u.span));
             }
+        }
+        // a multiplier is an unknown outside the scene (the REPL, `--at`)
+        for c in &self.constraints {
+            names.insert(c.multiplier.clone(), (Binding::Unknown, c.span));
         }
         let mut values: Vec<Value> = self.definitions.iter().map(|d| d.value.clone()).collect();
         for (name, v) in extra {

@@ -503,6 +503,11 @@ impl<'a> SyntaxEvaluator<'a> {
                 format!("`{n}` is a body, not a value"),
             )
             .with_hint(format!("use its position or its frame; its kinetic energy is `E_{n}`, outside the scene (the REPL, `--at`)"))),
+            Some((_, (Binding::Multiplier, _))) => Err(Diagnostic::error(
+                span,
+                format!("`{n}` is the Lagrange multiplier of a constraint, not a value in the scene"),
+            )
+            .with_hint("`qdot solve` finds it with the accelerations; in the REPL and in `--at` expressions it is an unknown")),
             Some((_, (Binding::Time, _))) => Ok(Value::Scalar(Expr::time())),
             Some((_, (Binding::Pi, _))) => Ok(Value::Scalar(Expr::pi())),
             Some((_, (Binding::Def(i), _))) => {

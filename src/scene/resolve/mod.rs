@@ -16,6 +16,7 @@ use rustc_hash::FxHashMap;
 
 mod assume;
 mod bodies;
+mod constraints;
 
 /// A definition as written: its name, its body and its role, if any.
 type DefinitionAst<'a> = (&'a ast::Ident, &'a ast::Expr, Option<Role>);
@@ -33,6 +34,8 @@ struct Declarations<'a> {
     unknowns: Vec<Vec<Parameter>>,
     /// The indices in `definitions` of the `frame` statements.
     frames: Vec<usize>,
+    /// The `constraint` statements, in order.
+    constraints: Vec<&'a Stmt>,
 }
 
 impl<'a> Declarations<'a> {
@@ -47,6 +50,7 @@ impl<'a> Declarations<'a> {
             forces: Vec::new(),
             unknowns: Vec::new(),
             frames: Vec::new(),
+            constraints: Vec::new(),
         };
         for st in stmts {
             d.statement(st)?;
@@ -118,6 +122,20 @@ impl<'a> Declarations<'a> {
             | Stmt::Latex { .. }
             | Stmt::Gravity { .. }
             | Stmt::Assume(..) => {}
+            Stmt::Constraint { name, span, .. } => {
+                let k = self.constraints.len();
+                let multiplier = constraints::multiplier_name(name.as_ref(), k);
+                // the multiplier's name is taken like any other name
+                let at = name.as_ref().map_or(*span, |n| n.span);
+                self.declare(
+                    &ast::Ident {
+                        name: multiplier,
+                        span: at,
+                    },
+                    Binding::Multiplier,
+                )?;
+                self.constraints.push(st);
+            }
             Stmt::Solve(block) => {
                 let mut us = Vec::with_capacity(block.unknowns.len());
                 for u in &block.unknowns {
@@ -168,6 +186,7 @@ impl<'a> Declarations<'a> {
             Binding::Param => "a parameter",
             Binding::Coord => "a coordinate",
             Binding::Unknown => "an unknown of a `solve` block",
+            Binding::Multiplier => "the multiplier of a constraint",
             _ => "defined",
         };
         let (line, _) = Diagnostic::line_col(self.src, prev_span.start);
@@ -199,6 +218,8 @@ impl<'a> Declarations<'a> {
 
 /// The second pass: statements resolved into values, in source order.
 struct Resolver<'d> {
+    /// The scene's source text.
+    src: &'d str,
     ev: SyntaxEvaluator<'d>,
     coordinates: &'d [Coordinate],
     /// The coordinates' variables (q, not q̇), to tell what moves.
@@ -228,6 +249,7 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
         }
     }
     let mut r = Resolver {
+        src,
         ev: SyntaxEvaluator::new(&decl.names, &decl.definitions),
         coordinates: &decl.coordinates,
         coordinate_vars: decl
@@ -281,6 +303,7 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
         }
     }
     r.gravity(stmts)?;
+    let constraints = r.constraints(&decl.constraints)?;
     definitions.append(&mut r.body_energies);
     let Resolver {
         ev,
@@ -337,6 +360,7 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
         systems,
         bodies,
         gravity,
+        constraints,
         assumptions,
         warnings,
         latex_names,

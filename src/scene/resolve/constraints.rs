@@ -1,0 +1,127 @@
+//! `constraint` statements: holonomic g(q, t) = 0, or linear in the
+//! velocities a(q, t)·q̇ + b(q, t) = 0, each with a Lagrange multiplier.
+
+use super::{derivative_past, no_unknowns, Resolver};
+use crate::diag::Diagnostic;
+use crate::expr::{atom, Expr};
+use crate::parse::ast::{self, Stmt};
+use crate::poly::Var;
+use crate::scene::{Constraint, Value};
+
+/// The multiplier of the `index`-th constraint (0-based): `lambda_NAME`,
+/// or `lambdaK` (1-based) without a name.
+pub(super) fn multiplier_name(name: Option<&ast::Ident>, index: usize) -> String {
+    match name {
+        Some(n) => format!("lambda_{}", n.name),
+        None => format!("lambda{}", index + 1),
+    }
+}
+
+const FORMS: &str = "a constraint is holonomic, `constraint rod: x^2 + y^2 = l^2` (coordinates and t), or linear in the velocities, `constraint roll: x' = r*phi'`";
+
+impl Resolver<'_> {
+    /// The `constraint` statements, in order.
+    pub(super) fn constraints(&mut self, stmts: &[&Stmt]) -> Result<Vec<Constraint>, Diagnostic> {
+        let mut out: Vec<Constraint> = Vec::with_capacity(stmts.len());
+        for (k, st) in stmts.iter().enumerate() {
+            let Stmt::Constraint {
+                name,
+                equation,
+                span,
+            } = st
+            else {
+                continue;
+            };
+            let c = self.constraint(name.as_ref(), equation, *span, k)?;
+            if let Some(prev) = out.iter().position(|p| p.expression.equals(&c.expression)) {
+                let line = |c: &Constraint| Diagnostic::line_col(self.src, c.span.start).0;
+                return Err(Diagnostic::error(
+                    equation.span,
+                    format!(
+                        "constraint {} repeats constraint {} (line {})",
+                        c.label(k),
+                        out[prev].label(prev),
+                        line(&out[prev])
+                    ),
+                )
+                .with_hint(
+                    "each constraint once: a repeated constraint has no multiplier of its own",
+                ));
+            }
+            out.push(c);
+        }
+        Ok(out)
+    }
+
+    fn constraint(
+        &mut self,
+        name: Option<&ast::Ident>,
+        equation: &ast::Equation,
+        span: ast::Span,
+        index: usize,
+    ) -> Result<Constraint, Diagnostic> {
+        let side = |v: Value, e: &ast::Expr| match v {
+            Value::Scalar(x) => Ok(x),
+            other => Err(Diagnostic::error(
+                e.span,
+                format!(
+                    "a constraint is one equation between numbers, and this is {}",
+                    other.describe()
+                ),
+            )
+            .with_hint("write one `constraint` per component: `constraint cx: P[1] = 0`")),
+        };
+        let lhs = side(self.ev.value(&equation.lhs)?, &equation.lhs)?;
+        let rhs = side(self.ev.value(&equation.rhs)?, &equation.rhs)?;
+        let g = lhs.sub(&rhs);
+        let label = match name {
+            Some(n) => format!("constraint `{}`", n.name),
+            None => "this constraint".to_string(),
+        };
+        no_unknowns(std::slice::from_ref(&g), equation.span, &label)?;
+        if let Some((d, _)) = derivative_past(std::slice::from_ref(&g), 1) {
+            return Err(Diagnostic::error(
+                equation.span,
+                format!("{label} depends on the acceleration {d}"),
+            )
+            .with_hint(FORMS));
+        }
+        let q: Vec<Var> = self.coordinate_vars.clone();
+        let qd: Vec<Var> = self
+            .coordinates
+            .iter()
+            .map(|c| atom::coord(&c.name, 1))
+            .collect();
+        let holonomic = !qd.iter().any(|&v| g.depends_on(v));
+        if !q.iter().chain(&qd).any(|&v| g.depends_on(v)) {
+            let what = if g.is_zero() {
+                "holds for every motion (both sides are equal)".to_string()
+            } else {
+                "involves no coordinate".to_string()
+            };
+            return Err(Diagnostic::error(equation.span, format!("{label} {what}"))
+                .with_hint("a constraint restricts the coordinates or their velocities; a relation between parameters is an `assume` fact"));
+        }
+        let velocity_level = if holonomic { g.dt() } else { g.clone() };
+        let (coefficients, rest) = crate::algebra::linear::split_linear(&velocity_level, &qd)
+            .map_err(|m| Diagnostic::error(equation.span, m.message))?;
+        let moving = |e: &Expr| qd.iter().any(|&v| e.depends_on(v));
+        if coefficients.iter().any(moving) || moving(&rest) {
+            return Err(Diagnostic::error(
+                equation.span,
+                format!("{label} is not linear in the velocities"),
+            )
+            .with_hint(FORMS));
+        }
+        debug_assert!(coefficients.iter().any(|a| !a.is_zero()));
+        Ok(Constraint {
+            name: name.map(|n| n.name.clone()),
+            multiplier: multiplier_name(name, index),
+            holonomic,
+            expression: g,
+            coefficients,
+            rest,
+            span,
+        })
+    }
+}
