@@ -159,6 +159,10 @@ enum Command {
         /// scene), once per function: --function "s=1/10*sin(2*t)"
         #[arg(long = "function")]
         function: Vec<String>,
+        /// Baumgarte's rate for a scene with constraints, in 1/time of the
+        /// scene: drift from the constraints decays like exp(-rate*t); 0 turns it off.
+        #[arg(long, default_value_t = 10.0)]
+        baumgarte: f64,
     },
     /// The dimension of every name, declared or found, and of the results;
     /// an error at the first term of the wrong dimension.
@@ -207,6 +211,7 @@ fn main() -> ExitCode {
             plot,
             stop_when,
             function,
+            baumgarte,
         } => {
             return simulate(
                 file,
@@ -221,6 +226,7 @@ fn main() -> ExitCode {
                     max_steps: *max_steps,
                     stop_when: stop_when.clone(),
                     functions: function.clone(),
+                    baumgarte: *baumgarte,
                     progress: std::io::IsTerminal::is_terminal(&std::io::stderr()),
                     ..Default::default()
                 },

@@ -31,6 +31,10 @@ pub struct ConstraintRows {
     pub matrix: Vec<Vec<Expr>>,
     /// γ with A·q̈ = γ.
     pub forcing: Vec<Expr>,
+    /// a·q̇ + b, the constraint at the level of the velocities (0 on a motion).
+    pub velocity: Vec<Expr>,
+    /// g(q, t) of a holonomic constraint (0 on a motion), None otherwise.
+    pub position: Vec<Option<Expr>>,
 }
 
 impl ConstraintRows {
@@ -55,8 +59,31 @@ impl ConstraintRows {
             rows.holonomic.push(c.holonomic);
             rows.matrix.push(c.coefficients.clone());
             rows.forcing.push(rest.neg());
+            rows.velocity.push(velocity);
+            rows.position
+                .push(c.holonomic.then(|| c.expression.clone()));
         }
         Ok(rows)
+    }
+
+    /// Every expression of the rows, for substitutions and scans.
+    pub fn expressions_mut(&mut self) -> impl Iterator<Item = &mut Expr> {
+        self.matrix
+            .iter_mut()
+            .flatten()
+            .chain(&mut self.forcing)
+            .chain(&mut self.velocity)
+            .chain(self.position.iter_mut().flatten())
+    }
+
+    /// Every expression of the rows.
+    pub fn expressions(&self) -> impl Iterator<Item = &Expr> {
+        self.matrix
+            .iter()
+            .flatten()
+            .chain(&self.forcing)
+            .chain(&self.velocity)
+            .chain(self.position.iter().flatten())
     }
 
     /// True when the scene has no constraints.

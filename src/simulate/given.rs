@@ -85,6 +85,9 @@ pub fn defined(scene: &Scene, lag: Lagrange, defs: &[String]) -> Result<Lagrange
         eq.rhs = subs(&eq.rhs)?;
     }
     out.kinetic = subs(&out.kinetic)?;
+    for e in out.constraints.expressions_mut() {
+        *e = subs(e)?;
+    }
     Ok(out)
 }
 
@@ -110,7 +113,8 @@ fn derivatives(lag: &Lagrange, values: &FxHashMap<&str, Expr>) -> FxHashMap<Var,
         .flatten()
         .chain(&lag.forcing)
         .chain(lag.equations.iter().flat_map(|e| [&e.lhs, &e.rhs]))
-        .chain(std::iter::once(&lag.kinetic));
+        .chain(std::iter::once(&lag.kinetic))
+        .chain(lag.constraints.expressions());
     for e in all {
         for v in e.vars() {
             for w in std::iter::once(v).chain(atom::inner_atoms(v).iter().copied()) {

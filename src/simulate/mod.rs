@@ -27,6 +27,7 @@ pub mod progress;
 pub mod run;
 
 pub mod compile;
+pub mod constrained;
 
 /// A first-order system y' = F(t, y) of fixed dimension.
 pub trait System {

@@ -52,6 +52,9 @@ pub struct Request {
     /// `--function s=EXPR`: the definition of each given function of time
     /// (an expression in t and the parameters), as written.
     pub functions: Vec<String>,
+    /// Baumgarte's rate α for a scene with constraints (1/time of the
+    /// scene; 0 turns the stabilization off): see [`super::constrained`].
+    pub baumgarte: f64,
     /// Show a progress bar on standard error when the integration lasts
     /// more than half a second (`simulate::progress`, with the `cli`
     /// feature); the command line sets it when standard error is a
@@ -73,6 +76,7 @@ impl Default for Request {
             max_steps: crate::limits::DEFAULT_MAX_STEPS,
             stop_when: None,
             functions: Vec::new(),
+            baumgarte: 10.0,
             progress: false,
         }
     }
@@ -95,6 +99,9 @@ pub struct Run {
     pub compile_seconds: f64,
     /// How q̈ was evaluated, and why ([`CompiledDynamics::best`]).
     pub evaluator: Choice,
+    /// The largest |g| (or |a·q̇ + b|) over the output rows and the
+    /// constraints, for a scene with constraints (their `drift_…` columns).
+    pub constraint_drift: Option<f64>,
     /// The column where a NaN or ∞ appeared (the run then ends with
     /// [`Status::NotFinite`] at the last row before it).
     pub not_finite_column: Option<String>,
@@ -216,6 +223,13 @@ fn check_numbers(req: &Request) -> Result<(), Diagnostic> {
             "the output times include t = 0 and --t-end; for more, run in pieces with --t-end",
         ));
     }
+    if !(req.baumgarte.is_finite() && req.baumgarte >= 0.0) {
+        return Err(Diagnostic::global(format!(
+            "--baumgarte {} must be a number ≥ 0",
+            req.baumgarte
+        ))
+        .with_hint("the rate at which constraint drift decays, in 1/time of the scene (0: no stabilization)"));
+    }
     if req.max_steps == 0 {
         return Err(Diagnostic::global("--max-steps must be at least 1"));
     }
@@ -270,14 +284,28 @@ pub use crate::scene::given::numeric_initial_values as parse_init;
 pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
     let scene = Scene::parse(src)?;
     let lag = super::given::defined(&scene, scene.lagrange()?, &req.functions)?;
+    let drift = super::constrained::drift(&lag);
+    let lag = super::constrained::stabilized(lag)?;
     let names: Vec<String> = lag.coordinates.clone();
-    let params = parameter_values(&scene, req)?;
+    let mut params = parameter_values(&scene, req)?;
+    if !drift.is_empty() {
+        params.insert(super::constrained::alpha_var(), req.baumgarte);
+    }
     let y0 = initial_values(&names, req)?;
     check_numbers(req)?;
     let compile_start = Instant::now();
     let (mut dynamics, evaluator) = CompiledDynamics::best(&lag, &params)
         .map_err(|e| Diagnostic::global(format!("cannot compile the equations: {e}")))?;
     let energy = conserved_quantity(&scene, &lag.coordinates, &params)?;
+    let drift_program = if drift.is_empty() {
+        None
+    } else {
+        let exprs: Vec<Expr> = drift.iter().map(|(_, e)| e.clone()).collect();
+        Some(
+            compile_with(&exprs, &state_inputs(&names), &params)
+                .map_err(|e| Diagnostic::global(format!("cannot compile the constraints: {e}")))?,
+        )
+    };
     let compile_seconds = compile_start.elapsed().as_secs_f64();
 
     let points = req.points;
@@ -323,6 +351,12 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
     if energy.is_some() {
         columns.push("energy".into());
     }
+    columns.extend(drift.iter().map(|(c, _)| c.clone()));
+    let mut max_drift: Option<f64> = drift_program.as_ref().map(|_| 0.0);
+    let (mut drift_regs, mut drift_out) = match &drift_program {
+        Some(p) => (p.registers(), vec![0.0; p.n_outputs()]),
+        None => (Vec::new(), Vec::new()),
+    };
     let mut rows = Vec::with_capacity(solution.t.len());
     let (mut regs, mut out) = match &energy {
         Some(p) => (p.registers(), vec![0.0; p.n_outputs()]),
@@ -339,6 +373,13 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
             p.eval(&row, &mut regs, &mut out);
             row.push(out[0]);
         }
+        if let Some(p) = &drift_program {
+            p.eval(&row[..1 + 2 * names.len()], &mut drift_regs, &mut drift_out);
+            for &g in &drift_out {
+                max_drift = max_drift.map(|m| m.max(g.abs()));
+            }
+            row.extend_from_slice(&drift_out);
+        }
         // a NaN or ∞ in any column ends the run there: no row prints one
         if let Some(j) = row.iter().position(|x| !x.is_finite()) {
             not_finite = Some((columns[j].clone(), *t));
@@ -350,6 +391,7 @@ pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
         solution.status = Status::NotFinite { t: *t };
     }
     Ok(Run {
+        constraint_drift: max_drift,
         not_finite_column: not_finite.map(|(c, _)| c),
         columns,
         rows,
@@ -427,7 +469,9 @@ pub fn conserved_quantity(
         || !scene.forces.is_empty()
         || !scene.loads.is_empty()
         || !scene.torques.is_empty()
-        || !scene.functions.is_empty();
+        || !scene.functions.is_empty()
+        // a moving constraint (b ≠ 0) does work
+        || scene.constraints.iter().any(|c| !c.rest.is_zero());
     if non_conservative {
         return Ok(None);
     }
@@ -499,6 +543,7 @@ pub fn json(run: &Run) -> String {
                 },
             },
         },
+        "constraint_drift": run.constraint_drift,
         "stiff_at": run.solution.stiff_at,
         "event_t": match run.solution.status {
             Status::Event { t } => Some(t),
@@ -535,5 +580,8 @@ pub fn stats_text(run: &Run) -> String {
         run.compile_seconds * 1e3,
         run.evaluator.evaluator.name(),
         run.evaluator.reason
-    )
+    ) + &match run.constraint_drift {
+        Some(d) => format!("constraint drift: max |g| = {d:.3e} over the output rows\n"),
+        None => String::new(),
+    }
 }

@@ -103,6 +103,7 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
         || "linearizing about the equilibrium for the small oscillations".into(),
         None,
     );
+    crate::solve::equilibrium::refuse_constraints(scene, "small oscillations")?;
     let l = scene.lagrange()?;
     let names = l.coordinates.clone();
     let n = names.len();
