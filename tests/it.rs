@@ -10,6 +10,7 @@ mod assumptions;
 mod book;
 mod cli;
 mod compile;
+mod constraints;
 mod dimensions;
 mod equilibrium;
 mod factor;

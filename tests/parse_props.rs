@@ -87,6 +87,21 @@ fn check_scene(src: &str) -> Result<Option<Vec<Stmt>>, TestCaseError> {
                             }
                         }
                     }
+                    Stmt::Constraint {
+                        name,
+                        equation,
+                        span,
+                    } => {
+                        prop_assert!(src[span.start..].starts_with("constraint"));
+                        if let Some(n) = name {
+                            prop_assert!(
+                                span.start < n.span.start && n.span.end < equation.span.start
+                            );
+                        }
+                        prop_assert!(equation.span.end == span.end);
+                        check_expr_spans(src, &equation.lhs)?;
+                        check_expr_spans(src, &equation.rhs)?;
+                    }
                     Stmt::Body(b) => {
                         for p in &b.properties {
                             prop_assert!(b.span.start < p.key_span.start);
@@ -301,6 +316,9 @@ fn statement_source() -> impl Strategy<Value = String> {
         "solve x { ",
         "solve x, y {\n",
         "at = ",
+        "constraint ",
+        "constraint c: ",
+        "constraint x ",
     ]);
     prop::collection::vec((head, prop::collection::vec(token(), 1..12)), 1..5).prop_map(|lines| {
         lines

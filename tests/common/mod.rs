@@ -101,6 +101,13 @@ pub fn stmt_sexpr(s: &Stmt) -> String {
         Stmt::Frame { name, value, .. } => format!("(frame {} {})", name.name, sexpr(value)),
         Stmt::Gravity { value, .. } => format!("(gravity {})", sexpr(value)),
         Stmt::Assume(facts, _) => format!("(assume {})", facts_text(facts, sexpr, " ")),
+        Stmt::Constraint { name, equation, .. } => format!(
+            "(constraint {}(= {} {}))",
+            name.as_ref()
+                .map_or(String::new(), |n| format!("{} ", n.name)),
+            sexpr(&equation.lhs),
+            sexpr(&equation.rhs)
+        ),
         Stmt::Body(b) => format!(
             "({} {} ({}))",
             b.kind.keyword(),
@@ -313,6 +320,13 @@ pub fn print_stmt(s: &Stmt) -> String {
         Stmt::Frame { name, value, .. } => format!("frame {} = {}", name.name, print_full(value)),
         Stmt::Gravity { value, .. } => format!("gravity {}", print_full(value)),
         Stmt::Assume(facts, _) => format!("assume {}", facts_text(facts, print_full, ", ")),
+        Stmt::Constraint { name, equation, .. } => format!(
+            "constraint {}{} = {}",
+            name.as_ref()
+                .map_or(String::new(), |n| format!("{}: ", n.name)),
+            print_full(&equation.lhs),
+            print_full(&equation.rhs)
+        ),
         Stmt::Body(b) => format!(
             "{} {}: {}",
             b.kind.keyword(),

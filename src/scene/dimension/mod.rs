@@ -275,6 +275,7 @@ fn walk_statements<'a>(
             Stmt::Body(b) => statements::body(w, b)?,
             Stmt::Gravity { value, .. } => statements::gravity(w, value)?,
             Stmt::Assume(facts, _) => statements::assumption(w, facts)?,
+            Stmt::Constraint { equation, .. } => statements::constraint(w, equation)?,
             _ => {}
         }
     }

@@ -152,6 +152,23 @@ fn misapplied(
 /// A `solve` block: the two sides of each equation alike. Equations with
 /// fewer unknowns go first: they decide the unknowns' dimensions, so a
 /// wrong term elsewhere is reported where it is written.
+/// `constraint NAME: lhs = rhs`: both sides of one dimension.
+pub(super) fn constraint(w: &mut Walker, eq: &Equation) -> Checked<()> {
+    match w.value(&eq.lhs, None)? {
+        DimValue::Scalar(Some(f)) => {
+            let want = Want {
+                form: f,
+                why: Why::OtherSide,
+            };
+            w.value(&eq.rhs, Some(&want))?;
+        }
+        _ => {
+            w.value(&eq.rhs, None)?;
+        }
+    }
+    Ok(())
+}
+
 pub(super) fn solve_block(w: &mut Walker, block: &SolveBlock) -> Checked<()> {
     let mut order: Vec<(usize, &Equation)> = block
         .equations

@@ -203,6 +203,16 @@ impl<'a> Declarations<'a> {
             };
             return Diagnostic::error(name.span, message).with_hint(hint);
         }
+        if matches!(b, Binding::Multiplier) {
+            return Diagnostic::error(
+                name.span,
+                format!(
+                    "this constraint's multiplier `{}` is already {what}",
+                    name.name
+                ),
+            )
+            .with_hint("a constraint NAME brings the multiplier `lambda_NAME`: rename the constraint or the other name");
+        }
         let again = match (b, prev) {
             (Binding::Coord, Binding::Coord) => "coordinate declared twice",
             (Binding::Param, Binding::Param) => "parameter declared twice",

@@ -1,0 +1,282 @@
+//! Constraints and Lagrange's multipliers (issue 17): the Cartesian
+//! pendulum's multiplier is its rod's tension, a rheonomic constraint
+//! reproduces the one-coordinate scene, the rolling coin's nonholonomic
+//! accelerations, redundant constraints named, constrained simulation
+//! against the angle pendulum, and wrong scenes refused where they are
+//! wrong (`tests/data/constraints/wrong/NAME.qd` with the blessed error
+//! `NAME.txt`; `QDOT_BLESS=1 cargo test --release --test it constraints::`
+//! rewrites them).
+
+use crate::common::{blessed, cases};
+use qdot::expr::atom;
+use qdot::output::{self, Command, Format};
+use qdot::{Expr, Scene};
+use rustc_hash::FxHashMap;
+use std::path::Path;
+
+const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/constraints");
+
+fn scene(src: &str) -> Scene {
+    Scene::parse(src).unwrap_or_else(|d| panic!("{}", d.render("scene", src)))
+}
+
+const CARTESIAN: &str = "coordinates x, y
+parameters m, g, l
+kinetic E = 1/2*m*(x'^2 + y'^2)
+potential V = m*g*y
+constraint rod: x^2 + y^2 = l^2
+";
+
+const ANGLE: &str = "coordinates th
+parameters m, g, l
+kinetic E = 1/2*m*l^2*th'^2
+potential V = -m*g*l*cos(th)
+solve T { m*l*th'^2 = T - m*g*cos(th) }
+";
+
+/// x = l·sin θ, y = −l·cos θ and their velocities: the Cartesian
+/// pendulum's state on its constraint, in the angle's.
+fn on_the_circle(s: &Scene) -> FxHashMap<qdot::poly::Var, Expr> {
+    let mut at = FxHashMap::default();
+    for (v, text) in [
+        (atom::coord("x", 0), "l*sin(th)"),
+        (atom::coord("y", 0), "-l*cos(th)"),
+        (atom::coord("x", 1), "l*cos(th)*th'"),
+        (atom::coord("y", 1), "l*sin(th)*th'"),
+    ] {
+        at.insert(v, s.expr(text).unwrap());
+    }
+    at
+}
+
+/// The multiplier of the Cartesian pendulum is the rod's tension: the
+/// constraint force λ·∇g = 2λ·(x, y) has magnitude −2λ·l, which on the
+/// circle is the T a kinetostatic `solve` block finds for the angle
+/// pendulum; and ẍ, ÿ are the second derivatives of l·sin θ, −l·cos θ.
+#[test]
+fn the_multiplier_is_the_rods_tension() {
+    let cart = scene(CARTESIAN);
+    let angle = scene(ANGLE);
+    let acc = cart.lagrange().unwrap().accelerations().unwrap();
+    let [(name, lambda)] = acc.multipliers() else {
+        panic!("one multiplier: {:?}", acc.multipliers())
+    };
+    assert_eq!(name, "lambda_rod");
+    let at = on_the_circle(&angle);
+    let blocks = qdot::solve::system::solve_scene(&angle).unwrap();
+    let (_, tension) = &blocks[0].values[0];
+    let from_lambda = lambda
+        .subs_many(&at)
+        .unwrap()
+        .mul(&angle.expr("-2*l").unwrap());
+    assert!(
+        from_lambda.equals(tension),
+        "−2·λ·l = {from_lambda}, T = {tension}"
+    );
+    // ẍ = d²/dt²(l sin θ) with θ̈ of the angle pendulum
+    let th_dd = angle.lagrange().unwrap().accelerations().unwrap()["th"].clone();
+    let mut with_th = at.clone();
+    with_th.insert(atom::coord("th", 2), th_dd);
+    for (q, path) in [("x", "l*sin(th)"), ("y", "-l*cos(th)")] {
+        let want = angle
+            .expr(&format!("({path})''"))
+            .unwrap()
+            .subs_many(&with_th)
+            .unwrap();
+        let got = acc[q].subs_many(&at).unwrap();
+        assert!(got.equals(&want), "{q}'': {got} vs {want}");
+    }
+}
+
+/// The bead on a hoop turning at the rate Ω, with the turning written as
+/// the rheonomic constraint φ = Ω·t: θ̈ on the constraint is that of the
+/// one-coordinate scene, and the multiplier is the torque that keeps the
+/// hoop turning, d/dt(m·R²·sin²θ·Ω).
+#[test]
+fn a_rheonomic_constraint_is_the_one_coordinate_scene() {
+    let constrained = scene(
+        "coordinates th, ph
+parameters m, g, R, Omega
+kinetic E = 1/2*m*R^2*(th'^2 + sin(th)^2*ph'^2)
+potential V = -m*g*R*cos(th)
+constraint spin: ph = Omega*t
+",
+    );
+    let single = scene(
+        "coordinates th
+parameters m, g, R, Omega
+kinetic E = 1/2*m*R^2*(th'^2 + sin(th)^2*Omega^2)
+potential V = -m*g*R*cos(th)
+",
+    );
+    let acc = constrained.lagrange().unwrap().accelerations().unwrap();
+    let mut at = FxHashMap::default();
+    at.insert(atom::coord("ph", 1), single.expr("Omega").unwrap());
+    let want = single.lagrange().unwrap().accelerations().unwrap()["th"].clone();
+    assert!(
+        acc["th"].subs_many(&at).unwrap().equals(&want),
+        "{}",
+        acc["th"]
+    );
+    assert!(acc["ph"].is_zero(), "φ̈ = {}", acc["ph"]);
+    let torque = single.expr("2*m*R^2*sin(th)*cos(th)*th'*Omega").unwrap();
+    let lambda = acc.multipliers()[0].1.subs_many(&at).unwrap();
+    assert!(lambda.equals(&torque), "λ_spin = {lambda}");
+}
+
+const COIN: &str = "# a coin rolling upright: contact point x, y, heading phi, spin theta
+coordinates x, y, phi, theta
+parameters m, r, A, C
+kinetic E = 1/2*m*(x'^2 + y'^2) + 1/2*A*phi'^2 + 1/2*C*theta'^2
+constraint rollx: x' = r*cos(phi)*theta'
+constraint rolly: y' = r*sin(phi)*theta'
+";
+
+/// The upright rolling coin (two nonholonomic constraints): the contact
+/// point turns with the heading, the spin and the heading rates stay, and
+/// the multipliers are the contact forces m·ẍ, m·ÿ.
+#[test]
+fn the_rolling_coin() {
+    let s = scene(COIN);
+    let acc = s.lagrange().unwrap().accelerations().unwrap();
+    for (q, want) in [
+        ("x", "-r*sin(phi)*phi'*theta'"),
+        ("y", "r*cos(phi)*phi'*theta'"),
+        ("phi", "0"),
+        ("theta", "0"),
+    ] {
+        assert!(acc[q].equals(&s.expr(want).unwrap()), "{q}'' = {}", acc[q]);
+    }
+    let names: Vec<&str> = acc.multipliers().iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["lambda_rollx", "lambda_rolly"]);
+    for ((_, l), q) in acc.multipliers().iter().zip(["x", "y"]) {
+        let m_acc = s.expr("m").unwrap().mul(&acc[q]);
+        assert!(l.equals(&m_acc), "{l} vs m·{q}''");
+    }
+    let rows = &s.lagrange().unwrap().constraints;
+    assert_eq!(rows.holonomic, [false, false]);
+}
+
+/// Redundant constraints are refused by name; the JSON of a constrained
+/// scene carries `constraints` and, from `solve`, `multipliers`.
+#[test]
+fn redundant_constraints_and_json() {
+    let redundant = CARTESIAN.to_string() + "constraint twice: 2*x^2 + 2*y^2 = 2*l^2\n";
+    let s = scene(&redundant);
+    let err = s.lagrange().unwrap().accelerations().unwrap_err();
+    assert!(
+        err.message.contains("`rod`")
+            && err.message.contains("`twice`")
+            && err.message.contains("redundant"),
+        "{}",
+        err.message
+    );
+    let (out, _) =
+        output::run_with(Command::Solve, CARTESIAN, Format::Json, &Default::default()).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let c = &v["constraints"][0];
+    assert_eq!(
+        (&c["name"], &c["multiplier"], &c["kind"], &c["expression"]),
+        (
+            &"rod".into(),
+            &"lambda_rod".into(),
+            &"holonomic".into(),
+            &"x^2 + y^2 - l^2".into()
+        )
+    );
+    assert_eq!(c["coefficients"], serde_json::json!(["2*x", "2*y"]));
+    let s = scene(CARTESIAN);
+    let lambda = s
+        .expr(v["multipliers"]["lambda_rod"].as_str().unwrap())
+        .unwrap();
+    let want = s.expr("m*(g*y - x'^2 - y'^2)/(2*(x^2 + y^2))").unwrap();
+    assert!(lambda.equals(&want), "{lambda}");
+    // a scene without constraints has neither key
+    let (plain, _) =
+        output::run_with(Command::Solve, ANGLE, Format::Json, &Default::default()).unwrap();
+    assert!(!plain.contains("\"constraints\"") && !plain.contains("\"multipliers\""));
+}
+
+/// Equilibria and modes of constrained scenes are refused with a reason
+/// (they would otherwise ignore the constraint forces).
+#[test]
+fn equilibrium_and_modes_refuse_constraints() {
+    for cmd in [Command::Equilibrium, Command::Modes] {
+        let err = output::run(cmd, CARTESIAN, Format::Text, &Default::default()).unwrap_err();
+        assert!(err.message.contains("constraints"), "{}", err.message);
+        assert!(err.span.is_some() && err.hint.is_some());
+    }
+}
+
+/// The Cartesian pendulum simulated with its constraint follows the angle
+/// pendulum (x = l·sin θ) and keeps |x² + y² − l²| ≤ 1e-9 over 100
+/// periods at rtol 1e-10 (Baumgarte's stabilization); without the
+/// stabilization the drift is orders of magnitude larger.
+#[test]
+fn constrained_simulation_follows_the_angle_pendulum() {
+    use qdot::simulate::run::{simulate, Request};
+    let request = |init: &str, baumgarte: f64| Request {
+        set: qdot::output::parse_set("m=1,g=9.81,l=1").unwrap(),
+        init: qdot::simulate::run::parse_init(init).unwrap(),
+        t_end: 250.0,
+        rtol: 1e-10,
+        atol: 1e-12,
+        points: 501,
+        baumgarte,
+        ..Default::default()
+    };
+    // released from 60°: period ≈ 2.15 s, so 250 s is over 100 periods
+    let (s, c) = (3f64.sqrt() / 2.0, 0.5);
+    let cart = simulate(
+        CARTESIAN,
+        &request(&format!("x={s},y=-{c},x'=0,y'=0"), 10.0),
+    )
+    .unwrap();
+    let angle = simulate(
+        ANGLE,
+        &request(&format!("th={},th'=0", std::f64::consts::FRAC_PI_3), 10.0),
+    )
+    .unwrap();
+    let drift = cart.constraint_drift.unwrap();
+    assert!(drift <= 1e-9, "drift {drift:e}");
+    let col = |name: &str| cart.columns.iter().position(|c| c == name).unwrap();
+    assert_eq!(cart.columns.last().map(String::as_str), Some("drift_rod"));
+    let mut worst: f64 = 0.0;
+    for (rc, ra) in cart.rows.iter().zip(&angle.rows) {
+        worst = worst.max((rc[col("x")] - ra[1].sin()).abs());
+    }
+    assert!(worst < 1e-6, "x vs l·sin θ: {worst:e}");
+    let loose = simulate(CARTESIAN, &request(&format!("x={s},y=-{c},x'=0,y'=0"), 0.0)).unwrap();
+    assert!(loose.constraint_drift.unwrap() > 100.0 * drift);
+}
+
+/// Every wrong scene is refused with a positioned error and a hint
+/// (blessed), by the library and by `derive` alike.
+#[test]
+fn wrong_constraints_are_refused_where_written() {
+    let all = cases(&Path::new(DATA).join("wrong"));
+    assert!(all.len() >= 15, "{} wrong scenes", all.len());
+    let mut failures = Vec::new();
+    for case in &all {
+        let src = std::fs::read_to_string(case).unwrap();
+        let name = case.file_name().unwrap().to_string_lossy().into_owned();
+        let err = match Scene::parse(&src) {
+            Ok(_) => {
+                failures.push(format!("{name}: accepted"));
+                continue;
+            }
+            Err(d) => d,
+        };
+        let Some(span) = err.span else {
+            failures.push(format!("{name}: no position: {}", err.message));
+            continue;
+        };
+        assert!(err.hint.is_some(), "{name}: no hint: {}", err.message);
+        let (line, col) = qdot::Diagnostic::line_col(&src, span.start);
+        let text = format!("{line}:{col}\n{}", err.render(&name, &src));
+        blessed(case, &text, &mut failures);
+        let got = output::run(Command::Derive, &src, Format::Json, &Default::default());
+        assert_eq!(got.err().map(|d| d.message), Some(err.message.clone()));
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
