@@ -216,6 +216,17 @@ impl Writer {
             .map(|eq| vec![self.terms(&eq.lhs), self.terms(&eq.rhs)])
             .collect();
         self.align(true, &rows);
+        let c = &lag.constraints;
+        if !c.is_empty() {
+            self.line("with the constraints, each with its multiplier $\\lambda$:");
+            let rows: Vec<_> = (0..c.velocity.len())
+                .map(|j| {
+                    let e = c.position[j].as_ref().unwrap_or(&c.velocity[j]);
+                    vec![self.terms(e), self.one("0".into())]
+                })
+                .collect();
+            self.align(true, &rows);
+        }
     }
 
     /// `qdot derive`: the equations, the mass matrix and the forcing.
@@ -234,6 +245,17 @@ impl Writer {
             .map(|(q, a)| vec![self.one(self.sym(q, 2)), self.terms(a)])
             .collect();
         self.align(false, &rows);
+        if !acc.multipliers().is_empty() {
+            self.line(
+                "The multipliers (the generalized constraint forces are $\\lambda_j a_{jk}$):",
+            );
+            let rows: Vec<_> = acc
+                .multipliers()
+                .iter()
+                .map(|(name, l)| vec![self.one(self.sym(name, 0)), self.terms(l)])
+                .collect();
+            self.align(false, &rows);
+        }
     }
 
     /// The `solve` blocks: their equations (numbered) and solutions.
