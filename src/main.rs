@@ -76,6 +76,14 @@ enum Command {
         #[arg(long, value_enum, default_value = "text")]
         format: Fmt,
     },
+    /// Hamilton's equations: the momenta p = ∂L/∂q̇, the velocities in
+    /// terms of them, H(q, p, t) and q̇ = ∂H/∂p, ṗ = −∂H/∂q + Q̃.
+    Hamilton {
+        /// The scene file (.qd).
+        file: String,
+        #[arg(long, value_enum, default_value = "text")]
+        format: Fmt,
+    },
     /// Small oscillations about an equilibrium: M, C, K, det(K − ω²M),
     /// the natural frequencies, the modes, and the responses.
     Modes {
@@ -239,6 +247,7 @@ fn main() -> ExitCode {
         Command::Derive { file, format } => (output::Command::Derive, file, *format, None),
         Command::Solve { file, format } => (output::Command::Solve, file, *format, None),
         Command::Forces { file, format } => (output::Command::Forces, file, *format, None),
+        Command::Hamilton { file, format } => (output::Command::Hamilton, file, *format, None),
         Command::Check { file, format } => {
             let fmt = match format {
                 CheckFmt::Text => Fmt::Text,

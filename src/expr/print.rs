@@ -695,11 +695,18 @@ pub fn pretty_name(name: &str, dots: u32) -> String {
         (base, digits)
     };
     let greek = |b: &str| GREEK.iter().find(|(k, _)| *k == b).map(|(_, g)| *g);
-    // `lambda_rod` (a constraint's multiplier) reads λ_rod
+    // `lambda_rod` (a constraint's multiplier) reads λ_rod, `p_theta` (a
+    // momentum) p_θ
     let base = match (greek(base), base.split_once('_')) {
         (Some(g), _) => g.to_string(),
-        (None, Some((head, tail))) if !tail.is_empty() && greek(head).is_some() => {
-            format!("{}_{tail}", greek(head).unwrap_or(head))
+        (None, Some((head, tail)))
+            if !head.is_empty() && (greek(head).is_some() || greek(tail).is_some()) =>
+        {
+            format!(
+                "{}_{}",
+                greek(head).unwrap_or(head),
+                greek(tail).unwrap_or(tail)
+            )
         }
         _ => base.to_string(),
     };

@@ -21,6 +21,7 @@
 
 mod accelerations;
 mod constraints;
+pub mod hamilton;
 
 pub use crate::algebra::linear::split_linear;
 use crate::diag::Diagnostic;
@@ -30,6 +31,7 @@ use crate::poly::Var;
 use crate::scene::Scene;
 pub use accelerations::Accelerations;
 pub use constraints::ConstraintRows;
+pub use hamilton::Hamiltonian;
 
 /// One equation: `lhs = rhs` for a coordinate.
 #[derive(Clone, Debug)]

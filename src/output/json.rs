@@ -295,3 +295,34 @@ pub fn modes_json(
     m.insert("forced_response".into(), forced_json(md, standard.as_ref()));
     m
 }
+
+/// The JSON of `qdot hamilton`: `coordinates`, `momenta` (q → p_q in q,
+/// q̇), `velocities` (q → q̇ in q, p), `hamiltonian`, `equations` (one
+/// `{"coordinate", "momentum", "qdot", "pdot"}` per coordinate) and
+/// `other_forces` (q → Q̃, the generalized forces outside H).
+pub fn hamilton_json(h: &crate::mechanics::Hamiltonian) -> Map<String, Value> {
+    let mut m = Map::new();
+    m.insert("coordinates".into(), json!(h.coordinates));
+    m.insert("momenta".into(), named(&h.coordinates, &h.momenta));
+    m.insert("velocities".into(), named(&h.coordinates, &h.velocities));
+    m.insert(
+        "hamiltonian".into(),
+        Value::String(as_input(&h.hamiltonian)),
+    );
+    let equations = (0..h.coordinates.len())
+        .map(|k| {
+            json!({
+                "coordinate": h.coordinates[k],
+                "momentum": h.momentum_names[k],
+                "qdot": as_input(&h.velocities[k]),
+                "pdot": as_input(&h.momentum_rates[k]),
+            })
+        })
+        .collect();
+    m.insert("equations".into(), Value::Array(equations));
+    m.insert(
+        "other_forces".into(),
+        named(&h.coordinates, &h.other_forces),
+    );
+    m
+}

@@ -237,6 +237,44 @@ impl Writer {
         self.column("f", &lag.forcing);
     }
 
+    /// `qdot hamilton`: the momenta, the velocities, H and Hamilton's
+    /// equations.
+    pub fn hamilton(&mut self, h: &crate::mechanics::Hamiltonian) {
+        let n = h.coordinates.len();
+        let p: Vec<String> = h.momentum_names.iter().map(|m| self.sym(m, 0)).collect();
+        self.line("The momenta, $p_{k} = \\frac{\\partial L}{\\partial \\dot{q}_{k}}$:");
+        let rows: Vec<_> = (0..n)
+            .map(|k| vec![self.one(p[k].clone()), self.terms(&h.momenta[k])])
+            .collect();
+        self.align(false, &rows);
+        self.line("The velocities in terms of the momenta:");
+        let rows: Vec<_> = (0..n)
+            .map(|k| {
+                vec![
+                    self.one(self.sym(&h.coordinates[k], 1)),
+                    self.terms(&h.velocities[k]),
+                ]
+            })
+            .collect();
+        self.align(false, &rows);
+        self.line("The Hamiltonian, $H = \\sum_{k} p_{k} \\dot{q}_{k} - L$:");
+        let rows = vec![vec![self.one("H".into()), self.terms(&h.hamiltonian)]];
+        self.align(true, &rows);
+        self.line("Hamilton's equations, $\\dot{q}_{k} = \\frac{\\partial H}{\\partial p_{k}}$, $\\dot{p}_{k} = -\\frac{\\partial H}{\\partial q_{k}} + \\tilde{Q}_{k}$:");
+        let mut rows = Vec::with_capacity(2 * n);
+        for k in 0..n {
+            rows.push(vec![
+                self.one(self.sym(&h.coordinates[k], 1)),
+                self.terms(&h.velocities[k]),
+            ]);
+            rows.push(vec![
+                self.one(format!("\\dot{{{}}}", p[k])),
+                self.terms(&h.momentum_rates[k]),
+            ]);
+        }
+        self.align(true, &rows);
+    }
+
     /// The exact accelerations.
     pub fn accelerations(&mut self, acc: &crate::mechanics::Accelerations) {
         self.line("The accelerations:");

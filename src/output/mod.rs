@@ -8,6 +8,10 @@
 //!   implied by the others, each `{"block", "equation"}`, 1-based) when it
 //!   has `solve` blocks;
 //! * `forces`: `coordinates`, `generalized_forces`;
+//! * `hamilton`: `coordinates`, `momenta` (coordinate → p in q, q̇),
+//!   `velocities` (coordinate → q̇ in q, p), `hamiltonian`, `equations`
+//!   (`coordinate`, `momentum`, `qdot`, `pdot`), `other_forces`
+//!   (coordinate → Q̃, the generalized forces outside H);
 //! * `equilibrium`: `coordinates`, `generalized_forces`, `conditions`,
 //!   `exact`, `equilibria` (a list of coordinate → value objects, "any" for
 //!   a free coordinate; numeric values as numbers), `stability` (parallel
@@ -73,6 +77,8 @@ pub enum Command {
     Latex,
     /// `qdot check`: the dimension of every name and result (text or JSON).
     Check,
+    /// `qdot hamilton`: the momenta, H(q, p, t) and Hamilton's equations.
+    Hamilton,
 }
 
 /// CommandOptions of the commands beyond the file and the format.
@@ -292,6 +298,14 @@ fn run_scene(
                 Format::Text => equilibrium_text(&eq),
                 Format::Json => json_string(equilibrium_json(&eq))?,
                 Format::Latex => latex::write(scene, |w| w.equilibrium(&eq)),
+            }
+        }
+        Command::Hamilton => {
+            let h = crate::mechanics::Hamiltonian::derive(scene)?;
+            match fmt {
+                Format::Text => text::hamilton_text(&h),
+                Format::Json => json_string(json::hamilton_json(&h))?,
+                Format::Latex => latex::write(scene, |w| w.hamilton(&h)),
             }
         }
         Command::Latex => {

@@ -271,11 +271,19 @@ pub fn equilibrium_text(eq: &Equilibria) -> String {
 /// panics for widths over 65,535, and a matrix entry or a name can be
 /// longer than that.)
 pub fn padded(s: &str, width: usize) -> String {
-    let n = s.chars().count();
+    let n = display_width(s);
     let mut out = String::with_capacity(s.len() + width.saturating_sub(n));
     out.push_str(s);
     out.extend(std::iter::repeat_n(' ', width.saturating_sub(n)));
     out
+}
+
+/// The columns `s` takes on a terminal: combining marks (the dots of
+/// ẋ, ẍ) take none.
+pub fn display_width(s: &str) -> usize {
+    s.chars()
+        .filter(|c| !matches!(*c as u32, 0x300..=0x36F | 0x20D0..=0x20FF))
+        .count()
 }
 
 pub(super) fn matrix_text(out: &mut String, title: &str, m: &[Vec<Expr>]) {
@@ -303,4 +311,54 @@ pub(super) fn matrix_text(out: &mut String, title: &str, m: &[Vec<Expr>]) {
             .collect();
         out.push_str(&format!("  [ {} ]\n", row.join("   ")));
     }
+}
+
+/// The text of `qdot hamilton`: the momenta, the velocities in them, H
+/// and Hamilton's equations.
+pub fn hamilton_text(h: &crate::mechanics::Hamiltonian) -> String {
+    let q: Vec<String> = h.coordinates.iter().map(|c| pretty_name(c, 0)).collect();
+    let p: Vec<String> = h.momentum_names.iter().map(|n| pretty_name(n, 0)).collect();
+    let qd: Vec<String> = h.coordinates.iter().map(|c| pretty_name(c, 1)).collect();
+    // ṗ_θ: the dot on the p
+    let pd = |k: usize| format!("ṗ{}", p[k].strip_prefix('p').unwrap_or(&p[k]));
+    let wp = p.iter().map(|s| display_width(s)).max().unwrap_or(1);
+    let wq = qd.iter().map(|s| display_width(s)).max().unwrap_or(1);
+    let mut out = String::from("Momenta  p = ∂L/∂q̇\n");
+    for (k, m) in h.momenta.iter().enumerate() {
+        out.push_str(&format!("  {} = {}\n", padded(&p[k], wp), as_unicode(m)));
+    }
+    out.push_str("\nVelocities\n");
+    for (k, v) in h.velocities.iter().enumerate() {
+        out.push_str(&format!("  {} = {}\n", padded(&qd[k], wq), as_unicode(v)));
+    }
+    out.push_str("\nHamiltonian  H = Σ p·q̇ − L\n");
+    out.push_str(&format!("  H = {}\n", as_unicode(&h.hamiltonian)));
+    let nonconservative = h.other_forces.iter().any(|f| !f.is_zero());
+    out.push_str(if nonconservative {
+        "\nHamilton's equations  q̇ = ∂H/∂p, ṗ = −∂H/∂q + Q̃\n"
+    } else {
+        "\nHamilton's equations  q̇ = ∂H/∂p, ṗ = −∂H/∂q\n"
+    });
+    let w = wp.max(wq);
+    for k in 0..q.len() {
+        out.push_str(&format!(
+            "  {} = {}\n",
+            padded(&qd[k], w),
+            as_unicode(&h.velocities[k])
+        ));
+        out.push_str(&format!(
+            "  {} = {}\n",
+            padded(&pd(k), w),
+            as_unicode(&h.momentum_rates[k])
+        ));
+    }
+    if nonconservative {
+        out.push_str("\nForces outside H  Q̃\n");
+        for (k, f) in h.other_forces.iter().enumerate() {
+            if !f.is_zero() {
+                out.push_str(&format!("  Q̃_{} = {}\n", q[k], as_unicode(f)));
+            }
+        }
+    }
+    out
 }

@@ -120,6 +120,11 @@ pub const COMMANDS: &[(&str, &str, &str)] = &[
     ),
     (":forces", "", "the generalized forces Q_k"),
     (
+        ":hamilton",
+        "",
+        "the momenta, H(q, p, t) and Hamilton's equations",
+    ),
+    (
         ":equilibrium",
         "[--set m=1,g=9.81]",
         "the equilibria and their stability",
@@ -543,6 +548,7 @@ impl Session {
             "equations" | "eq" | "derive" => self.run(Command::Derive, args),
             "solve" => self.run(Command::Solve, args),
             "forces" => self.run(Command::Forces, args),
+            "hamilton" => self.run(Command::Hamilton, args),
             "equilibrium" => self.run(Command::Equilibrium, args),
             "modes" => self.run(Command::Modes, args),
             "latex" => self.latex(args),

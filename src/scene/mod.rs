@@ -238,6 +238,12 @@ pub struct Scene {
     pub dimensions_checked: bool,
 }
 
+/// The name of the momentum conjugate to the coordinate `q` (`p_theta`),
+/// which `qdot hamilton` writes and expressions outside the scene may use.
+pub fn momentum_name(q: &str) -> String {
+    format!("p_{q}")
+}
+
 /// A `constraint` statement, resolved. At the velocity level it reads
 /// Σ a_k·q̇_k + b = 0 (a holonomic g(q, t) = 0 differentiated once), and
 /// its multiplier λ adds λ·a_k to the generalized force on q_k.
@@ -413,9 +419,14 @@ impl Scene {
                 names.insert(u.name.clone(), (Binding::Unknown, u.span));
             }
         }
-        // a multiplier is an unknown outside the scene (the REPL, `--at`)
+        // a multiplier is an unknown outside the scene (the REPL, `--at`),
+        // and so is a momentum `p_q` the scene leaves free (`qdot hamilton`)
         for c in &self.constraints {
             names.insert(c.multiplier.clone(), (Binding::Unknown, c.span));
+        }
+        for c in &self.coordinates {
+            let p = momentum_name(&c.name);
+            names.entry(p).or_insert((Binding::Unknown, c.span));
         }
         let mut values: Vec<Value> = self.definitions.iter().map(|d| d.value.clone()).collect();
         for (name, v) in extra {
