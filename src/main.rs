@@ -84,6 +84,14 @@ enum Command {
         #[arg(long, value_enum, default_value = "text")]
         format: Fmt,
     },
+    /// Integrals of motion: cyclic coordinates and their momenta, the
+    /// energy integral, Routh's reduction.
+    Integrals {
+        /// The scene file (.qd).
+        file: String,
+        #[arg(long, value_enum, default_value = "text")]
+        format: Fmt,
+    },
     /// Small oscillations about an equilibrium: M, C, K, det(K − ω²M),
     /// the natural frequencies, the modes, and the responses.
     Modes {
@@ -248,6 +256,7 @@ fn main() -> ExitCode {
         Command::Solve { file, format } => (output::Command::Solve, file, *format, None),
         Command::Forces { file, format } => (output::Command::Forces, file, *format, None),
         Command::Hamilton { file, format } => (output::Command::Hamilton, file, *format, None),
+        Command::Integrals { file, format } => (output::Command::Integrals, file, *format, None),
         Command::Check { file, format } => {
             let fmt = match format {
                 CheckFmt::Text => Fmt::Text,

@@ -122,7 +122,7 @@ impl Hamiltonian {
 }
 
 /// L = E + (lagrangian) − V + U.
-fn lagrangian(scene: &Scene) -> Expr {
+pub(super) fn lagrangian(scene: &Scene) -> Expr {
     scene
         .role_sum(Role::Kinetic)
         .add(&scene.role_sum(Role::Lagrangian))
@@ -167,7 +167,11 @@ fn check_scene(scene: &Scene, names: &[String]) -> Result<(), Diagnostic> {
 
 /// Q̃_k: every generalized force but the potential's, and the constraints'
 /// λ·a; in q, q̇ and t (an inertia force, with q̈, is refused).
-fn other_forces(scene: &Scene, qd: &[Var], qdd: &[Var]) -> Result<Vec<Expr>, Diagnostic> {
+pub(super) fn other_forces(
+    scene: &Scene,
+    qd: &[Var],
+    qdd: &[Var],
+) -> Result<Vec<Expr>, Diagnostic> {
     let rows = ConstraintRows::of(scene, qd, qdd)?;
     let mut out = Vec::with_capacity(qd.len());
     for (k, terms) in generalized_force_terms(scene).into_iter().enumerate() {

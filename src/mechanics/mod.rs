@@ -22,6 +22,7 @@
 mod accelerations;
 mod constraints;
 pub mod hamilton;
+pub mod integrals;
 
 pub use crate::algebra::linear::split_linear;
 use crate::diag::Diagnostic;
@@ -32,6 +33,7 @@ use crate::scene::Scene;
 pub use accelerations::Accelerations;
 pub use constraints::ConstraintRows;
 pub use hamilton::Hamiltonian;
+pub use integrals::Integrals;
 
 /// One equation: `lhs = rhs` for a coordinate.
 #[derive(Clone, Debug)]

@@ -326,3 +326,36 @@ pub fn hamilton_json(h: &crate::mechanics::Hamiltonian) -> Map<String, Value> {
     );
     m
 }
+
+/// The JSON of `qdot integrals`: `coordinates`, `cyclic` (a list),
+/// `momenta` (cyclic coordinate → p in q, q̇), `energy` (h, or null),
+/// `energy_is_e_plus_v`, `routhian`, `effective_potential` and
+/// `reduced_accelerations` (null without Routh's reduction), `notes`.
+pub fn integrals_json(i: &crate::mechanics::Integrals) -> Map<String, Value> {
+    let mut m = Map::new();
+    m.insert("coordinates".into(), json!(i.coordinates));
+    let cyclic: Vec<String> = i.cyclic.iter().map(|(q, _)| q.clone()).collect();
+    let momenta: Vec<Expr> = i.cyclic.iter().map(|(_, p)| p.clone()).collect();
+    m.insert("momenta".into(), named(&cyclic, &momenta));
+    m.insert("cyclic".into(), json!(cyclic));
+    m.insert("energy".into(), json!(i.energy.as_ref().map(as_input)));
+    m.insert("energy_is_e_plus_v".into(), json!(i.energy_is_e_plus_v));
+    let r = i.routh.as_ref();
+    m.insert("routhian".into(), json!(r.map(|r| as_input(&r.routhian))));
+    m.insert(
+        "effective_potential".into(),
+        json!(r.map(|r| as_input(&r.effective_potential))),
+    );
+    m.insert(
+        "reduced_accelerations".into(),
+        match r {
+            Some(r) => {
+                let (q, a): (Vec<String>, Vec<Expr>) = r.accelerations.iter().cloned().unzip();
+                named(&q, &a)
+            }
+            None => Value::Null,
+        },
+    );
+    m.insert("notes".into(), json!(i.notes));
+    m
+}

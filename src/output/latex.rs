@@ -275,6 +275,54 @@ impl Writer {
         self.align(true, &rows);
     }
 
+    /// `qdot integrals`: the conserved momenta, the energy integral and
+    /// Routh's reduction.
+    pub fn integrals(&mut self, i: &crate::mechanics::Integrals) {
+        if !i.cyclic.is_empty() {
+            self.line("The cyclic coordinates' momenta are conserved:");
+            let rows: Vec<_> = i
+                .cyclic
+                .iter()
+                .map(|(q, p)| {
+                    let name = crate::scene::momentum_name(q);
+                    vec![
+                        self.one(self.sym(&name, 0)),
+                        self.terms(p),
+                        self.one("\\mathrm{const}".into()),
+                    ]
+                })
+                .collect();
+            self.align(true, &rows);
+        }
+        if let Some(h) = &i.energy {
+            self.line("The energy integral, $h = \\sum_{k} \\dot{q}_{k} \\frac{\\partial L}{\\partial \\dot{q}_{k}} - L$:");
+            let rows = vec![vec![
+                self.one("h".into()),
+                self.terms(h),
+                self.one("\\mathrm{const}".into()),
+            ]];
+            self.align(true, &rows);
+        }
+        if let Some(r) = &i.routh {
+            self.line("The Routhian, $R = L - \\sum_{c} p_{c} \\dot{q}_{c}$ over the cyclic coordinates, and the effective potential:");
+            let rows = vec![
+                vec![self.one("R".into()), self.terms(&r.routhian)],
+                vec![
+                    self.one("V_{\\mathrm{eff}}".into()),
+                    self.terms(&r.effective_potential),
+                ],
+            ];
+            self.align(true, &rows);
+            self.line("The reduced equations give:");
+            let rows: Vec<_> = r
+                .accelerations
+                .iter()
+                .map(|(q, a)| vec![self.one(self.sym(q, 2)), self.terms(a)])
+                .collect();
+            self.align(false, &rows);
+        }
+    }
+
     /// The exact accelerations.
     pub fn accelerations(&mut self, acc: &crate::mechanics::Accelerations) {
         self.line("The accelerations:");

@@ -12,6 +12,10 @@
 //!   `velocities` (coordinate → q̇ in q, p), `hamiltonian`, `equations`
 //!   (`coordinate`, `momentum`, `qdot`, `pdot`), `other_forces`
 //!   (coordinate → Q̃, the generalized forces outside H);
+//! * `integrals`: `coordinates`, `momenta` (cyclic coordinate → p),
+//!   `cyclic`, `energy` (or null), `energy_is_e_plus_v`, `routhian`,
+//!   `effective_potential`, `reduced_accelerations` (null without a
+//!   reduction), `notes`;
 //! * `equilibrium`: `coordinates`, `generalized_forces`, `conditions`,
 //!   `exact`, `equilibria` (a list of coordinate → value objects, "any" for
 //!   a free coordinate; numeric values as numbers), `stability` (parallel
@@ -79,6 +83,8 @@ pub enum Command {
     Check,
     /// `qdot hamilton`: the momenta, H(q, p, t) and Hamilton's equations.
     Hamilton,
+    /// `qdot integrals`: cyclic coordinates, the energy integral, Routh.
+    Integrals,
 }
 
 /// CommandOptions of the commands beyond the file and the format.
@@ -306,6 +312,14 @@ fn run_scene(
                 Format::Text => text::hamilton_text(&h),
                 Format::Json => json_string(json::hamilton_json(&h))?,
                 Format::Latex => latex::write(scene, |w| w.hamilton(&h)),
+            }
+        }
+        Command::Integrals => {
+            let i = crate::mechanics::Integrals::find(scene)?;
+            match fmt {
+                Format::Text => text::integrals_text(&i),
+                Format::Json => json_string(json::integrals_json(&i))?,
+                Format::Latex => latex::write(scene, |w| w.integrals(&i)),
             }
         }
         Command::Latex => {

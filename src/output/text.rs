@@ -362,3 +362,53 @@ pub fn hamilton_text(h: &crate::mechanics::Hamiltonian) -> String {
     }
     out
 }
+
+/// The text of `qdot integrals`: the conserved momenta, the energy
+/// integral, Routh's reduction and why an integral is missing.
+pub fn integrals_text(i: &crate::mechanics::Integrals) -> String {
+    let mut out = String::from(
+        "Cyclic coordinates  (absent from L, no other force on them: p = ∂L/∂q̇ is conserved)\n",
+    );
+    if i.cyclic.is_empty() {
+        out.push_str("  none\n");
+    }
+    for (q, p) in &i.cyclic {
+        out.push_str(&format!(
+            "  {}: {} = {} = const\n",
+            pretty_name(q, 0),
+            pretty_name(&crate::scene::momentum_name(q), 0),
+            as_unicode(p)
+        ));
+    }
+    out.push_str("\nEnergy integral  h = Σ q̇·∂L/∂q̇ − L\n");
+    match &i.energy {
+        Some(h) if i.energy_is_e_plus_v => {
+            out.push_str(&format!("  h = E + V = {} = const\n", as_unicode(h)))
+        }
+        Some(h) => out.push_str(&format!("  h = {} = const\n", as_unicode(h))),
+        None => out.push_str("  none\n"),
+    }
+    if let Some(r) = &i.routh {
+        let cyc: Vec<String> = i.cyclic.iter().map(|(q, _)| pretty_name(q, 0)).collect();
+        out.push_str(&format!(
+            "\nRouthian  R = L − Σ p·q̇ over {}, the momenta constant\n",
+            cyc.join(", ")
+        ));
+        out.push_str(&format!("  R = {}\n", as_unicode(&r.routhian)));
+        out.push_str(&format!(
+            "  effective potential  V_eff = −R at rest = {}\n",
+            as_unicode(&r.effective_potential)
+        ));
+        out.push_str("\nReduced equations  d/dt(∂R/∂q̇) − ∂R/∂q = Q̃\n");
+        for (q, a) in &r.accelerations {
+            out.push_str(&format!("  {} = {}\n", pretty_name(q, 2), as_unicode(a)));
+        }
+    }
+    if !i.notes.is_empty() {
+        out.push_str("\nNotes\n");
+        for n in &i.notes {
+            out.push_str(&format!("  {n}\n"));
+        }
+    }
+    out
+}

@@ -549,6 +549,7 @@ impl Session {
             "solve" => self.run(Command::Solve, args),
             "forces" => self.run(Command::Forces, args),
             "hamilton" => self.run(Command::Hamilton, args),
+            "integrals" => self.run(Command::Integrals, args),
             "equilibrium" => self.run(Command::Equilibrium, args),
             "modes" => self.run(Command::Modes, args),
             "latex" => self.latex(args),
