@@ -16,6 +16,7 @@ mod equilibrium;
 mod factor;
 mod frames;
 mod fuzz_regressions;
+mod hamilton;
 mod hostile;
 // the hostile modules say `crate::bound` (they were a crate of their own)
 use hostile::bound;
