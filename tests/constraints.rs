@@ -280,3 +280,68 @@ fn wrong_constraints_are_refused_where_written() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// The seed's kinetostatic problems 21.2 and 22.2 rewritten with one
+/// coordinate per body and the kinematic tables as constraints: the same
+/// accelerations, and the multipliers give the reactions the `solve` blocks
+/// of the kinetostatic scenes find, as exact identities.
+#[test]
+fn seed_reactions_from_the_multipliers() {
+    let example = |name: &str| {
+        let path = format!("{}/examples/{name}.qd", env!("CARGO_MANIFEST_DIR"));
+        scene(&std::fs::read_to_string(path).unwrap())
+    };
+    let block = |s: &Scene| -> FxHashMap<String, Expr> {
+        qdot::solve::system::solve_scene(s).unwrap()[0]
+            .values
+            .iter()
+            .cloned()
+            .collect()
+    };
+    let lambdas = |s: &Scene| -> (qdot::Accelerations, FxHashMap<String, Expr>) {
+        let acc = s.lagrange().unwrap().accelerations().unwrap();
+        let l = acc.multipliers().iter().cloned().collect();
+        (acc, l)
+    };
+
+    // 21.2: T1 = −λ_rope1, T2 = −λ_rope2, T4 = λ_slide, λ_pulley = r·(2·T3 − T4)
+    let s = example("seed_21_2_constraints");
+    let kin = block(&example("seed_21_2_kinetostatic"));
+    let (acc, l) = lambdas(&s);
+    assert!(acc["y3"].equals(&kin["a3"]), "a3 = {}", acc["y3"]);
+    assert!(acc["theta3"].equals(&kin["eps3"]), "ε3 = {}", acc["theta3"]);
+    let r = s.expr("r").unwrap();
+    assert!(l["lambda_rope1"].neg().equals(&kin["T1"]));
+    assert!(l["lambda_rope2"].neg().equals(&kin["T2"]));
+    assert!(l["lambda_slide"].equals(&kin["T4"]));
+    let t3 = l["lambda_pulley"]
+        .div(&r)
+        .unwrap()
+        .add(&kin["T4"])
+        .div(&Expr::int(2))
+        .unwrap();
+    assert!(t3.equals(&kin["T3"]), "T3 = {t3}");
+
+    // 22.2: T1 = −λ_rope1, Ff = 2·λ_roll4/(3r), T4 = λ_rope4 + Ff,
+    // T3 = (λ_pulley3 + r·T4)/(2r), T2 = (λ_disk2 + r·T3)/(2r)
+    let s = example("seed_22_2_constraints");
+    let one = example("seed_22_2");
+    let kin = block(&one);
+    let (acc, l) = lambdas(&s);
+    let a1 = one.lagrange().unwrap().accelerations().unwrap()["y1"].clone();
+    assert!(acc["y1"].equals(&a1), "a1 = {}", acc["y1"]);
+    let r = s.expr("r").unwrap();
+    let half_r = |e: Expr| e.div(&r.mul(&Expr::int(2))).unwrap();
+    assert!(l["lambda_rope1"].neg().equals(&kin["T1"]));
+    let ff = l["lambda_roll4"]
+        .mul(&Expr::int(2))
+        .div(&r.mul(&Expr::int(3)))
+        .unwrap();
+    assert!(ff.equals(&kin["Ff"]), "Ff = {ff}");
+    let t4 = l["lambda_rope4"].add(&ff);
+    assert!(t4.equals(&kin["T4"]), "T4 = {t4}");
+    let t3 = half_r(l["lambda_pulley3"].add(&r.mul(&t4)));
+    assert!(t3.equals(&kin["T3"]), "T3 = {t3}");
+    let t2 = half_r(l["lambda_disk2"].add(&r.mul(&t3)));
+    assert!(t2.equals(&kin["T2"]), "T2 = {t2}");
+}

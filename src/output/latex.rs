@@ -262,13 +262,13 @@ impl Writer {
         self.align(true, &rows);
         self.line("Hamilton's equations, $\\dot{q}_{k} = \\frac{\\partial H}{\\partial p_{k}}$, $\\dot{p}_{k} = -\\frac{\\partial H}{\\partial q_{k}} + \\tilde{Q}_{k}$:");
         let mut rows = Vec::with_capacity(2 * n);
-        for k in 0..n {
+        for (k, pk) in p.iter().enumerate() {
             rows.push(vec![
                 self.one(self.sym(&h.coordinates[k], 1)),
                 self.terms(&h.velocities[k]),
             ]);
             rows.push(vec![
-                self.one(format!("\\dot{{{}}}", p[k])),
+                self.one(format!("\\dot{{{pk}}}")),
                 self.terms(&h.momentum_rates[k]),
             ]);
         }

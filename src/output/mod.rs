@@ -306,22 +306,7 @@ fn run_scene(
                 Format::Latex => latex::write(scene, |w| w.equilibrium(&eq)),
             }
         }
-        Command::Hamilton => {
-            let h = crate::mechanics::Hamiltonian::derive(scene)?;
-            match fmt {
-                Format::Text => text::hamilton_text(&h),
-                Format::Json => json_string(json::hamilton_json(&h))?,
-                Format::Latex => latex::write(scene, |w| w.hamilton(&h)),
-            }
-        }
-        Command::Integrals => {
-            let i = crate::mechanics::Integrals::find(scene)?;
-            match fmt {
-                Format::Text => text::integrals_text(&i),
-                Format::Json => json_string(json::integrals_json(&i))?,
-                Format::Latex => latex::write(scene, |w| w.integrals(&i)),
-            }
-        }
+        Command::Hamilton | Command::Integrals => beyond_lagrange(cmd, scene, fmt)?,
         Command::Latex => {
             check_set(scene, set)?;
             latex::document(scene, opts)?
@@ -335,6 +320,25 @@ fn run_scene(
         }
     };
     Ok((out, scene.warnings.clone()))
+}
+
+/// `hamilton` and `integrals`: Hamilton's equations, the integrals of
+/// motion.
+fn beyond_lagrange(cmd: Command, scene: &Scene, fmt: Format) -> Result<String, Diagnostic> {
+    if cmd == Command::Hamilton {
+        let h = crate::mechanics::Hamiltonian::derive(scene)?;
+        return Ok(match fmt {
+            Format::Text => text::hamilton_text(&h),
+            Format::Json => scene_json(scene, json::hamilton_json(&h))?,
+            Format::Latex => latex::write(scene, |w| w.hamilton(&h)),
+        });
+    }
+    let i = crate::mechanics::Integrals::find(scene)?;
+    Ok(match fmt {
+        Format::Text => text::integrals_text(&i),
+        Format::Json => scene_json(scene, json::integrals_json(&i))?,
+        Format::Latex => latex::write(scene, |w| w.integrals(&i)),
+    })
 }
 
 /// `--set` names must be parameters of the scene.

@@ -340,10 +340,10 @@ pub fn hamilton_text(h: &crate::mechanics::Hamiltonian) -> String {
         "\nHamilton's equations  q̇ = ∂H/∂p, ṗ = −∂H/∂q\n"
     });
     let w = wp.max(wq);
-    for k in 0..q.len() {
+    for (k, qdk) in qd.iter().enumerate() {
         out.push_str(&format!(
             "  {} = {}\n",
-            padded(&qd[k], w),
+            padded(qdk, w),
             as_unicode(&h.velocities[k])
         ));
         out.push_str(&format!(
