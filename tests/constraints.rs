@@ -197,15 +197,67 @@ fn redundant_constraints_and_json() {
     assert!(!plain.contains("\"constraints\"") && !plain.contains("\"multipliers\""));
 }
 
-/// Equilibria and modes of constrained scenes are refused with a reason
-/// (they would otherwise ignore the constraint forces).
+/// Equilibria on holonomic constraints by the multiplier rule: the
+/// Cartesian pendulum hangs (stable) or stands (unstable) with the rod's
+/// multiplier; a particle on a sphere; a bead at the bottom of a parabolic
+/// wire. A velocity constraint or a moving one is refused with a reason.
 #[test]
-fn equilibrium_and_modes_refuse_constraints() {
-    for cmd in [Command::Equilibrium, Command::Modes] {
-        let err = output::run(cmd, CARTESIAN, Format::Text, &Default::default()).unwrap_err();
-        assert!(err.message.contains("constraints"), "{}", err.message);
+fn equilibria_on_constraints() {
+    let eq = qdot::equilibria(&scene(CARTESIAN), &Default::default()).unwrap();
+    let s = scene(CARTESIAN);
+    let want = [
+        ("-l", "-g*m/(2*l)", "stable"),
+        ("l", "g*m/(2*l)", "unstable"),
+    ];
+    assert_eq!(eq.equilibria.len(), 2);
+    for (e, (y, lambda, stability)) in eq.equilibria.iter().zip(want) {
+        let qdot::solve::equilibrium::Position::Exact(v) = &e.position else {
+            panic!("exact")
+        };
+        assert!(v[0].is_zero() && v[1].equals(&s.expr(y).unwrap()), "{v:?}");
+        assert_eq!(e.multipliers[0].0, "lambda_rod");
+        assert!(e.multipliers[0].1.equals(&s.expr(lambda).unwrap()));
+        assert_eq!(e.stability.word(), stability);
+    }
+    let sphere = "coordinates x, y, z
+parameters m, g, R
+kinetic E = 1/2*m*(x'^2 + y'^2 + z'^2)
+potential V = m*g*z
+constraint sphere: x^2 + y^2 + z^2 = R^2
+";
+    let eq = qdot::equilibria(&scene(sphere), &Default::default()).unwrap();
+    let words: Vec<&str> = eq.equilibria.iter().map(|e| e.stability.word()).collect();
+    assert_eq!(words, ["stable", "unstable"]);
+    let wire = "coordinates x, y
+parameters m, g, a
+kinetic E = 1/2*m*(x'^2 + y'^2)
+potential V = m*g*y
+constraint wire: 2*a*y = x^2
+";
+    let (out, _) = output::run(
+        Command::Equilibrium,
+        wire,
+        Format::Json,
+        &Default::default(),
+    )
+    .unwrap();
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["stability"], serde_json::json!(["stable"]));
+    assert_eq!(v["multipliers"][0]["lambda_wire"], "g*m/(2*a)");
+    for (src, words) in [
+        (COIN, "velocities"),
+        (
+            "coordinates x, y\nparameters m, g, w\nkinetic E = 1/2*m*(x'^2 + y'^2)\npotential V = m*g*y\nconstraint c: x = sin(w*t)\n",
+            "moves with time",
+        ),
+    ] {
+        let err = output::run(Command::Equilibrium, src, Format::Text, &Default::default()).unwrap_err();
+        assert!(err.message.contains(words), "{}", err.message);
         assert!(err.span.is_some() && err.hint.is_some());
     }
+    let err =
+        output::run(Command::Modes, CARTESIAN, Format::Text, &Default::default()).unwrap_err();
+    assert!(err.message.contains("constraints"), "{}", err.message);
 }
 
 /// The Cartesian pendulum simulated with its constraint follows the angle

@@ -197,6 +197,21 @@ pub fn equilibrium_json(eq: &Equilibria) -> Map<String, Value> {
     m.insert("notes".into(), Value::Array(notes));
     m.insert("approx".into(), Value::Array(approx));
     m.insert("multiplicity".into(), Value::Array(multiplicity));
+    // with constraints: each equilibrium's multipliers (name → λ)
+    if eq.equilibria.iter().any(|e| !e.multipliers.is_empty()) {
+        let lists = eq
+            .equilibria
+            .iter()
+            .map(|e| {
+                let mut o = Map::new();
+                for (name, v) in &e.multipliers {
+                    o.insert(name.clone(), Value::String(as_input(v)));
+                }
+                Value::Object(o)
+            })
+            .collect();
+        m.insert("multipliers".into(), Value::Array(lists));
+    }
     m
 }
 

@@ -247,6 +247,14 @@ pub fn equilibrium_text(eq: &Equilibria) -> String {
             out.push_str(&format!(" ({why})"));
         }
         out.push('\n');
+        if !e.multipliers.is_empty() {
+            let ls: Vec<String> = e
+                .multipliers
+                .iter()
+                .map(|(n, v)| format!("{} = {}", pretty_name(n, 0), as_unicode(v)))
+                .collect();
+            out.push_str(&format!("     multipliers: {}\n", ls.join(", ")));
+        }
         if e.multiplicity > 1 {
             out.push_str(&format!(
                 "     a root of multiplicity {} of the condition (V'' = 0 there; decided by the first derivative of V that is not 0)\n",

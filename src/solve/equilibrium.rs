@@ -98,6 +98,25 @@ pub struct Equilibrium {
     /// A numeric position's digits that are certified (one coordinate: a
     /// sign change of F encloses the root); `None` when not certified.
     pub certified: Option<Vec<String>>,
+    /// With constraints: each multiplier's value there (name, λ); λ·∂g/∂q
+    /// is the constraint's force at the equilibrium. Empty without.
+    pub multipliers: Vec<(String, Expr)>,
+}
+
+impl Equilibrium {
+    /// An isolated, simple equilibrium at `position`, nothing else known.
+    pub(super) fn new(position: Position, stability: Stability) -> Equilibrium {
+        Equilibrium {
+            position,
+            free: Vec::new(),
+            conditions: Vec::new(),
+            approx: None,
+            stability,
+            multiplicity: 1,
+            certified: None,
+            multipliers: Vec::new(),
+        }
+    }
 }
 
 /// The equilibria of a scene.
@@ -141,7 +160,6 @@ pub fn equilibria(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic>
 /// [`equilibria`] with the scene's assumptions in force.
 fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic> {
     let _context = crate::budget::enter(|| "finding the equilibria".into(), None);
-    refuse_constraints(scene, "equilibria")?;
     let n = scene.coordinates.len();
     if n == 0 {
         return Err(Diagnostic::global(
@@ -198,6 +216,18 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
     let gyroscopic = has_gyroscopic_terms(scene, &names);
     let periodic = periodic_coordinates(&conditions, &q);
 
+    if !scene.constraints.is_empty() {
+        let found =
+            super::constrained::constrained_equilibria(scene, &conditions, &q, set, gyroscopic)?;
+        return Ok(Equilibria {
+            coordinates: names,
+            forces,
+            conditions,
+            kinetic_terms,
+            equilibria: found,
+            exact: true,
+        });
+    }
     let mut found = Vec::new();
     let exact = match solve_exact(&conditions, &q) {
         Some(sols) => {
@@ -239,6 +269,7 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
                     stability,
                     multiplicity,
                     certified: None,
+                    multipliers: Vec::new(),
                 });
             }
             true
@@ -301,17 +332,17 @@ fn has_gyroscopic_terms(scene: &Scene, names: &[String]) -> bool {
 // ---------------------------------------------------------------- exact solving
 
 /// One equilibrium in closed form, as the exact search finds it.
-struct ExactSolution {
+pub(super) struct ExactSolution {
     /// One value per coordinate (the coordinate itself where it is free).
-    values: Vec<Expr>,
+    pub(super) values: Vec<Expr>,
     /// The coordinates that any value satisfies.
-    free: Vec<usize>,
+    pub(super) free: Vec<usize>,
     /// The conditions for it to exist (`|x| ≤ 1` of an asin, …).
-    conditions: Vec<String>,
+    pub(super) conditions: Vec<String>,
 }
 
 /// All equilibria in closed form, or None if some equation has none.
-fn solve_exact(eqs: &[Expr], q: &[Var]) -> Option<Vec<ExactSolution>> {
+pub(super) fn solve_exact(eqs: &[Expr], q: &[Var]) -> Option<Vec<ExactSolution>> {
     let mut out = Vec::new();
     let mut assigned: Vec<Option<Expr>> = vec![None; q.len()];
     let mut conds = Vec::new();
@@ -832,7 +863,7 @@ fn close_within(a: &[f64], b: &[f64], periodic: &[bool], tol: f64) -> bool {
 }
 
 /// The numeric values of exact positions at `set`, if every parameter is given.
-fn numeric_values(vals: &[Expr], set: &Values) -> Option<Vec<f64>> {
+pub(super) fn numeric_values(vals: &[Expr], set: &Values) -> Option<Vec<f64>> {
     if set.is_empty() {
         return None;
     }
@@ -901,7 +932,7 @@ fn classify_exact(
 }
 
 /// Stable / unstable from the signs of the leading minors.
-fn jacobi(signs: &[Option<Sign>], gyroscopic: bool) -> Stability {
+pub(super) fn jacobi(signs: &[Option<Sign>], gyroscopic: bool) -> Stability {
     if signs.iter().all(|s| *s == Some(Sign::Positive)) {
         return Stability::Stable;
     }
@@ -1055,15 +1086,9 @@ fn solve_numeric(
                     super::certify::enclose(&f1, r.x[0]).map(|e| vec![e.digits()])
                 })
                 .flatten();
-            Equilibrium {
-                position: Position::Numeric(r.x),
-                free: Vec::new(),
-                conditions: Vec::new(),
-                approx: None,
-                stability,
-                multiplicity: 1,
-                certified,
-            }
+            let mut e = Equilibrium::new(Position::Numeric(r.x), stability);
+            e.certified = certified;
+            e
         })
         .collect()
 }

@@ -1,0 +1,227 @@
+//! Equilibria on holonomic constraints: Lagrange's multiplier rule at rest.
+//!
+//! With the constraints g_j(q) = 0 and their gradients a_j = ∂g_j/∂q, a
+//! position of rest is an equilibrium when the constraints can hold the
+//! forces there:
+//!
+//! ```text
+//! F_k(q) + Σ_j λ_j·a_jk(q) = 0  (k = 1…n),   g_j(q) = 0  (j = 1…m),
+//! ```
+//!
+//! n + m equations in q and λ, solved by the exact search of free
+//! equilibria (λ enters linearly). λ_j·a_j is the constraint force at the
+//! equilibrium. Stability (Lagrange–Dirichlet on the constraint manifold):
+//! the Hessian K = −∂(F + Aᵀ·λ)/∂q of V − λ·g, restricted to the tangent
+//! space, K_c = Zᵀ·K·Z with A·Z = 0, decided by its leading minors.
+
+use super::equilibrium::{jacobi, numeric_values, solve_exact, Equilibrium, Position, Stability};
+use crate::algebra::linear::det;
+use crate::algebra::sign::{sign_of, Sign, Values};
+use crate::diag::Diagnostic;
+use crate::expr::{atom, Expr};
+use crate::poly::Var;
+use crate::scene::Scene;
+use rustc_hash::FxHashMap;
+
+const HINT: &str =
+    "write the scene in independent coordinates (the pendulum's angle instead of x, y) for its equilibria";
+
+/// The equilibria of a scene with constraints: `conditions` are the
+/// F_k at rest (free of t), `q` the coordinates' variables.
+pub(super) fn constrained_equilibria(
+    scene: &Scene,
+    conditions: &[Expr],
+    q: &[Var],
+    set: &Values,
+    gyroscopic: bool,
+) -> Result<Vec<Equilibrium>, Diagnostic> {
+    let n = q.len();
+    let mut gs = Vec::with_capacity(scene.constraints.len());
+    let mut lambdas = Vec::with_capacity(scene.constraints.len());
+    for (j, c) in scene.constraints.iter().enumerate() {
+        if !c.holonomic {
+            return Err(Diagnostic::error(
+                c.span,
+                format!("equilibria under the constraint {} are not found: it restricts the velocities, not the position", c.label(j)),
+            )
+            .with_hint(HINT));
+        }
+        if c.expression.depends_on(atom::time()) {
+            return Err(Diagnostic::error(
+                c.span,
+                format!(
+                    "the constraint {} moves with time, so there is no static equilibrium",
+                    c.label(j)
+                ),
+            )
+            .with_hint("equilibria need fixed constraints"));
+        }
+        gs.push(c.expression.clone());
+        lambdas.push(atom::unknown(&c.multiplier));
+    }
+    let m = gs.len();
+    // a_jk = ∂g_j/∂q_k, and F + Aᵀ·λ
+    let a: Vec<Vec<Expr>> = gs
+        .iter()
+        .map(|g| q.iter().map(|&v| g.diff(v)).collect())
+        .collect();
+    let mut eqs: Vec<Expr> = (0..n)
+        .map(|k| {
+            (0..m).fold(conditions[k].clone(), |s, j| {
+                s.add(&Expr::var(lambdas[j]).mul(&a[j][k]))
+            })
+        })
+        .collect();
+    let k_full: Vec<Vec<Expr>> = eqs
+        .iter()
+        .map(|f| q.iter().map(|&v| f.diff(v).neg()).collect())
+        .collect();
+    eqs.extend(gs.iter().cloned());
+    let vars: Vec<Var> = q.iter().chain(&lambdas).copied().collect();
+    let Some(sols) = solve_exact(&eqs, &vars) else {
+        return Err(Diagnostic::global(
+            "no closed form for the equilibria on these constraints (the numeric search does not take constraints)",
+        )
+        .with_hint(HINT));
+    };
+    let all_set = !set.is_empty() && scene.parameters.iter().all(|p| set.contains_key(&p.name));
+    let mut found = Vec::new();
+    for s in sols {
+        let (qv, lv) = s.values.split_at(n);
+        let approx = numeric_values(qv, set);
+        if all_set && approx.is_none() {
+            continue;
+        }
+        let stability = if s.free.is_empty() {
+            classify(&k_full, &a, &vars, &s.values, set, gyroscopic)
+        } else {
+            Stability::Undecided("neutral: a coordinate or a multiplier is free".into())
+        };
+        let mut e = Equilibrium::new(Position::Exact(qv.to_vec()), stability);
+        e.free = s.free.iter().copied().filter(|&k| k < n).collect();
+        e.conditions = if approx.is_some() {
+            Vec::new()
+        } else {
+            s.conditions
+        };
+        e.approx = approx;
+        e.multipliers = scene
+            .constraints
+            .iter()
+            .zip(lv)
+            .map(|(c, v)| (c.multiplier.clone(), v.clone()))
+            .collect();
+        found.push(e);
+    }
+    Ok(found)
+}
+
+/// Stability from K restricted to the constraints' tangent space.
+fn classify(
+    k_full: &[Vec<Expr>],
+    a: &[Vec<Expr>],
+    vars: &[Var],
+    values: &[Expr],
+    set: &Values,
+    gyroscopic: bool,
+) -> Stability {
+    let map: FxHashMap<Var, Expr> = vars.iter().copied().zip(values.iter().cloned()).collect();
+    let at = |rows: &[Vec<Expr>]| -> Option<Vec<Vec<Expr>>> {
+        rows.iter()
+            .map(|r| r.iter().map(|x| x.subs_many(&map).ok()).collect())
+            .collect()
+    };
+    let (Some(k), Some(a)) = (at(k_full), at(a)) else {
+        return Stability::Undecided("the Hessian is undefined here".into());
+    };
+    let Some(z) = null_basis(&a, k.len()) else {
+        return Stability::Undecided(
+            "the constraints are dependent here (their gradients are not independent)".into(),
+        );
+    };
+    if z.is_empty() {
+        return Stability::Undecided("the constraints leave no motion".into());
+    }
+    // K_c = Zᵀ·K·Z
+    let r = z.len();
+    let kz: Vec<Vec<Expr>> = z
+        .iter()
+        .map(|zc| (0..k.len()).map(|i| dot(&k[i], zc)).collect())
+        .collect();
+    let kc: Vec<Vec<Expr>> = (0..r)
+        .map(|i| (0..r).map(|j| dot(&z[i], &kz[j])).collect())
+        .collect();
+    for i in 0..r {
+        for j in i + 1..r {
+            if !kc[i][j].equals(&kc[j][i]) {
+                return Stability::Undecided(
+                    "the forces are not conservative here (∂Q_i/∂q_j ≠ ∂Q_j/∂q_i)".into(),
+                );
+            }
+        }
+    }
+    let mut signs = Vec::with_capacity(r);
+    for size in 1..=r {
+        let sub: Vec<Vec<Expr>> = kc[..size].iter().map(|row| row[..size].to_vec()).collect();
+        let Some(d) = det(sub) else {
+            return Stability::Undecided("the Hessian could not be evaluated".into());
+        };
+        signs.push(sign_of(&d, set));
+    }
+    if r == 1 && signs[0].is_none() {
+        return Stability::Undecided(format!(
+            "stable when {} > 0, unstable when < 0; give values with --set",
+            crate::expr::print::unicode(&kc[0][0])
+        ));
+    }
+    if r == 1 && signs[0] == Some(Sign::Zero) {
+        return Stability::Undecided(
+            "the restricted Hessian vanishes: higher-order terms decide".into(),
+        );
+    }
+    jacobi(&signs, gyroscopic)
+}
+
+/// Σ x_i·y_i.
+fn dot(x: &[Expr], y: &[Expr]) -> Expr {
+    x.iter()
+        .zip(y)
+        .fold(Expr::zero(), |s, (a, b)| s.add(&a.mul(b)))
+}
+
+/// A basis of {z : A·z = 0} (each a vector of `n` entries), by exact
+/// Gauss–Jordan elimination; None when A's rows are dependent.
+fn null_basis(a: &[Vec<Expr>], n: usize) -> Option<Vec<Vec<Expr>>> {
+    let mut rows: Vec<Vec<Expr>> = a.to_vec();
+    let mut pivots: Vec<usize> = Vec::with_capacity(rows.len());
+    for r in 0..rows.len() {
+        let col = (0..n).find(|&c| !pivots.contains(&c) && !rows[r][c].is_zero())?;
+        let p = rows[r][col].clone();
+        rows[r] = rows[r]
+            .iter()
+            .map(|x| x.div(&p).ok())
+            .collect::<Option<_>>()?;
+        for i in 0..rows.len() {
+            if i != r && !rows[i][col].is_zero() {
+                let f = rows[i][col].clone();
+                let pivot_row = rows[r].clone();
+                for (x, y) in rows[i].iter_mut().zip(&pivot_row) {
+                    *x = x.sub(&f.mul(y));
+                }
+            }
+        }
+        pivots.push(col);
+    }
+    let basis = (0..n)
+        .filter(|c| !pivots.contains(c))
+        .map(|free| {
+            let mut z = vec![Expr::zero(); n];
+            z[free] = Expr::int(1);
+            for (r, &p) in pivots.iter().enumerate() {
+                z[p] = rows[r][free].neg();
+            }
+            z
+        })
+        .collect();
+    Some(basis)
+}
