@@ -255,9 +255,64 @@ constraint wire: 2*a*y = x^2
         assert!(err.message.contains(words), "{}", err.message);
         assert!(err.span.is_some() && err.hint.is_some());
     }
-    let err =
-        output::run(Command::Modes, CARTESIAN, Format::Text, &Default::default()).unwrap_err();
-    assert!(err.message.contains("constraints"), "{}", err.message);
+}
+
+/// Small oscillations on holonomic constraints, in the independent
+/// coordinates: the Cartesian pendulum's ω² = g/l (and −g/l upside down),
+/// the Cartesian double pendulum's (2 ∓ √2)·g/l with the mode x2/x1 = 1 ± √2,
+/// and a position off the constraint refused.
+#[test]
+fn modes_on_constraints() {
+    let s = scene(CARTESIAN);
+    let at = |src: &str| s.coordinate_values(src).unwrap();
+    let md = qdot::modes(&s, Some(&at("x=0,y=-l")), &Default::default()).unwrap();
+    assert_eq!(md.coordinates, ["x"]);
+    assert_eq!(md.dependent.len(), 1);
+    assert!(md.omega_squared[0].equals(&s.expr("g/l").unwrap()));
+    assert_eq!(md.stability.word(), "stable");
+    let md = qdot::modes(&s, Some(&at("x=0,y=l")), &Default::default()).unwrap();
+    assert!(md.omega_squared[0].equals(&s.expr("-g/l").unwrap()));
+    assert_eq!(md.stability.word(), "unstable");
+    let err = qdot::modes(&s, None, &Default::default()).unwrap_err();
+    assert!(
+        err.message.contains("not on the constraint"),
+        "{}",
+        err.message
+    );
+
+    let double = scene(
+        "coordinates x1, y1, x2, y2
+parameters m, g, l
+kinetic E = 1/2*m*(x1'^2 + y1'^2 + x2'^2 + y2'^2)
+potential V = m*g*(y1 + y2)
+constraint rod1: x1^2 + y1^2 = l^2
+constraint rod2: (x2 - x1)^2 + (y2 - y1)^2 = l^2
+",
+    );
+    let q0 = double.coordinate_values("x1=0,y1=-l,x2=0,y2=-2*l").unwrap();
+    let md = qdot::modes(&double, Some(&q0), &Default::default()).unwrap();
+    assert_eq!(md.coordinates, ["x1", "x2"]);
+    for (k, want_w2, want_mode) in [
+        (0, "(2 - sqrt(2))*g/l", "1 + sqrt(2)"),
+        (1, "(2 + sqrt(2))*g/l", "1 - sqrt(2)"),
+    ] {
+        let w2 = &md.omega_squared[k];
+        assert!(w2.equals(&double.expr(want_w2).unwrap()), "{w2}");
+        let mu = &md.modes[k][1];
+        assert!(mu.equals(&double.expr(want_mode).unwrap()), "{mu}");
+    }
+    let (out, _) = output::run_with(
+        Command::Modes,
+        CARTESIAN,
+        Format::Json,
+        &output::CommandOptions {
+            at: Some("x=0,y=-l".into()),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["dependent"]["y"], "-l");
 }
 
 /// The Cartesian pendulum simulated with its constraint follows the angle

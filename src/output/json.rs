@@ -248,6 +248,10 @@ pub fn modes_json(
     let mut m = Map::new();
     m.insert("coordinates".into(), json!(md.coordinates));
     m.insert("at".into(), named(&md.coordinates, &md.at));
+    if !md.dependent.is_empty() {
+        let (c, v): (Vec<String>, Vec<Expr>) = md.dependent.iter().cloned().unzip();
+        m.insert("dependent".into(), named(&c, &v));
+    }
     m.insert("mass_matrix".into(), mat(&md.mass));
     m.insert("stiffness_matrix".into(), mat(&md.stiffness));
     m.insert("damping_matrix".into(), mat(&md.damping));

@@ -38,6 +38,18 @@ fn linearized_text(md: &Modes, names: &[String]) -> String {
         "Linearized about {}   M·q̈ + C·q̇ + K·q = f(t)\n",
         at.join(", ")
     );
+    if !md.dependent.is_empty() {
+        let held: Vec<String> = md
+            .dependent
+            .iter()
+            .map(|(c, v)| format!("{} = {}", pretty_name(c, 0), as_unicode(v)))
+            .collect();
+        out.push_str(&format!(
+            "  (on the constraints: {} there, dependent on {})\n",
+            held.join(", "),
+            names.join(", ")
+        ));
+    }
     matrix_text(&mut out, "Mass matrix M", &md.mass);
     if is_damped(md) {
         matrix_text(&mut out, "Damping matrix C", &md.damping);

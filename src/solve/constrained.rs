@@ -13,6 +13,11 @@
 //! equilibrium. Stability (Lagrange–Dirichlet on the constraint manifold):
 //! the Hessian K = −∂(F + Aᵀ·λ)/∂q of V − λ·g, restricted to the tangent
 //! space, K_c = Zᵀ·K·Z with A·Z = 0, decided by its leading minors.
+//!
+//! Small oscillations on the constraints use the same Z, chosen so that the
+//! coordinates of no pivot of A (the *independent* ones) are themselves the
+//! reduced coordinates: δq = Z·δs with δs those coordinates' displacements,
+//! M_c = Zᵀ·M·Z, C_c = Zᵀ·C·Z, K_c = Zᵀ·K·Z and f_c = Zᵀ·f.
 
 use super::equilibrium::{jacobi, numeric_values, solve_exact, Equilibrium, Position, Stability};
 use crate::algebra::linear::det;
@@ -117,6 +122,7 @@ pub(super) fn constrained_equilibria(
 }
 
 /// Stability from K restricted to the constraints' tangent space.
+#[allow(clippy::needless_range_loop)] // matrix indices read best as indices
 fn classify(
     k_full: &[Vec<Expr>],
     a: &[Vec<Expr>],
@@ -192,6 +198,12 @@ fn dot(x: &[Expr], y: &[Expr]) -> Expr {
 /// A basis of {z : A·z = 0} (each a vector of `n` entries), by exact
 /// Gauss–Jordan elimination; None when A's rows are dependent.
 fn null_basis(a: &[Vec<Expr>], n: usize) -> Option<Vec<Vec<Expr>>> {
+    null_basis_free(a, n).map(|(z, _)| z)
+}
+
+/// [`null_basis`] with the column each basis vector is 1 in: the free
+/// (independent) coordinates, in order.
+fn null_basis_free(a: &[Vec<Expr>], n: usize) -> Option<(Vec<Vec<Expr>>, Vec<usize>)> {
     let mut rows: Vec<Vec<Expr>> = a.to_vec();
     let mut pivots: Vec<usize> = Vec::with_capacity(rows.len());
     for r in 0..rows.len() {
@@ -212,16 +224,141 @@ fn null_basis(a: &[Vec<Expr>], n: usize) -> Option<Vec<Vec<Expr>>> {
         }
         pivots.push(col);
     }
-    let basis = (0..n)
-        .filter(|c| !pivots.contains(c))
-        .map(|free| {
+    let free: Vec<usize> = (0..n).filter(|c| !pivots.contains(c)).collect();
+    let basis = free
+        .iter()
+        .map(|&f| {
             let mut z = vec![Expr::zero(); n];
-            z[free] = Expr::int(1);
+            z[f] = Expr::int(1);
             for (r, &p) in pivots.iter().enumerate() {
-                z[p] = rows[r][free].neg();
+                z[p] = rows[r][f].neg();
             }
             z
         })
         .collect();
-    Some(basis)
+    Some((basis, free))
+}
+
+/// The constraints at `q0` for small oscillations: each multiplier's value
+/// there (so that the equations balance: Aᵀ·λ0 = r0, r0 the residuals at
+/// rest without the multipliers) as a substitution, after checking that
+/// q0 lies on every constraint.
+pub(super) fn multipliers_at(
+    scene: &Scene,
+    residuals_at_rest: &[Expr],
+    q: &[Var],
+    q0: &[Expr],
+) -> Result<FxHashMap<Var, Expr>, Diagnostic> {
+    let point: FxHashMap<Var, Expr> = q.iter().copied().zip(q0.iter().cloned()).collect();
+    let at = |e: &Expr| {
+        e.subs_many(&point)
+            .map_err(|m| Diagnostic::global(m.message))
+    };
+    let mut at_rows: Vec<Vec<Expr>> = Vec::with_capacity(q.len());
+    let mut lambdas = Vec::new();
+    for (j, c) in scene.constraints.iter().enumerate() {
+        if !c.holonomic || c.expression.depends_on(atom::time()) {
+            return Err(Diagnostic::error(
+                c.span,
+                format!(
+                    "small oscillations under the constraint {} are not found: it {}",
+                    c.label(j),
+                    if c.holonomic {
+                        "moves with time"
+                    } else {
+                        "restricts the velocities, not the position"
+                    }
+                ),
+            )
+            .with_hint("write the scene in independent coordinates for its small oscillations"));
+        }
+        if !at(&c.expression)?.is_zero() {
+            return Err(Diagnostic::global(format!(
+                "the position is not on the constraint {}: {} ≠ 0 there",
+                c.label(j),
+                crate::expr::print::unicode(&c.expression)
+            ))
+            .with_hint("linearize about an equilibrium on the constraints: --at x=0,y=-l (`qdot equilibrium` lists them)"));
+        }
+        lambdas.push(Expr::unknown(&c.multiplier));
+    }
+    // Aᵀ·λ = r0: n equations in the m multipliers
+    for &qk in q {
+        let row = scene
+            .constraints
+            .iter()
+            .map(|c| at(&c.expression.diff(qk)))
+            .collect::<Result<Vec<_>, _>>()?;
+        at_rows.push(row);
+    }
+    let r0 = residuals_at_rest
+        .iter()
+        .map(at)
+        .collect::<Result<Vec<_>, _>>()?;
+    let sol = super::system::solve_rect(&at_rows, &r0, &lambdas).map_err(|_| {
+        Diagnostic::global("the constraints' gradients are dependent at this position")
+    })?;
+    if sol.residuals.iter().any(|(_, r)| !r.is_zero()) || !sol.shape.free.is_empty() {
+        return Err(Diagnostic::global(
+            "this position is not an equilibrium on the constraints: no multipliers balance the forces there",
+        )
+        .with_hint("`qdot equilibrium` finds the equilibria on the constraints; linearize about one with --at"));
+    }
+    Ok(scene
+        .constraints
+        .iter()
+        .map(|c| atom::unknown(&c.multiplier))
+        .zip(sol.values)
+        .collect())
+}
+
+/// Reduce M, C, K (n×n) and f to the independent coordinates of the
+/// constraints at `q0`: the reduced matrices, f_c, and the indices of the
+/// coordinates kept.
+#[allow(clippy::type_complexity)]
+pub(super) fn reduce(
+    scene: &Scene,
+    q: &[Var],
+    q0: &[Expr],
+    matrices: [&[Vec<Expr>]; 3],
+    forcing: &[Expr],
+) -> Result<([Vec<Vec<Expr>>; 3], Vec<Expr>, Vec<usize>), Diagnostic> {
+    let point: FxHashMap<Var, Expr> = q.iter().copied().zip(q0.iter().cloned()).collect();
+    let a = scene
+        .constraints
+        .iter()
+        .map(|c| {
+            q.iter()
+                .map(|&v| c.expression.diff(v).subs_many(&point))
+                .collect::<Result<Vec<_>, _>>()
+        })
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|m| Diagnostic::global(m.message))?;
+    let Some((z, free)) = null_basis_free(&a, q.len()) else {
+        return Err(Diagnostic::global(
+            "the constraints' gradients are dependent at this position",
+        )
+        .with_hint("remove the constraint that the others imply"));
+    };
+    if z.is_empty() {
+        return Err(Diagnostic::global(
+            "the constraints leave no motion: there are no oscillations",
+        ));
+    }
+    let sandwich = |m: &[Vec<Expr>]| -> Vec<Vec<Expr>> {
+        let mz: Vec<Vec<Expr>> = z
+            .iter()
+            .map(|zc| m.iter().map(|row| dot(row, zc)).collect())
+            .collect();
+        z.iter()
+            .map(|zi| mz.iter().map(|mzj| dot(zi, mzj)).collect())
+            .collect()
+    };
+    let reduced = [
+        sandwich(matrices[0]),
+        sandwich(matrices[1]),
+        sandwich(matrices[2]),
+    ];
+    let f = z.iter().map(|zc| dot(zc, forcing)).collect();
+    Ok((reduced, f, free))
 }

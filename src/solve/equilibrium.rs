@@ -138,20 +138,6 @@ pub struct Equilibria {
     pub exact: bool,
 }
 
-/// The error for a scene with constraints, whose equilibria and modes
-/// (Q + Aᵀ·λ = 0 on the constraints) these solvers do not find: they would
-/// ignore the constraint forces.
-pub(crate) fn refuse_constraints(scene: &Scene, what: &str) -> Result<(), Diagnostic> {
-    let Some(c) = scene.constraints.first() else {
-        return Ok(());
-    };
-    Err(Diagnostic::error(
-        c.span,
-        format!("{what} of a scene with constraints are not found yet: they need the constraint forces (Q + Aᵀ·λ = 0 on the constraints)"),
-    )
-    .with_hint("`qdot solve` gives the accelerations and multipliers; for equilibria and small oscillations write the scene in independent coordinates (the pendulum's angle instead of x, y)"))
-}
-
 /// Find and classify the equilibria of a scene.
 pub fn equilibria(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic> {
     crate::algebra::assume::assuming(&scene.assumptions, || equilibria_assumed(scene, set))

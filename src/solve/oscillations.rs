@@ -61,6 +61,9 @@ pub struct Modes {
     pub modes: Vec<Vec<Expr>>,
     /// Stable (all ω² > 0), unstable (some ω² < 0), or undecided.
     pub stability: Stability,
+    /// With constraints: the coordinates they make dependent, with their
+    /// values at the equilibrium (`coordinates` are the independent ones).
+    pub dependent: Vec<(String, Expr)>,
 }
 
 /// One degree of freedom in the standard form ÿ + 2α·ẏ + ω²·y = f(t)/M.
@@ -103,7 +106,6 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
         || "linearizing about the equilibrium for the small oscillations".into(),
         None,
     );
-    crate::solve::equilibrium::refuse_constraints(scene, "small oscillations")?;
     let l = scene.lagrange()?;
     let names = l.coordinates.clone();
     let n = names.len();
@@ -120,8 +122,22 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
         point.insert(qd[k], Expr::zero());
         point.insert(qdd[k], Expr::zero());
     }
-    let at_point = |e: &Expr| e.subs_many(&point).map_err(math);
     let residuals: Vec<Expr> = l.equations.iter().map(|e| e.lhs.sub(&e.rhs)).collect();
+    if !scene.constraints.is_empty() {
+        // the multipliers that hold the equilibrium
+        let rest: Vec<Expr> = residuals
+            .iter()
+            .map(|r| {
+                let mut p = point.clone();
+                for c in &scene.constraints {
+                    p.insert(atom::unknown(&c.multiplier), Expr::zero());
+                }
+                r.subs_many(&p).map_err(math)
+            })
+            .collect::<Result<_, _>>()?;
+        point.extend(super::constrained::multipliers_at(scene, &rest, &q, &q0)?);
+    }
+    let at_point = |e: &Expr| e.subs_many(&point).map_err(math);
     let mut mass = vec![vec![Expr::zero(); n]; n];
     let mut damping = vec![vec![Expr::zero(); n]; n];
     let mut stiffness = vec![vec![Expr::zero(); n]; n];
@@ -160,6 +176,21 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
         }
         forcing.push(f);
     }
+    let mut dependent = Vec::new();
+    let (names, q0, mass, damping, stiffness, forcing) = if scene.constraints.is_empty() {
+        (names, q0, mass, damping, stiffness, forcing)
+    } else {
+        let ([m, c, k], f, kept) =
+            super::constrained::reduce(scene, &q, &q0, [&mass, &damping, &stiffness], &forcing)?;
+        dependent = (0..n)
+            .filter(|i| !kept.contains(i))
+            .map(|i| (names[i].clone(), q0[i].clone()))
+            .collect();
+        let names = kept.iter().map(|&i| names[i].clone()).collect();
+        let q0 = kept.iter().map(|&i| q0[i].clone()).collect();
+        (names, q0, m, c, k, f)
+    };
+    let n = names.len();
     let lambda = Expr::var(atom::unknown(LAMBDA));
     let a: Vec<Vec<Expr>> = (0..n)
         .map(|i| {
@@ -226,6 +257,7 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
         omega_squared: roots,
         modes,
         stability,
+        dependent,
     })
 }
 
