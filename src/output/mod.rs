@@ -21,7 +21,8 @@
 //!   a free coordinate; numeric values as numbers), `stability` (parallel
 //!   to `equilibria`: "stable", "unstable", "undecided"), `notes` (parallel:
 //!   the reason when undecided, existence conditions), `approx` (parallel:
-//!   the numeric values of an exact position under `--set`, else null).
+//!   the numeric values of an exact position under `--set`, else null),
+//!   and with constraints `multipliers` (parallel: multiplier → λ);
 //!   A check of a vector equation also has `component` ("x", "y", "z").
 //! * `check`: `dimensions`, `definitions`, `sources`, `accelerations`,
 //!   `generalized_forces` (dimensions as strings in annotation syntax, or
