@@ -452,3 +452,48 @@ fn seed_reactions_from_the_multipliers() {
     let t2 = half_r(l["lambda_disk2"].add(&r.mul(&t3)));
     assert!(t2.equals(&kin["T2"]), "T2 = {t2}");
 }
+
+/// `reaction rod at [x, y]`: the rod's force on the bob, 2·λ·(x, y), whose
+/// magnitude on the circle is the tension; a rope between two bodies has no
+/// single point of action and is refused with a reason.
+#[test]
+fn reactions_at_points() {
+    let src = CARTESIAN.to_string() + "reaction rod at [x, y]\n";
+    let s = scene(&src);
+    let acc = s.lagrange().unwrap().accelerations().unwrap();
+    let forces = qdot::solve::constrained::reaction_forces(&s, &acc).unwrap();
+    let lambda = &acc.multipliers()[0].1;
+    for (k, q) in ["x", "y"].iter().enumerate() {
+        let want = lambda.mul(&s.expr(&format!("2*{q}")).unwrap());
+        assert!(forces[0][k].equals(&want), "{}", forces[0][k]);
+    }
+    // |R| on the circle: R·(x, y)/l = −T
+    let angle = scene(ANGLE);
+    let at = on_the_circle(&angle);
+    let radial = forces[0][0]
+        .mul(&s.expr("x").unwrap())
+        .add(&forces[0][1].mul(&s.expr("y").unwrap()))
+        .subs_many(&at)
+        .unwrap()
+        .div(&angle.expr("-l").unwrap())
+        .unwrap();
+    let tension = &qdot::solve::system::solve_scene(&angle).unwrap()[0].values[0].1;
+    assert!(radial.equals(tension), "{radial} vs {tension}");
+    let (out, _) = output::run(Command::Solve, &src, Format::Json, &Default::default()).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["reactions"][0]["constraint"], "rod");
+    assert_eq!(v["reactions"][0]["point"], "[x, y]");
+
+    let path = format!(
+        "{}/examples/seed_21_2_constraints.qd",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let two = std::fs::read_to_string(path).unwrap() + "reaction rope1 at y1\n";
+    let err = output::run(Command::Solve, &two, Format::Text, &Default::default()).unwrap_err();
+    assert!(
+        err.message.contains("does not act at this point alone"),
+        "{}",
+        err.message
+    );
+    assert!(err.span.is_some() && err.hint.is_some());
+}

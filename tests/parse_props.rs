@@ -87,6 +87,16 @@ fn check_scene(src: &str) -> Result<Option<Vec<Stmt>>, TestCaseError> {
                             }
                         }
                     }
+                    Stmt::Reaction {
+                        constraint,
+                        point,
+                        span,
+                    } => {
+                        prop_assert!(src[span.start..].starts_with("reaction"));
+                        prop_assert!(constraint.span.end < point.span.start);
+                        prop_assert!(point.span.end == span.end);
+                        check_expr_spans(src, point)?;
+                    }
                     Stmt::Constraint {
                         name,
                         equation,
@@ -319,6 +329,8 @@ fn statement_source() -> impl Strategy<Value = String> {
         "constraint ",
         "constraint c: ",
         "constraint x ",
+        "reaction c at ",
+        "reaction c ",
     ]);
     prop::collection::vec((head, prop::collection::vec(token(), 1..12)), 1..5).prop_map(|lines| {
         lines

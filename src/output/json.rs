@@ -378,3 +378,22 @@ pub fn integrals_json(i: &crate::mechanics::Integrals) -> Map<String, Value> {
     m.insert("notes".into(), json!(i.notes));
     m
 }
+
+/// The `reactions` key of `solve`: one `{"constraint", "point", "force"}`
+/// per `reaction` statement (the force a list of components).
+pub fn reactions_json(scene: &Scene, forces: &[Vec<Expr>]) -> Value {
+    Value::Array(
+        scene
+            .reactions
+            .iter()
+            .zip(forces)
+            .map(|(r, f)| {
+                json!({
+                    "constraint": scene.constraints[r.constraint].name,
+                    "point": r.written,
+                    "force": f.iter().map(as_input).collect::<Vec<_>>(),
+                })
+            })
+            .collect(),
+    )
+}

@@ -34,7 +34,9 @@
 //!   `constraints` (a list of `{"name", "multiplier", "kind", "expression",
 //!   "coefficients", "rest"}`: kind "holonomic" or "velocity", the
 //!   constraint a·q̇ + b = 0 as its coefficients a per coordinate and b);
-//!   `solve` adds `multipliers` (multiplier → λ, after `accelerations`);
+//!   `solve` adds `multipliers` (multiplier → λ, after `accelerations`)
+//!   and, for `reaction` statements, `reactions` (a list of
+//!   `{"constraint", "point", "force"}`, the force a list of components);
 //! * every command, for a scene that annotates a dimension: `dimensions`
 //!   last (coordinate, parameter, `solve` unknown → dimension or null).
 //!
@@ -198,53 +200,7 @@ fn run_scene(
                 Format::Latex => latex::write(scene, |w| w.derive(&lag)),
             }
         }
-        Command::Solve => {
-            let dynamics = scene.has_dynamics();
-            if !dynamics && scene.systems.is_empty() {
-                // the usual error for a scene with nothing to solve
-                scene.lagrange()?;
-            }
-            let lag = if dynamics {
-                let l = scene.lagrange()?;
-                let acc = l.accelerations()?;
-                Some((l, acc))
-            } else {
-                None
-            };
-            let blocks = system::solve_scene(scene)?;
-            match fmt {
-                Format::Text => {
-                    let mut out = match &lag {
-                        Some((l, acc)) => text::bodies_text(scene) + &solve_text(l, acc),
-                        None => String::new(),
-                    };
-                    if !blocks.is_empty() {
-                        if !out.is_empty() {
-                            out.push('\n');
-                        }
-                        out.push_str(&solutions_text(scene, &blocks));
-                    }
-                    out
-                }
-                Format::Latex => latex::write(scene, |w| {
-                    if let Some((l, acc)) = &lag {
-                        w.equations(l);
-                        w.accelerations(acc);
-                    }
-                    w.blocks(scene, &blocks);
-                }),
-                Format::Json => {
-                    let mut m = match &lag {
-                        Some((l, acc)) => solve_json(l, acc),
-                        None => Map::new(),
-                    };
-                    if !blocks.is_empty() {
-                        solutions_json(scene, &blocks, &mut m);
-                    }
-                    json_string(m)?
-                }
-            }
-        }
+        Command::Solve => solve_output(scene, fmt)?,
         Command::Forces => {
             let q = crate::mechanics::generalized_forces(scene);
             if scene.coordinates.is_empty() {
@@ -321,6 +277,67 @@ fn run_scene(
         }
     };
     Ok((out, scene.warnings.clone()))
+}
+
+/// `qdot solve`: the accelerations (and multipliers, and the constraints'
+/// reactions) and the `solve` blocks' solutions.
+fn solve_output(scene: &Scene, fmt: Format) -> Result<String, Diagnostic> {
+    let dynamics = scene.has_dynamics();
+    if !dynamics && scene.systems.is_empty() {
+        // the usual error for a scene with nothing to solve
+        scene.lagrange()?;
+    }
+    let lag = if dynamics {
+        let l = scene.lagrange()?;
+        let acc = l.accelerations()?;
+        Some((l, acc))
+    } else {
+        None
+    };
+    let reactions = match &lag {
+        Some((_, acc)) => crate::solve::constrained::reaction_forces(scene, acc)?,
+        None => Vec::new(),
+    };
+    let blocks = system::solve_scene(scene)?;
+    Ok(match fmt {
+        Format::Text => {
+            let mut out = match &lag {
+                Some((l, acc)) => {
+                    text::bodies_text(scene)
+                        + &solve_text(l, acc)
+                        + &text::reactions_text(scene, &reactions)
+                }
+                None => String::new(),
+            };
+            if !blocks.is_empty() {
+                if !out.is_empty() {
+                    out.push('\n');
+                }
+                out.push_str(&solutions_text(scene, &blocks));
+            }
+            out
+        }
+        Format::Latex => latex::write(scene, |w| {
+            if let Some((l, acc)) = &lag {
+                w.equations(l);
+                w.accelerations(acc);
+            }
+            w.blocks(scene, &blocks);
+        }),
+        Format::Json => {
+            let mut m = match &lag {
+                Some((l, acc)) => solve_json(l, acc),
+                None => Map::new(),
+            };
+            if !reactions.is_empty() {
+                m.insert("reactions".into(), json::reactions_json(scene, &reactions));
+            }
+            if !blocks.is_empty() {
+                solutions_json(scene, &blocks, &mut m);
+            }
+            scene_json(scene, m)?
+        }
+    })
 }
 
 /// `hamilton` and `integrals`: Hamilton's equations, the integrals of

@@ -420,3 +420,27 @@ pub fn integrals_text(i: &crate::mechanics::Integrals) -> String {
     }
     out
 }
+
+/// The forces of the `reaction` statements (nothing without them).
+pub fn reactions_text(scene: &Scene, forces: &[Vec<Expr>]) -> String {
+    if forces.is_empty() {
+        return String::new();
+    }
+    let mut out = String::from("\nReactions  (R at P: Σ_i R_i·∂P_i/∂q_k = λ·A_k)\n");
+    for (r, f) in scene.reactions.iter().zip(forces) {
+        let c = &scene.constraints[r.constraint];
+        let value = match f.as_slice() {
+            [one] => as_unicode(one),
+            many => format!(
+                "[{}]",
+                many.iter().map(as_unicode).collect::<Vec<_>>().join(", ")
+            ),
+        };
+        out.push_str(&format!(
+            "  {} at {}:  R = {value}\n",
+            c.label(r.constraint).trim_matches('`'),
+            r.written
+        ));
+    }
+    out
+}

@@ -162,6 +162,16 @@ pub enum Stmt {
         /// The whole statement.
         span: Span,
     },
+    /// `reaction rod at P` — the force of a constraint at a point: the
+    /// vector R with Σ_i R_i·∂P_i/∂q_k = λ·a_k.
+    Reaction {
+        /// The constraint's name.
+        constraint: Ident,
+        /// The point (a position vector, or a displacement along a line).
+        point: Expr,
+        /// The whole statement.
+        span: Span,
+    },
     /// `assume e real, R > r` — what the scene assumes beyond "every
     /// parameter is positive".
     Assume(Vec<Fact>, Span),
@@ -317,7 +327,8 @@ impl Stmt {
             | Stmt::Latex { span, .. }
             | Stmt::Frame { span, .. }
             | Stmt::Gravity { span, .. }
-            | Stmt::Constraint { span, .. } => *span,
+            | Stmt::Constraint { span, .. }
+            | Stmt::Reaction { span, .. } => *span,
             Stmt::Solve(b) => b.span,
             Stmt::Body(b) => b.span,
             Stmt::Assume(_, s) => *s,

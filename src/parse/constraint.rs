@@ -1,5 +1,6 @@
 //! The `constraint` statement: a holonomic constraint or one linear in the
-//! velocities, each with a Lagrange multiplier.
+//! velocities, each with a Lagrange multiplier; and `reaction`, the force
+//! of a constraint at a point.
 
 use super::*;
 
@@ -39,6 +40,40 @@ impl<'s> Parser<'s> {
             Stmt::Constraint {
                 name,
                 equation,
+                span,
+            },
+        ))
+    }
+
+    /// `reaction_stmt ::= "reaction" ws ident ws "at" ws expr`
+    #[inline(never)]
+    pub(super) fn reaction_stmt(&self, i: &'s str) -> RuleResult<'s, Stmt> {
+        let i = self.ws(i);
+        let start = self.pos(i);
+        let Some(rest) = i.strip_prefix("reaction") else {
+            return self.nothing(i);
+        };
+        let (rest, constraint) = self.ident(rest)?;
+        let j = self.ws(rest);
+        let after_at = j
+            .strip_prefix("at")
+            .filter(|k| !k.starts_with(|c: char| c.is_alphanumeric() || c == '_'));
+        let Some(k) = after_at else {
+            let c = &constraint.name;
+            return self.fail(self.expected(
+                j,
+                &format!("`at` after `reaction {c}`"),
+                &format!("the force of a constraint at a point is written `reaction {c} at P`"),
+                None,
+            ));
+        };
+        let (rest, (point, outer)) = self.rhs(k, "at")?;
+        let span = Span::new(start, outer.end);
+        Ok((
+            rest,
+            Stmt::Reaction {
+                constraint,
+                point,
                 span,
             },
         ))

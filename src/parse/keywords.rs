@@ -49,6 +49,7 @@ pub const STATEMENT: &[&str] = &[
     "functions",
     "assume",
     "constraint",
+    "reaction",
 ];
 
 /// The stop words inside `load … at …` and `torque … on …`.

@@ -143,7 +143,7 @@ impl<'s> Parser<'s> {
         }
     }
 
-    /// `statement ::= declaration | role_stmt | force_stmt | load_stmt | torque_stmt | solve_block | latex_stmt | frame_stmt | body_stmt | gravity_stmt | assume_stmt | constraint_stmt | definition`
+    /// `statement ::= declaration | role_stmt | force_stmt | load_stmt | torque_stmt | solve_block | latex_stmt | frame_stmt | body_stmt | gravity_stmt | assume_stmt | constraint_stmt | reaction_stmt | definition`
     ///
     /// Keywords do not reserve names: the tokens after the first identifier
     /// decide (see the grammar).
@@ -195,6 +195,7 @@ impl<'s> Parser<'s> {
             "gravity" if !next_is_eq => self.gravity_stmt(i),
             "assume" if !next_is_eq => self.assume_stmt(i),
             "constraint" if !next_is_eq => self.constraint_stmt(i),
+            "reaction" if next_is_ident => self.reaction_stmt(i),
             "torque" if !next_is_eq => self.torque_stmt(i),
             "solve" if !next_is_eq => self.solve_block(i),
             "latex" if !next_is_eq => {

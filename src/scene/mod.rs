@@ -225,6 +225,8 @@ pub struct Scene {
     pub gravity: Option<Span>,
     /// The `constraint` statements, in source order.
     pub constraints: Vec<Constraint>,
+    /// The `reaction` statements, in source order.
+    pub reactions: Vec<Reaction>,
     /// What the scene assumes beyond positive parameters (`assume`).
     pub assumptions: crate::algebra::assume::Assumptions,
     /// Things worth a look that do not stop the computation.
@@ -265,6 +267,20 @@ pub struct Constraint {
     pub coefficients: Vec<Expr>,
     /// b.
     pub rest: Expr,
+    /// The whole statement.
+    pub span: Span,
+}
+
+/// `reaction rod at P`: where a constraint's force is asked for.
+#[derive(Clone, Debug)]
+pub struct Reaction {
+    /// The index of the constraint in [`Scene::constraints`].
+    pub constraint: usize,
+    /// The point's components (one for a displacement along a line), in q
+    /// and t.
+    pub point: Vec<Expr>,
+    /// The point as written.
+    pub written: String,
     /// The whole statement.
     pub span: Span,
 }

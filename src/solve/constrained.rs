@@ -362,3 +362,61 @@ pub(super) fn reduce(
     let f = z.iter().map(|zc| dot(zc, forcing)).collect();
     Ok((reduced, f, free))
 }
+
+/// The force of each `reaction NAME at P` of the scene: R with
+/// Σ_i R_i·∂P_i/∂q_k = λ·a_k for every coordinate k (λ from `acc`), solved
+/// exactly; an error when no such R exists (the constraint acts elsewhere
+/// too) or the point does not determine it.
+pub fn reaction_forces(
+    scene: &Scene,
+    acc: &crate::mechanics::Accelerations,
+) -> Result<Vec<Vec<Expr>>, Diagnostic> {
+    let q: Vec<Var> = scene
+        .coordinates
+        .iter()
+        .map(|c| atom::coord(&c.name, 0))
+        .collect();
+    let mut out = Vec::with_capacity(scene.reactions.len());
+    for r in &scene.reactions {
+        let c = &scene.constraints[r.constraint];
+        let Some((_, lambda)) = acc.multipliers().get(r.constraint) else {
+            return Err(Diagnostic::global(
+                "internal: a reaction without its multiplier",
+            ));
+        };
+        // Jᵀ: one row per coordinate, one column per component of P
+        let jt: Vec<Vec<Expr>> = q
+            .iter()
+            .map(|&v| r.point.iter().map(|p| p.diff(v)).collect())
+            .collect();
+        let b: Vec<Expr> = c.coefficients.iter().map(|a| lambda.mul(a)).collect();
+        let symbols: Vec<Expr> = (0..r.point.len())
+            .map(|i| Expr::unknown(&format!("R{}", i + 1)))
+            .collect();
+        let label = c.label(r.constraint);
+        let sol = super::system::solve_rect(&jt, &b, &symbols).map_err(|_| {
+            Diagnostic::error(
+                r.span,
+                format!(
+                    "the force of the constraint {label} at this point could not be solved for"
+                ),
+            )
+        })?;
+        if sol.residuals.iter().any(|(_, x)| !x.is_zero()) {
+            return Err(Diagnostic::error(
+                r.span,
+                format!("the constraint {label} does not act at this point alone: no force there gives its generalized forces λ·a"),
+            )
+            .with_hint("name the point of the one body the constraint holds (a rope between two bodies acts on both)"));
+        }
+        if !sol.shape.free.is_empty() {
+            return Err(Diagnostic::error(
+                r.span,
+                format!("the point does not determine the force of the constraint {label}: it moves in fewer directions than it has components"),
+            )
+            .with_hint("write the point with as many components as it moves in"));
+        }
+        out.push(sol.values);
+    }
+    Ok(out)
+}

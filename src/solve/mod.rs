@@ -2,7 +2,7 @@
 //! accelerations; of any shape, for `solve` blocks) equilibria and small oscillations.
 
 pub mod certify;
-mod constrained;
+pub mod constrained;
 pub mod eigen;
 pub mod equilibrium;
 pub mod numeric;

@@ -101,6 +101,9 @@ pub fn stmt_sexpr(s: &Stmt) -> String {
         Stmt::Frame { name, value, .. } => format!("(frame {} {})", name.name, sexpr(value)),
         Stmt::Gravity { value, .. } => format!("(gravity {})", sexpr(value)),
         Stmt::Assume(facts, _) => format!("(assume {})", facts_text(facts, sexpr, " ")),
+        Stmt::Reaction {
+            constraint, point, ..
+        } => format!("(reaction {} {})", constraint.name, sexpr(point)),
         Stmt::Constraint { name, equation, .. } => format!(
             "(constraint {}(= {} {}))",
             name.as_ref()
@@ -320,6 +323,9 @@ pub fn print_stmt(s: &Stmt) -> String {
         Stmt::Frame { name, value, .. } => format!("frame {} = {}", name.name, print_full(value)),
         Stmt::Gravity { value, .. } => format!("gravity {}", print_full(value)),
         Stmt::Assume(facts, _) => format!("assume {}", facts_text(facts, print_full, ", ")),
+        Stmt::Reaction {
+            constraint, point, ..
+        } => format!("reaction {} at {}", constraint.name, print_full(point)),
         Stmt::Constraint { name, equation, .. } => format!(
             "constraint {}{} = {}",
             name.as_ref()

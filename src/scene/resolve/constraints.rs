@@ -1,12 +1,12 @@
 //! `constraint` statements: holonomic g(q, t) = 0, or linear in the
 //! velocities a(q, t)·q̇ + b(q, t) = 0, each with a Lagrange multiplier.
 
-use super::{derivative_past, no_unknowns, Resolver};
+use super::{derivative_past, no_unknowns, positions_only, Resolver};
 use crate::diag::Diagnostic;
 use crate::expr::{atom, Expr};
 use crate::parse::ast::{self, Stmt};
 use crate::poly::Var;
-use crate::scene::{Constraint, Value};
+use crate::scene::{Constraint, Reaction, Value};
 
 /// The multiplier of the `index`-th constraint (0-based): `lambda_NAME`,
 /// or `lambdaK` (1-based) without a name.
@@ -123,5 +123,68 @@ impl Resolver<'_> {
             rest,
             span,
         })
+    }
+
+    /// The `reaction NAME at P` statements, in order.
+    pub(super) fn reactions(
+        &mut self,
+        stmts: &[&Stmt],
+        constraints: &[Constraint],
+    ) -> Result<Vec<Reaction>, Diagnostic> {
+        let mut out = Vec::with_capacity(stmts.len());
+        for st in stmts {
+            let Stmt::Reaction {
+                constraint,
+                point,
+                span,
+            } = st
+            else {
+                continue;
+            };
+            let Some(j) = constraints
+                .iter()
+                .position(|c| c.name.as_deref() == Some(constraint.name.as_str()))
+            else {
+                let names: Vec<&str> = constraints
+                    .iter()
+                    .filter_map(|c| c.name.as_deref())
+                    .collect();
+                return Err(Diagnostic::error(
+                    constraint.span,
+                    format!("`{}` is not the name of a constraint", constraint.name),
+                )
+                .with_hint(if names.is_empty() {
+                    "name the constraint: `constraint rod: x^2 + y^2 = l^2`, then `reaction rod at [x, y]`".to_string()
+                } else {
+                    format!("the scene's named constraints: {}", names.join(", "))
+                }));
+            };
+            let value = self.ev.value(point)?;
+            let components =
+                match value {
+                    Value::Scalar(e) => vec![e],
+                    Value::Vector(v) => v,
+                    Value::Rotation(_) => return Err(Diagnostic::error(
+                        point.span,
+                        "a reaction's point is a position, and this is a rotation",
+                    )
+                    .with_hint(
+                        "a point is a position vector, `[x, y]`, or a displacement along a line",
+                    )),
+                };
+            no_unknowns(&components, point.span, "a reaction's point")?;
+            positions_only(&components, point.span, "a reaction's point")?;
+            if !components.iter().any(|e| self.moves(e)) {
+                return Err(Diagnostic::error(point.span, "this point does not move with any coordinate, so no force there does virtual work")
+                    .with_hint("name the point the constraint holds: its position in the coordinates"));
+            }
+            out.push(Reaction {
+                constraint: j,
+                point: components,
+                written: self.src[point.span.start..point.span.end].to_string(),
+                span: *span,
+            });
+        }
+        Ok(out)
     }
 }

@@ -36,6 +36,8 @@ struct Declarations<'a> {
     frames: Vec<usize>,
     /// The `constraint` statements, in order.
     constraints: Vec<&'a Stmt>,
+    /// The `reaction` statements, in order.
+    reactions: Vec<&'a Stmt>,
 }
 
 impl<'a> Declarations<'a> {
@@ -51,6 +53,7 @@ impl<'a> Declarations<'a> {
             unknowns: Vec::new(),
             frames: Vec::new(),
             constraints: Vec::new(),
+            reactions: Vec::new(),
         };
         for st in stmts {
             d.statement(st)?;
@@ -136,6 +139,7 @@ impl<'a> Declarations<'a> {
                 )?;
                 self.constraints.push(st);
             }
+            Stmt::Reaction { .. } => self.reactions.push(st),
             Stmt::Solve(block) => {
                 let mut us = Vec::with_capacity(block.unknowns.len());
                 for u in &block.unknowns {
@@ -314,6 +318,7 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
     }
     r.gravity(stmts)?;
     let constraints = r.constraints(&decl.constraints)?;
+    let reactions = r.reactions(&decl.reactions, &constraints)?;
     definitions.append(&mut r.body_energies);
     let Resolver {
         ev,
@@ -371,6 +376,7 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
         bodies,
         gravity,
         constraints,
+        reactions,
         assumptions,
         warnings,
         latex_names,
