@@ -121,7 +121,7 @@ seeds() {
     local c=fuzz/corpus
     mkdir -p "$c/parse" "$c/pipeline" "$c/repl" "$c/simulate"
     rm -f "$c"/*/seed-*
-    local scenes=(examples/*.qd book/scenes/*.qd tests/data/dimensions/*/*.qd tests/data/frames/*/*.qd)
+    local scenes=(examples/*.qd book/scenes/*.qd tests/data/dimensions/*/*.qd tests/data/frames/*/*.qd tests/data/constraints/*/*.qd)
     for f in "${scenes[@]}"; do
         local n
         n=$(seed_name "$f")
@@ -134,6 +134,8 @@ seeds() {
         { echo "#@ equilibrium json $(ones "$f")"; cat "$f"; } >"$c/pipeline/seed-$n-equilibrium"
         { echo "#@ modes text"; cat "$f"; } >"$c/pipeline/seed-$n-modes"
         { echo "#@ check json"; cat "$f"; } >"$c/pipeline/seed-$n-check"
+        { echo "#@ hamilton json"; cat "$f"; } >"$c/pipeline/seed-$n-hamilton"
+        { echo "#@ integrals text"; cat "$f"; } >"$c/pipeline/seed-$n-integrals"
         # repl: the scene's lines, then the commands
         { cat "$f"; printf ':solve\n:equations\n:format json\n:forces\n:format latex\n:show\n:undo\n:scene\n:reset\n'; } \
             >"$c/repl/seed-$n"

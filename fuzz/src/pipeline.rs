@@ -55,6 +55,8 @@ fn header(src: &str) -> (Command, Format, Option<&str>) {
         Some("modes") => Command::Modes,
         Some("latex") => Command::Latex,
         Some("check") => Command::Check,
+        Some("hamilton") => Command::Hamilton,
+        Some("integrals") => Command::Integrals,
         _ => Command::Solve,
     };
     let fmt = match words.next() {
