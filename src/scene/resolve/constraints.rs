@@ -32,6 +32,14 @@ impl Resolver<'_> {
             else {
                 continue;
             };
+            let n = self.coordinates.len();
+            if k == n {
+                return Err(Diagnostic::error(
+                    *span,
+                    format!("more constraints than coordinates: with {n} coordinates at most {n} constraints can be independent"),
+                )
+                .with_hint("remove the constraints the others imply, or add the coordinates they constrain"));
+            }
             let c = self.constraint(name.as_ref(), equation, *span, k)?;
             if let Some(prev) = out.iter().position(|p| p.expression.equals(&c.expression)) {
                 let line = |c: &Constraint| Diagnostic::line_col(self.src, c.span.start).0;
