@@ -36,7 +36,10 @@ impl Resolver<'_> {
             if k == n {
                 return Err(Diagnostic::error(
                     *span,
-                    format!("more constraints than coordinates: with {n} coordinates at most {n} constraints can be independent"),
+                    format!(
+                        "more constraints than coordinates: with {n} coordinate{s} at most {n} constraint{s} can be independent",
+                        s = if n == 1 { "" } else { "s" }
+                    ),
                 )
                 .with_hint("remove the constraints the others imply, or add the coordinates they constrain"));
             }
