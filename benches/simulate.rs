@@ -93,6 +93,8 @@ fn problems(c: &mut Criterion) {
             .expect("parses")
             .lagrange()
             .expect("derives");
+        // a constrained problem runs the stabilized system, as `simulate` does
+        let lag = qdot::simulate::constrained::stabilized(lag).expect("stabilizes");
         let (mut d, choice) = CompiledDynamics::best(&lag, &p.param_map()).expect("compiles");
         eprintln!("{}: evaluator {}", p.name, choice.evaluator.name());
         let opts = options(p.t_end);

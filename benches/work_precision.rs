@@ -27,8 +27,15 @@
 //! the final time against the exact solution or, for the double pendulum
 //! and the chain, against Vern7 at rtol = atol = 1e-14 (whose distance to
 //! DOP853 at 1e-14 is reported as the reference's own error); for
-//! conservative problems also max |H − H0| over the accepted steps (an
-//! untimed run).
+//! conservative problems also max |H − H0| over the accepted steps, and
+//! for the constrained one (the Cartesian pendulum, integrated as the
+//! Baumgarte-stabilized augmented system) max |g| over the accepted steps
+//! (an untimed run).
+//!
+//! For the constrained problem the report also measures Baumgarte's α:
+//! the qdot adaptive methods at α = 0, 1 and 10 on [0, T] (time at equal
+//! error, drift) and DOP853 over about 100 periods, where the drift of
+//! α = 0 grows and that of α > 0 does not.
 
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
@@ -55,6 +62,8 @@ struct Point {
     seconds: f64,
     error: f64,
     energy_error: Option<f64>,
+    /// max |g| over the constraints and the accepted steps.
+    drift: Option<f64>,
     steps: usize,
     rhs: usize,
 }
@@ -80,6 +89,30 @@ struct Report {
     check_y: Vec<f64>,
     check_dy: Vec<f64>,
     series: Vec<Series>,
+    /// Baumgarte's α measured, for a problem with constraints.
+    alpha: Option<AlphaStudy>,
+}
+
+/// The constrained problem at α = 0, 1, 10: one series per α and adaptive
+/// method on [0, T], and one DOP853 run per α over `long_t`.
+struct AlphaStudy {
+    /// How many constraints the scene has.
+    constraints: usize,
+    alphas: Vec<f64>,
+    /// (α, series) on [0, T].
+    series: Vec<(f64, Series)>,
+    long_t: f64,
+    long_tol: f64,
+    /// (α, point) over [0, long_t], its error against the exact solution.
+    long: Vec<(f64, Point)>,
+}
+
+/// What a qdot point measures beside the final error: max |H − H0| and
+/// max |g| over the accepted steps, each when the problem has it.
+#[derive(Clone, Copy)]
+struct Extra<'a> {
+    energy: Option<(&'a Program, f64)>,
+    constraints: Option<&'a Program>,
 }
 
 fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
@@ -120,6 +153,21 @@ fn energy_error(energy: &Program, h0: f64, ts: &[f64], ys: &[Vec<f64>]) -> f64 {
     worst
 }
 
+/// max |gⱼ| over the constraints and the states of `ys`.
+fn constraint_drift(g: &Program, ts: &[f64], ys: &[Vec<f64>]) -> f64 {
+    let mut regs = g.registers();
+    let (mut input, mut out) = (Vec::new(), vec![0.0; g.n_outputs()]);
+    let mut worst: f64 = 0.0;
+    for (t, y) in ts.iter().zip(ys) {
+        input.clear();
+        input.push(*t);
+        input.extend_from_slice(y);
+        g.eval(&input, &mut regs, &mut out);
+        worst = out.iter().fold(worst, |w, v| w.max(v.abs()));
+    }
+    worst
+}
+
 fn energy_at(energy: &Program, t: f64, y: &[f64]) -> f64 {
     let mut input = vec![t];
     input.extend_from_slice(y);
@@ -129,13 +177,13 @@ fn energy_at(energy: &Program, t: f64, y: &[f64]) -> f64 {
 }
 
 /// One qdot point: the timed run records the final state only; an untimed
-/// run records every step for the energy error.
+/// run records every step for the energy error and the constraint drift.
 fn qdot_point<S: System>(
     sys: &mut S,
     method: Method,
     p: &Problem,
     reference: &[f64],
-    energy: Option<(&Program, f64)>,
+    extra: Extra,
     tol: f64,
     fixed_step: bool,
 ) -> Option<Point> {
@@ -154,19 +202,29 @@ fn qdot_point<S: System>(
     if sol.t.last() != Some(&p.t_end) || y.iter().any(|v| !v.is_finite()) {
         return None;
     }
-    let energy_error = energy.and_then(|(e, h0)| {
+    let every_step = if extra.energy.is_some() || extra.constraints.is_some() {
         let all = IntegratorOptions {
             t_out: Vec::new(),
             ..opts.clone()
         };
-        let sol = integrate(sys, method, &p.y0, &all).ok()?;
-        Some(energy_error(e, h0, &sol.t, &sol.y))
-    });
+        integrate(sys, method, &p.y0, &all).ok()
+    } else {
+        None
+    };
+    let energy_error = extra
+        .energy
+        .zip(every_step.as_ref())
+        .map(|((e, h0), all)| energy_error(e, h0, &all.t, &all.y));
+    let drift = extra
+        .constraints
+        .zip(every_step.as_ref())
+        .map(|(g, all)| constraint_drift(g, &all.t, &all.y));
     Some(Point {
         tol,
         seconds,
         error: max_abs_diff(y, reference),
         energy_error,
+        drift,
         steps: sol.stats.steps,
         rhs: sol.stats.rhs_evals,
     })
@@ -195,7 +253,7 @@ fn ode_solvers_point<const D: usize>(
     p: &Problem,
     sys: &RefCell<CompiledDynamics>,
     reference: &[f64],
-    energy: Option<(&Program, f64)>,
+    extra: Extra,
     tol: f64,
 ) -> Option<Point> {
     use ode_solvers::{Dop853, OutputType, SVector};
@@ -249,15 +307,15 @@ fn ode_solvers_point<const D: usize>(
         return None;
     }
     let error = max_abs_diff(y.as_slice(), reference);
-    let energy_error = energy.map(|(e, h0)| {
-        let ys: Vec<Vec<f64>> = ys.iter().map(|v| v.as_slice().to_vec()).collect();
-        energy_error(e, h0, ts, &ys)
-    });
+    let ys: Vec<Vec<f64>> = ys.iter().map(|v| v.as_slice().to_vec()).collect();
+    let energy_error = extra.energy.map(|(e, h0)| energy_error(e, h0, ts, &ys));
+    let drift = extra.constraints.map(|g| constraint_drift(g, ts, &ys));
     Some(Point {
         tol,
         seconds,
         error,
         energy_error,
+        drift,
         steps: stats.accepted_steps as usize + stats.rejected_steps as usize,
         rhs: stats.num_eval as usize,
     })
@@ -277,8 +335,12 @@ fn method_label(m: Method) -> &'static str {
 fn run_problem(p: &Problem, tolerances: &[f64], quick: bool) -> Result<Report, String> {
     let mut sys = p.dynamics().map_err(|d| d.message)?;
     let energy = p.energy().map_err(|d| d.message)?;
+    let constraints = p.constraints().map_err(|d| d.message)?;
     let h0 = energy.as_ref().map(|e| energy_at(e, 0.0, &p.y0));
-    let en = energy.as_ref().zip(h0);
+    let en = Extra {
+        energy: energy.as_ref().zip(h0),
+        constraints: constraints.as_ref(),
+    };
 
     // The reference: exact, or Vern7 at 1e-14 checked against DOP853 at 1e-14.
     let (reference, reference_error) = match p.exact(p.t_end) {
@@ -407,6 +469,10 @@ fn run_problem(p: &Problem, tolerances: &[f64], quick: bool) -> Result<Report, S
         fixed_step: false,
         points: pts,
     });
+    let alpha = match &constraints {
+        Some(g) => Some(alpha_study(p, g, en.energy, &reference, tolerances, quick)?),
+        None => None,
+    };
     eprintln!();
     Ok(Report {
         problem: p.clone(),
@@ -416,6 +482,105 @@ fn run_problem(p: &Problem, tolerances: &[f64], quick: bool) -> Result<Report, S
         check_y: y,
         check_dy: a,
         series,
+        alpha,
+    })
+}
+
+/// Baumgarte's α measured on the constrained problem `p`: the adaptive
+/// methods at α = 0, 1, 10 over [0, T] (all of `tolerances`), and DOP853
+/// at rtol = atol = 1e-10 over 100 periods of the angle pendulum (timed
+/// once; the error against the exact solution at the end).
+fn alpha_study(
+    p: &Problem,
+    g: &Program,
+    energy: Option<(&Program, f64)>,
+    reference: &[f64],
+    tolerances: &[f64],
+    quick: bool,
+) -> Result<AlphaStudy, String> {
+    let alphas = vec![0.0, 1.0, 10.0];
+    let theta0 = p.y0[0].atan2(-p.y0[1]);
+    let period = qdot::simulate::elliptic::pendulum_period(theta0, p.param("g") / p.param("l"));
+    let long_t = (100.0 * period).ceil();
+    let long_tol = 1e-10;
+    let extra = Extra {
+        energy,
+        constraints: Some(g),
+    };
+    let (mut series, mut long) = (Vec::new(), Vec::new());
+    for &alpha in &alphas {
+        let q = Problem {
+            baumgarte: Some(alpha),
+            ..p.clone()
+        };
+        let mut sys = q.dynamics().map_err(|d| d.message)?;
+        let methods: &[Method] = if quick {
+            &[Method::Dop853]
+        } else {
+            &[
+                Method::Dopri5,
+                Method::Dop853,
+                Method::Vern7,
+                Method::Radau5,
+            ]
+        };
+        for &m in methods {
+            let mut pts = Vec::new();
+            for &tol in tolerances {
+                eprint!(
+                    "\r{:<16} α = {alpha:<4} {:<8} {tol:.0e}   ",
+                    p.name,
+                    method_label(m)
+                );
+                pts.extend(qdot_point(&mut sys, m, &q, reference, extra, tol, false));
+            }
+            series.push((
+                alpha,
+                Series {
+                    label: format!("qdot {} at α = {alpha}", method_label(m)),
+                    family: "qdot",
+                    fixed_step: false,
+                    points: pts,
+                },
+            ));
+        }
+        let q = Problem { t_end: long_t, ..q };
+        let exact = q.exact(long_t).ok_or("no exact solution")?;
+        eprint!(
+            "\r{:<16} α = {alpha:<4} DOP853 over [0, {long_t}]   ",
+            p.name
+        );
+        let opts = IntegratorOptions {
+            t_end: long_t,
+            rtol: long_tol,
+            atol: long_tol,
+            max_steps: 50_000_000,
+            ..IntegratorOptions::default()
+        };
+        let t0 = Instant::now();
+        let sol = integrate(&mut sys, Method::Dop853, &q.y0, &opts).map_err(|e| e.to_string())?;
+        let seconds = t0.elapsed().as_secs_f64();
+        let y = sol.y.last().ok_or("the long run recorded nothing")?;
+        long.push((
+            alpha,
+            Point {
+                tol: long_tol,
+                seconds,
+                error: max_abs_diff(y, &exact),
+                energy_error: energy.map(|(e, h0)| energy_error(e, h0, &sol.t, &sol.y)),
+                drift: Some(constraint_drift(g, &sol.t, &sol.y)),
+                steps: sol.stats.steps,
+                rhs: sol.stats.rhs_evals,
+            },
+        ));
+    }
+    Ok(AlphaStudy {
+        constraints: g.n_outputs(),
+        alphas,
+        series,
+        long_t,
+        long_tol,
+        long,
     })
 }
 
@@ -470,18 +635,28 @@ const COLORS: [RGBColor; 12] = [
     RGBColor(255, 187, 120),
 ];
 
-/// The diagram: time against final error, log-log, one curve per series.
-fn diagram(r: &Report, energy: bool) -> Result<String, String> {
+/// What a diagram plots against time.
+#[derive(Clone, Copy, PartialEq)]
+enum Plot {
+    /// The final error.
+    Error,
+    /// max |H − H0| over the run.
+    Energy,
+    /// max |g| over the run (constrained problems).
+    Drift,
+}
+
+/// The diagram: time against final error (or energy error, or constraint
+/// drift), log-log, one curve per series.
+fn diagram(r: &Report, plot: Plot) -> Result<String, String> {
     let mut out = String::new();
     {
         let root = SVGBackend::with_string(&mut out, (900, 620)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let err = |p: &Point| {
-            if energy {
-                p.energy_error
-            } else {
-                Some(p.error)
-            }
+        let err = |p: &Point| match plot {
+            Plot::Error => Some(p.error),
+            Plot::Energy => p.energy_error,
+            Plot::Drift => p.drift,
         };
         let (mut xlo, mut xhi, mut ylo, mut yhi) = (1e-15f64, 1e-2f64, f64::INFINITY, 0.0f64);
         for s in &r.series {
@@ -500,10 +675,10 @@ fn diagram(r: &Report, energy: bool) -> Result<String, String> {
         let title = format!(
             "{}: {}",
             r.problem.title,
-            if energy {
-                "max |H − H0| against time"
-            } else {
-                "final error against time"
+            match plot {
+                Plot::Error => "final error against time",
+                Plot::Energy => "max |H − H0| against time",
+                Plot::Drift => "max |g| against time",
             }
         );
         let mut chart = ChartBuilder::on(&root)
@@ -518,10 +693,10 @@ fn diagram(r: &Report, energy: bool) -> Result<String, String> {
             .map_err(|e| e.to_string())?;
         chart
             .configure_mesh()
-            .x_desc(if energy {
-                "max |H − H0| over the run"
-            } else {
-                "max |y(T) − y_ref(T)|"
+            .x_desc(match plot {
+                Plot::Error => "max |y(T) − y_ref(T)|",
+                Plot::Energy => "max |H − H0| over the run",
+                Plot::Drift => "max |x² + y² − l²| over the run",
             })
             .y_desc("time [s], minimum of repeated runs")
             .x_label_formatter(&|v| format!("{v:.0e}"))
@@ -596,6 +771,7 @@ fn scipy_series(v: &Value, problem: &str) -> Vec<Series> {
             seconds: r["seconds"].as_f64().unwrap_or(f64::NAN),
             error: r["error"].as_f64().unwrap_or(f64::NAN),
             energy_error: r["energy_error"].as_f64(),
+            drift: r["constraint_drift"].as_f64(),
             steps: r["steps"].as_u64().unwrap_or(0) as usize,
             rhs: r["nfev"].as_u64().unwrap_or(0) as usize,
         };
@@ -627,6 +803,7 @@ fn run_scipy(reports: &[Report], tolerances: &[f64], dir: &Path) -> Result<Value
                 .collect();
             json!({
                 "name": p.name, "params": params, "y0": p.y0, "t_end": p.t_end,
+                "baumgarte_alpha": p.baumgarte,
                 "reference": r.reference, "energy_reference": r.h0,
                 "check": {"t": 0.7, "y": r.check_y, "dy": r.check_dy},
             })
@@ -842,6 +1019,13 @@ fn markdown(reports: &[Report], scipy: &Result<Value, String>, started: &str, wa
                 p.name, p.name
             );
         }
+        if r.alpha.is_some() {
+            let _ = writeln!(
+                md,
+                "![constraint drift of {}](wp_{}_drift.svg)\n",
+                p.name, p.name
+            );
+        }
         let n = p.y0.len() / 2;
         let reference = if r.reference_error == 0.0 {
             "the exact solution".to_string()
@@ -851,17 +1035,36 @@ fn markdown(reports: &[Report], scipy: &Result<Value, String>, started: &str, wa
                 fmt_e(r.reference_error)
             )
         };
+        let plural = |k: usize| if k == 1 { "" } else { "s" };
+        let freedom = match &r.alpha {
+            Some(a) => format!(
+                "{n} coordinates, {} constraint{} ({} degree{} of freedom)",
+                a.constraints,
+                plural(a.constraints),
+                n - a.constraints,
+                plural(n - a.constraints)
+            ),
+            None => format!("{n} degree{} of freedom", plural(n)),
+        };
         let _ = writeln!(
             md,
-            "{n} degree{} of freedom, t ∈ [0, {}]; reference: {reference}.\n",
-            if n == 1 { "" } else { "s" },
+            "{freedom}, t ∈ [0, {}]; reference: {reference}.\n",
             p.t_end
         );
+        if let Some(study) = &r.alpha {
+            constrained_notes(&mut md, r, study);
+        }
+        let drift = r.alpha.is_some();
         let _ = writeln!(
             md,
-            "| series | tol or h | time | error | max \\|H − H0\\| | steps | RHS evals |"
+            "| series | tol or h | time | error | max \\|H − H0\\| |{} steps | RHS evals |",
+            if drift { " max \\|g\\| |" } else { "" }
         );
-        let _ = writeln!(md, "|---|---|---|---|---|---|---|");
+        let _ = writeln!(
+            md,
+            "|---|---|---|---|---|{}---|---|",
+            if drift { "---|" } else { "" }
+        );
         for s in &r.series {
             for pt in &s.points {
                 let tol = if s.fixed_step {
@@ -869,9 +1072,14 @@ fn markdown(reports: &[Report], scipy: &Result<Value, String>, started: &str, wa
                 } else {
                     format!("{:.0e}", pt.tol)
                 };
+                let g = if drift {
+                    format!(" {} |", pt.drift.map(fmt_e).unwrap_or_else(|| "—".into()))
+                } else {
+                    String::new()
+                };
                 let _ = writeln!(
                     md,
-                    "| {} | {tol} | {} | {} | {} | {} | {} |",
+                    "| {} | {tol} | {} | {} | {} |{g} {} | {} |",
                     s.label,
                     fmt_s(pt.seconds),
                     fmt_e(pt.error),
@@ -883,6 +1091,141 @@ fn markdown(reports: &[Report], scipy: &Result<Value, String>, started: &str, wa
         }
     }
     md
+}
+
+/// The constrained problem's notes: what it integrates, and Baumgarte's α
+/// measured (time at equal error against the problem's own α, drift, and
+/// the long runs).
+fn constrained_notes(md: &mut String, r: &Report, study: &AlphaStudy) {
+    let p = &r.problem;
+    let chosen = p.baumgarte.unwrap_or(f64::NAN);
+    let _ = writeln!(
+        md,
+        "The scene is the pendulum above in x, y with `constraint rod: x^2 + y^2 = l^2`; \
+         every series integrates the same index-reduced augmented system with Baumgarte's \
+         stabilization g̈ + 2α·ġ + α²·g = 0 at α = {chosen} (qdot's through \
+         `simulate::constrained::stabilized`, the hand-written and SciPy right-hand sides \
+         written from the same formulas and checked against it), and the exact solution is \
+         the angle pendulum's θ(t) mapped to (l sin θ, −l cos θ) and its derivative. \
+         The column max \\|g\\| is the constraint drift, max \\|x² + y² − l²\\| over the \
+         accepted steps (an untimed run), beside the error at the final time.\n"
+    );
+    let _ = writeln!(md, "#### Baumgarte's α\n");
+    let _ = writeln!(
+        md,
+        "The same problem at α = {}: time at equal final error over the time at α = {chosen} \
+         (interpolated as in the ratio table above; — where a curve does not reach the error), \
+         and the drift at each tolerance.\n",
+        study
+            .alphas
+            .iter()
+            .map(|a| a.to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    let targets = [1e-4, 1e-6, 1e-8, 1e-10];
+    let _ = writeln!(
+        md,
+        "| method | time ratio | error 1e-4 | 1e-6 | 1e-8 | 1e-10 |"
+    );
+    let _ = writeln!(md, "|---|---|---|---|---|---|");
+    let find = |alpha: f64, method: &str| {
+        study
+            .series
+            .iter()
+            .find(|(a, s)| *a == alpha && s.label.starts_with(&format!("qdot {method} ")))
+            .map(|(_, s)| s)
+    };
+    let methods = ["Dopri5", "DOP853", "Vern7", "Radau5"];
+    for m in methods {
+        let Some(base) = find(chosen, m) else {
+            continue;
+        };
+        for &alpha in study.alphas.iter().filter(|&&a| a != chosen) {
+            let Some(other) = find(alpha, m) else {
+                continue;
+            };
+            let cells: Vec<String> = targets
+                .iter()
+                .map(|&e| match (time_at(other, e), time_at(base, e)) {
+                    (Some(a), Some(b)) => format!("{:.2}", a / b),
+                    _ => "—".into(),
+                })
+                .collect();
+            let _ = writeln!(
+                md,
+                "| {m} | α = {alpha} / α = {chosen} | {} |",
+                cells.join(" | ")
+            );
+        }
+    }
+    let _ = writeln!(
+        md,
+        "\n| method | tol | α | time | error | max \\|g\\| | steps |"
+    );
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|");
+    let shown = [1e-4, 1e-6, 1e-8, 1e-10, 1e-12];
+    for m in methods {
+        for tol in shown {
+            for &alpha in &study.alphas {
+                let Some(pt) =
+                    find(alpha, m).and_then(|s| s.points.iter().find(|pt| pt.tol == tol))
+                else {
+                    continue;
+                };
+                let _ = writeln!(
+                    md,
+                    "| {m} | {tol:.0e} | {alpha} | {} | {} | {} | {} |",
+                    fmt_s(pt.seconds),
+                    fmt_e(pt.error),
+                    pt.drift.map(fmt_e).unwrap_or_else(|| "—".into()),
+                    pt.steps
+                );
+            }
+        }
+    }
+    let _ = writeln!(
+        md,
+        "\nOver t ∈ [0, {}] (100 periods of the angle pendulum), DOP853 at rtol = atol = {:.0e}, \
+         one timed run each:\n",
+        study.long_t, study.long_tol
+    );
+    let _ = writeln!(
+        md,
+        "| α | time | error at t = {} | max \\|g\\| | max \\|H − H0\\| | steps |",
+        study.long_t
+    );
+    let _ = writeln!(md, "|---|---|---|---|---|---|");
+    for (alpha, pt) in &study.long {
+        let _ = writeln!(
+            md,
+            "| {alpha} | {} | {} | {} | {} | {} |",
+            fmt_s(pt.seconds),
+            fmt_e(pt.error),
+            pt.drift.map(fmt_e).unwrap_or_else(|| "—".into()),
+            pt.energy_error.map(fmt_e).unwrap_or_else(|| "—".into()),
+            pt.steps
+        );
+    }
+    let _ = writeln!(md);
+}
+
+fn point_json(p: &Point) -> Value {
+    let mut v = json!({
+        "tol": p.tol, "seconds": p.seconds, "error": p.error,
+        "energy_error": p.energy_error, "steps": p.steps, "rhs_evals": p.rhs,
+    });
+    if let Some(d) = p.drift {
+        v["constraint_drift"] = json!(d);
+    }
+    v
+}
+
+fn series_json(s: &Series) -> Value {
+    json!({
+        "label": s.label, "family": s.family, "fixed_step": s.fixed_step,
+        "points": s.points.iter().map(point_json).collect::<Vec<_>>(),
+    })
 }
 
 fn main() {
@@ -934,16 +1277,14 @@ fn main() {
         std::process::exit(1);
     }
     for r in &reports {
-        for energy in [false, true] {
-            if energy && r.h0.is_none() {
-                continue;
-            }
-            let name = if energy {
-                format!("wp_{}_energy.svg", r.problem.name)
-            } else {
-                format!("wp_{}.svg", r.problem.name)
+        for plot in [Plot::Error, Plot::Energy, Plot::Drift] {
+            let name = match plot {
+                Plot::Error => format!("wp_{}.svg", r.problem.name),
+                Plot::Energy if r.h0.is_some() => format!("wp_{}_energy.svg", r.problem.name),
+                Plot::Drift if r.alpha.is_some() => format!("wp_{}_drift.svg", r.problem.name),
+                _ => continue,
             };
-            match diagram(r, energy) {
+            match diagram(r, plot) {
                 Ok(svg) => {
                     if let Err(e) = std::fs::write(out_dir.join(&name), svg) {
                         eprintln!("work_precision: {name}: {e}");
@@ -963,17 +1304,30 @@ fn main() {
     let raw: Vec<Value> = reports
         .iter()
         .map(|r| {
-            json!({
+            let mut v = json!({
                 "problem": r.problem.name,
                 "reference_error": r.reference_error,
-                "series": r.series.iter().map(|s| json!({
-                    "label": s.label, "family": s.family, "fixed_step": s.fixed_step,
-                    "points": s.points.iter().map(|p| json!({
-                        "tol": p.tol, "seconds": p.seconds, "error": p.error,
-                        "energy_error": p.energy_error, "steps": p.steps, "rhs_evals": p.rhs,
-                    })).collect::<Vec<_>>(),
-                })).collect::<Vec<_>>(),
-            })
+                "series": r.series.iter().map(series_json).collect::<Vec<_>>(),
+            });
+            if let Some(study) = &r.alpha {
+                v["baumgarte_alpha"] = json!(r.problem.baumgarte);
+                v["alpha_study"] = json!({
+                    "alphas": study.alphas,
+                    "series": study.series.iter().map(|(a, s)| {
+                        let mut j = series_json(s);
+                        j["alpha"] = json!(a);
+                        j
+                    }).collect::<Vec<_>>(),
+                    "long_t_end": study.long_t,
+                    "long_tol": study.long_tol,
+                    "long": study.long.iter().map(|(a, p)| {
+                        let mut j = point_json(p);
+                        j["alpha"] = json!(a);
+                        j
+                    }).collect::<Vec<_>>(),
+                });
+            }
+            v
         })
         .collect();
     let results = root.join("benches/results");

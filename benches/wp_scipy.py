@@ -4,24 +4,28 @@
 # SciPy's side of qdot's work-precision report. The Rust bench
 # (benches/work_precision.rs) writes IN.json (the problems, tolerances and
 # methods) and runs this script as a subprocess; it times
-# scipy.integrate.solve_ivp on the same five problems and writes OUT.json.
+# scipy.integrate.solve_ivp on the same six problems and writes OUT.json.
 #
 # IN.json:
 #   {"tolerances": [1e-3, ..., 1e-13], "methods": ["DOP853", "RK45"],
 #    "time_budget": 2.0,
 #    "problems": [{"name", "params": {...}, "y0", "t_end", "reference",
 #                  "energy_reference": null | H0,
+#                  "baumgarte_alpha": null | α (a problem with constraints),
 #                  "check": {"t", "y", "dy"}}, ...]}
 # OUT.json:
 #   {"python", "numpy", "scipy",
 #    "results": [{"problem", "method", "tol", "seconds", "error",
-#                 "energy_error", "nfev", "steps", "success", "skipped"}]}
+#                 "energy_error", "constraint_drift", "nfev", "steps",
+#                 "success", "skipped"}]}
 # one record per problem × method × tolerance, in the input's problem and
 # method order and from the loosest tolerance to the tightest. "seconds" is
 # the minimum over 1 to 7 runs (until time_budget is spent); "error" is
 # max_i |y_i(t_end) − reference_i| (null when the run stopped early);
 # "energy_error" max |H(y) − H0| over the returned steps (null without an
-# energy_reference); "skipped" null or the reason (a run over 60 s, or a
+# energy_reference); "constraint_drift" max |g(y)| over the returned steps
+# (null for a problem without constraints); "skipped" null or the reason (a
+# run over 60 s, or a
 # looser tolerance's run over 60 s). Non-finite numbers are written as null.
 #
 # The right-hand sides are written by hand in numpy, as a SciPy user would;
@@ -56,9 +60,10 @@ def die(msg):
 
 
 # ---------------------------------------------------------------------------
-# The five problems: right-hand side F(t, y) with y = (q, q̇), and the
+# The six problems: right-hand side F(t, y) with y = (q, q̇), and the
 # conserved energy H(y) over a (2n, T) array of states (None when the
-# problem conserves none).
+# problem conserves none); a problem with constraints also returns its
+# constraint g(y) over such an array.
 
 
 def oscillator(p):
@@ -107,6 +112,34 @@ def pendulum(p):
     return f, energy
 
 
+def cartesian_pendulum(p):
+    """The pendulum in x, y (y up) with the rod x² + y² = l² as a constraint,
+    index-reduced with Baumgarte's stabilization g̈ + 2α ġ + α² g = 0 as
+    qdot integrates it: q̈ = (0, −g) + μ (x, y) with
+    2 (x ẍ + y ÿ) = −2 v² − 4α (x ẋ + y ẏ) − α² (x² + y² − l²)."""
+    m, l, g, alpha = p["m"], p["l"], p["g"], p["alpha"]
+
+    def f(t, y):
+        x, yy, vx, vy = y
+        r2 = x * x + yy * yy
+        rhs = (
+            -2.0 * (vx * vx + vy * vy)
+            - 4.0 * alpha * (x * vx + yy * vy)
+            - alpha * alpha * (r2 - l * l)
+        )
+        mu = (rhs + 2.0 * g * yy) / (2.0 * r2)
+        return np.array([vx, vy, mu * x, mu * yy - g])
+
+    def energy(y):
+        x, yy, vx, vy = y
+        return 0.5 * m * (vx**2 + vy**2) + m * g * yy
+
+    def constraint(y):
+        return y[0] ** 2 + y[1] ** 2 - l * l
+
+    return f, energy, constraint
+
+
 def chain(n):
     """The n-link chain (qdot's gallery::pendulum_chain): equal masses m on
     rods l, angles θi from the downward vertical. With 0-based i, j and
@@ -140,6 +173,7 @@ PROBLEMS = {
     "oscillator": oscillator,
     "two_mode": two_mode,
     "pendulum": pendulum,
+    "cartesian_pendulum": cartesian_pendulum,
     "double_pendulum": chain(2),
     "chain10": chain(10),
 }
@@ -237,6 +271,7 @@ def blank_point(prob, method, tol, skipped=None):
         "seconds": None,
         "error": None,
         "energy_error": None,
+        "constraint_drift": None,
         "nfev": None,
         "steps": None,
         "success": None,
@@ -244,7 +279,7 @@ def blank_point(prob, method, tol, skipped=None):
     }
 
 
-def measure(prob, f, energy, h0, method, tol, budget):
+def measure(prob, f, energy, h0, constraint, method, tol, budget):
     """Time one point: ({…record…}, whether the first run hit RUN_LIMIT)."""
     point = blank_point(prob, method, tol)
     try:
@@ -265,6 +300,8 @@ def measure(prob, f, energy, h0, method, tol, budget):
     point["error"] = finite(np.max(np.abs(sol.y[:, -1] - ref))) if reached else None
     if h0 is not None:
         point["energy_error"] = finite(np.max(np.abs(energy_of(energy, sol.y) - h0)))
+    if constraint is not None:
+        point["constraint_drift"] = finite(np.max(np.abs(constraint(sol.y))))
     point["nfev"] = int(sol.nfev)
     point["steps"] = len(sol.t) - 1
     point["success"] = bool(sol.success)
@@ -288,14 +325,21 @@ def main(argv):
         name = prob["name"]
         if name not in PROBLEMS:
             die(f"unknown problem {name!r} (known: {', '.join(PROBLEMS)})")
-        f, energy = PROBLEMS[name](prob["params"])
+        params = dict(prob["params"])
+        alpha = prob.get("baumgarte_alpha")
+        if alpha is not None:
+            params["alpha"] = float(alpha)
+        f, energy, *rest = PROBLEMS[name](params)
+        constraint = rest[0] if rest else None
+        if (constraint is None) != (alpha is None):
+            die(f"{name}: baumgarte_alpha given without constraints here, or missing")
         h0 = check_problem(prob, f, energy)
-        built.append((prob, f, energy, h0))
+        built.append((prob, f, energy, h0, constraint))
     print(f"wp_scipy: {len(built)} problems checked against qdot", file=sys.stderr)
 
     results = []
     start = time.perf_counter()
-    for prob, f, energy, h0 in built:
+    for prob, f, energy, h0, constraint in built:
         for method in methods:
             too_slow = None  # the tolerance whose run exceeded RUN_LIMIT
             for tol in sorted(tols, reverse=True):
@@ -303,7 +347,9 @@ def main(argv):
                     why = f"tol {too_slow:g} already exceeded {RUN_LIMIT:g} s"
                     point = blank_point(prob, method, tol, why)
                 else:
-                    point, slow = measure(prob, f, energy, h0, method, tol, budget)
+                    point, slow = measure(
+                        prob, f, energy, h0, constraint, method, tol, budget
+                    )
                     if slow:
                         too_slow = tol
                 results.append(point)
@@ -318,6 +364,8 @@ def main(argv):
                     )
                     if point["energy_error"] is not None:
                         what += f"  dH {point['energy_error']:.2e}"
+                    if point["constraint_drift"] is not None:
+                        what += f"  |g| {point['constraint_drift']:.2e}"
                     if not point["success"]:
                         what += "  FAILED"
                 print(

@@ -177,7 +177,7 @@ enum Command {
         function: Vec<String>,
         /// Baumgarte's rate for a scene with constraints, in 1/time of the
         /// scene: drift from the constraints decays like exp(-rate*t); 0 turns it off.
-        #[arg(long, default_value_t = 10.0)]
+        #[arg(long, default_value_t = 1.0)]
         baumgarte: f64,
     },
     /// The dimension of every name, declared or found, and of the results;

@@ -28,6 +28,10 @@ impl Hand {
         let p = match problem.kind {
             Kind::Oscillator => ["m", "k", "c", "F0", "p"].map(|k| problem.param(k)),
             Kind::TwoMode => ["m", "k", "R", "m", "m"].map(|k| problem.param(k)),
+            Kind::CartesianPendulum => {
+                let [m, l, g] = ["m", "l", "g"].map(|k| problem.param(k));
+                [m, l, g, problem.baumgarte.unwrap_or(0.0), 0.0]
+            }
             _ => ["m", "l", "g", "m", "m"].map(|k| problem.param(k)),
         };
         Hand {
@@ -123,6 +127,21 @@ impl System for Hand {
             Kind::Pendulum => {
                 let [_, l, g, _, _] = self.p;
                 dy[1] = -(g / l) * y[0].sin();
+            }
+            Kind::CartesianPendulum => {
+                // The rod x² + y² = l² with Baumgarte's α: the acceleration
+                // (0, −g) + μ·(x, y) along the rod with μ such that
+                // g̈ + 2α·ġ + α²·g = 0, i.e.
+                // 2·(x ẍ + y ÿ) = −2v² − 4α·(x ẋ + y ẏ) − α²·(r² − l²).
+                let [_, l, g, alpha, _] = self.p;
+                let (x, y, vx, vy) = (y[0], y[1], y[2], y[3]);
+                let r2 = x * x + y * y;
+                let v2 = vx * vx + vy * vy;
+                let s = x * vx + y * vy;
+                let rhs = -2.0 * v2 - 4.0 * alpha * s - alpha * alpha * (r2 - l * l);
+                let mu = (rhs + 2.0 * g * y) / (2.0 * r2);
+                dy[2] = mu * x;
+                dy[3] = mu * y - g;
             }
             Kind::DoublePendulum | Kind::Chain10 => {
                 self.chain(q, qd);

@@ -54,7 +54,7 @@ impl Hamiltonian {
         let qdd: Vec<Var> = names.iter().map(|c| atom::coord(c, 2)).collect();
         let momentum_names: Vec<String> = names.iter().map(|c| momentum_name(c)).collect();
         let p: Vec<Expr> = momentum_names.iter().map(|n| Expr::unknown(n)).collect();
-        let l = lagrangian(scene);
+        let l = super::lagrangian(scene);
         let momenta: Vec<Expr> = qd.iter().map(|&v| l.diff(v)).collect();
         // p = M·q̇ + b, M free of the velocities
         let mut mass = Vec::with_capacity(names.len());
@@ -119,15 +119,6 @@ impl Hamiltonian {
             other_forces,
         })
     }
-}
-
-/// L = E + (lagrangian) − V + U.
-pub(super) fn lagrangian(scene: &Scene) -> Expr {
-    scene
-        .role_sum(Role::Kinetic)
-        .add(&scene.role_sum(Role::Lagrangian))
-        .sub(&scene.role_sum(Role::Potential))
-        .add(&scene.role_sum(Role::ForceFunction))
 }
 
 /// Does `e` depend on a velocity?

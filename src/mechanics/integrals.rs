@@ -66,7 +66,7 @@ impl Integrals {
         let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();
         let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
         let qdd: Vec<Var> = names.iter().map(|c| atom::coord(c, 2)).collect();
-        let l = super::hamilton::lagrangian(scene);
+        let l = super::lagrangian(scene);
         let rows = ConstraintRows::of(scene, &qd, &qdd)?;
         let forced = forced_coordinates(scene, &rows);
         let mut notes = Vec::new();
@@ -165,10 +165,7 @@ fn energy_integral(
         ));
         return (None, false);
     }
-    let mut h = l.neg();
-    for &v in qd {
-        h = h.add(&Expr::var(v).mul(&l.diff(v)));
-    }
+    let h = jacobi_integral(l, qd);
     let e = scene
         .role_sum(Role::Kinetic)
         .add(&scene.role_sum(Role::Lagrangian));
@@ -177,6 +174,13 @@ fn energy_integral(
         .sub(&scene.role_sum(Role::ForceFunction));
     let e_plus_v = h.equals(&e.add(&v));
     (Some(h), e_plus_v)
+}
+
+/// The Jacobi integral h = Σ q̇_k·∂L/∂q̇_k − L (E + V when E is quadratic
+/// in the velocities and V free of them).
+pub fn jacobi_integral(l: &Expr, qd: &[Var]) -> Expr {
+    qd.iter()
+        .fold(l.neg(), |h, &v| h.add(&Expr::var(v).mul(&l.diff(v))))
 }
 
 /// Routh's reduction over the cyclic coordinates.

@@ -210,6 +210,15 @@ pub fn generalized_forces(scene: &Scene) -> Vec<Expr> {
         .collect()
 }
 
+/// The Lagrangian L = E + (lagrangian) − V + U of a scene's roles.
+pub fn lagrangian(scene: &Scene) -> Expr {
+    scene
+        .role_sum(Role::Kinetic)
+        .add(&scene.role_sum(Role::Lagrangian))
+        .sub(&scene.role_sum(Role::Potential))
+        .add(&scene.role_sum(Role::ForceFunction))
+}
+
 /// Q_k from its terms.
 fn sum_terms(terms: &[ForceTerm]) -> Expr {
     terms.iter().fold(Expr::zero(), |q, t| q.add(&t.value))

@@ -7,7 +7,8 @@
 //! ḣ + α·h = 0, so that the drift the integrator's error brings decays at
 //! the rate α instead of growing. The result is an unconstrained system
 //! M = 1, f = q̈(q, q̇, t), which the compiled evaluators run as any other.
-//! α is `Request::baumgarte` (in 1/time of the scene; 0 turns the
+//! α is `Request::baumgarte` (in 1/time of the scene, 1 by default: the
+//! work-precision report measured it against 0 and 10; 0 turns the
 //! stabilization off); the drift |g| (or |h|) is reported per constraint.
 
 use crate::diag::Diagnostic;

@@ -7,14 +7,17 @@
 //! | `oscillator` | damped forced linear oscillator | closed form |
 //! | `two_mode` | seed 24.2 (two masses, two springs) | modal solution (qdot's exact modes) |
 //! | `pendulum` | pendulum released at 3 rad (172°) | Jacobi elliptic functions |
+//! | `cartesian_pendulum` | the same pendulum in x, y with `constraint rod` | the same, mapped to x, y |
 //! | `double_pendulum` | 2-link chain | tight-tolerance run |
 //! | `chain10` | 10-link chain | tight-tolerance run |
 //!
 //! Every scene here goes through the same path as `qdot simulate`:
 //! [`Problem::dynamics`] compiles its exact equations by
-//! [`CompiledDynamics::best`].
+//! [`CompiledDynamics::best`], a scene with constraints after
+//! [`constrained::stabilized`] with Baumgarte's α of [`Problem::baumgarte`].
 
-use super::compile::CompiledDynamics;
+use super::compile::{compile_with, state_inputs, CompiledDynamics};
+use super::constrained;
 use super::elliptic::pendulum_exact;
 use super::run::conserved_quantity;
 use crate::diag::Diagnostic;
@@ -30,6 +33,7 @@ pub enum Kind {
     Oscillator,
     TwoMode,
     Pendulum,
+    CartesianPendulum,
     DoublePendulum,
     Chain10,
 }
@@ -50,6 +54,9 @@ pub struct Problem {
     /// y0 = (q₁ … qₙ, q̇₁ … q̇ₙ) in the scene's coordinate order.
     pub y0: Vec<f64>,
     pub t_end: f64,
+    /// Baumgarte's rate α ([`constrained::stabilized`]) for a scene with
+    /// constraints, in 1/time of the scene; None without constraints.
+    pub baumgarte: Option<f64>,
 }
 
 /// The damped forced oscillator m·ẍ + c·ẋ + k·x = F0·cos(p·t)
@@ -58,6 +65,22 @@ pub const OSCILLATOR: &str = include_str!("../../examples/forced_oscillator.qd")
 
 /// The pendulum of mass m on a massless rod l (`examples/pendulum.qd`).
 pub const PENDULUM: &str = include_str!("../../examples/pendulum.qd");
+
+/// The same pendulum in Cartesian coordinates (y up, the pivot at the
+/// origin), its rod a holonomic constraint.
+pub const CARTESIAN_PENDULUM: &str =
+    "# The pendulum of `examples/pendulum.qd` in x, y: the rod is a constraint
+coordinates x: length, y: length
+parameters m: mass, l: length, g: acceleration
+kinetic E = 1/2*m*(x'^2 + y'^2)
+potential V = m*g*y
+constraint rod: x^2 + y^2 = l^2
+";
+
+/// Baumgarte's α of [`Problem::cartesian_pendulum`]: α = ω₀ = √(g/l) = 1,
+/// the drift damped on the pendulum's own time scale (the measurements
+/// that chose it are in [`Problem::cartesian_pendulum`]).
+pub const CARTESIAN_ALPHA: f64 = 1.0;
 
 impl Problem {
     /// The damped forced oscillator: m = 1, k = 4, c = 0.4 (ζ = 0.1),
@@ -71,6 +94,7 @@ impl Problem {
             params: vec![("m", 1.0), ("k", 4.0), ("c", 0.4), ("F0", 1.0), ("p", 1.5)],
             y0: vec![1.0, 0.0],
             t_end: 20.0,
+            baumgarte: None,
         }
     }
 
@@ -85,6 +109,7 @@ impl Problem {
             params: vec![("m", 1.0), ("k", 6.0), ("R", 0.5)],
             y0: vec![1.0, 0.0, 0.1, -0.2],
             t_end: 20.0,
+            baumgarte: None,
         }
     }
 
@@ -99,6 +124,46 @@ impl Problem {
             params: vec![("m", 1.0), ("l", 1.0), ("g", 1.0)],
             y0: vec![3.0, 0.0],
             t_end: 20.0,
+            baumgarte: None,
+        }
+    }
+
+    /// The pendulum of [`Problem::pendulum`] (m = l = g = 1, released from
+    /// rest at θ = 3 rad) in Cartesian coordinates, the rod
+    /// x² + y² = l² a constraint: y0 = (l sin θ, −l cos θ, 0, 0);
+    /// t ∈ [0, 20]. Its equations are the index-reduced augmented system
+    /// with Baumgarte's stabilization at α = [`CARTESIAN_ALPHA`], as
+    /// `qdot simulate` integrates it, and its exact solution is the angle
+    /// pendulum's mapped to x, y.
+    ///
+    /// α = 1 was chosen from DOP853 runs at rtol = atol = 1e-10 (max |g|
+    /// over the accepted steps, error at the final time, steps):
+    ///
+    /// | α | [0, 20]: max \|g\| | error | steps | [0, 1616] (100 periods): max \|g\| | error | steps |
+    /// |---|---|---|---|---|---|---|
+    /// | 0 | 6.8e-9 | 1.4e-6 | 100 | 4.1e-5 | 2.9e-2 | 8069 |
+    /// | 1 | 4.0e-10 | 6.2e-7 | 107 | 4.2e-10 | 1.8e-4 | 8665 |
+    /// | 10 | 5.5e-13 | 2.2e-10 | 725 | 5.5e-13 | 6.7e-8 | 58541 |
+    ///
+    /// Without stabilization the drift grows with t; with α = 1 it stays
+    /// where the first periods put it, at the cost of α = 0 (0.8 to 1.2
+    /// times its time at equal final error on [0, 20], for Dopri5, DOP853,
+    /// Vern7 and Radau5). α = 10 holds g smaller still, but the explicit
+    /// methods take 3 to 7 times the steps at each tolerance, and at equal
+    /// final error every method is 1.6 to 4 times slower than at α = 1.
+    /// The report measures the three (`benches/work_precision.rs`).
+    pub fn cartesian_pendulum() -> Problem {
+        let (m, l, g, theta0) = (1.0, 1.0, 1.0, 3.0f64);
+        let (s, c) = theta0.sin_cos();
+        Problem {
+            name: "cartesian_pendulum",
+            title: "pendulum at 3 rad in x, y with a constraint (Jacobi elliptic functions)",
+            kind: Kind::CartesianPendulum,
+            scene: CARTESIAN_PENDULUM.to_string(),
+            params: vec![("m", m), ("l", l), ("g", g)],
+            y0: vec![l * s, -l * c, 0.0, 0.0],
+            t_end: 20.0,
+            baumgarte: Some(CARTESIAN_ALPHA),
         }
     }
 
@@ -113,6 +178,7 @@ impl Problem {
             params: vec![("m", 1.0), ("l", 1.0), ("g", 9.81)],
             y0: vec![0.5, 1.0, 0.0, 0.0],
             t_end: 10.0,
+            baumgarte: None,
         }
     }
 
@@ -129,6 +195,7 @@ impl Problem {
             params: vec![("m", 1.0), ("l", 1.0), ("g", 9.81)],
             y0,
             t_end: 10.0,
+            baumgarte: None,
         }
     }
 
@@ -138,6 +205,7 @@ impl Problem {
             Problem::oscillator(),
             Problem::two_mode(),
             Problem::pendulum(),
+            Problem::cartesian_pendulum(),
             Problem::double_pendulum(),
             Problem::chain10(),
         ]
@@ -152,20 +220,29 @@ impl Problem {
             .unwrap_or(f64::NAN)
     }
 
-    /// The parameter values keyed by atom, as [`CompiledDynamics::new`] takes them.
+    /// The parameter values keyed by atom, as [`CompiledDynamics::new`] takes
+    /// them, with Baumgarte's α ([`constrained::alpha_var`]) when the
+    /// problem has one.
     pub fn param_map(&self) -> FxHashMap<Var, f64> {
-        self.params
+        let mut map: FxHashMap<Var, f64> = self
+            .params
             .iter()
             .map(|&(k, v)| (atom::param(k), v))
-            .collect()
+            .collect();
+        if let Some(alpha) = self.baumgarte {
+            map.insert(constrained::alpha_var(), alpha);
+        }
+        map
     }
 
     /// The scene parsed and its equations compiled by
     /// [`CompiledDynamics::best`] (the path of `qdot simulate`: M and f, or
-    /// the exact accelerations when they are estimated cheaper).
+    /// the exact accelerations when they are estimated cheaper); a scene
+    /// with constraints as the stabilized augmented system
+    /// ([`constrained::stabilized`], α from [`Problem::baumgarte`]).
     pub fn dynamics(&self) -> Result<CompiledDynamics, Diagnostic> {
         let scene = Scene::parse(&self.scene)?;
-        let lag = scene.lagrange()?;
+        let lag = constrained::stabilized(scene.lagrange()?)?;
         CompiledDynamics::best(&lag, &self.param_map())
             .map(|(d, _)| d)
             .map_err(|e| Diagnostic::global(format!("cannot compile {}: {e}", self.name)))
@@ -179,6 +256,22 @@ impl Problem {
         conserved_quantity(&scene, &lag.coordinates, &self.param_map())
     }
 
+    /// The scene's constraints g(q, t) (a·q̇ + b for a velocity
+    /// constraint) compiled over `[t, q…, q̇…]`, one output each, as the
+    /// `drift_…` columns of `qdot simulate`; None without constraints.
+    pub fn constraints(&self) -> Result<Option<Program>, Diagnostic> {
+        let scene = Scene::parse(&self.scene)?;
+        let lag = scene.lagrange()?;
+        let drift = constrained::drift(&lag);
+        if drift.is_empty() {
+            return Ok(None);
+        }
+        let exprs: Vec<_> = drift.into_iter().map(|(_, e)| e).collect();
+        compile_with(&exprs, &state_inputs(&lag.coordinates), &self.param_map())
+            .map(Some)
+            .map_err(|e| Diagnostic::global(format!("cannot compile the constraints: {e}")))
+    }
+
     /// The exact state at `t`, for the problems that have a closed form.
     pub fn exact(&self, t: f64) -> Option<Vec<f64>> {
         match self.kind {
@@ -188,6 +281,14 @@ impl Problem {
                 let w2 = self.param("g") / self.param("l");
                 let (th, om) = pendulum_exact(self.y0[0], w2, t);
                 Some(vec![th, om])
+            }
+            Kind::CartesianPendulum => {
+                // released from rest at θ0 = atan2(x, −y)
+                let l = self.param("l");
+                let theta0 = self.y0[0].atan2(-self.y0[1]);
+                let (th, om) = pendulum_exact(theta0, self.param("g") / l, t);
+                let (s, c) = th.sin_cos();
+                Some(vec![l * s, -l * c, l * c * om, l * s * om])
             }
             Kind::DoublePendulum | Kind::Chain10 => None,
         }

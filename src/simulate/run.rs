@@ -76,7 +76,7 @@ impl Default for Request {
             max_steps: crate::limits::DEFAULT_MAX_STEPS,
             stop_when: None,
             functions: Vec::new(),
-            baumgarte: 10.0,
+            baumgarte: 1.0,
             progress: false,
         }
     }
@@ -475,26 +475,13 @@ pub fn conserved_quantity(
     if non_conservative {
         return Ok(None);
     }
-    // The Jacobi integral h = Σ q̇·∂L/∂q̇ − L of L = E + (lagrangian) − V:
-    // E + V when E is quadratic in the velocities and V free of them.
-    let e = scene
-        .role_sum(Role::Kinetic)
-        .add(&scene.role_sum(Role::Lagrangian));
-    let v = scene
-        .role_sum(Role::Potential)
-        .sub(&scene.role_sum(Role::ForceFunction));
-    let t = atom::time();
-    if e.depends_on(t) || v.depends_on(t) {
+    // the Jacobi integral h = Σ q̇·∂L/∂q̇ − L, when L has no explicit t
+    let l = crate::mechanics::lagrangian(scene);
+    if l.depends_on(atom::time()) {
         return Ok(None);
     }
-    let mut h = v.sub(&e);
-    for q in coordinates {
-        let qd = atom::coord(q, 1);
-        h = h.add(&Expr::var(qd).mul(&e.diff(qd)));
-        if v.depends_on(qd) {
-            h = h.sub(&Expr::var(qd).mul(&v.diff(qd)));
-        }
-    }
+    let qd: Vec<Var> = coordinates.iter().map(|q| atom::coord(q, 1)).collect();
+    let h = crate::mechanics::integrals::jacobi_integral(&l, &qd);
     let program = compile_with(&[h], &state_inputs(coordinates), params)
         .map_err(|e| Diagnostic::global(format!("cannot compile the energy: {e}")))?;
     Ok(Some(program))

@@ -100,6 +100,34 @@ pub fn modes(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Modes, 
     crate::algebra::assume::assuming(&scene.assumptions, || modes_assumed(scene, at, set))
 }
 
+/// Stable when every ω² > 0, unstable when one is < 0, else undecided
+/// with the reason.
+fn stability_of_roots(roots: &[Expr], set: &Values) -> Stability {
+    if roots.is_empty() {
+        Stability::Undecided("no closed form for the frequencies; see the numeric values".into())
+    } else {
+        let signs: Vec<Option<Sign>> = roots.iter().map(|r| sign_of(r, set)).collect();
+        if signs.iter().all(|s| *s == Some(Sign::Positive)) {
+            Stability::Stable
+        } else if signs.contains(&Some(Sign::Negative)) {
+            Stability::Unstable
+        } else if signs.contains(&Some(Sign::Zero)) {
+            Stability::Undecided("a zero frequency: higher-order terms decide".into())
+        } else {
+            let undecided: Vec<String> = roots
+                .iter()
+                .zip(&signs)
+                .filter(|(_, s)| s.is_none())
+                .map(|(r, _)| format!("{} > 0", crate::expr::print::expanded(r)))
+                .collect();
+            Stability::Undecided(format!(
+                "stable when {}; give values with --set",
+                undecided.join(" and ")
+            ))
+        }
+    }
+}
+
 /// [`modes`] with the scene's assumptions in force.
 fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Modes, Diagnostic> {
     let _context = crate::budget::enter(
@@ -222,29 +250,7 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
         modes.extend(basis.into_iter().take(same));
         i += same;
     }
-    let stability = if roots.is_empty() {
-        Stability::Undecided("no closed form for the frequencies; see the numeric values".into())
-    } else {
-        let signs: Vec<Option<Sign>> = roots.iter().map(|r| sign_of(r, set)).collect();
-        if signs.iter().all(|s| *s == Some(Sign::Positive)) {
-            Stability::Stable
-        } else if signs.contains(&Some(Sign::Negative)) {
-            Stability::Unstable
-        } else if signs.contains(&Some(Sign::Zero)) {
-            Stability::Undecided("a zero frequency: higher-order terms decide".into())
-        } else {
-            let undecided: Vec<String> = roots
-                .iter()
-                .zip(&signs)
-                .filter(|(_, s)| s.is_none())
-                .map(|(r, _)| format!("{} > 0", crate::expr::print::expanded(r)))
-                .collect();
-            Stability::Undecided(format!(
-                "stable when {}; give values with --set",
-                undecided.join(" and ")
-            ))
-        }
-    };
+    let stability = stability_of_roots(&roots, set);
     Ok(Modes {
         coordinates: names,
         at: q0,
