@@ -7,7 +7,6 @@
 //! `NAME.txt` (`QDOT_BLESS=1 cargo test --release --test it frames::`
 //! rewrites them).
 
-use crate::common::{blessed, cases};
 use qdot::output::{self, Command, Format};
 use qdot::Scene;
 use std::path::Path;
@@ -22,31 +21,7 @@ fn scene(src: &str) -> Scene {
 /// library and by every command alike.
 #[test]
 fn wrong_scenes_are_refused_where_written() {
-    let all = cases(&Path::new(DATA).join("wrong"));
-    assert!(all.len() >= 40, "{} wrong scenes", all.len());
-    let mut failures = Vec::new();
-    for case in &all {
-        let src = std::fs::read_to_string(case).unwrap();
-        let name = case.file_name().unwrap().to_string_lossy().into_owned();
-        let err = match Scene::parse(&src) {
-            Ok(_) => {
-                failures.push(format!("{name}: accepted"));
-                continue;
-            }
-            Err(d) => d,
-        };
-        let Some(span) = err.span else {
-            failures.push(format!("{name}: no position: {}", err.message));
-            continue;
-        };
-        assert!(err.hint.is_some(), "{name}: no hint: {}", err.message);
-        let (line, col) = qdot::Diagnostic::line_col(&src, span.start);
-        let text = format!("{line}:{col}\n{}", err.render(&name, &src));
-        blessed(case, &text, &mut failures);
-        let got = output::run(Command::Derive, &src, Format::Json, &Default::default());
-        assert_eq!(got.err().map(|d| d.message), Some(err.message.clone()));
-    }
-    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    crate::common::refused_where_written(&Path::new(DATA).join("wrong"), 40);
 }
 
 /// The residuals lhs − Q of a scene's equations.

@@ -412,3 +412,36 @@ pub fn blessed(case: &std::path::Path, actual: &str, failures: &mut Vec<String>)
         Err(_) => failures.push(format!("{}: no blessed .txt", case.display())),
     }
 }
+
+/// Every `.qd` of `dir` is refused by `Scene::parse` with a positioned
+/// error and a hint, blessed as `NAME.txt` (line:column, then the rendered
+/// error), and `derive` refuses it with the same message; at least `min`
+/// cases.
+pub fn refused_where_written(dir: &std::path::Path, min: usize) {
+    use qdot::output::{self, Command, Format};
+    let all = cases(dir);
+    assert!(all.len() >= min, "{} wrong scenes", all.len());
+    let mut failures = Vec::new();
+    for case in &all {
+        let src = std::fs::read_to_string(case).unwrap();
+        let name = case.file_name().unwrap().to_string_lossy().into_owned();
+        let err = match qdot::Scene::parse(&src) {
+            Ok(_) => {
+                failures.push(format!("{name}: accepted"));
+                continue;
+            }
+            Err(d) => d,
+        };
+        let Some(span) = err.span else {
+            failures.push(format!("{name}: no position: {}", err.message));
+            continue;
+        };
+        assert!(err.hint.is_some(), "{name}: no hint: {}", err.message);
+        let (line, col) = qdot::Diagnostic::line_col(&src, span.start);
+        let text = format!("{line}:{col}\n{}", err.render(&name, &src));
+        blessed(case, &text, &mut failures);
+        let got = output::run(Command::Derive, &src, Format::Json, &Default::default());
+        assert_eq!(got.err().map(|d| d.message), Some(err.message.clone()));
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
