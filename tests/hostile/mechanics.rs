@@ -448,3 +448,52 @@ fn the_dimension_check_scales() {
     o.assert_clean();
     assert_eq!(o.code, Some(0), "{o:?}");
 }
+
+/// Constraints that grow: 300 constraints on two coordinates are refused
+/// at the first extra one at once; a chain of 25 trigonometric constraints
+/// ends at the work budget with the phase named (not a hang, not a crash),
+/// and `--max-terms` lowers the bound so it ends sooner.
+#[test]
+fn constraints_that_grow_end_with_a_reason() {
+    let mut many =
+        String::from("coordinates x, y\nparameters m, l\nkinetic E = 1/2*m*(x'^2 + y'^2)\n");
+    for i in 0..300 {
+        many.push_str(&format!("constraint c{i}: x^{} + y = l\n", i + 2));
+    }
+    let o = qdot_scene("many_constraints", many.as_bytes(), "solve", &[]);
+    o.assert_clean();
+    assert!(o.elapsed.as_secs() < 2, "{o:?}");
+    assert!(
+        o.stderr.starts_with("error: more constraints than coordinates: with 2 coordinates at most 2 constraints can be independent\n --> scene.qd:6:1\n"),
+        "{}",
+        o.stderr
+    );
+    let n = 25;
+    let mut chain = format!(
+        "coordinates {}\nparameters m, k\nkinetic E = 1/2*m*({})\npotential V = 1/2*k*x0^2\n",
+        (0..n)
+            .map(|i| format!("x{i}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        (0..n)
+            .map(|i| format!("x{i}'^2"))
+            .collect::<Vec<_>>()
+            .join(" + ")
+    );
+    for i in 0..n - 1 {
+        chain.push_str(&format!("constraint c{i}: x{} = x{i} + sin(x{i})\n", i + 1));
+    }
+    let o = qdot_scene(
+        "constraint_chain",
+        chain.as_bytes(),
+        "solve",
+        &["--max-terms", "200000"],
+    );
+    o.assert_clean();
+    assert!(
+        o.stderr.starts_with("error: expression too large")
+            && o.stderr.contains("while solving M·q̈ − Aᵀ·λ = f, A·q̈ = γ"),
+        "{}",
+        o.stderr
+    );
+}
