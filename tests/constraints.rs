@@ -256,6 +256,47 @@ constraint wire: 2*a*y = x^2
     }
 }
 
+/// Without a closed form, the augmented conditions are solved numerically
+/// over (q, λ) given every parameter: the Cartesian double pendulum's four
+/// equilibria, only hanging straight down stable.
+#[test]
+fn numeric_equilibria_on_constraints() {
+    let double = scene(
+        "coordinates x1, y1, x2, y2
+parameters m, g, l
+kinetic E = 1/2*m*(x1'^2 + y1'^2 + x2'^2 + y2'^2)
+potential V = m*g*(y1 + y2)
+constraint rod1: x1^2 + y1^2 = l^2
+constraint rod2: (x2 - x1)^2 + (y2 - y1)^2 = l^2
+",
+    );
+    assert!(qdot::equilibria(&double, &Default::default()).is_err());
+    let set = qdot::output::parse_set("m=1,g=1,l=1").unwrap();
+    let eq = qdot::equilibria(&double, &set).unwrap();
+    assert!(!eq.exact);
+    let mut found: Vec<(i64, i64, &str)> = eq
+        .equilibria
+        .iter()
+        .map(|e| {
+            let qdot::solve::equilibrium::Position::Numeric(x) = &e.position else {
+                panic!("numeric")
+            };
+            assert!(x[0].abs() < 1e-9 && x[2].abs() < 1e-9, "{x:?}");
+            (x[1].round() as i64, x[3].round() as i64, e.stability.word())
+        })
+        .collect();
+    found.sort();
+    assert_eq!(
+        found,
+        [
+            (-1, -2, "stable"),
+            (-1, 0, "unstable"),
+            (1, 0, "unstable"),
+            (1, 2, "unstable")
+        ]
+    );
+}
+
 /// Small oscillations on holonomic constraints, in the independent
 /// coordinates: the Cartesian pendulum's ω² = g/l (and −g/l upside down),
 /// the Cartesian double pendulum's (2 ∓ √2)·g/l with the mode x2/x1 = 1 ± √2,

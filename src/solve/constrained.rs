@@ -9,7 +9,8 @@
 //! ```
 //!
 //! n + m equations in q and λ, solved by the exact search of free
-//! equilibria (λ enters linearly). λ_j·a_j is the constraint force at the
+//! equilibria (λ enters linearly), or without a closed form by Newton's
+//! method over (q, λ) given every parameter. λ_j·a_j is the constraint force at the
 //! equilibrium. Stability (Lagrange–Dirichlet on the constraint manifold):
 //! the Hessian K = −∂(F + Aᵀ·λ)/∂q of V − λ·g, restricted to the tangent
 //! space, K_c = Zᵀ·K·Z with A·Z = 0, decided by its leading minors.
@@ -19,10 +20,15 @@
 //! reduced coordinates: δq = Z·δs with δs those coordinates' displacements,
 //! M_c = Zᵀ·M·Z, C_c = Zᵀ·C·Z, K_c = Zᵀ·K·Z and f_c = Zᵀ·f.
 
-use super::equilibrium::{jacobi, numeric_values, solve_exact, Equilibrium, Position, Stability};
+use super::equilibrium::{
+    classify_numeric, close_within, jacobi, numeric_values, periodic_coordinates, solve_exact,
+    Equilibrium, Position, Stability,
+};
+use super::numeric::{find_roots, RootOptions};
 use crate::algebra::linear::det;
 use crate::algebra::sign::{sign_of, Sign, Values};
 use crate::diag::Diagnostic;
+use crate::expr::atom::Atom;
 use crate::expr::{atom, Expr};
 use crate::poly::Var;
 use crate::scene::Scene;
@@ -32,14 +38,16 @@ const HINT: &str =
     "write the scene in independent coordinates (the pendulum's angle instead of x, y) for its equilibria";
 
 /// The equilibria of a scene with constraints: `conditions` are the
-/// F_k at rest (free of t), `q` the coordinates' variables.
+/// F_k at rest (free of t), `q` the coordinates' variables; and whether
+/// they were found in closed form (else numerically, given every
+/// parameter's value).
 pub(super) fn constrained_equilibria(
     scene: &Scene,
     conditions: &[Expr],
     q: &[Var],
     set: &Values,
     gyroscopic: bool,
-) -> Result<Vec<Equilibrium>, Diagnostic> {
+) -> Result<(Vec<Equilibrium>, bool), Diagnostic> {
     let n = q.len();
     let mut gs = Vec::with_capacity(scene.constraints.len());
     let mut lambdas = Vec::with_capacity(scene.constraints.len());
@@ -83,13 +91,23 @@ pub(super) fn constrained_equilibria(
         .collect();
     eqs.extend(gs.iter().cloned());
     let vars: Vec<Var> = q.iter().chain(&lambdas).copied().collect();
-    let Some(sols) = solve_exact(&eqs, &vars) else {
-        return Err(Diagnostic::global(
-            "no closed form for the equilibria on these constraints (the numeric search does not take constraints)",
-        )
-        .with_hint(HINT));
-    };
     let all_set = !set.is_empty() && scene.parameters.iter().all(|p| set.contains_key(&p.name));
+    let Some(sols) = solve_exact(&eqs, &vars) else {
+        if !all_set {
+            return Err(Diagnostic::global(
+                "no closed form for the equilibria on these constraints; they can be solved numerically given parameter values",
+            )
+            .with_hint("give every parameter a value with `--set`"));
+        }
+        let numeric = Numeric {
+            eqs: &eqs,
+            k_full: &k_full,
+            a: &a,
+            vars: &vars,
+            n,
+        };
+        return Ok((numeric.solve(set, gyroscopic), false));
+    };
     let mut found = Vec::new();
     for s in sols {
         let (qv, lv) = s.values.split_at(n);
@@ -118,7 +136,138 @@ pub(super) fn constrained_equilibria(
             .collect();
         found.push(e);
     }
-    Ok(found)
+    Ok((found, true))
+}
+
+/// The augmented equilibrium conditions, solved numerically by Newton's
+/// method with deflation over (q, λ), every parameter given.
+struct Numeric<'a> {
+    eqs: &'a [Expr],
+    k_full: &'a [Vec<Expr>],
+    a: &'a [Vec<Expr>],
+    vars: &'a [Var],
+    n: usize,
+}
+
+impl Numeric<'_> {
+    fn solve(&self, set: &Values, gyroscopic: bool) -> Vec<Equilibrium> {
+        let eval = |e: &Expr, x: &[f64]| -> Option<f64> {
+            e.eval_f64(&|at: &Atom| match at {
+                Atom::Param(name) => set.get(&**name).copied(),
+                Atom::Coord(..) | Atom::Unknown(_) => self
+                    .vars
+                    .iter()
+                    .position(|&v| atom::atom(v) == *at)
+                    .map(|i| x[i]),
+                _ => None,
+            })
+            .filter(|v| v.is_finite())
+        };
+        let matrix = |m: &[Vec<Expr>], x: &[f64]| -> Option<Vec<Vec<f64>>> {
+            m.iter()
+                .map(|row| row.iter().map(|e| eval(e, x)).collect())
+                .collect()
+        };
+        let jac: Vec<Vec<Expr>> = self
+            .eqs
+            .iter()
+            .map(|f| self.vars.iter().map(|&v| f.diff(v)).collect())
+            .collect();
+        let f = |x: &[f64]| -> Option<Vec<f64>> { self.eqs.iter().map(|e| eval(e, x)).collect() };
+        let j = |x: &[f64]| matrix(&jac, x);
+        let mut periodic = periodic_coordinates(self.eqs, &self.vars[..self.n]);
+        periodic.resize(self.vars.len(), false);
+        let opts = RootOptions {
+            periodic,
+            ..RootOptions::default()
+        };
+        let mut roots = find_roots(&f, &j, &opts);
+        roots.sort_by(|a, b| a.residual.total_cmp(&b.residual));
+        let mut kept: Vec<super::numeric::Root> = Vec::new();
+        for r in roots {
+            if !kept
+                .iter()
+                .any(|k| close_within(&k.x, &r.x, &opts.periodic, 1e-3))
+            {
+                kept.push(r);
+            }
+        }
+        kept.into_iter()
+            .map(|r| {
+                let stability = match (matrix(self.k_full, &r.x), matrix(self.a, &r.x)) {
+                    (Some(k), Some(a)) => match numeric_null_basis(&a, self.n) {
+                        Some(z) if !z.is_empty() => {
+                            classify_numeric(&sandwich_f64(&k, &z), gyroscopic)
+                        }
+                        Some(_) => Stability::Undecided("the constraints leave no motion".into()),
+                        None => Stability::Undecided("the constraints are dependent here".into()),
+                    },
+                    _ => Stability::Undecided("the Hessian is undefined here".into()),
+                };
+                Equilibrium::new(Position::Numeric(r.x[..self.n].to_vec()), stability)
+            })
+            .collect()
+    }
+}
+
+/// Zᵀ·K·Z for numeric K (n×n) and the columns of Z.
+fn sandwich_f64(k: &[Vec<f64>], z: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(a, b)| a * b).sum::<f64>();
+    let kz: Vec<Vec<f64>> = z
+        .iter()
+        .map(|zc| k.iter().map(|row| dot(row, zc)).collect())
+        .collect();
+    z.iter()
+        .map(|zi| kz.iter().map(|kzj| dot(zi, kzj)).collect())
+        .collect()
+}
+
+/// A basis of {z : A·z = 0} for numeric A (m×n) by Gauss–Jordan with
+/// partial pivoting; None when A's rows are dependent (relative 1e-10).
+fn numeric_null_basis(a: &[Vec<f64>], n: usize) -> Option<Vec<Vec<f64>>> {
+    let mut rows = a.to_vec();
+    let scale = rows
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, v| m.max(v.abs()))
+        .max(f64::MIN_POSITIVE);
+    let mut pivots = Vec::with_capacity(rows.len());
+    for r in 0..rows.len() {
+        let (col, big) = (0..n)
+            .filter(|c| !pivots.contains(c))
+            .map(|c| (c, rows[r][c].abs()))
+            .max_by(|x, y| x.1.total_cmp(&y.1))?;
+        if big <= 1e-10 * scale {
+            return None;
+        }
+        let p = rows[r][col];
+        for x in rows[r].iter_mut() {
+            *x /= p;
+        }
+        let pivot_row = rows[r].clone();
+        for (i, row) in rows.iter_mut().enumerate() {
+            if i != r {
+                let f = row[col];
+                for (x, y) in row.iter_mut().zip(&pivot_row) {
+                    *x -= f * y;
+                }
+            }
+        }
+        pivots.push(col);
+    }
+    Some(
+        (0..n)
+            .filter(|c| !pivots.contains(c))
+            .map(|free| {
+                let mut z = vec![0.0; n];
+                z[free] = 1.0;
+                for (r, &p) in pivots.iter().enumerate() {
+                    z[p] = -rows[r][free];
+                }
+                z
+            })
+            .collect(),
+    )
 }
 
 /// Stability from K restricted to the constraints' tangent space.

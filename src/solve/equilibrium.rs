@@ -203,7 +203,7 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
     let periodic = periodic_coordinates(&conditions, &q);
 
     if !scene.constraints.is_empty() {
-        let found =
+        let (found, exact) =
             super::constrained::constrained_equilibria(scene, &conditions, &q, set, gyroscopic)?;
         return Ok(Equilibria {
             coordinates: names,
@@ -211,7 +211,7 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
             conditions,
             kinetic_terms,
             equilibria: found,
-            exact: true,
+            exact,
         });
     }
     let mut found = Vec::new();
@@ -820,7 +820,7 @@ fn poly_like_roots(cs: &[Expr]) -> Option<Vec<ExactRoot>> {
 }
 
 /// Which coordinates are angles: they appear in sin/cos and never bare.
-fn periodic_coordinates(conditions: &[Expr], q: &[Var]) -> Vec<bool> {
+pub(super) fn periodic_coordinates(conditions: &[Expr], q: &[Var]) -> Vec<bool> {
     q.iter()
         .map(|&v| {
             let (s, c) = atom::intern_trig(&Expr::var(v));
@@ -837,7 +837,7 @@ fn close(a: &[f64], b: &[f64], periodic: &[bool]) -> bool {
     close_within(a, b, periodic, 1e-9)
 }
 
-fn close_within(a: &[f64], b: &[f64], periodic: &[bool], tol: f64) -> bool {
+pub(super) fn close_within(a: &[f64], b: &[f64], periodic: &[bool], tol: f64) -> bool {
     a.iter().zip(b).zip(periodic).all(|((x, y), &p)| {
         let mut d = (x - y).abs();
         if p {
@@ -1080,7 +1080,7 @@ fn solve_numeric(
 }
 
 #[allow(clippy::needless_range_loop)] // matrix indices read best as indices
-fn classify_numeric(k: &[Vec<f64>], gyroscopic: bool) -> Stability {
+pub(super) fn classify_numeric(k: &[Vec<f64>], gyroscopic: bool) -> Stability {
     let n = k.len();
     let scale = k
         .iter()
