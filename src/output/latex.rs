@@ -582,6 +582,7 @@ impl Writer {
             self.align(false, &rows);
         }
         self.forces_steps(scene);
+        self.constraints_steps(scene);
         for eq in &lag.equations {
             let c = &eq.coordinate;
             let q = self.sym(c, 0);
@@ -639,6 +640,48 @@ impl Writer {
             self.line("and Lagrange's equation");
             self.align(true, &[vec![self.terms(&eq.lhs), self.terms(&eq.rhs)]]);
         }
+    }
+
+    /// The constraints, numbered as the generalized forces name them
+    /// (`g_j` holonomic, `h_j` in the velocities), with their multipliers.
+    fn constraints_steps(&mut self, scene: &Scene) {
+        if scene.constraints.is_empty() {
+            return;
+        }
+        self.para(
+            "Constraints.",
+            "A holonomic constraint $g_{j} = 0$ adds its multiplier times $\\frac{\\partial g_{j}}{\\partial q_{k}}$ to $Q_{k}$, a constraint in the velocities $h_{j} = \\sum_{k} a_{j,k} \\dot{q}_{k} + b_{j} = 0$ its multiplier times $a_{j,k}$:",
+        );
+        let rows: Vec<_> = scene
+            .constraints
+            .iter()
+            .enumerate()
+            .map(|(j, c)| {
+                let k = j + 1;
+                let name = if c.holonomic { "g" } else { "h" };
+                vec![
+                    self.one(format!("{name}_{{{k}}}")),
+                    self.terms(&c.expression),
+                    self.one("0".into()),
+                ]
+            })
+            .collect();
+        self.align(false, &rows);
+        let lambdas: Vec<String> = scene
+            .constraints
+            .iter()
+            .enumerate()
+            .map(|(j, c)| {
+                let name = if c.holonomic { "g" } else { "h" };
+                format!(
+                    "${}$ for ${name}_{{{}}}$",
+                    self.sym(&c.multiplier, 0),
+                    j + 1
+                )
+            })
+            .collect();
+        let list: Vec<&str> = lambdas.iter().map(String::as_str).collect();
+        self.line(&format!("The multipliers: {}.", sentence(&list)));
     }
 
     /// The force function, potential, work, dissipation and the loads.
