@@ -249,11 +249,25 @@ constraint wire: 2*a*y = x^2
             "coordinates x, y\nparameters m, g, w\nkinetic E = 1/2*m*(x'^2 + y'^2)\npotential V = m*g*y\nconstraint c: x = sin(w*t)\n",
             "moves with time",
         ),
+        (
+            "coordinates x, y\nparameters m, k\nfunctions s\nkinetic E = 1/2*m*(x'^2 + y'^2)\npotential V = 1/2*k*(x^2 + y^2)\nconstraint c: x = s\n",
+            "moves with time",
+        ),
     ] {
         let err = output::run(Command::Equilibrium, src, Format::Text, &Default::default()).unwrap_err();
         assert!(err.message.contains(words), "{}", err.message);
         assert!(err.span.is_some() && err.hint.is_some());
     }
+}
+
+/// A given function of time in a force is a force that changes: no static
+/// equilibrium (it used to be solved as a constant, x = s).
+#[test]
+fn a_given_function_has_no_static_equilibrium() {
+    let src = "coordinates x\nparameters m, k\nfunctions s\nkinetic E = 1/2*m*x'^2\npotential V = 1/2*k*(x - s)^2\n";
+    let err =
+        output::run(Command::Equilibrium, src, Format::Text, &Default::default()).unwrap_err();
+    assert!(err.message.contains("depends on time"), "{}", err.message);
 }
 
 /// Without a closed form, the augmented conditions are solved numerically

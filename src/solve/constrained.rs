@@ -59,7 +59,9 @@ pub(super) fn constrained_equilibria(
             )
             .with_hint(HINT));
         }
-        if c.expression.depends_on(atom::time()) {
+        if c.expression.depends_on(atom::time())
+            || super::equilibrium::has_given_function(&c.expression)
+        {
             return Err(Diagnostic::error(
                 c.span,
                 format!(
@@ -406,7 +408,10 @@ pub(super) fn multipliers_at(
     let mut at_rows: Vec<Vec<Expr>> = Vec::with_capacity(q.len());
     let mut lambdas = Vec::new();
     for (j, c) in scene.constraints.iter().enumerate() {
-        if !c.holonomic || c.expression.depends_on(atom::time()) {
+        if !c.holonomic
+            || c.expression.depends_on(atom::time())
+            || super::equilibrium::has_given_function(&c.expression)
+        {
             return Err(Diagnostic::error(
                 c.span,
                 format!(

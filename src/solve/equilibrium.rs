@@ -186,12 +186,12 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
     }
     let t = atom::time();
     for (k, f) in conditions.iter().enumerate() {
-        if f.depends_on(t) {
+        if f.depends_on(t) || has_given_function(f) {
             return Err(Diagnostic::global(format!(
                 "the force on `{}` depends on time, so there is no static equilibrium",
                 names[k]
             ))
-            .with_hint("equilibria need time-independent forces; remove driving terms in t to study the system at rest"));
+            .with_hint("equilibria need time-independent forces (a given function of time counts as one that changes); remove driving terms in t to study the system at rest"));
         }
     }
     // K = −∂F/∂q, symbolic.
@@ -292,6 +292,16 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
         kinetic_terms,
         equilibria: found,
         exact,
+    })
+}
+
+/// Whether `e` contains a given function of time (`functions s`), at any
+/// depth: it changes with time, so no position is at rest for good.
+pub(super) fn has_given_function(e: &Expr) -> bool {
+    e.vars().into_iter().any(|v| {
+        std::iter::once(v)
+            .chain(atom::inner_atoms(v).iter().copied())
+            .any(|w| matches!(atom::atom(w), Atom::Given(..)))
     })
 }
 
