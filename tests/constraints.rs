@@ -268,6 +268,14 @@ fn a_given_function_has_no_static_equilibrium() {
     let err =
         output::run(Command::Equilibrium, src, Format::Text, &Default::default()).unwrap_err();
     assert!(err.message.contains("depends on time"), "{}", err.message);
+    // nor constant small oscillations when it enters the stiffness
+    let src = "coordinates x\nparameters m, k\nfunctions s\nkinetic E = 1/2*m*x'^2\npotential V = 1/2*k*s*x^2\n";
+    let err = output::run(Command::Modes, src, Format::Text, &Default::default()).unwrap_err();
+    assert!(
+        err.message.contains("parametric excitation"),
+        "{}",
+        err.message
+    );
 }
 
 /// Without a closed form, the augmented conditions are solved numerically

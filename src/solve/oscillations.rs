@@ -176,7 +176,8 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
             mass[k][j] = at_point(&r.diff(qdd[j]))?;
             damping[k][j] = at_point(&r.diff(qd[j]))?;
             stiffness[k][j] = at_point(&r.diff(q[j]))?;
-            if stiffness[k][j].depends_on(t) || mass[k][j].depends_on(t) {
+            let changes = |e: &Expr| e.depends_on(t) || super::equilibrium::has_given_function(e);
+            if changes(&stiffness[k][j]) || changes(&mass[k][j]) || changes(&damping[k][j]) {
                 return Err(Diagnostic::global(format!(
                     "the linearized coefficients of `{}` depend on time (parametric excitation)",
                     names[k]
