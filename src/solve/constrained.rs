@@ -21,12 +21,11 @@
 //! M_c = Zᵀ·M·Z, C_c = Zᵀ·C·Z, K_c = Zᵀ·K·Z and f_c = Zᵀ·f.
 
 use super::equilibrium::{
-    classify_numeric, close_within, jacobi, numeric_values, periodic_coordinates, solve_exact,
-    Equilibrium, Position, Stability,
+    classify_numeric, close_within, jacobi, minor_signs, numeric_values, periodic_coordinates,
+    solve_exact, Equilibrium, Position, Stability,
 };
 use super::numeric::{find_roots, RootOptions};
-use crate::algebra::linear::det;
-use crate::algebra::sign::{sign_of, Sign, Values};
+use crate::algebra::sign::{Sign, Values};
 use crate::diag::Diagnostic;
 use crate::expr::atom::Atom;
 use crate::expr::{atom, Expr};
@@ -273,7 +272,6 @@ fn numeric_null_basis(a: &[Vec<f64>], n: usize) -> Option<Vec<Vec<f64>>> {
 }
 
 /// Stability from K restricted to the constraints' tangent space.
-#[allow(clippy::needless_range_loop)] // matrix indices read best as indices
 fn classify(
     k_full: &[Vec<Expr>],
     a: &[Vec<Expr>],
@@ -308,23 +306,10 @@ fn classify(
     let kc: Vec<Vec<Expr>> = (0..r)
         .map(|i| (0..r).map(|j| dot(&z[i], &kz[j])).collect())
         .collect();
-    for i in 0..r {
-        for j in i + 1..r {
-            if !kc[i][j].equals(&kc[j][i]) {
-                return Stability::Undecided(
-                    "the forces are not conservative here (∂Q_i/∂q_j ≠ ∂Q_j/∂q_i)".into(),
-                );
-            }
-        }
-    }
-    let mut signs = Vec::with_capacity(r);
-    for size in 1..=r {
-        let sub: Vec<Vec<Expr>> = kc[..size].iter().map(|row| row[..size].to_vec()).collect();
-        let Some(d) = det(sub) else {
-            return Stability::Undecided("the Hessian could not be evaluated".into());
-        };
-        signs.push(sign_of(&d, set));
-    }
+    let signs = match minor_signs(&kc, set) {
+        Ok(s) => s,
+        Err(undecided) => return undecided,
+    };
     if r == 1 && signs[0].is_none() {
         return Stability::Undecided(format!(
             "stable when {} > 0, unstable when < 0; give values with --set",

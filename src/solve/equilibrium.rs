@@ -898,23 +898,10 @@ fn classify_exact(
         k.push(r);
     }
     let n = q.len();
-    for i in 0..n {
-        for j in i + 1..n {
-            if !k[i][j].equals(&k[j][i]) {
-                return Stability::Undecided(
-                    "the forces are not conservative here (∂Q_i/∂q_j ≠ ∂Q_j/∂q_i)".into(),
-                );
-            }
-        }
-    }
-    let mut signs = Vec::with_capacity(n);
-    for m in 1..=n {
-        let sub: Vec<Vec<Expr>> = k[..m].iter().map(|r| r[..m].to_vec()).collect();
-        let Some(d) = det(sub) else {
-            return Stability::Undecided("the Hessian could not be evaluated".into());
-        };
-        signs.push(sign_of(&d, set));
-    }
+    let signs = match minor_signs(&k, set) {
+        Ok(s) => s,
+        Err(undecided) => return undecided,
+    };
     if n == 1 && signs[0] == Some(Sign::Zero) {
         return higher_order(&conditions[0], q[0], &vals[0], set);
     }
@@ -925,6 +912,34 @@ fn classify_exact(
         ));
     }
     jacobi(&signs, gyroscopic)
+}
+
+/// The signs of the leading minors of a symmetric K (exactly, or at
+/// `set`); the verdict instead when K is not symmetric or a minor cannot
+/// be evaluated.
+#[allow(clippy::needless_range_loop)] // matrix indices read best as indices
+pub(super) fn minor_signs(k: &[Vec<Expr>], set: &Values) -> Result<Vec<Option<Sign>>, Stability> {
+    let n = k.len();
+    for i in 0..n {
+        for j in i + 1..n {
+            if !k[i][j].equals(&k[j][i]) {
+                return Err(Stability::Undecided(
+                    "the forces are not conservative here (∂Q_i/∂q_j ≠ ∂Q_j/∂q_i)".into(),
+                ));
+            }
+        }
+    }
+    let mut signs = Vec::with_capacity(n);
+    for m in 1..=n {
+        let sub: Vec<Vec<Expr>> = k[..m].iter().map(|r| r[..m].to_vec()).collect();
+        let Some(d) = det(sub) else {
+            return Err(Stability::Undecided(
+                "the Hessian could not be evaluated".into(),
+            ));
+        };
+        signs.push(sign_of(&d, set));
+    }
+    Ok(signs)
 }
 
 /// Stable / unstable from the signs of the leading minors.
