@@ -123,6 +123,14 @@ potential V = -m*g*R*cos(th)
     assert!(lambda.equals(&torque), "λ_spin = {lambda}");
 }
 
+const DOUBLE: &str = "coordinates x1, y1, x2, y2
+parameters m, g, l
+kinetic E = 1/2*m*(x1'^2 + y1'^2 + x2'^2 + y2'^2)
+potential V = m*g*(y1 + y2)
+constraint rod1: x1^2 + y1^2 = l^2
+constraint rod2: (x2 - x1)^2 + (y2 - y1)^2 = l^2
+";
+
 const COIN: &str = "# a coin rolling upright: contact point x, y, heading phi, spin theta
 coordinates x, y, phi, theta
 parameters m, r, A, C
@@ -283,15 +291,7 @@ fn a_given_function_has_no_static_equilibrium() {
 /// equilibria, only hanging straight down stable.
 #[test]
 fn numeric_equilibria_on_constraints() {
-    let double = scene(
-        "coordinates x1, y1, x2, y2
-parameters m, g, l
-kinetic E = 1/2*m*(x1'^2 + y1'^2 + x2'^2 + y2'^2)
-potential V = m*g*(y1 + y2)
-constraint rod1: x1^2 + y1^2 = l^2
-constraint rod2: (x2 - x1)^2 + (y2 - y1)^2 = l^2
-",
-    );
+    let double = scene(DOUBLE);
     assert!(qdot::equilibria(&double, &Default::default()).is_err());
     let set = qdot::output::parse_set("m=1,g=1,l=1").unwrap();
     let eq = qdot::equilibria(&double, &set).unwrap();
@@ -342,15 +342,7 @@ fn modes_on_constraints() {
         err.message
     );
 
-    let double = scene(
-        "coordinates x1, y1, x2, y2
-parameters m, g, l
-kinetic E = 1/2*m*(x1'^2 + y1'^2 + x2'^2 + y2'^2)
-potential V = m*g*(y1 + y2)
-constraint rod1: x1^2 + y1^2 = l^2
-constraint rod2: (x2 - x1)^2 + (y2 - y1)^2 = l^2
-",
-    );
+    let double = scene(DOUBLE);
     let q0 = double.coordinate_values("x1=0,y1=-l,x2=0,y2=-2*l").unwrap();
     let md = qdot::modes(&double, Some(&q0), &Default::default()).unwrap();
     assert_eq!(md.coordinates, ["x1", "x2"]);

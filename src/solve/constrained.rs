@@ -21,7 +21,7 @@
 //! M_c = Zᵀ·M·Z, C_c = Zᵀ·C·Z, K_c = Zᵀ·K·Z and f_c = Zᵀ·f.
 
 use super::equilibrium::{
-    classify_numeric, close_within, jacobi, minor_signs, numeric_values, periodic_coordinates,
+    classify_numeric, distinct_roots, jacobi, minor_signs, numeric_values, periodic_coordinates,
     solve_exact, Equilibrium, Position, Stability,
 };
 use super::numeric::{find_roots, RootOptions};
@@ -182,18 +182,9 @@ impl Numeric<'_> {
             periodic,
             ..RootOptions::default()
         };
-        let mut roots = find_roots(&f, &j, &opts);
-        roots.sort_by(|a, b| a.residual.total_cmp(&b.residual));
-        let mut kept: Vec<super::numeric::Root> = Vec::new();
-        for r in roots {
-            if !kept
-                .iter()
-                .any(|k| close_within(&k.x, &r.x, &opts.periodic, 1e-3))
-            {
-                kept.push(r);
-            }
-        }
-        kept.into_iter()
+        let roots = find_roots(&f, &j, &opts);
+        distinct_roots(roots, &opts.periodic)
+            .into_iter()
             .map(|r| {
                 let stability = match (matrix(self.k_full, &r.x), matrix(self.a, &r.x)) {
                     (Some(k), Some(a)) => match numeric_null_basis(&a, self.n) {

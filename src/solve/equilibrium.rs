@@ -914,6 +914,26 @@ fn classify_exact(
     jacobi(&signs, gyroscopic)
 }
 
+/// Newton's roots without repeats: a multiple root draws the iterates into
+/// a cluster of near-roots, and the one with the smallest residual of each
+/// cluster is kept.
+pub(super) fn distinct_roots(
+    mut roots: Vec<super::numeric::Root>,
+    periodic: &[bool],
+) -> Vec<super::numeric::Root> {
+    roots.sort_by(|a, b| a.residual.total_cmp(&b.residual));
+    let mut kept: Vec<super::numeric::Root> = Vec::new();
+    for r in roots {
+        if !kept
+            .iter()
+            .any(|k| close_within(&k.x, &r.x, periodic, 1e-3))
+        {
+            kept.push(r);
+        }
+    }
+    kept
+}
+
 /// The signs of the leading minors of a symmetric K (exactly, or at
 /// `set`); the verdict instead when K is not symmetric or a minor cannot
 /// be evaluated.
@@ -1044,19 +1064,10 @@ fn solve_numeric(
         periodic: periodic.to_vec(),
         ..RootOptions::default()
     };
-    let mut roots = find_roots(&f, &j, &opts);
+    let roots = find_roots(&f, &j, &opts);
     // A multiple root draws Newton's iterates into a cluster of
     // near-roots; keep the best of each cluster.
-    roots.sort_by(|a, b| a.residual.total_cmp(&b.residual));
-    let mut kept: Vec<super::numeric::Root> = Vec::new();
-    for r in roots {
-        if !kept
-            .iter()
-            .any(|k| close_within(&k.x, &r.x, &opts.periodic, 1e-3))
-        {
-            kept.push(r);
-        }
-    }
+    let mut kept = distinct_roots(roots, &opts.periodic);
     kept.sort_by(|a, b| {
         a.x.iter()
             .zip(&b.x)
