@@ -72,6 +72,16 @@ pub const MAX_TAYLOR_ORDER: i64 = 30;
 /// a radical in the denominator.
 pub const MAX_RATIONALIZE_STEPS: u32 = 64;
 
+/// The most terms (numerator and denominator together) of an expression
+/// whose compact form is searched for printing (`expr::compact`: each
+/// candidate is a gcd and a printing); larger results print in the
+/// canonical form with the addition theorems folded.
+pub const MAX_COMPACT_TERMS: usize = 400;
+
+/// The most terms of a sum the compact forms try to factor over ℚ for
+/// printing ((R − r)²); factoring is exact but its cost grows quickly.
+pub const MAX_FACTORED_TERMS: usize = 40;
+
 /// The most output times `qdot simulate --points` records: each row keeps
 /// t, q and q̇ (and the energy) in memory until printed.
 pub const MAX_POINTS: usize = 1_000_000;

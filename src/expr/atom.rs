@@ -74,6 +74,10 @@ pub enum Atom {
     /// A factor that exists only in printed output (`cos(q1 − q2)` folded
     /// back from its expansion). Never part of a canonical expression.
     Shown(Arc<Folded>),
+    /// A sum kept as one factor in printed output, written in parentheses
+    /// (`(R − r)²`, `(l²·m + A − C)·cos²(θ)`): what the compact forms of
+    /// `expr::compact` group. Never part of a canonical expression.
+    Group(Arc<Poly>),
 }
 
 /// `cos(a ∓ b)` or `sin(a ± b)`, folded back by the addition theorems for
@@ -183,12 +187,29 @@ impl Table {
             }
             (Atom::Coord(name, k), None) => (0, 1, Some((name.clone(), *k)), true),
             (Atom::Time | Atom::Given(..), None) => (0, 1, None, true),
-            (Atom::Shown(f), None) => (
-                0,
-                1 + self.written_size(&f.a) + self.written_size(&f.b),
-                None,
-                false,
-            ),
+            (Atom::Shown(f), None) => {
+                let vars: Vec<Var> = f.a.vars().into_iter().chain(f.b.vars()).collect();
+                (
+                    0,
+                    1 + self.written_size(&f.a) + self.written_size(&f.b),
+                    None,
+                    vars.iter().any(|&w| self.entry(w).is_some_and(|e| e.moving)),
+                )
+            }
+            (Atom::Group(p), None) => {
+                let vars = p.vars();
+                let size = p.terms().iter().fold(1u64, |n, (m, _)| {
+                    m.vars().fold(n.saturating_add(1), |n, w| {
+                        n.saturating_add(self.entry(w).map_or(1, |e| e.size))
+                    })
+                });
+                (
+                    0,
+                    size,
+                    None,
+                    vars.iter().any(|&w| self.entry(w).is_some_and(|e| e.moving)),
+                )
+            }
             _ => (0, 1, None, false),
         };
         self.entries.push(Entry {

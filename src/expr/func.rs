@@ -676,7 +676,7 @@ pub fn eval_atom(v: Var, f: &dyn Fn(&Atom) -> Option<f64>) -> Option<f64> {
         Atom::Atan(u) => ev(u).map(f64::atan),
         Atom::Asin(u) => ev(u).map(f64::asin),
         Atom::Acos(u) => ev(u).map(f64::acos),
-        Atom::Shown(..) => None,
+        Atom::Shown(..) | Atom::Group(_) => None,
     }
 }
 

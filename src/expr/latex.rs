@@ -234,8 +234,7 @@ pub type Quotient = (bool, String, Vec<(bool, String)>);
 /// lines; `None` when `e` is not one quotient of a sum.
 pub fn quotient_terms(e: &Expr, names: &Names) -> Option<Quotient> {
     let tex = Tex { names };
-    let num = print::fold_trig(e.num()).unwrap_or_else(|| e.num().clone());
-    let den = print::fold_trig(e.den()).unwrap_or_else(|| e.den().clone());
+    let (num, den) = print::shown_parts(e);
     if den.is_one() || num.len() < 2 || print::collect(&num, &den).is_some() {
         return None;
     }
@@ -375,13 +374,17 @@ impl Tex<'_> {
             return vec![(false, "0".into())];
         }
         crate::budget::check_printed(super::atom::written_size(e));
-        let num = print::fold_trig(e.num()).unwrap_or_else(|| e.num().clone());
-        let den = print::fold_trig(e.den()).unwrap_or_else(|| e.den().clone());
-        let Some(groups) = print::collect(&num, &den) else {
-            let (neg, fs) = self.fraction(&num, &den);
+        let (num, den) = print::shown_parts(e);
+        self.parts_terms(&num, &den)
+    }
+
+    /// The terms of num/den (display polynomials: see `expr::compact`).
+    fn parts_terms(&self, num: &Poly, den: &Poly) -> Vec<(bool, String)> {
+        let Some(groups) = print::collect(num, den) else {
+            let (neg, fs) = self.fraction(num, den);
             if !neg && fs.len() == 1 && fs[0].kind == Kind::Sum {
                 // a bare sum: its own terms
-                return print::sorted_terms(&num)
+                return print::sorted_terms(num)
                     .into_iter()
                     .map(|(m, c)| (c.is_negative(), self.sum(&Poly::monomial(m, c.abs()))))
                     .collect();
@@ -435,10 +438,7 @@ impl Tex<'_> {
             }
             return (cn.is_negative(), fs);
         }
-        let (cd, md, pd) = print::split_poly(den);
-        let c = cn.checked_div(&cd).unwrap_or_else(Q::one);
-        let neg = c.is_negative();
-        let c = c.abs();
+        let (neg, c, mn, pn, md, pd) = print::fraction_parts(num, den);
         // exponentials in the denominator go up with a negative exponent:
         // x e^{-\alpha t}, not x/e^{\alpha t}
         type Factors = Vec<(Var, u32)>;
@@ -492,7 +492,7 @@ impl Tex<'_> {
 
     /// A polynomial as a sum, terms in display order.
     fn sum(&self, p: &Poly) -> String {
-        join(print::sorted_terms(p).into_iter().map(|(m, c)| {
+        join(print::sum_terms(p).into_iter().map(|(m, c)| {
             let neg = c.is_negative();
             let c = c.abs();
             if m.0.is_empty() {
@@ -573,6 +573,15 @@ impl Tex<'_> {
             Atom::Exp(u) => {
                 let x = u.scale(&Q::from_i64(e as i64));
                 Factor::new(format!("e^{{{}}}", self.expr(&x)), Kind::Plain)
+            }
+            Atom::Group(p) => {
+                let inner = join(self.parts_terms(p, &Poly::one()));
+                Factor::new(format!("{}{sup}", parens(&inner)), Kind::Plain)
+            }
+            Atom::Shown(f) if f.b.is_zero() => {
+                let name = if f.cos { "\\cos" } else { "\\sin" };
+                let angle = self.expr(&f.a);
+                Factor::new(format!("{name}{sup}{}", parens(&angle)), Kind::Func)
             }
             Atom::Shown(f) => {
                 let name = if f.cos { "\\cos" } else { "\\sin" };

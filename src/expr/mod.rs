@@ -22,6 +22,7 @@
 
 #[doc(hidden)]
 pub mod atom;
+pub mod compact;
 pub mod diff;
 pub mod func;
 pub mod latex;

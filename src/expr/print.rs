@@ -71,17 +71,17 @@ pub fn render(e: &Expr, st: Style) -> String {
         return "0".into();
     }
     crate::budget::check_printed(atom::written_size(e));
-    let folded_num = fold_trig(e.num());
-    let folded_den = fold_trig(e.den());
-    if folded_num.is_some() || folded_den.is_some() {
-        let n = folded_num.unwrap_or_else(|| e.num().clone());
-        let d = folded_den.unwrap_or_else(|| e.den().clone());
-        return render_parts(&n, &d, st);
-    }
-    render_parts(e.num(), e.den(), st)
+    let (n, d) = shown_parts(e);
+    render_parts(&n, &d, st)
 }
 
-fn render_parts(num: &Poly, den: &Poly, st: Style) -> String {
+/// The polynomials every printer writes for `e`: its compact form
+/// ([`super::compact`]), over display atoms.
+pub(crate) fn shown_parts(e: &Expr) -> (Poly, Poly) {
+    super::compact::display_parts(e.num(), e.den())
+}
+
+pub(crate) fn render_parts(num: &Poly, den: &Poly, st: Style) -> String {
     let Some(groups) = collect(num, den) else {
         return fraction(num, den, st);
     };
@@ -347,6 +347,18 @@ pub(crate) fn split_poly(p: &Poly) -> (Q, Mono, Poly) {
     (content, g, prim)
 }
 
+/// Terms in display order, a positive term first when there is one
+/// (2·m₁ + m₂ − m₂·cos(2·θ₁ − 2·θ₂), not −m₂·cos(…) + 2·m₁ + m₂).
+pub(crate) fn sum_terms(p: &Poly) -> Vec<(Mono, Q)> {
+    let t = sorted_terms(p);
+    if t.first().is_some_and(|(_, c)| c.is_negative()) {
+        // the positive terms first, each side in display order
+        let (pos, neg): (Vec<_>, Vec<_>) = t.into_iter().partition(|(_, c)| !c.is_negative());
+        return pos.into_iter().chain(neg).collect();
+    }
+    t
+}
+
 /// Terms in display order.
 pub(crate) fn sorted_terms(p: &Poly) -> Vec<(Mono, Q)> {
     let mut t: Vec<(Mono, Q, String)> = p
@@ -360,7 +372,7 @@ pub(crate) fn sorted_terms(p: &Poly) -> Vec<(Mono, Q)> {
 
 /// A polynomial as a sum, terms in display order.
 fn sum_str(p: &Poly, st: Style) -> String {
-    let items = sorted_terms(p).into_iter().map(|(m, c)| {
+    let items = sum_terms(p).into_iter().map(|(m, c)| {
         let neg = c.is_negative();
         let c = c.abs();
         let ms = mono_str(&m, st);
@@ -380,6 +392,12 @@ fn q_str(q: &Q, _st: Style) -> String {
     q.to_string()
 }
 
+/// A polynomial as one sum, its content and common power product pulled
+/// out but its terms not collected (as a quotient's sides print).
+pub(crate) fn sum_text(p: &Poly, st: Style) -> String {
+    fraction(p, &Poly::one(), st)
+}
+
 /// num/den, with contents pulled out: `g·R·(G·R − P·r)/(G·R² + J₂·g + P·r²)`.
 fn fraction(num: &Poly, den: &Poly, st: Style) -> String {
     if den.is_one() {
@@ -387,11 +405,10 @@ fn fraction(num: &Poly, den: &Poly, st: Style) -> String {
             return sum_str(num, st);
         }
         // A sum with a common power product: `l₁²·(m₁ + m₂)`.
-        let (cn, mn, pn) = split_poly(num);
+        let (neg, cn, mn, pn, _, _) = fraction_parts(num, den);
         if mn.0.is_empty() {
             return sum_str(num, st);
         }
-        let neg = cn.is_negative();
         let c = cn.abs();
         let head = mono_str(&mn, st);
         let body = format!("{}{}({})", head, mul_sign(st), sum_str(&pn, st));
@@ -406,11 +423,7 @@ fn fraction(num: &Poly, den: &Poly, st: Style) -> String {
             (true, Style::Unicode) => format!("−{s}"),
         };
     }
-    let (cn, mn, pn) = split_poly(num);
-    let (cd, md, pd) = split_poly(den);
-    let c = cn.checked_div(&cd).unwrap_or_else(Q::one);
-    let neg = c.is_negative();
-    let c = c.abs();
+    let (neg, c, mn, pn, md, pd) = fraction_parts(num, den);
     let mul = mul_sign(st);
     let unit_numerator = c.numer() == num_bigint::BigInt::from(1) && !c.is_one();
     if st == Style::Unicode
@@ -483,6 +496,28 @@ fn fraction(num: &Poly, den: &Poly, st: Style) -> String {
     }
 }
 
+/// num/den as (is negative, |content|, numerator's monomial and sum,
+/// denominator's monomial and sum), the signs as a lecturer sets them: the
+/// denominator's sum with more positive terms than negative ones (its first
+/// displayed term positive on a tie), and no minus outside a numerator sum
+/// that has a negative term to take it (−(a − b) is b − a).
+pub(crate) fn fraction_parts(num: &Poly, den: &Poly) -> (bool, Q, Mono, Poly, Mono, Poly) {
+    let (cn, mn, mut pn) = split_poly(num);
+    let (mut cd, md, mut pd) = split_poly(den);
+    let negatives = |p: &Poly| p.terms().iter().filter(|(_, c)| c.is_negative()).count();
+    if 2 * negatives(&pd) > pd.len() {
+        pd = -&pd;
+        cd = -cd;
+    }
+    let c = cn.checked_div(&cd).unwrap_or_else(Q::one);
+    let mut neg = c.is_negative();
+    if neg && negatives(&pn) > 0 && 2 * negatives(&pn) >= pn.len() {
+        pn = -&pn;
+        neg = false;
+    }
+    (neg, c.abs(), mn, pn, md, pd)
+}
+
 /// Factor order inside a monomial: parameters, π, radicals, t, functions,
 /// then coordinates by derivative order.
 pub(crate) fn factor_rank(v: Var) -> (u8, u32, String, String) {
@@ -491,6 +526,8 @@ pub(crate) fn factor_rank(v: Var) -> (u8, u32, String, String) {
     let name = (name.to_lowercase(), name);
     match a {
         Atom::Param(_) | Atom::Unknown(_) => (0, 0, name.0, name.1),
+        // a grouped sum after the symbols: g·m·(R − r)·sin(θ)
+        Atom::Group(_) => (0, 1, name.0, name.1),
         Atom::Pi => (1, 0, name.0, name.1),
         Atom::Root(_) | Atom::SqrtOf(_) => (2, 0, name.0, name.1),
         Atom::Time => (3, 0, name.0, name.1),
@@ -593,6 +630,7 @@ fn fn_name(a: &Atom) -> &'static str {
 pub fn atom_input(a: &Atom) -> String {
     match a {
         Atom::Shown(f) => folded_text(f, Style::Input),
+        Atom::Group(p) => format!("({})", render_parts(p, &Poly::one(), Style::Input)),
         Atom::Param(n) | Atom::Unknown(n) => n.to_string(),
         Atom::Coord(n, k) | Atom::Given(n, k) => format!("{n}{}", "'".repeat(*k as usize)),
         Atom::Time => "t".into(),
@@ -611,6 +649,7 @@ pub fn atom_input(a: &Atom) -> String {
 fn atom_unicode(a: &Atom) -> String {
     match a {
         Atom::Shown(f) => folded_text(f, Style::Unicode),
+        Atom::Group(p) => format!("({})", render_parts(p, &Poly::one(), Style::Unicode)),
         Atom::Param(n) | Atom::Unknown(n) => pretty_name(n, 0),
         Atom::Coord(n, k) | Atom::Given(n, k) => pretty_name(n, *k),
         Atom::Time => "t".into(),
@@ -749,6 +788,10 @@ fn angle_text(f: &atom::Folded, st: Style) -> String {
     // a sum reads left to right: parentheses only where a sign would change
     // what follows it (a − (b + c), a + (−b + c))
     let a = render(&f.a, st);
+    if f.b.is_zero() {
+        // a multiple angle of the compact forms: cos(2·θ₁ − 2·θ₂)
+        return a;
+    }
     let b = render(&f.b, st);
     let signed = b.starts_with('-') || b.starts_with('−');
     let b = if is_sum(&b) && (f.minus || signed) {

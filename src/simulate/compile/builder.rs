@@ -376,7 +376,7 @@ impl<'a> Builder<'a> {
                     let x = self.expr(u)?;
                     self.func(x, Node::Acos, f64::acos)
                 }
-                Atom::Shown(_) => return Err(CompileError::PrintOnly),
+                Atom::Shown(_) | Atom::Group(_) => return Err(CompileError::PrintOnly),
             }
         };
         self.atoms.insert(v, id);

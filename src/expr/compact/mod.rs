@@ -1,0 +1,347 @@
+//! Compact forms: the shortest of several exact rewritings of an
+//! expression, for display only.
+//!
+//! The canonical form (see [`super`]) is made for equality: sin² + cos² = 1
+//! is applied one way (cos² → 1 − sin²), products of sines and cosines are
+//! expanded, nothing is factored. A lecturer writes the same value
+//! otherwise: F·cos θ for F·(1 − sin²θ)/cos θ, l₁·(2·m₁ + m₂ − m₂·cos(2·θ₁ −
+//! 2·θ₂)) for the expanded quartic in sin θ₁, cos θ₁, sin θ₂, cos θ₂,
+//! 3/4·m·(R − r)² for −3/4·m·(2·R·r − R² − r²). [`display_parts`] searches
+//! the representations of num/den modulo the ideal (sin²uᵢ + cos²uᵢ − 1)
+//! that a lecturer would consider, in the spirit of Monagan and Pearce's
+//! rational simplification modulo a polynomial ideal ("Rational
+//! simplification modulo a polynomial ideal", ISSAC 2006) — not their
+//! minimal-degree linear algebra, but the representations that decide
+//! the size of mechanics' results:
+//!
+//! 1. each angle reduced either way (sin² → 1 − cos² or cos² → 1 − sin²);
+//! 2. the Fourier form (multiple angles of the scene's own combinations:
+//!    2·θ₁ − 2·θ₂, θ₁ − 2·θ₂), see [`fourier`];
+//! 3. in each, the gcd of num and den cancelled (cancellation that only
+//!    exists modulo the ideal: (1 − sin²θ)/cos θ is cos θ);
+//! 4. the addition theorems folded back (cos θ₁·cos θ₂ + sin θ₁·sin θ₂ →
+//!    cos(θ₁ − θ₂));
+//! 5. sums grouped: a factorization over ℚ where it is shorter ((R − r)²),
+//!    and inside a quotient's sums the terms collected by their coordinate
+//!    monomial ((l²·m + A − C)·cos²θ·φ̇).
+//!
+//! The winner has the fewest operations as SymPy's `count_ops` counts them
+//! ([`count_ops`]); on a tie the canonical form stays. Every candidate is an
+//! identity, so the printed text re-parses to the same canonical value
+//! (tests/compact.rs checks it on a panel and on random expressions).
+//!
+//! **Invariant:** the search is bounded: only expressions of at most
+//! [`MAX_COMPACT_TERMS`] terms are searched, at most 2³ reduction choices
+//! (then all-sine and all-cosine only), and factorization only of sums of
+//! at most [`MAX_FACTORED_TERMS`] terms; beyond, the canonical form is
+//! printed with its addition theorems folded, as before.
+
+pub(crate) mod fourier;
+
+use super::atom::{self, Atom};
+use super::print::{self, Style};
+use crate::num::Q;
+use crate::poly::{Mono, Poly, Var};
+use std::sync::Arc;
+
+pub use crate::limits::{MAX_COMPACT_TERMS, MAX_FACTORED_TERMS};
+
+/// The display polynomials of num/den: the shortest representation found
+/// (see the module docs). The result may contain display atoms
+/// ([`Atom::Shown`], [`Atom::Group`]) and is only for the printers.
+pub fn display_parts(num: &Poly, den: &Poly) -> (Poly, Poly) {
+    let folded = (
+        print::fold_trig(num).unwrap_or_else(|| num.clone()),
+        print::fold_trig(den).unwrap_or_else(|| den.clone()),
+    );
+    if num.len() + den.len() > MAX_COMPACT_TERMS {
+        return folded;
+    }
+    let mut search = Search::default();
+    search.offer(grouped_pair(&folded.0, &folded.1));
+    let angles = fourier::angles(&[num, den]);
+    if !angles.is_empty() {
+        for (n, d) in representations(num, den, &angles) {
+            search.offer_cancelled(&n, &d);
+        }
+        search.offer_independent();
+    } else if !num.is_constant() && !den.is_constant() {
+        search.offer_cancelled(num, den);
+    }
+    search.best.map(|(_, n, d)| (n, d)).unwrap_or(folded)
+}
+
+/// num/den in every representation to try: as they are, each reduction
+/// choice, the Fourier form.
+fn representations(num: &Poly, den: &Poly, angles: &[(Var, Var, super::Expr)]) -> Vec<(Poly, Poly)> {
+    let mut out = vec![(num.clone(), den.clone())];
+    let n = angles.len();
+    let masks: Vec<u32> = if n <= 3 {
+        (1..(1u32 << n)).collect()
+    } else {
+        vec![(1u32 << n.min(31)) - 1]
+    };
+    for mask in masks {
+        out.push((
+            fourier::cos_reduced(num, angles, mask),
+            fourier::cos_reduced(den, angles, mask),
+        ));
+    }
+    let f = |p: &Poly| fourier::to_display(&fourier::fourier(p, angles), angles);
+    out.push((f(num), f(den)));
+    out
+}
+
+/// The best candidate so far, and the numerators and denominators that
+/// may be paired freely (representations in which nothing cancelled).
+#[derive(Default)]
+struct Search {
+    best: Option<(usize, Poly, Poly)>,
+    nums: Vec<Poly>,
+    dens: Vec<Poly>,
+}
+
+impl Search {
+    fn offer(&mut self, (n, d): (Poly, Poly)) {
+        let cost = count_ops(&print::render_parts(&n, &d, Style::Input));
+        if self.best.as_ref().is_none_or(|(c, _, _)| cost < *c) {
+            self.best = Some((cost, n, d));
+        }
+    }
+
+    /// num/den with their gcd cancelled, folded or not.
+    fn offer_cancelled(&mut self, num: &Poly, den: &Poly) {
+        let g = num.gcd(den);
+        let (n, d) = if g.is_constant() {
+            self.nums.push(num.clone());
+            self.dens.push(den.clone());
+            (num.clone(), den.clone())
+        } else {
+            let n = num.div_exact(&g).unwrap_or_else(|| num.clone());
+            let d = den.div_exact(&g).unwrap_or_else(|| den.clone());
+            // the quotient once more in the canonical reduction
+            let (rn, rd) = (super::reduce_poly(&n), super::reduce_poly(&d));
+            self.offer(grouped_pair(&rn, &rd));
+            (n, d)
+        };
+        let (fnum, fden) = (print::fold_trig(&n), print::fold_trig(&d));
+        if fnum.is_some() || fden.is_some() {
+            let fnum = fnum.unwrap_or_else(|| n.clone());
+            let fden = fden.unwrap_or_else(|| d.clone());
+            self.offer(grouped_pair(&fnum, &fden));
+        }
+        self.offer(grouped_pair(&n, &d));
+    }
+
+    /// The shortest numerator over the shortest denominator, each chosen
+    /// alone among the representations of the same value.
+    fn offer_independent(&mut self) {
+        let shortest = |ps: &[Poly]| -> Option<Poly> {
+            ps.iter()
+                .flat_map(|p| [p.clone(), print::fold_trig(p).unwrap_or_else(|| p.clone())])
+                .min_by_key(|p| ops_of(&grouped(p, true)))
+        };
+        let (Some(n), Some(d)) = (shortest(&self.nums), shortest(&self.dens)) else {
+            return;
+        };
+        self.offer(grouped_pair(&n, &d));
+    }
+}
+
+/// Both sides grouped; a denominator with coordinates makes the printers
+/// write the numerator as one sum, so its terms are collected here.
+fn grouped_pair(n: &Poly, d: &Poly) -> (Poly, Poly) {
+    let inside = !d.is_constant();
+    (grouped(n, inside), grouped(d, true))
+}
+
+/// `p` with sums grouped where that is shorter: factored over ℚ, or (when
+/// `collect`) its terms collected by their monomial in moving atoms.
+fn grouped(p: &Poly, collect: bool) -> Poly {
+    let mut best = p.clone();
+    let mut cost = ops_of(p);
+    let mut consider = |q: Poly| {
+        let c = ops_of(&q);
+        if c < cost {
+            cost = c;
+            best = q;
+        }
+    };
+    if let Some(f) = factored(p) {
+        consider(f);
+    }
+    if collect {
+        if let Some(c) = collected(p) {
+            consider(c);
+        }
+    }
+    best
+}
+
+/// The operations of `p` printed as one sum (as a quotient's numerator or
+/// denominator is: not collected by the printer).
+fn ops_of(p: &Poly) -> usize {
+    count_ops(&print::sum_text(p, Style::Input))
+}
+
+/// `p` as a product of its irreducible factors over ℚ, each sum a
+/// [`Atom::Group`]; `None` when it has at most one factor that is a sum
+/// (to the first power) or is too large to factor.
+fn factored(p: &Poly) -> Option<Poly> {
+    if p.len() < 2 || p.len() > MAX_FACTORED_TERMS {
+        return None;
+    }
+    let f = crate::poly::factor::factor(p);
+    let sums: Vec<&(Poly, u32)> = f.factors.iter().filter(|(g, _)| g.len() > 1).collect();
+    if sums.is_empty() || (sums.len() == 1 && sums[0].1 == 1) {
+        return None;
+    }
+    let mut unit = f.unit.clone();
+    let mut mono: Vec<(Var, u32)> = Vec::new();
+    for (g, e) in &f.factors {
+        if g.len() == 1 {
+            let (m, c) = &g.terms()[0];
+            unit *= c.pow_u32(*e);
+            mono.extend(m.pairs().iter().map(|&(v, k)| (v, k * e)));
+            continue;
+        }
+        let (g, flipped) = positive_first(g);
+        if flipped && e % 2 == 1 {
+            unit = -unit;
+        }
+        mono.push((group(g), *e));
+    }
+    Some(Poly::monomial(Mono::from_pairs(mono), unit))
+}
+
+/// `p` with the terms that share a monomial in moving atoms collected:
+/// Σ key·(coefficient sum); `None` when no two terms share one.
+fn collected(p: &Poly) -> Option<Poly> {
+    let mut groups: Vec<(Mono, Vec<(Mono, Q)>)> = Vec::new();
+    for (m, c) in p.terms() {
+        let (key, rest): (Vec<(Var, u32)>, Vec<(Var, u32)>) =
+            m.pairs().iter().partition(|&&(v, _)| atom::is_moving(v));
+        let key = Mono::from_pairs(key);
+        let t = (Mono::from_pairs(rest), c.clone());
+        match groups.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, ts)) => ts.push(t),
+            None => groups.push((key, vec![t])),
+        }
+    }
+    if groups.iter().all(|(_, ts)| ts.len() < 2) {
+        return None;
+    }
+    let mut out: Vec<(Mono, Q)> = Vec::new();
+    for (key, ts) in groups {
+        // terms free of moving atoms are a sum already
+        if ts.len() < 2 || key.is_one() {
+            out.extend(ts.into_iter().map(|(m, c)| (m.mul(&key), c)));
+            continue;
+        }
+        let coef = Poly::from_terms(ts);
+        let (content, common, prim) = print::split_poly(&coef);
+        let mono = common.mul(&key).mul(&Mono::var(group(prim)));
+        out.push((mono, content));
+    }
+    Some(Poly::from_terms(out))
+}
+
+/// `p` or −p, whichever shows a positive first term; and whether it flipped.
+fn positive_first(p: &Poly) -> (Poly, bool) {
+    let neg = print::sorted_terms(p)
+        .first()
+        .is_some_and(|(_, c)| c.is_negative());
+    if neg {
+        (-p, true)
+    } else {
+        (p.clone(), false)
+    }
+}
+
+/// The display atom of a parenthesized sum.
+fn group(p: Poly) -> Var {
+    atom::intern(Atom::Group(Arc::new(p)))
+}
+
+/// Operations in a printed expression, as SymPy's `count_ops` counts them
+/// on the same text: each `+ - * / ^` once (a leading or unary minus is
+/// SymPy's NEG), each function application once.
+pub fn count_ops(text: &str) -> usize {
+    let b = text.as_bytes();
+    let mut n = 0;
+    let mut i = 0;
+    while i < b.len() {
+        let c = b[i];
+        if c.is_ascii_alphabetic() || c == b'_' {
+            let start = i;
+            while i < b.len() && (b[i].is_ascii_alphanumeric() || b[i] == b'_' || b[i] == b'\'') {
+                i += 1;
+            }
+            if i < b.len() && b[i] == b'(' && i > start {
+                n += 1;
+            }
+            continue;
+        }
+        if matches!(c, b'+' | b'-' | b'*' | b'/' | b'^') {
+            n += 1;
+        }
+        i += 1;
+    }
+    n
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::expr::{func, Expr};
+
+    fn shown(e: &Expr) -> String {
+        let (n, d) = display_parts(e.num(), e.den());
+        print::render_parts(&n, &d, Style::Unicode)
+    }
+
+    #[test]
+    fn counts_operations_like_sympy() {
+        assert_eq!(count_ops("x"), 0);
+        assert_eq!(count_ops("-x"), 1);
+        assert_eq!(count_ops("a - b*c"), 2);
+        assert_eq!(count_ops("sin(th)^2 + 1/2"), 4);
+        assert_eq!(count_ops("g*sin(2*th1 - 2*th2)/l1"), 6);
+        assert_eq!(count_ops("x1'' + th'"), 1);
+    }
+
+    #[test]
+    fn a_square_of_a_difference_is_factored() {
+        let (m, r, big_r) = (Expr::param("m"), Expr::param("r"), Expr::param("R"));
+        let th = Expr::coord("th", 0);
+        let e = Expr::rational(Q::new(3, 4).unwrap())
+            .mul(&m)
+            .mul(&big_r.sub(&r).powi(2).unwrap())
+            .mul(&th.dt().powi(2).unwrap());
+        assert_eq!(shown(&e), "3/4·m·(R − r)²·θ̇²");
+    }
+
+    #[test]
+    fn cancellation_modulo_the_ideal() {
+        // F·(1 − sin²θ)/cos θ is F·cos θ
+        let th = Expr::coord("th", 0);
+        let f = Expr::param("F");
+        let num = f.mul(&Expr::one().sub(&func::sin(&th).powi(2).unwrap()));
+        let e = num.div(&func::cos(&th)).unwrap();
+        assert_eq!(shown(&e), "F·cos(θ)");
+    }
+
+    #[test]
+    fn the_double_pendulum_denominator() {
+        let (a, b) = (Expr::coord("th1", 0), Expr::coord("th2", 0));
+        let (m1, m2) = (Expr::param("m1"), Expr::param("m2"));
+        let s = func::sin(&a.sub(&b));
+        let den = m1.add(&m2.mul(&s.powi(2).unwrap()));
+        let e = Expr::param("g").div(&den).unwrap();
+        let text = shown(&e);
+        assert!(
+            text == "g/(m₁ + m₂·sin²(θ₁ − θ₂))" || text == "2·g/(2·m₁ + m₂ − m₂·cos(2·θ₁ − 2·θ₂))",
+            "{text}"
+        );
+    }
+}
