@@ -204,7 +204,7 @@ fn bead_on_a_spinning_hoop_relative_equilibria() {
     let Stability::Undecided(why) = &zero.stability else {
         panic!("θ = 0 depends on the parameters: {:?}", zero.stability)
     };
-    assert!(why.contains("stable when −m·r·(r·W² − g) > 0"), "{why}");
+    assert!(why.contains("stable when m·r·(g − r·W²) > 0"), "{why}");
     assert_eq!(at(&s, &e, &["pi"]).stability, Stability::Unstable);
     for root in ["acos(g/(r*W^2))", "-acos(g/(r*W^2))"] {
         let x = at(&s, &e, &[root]);

@@ -47,6 +47,29 @@ fn is_simple_term(m: &Mono) -> bool {
     })
 }
 
+/// Whether `u` is a base angle that integer multiples and sums of come
+/// back to: one simple term m/q (`θ`, `θ/2`, `Ω·t`), so sin(k·u + …) is
+/// expanded onto u again. The compact forms write multiple angles only
+/// of such angles (their printed text must re-parse to the same value).
+pub(crate) fn is_multiple_angle_base(u: &Expr) -> bool {
+    if !u.is_poly() {
+        return false;
+    }
+    match u.num().terms() {
+        [(m, c)] => {
+            !m.0.is_empty()
+                && is_simple_term(m)
+                && m.0.iter().all(|&(v, _)| inverse_trig(v).is_none())
+                && c.numer() == BigInt::from(1)
+        }
+        _ => false,
+    }
+}
+
+/// The largest multiple and the most angles in one argument that
+/// [`sin_cos`] expands back exactly (the compact forms stay within them).
+pub(crate) const MULTIPLE_ANGLE_BOUNDS: (i64, usize) = (MAX_MULTIPLE, MAX_EXPANDED_TERMS);
+
 /// sin and cos of an inverse-trig atom, algebraically: (sin, cos) of
 /// atan x = (x, 1)/√(1 + x²), of asin x = (x, √(1 − x²)), of acos x =
 /// (√(1 − x²), x). None for any other atom (or a root that can't be taken).

@@ -359,6 +359,13 @@ pub(crate) fn sum_terms(p: &Poly) -> Vec<(Mono, Q)> {
     t
 }
 
+/// Whether the first term of `p` in display order is negative (the sign a
+/// factor gives up: k − 6·m rather than −k + 6·m, whatever the order the
+/// atoms were interned in).
+pub fn leads_negative(p: &Poly) -> bool {
+    sorted_terms(p).first().is_some_and(|(_, c)| c.is_negative())
+}
+
 /// Terms in display order.
 pub(crate) fn sorted_terms(p: &Poly) -> Vec<(Mono, Q)> {
     let mut t: Vec<(Mono, Q, String)> = p
@@ -595,6 +602,11 @@ thread_local! {
     /// cost exponentially in the nesting of arguments.
     static ATOM_TEXTS: std::cell::RefCell<rustc_hash::FxHashMap<(Var, AtomText), std::rc::Rc<str>>> =
         std::cell::RefCell::new(rustc_hash::FxHashMap::default());
+}
+
+/// The input-syntax text of atom `v` (printed once per thread).
+pub(crate) fn atom_input_text(v: Var) -> std::rc::Rc<str> {
+    atom_text(v, AtomText::Input)
 }
 
 /// The text of atom `v`, printed once per thread.

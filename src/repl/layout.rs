@@ -204,8 +204,7 @@ fn display_factors(p: &Poly) -> (crate::num::Q, Vec<(Poly, u32)>) {
     let mut unit = f.unit.clone();
     let mut out: Vec<(Poly, u32, String)> = Vec::with_capacity(f.factors.len());
     for (g, k) in &f.factors {
-        let text = print::render(&Expr::from_poly(g.clone()), Style::Unicode);
-        let g = if text.starts_with('−') {
+        let g = if print::leads_negative(g) {
             if k % 2 == 1 {
                 unit = -unit;
             }

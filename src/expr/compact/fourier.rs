@@ -32,7 +32,7 @@ pub(crate) fn angles(ps: &[&Poly]) -> Vec<(Var, Var, Expr)> {
             let (Atom::Sin(u), Some(cos)) = (atom::atom(sin), atom::cos_partner(sin)) else {
                 continue;
             };
-            seen.push((super::super::print::input(&u), sin, cos, u));
+            seen.push((super::super::print::atom_input_text(sin).to_string(), sin, cos, u));
         }
     }
     seen.sort_by(|a, b| a.0.cmp(&b.0));
@@ -167,6 +167,17 @@ pub(crate) fn to_display(series: &[(Vec<i32>, Poly, Poly)], angles: &[(Var, Var,
         }
     }
     out
+}
+
+/// Whether every frequency vector is one that sin/cos expand back onto
+/// the same angles (multiples and number of angles within
+/// [`MULTIPLE_ANGLE_BOUNDS`](super::super::func::MULTIPLE_ANGLE_BOUNDS)).
+pub(crate) fn within_bounds(series: &[(Vec<i32>, Poly, Poly)]) -> bool {
+    let (max_multiple, max_terms) = super::super::func::MULTIPLE_ANGLE_BOUNDS;
+    series.iter().all(|(k, _, _)| {
+        k.iter().all(|&x| (x as i64).abs() <= max_multiple)
+            && k.iter().filter(|&&x| x != 0).count() <= max_terms
+    })
 }
 
 /// cos(k·u) or sin(k·u) as one atom.

@@ -50,11 +50,18 @@ pub use crate::limits::{MAX_COMPACT_TERMS, MAX_FACTORED_TERMS};
 /// (see the module docs). The result may contain display atoms
 /// ([`Atom::Shown`], [`Atom::Group`]) and is only for the printers.
 pub fn display_parts(num: &Poly, den: &Poly) -> (Poly, Poly) {
+    if CANONICAL_ONLY.with(|c| c.get()) {
+        return (
+            print::fold_trig(num).unwrap_or_else(|| num.clone()),
+            print::fold_trig(den).unwrap_or_else(|| den.clone()),
+        );
+    }
     let folded = (
         print::fold_trig(num).unwrap_or_else(|| num.clone()),
         print::fold_trig(den).unwrap_or_else(|| den.clone()),
     );
-    if num.len() + den.len() > MAX_COMPACT_TERMS {
+    // a monomial over a monomial has no sum to rewrite
+    if num.len() + den.len() > MAX_COMPACT_TERMS || (num.len() < 2 && den.len() < 2) {
         return folded;
     }
     let mut search = Search::default();
@@ -69,6 +76,20 @@ pub fn display_parts(num: &Poly, den: &Poly) -> (Poly, Poly) {
         search.offer_cancelled(num, den);
     }
     search.best.map(|(_, n, d)| (n, d)).unwrap_or(folded)
+}
+
+thread_local! {
+    static CANONICAL_ONLY: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Runs `f` with the compact forms off: what it prints is the canonical
+/// (expanded) form, for the places that show it on purpose
+/// (det(K − λ·M) expanded, then factored).
+pub fn canonical_only<T>(f: impl FnOnce() -> T) -> T {
+    let before = CANONICAL_ONLY.with(|c| c.replace(true));
+    let out = f();
+    CANONICAL_ONLY.with(|c| c.set(before));
+    out
 }
 
 /// num/den in every representation to try: as they are, each reduction
@@ -87,8 +108,12 @@ fn representations(num: &Poly, den: &Poly, angles: &[(Var, Var, super::Expr)]) -
             fourier::cos_reduced(den, angles, mask),
         ));
     }
-    let f = |p: &Poly| fourier::to_display(&fourier::fourier(p, angles), angles);
-    out.push((f(num), f(den)));
+    if angles.iter().all(|(_, _, u)| super::func::is_multiple_angle_base(u)) {
+        let (sn, sd) = (fourier::fourier(num, angles), fourier::fourier(den, angles));
+        if fourier::within_bounds(&sn) && fourier::within_bounds(&sd) {
+            out.push((fourier::to_display(&sn, angles), fourier::to_display(&sd, angles)));
+        }
+    }
     out
 }
 
@@ -205,7 +230,7 @@ fn factored(p: &Poly) -> Option<Poly> {
             mono.extend(m.pairs().iter().map(|&(v, k)| (v, k * e)));
             continue;
         }
-        let (g, flipped) = positive_first(g);
+        let (g, flipped) = positive_first(g, *e % 2 == 0);
         if flipped && e % 2 == 1 {
             unit = -unit;
         }
@@ -246,12 +271,16 @@ fn collected(p: &Poly) -> Option<Poly> {
     Some(Poly::from_terms(out))
 }
 
-/// `p` or −p, whichever shows a positive first term; and whether it flipped.
-fn positive_first(p: &Poly) -> (Poly, bool) {
-    let neg = print::sorted_terms(p)
-        .first()
-        .is_some_and(|(_, c)| c.is_negative());
-    if neg {
+/// `p` or −p, whichever shows a positive first term; and whether it
+/// flipped. Under an even power the sign is free, and the printed text
+/// decides: (ẏ − r·θ̇)², not (−ẏ + r·θ̇)².
+fn positive_first(p: &Poly, even: bool) -> (Poly, bool) {
+    let negative = if even {
+        print::render_parts(p, &Poly::one(), Style::Input).starts_with('-')
+    } else {
+        print::leads_negative(p)
+    };
+    if negative {
         (-p, true)
     } else {
         (p.clone(), false)
