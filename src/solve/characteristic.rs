@@ -167,14 +167,14 @@ fn describe(cs: &[Expr], real: bool, set: &Values) -> Option<String> {
                 sign_of(&disc, set)
             };
             Some(match sign {
-                Some(Sign::Positive) => "an irreducible cubic factor with three real roots: no expression in real radicals (casus irreducibilis), no closed form".into(),
-                Some(Sign::Negative) => "an irreducible cubic factor with one real root and two complex ones: no closed form given".into(),
-                _ => "an irreducible cubic factor: no closed form given".into(),
+                Some(Sign::Positive) => "an irreducible cubic factor with three real roots, which have no expression in real radicals (casus irreducibilis)".into(),
+                Some(Sign::Negative) => "an irreducible cubic factor with one real root and two complex ones, not solved here".into(),
+                _ => "an irreducible cubic factor, not solved here".into(),
             })
         }
-        4 => Some("an irreducible quartic factor (not biquadratic): no closed form given".into()),
+        4 => Some("an irreducible quartic factor (not biquadratic), not solved here".into()),
         n => Some(format!(
-            "an irreducible factor of degree {n}: no closed form in radicals in general"
+            "an irreducible factor of degree {n}, not solved here"
         )),
     }
 }
