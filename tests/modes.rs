@@ -669,8 +669,10 @@ fn three_mass_chain_is_stable() {
 }
 
 /// Unequal masses and springs: det(K − λM) is a general cubic in λ whose
-/// roots have no closed form here; the library says so (no ω², undecided)
-/// and the command line falls back to the numeric eigen-solver with --set.
+/// roots have no closed form here (three real roots: casus irreducibilis);
+/// the library says so (no ω²) and the command line falls back to the
+/// numeric eigen-solver with --set. K is positive definite for positive
+/// springs (Sylvester's criterion), so the chain is stable all the same.
 /// With m = (1, 2, 3), k = (1, 2, 3, 4) the numeric ω² must agree with
 /// `generalized_symmetric` on the same M and K.
 #[test]
@@ -687,7 +689,14 @@ fn unequal_chain_has_no_closed_form() {
         ],
     );
     assert!(md.omega_squared.is_empty() && md.modes.is_empty());
-    assert!(matches!(md.stability, Stability::Undecided(_)));
+    assert!(
+        md.no_closed_form
+            .as_deref()
+            .is_some_and(|w| w.contains("casus irreducibilis")),
+        "{:?}",
+        md.no_closed_form
+    );
+    assert_eq!(md.stability, Stability::Stable);
     let q0 = [Expr::one(), Expr::zero(), Expr::zero()];
     let v0 = vec![Expr::zero(); 3];
     assert!(free_response(&md, &q0, &v0).is_err());
@@ -1607,4 +1616,152 @@ fn a_free_response_never_prints_a_double_minus() {
             );
         }
     }
+}
+
+// ------------------------------------------------------------------ SymPy fixtures
+
+/// `tests/fixtures/modes.json`, written by `tests/fixtures/gen_modes.py`
+/// (SymPy derives M, C and K from its own Lagrangian, det(K + s·C + s²·M)
+/// or det(K − λ·M), factors it over ℚ and solves each factor).
+fn modes_fixtures() -> Vec<Value> {
+    let path = format!("{}/tests/fixtures/modes.json", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(path).expect("modes.json exists");
+    let v: Value = serde_json::from_str(&text).expect("modes.json is JSON");
+    v["cases"].as_array().expect("cases").clone()
+}
+
+/// The four-mass chain, the quadrupole (a Laplace potential, a cubic without
+/// its λ² term), the Penning trap (magnetron, cyclotron and axial
+/// frequencies), a particle on an anisotropic spring in a rotating frame
+/// and a spinning top: every ω² exactly SymPy's, as a multiset, and the
+/// characteristic polynomial SymPy's at a sample λ.
+#[test]
+fn exact_frequencies_agree_with_sympy() {
+    let cases = modes_fixtures();
+    assert!(cases.len() >= 5);
+    for case in &cases {
+        let name = case["name"].as_str().expect("name");
+        let s = parse(case["scene"].as_str().expect("scene"));
+        let md = linearize(&s);
+        assert_eq!(
+            md.gyroscopic,
+            case["gyroscopic"].as_bool().expect("gyroscopic"),
+            "{name}"
+        );
+        let want: Vec<Expr> = case["omega_squared"]
+            .as_array()
+            .expect("ω²")
+            .iter()
+            .map(|w| ex(&s, w.as_str().expect("a string")))
+            .collect();
+        let got: Vec<String> = md.omega_squared.iter().map(|e| e.to_string()).collect();
+        assert_eq!(md.omega_squared.len(), want.len(), "{name}: {got:?}");
+        let mut left: Vec<&Expr> = md.omega_squared.iter().collect();
+        for w in &want {
+            let i = left
+                .iter()
+                .position(|g| g.equals(w))
+                .unwrap_or_else(|| panic!("{name}: SymPy's ω² = {w} is not among {got:?}"));
+            left.remove(i);
+        }
+        // the characteristic polynomial at λ = 7/3
+        let p = case["characteristic"].as_str().expect("characteristic");
+        let sympy = ex(&s, &p.replace("lambda", "(7/3)"));
+        let lv = qdot::expr::atom::unknown("lambda");
+        let ours = md.characteristic.subs(lv, &ex(&s, "7/3")).expect("at 7/3");
+        assert!(ours.equals(&sympy), "{name}: {ours} vs {sympy}");
+    }
+}
+
+/// With every parameter given, the verdict is never "undecided" (nothing
+/// has a zero frequency here): the four scenes of the fixtures, the unequal
+/// chain (no closed form), the double pendulum and the cart with a
+/// pendulum, at several values; and the gyroscopic verdicts are the
+/// textbook ones.
+#[test]
+fn stability_under_set_is_decided() {
+    let mut scenes: Vec<(String, Scene)> = modes_fixtures()
+        .iter()
+        .map(|c| {
+            let name = c["name"].as_str().expect("name").to_string();
+            (name, parse(c["scene"].as_str().expect("scene")))
+        })
+        .collect();
+    for (name, src) in [
+        ("chain_unequal", CHAIN_UNEQUAL),
+        ("double_pendulum", DOUBLE_PENDULUM),
+        ("cart_pendulum", CART_PENDULUM),
+        ("chain3", CHAIN),
+    ] {
+        scenes.push((name.to_string(), parse(src)));
+    }
+    let values = [0.5, 1.0, 2.0, 3.0, 7.0];
+    for (name, s) in &scenes {
+        for (i, &base) in values.iter().enumerate() {
+            let mut v = Values::default();
+            for (j, p) in s.parameters.iter().enumerate() {
+                v.insert(p.name.to_string(), values[(i + j) % values.len()] * base);
+            }
+            let md = linearize_at(s, None, &v);
+            assert!(
+                !matches!(md.stability, Stability::Undecided(_)),
+                "{name} at {v:?}: {:?}",
+                md.stability
+            );
+        }
+    }
+    let verdict = |name: &str, pairs: &[(&str, f64)]| {
+        let (_, s) = scenes.iter().find(|(n, _)| n == name).expect("scene");
+        linearize_at(s, None, &set(pairs)).stability
+    };
+    // the top: stable when C²Ω² > 4·(A + m·l²)·m·g·l = 8 here
+    let top = [("A", 1.0), ("C", 1.0), ("m", 1.0), ("g", 1.0), ("l", 1.0)];
+    let with = |w: f64| [top.as_slice(), &[("Omega", w)]].concat();
+    assert_eq!(verdict("spinning_top", &with(3.0)), Stability::Stable);
+    assert_eq!(verdict("spinning_top", &with(2.0)), Stability::Unstable);
+    // the shaft: stable below the first critical speed, unstable between
+    // the two, stable again above the second (K negative definite there)
+    let shaft = |w: f64| [("m", 1.0), ("k1", 1.0), ("k2", 4.0), ("Omega", w)];
+    assert_eq!(verdict("rotating_shaft", &shaft(0.5)), Stability::Stable);
+    assert_eq!(verdict("rotating_shaft", &shaft(1.5)), Stability::Unstable);
+    assert_eq!(verdict("rotating_shaft", &shaft(3.0)), Stability::Stable);
+    // Penning: stable when e·B² > 2·m·V0/d²
+    let penning = |b: f64| [("m", 1.0), ("e", 1.0), ("V0", 1.0), ("d", 1.0), ("B", b)];
+    assert_eq!(verdict("penning", &penning(3.0)), Stability::Stable);
+    assert_eq!(verdict("penning", &penning(1.0)), Stability::Unstable);
+}
+
+/// Without values, a gyroscopic system's verdict is the condition, reduced:
+/// the roots' existence (a real square root) and their sign are one
+/// condition, and positive factors are left out.
+#[test]
+fn gyroscopic_stability_conditions() {
+    let cases = modes_fixtures();
+    let case = |n: &str| {
+        let c = cases.iter().find(|c| c["name"] == n).expect("case");
+        parse(c["scene"].as_str().expect("scene"))
+    };
+    for (name, want) in [
+        ("penning", "stable when B²·d²·e − 2·m·V₀ > 0"),
+        (
+            "spinning_top",
+            "stable when C²·Ω² − 4·g·l³·m² − 4·A·g·l·m > 0",
+        ),
+    ] {
+        match linearize(&case(name)).stability {
+            Stability::Undecided(why) => assert!(why.starts_with(want), "{name}: {why}"),
+            other => panic!("{name}: {other:?}"),
+        }
+    }
+    assert!(linearize(&case("penning")).modes.is_empty());
+    // a gyroscopic system's free response is refused, with a reason
+    let s = case("spinning_top");
+    let md = linearize(&s);
+    let err = free_response(
+        &md,
+        &[Expr::one(), Expr::zero()],
+        &[Expr::zero(), Expr::zero()],
+    )
+    .expect_err("refused");
+    assert!(err.message.contains("gyroscopic"), "{}", err.message);
 }

@@ -105,7 +105,11 @@ fn standard_form_text(q: &str, sf: &StandardForm) -> String {
 
 /// det(K − λ·M) = 0, factored, constant factors left out.
 fn characteristic_text(md: &Modes) -> String {
-    let mut out = String::from("\nCharacteristic equation  det(K − λ·M) = 0,  λ = ω²\n");
+    let mut out = String::from(if md.gyroscopic {
+        "\nCharacteristic equation  det(K + s·C + s²·M) = 0,  s = i·ω,  λ = ω² = −s²\n"
+    } else {
+        "\nCharacteristic equation  det(K − λ·M) = 0,  λ = ω²\n"
+    });
     let lv = crate::expr::atom::unknown(osc::LAMBDA);
     // the equation is "= 0": constant factors are left out
     let shown: Vec<&Expr> = md.factors.iter().filter(|f| f.depends_on(lv)).collect();
@@ -132,7 +136,19 @@ fn characteristic_text(md: &Modes) -> String {
 fn frequencies_text(md: &Modes, set: &Values) -> String {
     let mut out = String::new();
     if md.omega_squared.is_empty() {
-        out.push_str("  (no closed form for its roots)\n");
+        let why = md.no_closed_form.as_deref().unwrap_or("no closed form");
+        out.push_str(&format!("  (no closed form for its roots: {why})\n"));
+    } else if md.gyroscopic {
+        out.push_str(
+            "\nNatural frequencies  (gyroscopic: the modes are complex, their coordinates move out of phase; not given)\n",
+        );
+        for (i, w2) in md.omega_squared.iter().enumerate() {
+            out.push_str(&format!(
+                "  ω{}² = {}\n",
+                print::subscript(&(i + 1).to_string()),
+                expanded(w2)
+            ));
+        }
     } else {
         out.push_str(
             "\nNatural frequencies and modes  (distribution coefficients μ_j = x_j/x_1)\n",
@@ -149,6 +165,13 @@ fn frequencies_text(md: &Modes, set: &Values) -> String {
     }
     if let Some(g) = osc::numeric_modes(md, set) {
         let v: Vec<String> = g.values.iter().map(|x| minus(format!("{x:.10}"))).collect();
+        if md.gyroscopic {
+            out.push_str(&format!(
+                "  numeric ω² (eigenvalues s = ±i·ω of the first-order system): {}\n",
+                v.join(", ")
+            ));
+            return out;
+        }
         out.push_str(&format!("  numeric ω² (eigen-solver): {}\n", v.join(", ")));
         out.push_str("  mass-normalized modes (numeric, vᵀ·M·v = 1):\n");
         for v in &g.vectors {
@@ -161,7 +184,10 @@ fn frequencies_text(md: &Modes, set: &Values) -> String {
 
 /// q(t) = Σ Cᵢ·uᵢ·cos(ωᵢ·t + φᵢ), when every frequency is in closed form.
 fn general_solution_text(md: &Modes, names: &[String]) -> String {
-    if md.omega_squared.is_empty() || md.omega_squared.len() != md.coordinates.len() {
+    if md.gyroscopic
+        || md.omega_squared.is_empty()
+        || md.omega_squared.len() != md.coordinates.len()
+    {
         return String::new();
     }
     let mut out = String::from("\nGeneral solution (undamped)  q(t) = Σ Cᵢ·uᵢ·cos(ωᵢ·t + φᵢ)\n");
@@ -196,7 +222,7 @@ fn stability_text(md: &Modes) -> String {
         out.push_str(&format!(" ({why})"));
     }
     out.push('\n');
-    if md.coordinates.len() > 1 && is_damped(md) {
+    if md.coordinates.len() > 1 && is_damped(md) && !md.gyroscopic {
         out.push_str("  (the modes are those of the undamped system)\n");
     }
     out

@@ -2,9 +2,11 @@
 //! accelerations; of any shape, for `solve` blocks) equilibria and small oscillations.
 
 pub mod certify;
+mod characteristic;
 pub mod constrained;
 pub mod eigen;
 pub mod equilibrium;
+mod linear_stability;
 pub mod numeric;
 pub mod oscillations;
 pub mod system;

@@ -9,18 +9,19 @@
 //!                           f(t) = −R(q0, 0, 0, t)
 //! ```
 //!
-//! f must have no constant part (q0 must be an equilibrium). Then
-//! det(K − λ·M) = 0 with λ = ω² is solved exactly: by degree (linear,
-//! quadratic with radicals) and, for higher degrees, by scaling λ = x·s with
-//! s = −c_{n−1}/c_n to a polynomial with rational coefficients whose rational
-//! roots (rational root theorem) split it down to a quadratic. The modes are
-//! the null vectors of K − λᵢ·M normalized to the first coordinate (the
-//! seed's distribution coefficients), computed exactly.
+//! f must have no constant part (q0 must be an equilibrium). Then the
+//! characteristic polynomial (`characteristic.rs`: det(K − λ·M), λ = ω²,
+//! or with gyroscopic terms — C skew — det(K + s·C + s²·M) at s² = −λ) is
+//! factored over ℚ and its roots are solved exactly where they have a closed
+//! form. The modes of a system without gyroscopic terms are the null vectors
+//! of K − λᵢ·M normalized to the first coordinate (the seed's distribution
+//! coefficients), computed exactly; a gyroscopic system's modes are complex
+//! (its coordinates move out of phase, a circle for the Penning trap's
+//! magnetron and cyclotron motions), and only its frequencies are given.
+//! Stability is decided in `linear_stability.rs`.
 
-use super::equilibrium::quadratic;
 /// The verdict on the linearized system (the same as for equilibria).
 pub use super::equilibrium::Stability;
-use crate::algebra::linear::det;
 use crate::algebra::sign::{sign_exact, sign_of, Sign, Values};
 use crate::diag::Diagnostic;
 use crate::expr::atom::{self, Atom};
@@ -61,6 +62,12 @@ pub struct Modes {
     pub modes: Vec<Vec<Expr>>,
     /// Stable (all ω² > 0), unstable (some ω² < 0), or undecided.
     pub stability: Stability,
+    /// C is skew and not zero (a spinning rotor, a rotating frame, a
+    /// magnetic field): `characteristic` is det(K + s·C + s²·M) at s² = −λ,
+    /// and `modes` is empty (the modes are complex).
+    pub gyroscopic: bool,
+    /// Why `omega_squared` is empty, when it is.
+    pub no_closed_form: Option<String>,
     /// With constraints: the coordinates they make dependent, with their
     /// values at the equilibrium (`coordinates` are the independent ones).
     pub dependent: Vec<(String, Expr)>,
@@ -98,34 +105,6 @@ fn math(m: crate::expr::MathError) -> Diagnostic {
 /// Linearize about `at` (default q = 0) and find the modes.
 pub fn modes(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Modes, Diagnostic> {
     crate::algebra::assume::assuming(&scene.assumptions, || modes_assumed(scene, at, set))
-}
-
-/// Stable when every ω² > 0, unstable when one is < 0, else undecided
-/// with the reason.
-fn stability_of_roots(roots: &[Expr], set: &Values) -> Stability {
-    if roots.is_empty() {
-        Stability::Undecided("no closed form for the frequencies; see the numeric values".into())
-    } else {
-        let signs: Vec<Option<Sign>> = roots.iter().map(|r| sign_of(r, set)).collect();
-        if signs.iter().all(|s| *s == Some(Sign::Positive)) {
-            Stability::Stable
-        } else if signs.contains(&Some(Sign::Negative)) {
-            Stability::Unstable
-        } else if signs.contains(&Some(Sign::Zero)) {
-            Stability::Undecided("a zero frequency: higher-order terms decide".into())
-        } else {
-            let undecided: Vec<String> = roots
-                .iter()
-                .zip(&signs)
-                .filter(|(_, s)| s.is_none())
-                .map(|(r, _)| format!("{} > 0", crate::expr::print::expanded(r)))
-                .collect();
-            Stability::Undecided(format!(
-                "stable when {}; give values with --set",
-                undecided.join(" and ")
-            ))
-        }
-    }
 }
 
 /// [`modes`] with the scene's assumptions in force.
@@ -220,23 +199,18 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
         (names, q0, m, c, k, f)
     };
     let n = names.len();
-    let lambda = Expr::var(atom::unknown(LAMBDA));
-    let a: Vec<Vec<Expr>> = (0..n)
-        .map(|i| {
-            (0..n)
-                .map(|j| stiffness[i][j].sub(&lambda.mul(&mass[i][j])))
-                .collect()
-        })
-        .collect();
-    let characteristic = det(a).ok_or_else(|| Diagnostic::global("det(K − λ·M) failed"))?;
     let lv = atom::unknown(LAMBDA);
-    let (mut roots, factors) = lambda_roots(&characteristic, lv)
-        .or_else(|| lambda_roots_factored(&characteristic, lv))
-        .unwrap_or_default();
+    let gyro = gyroscopic_part(&damping);
+    let characteristic = super::characteristic::polynomial(&stiffness, &mass, gyro.as_deref(), lv)
+        .ok_or_else(|| Diagnostic::global("the characteristic polynomial failed"))?;
+    let symmetric = (0..n).all(|i| (0..n).all(|j| stiffness[i][j].equals(&stiffness[j][i])));
+    let real = gyro.is_none() && symmetric;
+    let found = super::characteristic::roots(&characteristic, lv, real, set);
+    let (mut roots, factors) = (found.roots, found.factors);
     sort_ascending(&mut roots, set);
     let mut modes: Vec<Vec<Expr>> = Vec::with_capacity(roots.len());
     let mut i = 0;
-    while i < roots.len() {
+    while gyro.is_none() && i < roots.len() {
         // equal roots share one null space: take its basis
         let same = roots[i..]
             .iter()
@@ -251,7 +225,13 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
         modes.extend(basis.into_iter().take(same));
         i += same;
     }
-    let stability = stability_of_roots(&roots, set);
+    let system = super::linear_stability::Linearized {
+        mass: &mass,
+        damping: &damping,
+        stiffness: &stiffness,
+        gyroscopic: gyro.is_some(),
+    };
+    let stability = super::linear_stability::stability(&system, &characteristic, lv, set);
     Ok(Modes {
         coordinates: names,
         at: q0,
@@ -264,8 +244,27 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
         omega_squared: roots,
         modes,
         stability,
+        gyroscopic: gyro.is_some(),
+        no_closed_form: found.why,
         dependent,
     })
+}
+
+/// C when it is skew and not zero (purely gyroscopic velocity terms);
+/// `None` when C is zero or has a symmetric (damping) part.
+#[allow(clippy::needless_range_loop)] // matrix indices read best as indices
+fn gyroscopic_part(c: &[Vec<Expr>]) -> Option<Vec<Vec<Expr>>> {
+    let n = c.len();
+    let mut any = false;
+    for i in 0..n {
+        for j in 0..n {
+            if !c[i][j].add(&c[j][i]).is_zero() {
+                return None;
+            }
+            any |= !c[i][j].is_zero();
+        }
+    }
+    any.then(|| c.to_vec())
 }
 
 /// Split e into (terms free of t, terms with t) over its denominator.
@@ -285,233 +284,6 @@ fn split_time(e: &Expr, t: Var) -> (Expr, Expr) {
         Expr::from_parts(fixed, den.clone()).unwrap_or_else(|_| Expr::zero()),
         Expr::from_parts(moving, den).unwrap_or_else(|_| Expr::zero()),
     )
-}
-
-/// The roots λ of a polynomial in `lv` and its factors over the rationals.
-fn lambda_roots(p: &Expr, lv: Var) -> Option<(Vec<Expr>, Vec<Expr>)> {
-    let den = Expr::from_poly(p.den().clone());
-    let cs: Vec<Expr> = p
-        .num()
-        .coeffs_in(lv)
-        .into_iter()
-        .map(|c| {
-            Expr::from_poly(c)
-                .div(&den)
-                .unwrap_or_else(|_| Expr::zero())
-        })
-        .collect();
-    let lam = Expr::var(lv);
-    let mut roots = Vec::new();
-    let mut factors = Vec::new();
-    let mut rest = cs;
-    // take out λ = 0 roots
-    while rest.len() > 1 && rest[0].is_zero() {
-        roots.push(Expr::zero());
-        factors.push(lam.clone());
-        rest.remove(0);
-    }
-    // rational roots of the scaled polynomial (degree ≥ 3)
-    if rest.len() > 3 {
-        let n = rest.len() - 1;
-        let s = rest[n - 1].neg().div(&rest[n]).ok()?;
-        if s.is_zero() {
-            return None;
-        }
-        // p(x·s)/(c_n·s^n): rational coefficients?
-        let mut xs: Vec<Q> = Vec::with_capacity(n + 1);
-        for (i, c) in rest.iter().enumerate() {
-            let v = c
-                .mul(&s.powi(i as i64 - n as i64).ok()?)
-                .div(&rest[n])
-                .ok()?;
-            xs.push(v.as_rational()?);
-        }
-        for x in rational_roots(&xs) {
-            // divide by (x·s − λ) in λ: synthetic division of rest by λ − r
-            let r = s.scale(&x);
-            rest = deflate(&rest, &r)?;
-            roots.push(r.clone());
-            factors.push(linear_factor(&lam, &r));
-            if rest.len() <= 3 {
-                break;
-            }
-        }
-        if rest.len() > 3 {
-            return None;
-        }
-    }
-    let mut quad = quadratic(&rest)?;
-    if rest.len() == 3 && quad.len() == 1 {
-        // a double root: two modes share the frequency
-        quad.push(quad[0].clone());
-    }
-    let irrational = quad.len() == 2
-        && quad[0]
-            .0
-            .vars()
-            .iter()
-            .any(|&v| matches!(atom::atom(v), Atom::Root(_) | Atom::SqrtOf(_)));
-    if irrational {
-        // keep the quadratic factor whole (factored over the rationals)
-        let lead = rest[2].clone();
-        let monic = rest[0]
-            .div(&lead)
-            .ok()?
-            .add(&rest[1].div(&lead).ok()?.mul(&lam))
-            .add(&lam.mul(&lam));
-        factors.push(clear(&monic));
-    } else {
-        for (r, _) in &quad {
-            factors.push(linear_factor(&lam, r));
-        }
-    }
-    roots.extend(quad.into_iter().map(|(r, _)| r));
-    with_content(p, &mut factors);
-    Some((roots, factors))
-}
-
-/// The constant content in front of the factors: det = content · Π factors.
-fn with_content(p: &Expr, factors: &mut Vec<Expr>) {
-    let mut prod = Expr::one();
-    for f in factors.iter() {
-        prod = prod.mul(f);
-    }
-    if let Ok(content) = p.div(&prod) {
-        if !content.is_one() {
-            factors.insert(0, content);
-        }
-    }
-}
-
-/// The roots λ and factors of a polynomial in `lv` from its full
-/// factorization over ℚ: every irreducible factor of degree ≤ 2 in λ is
-/// solved exactly (a quadratic one kept whole for display); `None` when a
-/// factor has degree 3 or more. The path for what [`lambda_roots`] can't
-/// scale: a cubic without a λ² term (V = k/2·(2z² − x² − y²), every
-/// potential satisfying Laplace's equation), quadratic factors irreducible
-/// over ℚ (a chain of four equal masses).
-fn lambda_roots_factored(p: &Expr, lv: Var) -> Option<(Vec<Expr>, Vec<Expr>)> {
-    let lam = Expr::var(lv);
-    let mut roots = Vec::new();
-    let mut factors = Vec::new();
-    for (f, mult) in crate::poly::factor::factor(p.num()).factors {
-        let cs: Vec<Expr> = f.coeffs_in(lv).into_iter().map(Expr::from_poly).collect();
-        match cs.len() {
-            0 | 1 => continue, // free of λ: part of the content
-            2 | 3 => {}
-            _ => return None,
-        }
-        let quad = quadratic(&cs)?;
-        if quad.len() + 1 != cs.len() {
-            return None; // an irreducible quadratic has two distinct roots
-        }
-        for _ in 0..mult {
-            roots.extend(quad.iter().map(|(r, _)| r.clone()));
-            if cs.len() == 2 {
-                factors.push(linear_factor(&lam, &quad[0].0));
-            } else {
-                let monic = cs[0]
-                    .div(&cs[2])
-                    .ok()?
-                    .add(&cs[1].div(&cs[2]).ok()?.mul(&lam))
-                    .add(&lam.mul(&lam));
-                factors.push(clear(&monic));
-            }
-        }
-    }
-    if roots.is_empty() {
-        return None;
-    }
-    with_content(p, &mut factors);
-    Some((roots, factors))
-}
-
-/// (b·λ − a) for a root a/b, with the sign making the λ term negative when
-/// the root is a ratio (k − m·λ), as the seed writes (24.2).
-fn linear_factor(lam: &Expr, r: &Expr) -> Expr {
-    // a/b with integer coefficients: k/(6·m) → (k, 6·m)
-    let l = r
-        .num()
-        .terms()
-        .iter()
-        .chain(r.den().terms())
-        .fold(num_bigint::BigInt::from(1), |l, (_, c)| {
-            num_integer::Integer::lcm(&l, &c.denom())
-        });
-    let lq = Q::from_bigint(l);
-    let a = Expr::from_poly(r.num().clone()).scale(&lq);
-    let b = Expr::from_poly(r.den().clone()).scale(&lq);
-    a.sub(&b.mul(lam))
-}
-
-/// A polynomial in λ with its denominators cleared (a monic quadratic
-/// times the lcm of its coefficients' denominators).
-fn clear(e: &Expr) -> Expr {
-    Expr::from_poly(e.num().clone())
-}
-
-/// Divide Σ cs[i]·λ^i by (λ − r) (r a root): the quotient's coefficients.
-fn deflate(cs: &[Expr], r: &Expr) -> Option<Vec<Expr>> {
-    let n = cs.len() - 1;
-    let mut out = vec![Expr::zero(); n];
-    let mut carry = Expr::zero();
-    for i in (0..=n).rev() {
-        let v = cs[i].add(&carry.mul(r));
-        if i == 0 {
-            if !v.is_zero() {
-                return None; // not a root
-            }
-        } else {
-            out[i - 1] = v.clone();
-            carry = v;
-        }
-    }
-    Some(out)
-}
-
-/// Rational roots of Σ xs[i]·x^i (rational root theorem), with small
-/// numerators and denominators; multiplicities not repeated.
-fn rational_roots(xs: &[Q]) -> Vec<Q> {
-    use num_traits::ToPrimitive;
-    // integer coefficients
-    let mut l = num_bigint::BigInt::from(1);
-    for x in xs {
-        let d = x.denom();
-        l = num_integer::Integer::lcm(&l, &d);
-    }
-    let ints: Vec<i64> = xs
-        .iter()
-        .filter_map(|x| (x * &Q::from_bigint(l.clone())).numer().to_i64())
-        .collect();
-    if ints.len() != xs.len() || ints[0] == 0 {
-        return Vec::new();
-    }
-    let divisors = |n: i64| -> Vec<i64> {
-        let n = n.unsigned_abs().min(1_000_000) as i64;
-        (1..=n).filter(|d| n % d == 0).take(64).collect()
-    };
-    let lead = ints[ints.len() - 1];
-    let mut out = Vec::new();
-    for p in divisors(ints[0]) {
-        for qd in divisors(lead) {
-            for sign in [1, -1] {
-                let Some(cand) = Q::new(sign * p, qd) else {
-                    continue;
-                };
-                if out.contains(&cand) {
-                    continue;
-                }
-                let mut v = Q::zero();
-                for c in xs.iter().rev() {
-                    v = &(&v * &cand) + c;
-                }
-                if v.is_zero() {
-                    out.push(cand);
-                }
-            }
-        }
-    }
-    out
 }
 
 /// Sort ω² ascending where differences have a decided sign.
@@ -620,6 +392,12 @@ pub fn standard_form(md: &Modes, set: &Values) -> Option<StandardForm> {
 /// coordinate, exactly.
 pub fn free_response(md: &Modes, q0: &[Expr], v0: &[Expr]) -> Result<Vec<Expr>, Diagnostic> {
     let n = md.coordinates.len();
+    if md.gyroscopic {
+        return Err(Diagnostic::global(
+            "the free response of a gyroscopic system needs its complex modes, which qdot does not give",
+        )
+        .with_hint("`qdot simulate` integrates the motion"));
+    }
     if md.omega_squared.len() != n {
         return Err(Diagnostic::global(
             "the free response needs every frequency in closed form",
@@ -740,9 +518,27 @@ pub fn load_per_mass(md: &Modes) -> Option<Expr> {
 
 /// The generalized symmetric eigenproblem K·v = ω²·M·v, numerically at
 /// the parameter values `set` (none when a value is missing).
+///
+/// A gyroscopic system's ω² = −s² come from the eigenvalues s of its
+/// first-order system (each pair ±s once), when they are all real, with
+/// no vectors (its modes are complex).
 pub fn numeric_modes(md: &Modes, set: &Values) -> Option<crate::solve::eigen::GeneralizedEigen> {
     if set.is_empty() {
         return None;
+    }
+    if md.gyroscopic {
+        let s = super::linear_stability::eigenvalues(&md.mass, &md.damping, &md.stiffness, set)?;
+        let lambda: Vec<_> = s.iter().map(|z| -(z * z)).collect();
+        let scale = lambda.iter().fold(0.0f64, |a, z| a.max(z.norm()));
+        if lambda.iter().any(|z| z.im.abs() > 1e-9 * scale) {
+            return None;
+        }
+        let mut re: Vec<f64> = lambda.iter().map(|z| z.re).collect();
+        re.sort_by(f64::total_cmp);
+        return Some(crate::solve::eigen::GeneralizedEigen {
+            values: re.into_iter().step_by(2).collect(),
+            vectors: Vec::new(),
+        });
     }
     let at = |a: &Atom| match a {
         Atom::Param(n) => set.get(&**n).copied(),

@@ -1,0 +1,285 @@
+//! Stability of the linearized system M·q̈ + C·q̇ + K·q = 0 about an
+//! equilibrium (M positive definite), decided exactly where it can be and
+//! numerically whenever every entry has a value.
+//!
+//! In this order:
+//! 1. K's definiteness by Sylvester's criterion (its leading minors, one
+//!    source of truth with the equilibria: [`super::equilibrium::minor_signs`]).
+//!    K positive definite is stable, also with gyroscopic terms (Kelvin–Tait)
+//!    or damping; an odd number of negative directions is unstable whatever
+//!    the velocity terms (Kelvin–Tait–Chetaev), and without velocity terms
+//!    any negative direction is.
+//! 2. The roots λ = ω² of the characteristic polynomial, from its factors
+//!    over ℚ: stable when every root is real and positive. A linear factor
+//!    gives λ > 0; a quadratic a·λ² + b·λ + c, whose roots are real for
+//!    symmetric K and M, gives c/a > 0 and −b/a > 0; for a gyroscopic system
+//!    (C skew) its roots are real, positive and distinct exactly when
+//!    c/a > 0 and −b/a > 2·√(c/a), one condition that holds the roots'
+//!    existence (real) and their sign together, so a root that is real only
+//!    where it would be negative makes the system unstable, not "stable
+//!    when …". A condition the parameters do not decide is printed, its
+//!    positive factors left out.
+//! 3. With every parameter given (`--set`), the eigenvalues s of the
+//!    first-order system [[0, I], [−M⁻¹K, −M⁻¹C]]: one with Re s > 0 is
+//!    unstable, all on the left or on the imaginary axis is stable.
+//!
+//! Only a zero frequency (higher-order terms decide) and a repeated
+//! frequency of a gyroscopic system exactly at the boundary stay undecided.
+
+use super::equilibrium::{jacobi, minor_signs, Stability};
+use crate::algebra::sign::{sign_exact, sign_of, Sign, Values};
+use crate::expr::atom::Atom;
+use crate::expr::{func, Expr};
+use crate::num::Q;
+use crate::poly::{Poly, Var};
+use nalgebra::DMatrix;
+
+/// The linearized system whose stability is decided.
+pub(super) struct Linearized<'a> {
+    pub(super) mass: &'a [Vec<Expr>],
+    pub(super) damping: &'a [Vec<Expr>],
+    pub(super) stiffness: &'a [Vec<Expr>],
+    /// C is skew (and not zero): the characteristic polynomial is that of
+    /// det(K + s·C + s²·M).
+    pub(super) gyroscopic: bool,
+}
+
+/// The verdict: K's minors, then the characteristic polynomial `p` in `lv`,
+/// then the numeric eigenvalues at `set`.
+pub(super) fn stability(sys: &Linearized, p: &Expr, lv: Var, set: &Values) -> Stability {
+    let moving = sys.damping.iter().flatten().any(|e| !e.is_zero());
+    if let Ok(signs) = minor_signs(sys.stiffness, set) {
+        let v = jacobi(&signs, moving);
+        if !matches!(v, Stability::Undecided(_)) {
+            return v;
+        }
+    }
+    let exact = from_factors(p, lv, sys.gyroscopic, set);
+    if !matches!(exact, Stability::Undecided(_)) {
+        return exact;
+    }
+    numeric(sys, set).unwrap_or(exact)
+}
+
+/// The conditions on the factors of `p` over ℚ.
+fn from_factors(p: &Expr, lv: Var, gyroscopic: bool, set: &Values) -> Stability {
+    let mut conditions: Vec<String> = Vec::new();
+    let mut undecided: Option<String> = None;
+    for (f, mult) in crate::poly::factor::factor(p.num()).factors {
+        let cs: Vec<Expr> = f.coeffs_in(lv).into_iter().map(Expr::from_poly).collect();
+        let verdict = match cs.len() {
+            0 | 1 => continue,
+            2 => linear(&cs, set),
+            3 => quadratic(&cs, gyroscopic, set),
+            _ => {
+                undecided.get_or_insert_with(|| {
+                    "no closed form for the frequencies; give values with --set".into()
+                });
+                continue;
+            }
+        };
+        match verdict {
+            Verdict::Fails => return Stability::Unstable,
+            Verdict::Zero(why) => {
+                undecided.get_or_insert(why);
+            }
+            Verdict::Holds if gyroscopic && mult > 1 => {
+                undecided.get_or_insert_with(|| {
+                    "a repeated frequency of a gyroscopic system: the linearization may grow (give values with --set)".into()
+                });
+            }
+            Verdict::Holds => {}
+            Verdict::When(c) => conditions.extend(c),
+        }
+    }
+    if let Some(why) = undecided {
+        return Stability::Undecided(why);
+    }
+    if conditions.is_empty() {
+        return Stability::Stable;
+    }
+    conditions.dedup();
+    Stability::Undecided(format!(
+        "stable when {}; give values with --set",
+        conditions.join(" and ")
+    ))
+}
+
+/// What one factor says.
+enum Verdict {
+    Holds,
+    Fails,
+    /// A zero (or double gyroscopic) root: the linearization does not decide.
+    Zero(String),
+    /// Holds under these conditions (each "… > 0").
+    When(Vec<String>),
+}
+
+/// c₀ + c₁·λ: λ = −c₀/c₁ > 0.
+fn linear(cs: &[Expr], set: &Values) -> Verdict {
+    let Ok(r) = cs[0].neg().div(&cs[1]) else {
+        return Verdict::Zero("the characteristic polynomial could not be evaluated".into());
+    };
+    positive(&r, set, "a zero frequency: higher-order terms decide")
+}
+
+/// c + b·λ + a·λ²: c/a > 0 and −b/a > 0 (real roots), or for a gyroscopic
+/// system −b/a − 2·√(c/a) > 0 (real, positive and distinct roots).
+fn quadratic(cs: &[Expr], gyroscopic: bool, set: &Values) -> Verdict {
+    let (c, b, a) = (&cs[0], &cs[1], &cs[2]);
+    let (Ok(product), Ok(sum)) = (c.div(a), b.neg().div(a)) else {
+        return Verdict::Zero("the characteristic polynomial could not be evaluated".into());
+    };
+    let zero = "a zero frequency: higher-order terms decide";
+    let first = positive(&product, set, zero);
+    let second = if !gyroscopic {
+        positive(&sum, set, zero)
+    } else {
+        match (&first, root_of(&product, set)) {
+            (Verdict::Fails | Verdict::Zero(_), _) => return first,
+            (_, Some(r)) => positive(
+                &sum.sub(&r.scale(&Q::from_i64(2))),
+                set,
+                "a double frequency at the boundary of gyroscopic stability: the linearization does not decide",
+            ),
+            (_, None) => Verdict::When(vec![format!(
+                "{} > 2·√({})",
+                crate::expr::print::expanded(&sum),
+                crate::expr::print::expanded(&product)
+            )]),
+        }
+    };
+    match (first, second) {
+        (Verdict::Fails, _) | (_, Verdict::Fails) => Verdict::Fails,
+        (Verdict::Zero(w), _) | (_, Verdict::Zero(w)) => Verdict::Zero(w),
+        (Verdict::Holds, v) | (v, Verdict::Holds) => v,
+        (Verdict::When(mut x), Verdict::When(y)) => {
+            x.extend(y);
+            Verdict::When(x)
+        }
+    }
+}
+
+/// √x exactly: P/D when x = P²/D² with P/D of known sign, else √x.
+fn root_of(x: &Expr, set: &Values) -> Option<Expr> {
+    if sign_of(x, set) == Some(Sign::Negative) {
+        return None;
+    }
+    if let (Some(p), Some(d)) = (x.num().exact_sqrt(), x.den().exact_sqrt()) {
+        let r = Expr::from_parts(p, d).ok()?;
+        return match sign_of(&r, set)? {
+            Sign::Negative => Some(r.neg()),
+            _ => Some(r),
+        };
+    }
+    func::sqrt(x).ok()
+}
+
+/// x > 0 decided, failed, zero (`zero` says why) or a condition.
+fn positive(x: &Expr, set: &Values, zero: &str) -> Verdict {
+    match sign_of(x, set) {
+        Some(Sign::Positive) => Verdict::Holds,
+        Some(Sign::Negative) => Verdict::Fails,
+        Some(Sign::Zero) => Verdict::Zero(zero.into()),
+        None => Verdict::When(vec![format!("{} > 0", condition(x))]),
+    }
+}
+
+/// "x > 0" with x's factors of known sign taken out (a positive
+/// denominator, a positive parameter): the factor that decides.
+fn condition(x: &Expr) -> String {
+    let mut kept = Poly::one();
+    let mut flip = false;
+    let mut parts: Vec<Poly> = Vec::new();
+    let f = crate::poly::factor::factor(x.num());
+    if f.unit.is_negative() {
+        flip = !flip;
+    }
+    for (g, mult) in f.factors {
+        match sign_exact(&Expr::from_poly(g.clone())) {
+            Some(Sign::Positive) => continue,
+            Some(Sign::Negative) if mult % 2 == 0 => continue,
+            Some(Sign::Negative) => {
+                flip = !flip;
+                continue;
+            }
+            _ => {}
+        }
+        for _ in 0..mult {
+            parts.push(g.clone());
+        }
+    }
+    match sign_exact(&Expr::from_poly(x.den().clone())) {
+        Some(Sign::Positive) => {}
+        Some(Sign::Negative) => flip = !flip,
+        _ => return crate::expr::print::expanded(x),
+    }
+    for g in parts {
+        kept = &kept * &g;
+    }
+    let e = Expr::from_poly(kept);
+    crate::expr::print::expanded(&if flip { e.neg() } else { e })
+}
+
+/// The verdict from the eigenvalues of the first-order system at `set`,
+/// when every entry of M, C and K has a value there.
+fn numeric(sys: &Linearized, set: &Values) -> Option<Stability> {
+    let s = eigenvalues(sys.mass, sys.damping, sys.stiffness, set)?;
+    let scale = s.iter().fold(0.0f64, |a, z| a.max(z.norm()));
+    let tol = 1e-9 * scale.max(f64::MIN_POSITIVE);
+    if s.iter().any(|z| z.re > tol) {
+        return Some(Stability::Unstable);
+    }
+    if scale == 0.0 || s.iter().any(|z| z.norm() <= tol) {
+        return Some(Stability::Undecided(
+            "a zero frequency: higher-order terms decide".into(),
+        ));
+    }
+    Some(Stability::Stable)
+}
+
+/// The eigenvalues s of [[0, I], [−M⁻¹K, −M⁻¹C]] at `set` (q = u·e^{s·t}).
+pub(super) fn eigenvalues(
+    m: &[Vec<Expr>],
+    c: &[Vec<Expr>],
+    k: &[Vec<Expr>],
+    set: &Values,
+) -> Option<Vec<nalgebra::Complex<f64>>> {
+    if set.is_empty() {
+        return None;
+    }
+    let n = m.len();
+    let at = |a: &Atom| match a {
+        Atom::Param(name) => set.get(&**name).copied(),
+        _ => None,
+    };
+    let num = |x: &[Vec<Expr>]| -> Option<DMatrix<f64>> {
+        let mut out = DMatrix::zeros(n, n);
+        for i in 0..n {
+            for j in 0..n {
+                let v = x[i][j].eval_f64(&at)?;
+                if !v.is_finite() {
+                    return None;
+                }
+                out[(i, j)] = v;
+            }
+        }
+        Some(out)
+    };
+    let (m, c, k) = (num(m)?, num(c)?, num(k)?);
+    let lu = m.lu();
+    let mk = lu.solve(&k)?;
+    let mc = lu.solve(&c)?;
+    let mut a = DMatrix::zeros(2 * n, 2 * n);
+    for i in 0..n {
+        a[(i, n + i)] = 1.0;
+        for j in 0..n {
+            a[(n + i, j)] = -mk[(i, j)];
+            a[(n + i, n + j)] = -mc[(i, j)];
+        }
+    }
+    if a.iter().any(|v| !v.is_finite()) {
+        return None;
+    }
+    Some(a.complex_eigenvalues().iter().copied().collect())
+}
