@@ -1190,7 +1190,7 @@ fn exact_agrees_with_the_numeric_eigen_solver() {
 
 // ------------------------------------------------------------------ JSON contract
 
-const KEYS: [&str; 16] = [
+const KEYS: [&str; 18] = [
     "coordinates",
     "at",
     "mass_matrix",
@@ -1199,8 +1199,10 @@ const KEYS: [&str; 16] = [
     "forcing",
     "characteristic_polynomial",
     "characteristic_factors",
+    "gyroscopic",
     "omega_squared",
     "modes",
+    "no_closed_form",
     "stability",
     "standard_form",
     "numeric_omega_squared",

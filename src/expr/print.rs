@@ -507,7 +507,7 @@ fn fraction(num: &Poly, den: &Poly, st: Style) -> String {
 /// denominator's monomial and sum), the signs as a lecturer sets them: the
 /// denominator's sum with more positive terms than negative ones (its first
 /// displayed term positive on a tie), and no minus outside a numerator sum
-/// that has a negative term to take it (−(a − b) is b − a).
+/// that has a negative term to take it (−(a + b − c) is c − a − b).
 pub(crate) fn fraction_parts(num: &Poly, den: &Poly) -> (bool, Q, Mono, Poly, Mono, Poly) {
     let (cn, mn, mut pn) = split_poly(num);
     let (mut cd, md, mut pd) = split_poly(den);
@@ -518,7 +518,7 @@ pub(crate) fn fraction_parts(num: &Poly, den: &Poly) -> (bool, Q, Mono, Poly, Mo
     }
     let c = cn.checked_div(&cd).unwrap_or_else(Q::one);
     let mut neg = c.is_negative();
-    if neg && negatives(&pn) > 0 && 2 * negatives(&pn) >= pn.len() {
+    if neg && negatives(&pn) > 0 {
         pn = -&pn;
         neg = false;
     }

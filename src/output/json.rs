@@ -261,12 +261,16 @@ pub fn modes_json(
     );
     m.insert(
         "characteristic_polynomial".into(),
-        json!(as_input(&md.characteristic)),
+        // expanded: the factored form is `characteristic_factors`
+        json!(crate::expr::compact::canonical_only(|| as_input(
+            &md.characteristic
+        ))),
     );
     m.insert(
         "characteristic_factors".into(),
         json!(md.factors.iter().map(as_input).collect::<Vec<_>>()),
     );
+    m.insert("gyroscopic".into(), json!(md.gyroscopic));
     m.insert(
         "omega_squared".into(),
         json!(md.omega_squared.iter().map(as_input).collect::<Vec<_>>()),
@@ -279,6 +283,7 @@ pub fn modes_json(
             .map(|v| v.iter().map(as_input).collect::<Vec<_>>())
             .collect::<Vec<_>>()),
     );
+    m.insert("no_closed_form".into(), json!(md.no_closed_form));
     m.insert("stability".into(), json!(md.stability.word()));
     let standard = crate::solve::oscillations::standard_form(md, set);
     let sf = standard.as_ref().map(|sf| {

@@ -494,9 +494,15 @@ impl Writer {
             })
             .collect();
         self.line("The characteristic equation:");
-        let mut chain = vec![self.one("\\det(K - \\omega^{2} M)".into())];
+        let det = if md.gyroscopic {
+            "\\det(K + s C + s^{2} M),\\ s = i\\omega"
+        } else {
+            "\\det(K - \\omega^{2} M)"
+        };
+        let mut chain = vec![self.one(det.into())];
         if let Some(c) = subst(&md.characteristic) {
-            chain.push(self.terms(&c));
+            // expanded here, factored next
+            chain.push(crate::expr::compact::canonical_only(|| self.terms(&c)));
         }
         if md.factors.len() > 1 {
             let sign = if negative { "-" } else { "" };
@@ -505,7 +511,25 @@ impl Writer {
         chain.push(self.one("0".into()));
         self.align(true, &[chain]);
         if md.omega_squared.is_empty() {
-            self.line("It has no closed-form roots.");
+            let why = md.no_closed_form.as_deref().unwrap_or("no closed form");
+            self.line(&format!("It has no closed-form roots ({why})."));
+            return;
+        }
+        if md.modes.is_empty() {
+            // gyroscopic: the modes are complex, the frequencies alone
+            self.line("The natural frequencies (the modes of a gyroscopic system are complex):");
+            let rows: Vec<Vec<Vec<(bool, String)>>> = md
+                .omega_squared
+                .iter()
+                .enumerate()
+                .map(|(i, w)| {
+                    vec![
+                        self.one(format!("\\omega_{{{}}}^{{2}}", i + 1)),
+                        self.one(latex_expanded(w, &self.names)),
+                    ]
+                })
+                .collect();
+            self.align(false, &rows);
             return;
         }
         self.line("The natural frequencies and the modes (normalized to the first coordinate):");
