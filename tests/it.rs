@@ -4,6 +4,7 @@
 //! suite is a directory of its own.
 
 mod common;
+mod compact;
 mod stress_common;
 
 mod assumptions;

@@ -176,7 +176,9 @@ proptest! {
         let Some(e) = within_limits(s.expr(&src)) else { return Ok(()) };
         let printed = e.to_string();
         let again = s.expr(&printed).unwrap_or_else(|d| panic!("{printed}: {d}"));
-        prop_assert_eq!(&again, &e, "printed as {}", printed);
+        // the same value, decided exactly; the canonical form itself when
+        // the compact form cancelled nothing modulo sin² + cos² = 1
+        prop_assert!(again.equals(&e), "printed as {}", printed);
     }
 
     #[test]
