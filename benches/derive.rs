@@ -14,6 +14,10 @@
 //! * `frames/heavy_top`: the heavy top end to end (target: under 1 ms);
 //!   `frames/chain3d/<n>`: the equations of n rods in space, beside SymPy's
 //!   LagrangesMethod (`scripts/anchor_frames.py`).
+//! * `compact/<scene>`: printing every acceleration of a panel scene in its
+//!   compact form (the search of `qdot::expr::compact`; target: the double
+//!   pendulum under 10 ms) — beside SymPy's `simplify` on the same
+//!   expressions (`scripts/compact_panel.py time`).
 
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
@@ -152,5 +156,29 @@ fn frames(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, seeds, equilibria, modes, npendulum, frames);
+fn compact(c: &mut Criterion) {
+    let mut g = c.benchmark_group("compact");
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+    for path in [
+        "tests/data/compact/double_pendulum.qd",
+        "tests/data/compact/triple_pendulum.qd",
+        "tests/data/compact/cart_double_pendulum.qd",
+        "examples/heavy_top.qd",
+    ] {
+        let src = std::fs::read_to_string(format!("{root}/{path}")).expect("scene exists");
+        let s = Scene::parse(&src).expect("parses");
+        let acc = s.lagrange().expect("derives").accelerations().expect("solves");
+        let name = path.rsplit('/').next().unwrap_or(path).trim_end_matches(".qd");
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                for e in acc.values() {
+                    black_box(e.to_input());
+                }
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, seeds, equilibria, modes, npendulum, frames, compact);
 criterion_main!(benches);

@@ -4,6 +4,7 @@ simplify, counted with SymPy's count_ops.
 
     python3 scripts/compact_panel.py sympy QDOT_BINARY   # writes tests/fixtures/compact_panel.json
     python3 scripts/compact_panel.py table QDOT_BINARY   # the table of the note, from the fixture
+    python3 scripts/compact_panel.py time                # SymPy's simplify timed on the bench's scenes
 
 `sympy` runs qdot (the binary given: the one *before* compact forms was
 used for the committed fixture) on every panel scene, and SymPy's
@@ -135,5 +136,22 @@ def cmd_table(qdot):
     print(f"| **total** | {tot[0]} | {tot[1]} | {tot[2]:.1f} | {tot[3]} | {tot[4]:.3f} |")
 
 
+def cmd_time():
+    """SymPy's simplify on the fixture's inputs of the scenes that
+    benches/derive.rs `compact/*` prints, timed here (the anchor)."""
+    rows = json.load(open(FIXTURE))["rows"]
+    for name in ["double_pendulum", "triple_pendulum", "cart_double_pendulum", "heavy_top"]:
+        total = 0.0
+        for r in rows:
+            if r["scene"].endswith(f"/{name}.qd"):
+                t0 = time.perf_counter()
+                sp.simplify(to_sympy(r["input"]))
+                total += time.perf_counter() - t0
+        print(f"compact/{name}: SymPy simplify {total:.3f} s")
+
+
 if __name__ == "__main__":
-    {"sympy": cmd_sympy, "table": cmd_table}[sys.argv[1]](sys.argv[2])
+    if sys.argv[1] == "time":
+        cmd_time()
+    else:
+        {"sympy": cmd_sympy, "table": cmd_table}[sys.argv[1]](sys.argv[2])

@@ -399,11 +399,6 @@ fn q_str(q: &Q, _st: Style) -> String {
     q.to_string()
 }
 
-/// A polynomial as one sum, its content and common power product pulled
-/// out but its terms not collected (as a quotient's sides print).
-pub(crate) fn sum_text(p: &Poly, st: Style) -> String {
-    fraction(p, &Poly::one(), st)
-}
 
 /// num/den, with contents pulled out: `g·R·(G·R − P·r)/(G·R² + J₂·g + P·r²)`.
 fn fraction(num: &Poly, den: &Poly, st: Style) -> String {

@@ -36,6 +36,7 @@
 //! at most [`MAX_FACTORED_TERMS`] terms; beyond, the canonical form is
 //! printed with its addition theorems folded, as before.
 
+mod cost;
 pub(crate) mod fourier;
 
 use super::atom::{self, Atom};
@@ -75,7 +76,17 @@ pub fn display_parts(num: &Poly, den: &Poly) -> (Poly, Poly) {
     } else if !num.is_constant() && !den.is_constant() {
         search.offer_cancelled(num, den);
     }
-    search.best.map(|(_, n, d)| (n, d)).unwrap_or(folded)
+    // factored last, the winner only: factoring is the search's dearest step
+    let (n, d) = search.best.map(|(_, n, d)| (n, d)).unwrap_or(folded);
+    (factored_if_shorter(&n), factored_if_shorter(&d))
+}
+
+/// `p` factored over ℚ when that is shorter.
+fn factored_if_shorter(p: &Poly) -> Poly {
+    match factored(p) {
+        Some(f) if ops_of(&f) < ops_of(p) => f,
+        _ => p.clone(),
+    }
 }
 
 thread_local! {
@@ -128,7 +139,7 @@ struct Search {
 
 impl Search {
     fn offer(&mut self, (n, d): (Poly, Poly)) {
-        let cost = count_ops(&print::render_parts(&n, &d, Style::Input));
+        let cost = cost::quotient(&n, &d);
         if self.best.as_ref().is_none_or(|(c, _, _)| cost < *c) {
             self.best = Some((cost, n, d));
         }
@@ -173,40 +184,26 @@ impl Search {
     }
 }
 
-/// Both sides grouped; a denominator with coordinates makes the printers
-/// write the numerator as one sum, so its terms are collected here.
+/// Both sides with their terms collected (the printers collect a
+/// polynomial's terms themselves, but not a quotient's sides; collecting
+/// here makes the cost of both alike).
 fn grouped_pair(n: &Poly, d: &Poly) -> (Poly, Poly) {
-    let inside = !d.is_constant();
-    (grouped(n, inside), grouped(d, true))
+    (grouped(n, true), grouped(d, true))
 }
 
-/// `p` with sums grouped where that is shorter: factored over ℚ, or (when
-/// `collect`) its terms collected by their monomial in moving atoms.
+/// `p` with its terms collected by their monomial in moving atoms (when
+/// `collect` and that is shorter); factoring comes after the search.
 fn grouped(p: &Poly, collect: bool) -> Poly {
-    let mut best = p.clone();
-    let mut cost = ops_of(p);
-    let mut consider = |q: Poly| {
-        let c = ops_of(&q);
-        if c < cost {
-            cost = c;
-            best = q;
-        }
-    };
-    if let Some(f) = factored(p) {
-        consider(f);
+    match collected(p).filter(|_| collect) {
+        Some(c) if ops_of(&c) < ops_of(p) => c,
+        _ => p.clone(),
     }
-    if collect {
-        if let Some(c) = collected(p) {
-            consider(c);
-        }
-    }
-    best
 }
 
 /// The operations of `p` printed as one sum (as a quotient's numerator or
 /// denominator is: not collected by the printer).
 fn ops_of(p: &Poly) -> usize {
-    count_ops(&print::sum_text(p, Style::Input))
+    cost::factored_sum(p)
 }
 
 /// `p` as a product of its irreducible factors over ℚ, each sum a
@@ -230,7 +227,7 @@ fn factored(p: &Poly) -> Option<Poly> {
             mono.extend(m.pairs().iter().map(|&(v, k)| (v, k * e)));
             continue;
         }
-        let (g, flipped) = positive_first(g, *e % 2 == 0);
+        let (g, flipped) = positive_first(g);
         if flipped && e % 2 == 1 {
             unit = -unit;
         }
@@ -271,16 +268,19 @@ fn collected(p: &Poly) -> Option<Poly> {
     Some(Poly::from_terms(out))
 }
 
-/// `p` or −p, whichever shows a positive first term; and whether it
-/// flipped. Under an even power the sign is free, and the printed text
-/// decides: (ẏ − r·θ̇)², not (−ẏ + r·θ̇)².
-fn positive_first(p: &Poly, even: bool) -> (Poly, bool) {
-    let negative = if even {
-        print::render_parts(p, &Poly::one(), Style::Input).starts_with('-')
+/// `p` or −p, whichever prints without a leading minus, else whichever
+/// shows a positive first term in display order (which the names decide,
+/// not the order atoms were interned in); and whether it flipped:
+/// (R − r)², (ẏ − r·θ̇)².
+fn positive_first(p: &Poly) -> (Poly, bool) {
+    let minus = |q: &Poly| print::render_parts(q, &Poly::one(), Style::Input).starts_with('-');
+    let (here, there) = (minus(p), minus(&-p));
+    let flip = if here != there {
+        here
     } else {
         print::leads_negative(p)
     };
-    if negative {
+    if flip {
         (-p, true)
     } else {
         (p.clone(), false)
