@@ -27,7 +27,7 @@ struct Cli {
     max_terms: usize,
 }
 
-#[derive(Clone, Copy, ValueEnum)]
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum Fmt {
     Text,
     Json,
@@ -108,6 +108,14 @@ enum Command {
         /// Parameter values for numeric frequencies and sign decisions
         #[arg(long)]
         set: Option<String>,
+        /// With --format latex: a whole `article` document that compiles
+        /// with pdflatex (without it, a fragment to \input)
+        #[arg(long)]
+        standalone: bool,
+        /// The title of the --standalone document (default: the file's
+        /// base name)
+        #[arg(long, requires = "standalone")]
+        title: Option<String>,
     },
     /// LaTeX for lecture notes: the equations and the solution (amsmath).
     Latex {
@@ -121,6 +129,10 @@ enum Command {
         /// it, a fragment to \input)
         #[arg(long)]
         standalone: bool,
+        /// The title of the --standalone document (default: the file's
+        /// base name)
+        #[arg(long)]
+        title: Option<String>,
         /// Parameter values, for scenes whose equilibria need them: m=1,g=9.81
         #[arg(long)]
         set: Option<String>,
@@ -271,11 +283,12 @@ fn main() -> ExitCode {
             file,
             steps,
             standalone,
+            title,
             set,
         } => {
             opts.steps = *steps;
             opts.standalone = *standalone;
-            opts.title = file.clone();
+            opts.title = title.clone().unwrap_or_else(|| base_name(file));
             (output::Command::Latex, file, Fmt::Latex, set.as_deref())
         }
         Command::Modes {
@@ -284,9 +297,17 @@ fn main() -> ExitCode {
             at,
             init,
             set,
+            standalone,
+            title,
         } => {
             opts.at = at.clone();
             opts.init = init.clone();
+            if *standalone && *format != Fmt::Latex {
+                eprintln!("error: --standalone makes a LaTeX document\n  = hint: add --format latex");
+                std::process::exit(2);
+            }
+            opts.standalone = *standalone;
+            opts.title = title.clone().unwrap_or_else(|| base_name(file));
             (output::Command::Modes, file, *format, set.as_deref())
         }
     };
@@ -422,4 +443,14 @@ fn simulate(
         run::status_word(&r.solution.status),
     );
     ExitCode::from(3)
+}
+
+/// A file's name without its folders and extension: the default title of
+/// a standalone LaTeX document (`examples/seed_24_2.qd` → `seed_24_2`).
+fn base_name(file: &str) -> String {
+    std::path::Path::new(file)
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or(file)
+        .to_string()
 }

@@ -607,3 +607,21 @@ fn denominators_are_parenthesized_once() {
     assert_eq!(s.expr("a/(2*c + d)").unwrap().to_string(), "a/(2*c + d)");
     assert_eq!(s.expr("a/(c + d)").unwrap().to_string(), "a/(c + d)");
 }
+
+/// A parameter named like one of `modes`' matrices (M, C, K) is a warning
+/// at its declaration; other commands do not mind.
+#[test]
+fn modes_warns_of_a_parameter_named_like_its_matrices() {
+    let src = "coordinates x\nparameters M, K\nkinetic E = 1/2*M*x'^2\npotential V = 1/2*K*x^2\n";
+    let (code, out, err) = run_on(src, "modes", &[]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("ω₁² = K/M"), "{out}");
+    assert!(
+        err.contains("warning: the parameter `M` has the name of the mass matrix M of `modes`' output"),
+        "{err}"
+    );
+    assert!(err.contains("scene.qd:2:12"), "{err}");
+    assert!(err.contains("the parameter `K` has the name of the stiffness matrix K"), "{err}");
+    let (_, _, err) = run_on(src, "solve", &[]);
+    assert!(!err.contains("warning"), "{err}");
+}

@@ -630,3 +630,30 @@ fn expand_does_not_depend_on_the_order_names_were_first_seen() {
         );
     }
 }
+
+/// `:latex` typesets the last result: an expression, or the last command
+/// that printed one (`:modes`, `:solve`, …) with its options.
+#[test]
+fn latex_of_the_last_result_is_the_last_command_or_expression() {
+    let mut s = Session::new();
+    for line in [
+        "coordinates x1, x2",
+        "parameters m, k",
+        "kinetic E = 1/2*m*(x1'^2 + x2'^2)",
+        "potential V = 1/2*k*(x1^2 + (x2 - x1)^2 + x2^2)",
+    ] {
+        ok(&mut s, line);
+    }
+    let modes = s.execute(":modes");
+    assert!(!modes.failed, "{}", modes.err);
+    let tex = ok(&mut s, ":latex");
+    assert!(tex.contains("The characteristic equation:"), "{tex}");
+    assert!(tex.contains(r"\omega_{2}^{2} &= \frac{3 k}{m}"), "{tex}");
+    ok(&mut s, ":solve");
+    let tex = ok(&mut s, ":latex");
+    assert!(tex.contains(r"\ddot{x}_{1}"), "{tex}");
+    assert!(!tex.contains("characteristic"), "{tex}");
+    // an expression after the command is the last result again
+    ok(&mut s, "k*m");
+    assert_eq!(ok(&mut s, ":latex"), "k m\n");
+}

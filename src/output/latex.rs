@@ -540,7 +540,11 @@ impl Writer {
                 self.one(format!("\\omega_{{{k}}}^{{2}}")),
                 self.one(latex_expanded(w, &self.names)),
             ]);
-            let v: Vec<String> = mode.iter().map(|x| self.tex(x)).collect();
+            // display-style fractions: a mode's ratios are read, not skimmed
+            let v: Vec<String> = mode
+                .iter()
+                .map(|x| self.tex(x).replace("\\frac{", "\\dfrac{"))
+                .collect();
             rows.push(vec![
                 self.one(format!("v_{{{k}}}")),
                 self.one(format!(

@@ -251,7 +251,14 @@ fn run_scene(
             match fmt {
                 Format::Text => modes_text(&md, set, free.as_deref()),
                 Format::Json => json_string(modes_json(&md, set, free.as_deref()))?,
-                Format::Latex => latex::write(scene, |w| w.modes(&md)),
+                Format::Latex => {
+                    let body = latex::write(scene, |w| w.modes(&md));
+                    if opts.standalone {
+                        latex::standalone(&opts.title, &body)
+                    } else {
+                        body
+                    }
+                }
             }
         }
         Command::Equilibrium => {
@@ -276,7 +283,39 @@ fn run_scene(
             }
         }
     };
-    Ok((out, scene.warnings.clone()))
+    let mut warnings = scene.warnings.clone();
+    if cmd == Command::Modes {
+        warnings.extend(matrix_name_clashes(scene));
+    }
+    Ok((out, warnings))
+}
+
+/// The names `modes` gives its own matrices: a parameter with one of them
+/// would read as the matrix in M·q̈ + C·q̇ + K·q = f(t).
+const MODES_MATRIX_NAMES: [(&str, &str); 3] = [("M", "mass"), ("C", "damping"), ("K", "stiffness")];
+
+/// A warning for each parameter named like one of `modes`' matrices.
+fn matrix_name_clashes(scene: &Scene) -> Vec<Diagnostic> {
+    scene
+        .parameters
+        .iter()
+        .filter_map(|p| {
+            let (_, what) = MODES_MATRIX_NAMES.iter().find(|(n, _)| *n == p.name)?;
+            Some(
+                Diagnostic::warning(
+                    p.span,
+                    format!(
+                        "the parameter `{}` has the name of the {what} matrix {} of `modes`' output",
+                        p.name, p.name
+                    ),
+                )
+                .with_hint(format!(
+                    "the output writes M·q̈ + C·q̇ + K·q = f(t); a name like {}0 tells them apart",
+                    p.name
+                )),
+            )
+        })
+        .collect()
 }
 
 /// `qdot solve`: the accelerations (and multipliers, and the constraints'

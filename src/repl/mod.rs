@@ -93,6 +93,10 @@ pub struct Session {
     statements: Vec<Statement>,
     scene: Scene,
     last: Option<Value>,
+    /// The last command that printed a result (`:solve`, `:modes`, …) with
+    /// its arguments, when it came after the last expression: what `:latex`
+    /// typesets.
+    last_command: Option<(Command, String)>,
     undo: Vec<Snapshot>,
     /// How results are printed (`:format`).
     pub format: Format,
@@ -137,7 +141,7 @@ pub const COMMANDS: &[(&str, &str, &str)] = &[
     (
         ":latex",
         "[steps]",
-        "LaTeX of the last result, or of the whole derivation",
+        "LaTeX of the last result (an expression, or the last :solve, :modes, :equilibrium, …), or of the whole derivation",
     ),
     (
         ":show",
@@ -181,6 +185,7 @@ impl Session {
             statements: Vec::new(),
             scene: Scene::default(),
             last: None,
+            last_command: None,
             undo: Vec::new(),
             format: Format::Text,
             max_terms: crate::limits::DEFAULT_MAX_TERMS,
@@ -397,6 +402,7 @@ impl Session {
         let err: String = warnings.iter().map(|w| w.render(INPUT, entry)).collect();
         self.push_undo();
         self.last = Some(value);
+        self.last_command = None;
         Response {
             out,
             err,
@@ -545,13 +551,13 @@ impl Session {
                 ..Response::default()
             },
             "help" | "h" | "?" => Response::out(help_text()),
-            "equations" | "eq" | "derive" => self.run(Command::Derive, args),
-            "solve" => self.run(Command::Solve, args),
-            "forces" => self.run(Command::Forces, args),
-            "hamilton" => self.run(Command::Hamilton, args),
-            "integrals" => self.run(Command::Integrals, args),
-            "equilibrium" => self.run(Command::Equilibrium, args),
-            "modes" => self.run(Command::Modes, args),
+            "equations" | "eq" | "derive" => self.run_result(Command::Derive, args),
+            "solve" => self.run_result(Command::Solve, args),
+            "forces" => self.run_result(Command::Forces, args),
+            "hamilton" => self.run_result(Command::Hamilton, args),
+            "integrals" => self.run_result(Command::Integrals, args),
+            "equilibrium" => self.run_result(Command::Equilibrium, args),
+            "modes" => self.run_result(Command::Modes, args),
             "latex" => self.latex(args),
             "show" => self.show(args),
             "scene" => Response::out(self.scene_text()),
@@ -578,6 +584,7 @@ impl Session {
                             self.scene = scene;
                             self.statements = s.statements;
                             self.last = s.last;
+                            self.last_command = None;
                             Response::out("(undone)")
                         }
                         Err(d) => Response::error(d.render("scene", &src)),
@@ -590,6 +597,7 @@ impl Session {
                 self.statements.clear();
                 self.scene = Scene::default();
                 self.last = None;
+                self.last_command = None;
                 Response::out("(an empty scene; :undo brings the old one back)")
             }
             "format" => match args {
@@ -622,6 +630,15 @@ impl Session {
         Response::out(format!("(results as {})", format_name(f)))
     }
 
+    /// [`Session::run`], remembered as the last result when it succeeds.
+    fn run_result(&mut self, cmd: Command, args: &str) -> Response {
+        let r = self.run(cmd, args);
+        if r.err.is_empty() || !r.out.is_empty() {
+            self.last_command = Some((cmd, args.to_string()));
+        }
+        r
+    }
+
     fn run(&self, cmd: Command, args: &str) -> Response {
         let mut opts = CommandOptions::default();
         if let Err(e) = parse_options(args, cmd, &mut opts) {
@@ -642,6 +659,9 @@ impl Session {
     }
 
     fn latex(&self, args: &str) -> Response {
+        if let ("" | "last", Some((cmd, opts))) = (args, &self.last_command) {
+            return self.latex_of_command(*cmd, opts);
+        }
         match (args, &self.last) {
             ("" | "last", Some(v)) => {
                 let names = self.names_tex();
@@ -672,6 +692,19 @@ impl Session {
             (other, _) => Response::error(format!(
                 "error: `:latex {other}`: expected nothing, `steps` or `last`\n  = hint: :latex prints the last result (or the equations when there is none); :latex steps the whole derivation\n"
             )),
+        }
+    }
+
+    /// The LaTeX of a command's result, with the options it was run with.
+    fn latex_of_command(&self, cmd: Command, args: &str) -> Response {
+        let mut opts = CommandOptions::default();
+        if let Err(e) = parse_options(args, cmd, &mut opts) {
+            return Response::error(e);
+        }
+        let (src, _) = join(&self.statements);
+        match output::run_with(cmd, &src, Format::Latex, &opts) {
+            Ok((out, _)) => Response::out(out),
+            Err(d) => Response::error(d.render("scene", &src)),
         }
     }
 
