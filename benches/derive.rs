@@ -167,8 +167,16 @@ fn compact(c: &mut Criterion) {
     ] {
         let src = std::fs::read_to_string(format!("{root}/{path}")).expect("scene exists");
         let s = Scene::parse(&src).expect("parses");
-        let acc = s.lagrange().expect("derives").accelerations().expect("solves");
-        let name = path.rsplit('/').next().unwrap_or(path).trim_end_matches(".qd");
+        let acc = s
+            .lagrange()
+            .expect("derives")
+            .accelerations()
+            .expect("solves");
+        let name = path
+            .rsplit('/')
+            .next()
+            .unwrap_or(path)
+            .trim_end_matches(".qd");
         g.bench_function(name, |b| {
             b.iter(|| {
                 for e in acc.values() {

@@ -303,7 +303,9 @@ fn main() -> ExitCode {
             opts.at = at.clone();
             opts.init = init.clone();
             if *standalone && *format != Fmt::Latex {
-                eprintln!("error: --standalone makes a LaTeX document\n  = hint: add --format latex");
+                eprintln!(
+                    "error: --standalone makes a LaTeX document\n  = hint: add --format latex"
+                );
                 std::process::exit(2);
             }
             opts.standalone = *standalone;

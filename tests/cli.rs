@@ -617,11 +617,16 @@ fn modes_warns_of_a_parameter_named_like_its_matrices() {
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("ω₁² = K/M"), "{out}");
     assert!(
-        err.contains("warning: the parameter `M` has the name of the mass matrix M of `modes`' output"),
+        err.contains(
+            "warning: the parameter `M` has the name of the mass matrix M of `modes`' output"
+        ),
         "{err}"
     );
     assert!(err.contains("scene.qd:2:12"), "{err}");
-    assert!(err.contains("the parameter `K` has the name of the stiffness matrix K"), "{err}");
+    assert!(
+        err.contains("the parameter `K` has the name of the stiffness matrix K"),
+        "{err}"
+    );
     let (_, _, err) = run_on(src, "solve", &[]);
     assert!(!err.contains("warning"), "{err}");
 }

@@ -22,7 +22,10 @@ fn panel() -> Vec<Value> {
 fn accelerations(scene: &str) -> serde_json::Map<String, Value> {
     let (code, out, err) = qdot(&["solve", scene, "--format", "json"]);
     assert_eq!(code, 0, "{scene}: {err}");
-    json(&out)["accelerations"].as_object().expect("accelerations").clone()
+    json(&out)["accelerations"]
+        .as_object()
+        .expect("accelerations")
+        .clone()
 }
 
 /// Our count of operations agrees with SymPy's `count_ops` on the
@@ -41,14 +44,20 @@ fn the_panel_is_at_most_as_long_as_sympy_simplify() {
         for r in rows.iter().filter(|r| r["scene"] == scene) {
             let input = r["input"].as_str().unwrap();
             let counted = r["input_ops"].as_u64().unwrap() as usize;
-            assert!(count_ops(input).abs_diff(counted) <= 1, "{input}: {counted}");
+            assert!(
+                count_ops(input).abs_diff(counted) <= 1,
+                "{input}: {counted}"
+            );
             let now = acc[r["coordinate"].as_str().unwrap()].as_str().unwrap();
             ours += count_ops(now);
             sympy += r["sympy_ops"].as_u64().unwrap() as usize;
             before += counted;
         }
     }
-    assert!(ours <= sympy, "qdot {ours} operations, SymPy simplify {sympy}");
+    assert!(
+        ours <= sympy,
+        "qdot {ours} operations, SymPy simplify {sympy}"
+    );
     assert!(ours * 3 < before * 2, "qdot {ours}, before {before}");
 }
 
@@ -86,15 +95,23 @@ fn the_forms_a_lecturer_writes() {
     let (_, out, _) = qdot(&["derive", "examples/disk_in_cylinder.qd"]);
     assert!(out.contains("3/2·m·(R − r)²·θ̈"), "{out}");
     let (_, out, _) = qdot(&["solve", "tests/data/compact/sliding_support.qd"]);
-    assert!(out.contains(" = m·sin(θ)·(l·θ̇² + g·cos(θ))/(m·sin²(θ) + M)\n"), "{out}");
+    assert!(
+        out.contains(" = m·sin(θ)·(l·θ̇² + g·cos(θ))/(m·sin²(θ) + M)\n"),
+        "{out}"
+    );
     let (_, out, _) = qdot(&["solve", "examples/heavy_top.qd"]);
     assert!(
-        out.contains("ψ̈ = θ̇·((l²·m + A − C)·cos²(θ)·φ̇ − C·cos(θ)·ψ̇ + (l²·m + A)·φ̇)/(sin(θ)·(l²·m + A))"),
+        out.contains(
+            "ψ̈ = θ̇·((l²·m + A − C)·cos²(θ)·φ̇ − C·cos(θ)·ψ̇ + (l²·m + A)·φ̇)/(sin(θ)·(l²·m + A))"
+        ),
         "{out}"
     );
     // the same form in LaTeX
     let (_, out, _) = qdot(&["latex", "tests/data/compact/double_pendulum.qd"]);
-    assert!(out.contains(r"2 m_{1} + m_{2} - m_{2} \cos(2 \theta_{1} - 2 \theta_{2})"), "{out}");
+    assert!(
+        out.contains(r"2 m_{1} + m_{2} - m_{2} \cos(2 \theta_{1} - 2 \theta_{2})"),
+        "{out}"
+    );
 }
 
 fn trig_term() -> impl Strategy<Value = String> {
@@ -109,7 +126,8 @@ fn trig_term() -> impl Strategy<Value = String> {
         Just("b"),
         Just("x'"),
     ];
-    (-3i32..4, prop::collection::vec(atom, 1..4)).prop_map(|(c, fs)| format!("{c}*{}", fs.join("*")))
+    (-3i32..4, prop::collection::vec(atom, 1..4))
+        .prop_map(|(c, fs)| format!("{c}*{}", fs.join("*")))
 }
 
 fn trig_poly() -> impl Strategy<Value = String> {

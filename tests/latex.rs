@@ -154,7 +154,13 @@ fn standalone_is_a_document() {
     assert!(doc.contains("\\usepackage{amsmath}"));
     // titled by the file's base name, or by --title
     assert!(doc.contains("\\section*{seed\\_22\\_2}"), "{doc}");
-    let titled = qdot(&["latex", "--standalone", "--title", "Two disks", "examples/seed_22_2.qd"]);
+    let titled = qdot(&[
+        "latex",
+        "--standalone",
+        "--title",
+        "Two disks",
+        "examples/seed_22_2.qd",
+    ]);
     assert!(titled.contains("\\section*{Two disks}"));
     assert!(doc.ends_with("\\end{document}\n"));
     // the fragment is the document's body
@@ -164,10 +170,21 @@ fn standalone_is_a_document() {
 
 #[test]
 fn modes_as_a_standalone_document() {
-    let doc = qdot(&["modes", "examples/seed_24_2.qd", "--format", "latex", "--standalone"]);
+    let doc = qdot(&[
+        "modes",
+        "examples/seed_24_2.qd",
+        "--format",
+        "latex",
+        "--standalone",
+    ]);
     assert!(doc.starts_with("\\documentclass[10pt]{article}\n"));
     assert!(doc.contains("\\section*{seed\\_24\\_2}"));
-    assert!(doc.contains(&qdot(&["modes", "examples/seed_24_2.qd", "--format", "latex"])));
+    assert!(doc.contains(&qdot(&[
+        "modes",
+        "examples/seed_24_2.qd",
+        "--format",
+        "latex"
+    ])));
     assert!(doc.ends_with("\\end{document}\n"));
 }
 

@@ -193,7 +193,8 @@ impl Table {
                     0,
                     1 + self.written_size(&f.a) + self.written_size(&f.b),
                     None,
-                    vars.iter().any(|&w| self.entry(w).is_some_and(|e| e.moving)),
+                    vars.iter()
+                        .any(|&w| self.entry(w).is_some_and(|e| e.moving)),
                 )
             }
             (Atom::Group(p), None) => {
@@ -207,7 +208,8 @@ impl Table {
                     0,
                     size,
                     None,
-                    vars.iter().any(|&w| self.entry(w).is_some_and(|e| e.moving)),
+                    vars.iter()
+                        .any(|&w| self.entry(w).is_some_and(|e| e.moving)),
                 )
             }
             _ => (0, 1, None, false),

@@ -57,9 +57,15 @@ fn compute_atom_derivative(a: Var, wrt: Wrt) -> Option<Expr> {
         (!d.is_zero()).then_some(d)
     };
     match (&at, wrt) {
-        (Atom::Param(_) | Atom::Unknown(_) | Atom::Pi | Atom::Root(_) | Atom::Shown(..) | Atom::Group(_), _) => {
-            None
-        }
+        (
+            Atom::Param(_)
+            | Atom::Unknown(_)
+            | Atom::Pi
+            | Atom::Root(_)
+            | Atom::Shown(..)
+            | Atom::Group(_),
+            _,
+        ) => None,
         (Atom::Coord(..) | Atom::Given(..) | Atom::Time, Wrt::Var(_)) => None,
         (Atom::Coord(name, k), Wrt::Time) => Some(Expr::var(atom::coord(name, k + 1))),
         (Atom::Given(name, k), Wrt::Time) => Some(Expr::var(atom::given(name, k + 1))),

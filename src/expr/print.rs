@@ -363,7 +363,9 @@ pub(crate) fn sum_terms(p: &Poly) -> Vec<(Mono, Q)> {
 /// factor gives up: k − 6·m rather than −k + 6·m, whatever the order the
 /// atoms were interned in).
 pub fn leads_negative(p: &Poly) -> bool {
-    sorted_terms(p).first().is_some_and(|(_, c)| c.is_negative())
+    sorted_terms(p)
+        .first()
+        .is_some_and(|(_, c)| c.is_negative())
 }
 
 /// Terms in display order.
@@ -398,7 +400,6 @@ fn sum_str(p: &Poly, st: Style) -> String {
 fn q_str(q: &Q, _st: Style) -> String {
     q.to_string()
 }
-
 
 /// num/den, with contents pulled out: `g·R·(G·R − P·r)/(G·R² + J₂·g + P·r²)`.
 fn fraction(num: &Poly, den: &Poly, st: Style) -> String {

@@ -26,7 +26,10 @@ pub(super) fn quotient(num: &Poly, den: &Poly) -> usize {
 /// pulled out, as the printers write a side of a quotient.
 pub(super) fn factored_sum(p: &Poly) -> usize {
     if p.len() < 2 {
-        return p.terms().first().map_or(0, |(m, c)| term(m, c.is_one() || (-c.clone()).is_one()));
+        return p
+            .terms()
+            .first()
+            .map_or(0, |(m, c)| term(m, c.is_one() || (-c.clone()).is_one()));
     }
     let c = p.content();
     let m = p.mono_content();
@@ -69,7 +72,12 @@ fn atom_ops(v: Var) -> usize {
         return n;
     }
     let n = match atom::atom(v) {
-        Atom::Param(_) | Atom::Unknown(_) | Atom::Coord(..) | Atom::Given(..) | Atom::Time | Atom::Pi => 0,
+        Atom::Param(_)
+        | Atom::Unknown(_)
+        | Atom::Coord(..)
+        | Atom::Given(..)
+        | Atom::Time
+        | Atom::Pi => 0,
         Atom::Group(p) => factored_sum(&p),
         _ => super::count_ops(&print::atom_input_text(v)),
     };

@@ -32,12 +32,22 @@ pub(crate) fn angles(ps: &[&Poly]) -> Vec<(Var, Var, Expr)> {
             let (Atom::Sin(u), Some(cos)) = (atom::atom(sin), atom::cos_partner(sin)) else {
                 continue;
             };
-            seen.push((super::super::print::atom_input_text(sin).to_string(), sin, cos, u));
+            seen.push((
+                super::super::print::atom_input_text(sin).to_string(),
+                sin,
+                cos,
+                u,
+            ));
         }
     }
     seen.sort_by(|a, b| a.0.cmp(&b.0));
     seen.into_iter().map(|(_, s, c, u)| (s, c, u)).collect()
 }
+
+/// A Fourier series: (k, the coefficient of e^{i·k·u}).
+type Series = Vec<(Vec<i32>, Complex)>;
+/// Terms of a polynomial, not yet merged.
+type Terms = Vec<(Mono, Q)>;
 
 /// A complex rational, the coefficient of e^{i·k·u}.
 #[derive(Clone, Debug, Default)]
@@ -60,10 +70,47 @@ impl Complex {
 fn one_angle(a: u32, b: u32) -> Vec<(i32, Complex)> {
     let half = Q::new(1, 2).unwrap_or_else(Q::one);
     let mut cur: FxHashMap<i32, Complex> = FxHashMap::default();
-    cur.insert(0, Complex { re: Q::one(), im: Q::zero() });
-    let cos_step = [(1, Complex { re: half.clone(), im: Q::zero() }), (-1, Complex { re: half.clone(), im: Q::zero() })];
-    let sin_step = [(1, Complex { re: Q::zero(), im: -half.clone() }), (-1, Complex { re: Q::zero(), im: half.clone() })];
-    let steps = std::iter::repeat_n(&cos_step, b as usize).chain(std::iter::repeat_n(&sin_step, a as usize));
+    cur.insert(
+        0,
+        Complex {
+            re: Q::one(),
+            im: Q::zero(),
+        },
+    );
+    let cos_step = [
+        (
+            1,
+            Complex {
+                re: half.clone(),
+                im: Q::zero(),
+            },
+        ),
+        (
+            -1,
+            Complex {
+                re: half.clone(),
+                im: Q::zero(),
+            },
+        ),
+    ];
+    let sin_step = [
+        (
+            1,
+            Complex {
+                re: Q::zero(),
+                im: -half.clone(),
+            },
+        ),
+        (
+            -1,
+            Complex {
+                re: Q::zero(),
+                im: half.clone(),
+            },
+        ),
+    ];
+    let steps = std::iter::repeat_n(&cos_step, b as usize)
+        .chain(std::iter::repeat_n(&sin_step, a as usize));
     for step in steps {
         let mut next: FxHashMap<i32, Complex> = FxHashMap::default();
         for (j, c) in &cur {
@@ -94,8 +141,8 @@ pub(crate) fn fourier(p: &Poly, angles: &[(Var, Var, Expr)]) -> Vec<(Vec<i32>, P
         .enumerate()
         .flat_map(|(i, (s, c, _))| [(*s, (i, false)), (*c, (i, true))])
         .collect();
-    let mut memo: FxHashMap<Vec<(u32, u32)>, Vec<(Vec<i32>, Complex)>> = FxHashMap::default();
-    let mut acc: FxHashMap<Vec<i32>, (Vec<(Mono, Q)>, Vec<(Mono, Q)>)> = FxHashMap::default();
+    let mut memo: FxHashMap<Vec<(u32, u32)>, Series> = FxHashMap::default();
+    let mut acc: FxHashMap<Vec<i32>, (Terms, Terms)> = FxHashMap::default();
     for (m, c) in p.terms() {
         let mut exps = vec![(0u32, 0u32); angles.len()];
         let mut rest: Vec<(Var, u32)> = Vec::new();
@@ -107,7 +154,9 @@ pub(crate) fn fourier(p: &Poly, angles: &[(Var, Var, Expr)]) -> Vec<(Vec<i32>, P
             }
         }
         let rest = Mono::from_pairs(rest);
-        let series = memo.entry(exps.clone()).or_insert_with(|| product_series(&exps));
+        let series = memo
+            .entry(exps.clone())
+            .or_insert_with(|| product_series(&exps));
         for (k, z) in series.iter() {
             let slot = acc.entry(k.clone()).or_default();
             if !z.re.is_zero() {
@@ -129,8 +178,14 @@ pub(crate) fn fourier(p: &Poly, angles: &[(Var, Var, Expr)]) -> Vec<(Vec<i32>, P
 
 /// Π sinᵃⁱ·cosᵇⁱ as a Fourier series, only k = 0 and k canonical (first
 /// nonzero entry positive) kept: the rest are their conjugates.
-fn product_series(exps: &[(u32, u32)]) -> Vec<(Vec<i32>, Complex)> {
-    let mut cur: Vec<(Vec<i32>, Complex)> = vec![(Vec::new(), Complex { re: Q::one(), im: Q::zero() })];
+fn product_series(exps: &[(u32, u32)]) -> Series {
+    let mut cur: Series = vec![(
+        Vec::new(),
+        Complex {
+            re: Q::one(),
+            im: Q::zero(),
+        },
+    )];
     for &(a, b) in exps {
         let one = one_angle(a, b);
         let mut next = Vec::with_capacity(cur.len() * one.len());
@@ -214,7 +269,10 @@ pub(crate) fn cos_reduced(p: &Poly, angles: &[(Var, Var, Expr)], mask: u32) -> P
     let mut out: Vec<(Mono, Q)> = Vec::new();
     let mut sums = Poly::zero();
     for (m, c) in p.terms() {
-        let high = m.pairs().iter().find(|(v, e)| *e >= 2 && flip.contains_key(v));
+        let high = m
+            .pairs()
+            .iter()
+            .find(|(v, e)| *e >= 2 && flip.contains_key(v));
         if high.is_none() {
             out.push((m.clone(), c.clone()));
             continue;
@@ -242,7 +300,10 @@ pub(crate) fn cos_reduced(p: &Poly, angles: &[(Var, Var, Expr)], mask: u32) -> P
 }
 
 fn one_minus_square(v: Var) -> Poly {
-    Poly::from_terms(vec![(Mono::one(), Q::one()), (Mono::var_pow(v, 2), Q::from_i64(-1))])
+    Poly::from_terms(vec![
+        (Mono::one(), Q::one()),
+        (Mono::var_pow(v, 2), Q::from_i64(-1)),
+    ])
 }
 
 #[cfg(test)]
@@ -262,7 +323,11 @@ mod tests {
         let series = fourier(e.num(), &ang);
         let shown = to_display(&series, &ang);
         assert_eq!(shown.len(), 2, "{shown:?}");
-        let text = super::super::super::print::render_parts(&shown, &Poly::one(), super::super::super::print::Style::Input);
+        let text = super::super::super::print::render_parts(
+            &shown,
+            &Poly::one(),
+            super::super::super::print::Style::Input,
+        );
         assert_eq!(text, "-cos(2*fa - 2*fb)/2 + 1/2");
     }
 

@@ -16,7 +16,7 @@
 //!
 //! 1. each angle reduced either way (sin² → 1 − cos² or cos² → 1 − sin²);
 //! 2. the Fourier form (multiple angles of the scene's own combinations:
-//!    2·θ₁ − 2·θ₂, θ₁ − 2·θ₂), see [`fourier`];
+//!    2·θ₁ − 2·θ₂, θ₁ − 2·θ₂), see `fourier.rs`;
 //! 3. in each, the gcd of num and den cancelled (cancellation that only
 //!    exists modulo the ideal: (1 − sin²θ)/cos θ is cos θ);
 //! 4. the addition theorems folded back (cos θ₁·cos θ₂ + sin θ₁·sin θ₂ →
@@ -105,7 +105,11 @@ pub fn canonical_only<T>(f: impl FnOnce() -> T) -> T {
 
 /// num/den in every representation to try: as they are, each reduction
 /// choice, the Fourier form.
-fn representations(num: &Poly, den: &Poly, angles: &[(Var, Var, super::Expr)]) -> Vec<(Poly, Poly)> {
+fn representations(
+    num: &Poly,
+    den: &Poly,
+    angles: &[(Var, Var, super::Expr)],
+) -> Vec<(Poly, Poly)> {
     let mut out = vec![(num.clone(), den.clone())];
     let n = angles.len();
     let masks: Vec<u32> = if n <= 3 {
@@ -119,10 +123,16 @@ fn representations(num: &Poly, den: &Poly, angles: &[(Var, Var, super::Expr)]) -
             fourier::cos_reduced(den, angles, mask),
         ));
     }
-    if angles.iter().all(|(_, _, u)| super::func::is_multiple_angle_base(u)) {
+    if angles
+        .iter()
+        .all(|(_, _, u)| super::func::is_multiple_angle_base(u))
+    {
         let (sn, sd) = (fourier::fourier(num, angles), fourier::fourier(den, angles));
         if fourier::within_bounds(&sn) && fourier::within_bounds(&sd) {
-            out.push((fourier::to_display(&sn, angles), fourier::to_display(&sd, angles)));
+            out.push((
+                fourier::to_display(&sn, angles),
+                fourier::to_display(&sd, angles),
+            ));
         }
     }
     out
@@ -241,7 +251,8 @@ fn factored(p: &Poly) -> Option<Poly> {
 fn collected(p: &Poly) -> Option<Poly> {
     let mut groups: Vec<(Mono, Vec<(Mono, Q)>)> = Vec::new();
     for (m, c) in p.terms() {
-        let (key, rest): (Vec<(Var, u32)>, Vec<(Var, u32)>) =
+        type Factors = Vec<(Var, u32)>;
+        let (key, rest): (Factors, Factors) =
             m.pairs().iter().partition(|&&(v, _)| atom::is_moving(v));
         let key = Mono::from_pairs(key);
         let t = (Mono::from_pairs(rest), c.clone());
