@@ -327,7 +327,12 @@ pub fn modes_json(
                     .coordinates
                     .iter()
                     .enumerate()
-                    .map(|(j, c)| (c.clone(), json!(super::modes::numeric_response(nf, j, false))))
+                    .map(|(j, c)| {
+                        (
+                            c.clone(),
+                            json!(super::modes::numeric_response(nf, j, false)),
+                        )
+                    })
                     .collect();
                 Value::Object(q)
             })

@@ -248,10 +248,9 @@ fn run_scene(
                     let (q0, v0) = scene.initial_conditions(i)?;
                     match osc::free_response(&md, &q0, &v0) {
                         Ok(f) => (Some(f), None),
-                        Err(_) if !md.gyroscopic && !set.is_empty() => (
-                            None,
-                            Some(osc::numeric_free_response(&md, set, &q0, &v0)?),
-                        ),
+                        Err(_) if !md.gyroscopic && !set.is_empty() => {
+                            (None, Some(osc::numeric_free_response(&md, set, &q0, &v0)?))
+                        }
                         Err(e) => return Err(e),
                     }
                 }
@@ -259,12 +258,9 @@ fn run_scene(
             };
             match fmt {
                 Format::Text => modes_text(&md, set, free.as_deref(), numeric.as_ref()),
-                Format::Json => json_string(modes_json(
-                    &md,
-                    set,
-                    free.as_deref(),
-                    numeric.as_ref(),
-                ))?,
+                Format::Json => {
+                    json_string(modes_json(&md, set, free.as_deref(), numeric.as_ref()))?
+                }
                 Format::Latex => latex::write(scene, |w| w.modes(&md)),
             }
         }
