@@ -12,7 +12,8 @@ use qdot::expr::atom::{self, Atom};
 use qdot::solve::eigen::{distribution_coefficients, generalized_symmetric};
 use qdot::solve::equilibrium::Values;
 use qdot::solve::oscillations::{
-    damped_steady_state, forced_amplitudes, free_response, modes, standard_form, Modes, Stability,
+    damped_steady_state, forced_amplitudes, free_response, modes, numeric_free_response,
+    standard_form, Modes, Motion, Stability,
 };
 use qdot::{Expr, Scene};
 use serde_json::Value;
@@ -1190,7 +1191,7 @@ fn exact_agrees_with_the_numeric_eigen_solver() {
 
 // ------------------------------------------------------------------ JSON contract
 
-const KEYS: [&str; 18] = [
+const KEYS: [&str; 19] = [
     "coordinates",
     "at",
     "mass_matrix",
@@ -1208,6 +1209,7 @@ const KEYS: [&str; 18] = [
     "numeric_omega_squared",
     "numeric_modes",
     "free_response",
+    "numeric_free_response",
     "forced_response",
 ];
 
@@ -1379,6 +1381,8 @@ fn check_json(
     match init {
         None => assert_eq!(v["free_response"], Value::Null),
         Some((q0, v0)) => {
+            // exact, so no numeric response
+            assert_eq!(v["numeric_free_response"], Value::Null);
             let q = free_response(&md, q0, v0).unwrap();
             check_named(s, "free_response", &v["free_response"], &md.coordinates, &q);
         }
@@ -1766,4 +1770,315 @@ fn gyroscopic_stability_conditions() {
     )
     .expect_err("refused");
     assert!(err.message.contains("gyroscopic"), "{}", err.message);
+}
+
+// ------------------------------------------------- numeric free response
+
+/// M·q̈ + K·q = 0 integrated by classical RK4 (step `h`) from q0, v0 to
+/// each time of `ts` (ascending): q at those times.
+fn rk4(
+    m: &[Vec<f64>],
+    k: &[Vec<f64>],
+    q0: &[f64],
+    v0: &[f64],
+    ts: &[f64],
+    h: f64,
+) -> Vec<Vec<f64>> {
+    let n = q0.len();
+    let mm = nalgebra::DMatrix::from_fn(n, n, |i, j| m[i][j]);
+    let kk = nalgebra::DMatrix::from_fn(n, n, |i, j| k[i][j]);
+    // q̈ = A·q with A = −M⁻¹·K
+    let a = -(mm.try_inverse().expect("M invertible") * kk);
+    let f = |y: &nalgebra::DVector<f64>| {
+        let q = y.rows(0, n).into_owned();
+        let v = y.rows(n, n).into_owned();
+        let mut d = nalgebra::DVector::zeros(2 * n);
+        d.rows_mut(0, n).copy_from(&v);
+        d.rows_mut(n, n).copy_from(&(&a * q));
+        d
+    };
+    let mut y = nalgebra::DVector::from_iterator(2 * n, q0.iter().chain(v0).copied());
+    let mut t = 0.0;
+    let mut out = Vec::new();
+    for &target in ts {
+        while t < target - 1e-12 {
+            let step = h.min(target - t);
+            let k1 = f(&y);
+            let k2 = f(&(&y + &k1 * (step / 2.0)));
+            let k3 = f(&(&y + &k2 * (step / 2.0)));
+            let k4 = f(&(&y + &k3 * step));
+            y += (k1 + k2 * 2.0 + k3 * 2.0 + k4) * (step / 6.0);
+            t += step;
+        }
+        out.push(y.rows(0, n).iter().copied().collect());
+    }
+    out
+}
+
+/// A `numeric_free_response` string, re-parsed and evaluated at time t.
+fn eval_at(s: &Scene, src: &str, t: f64) -> f64 {
+    let e = ex(s, src);
+    e.eval_f64(&|a: &Atom| matches!(a, Atom::Time).then_some(t))
+        .unwrap_or_else(|| panic!("`{src}` does not evaluate at t = {t}"))
+}
+
+/// The unequal chain has no closed form: under `--set` and `--init` the
+/// free response is numeric, in the text and in JSON (decimal strings
+/// that re-parse), and agrees with RK4 on M·q̈ + K·q = 0 to 1e-8.
+#[test]
+fn numeric_free_response_without_closed_form() {
+    let s = parse(CHAIN_UNEQUAL);
+    let vals = [
+        ("m1", 1.0),
+        ("m2", 2.0),
+        ("m3", 3.0),
+        ("k1", 1.0),
+        ("k2", 2.0),
+        ("k3", 3.0),
+        ("k4", 4.0),
+    ];
+    let values = "m1=1,m2=2,m3=3,k1=1,k2=2,k3=3,k4=4";
+    let init = "x1=1,x3=-1/2,x2'=1/2";
+    let (q0, v0) = ([1.0, 0.0, -0.5], [0.0, 0.5, 0.0]);
+    let md = linearize_at(&s, None, &set(&vals));
+    assert!(md.omega_squared.is_empty());
+    let ts = [0.0, 0.37, 1.0, 2.5, 4.0, 7.25];
+    let want = rk4(
+        &eval_matrix(&md.mass, &vals),
+        &eval_matrix(&md.stiffness, &vals),
+        &q0,
+        &v0,
+        &ts,
+        1e-3,
+    );
+    // the library's q(t)
+    let q0e: Vec<Expr> = ["1", "0", "-1/2"].iter().map(|x| ex(&s, x)).collect();
+    let v0e: Vec<Expr> = ["0", "1/2", "0"].iter().map(|x| ex(&s, x)).collect();
+    let nf = numeric_free_response(&md, &set(&vals), &q0e, &v0e).expect("numeric");
+    assert!(nf.modes.iter().all(|m| m.motion == Motion::Oscillates));
+    for (t, w) in ts.iter().zip(&want) {
+        for (a, b) in nf.at(*t).iter().zip(w) {
+            assert!((a - b).abs() <= 1e-10, "t = {t}: {a} vs RK4 {b}");
+        }
+    }
+    // JSON: decimal strings in input syntax
+    let (code, out, err) = qdot_on(
+        "modes",
+        "chain3_numeric",
+        CHAIN_UNEQUAL,
+        "modes",
+        &["--format", "json", "--set", values, "--init", init],
+    );
+    assert_eq!(code, 0, "{err}");
+    let v = json(&out);
+    assert_eq!(v["free_response"], Value::Null);
+    let fr = v["numeric_free_response"]
+        .as_object()
+        .expect("numeric_free_response");
+    assert_eq!(fr.keys().collect::<Vec<_>>(), ["x1", "x2", "x3"]);
+    for (j, c) in ["x1", "x2", "x3"].iter().enumerate() {
+        let src = fr[*c].as_str().unwrap();
+        assert!(src.contains("cos(") && src.contains("sin("), "{src}");
+        for (t, w) in ts.iter().zip(&want) {
+            let got = eval_at(&s, src, *t);
+            assert!(
+                (got - w[j]).abs() <= 1e-8,
+                "{c}({t}) = {got} vs RK4 {}",
+                w[j]
+            );
+        }
+    }
+    // the text says it is numeric, with no double minus
+    let (code, out, err) = qdot_on(
+        "modes",
+        "chain3_numeric_text",
+        CHAIN_UNEQUAL,
+        "modes",
+        &["--set", values, "--init", init],
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("Free response (undamped) from the initial conditions, numeric"),
+        "{out}"
+    );
+    assert!(
+        out.contains("  x₁(t) = −0.01118690064·cos(0.8403624841·t) + 0.2664915803·sin("),
+        "{out}"
+    );
+    assert!(
+        !out.contains("−−") && !out.contains("- -") && !out.contains("+ −"),
+        "{out}"
+    );
+    // without --set: the error says how to get it
+    let (code, _, err) = qdot_on(
+        "modes",
+        "chain3_init",
+        CHAIN_UNEQUAL,
+        "modes",
+        &["--init", "x1=1"],
+    );
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("closed form") && err.contains("--set"),
+        "{err}"
+    );
+}
+
+/// The unequal chain with its first spring pushing (−k1): one ω² < 0,
+/// whose mode grows as cosh/sinh (printed as exponentials), against RK4.
+const CHAIN_PUSHED: &str = "\
+coordinates x1, x2, x3
+parameters m1, m2, m3, k1, k2, k3, k4
+kinetic E = 1/2*(m1*x1'^2 + m2*x2'^2 + m3*x3'^2)
+potential V = 1/2*(-k1*x1^2 + k2*(x2 - x1)^2 + k3*(x3 - x2)^2 + k4*x3^2)
+";
+
+#[test]
+fn numeric_free_response_grows_when_unstable() {
+    let s = parse(CHAIN_PUSHED);
+    let vals = [
+        ("m1", 1.0),
+        ("m2", 2.0),
+        ("m3", 3.0),
+        ("k1", 6.0),
+        ("k2", 2.0),
+        ("k3", 3.0),
+        ("k4", 4.0),
+    ];
+    let md = linearize_at(&s, None, &set(&vals));
+    let q0e: Vec<Expr> = ["1/10", "0", "0"].iter().map(|x| ex(&s, x)).collect();
+    let v0e: Vec<Expr> = ["0", "0", "1/5"].iter().map(|x| ex(&s, x)).collect();
+    let nf = numeric_free_response(&md, &set(&vals), &q0e, &v0e).expect("numeric");
+    assert_eq!(nf.modes[0].motion, Motion::Grows, "{:?}", nf.modes);
+    let ts = [0.0, 0.5, 1.5, 3.0];
+    let want = rk4(
+        &eval_matrix(&md.mass, &vals),
+        &eval_matrix(&md.stiffness, &vals),
+        &[0.1, 0.0, 0.0],
+        &[0.0, 0.0, 0.2],
+        &ts,
+        1e-3,
+    );
+    for (t, w) in ts.iter().zip(&want) {
+        for (a, b) in nf.at(*t).iter().zip(w) {
+            assert!(
+                (a - b).abs() <= 1e-9 * (1.0 + b.abs()),
+                "t = {t}: {a} vs RK4 {b}"
+            );
+        }
+    }
+    let (code, out, err) = qdot_on(
+        "modes",
+        "chain3_unstable",
+        CHAIN_PUSHED,
+        "modes",
+        &[
+            "--format",
+            "json",
+            "--set",
+            "m1=1,m2=2,m3=3,k1=6,k2=2,k3=3,k4=4",
+            "--init",
+            "x1=1/10,x3'=1/5",
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    let v = json(&out);
+    for (j, c) in ["x1", "x2", "x3"].iter().enumerate() {
+        let src = v["numeric_free_response"][*c].as_str().unwrap();
+        assert!(src.contains("exp("), "{src}");
+        for (t, w) in ts.iter().zip(&want) {
+            let got = eval_at(&s, src, *t);
+            assert!(
+                (got - w[j]).abs() <= 1e-8 * (1.0 + w[j].abs()),
+                "{c}({t}) = {got} vs {}",
+                w[j]
+            );
+        }
+    }
+}
+
+/// Where the exact free response exists, the numeric one agrees with it at
+/// random parameter values, initial conditions and times: the four-mass
+/// chain (ω² with square roots) and a free body (ω² = 0 drifts as a + b·t).
+#[test]
+fn numeric_free_response_agrees_with_exact() {
+    let free_body = "\
+coordinates x1, x2
+parameters m1, m2, k
+kinetic E = 1/2*m1*x1'^2 + 1/2*m2*x2'^2
+potential V = 1/2*k*(x2 - x1)^2
+";
+    let cases: [(Scene, &[&str]); 2] = [
+        (example("four_mass_chain"), &["m", "k"]),
+        (parse(free_body), &["m1", "m2", "k"]),
+    ];
+    let mut runner = TestRunner::new(Config {
+        cases: 24,
+        ..Config::default()
+    });
+    for (s, params) in &cases {
+        let md = linearize(s);
+        let n = md.coordinates.len();
+        assert_eq!(md.omega_squared.len(), n);
+        runner
+            .run(
+                &(
+                    proptest::collection::vec(1i64..=9, params.len()),
+                    proptest::collection::vec(-9i64..=9, 2 * n),
+                    proptest::collection::vec(0u32..=80, 3),
+                ),
+                |(p, init, times)| {
+                    let vals: Vec<(&str, f64)> = params
+                        .iter()
+                        .zip(&p)
+                        .map(|(k, x)| (*k, *x as f64))
+                        .collect();
+                    let q0: Vec<Expr> =
+                        init[..n].iter().map(|x| ex(s, &format!("{x}/4"))).collect();
+                    let v0: Vec<Expr> =
+                        init[n..].iter().map(|x| ex(s, &format!("{x}/3"))).collect();
+                    let exact = free_response(&md, &q0, &v0).expect("exact");
+                    let nf = numeric_free_response(&md, &set(&vals), &q0, &v0).expect("numeric");
+                    for &tt in &times {
+                        let t = f64::from(tt) / 10.0;
+                        let got = nf.at(t);
+                        for (j, e) in exact.iter().enumerate() {
+                            let f = env(&vals);
+                            let want = e
+                                .eval_f64(&|a: &Atom| match a {
+                                    Atom::Time => Some(t),
+                                    _ => f(a),
+                                })
+                                .expect("evaluates");
+                            if (got[j] - want).abs() > 1e-9 * (1.0 + want.abs() + t) {
+                                return Err(proptest::test_runner::TestCaseError::fail(format!(
+                                    "{p:?} {init:?} t = {t}: q{j} numeric {} vs exact {want}",
+                                    got[j]
+                                )));
+                            }
+                        }
+                    }
+                    Ok(())
+                },
+            )
+            .unwrap();
+    }
+}
+
+/// A gyroscopic system keeps refusing `--init`, even under `--set`.
+#[test]
+fn numeric_free_response_refuses_gyroscopic() {
+    let (code, _, err) = qdot(&[
+        "modes",
+        "examples/penning_modes.qd",
+        "--set",
+        "m=1,e=1,V0=1,d=1,B=3",
+        "--init",
+        "x=1",
+    ]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("gyroscopic") && err.contains("simulate"),
+        "{err}"
+    );
 }

@@ -238,6 +238,7 @@ pub fn modes_json(
     md: &crate::solve::oscillations::Modes,
     set: &Values,
     free: Option<&[Expr]>,
+    numeric: Option<&crate::solve::oscillations::NumericFree>,
 ) -> Map<String, Value> {
     let mat = |m: &[Vec<Expr>]| {
         json!(m
@@ -314,6 +315,27 @@ pub fn modes_json(
     m.insert(
         "free_response".into(),
         free.map(|f| named(&md.coordinates, f))
+            .unwrap_or(Value::Null),
+    );
+    // without closed forms: q(t) with decimal numbers (10 significant
+    // digits), computed numerically at the --set values
+    m.insert(
+        "numeric_free_response".into(),
+        numeric
+            .map(|nf| {
+                let q: Map<String, Value> = md
+                    .coordinates
+                    .iter()
+                    .enumerate()
+                    .map(|(j, c)| {
+                        (
+                            c.clone(),
+                            json!(super::modes::numeric_response(nf, j, false)),
+                        )
+                    })
+                    .collect();
+                Value::Object(q)
+            })
             .unwrap_or(Value::Null),
     );
     m.insert("forced_response".into(), forced_json(md, standard.as_ref()));

@@ -241,16 +241,26 @@ fn run_scene(
                 }
             }
             let md = crate::solve::oscillations::modes(scene, at.as_deref(), set)?;
-            let free = match &opts.init {
+            // exact when it can be, else numeric at the --set values
+            let (free, numeric) = match &opts.init {
                 Some(i) => {
+                    use crate::solve::oscillations as osc;
                     let (q0, v0) = scene.initial_conditions(i)?;
-                    Some(crate::solve::oscillations::free_response(&md, &q0, &v0)?)
+                    match osc::free_response(&md, &q0, &v0) {
+                        Ok(f) => (Some(f), None),
+                        Err(_) if !md.gyroscopic && !set.is_empty() => {
+                            (None, Some(osc::numeric_free_response(&md, set, &q0, &v0)?))
+                        }
+                        Err(e) => return Err(e),
+                    }
                 }
-                None => None,
+                None => (None, None),
             };
             match fmt {
-                Format::Text => modes_text(&md, set, free.as_deref()),
-                Format::Json => json_string(modes_json(&md, set, free.as_deref()))?,
+                Format::Text => modes_text(&md, set, free.as_deref(), numeric.as_ref()),
+                Format::Json => {
+                    json_string(modes_json(&md, set, free.as_deref(), numeric.as_ref()))?
+                }
                 Format::Latex => {
                     let body = latex::write(scene, |w| w.modes(&md));
                     if opts.standalone {

@@ -9,7 +9,12 @@ use crate::solve::equilibrium::Values;
 use crate::solve::oscillations::{self as osc, Modes, StandardForm};
 
 /// The text of `qdot modes`.
-pub fn modes_text(md: &Modes, set: &Values, free: Option<&[Expr]>) -> String {
+pub fn modes_text(
+    md: &Modes,
+    set: &Values,
+    free: Option<&[Expr]>,
+    numeric: Option<&osc::NumericFree>,
+) -> String {
     let names: Vec<String> = md.coordinates.iter().map(|c| pretty_name(c, 0)).collect();
     let standard = osc::standard_form(md, set);
     let mut out = linearized_text(md, &names);
@@ -22,6 +27,14 @@ pub fn modes_text(md: &Modes, set: &Values, free: Option<&[Expr]>) -> String {
     out.push_str(&stability_text(md));
     if let Some(free) = free {
         out.push_str(&free_response_text(md, &names, free));
+    }
+    if let Some(nf) = numeric {
+        out.push_str(
+            "\nFree response (undamped) from the initial conditions, numeric (10 significant digits, from the eigen-solver at the --set values)\n",
+        );
+        for (j, c) in names.iter().enumerate() {
+            out.push_str(&format!("  {c}(t) = {}\n", numeric_response(nf, j, true)));
+        }
     }
     out.push_str(&steady_state_text(md, &names, standard.as_ref()));
     out
@@ -325,5 +338,87 @@ fn paren_str(s: &str) -> String {
         format!("({s})")
     } else {
         s.to_string()
+    }
+}
+
+/// Coordinate `j` of a numeric free response with 10 significant digits:
+/// `c·cos(r·t) + d·sin(r·t)`, growth as `exp(±r·t)`, drift as `c + d·t`.
+/// `unicode`: `·` and `−` for the text, else qdot's input syntax.
+pub(super) fn numeric_response(nf: &osc::NumericFree, j: usize, unicode: bool) -> String {
+    let dot = if unicode { "·" } else { "*" };
+    let neg = if unicode { "−" } else { "-" };
+    let t = |r: f64| format!("{}{dot}t", significant(r));
+    let mut terms: Vec<(bool, String)> = Vec::new();
+    let mut push = |c: f64, wave: String| {
+        if c == 0.0 {
+            return;
+        }
+        let body = if wave.is_empty() {
+            significant(c)
+        } else {
+            format!("{}{dot}{wave}", significant(c))
+        };
+        terms.push((c < 0.0, body));
+    };
+    for (motion, r, c, d) in nf.terms(j) {
+        match motion {
+            osc::Motion::Oscillates => {
+                push(c, format!("cos({})", t(r)));
+                push(d, format!("sin({})", t(r)));
+            }
+            // c·cosh + d·sinh = (c + d)/2·exp(r·t) + (c − d)/2·exp(−r·t)
+            osc::Motion::Grows => {
+                push((c + d) / 2.0, format!("exp({})", t(r)));
+                push((c - d) / 2.0, format!("exp({neg}{})", t(r)));
+            }
+            osc::Motion::Drifts => {
+                push(c, String::new());
+                push(d, "t".into());
+            }
+        }
+    }
+    let mut out = String::new();
+    for (i, (negative, body)) in terms.iter().enumerate() {
+        match (i, negative) {
+            (0, true) => out.push_str(&format!("{neg}{body}")),
+            (0, false) => out.push_str(body),
+            (_, true) => out.push_str(&format!(" {neg} {body}")),
+            (_, false) => out.push_str(&format!(" + {body}")),
+        }
+    }
+    if out.is_empty() {
+        out.push('0');
+    }
+    out
+}
+
+/// |x| in decimal notation with 10 significant digits, trailing zeros
+/// dropped.
+fn significant(x: f64) -> String {
+    let e = format!("{:.9e}", x.abs());
+    let Some((mantissa, exp)) = e.split_once('e') else {
+        return e;
+    };
+    let exp: i32 = exp.parse().unwrap_or(0);
+    let digits: String = mantissa.chars().filter(|c| c.is_ascii_digit()).collect();
+    let (int, frac) = if exp >= 0 {
+        let k = exp as usize + 1;
+        if k >= digits.len() {
+            (
+                format!("{digits}{}", "0".repeat(k - digits.len())),
+                String::new(),
+            )
+        } else {
+            (digits[..k].to_string(), digits[k..].to_string())
+        }
+    } else {
+        let zeros = "0".repeat((-exp - 1) as usize);
+        ("0".to_string(), format!("{zeros}{digits}"))
+    };
+    let frac = frac.trim_end_matches('0');
+    if frac.is_empty() {
+        int
+    } else {
+        format!("{int}.{frac}")
     }
 }

@@ -399,9 +399,10 @@ pub fn free_response(md: &Modes, q0: &[Expr], v0: &[Expr]) -> Result<Vec<Expr>, 
         .with_hint("`qdot simulate` integrates the motion"));
     }
     if md.omega_squared.len() != n {
-        return Err(Diagnostic::global(
-            "the free response needs every frequency in closed form",
-        ));
+        return Err(
+            Diagnostic::global("the free response needs every frequency in closed form")
+                .with_hint("give every parameter a value with --set for the numeric free response"),
+        );
     }
     // U·a = q0, U·(ω∘b) = v0 with U's columns the modes
     let u: Vec<Vec<Expr>> = (0..n)
@@ -568,4 +569,200 @@ pub fn amplitude_phase(omega_squared: &Expr, y0: &Expr, v0: &Expr) -> Option<(Ex
         func::atan(&y0.mul(&w).div(v0).ok()?)
     };
     Some((a, phi))
+}
+
+/// How one mode of a numeric free response moves: ω² > 0 oscillates
+/// (cos, sin), ω² < 0 grows (cosh, sinh), ω² = 0 drifts (1, t).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Motion {
+    /// ω² > 0: cos and sin
+    Oscillates,
+    /// ω² < 0: cosh and sinh
+    Grows,
+    /// ω² = 0: 1 and t
+    Drifts,
+}
+
+/// One mode of a numeric free response: the mode contributes
+/// `vector·(a·f(t) + b·g(t))` with f, g = cos(r·t), sin(r·t)/r (ω² = r²),
+/// cosh(r·t), sinh(r·t)/r (ω² = −r²) or 1, t (ω² = 0).
+#[derive(Clone, Debug)]
+pub struct NumericMode {
+    /// the eigen-solver's ω²
+    pub omega_squared: f64,
+    /// its kind of motion
+    pub motion: Motion,
+    /// r = √|ω²| (0 when the mode drifts)
+    pub rate: f64,
+    /// the M-normalized vector (vᵀ·M·v = 1)
+    pub vector: Vec<f64>,
+    /// a = vᵀ·M·q0
+    pub a: f64,
+    /// b = vᵀ·M·v0
+    pub b: f64,
+}
+
+/// The free response of the undamped system computed numerically from the
+/// M-orthonormal eigenvectors at the `--set` values (when the ω² have no
+/// closed form): q(t) = Σ_i v_i·(a_i·f_i(t) + b_i·g_i(t)).
+#[derive(Clone, Debug)]
+pub struct NumericFree {
+    /// one per eigenvalue, ω² ascending
+    pub modes: Vec<NumericMode>,
+}
+
+/// |ω²| at or below this fraction of the largest |ω²| is a zero frequency
+/// (the eigen-solver's rounding is about ε·max|ω²|).
+const ZERO_OMEGA_SQUARED: f64 = 1e-11;
+
+impl NumericFree {
+    /// q(t), each coordinate.
+    pub fn at(&self, t: f64) -> Vec<f64> {
+        let n = self.modes.first().map_or(0, |m| m.vector.len());
+        let mut q = vec![0.0; n];
+        for m in &self.modes {
+            let (f, g) = match m.motion {
+                Motion::Oscillates => ((m.rate * t).cos(), (m.rate * t).sin() / m.rate),
+                Motion::Grows => ((m.rate * t).cosh(), (m.rate * t).sinh() / m.rate),
+                Motion::Drifts => (1.0, t),
+            };
+            let c = m.a * f + m.b * g;
+            for (qj, vj) in q.iter_mut().zip(&m.vector) {
+                *qj += vj * c;
+            }
+        }
+        q
+    }
+
+    /// Coordinate `j` as terms (motion, rate, c, d) meaning c·cos(r·t) +
+    /// d·sin(r·t), c·cosh(r·t) + d·sinh(r·t) or c + d·t; modes of one
+    /// frequency are summed, and terms below the rounding (1e-11 of the
+    /// largest coefficient of any coordinate) are left out.
+    pub fn terms(&self, j: usize) -> Vec<(Motion, f64, f64, f64)> {
+        let raw = |m: &NumericMode, k: usize| {
+            let s = if m.motion == Motion::Drifts {
+                1.0
+            } else {
+                m.rate
+            };
+            (m.vector[k] * m.a, m.vector[k] * m.b / s)
+        };
+        let n = self.modes.first().map_or(0, |m| m.vector.len());
+        let scale = self
+            .modes
+            .iter()
+            .flat_map(|m| (0..n).map(move |k| (m, k)))
+            .map(|(m, k)| {
+                let (c, d) = raw(m, k);
+                c.abs().max(d.abs())
+            })
+            .fold(0.0f64, f64::max);
+        let mut out: Vec<(Motion, f64, f64, f64)> = Vec::new();
+        for m in &self.modes {
+            let (c, d) = raw(m, j);
+            let same = out.iter_mut().find(|(mo, r, _, _)| {
+                *mo == m.motion && (r - m.rate).abs() <= 1e-10 * r.abs().max(m.rate.abs())
+            });
+            match same {
+                Some(e) => {
+                    e.2 += c;
+                    e.3 += d;
+                }
+                None => out.push((m.motion, m.rate, c, d)),
+            }
+        }
+        let tiny = ZERO_OMEGA_SQUARED * scale;
+        for e in out.iter_mut() {
+            if e.2.abs() <= tiny {
+                e.2 = 0.0;
+            }
+            if e.3.abs() <= tiny {
+                e.3 = 0.0;
+            }
+        }
+        out.retain(|e| e.2 != 0.0 || e.3 != 0.0);
+        out
+    }
+}
+
+/// The numeric free response (undamped) at the `--set` values `set` from
+/// q(0) = q0, q̇(0) = v0: a = Vᵀ·M·q0, b = Vᵀ·M·v0 with V's columns the
+/// M-normalized eigenvectors of K·v = ω²·M·v. Refuses a gyroscopic system
+/// (complex modes) and a parameter without a value.
+pub fn numeric_free_response(
+    md: &Modes,
+    set: &Values,
+    q0: &[Expr],
+    v0: &[Expr],
+) -> Result<NumericFree, Diagnostic> {
+    if md.gyroscopic {
+        return Err(Diagnostic::global(
+            "the free response of a gyroscopic system needs its complex modes, which qdot does not give",
+        )
+        .with_hint("`qdot simulate` integrates the motion"));
+    }
+    let missing = || {
+        Diagnostic::global("the numeric free response needs a value for every parameter")
+            .with_hint("give them with --set NAME=VALUE,…")
+    };
+    let g = numeric_modes(md, set).ok_or_else(missing)?;
+    let at = |a: &Atom| match a {
+        Atom::Param(n) => set.get(&**n).copied(),
+        _ => None,
+    };
+    let num = |v: &[Expr]| -> Option<Vec<f64>> { v.iter().map(|e| e.eval_f64(&at)).collect() };
+    let (q0, v0) = match (num(q0), num(v0)) {
+        (Some(q), Some(v)) => (q, v),
+        _ => return Err(missing()),
+    };
+    let mass: Vec<Vec<f64>> = md
+        .mass
+        .iter()
+        .map(|r| {
+            r.iter()
+                .map(|e| e.eval_f64(&at))
+                .collect::<Option<Vec<f64>>>()
+        })
+        .collect::<Option<_>>()
+        .ok_or_else(missing)?;
+    let finite = |x: &[f64]| x.iter().all(|v| v.is_finite());
+    if !finite(&q0) || !finite(&v0) || !finite(&g.values) {
+        return Err(Diagnostic::global(
+            "the numeric free response is not finite at these values",
+        ));
+    }
+    // vᵀ·M·x
+    let project = |v: &[f64], x: &[f64]| -> f64 {
+        (0..v.len())
+            .map(|i| v[i] * (0..x.len()).map(|j| mass[i][j] * x[j]).sum::<f64>())
+            .sum()
+    };
+    let biggest = g.values.iter().fold(0.0f64, |a, w| a.max(w.abs()));
+    let modes = g
+        .values
+        .iter()
+        .zip(&g.vectors)
+        .map(|(&w2, v)| {
+            let motion = if w2.abs() <= ZERO_OMEGA_SQUARED * biggest {
+                Motion::Drifts
+            } else if w2 > 0.0 {
+                Motion::Oscillates
+            } else {
+                Motion::Grows
+            };
+            NumericMode {
+                omega_squared: w2,
+                motion,
+                rate: if motion == Motion::Drifts {
+                    0.0
+                } else {
+                    w2.abs().sqrt()
+                },
+                vector: v.clone(),
+                a: project(v, &q0),
+                b: project(v, &v0),
+            }
+        })
+        .collect();
+    Ok(NumericFree { modes })
 }
