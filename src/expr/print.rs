@@ -36,12 +36,22 @@ pub fn unicode(e: &Expr) -> String {
 /// term, as the seed writes it: 16/81·k/m − g/(9·r) rather than
 /// (16·k·r − 9·g·m)/(81·m·r). Display only.
 pub fn expanded(e: &Expr) -> String {
+    expanded_in(e, Style::Unicode)
+}
+
+/// [`expanded`] in input syntax (`3*k/m - 3*g/(2*l)`): the JSON of a value
+/// the text shows expanded, in the same form.
+pub fn expanded_input(e: &Expr) -> String {
+    expanded_in(e, Style::Input)
+}
+
+fn expanded_in(e: &Expr, st: Style) -> String {
     match expanded_terms(e) {
         Some(items) => join_terms(
-            items.into_iter().map(|(neg, t)| (neg, unicode(&t))),
-            Style::Unicode,
+            items.into_iter().map(|(neg, t)| (neg, render(&t, st))),
+            st,
         ),
-        None => unicode(e),
+        None => render(e, st),
     }
 }
 
@@ -516,6 +526,11 @@ pub(crate) fn fraction_parts(num: &Poly, den: &Poly) -> (bool, Q, Mono, Poly, Mo
     let mut neg = c.is_negative();
     if neg && negatives(&pn) > 0 {
         pn = -&pn;
+        neg = false;
+    } else if neg && negatives(&pd) > 0 && 2 * negatives(&pd) >= pd.len() {
+        // or the denominator takes it, if that leaves it no more negative
+        // terms than positive ones: x/(16·k·r − 9·g·m)
+        pd = -&pd;
         neg = false;
     }
     (neg, c.abs(), mn, pn, md, pd)

@@ -274,7 +274,12 @@ pub fn modes_json(
     m.insert("gyroscopic".into(), json!(md.gyroscopic));
     m.insert(
         "omega_squared".into(),
-        json!(md.omega_squared.iter().map(as_input).collect::<Vec<_>>()),
+        // term by term over a monomial denominator, as the text shows them
+        json!(md
+            .omega_squared
+            .iter()
+            .map(crate::expr::print::expanded_input)
+            .collect::<Vec<_>>()),
     );
     m.insert(
         "modes".into(),
@@ -289,8 +294,8 @@ pub fn modes_json(
     let standard = crate::solve::oscillations::standard_form(md, set);
     let sf = standard.as_ref().map(|sf| {
         json!({
-            "omega_squared": as_input(&sf.omega_squared),
-            "alpha": as_input(&sf.alpha),
+            "omega_squared": crate::expr::print::expanded_input(&sf.omega_squared),
+            "alpha": crate::expr::print::expanded_input(&sf.alpha),
             "zeta": sf.zeta.as_ref().map(as_input),
             "forcing": as_input(&sf.forcing),
             "regime": sf.regime,
