@@ -94,6 +94,18 @@ fn the_forms_a_lecturer_writes() {
     );
     let (_, out, _) = qdot(&["derive", "examples/disk_in_cylinder.qd"]);
     assert!(out.contains("3/2·m·(R − r)²·θ̈"), "{out}");
+    // a coefficient cancels against its own denominator before it is
+    // compacted: g·m·(R − r)³/(R − r)² is g·m·(R − r)
+    let (_, out, _) = qdot(&["hamilton", "examples/disk_in_cylinder.qd"]);
+    assert!(
+        out.contains("H = −g·m·(R − r)·cos(θ) + p_θ²/(3·m·(R − r)²)"),
+        "{out}"
+    );
+    let (_, out, _) = qdot(&["latex", "--steps", "examples/disk_in_cylinder.qd"]);
+    assert!(
+        out.contains(r"E &= \frac{3}{4} m (R - r)^{2} \dot{\theta}^{2}"),
+        "{out}"
+    );
     let (_, out, _) = qdot(&["solve", "tests/data/compact/sliding_support.qd"]);
     assert!(
         out.contains(" = m·sin(θ)·(l·θ̇² + g·cos(θ))/(m·sin²(θ) + M)\n"),

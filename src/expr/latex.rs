@@ -408,7 +408,8 @@ impl Tex<'_> {
             .first()
             .is_some_and(|(_, q)| q.is_negative());
         let c = if neg { c.neg() } else { c.clone() };
-        let (_, mut fs) = self.fraction(c.num(), c.den());
+        let (cn, cd) = super::compact::display_parts(c.num(), c.den());
+        let (_, mut fs) = self.fraction(&cn, &cd);
         if fs.len() == 1 && fs[0].tex == "1" {
             fs.clear();
         }

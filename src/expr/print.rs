@@ -47,10 +47,7 @@ pub fn expanded_input(e: &Expr) -> String {
 
 fn expanded_in(e: &Expr, st: Style) -> String {
     match expanded_terms(e) {
-        Some(items) => join_terms(
-            items.into_iter().map(|(neg, t)| (neg, render(&t, st))),
-            st,
-        ),
+        Some(items) => join_terms(items.into_iter().map(|(neg, t)| (neg, render(&t, st))), st),
         None => render(e, st),
     }
 }
@@ -229,7 +226,9 @@ fn term_with_coef_signed(c: &Expr, key: &Mono, st: Style) -> (bool, String) {
         .first()
         .is_some_and(|(_, q)| q.is_negative());
     let c = if neg { c.neg() } else { c.clone() };
-    let body = fraction(c.num(), c.den(), st);
+    // a coefficient is compacted on its own: g·m·(R − r), p²/(3·m·(R − r)²)
+    let (cn, cd) = super::compact::display_parts(c.num(), c.den());
+    let body = fraction(&cn, &cd, st);
     if key.0.is_empty() {
         return (neg, body);
     }

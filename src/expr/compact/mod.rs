@@ -65,8 +65,16 @@ pub fn display_parts(num: &Poly, den: &Poly) -> (Poly, Poly) {
     if num.len() + den.len() > MAX_COMPACT_TERMS || (num.len() < 2 && den.len() < 2) {
         return folded;
     }
-    let mut search = Search::default();
-    search.offer(grouped_pair(&folded.0, &folded.1));
+    // where the printers split the numerator by coordinate monomials and
+    // cancel each coefficient against the denominator, sums stay sums
+    // (each coefficient is compacted when it is printed)
+    let collects = printer_collects(num, den);
+    let mut search = Search {
+        group: !collects,
+        ..Search::default()
+    };
+    let first = search.grouped_pair(&folded.0, &folded.1);
+    search.offer(first);
     let angles = fourier::angles(&[num, den]);
     if !angles.is_empty() {
         for (n, d) in representations(num, den, &angles) {
@@ -78,7 +86,21 @@ pub fn display_parts(num: &Poly, den: &Poly) -> (Poly, Poly) {
     }
     // factored last, the winner only: factoring is the search's dearest step
     let (n, d) = search.best.map(|(_, n, d)| (n, d)).unwrap_or(folded);
+    if collects {
+        // a factored denominator would hide the per-coefficient
+        // cancellation (g·m·(R − r)³/(R − r)²)
+        return (n, d);
+    }
     (factored_if_shorter(&n), factored_if_shorter(&d))
+}
+
+/// Whether the printers write num/den term by term, each coefficient a
+/// quotient of its own that may cancel against the denominator (a sum free
+/// of coordinates below, coordinates above).
+fn printer_collects(num: &Poly, den: &Poly) -> bool {
+    let moving = |p: &Poly| p.vars().into_iter().any(atom::is_moving);
+    // a monomial denominator cancels nothing a group would hide
+    den.len() > 1 && !moving(den) && moving(num)
 }
 
 /// `p` factored over ℚ when that is shorter.
@@ -145,6 +167,8 @@ struct Search {
     best: Option<(usize, Poly, Poly)>,
     nums: Vec<Poly>,
     dens: Vec<Poly>,
+    /// Whether sums may be grouped into display atoms.
+    group: bool,
 }
 
 impl Search {
@@ -167,16 +191,19 @@ impl Search {
             let d = den.div_exact(&g).unwrap_or_else(|| den.clone());
             // the quotient once more in the canonical reduction
             let (rn, rd) = (super::reduce_poly(&n), super::reduce_poly(&d));
-            self.offer(grouped_pair(&rn, &rd));
+            let pair = self.grouped_pair(&rn, &rd);
+            self.offer(pair);
             (n, d)
         };
         let (fnum, fden) = (print::fold_trig(&n), print::fold_trig(&d));
         if fnum.is_some() || fden.is_some() {
             let fnum = fnum.unwrap_or_else(|| n.clone());
             let fden = fden.unwrap_or_else(|| d.clone());
-            self.offer(grouped_pair(&fnum, &fden));
+            let pair = self.grouped_pair(&fnum, &fden);
+            self.offer(pair);
         }
-        self.offer(grouped_pair(&n, &d));
+        let pair = self.grouped_pair(&n, &d);
+        self.offer(pair);
     }
 
     /// The shortest numerator over the shortest denominator, each chosen
@@ -185,20 +212,21 @@ impl Search {
         let shortest = |ps: &[Poly]| -> Option<Poly> {
             ps.iter()
                 .flat_map(|p| [p.clone(), print::fold_trig(p).unwrap_or_else(|| p.clone())])
-                .min_by_key(|p| ops_of(&grouped(p, true)))
+                .min_by_key(|p| ops_of(&grouped(p, self.group)))
         };
         let (Some(n), Some(d)) = (shortest(&self.nums), shortest(&self.dens)) else {
             return;
         };
-        self.offer(grouped_pair(&n, &d));
+        let pair = self.grouped_pair(&n, &d);
+        self.offer(pair);
     }
-}
 
-/// Both sides with their terms collected (the printers collect a
-/// polynomial's terms themselves, but not a quotient's sides; collecting
-/// here makes the cost of both alike).
-fn grouped_pair(n: &Poly, d: &Poly) -> (Poly, Poly) {
-    (grouped(n, true), grouped(d, true))
+    /// Both sides with their terms collected (the printers collect a
+    /// polynomial's terms themselves, but not a quotient's sides; collecting
+    /// here makes the cost of both alike).
+    fn grouped_pair(&self, n: &Poly, d: &Poly) -> (Poly, Poly) {
+        (grouped(n, self.group), grouped(d, self.group))
+    }
 }
 
 /// `p` with its terms collected by their monomial in moving atoms (when
