@@ -427,6 +427,27 @@ fn plot_of_seed_24_2_shows_the_motion() {
     for caption in ["dop853 — q(t)", "phase portrait", "energy error"] {
         assert!(svg.contains(caption), "{caption}");
     }
+    // tick labels print 0 as 0 (not 0.0, -0.0 or a rounding residue like
+    // -2.6e-23) and the legend writes the coordinates as the text does
+    let labels: Vec<&str> = svg
+        .split("</text>")
+        .filter_map(|t| t.rsplit('>').next())
+        .map(str::trim)
+        .collect();
+    assert!(labels.contains(&"0"), "{labels:?}");
+    for bad in ["0.0", "-0.0", "-0"] {
+        assert!(!labels.contains(&bad), "{bad}: {labels:?}");
+    }
+    assert!(
+        !labels
+            .iter()
+            .any(|l| l.parse::<f64>().is_ok_and(|v| v != 0.0 && v.abs() < 1e-20)),
+        "{labels:?}"
+    );
+    assert!(
+        labels.contains(&"x₁") && labels.contains(&"x₂"),
+        "{labels:?}"
+    );
     // the series: one per coordinate against t, one per phase portrait,
     // and the energy error, each with a point per output time
     let series: Vec<Vec<(f64, f64)>> = polylines(&svg)

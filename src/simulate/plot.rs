@@ -42,6 +42,42 @@ impl std::fmt::Display for PlotError {
 
 impl std::error::Error for PlotError {}
 
+/// A tick label: 0 as `0` (not `0.0`, `-0.0` or `-2.6e-23`, rounding
+/// left over from the tick arithmetic), the rest with the decimals the
+/// axis's span needs, or in scientific notation for a span far from 1.
+pub fn tick_label(v: f64, span: f64) -> String {
+    let span = if span.is_finite() && span > 0.0 {
+        span
+    } else {
+        1.0
+    };
+    if v.abs() <= span * 1e-9 {
+        return "0".into();
+    }
+    if !(1e-3..1e5).contains(&span) {
+        return format!("{v:.1e}");
+    }
+    let decimals = (-(span / 10.0).log10().floor()).clamp(0.0, 6.0) as usize;
+    let s = format!("{v:.decimals$}");
+    let s = if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    };
+    if s == "-0" {
+        "0".into()
+    } else {
+        s
+    }
+}
+
+/// A column's name as the text prints it: `theta` → θ, `x1'` → ẋ₁.
+fn pretty_column(name: &str) -> String {
+    let base = name.trim_end_matches('\'');
+    let dots = (name.len() - base.len()) as u32;
+    crate::expr::print::pretty_name(base, dots)
+}
+
 /// The figure of a run, as SVG text.
 pub fn svg(run: &Run) -> Result<String, PlotError> {
     let n = (run.columns.len() - 1) / 2;
@@ -76,6 +112,8 @@ pub fn svg(run: &Run) -> Result<String, PlotError> {
         // q(t)
         let qs: Vec<Vec<f64>> = (1..=n).map(col).collect();
         let (lo, hi) = range(&qs);
+        // headroom above the curves for the legend (upper right)
+        let hi = hi + (hi - lo) * (0.1 + 0.1 * n as f64).min(0.8);
         let mut chart = ChartBuilder::on(&areas[0])
             .caption(title, ("sans-serif", 18))
             .margin(12)
@@ -86,6 +124,8 @@ pub fn svg(run: &Run) -> Result<String, PlotError> {
         chart
             .configure_mesh()
             .x_desc("t")
+            .x_label_formatter(&|v| tick_label(*v, t1 - t0))
+            .y_label_formatter(&|v| tick_label(*v, hi - lo))
             .draw()
             .map_err(PlotError::drawing)?;
         for (i, q) in qs.iter().enumerate() {
@@ -93,11 +133,12 @@ pub fn svg(run: &Run) -> Result<String, PlotError> {
             chart
                 .draw_series(LineSeries::new(t.iter().copied().zip(q.iter().copied()), c))
                 .map_err(PlotError::drawing)?
-                .label(run.columns[1 + i].clone())
+                .label(pretty_column(&run.columns[1 + i]))
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c));
         }
         chart
             .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
             .background_style(WHITE.mix(0.8))
             .border_style(BLACK)
             .draw()
@@ -108,7 +149,7 @@ pub fn svg(run: &Run) -> Result<String, PlotError> {
         let (xlo, xhi) = range(&qs);
         let (ylo, yhi) = range(&qds);
         let mut chart = ChartBuilder::on(&areas[1])
-            .caption("phase portrait q' against q", ("sans-serif", 18))
+            .caption("phase portrait q̇ against q", ("sans-serif", 18))
             .margin(12)
             .x_label_area_size(30)
             .y_label_area_size(60)
@@ -117,7 +158,9 @@ pub fn svg(run: &Run) -> Result<String, PlotError> {
         chart
             .configure_mesh()
             .x_desc("q")
-            .y_desc("q'")
+            .y_desc("q̇")
+            .x_label_formatter(&|v| tick_label(*v, xhi - xlo))
+            .y_label_formatter(&|v| tick_label(*v, yhi - ylo))
             .draw()
             .map_err(PlotError::drawing)?;
         for (i, (q, qd)) in qs.iter().zip(&qds).enumerate() {
@@ -146,7 +189,14 @@ pub fn svg(run: &Run) -> Result<String, PlotError> {
             chart
                 .configure_mesh()
                 .x_desc("t")
-                .y_label_formatter(&|v| format!("{v:.1e}"))
+                .x_label_formatter(&|v| tick_label(*v, t1 - t0))
+                .y_label_formatter(&|v| {
+                    if v.abs() <= (hi - lo).abs() * 1e-9 {
+                        "0".into()
+                    } else {
+                        format!("{v:.1e}")
+                    }
+                })
                 .draw()
                 .map_err(PlotError::drawing)?;
             chart
@@ -156,4 +206,21 @@ pub fn svg(run: &Run) -> Result<String, PlotError> {
         root.present().map_err(PlotError::drawing)?;
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::tick_label;
+
+    #[test]
+    fn ticks_print_zero_as_zero_and_only_the_digits_the_span_needs() {
+        assert_eq!(tick_label(0.0, 2.0), "0");
+        assert_eq!(tick_label(-0.0, 2.0), "0");
+        assert_eq!(tick_label(-2.6e-23, 2.0), "0");
+        assert_eq!(tick_label(0.2, 2.0), "0.2");
+        assert_eq!(tick_label(-1.0, 2.0), "-1");
+        assert_eq!(tick_label(15.0, 100.0), "15");
+        assert_eq!(tick_label(2.0e-8, 1.0e-7), "2.0e-8");
+        assert_eq!(tick_label(0.0, 1.0e-7), "0");
+    }
 }
