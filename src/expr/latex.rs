@@ -242,9 +242,7 @@ pub fn quotient_terms(e: &Expr, names: &Names) -> Option<Quotient> {
     let (cd, md, pd) = print::split_poly(&den);
     let num = num.scale(&Q::one().checked_div(&cd)?);
     // sign outside, the numerator's first displayed term positive
-    let neg = print::sorted_terms(&num)
-        .first()
-        .is_some_and(|(_, q)| q.is_negative());
+    let neg = print::leads_negative(&num);
     let num = if neg { -&num } else { num };
     let mut fs = tex.mono(&md);
     if !pd.is_one() {
@@ -404,9 +402,7 @@ impl Tex<'_> {
 
     /// `coef·key`: (is negative, text without the sign).
     fn term(&self, c: &Expr, key: &Mono) -> (bool, String) {
-        let neg = print::sorted_terms(c.num())
-            .first()
-            .is_some_and(|(_, q)| q.is_negative());
+        let neg = print::leads_negative(c.num());
         let c = if neg { c.neg() } else { c.clone() };
         let (cn, cd) = super::compact::display_parts(c.num(), c.den());
         let (_, mut fs) = self.fraction(&cn, &cd);

@@ -222,9 +222,7 @@ fn term_with_coef(c: &Expr, key: &Mono, st: Style) -> (bool, String) {
 fn term_with_coef_signed(c: &Expr, key: &Mono, st: Style) -> (bool, String) {
     // The sign goes outside: the coefficient's first displayed term is
     // positive (what still prints with a sign, `term_with_coef` takes out).
-    let neg = sorted_terms(c.num())
-        .first()
-        .is_some_and(|(_, q)| q.is_negative());
+    let neg = leads_negative(c.num());
     let c = if neg { c.neg() } else { c.clone() };
     // a coefficient is compacted on its own: g·m·(R − r), p²/(3·m·(R − r)²)
     let (cn, cd) = super::compact::display_parts(c.num(), c.den());
@@ -346,9 +344,7 @@ pub(crate) fn split_poly(p: &Poly) -> (Q, Mono, Poly) {
         }
     }
     let mut content = content;
-    let first_neg = sorted_terms(&prim)
-        .first()
-        .is_some_and(|(_, c)| c.is_negative());
+    let first_neg = leads_negative(&prim);
     if first_neg {
         prim = -&prim;
         content = -content;

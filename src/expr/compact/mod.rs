@@ -51,18 +51,15 @@ pub use crate::limits::{MAX_COMPACT_TERMS, MAX_FACTORED_TERMS};
 /// (see the module docs). The result may contain display atoms
 /// ([`Atom::Shown`], [`Atom::Group`]) and is only for the printers.
 pub fn display_parts(num: &Poly, den: &Poly) -> (Poly, Poly) {
-    if CANONICAL_ONLY.with(|c| c.get()) {
-        return (
-            print::fold_trig(num).unwrap_or_else(|| num.clone()),
-            print::fold_trig(den).unwrap_or_else(|| den.clone()),
-        );
-    }
     let folded = (
         print::fold_trig(num).unwrap_or_else(|| num.clone()),
         print::fold_trig(den).unwrap_or_else(|| den.clone()),
     );
     // a monomial over a monomial has no sum to rewrite
-    if num.len() + den.len() > MAX_COMPACT_TERMS || (num.len() < 2 && den.len() < 2) {
+    if CANONICAL_ONLY.with(|c| c.get())
+        || num.len() + den.len() > MAX_COMPACT_TERMS
+        || (num.len() < 2 && den.len() < 2)
+    {
         return folded;
     }
     // where the printers split the numerator by coordinate monomials and
@@ -73,16 +70,16 @@ pub fn display_parts(num: &Poly, den: &Poly) -> (Poly, Poly) {
         group: !collects,
         ..Search::default()
     };
-    let first = search.grouped_pair(&folded.0, &folded.1);
-    search.offer(first);
+    // the canonical form is offered first (folded, then as it is), so it
+    // stays on a tie
     let angles = fourier::angles(&[num, den]);
-    if !angles.is_empty() {
+    if angles.is_empty() {
+        search.offer_cancelled(num, den);
+    } else {
         for (n, d) in representations(num, den, &angles) {
             search.offer_cancelled(&n, &d);
         }
         search.offer_independent();
-    } else if !num.is_constant() && !den.is_constant() {
-        search.offer_cancelled(num, den);
     }
     // factored last, the winner only: factoring is the search's dearest step
     let (n, d) = search.best.map(|(_, n, d)| (n, d)).unwrap_or(folded);
