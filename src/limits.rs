@@ -78,6 +78,12 @@ pub const MAX_RATIONALIZE_STEPS: u32 = 64;
 /// canonical form with the addition theorems folded.
 pub const MAX_COMPACT_TERMS: usize = 400;
 
+/// The most terms a rewriting of the compact forms may expand a result
+/// into (estimated before it is made: sinᵃθ as a Fourier series has a + 1
+/// terms, sin²ᵏθ as a polynomial in cos θ has k + 1); a rewriting past it
+/// is not tried. sin¹⁰(a)·…·sin¹⁰(e) would otherwise expand into 11⁵ terms.
+pub const MAX_TRIG_EXPANSION: usize = 4_000;
+
 /// The most terms of a sum the compact forms try to factor over ℚ for
 /// printing ((R − r)²); factoring is exact but its cost grows quickly.
 pub const MAX_FACTORED_TERMS: usize = 40;

@@ -167,3 +167,23 @@ proptest! {
         prop_assert!(again.equals(&e), "{} printed as {}", src, printed);
     }
 }
+
+/// A rewriting's size is estimated before it is made: high powers of
+/// several angles print at once, in the canonical form (expanding them
+/// into a Fourier series or polynomials in cos would take 11⁵ and 101³
+/// terms).
+#[test]
+fn high_powers_of_several_angles_are_not_expanded() {
+    let scene = Scene::parse("coordinates a, b, c, d, e\nparameters m\n").expect("scene");
+    for src in [
+        "sin(a)^10*sin(b)^10*sin(c)^10*sin(d)^10*sin(e)^10 + m",
+        "sin(a)^200*sin(b)^200*sin(c)^200 + m",
+    ] {
+        let e = scene.expr(src).expect("value");
+        let printed = e.to_input();
+        assert!(
+            scene.expr(&printed).expect("re-parses").equals(&e),
+            "{printed}"
+        );
+    }
+}

@@ -136,11 +136,7 @@ fn one_angle(a: u32, b: u32) -> Vec<(i32, Complex)> {
 /// first nonzero entry is positive; p = Σ 2·Re·cos(k·u) − 2·Im·sin(k·u)
 /// (plus Re at k = 0).
 pub(crate) fn fourier(p: &Poly, angles: &[(Var, Var, Expr)]) -> Vec<(Vec<i32>, Poly, Poly)> {
-    let index: FxHashMap<Var, (usize, bool)> = angles
-        .iter()
-        .enumerate()
-        .flat_map(|(i, (s, c, _))| [(*s, (i, false)), (*c, (i, true))])
-        .collect();
+    let index = angle_index(angles);
     let mut memo: FxHashMap<Vec<(u32, u32)>, Series> = FxHashMap::default();
     let mut acc: FxHashMap<Vec<i32>, (Terms, Terms)> = FxHashMap::default();
     for (m, c) in p.terms() {
@@ -253,6 +249,61 @@ fn trig_var(k: &[i32], cos: bool, angles: &[(Var, Var, Expr)]) -> Var {
         b: Expr::zero(),
         minus: false,
     })))
+}
+
+/// The terms the Fourier form of `p` can have at most (each monomial's
+/// Π (aᵢ + bᵢ + 1) over its sinᵃ·cosᵇ factors, saturating), or `None` when
+/// some angle's degree exceeds `max_degree` (its multiple would too).
+pub(crate) fn fourier_size(
+    p: &Poly,
+    angles: &[(Var, Var, Expr)],
+    max_degree: u32,
+) -> Option<usize> {
+    let index = angle_index(angles);
+    let mut total = 0usize;
+    for (m, _) in p.terms() {
+        let mut degrees = vec![0u32; angles.len()];
+        for &(v, e) in m.pairs() {
+            if let Some(&(i, _)) = index.get(&v) {
+                degrees[i] += e;
+            }
+        }
+        if degrees.iter().any(|&d| d > max_degree) {
+            return None;
+        }
+        let size = degrees
+            .iter()
+            .fold(1usize, |n, &d| n.saturating_mul(d as usize + 1));
+        total = total.saturating_add(size);
+    }
+    Some(total)
+}
+
+/// The terms [`cos_reduced`] can give at most: each monomial's
+/// Π (eᵢ/2 + 1) over the flipped sines sinᵉⁱ (saturating).
+pub(crate) fn cos_reduced_size(p: &Poly, angles: &[(Var, Var, Expr)], mask: u32) -> usize {
+    let flipped: Vec<Var> = angles
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| mask & (1 << i) != 0)
+        .map(|(_, (s, _, _))| *s)
+        .collect();
+    p.terms().iter().fold(0usize, |total, (m, _)| {
+        let size = m
+            .pairs()
+            .iter()
+            .filter(|(v, _)| flipped.contains(v))
+            .fold(1usize, |n, &(_, e)| n.saturating_mul(e as usize / 2 + 1));
+        total.saturating_add(size)
+    })
+}
+
+fn angle_index(angles: &[(Var, Var, Expr)]) -> FxHashMap<Var, (usize, bool)> {
+    angles
+        .iter()
+        .enumerate()
+        .flat_map(|(i, (s, c, _))| [(*s, (i, false)), (*c, (i, true))])
+        .collect()
 }
 
 /// `p` with sin²(uᵢ) written as 1 − cos²(uᵢ) for the angles in `mask`

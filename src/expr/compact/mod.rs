@@ -32,8 +32,9 @@
 //!
 //! **Invariant:** the search is bounded: only expressions of at most
 //! [`MAX_COMPACT_TERMS`] terms are searched, at most 2³ reduction choices
-//! (then all-sine and all-cosine only), and factorization only of sums of
-//! at most [`MAX_FACTORED_TERMS`] terms; beyond, the canonical form is
+//! (then all-sine and all-cosine only), a rewriting only when its size,
+//! estimated before it is made, is at most [`MAX_TRIG_EXPANSION`] terms,
+//! and factorization only of sums of at most [`MAX_FACTORED_TERMS`] terms; beyond, the canonical form is
 //! printed with its addition theorems folded, as before.
 
 mod cost;
@@ -45,7 +46,7 @@ use crate::num::Q;
 use crate::poly::{Mono, Poly, Var};
 use std::sync::Arc;
 
-pub use crate::limits::{MAX_COMPACT_TERMS, MAX_FACTORED_TERMS};
+pub use crate::limits::{MAX_COMPACT_TERMS, MAX_FACTORED_TERMS, MAX_TRIG_EXPANSION};
 
 /// The display polynomials of num/den: the shortest representation found
 /// (see the module docs). The result may contain display atoms
@@ -137,14 +138,26 @@ fn representations(
         vec![(1u32 << n.min(31)) - 1]
     };
     for mask in masks {
+        let size = fourier::cos_reduced_size(num, angles, mask)
+            .saturating_add(fourier::cos_reduced_size(den, angles, mask));
+        if size > MAX_TRIG_EXPANSION {
+            continue;
+        }
         out.push((
             fourier::cos_reduced(num, angles, mask),
             fourier::cos_reduced(den, angles, mask),
         ));
     }
-    if angles
-        .iter()
-        .all(|(_, _, u)| super::func::is_multiple_angle_base(u))
+    let (max_multiple, _) = super::func::MULTIPLE_ANGLE_BOUNDS;
+    let max_degree = max_multiple as u32;
+    let size = fourier::fourier_size(num, angles, max_degree)
+        .zip(fourier::fourier_size(den, angles, max_degree))
+        .map(|(a, b)| a.saturating_add(b));
+    let small = size.is_some_and(|s| s <= MAX_TRIG_EXPANSION);
+    if small
+        && angles
+            .iter()
+            .all(|(_, _, u)| super::func::is_multiple_angle_base(u))
     {
         let (sn, sd) = (fourier::fourier(num, angles), fourier::fourier(den, angles));
         if fourier::within_bounds(&sn) && fourier::within_bounds(&sd) {
