@@ -25,6 +25,7 @@ pub mod problems;
 #[cfg(feature = "cli")]
 pub mod progress;
 pub mod run;
+pub mod sweep;
 
 pub mod compile;
 pub mod constrained;

@@ -280,127 +280,228 @@ pub fn method_name(m: Method) -> &'static str {
 
 pub use crate::scene::given::numeric_initial_values as parse_init;
 
-/// Simulate the scene `src` as `req` asks.
+/// Parse, derive, compile and integrate: `qdot simulate` on the scene
+/// source `src`.
 pub fn simulate(src: &str, req: &Request) -> Result<Run, Diagnostic> {
-    let scene = Scene::parse(src)?;
-    let lag = super::given::defined(&scene, scene.lagrange()?, &req.functions)?;
-    let drift = super::constrained::drift(&lag);
-    let lag = super::constrained::stabilized(lag)?;
-    let names: Vec<String> = lag.coordinates.clone();
-    let mut params = parameter_values(&scene, req)?;
-    if !drift.is_empty() {
-        params.insert(super::constrained::alpha_var(), req.baumgarte);
-    }
-    let y0 = initial_values(&names, req)?;
-    check_numbers(req)?;
-    let compile_start = Instant::now();
-    let (mut dynamics, evaluator) = CompiledDynamics::best(&lag, &params)
-        .map_err(|e| Diagnostic::global(format!("cannot compile the equations: {e}")))?;
-    let energy = conserved_quantity(&scene, &lag.coordinates, &params)?;
-    let drift_program = if drift.is_empty() {
-        None
-    } else {
-        let exprs: Vec<Expr> = drift.iter().map(|(_, e)| e.clone()).collect();
-        Some(
-            compile_with(&exprs, &state_inputs(&names), &params)
-                .map_err(|e| Diagnostic::global(format!("cannot compile the constraints: {e}")))?,
-        )
-    };
-    let compile_seconds = compile_start.elapsed().as_secs_f64();
+    Prepared::new(src, &req.functions)?.run(req)
+}
 
-    let points = req.points;
-    let t_out: Vec<f64> = (0..points)
-        .map(|i| req.t_end * i as f64 / (points - 1) as f64)
-        .collect();
-    let opts = IntegratorOptions {
-        t0: 0.0,
-        t_end: req.t_end,
-        rtol: req.rtol,
-        atol: req.atol,
-        dt: req.dt,
-        t_out,
-        max_steps: req.max_steps,
-    };
-    let event = match &req.stop_when {
-        Some(text) => Some(event_program(&scene, &lag.coordinates, &params, text)?),
-        None => None,
-    };
-    let start = Instant::now();
-    #[cfg(feature = "cli")]
-    let solution = if req.progress {
-        let mut sys = Progress::new(&mut dynamics, opts.t0, opts.t_end);
-        run_method(&mut sys, req.method, &y0, &opts, event.as_ref())
-    } else {
-        run_method(&mut dynamics, req.method, &y0, &opts, event.as_ref())
-    };
-    // without the `cli` feature there is no bar to draw
-    #[cfg(not(feature = "cli"))]
-    let solution = run_method(&mut dynamics, req.method, &y0, &opts, event.as_ref());
-    let solution = solution.map_err(|e| match e {
-        SimError::BadInput(s) => Diagnostic::global(s).with_hint(match req.method {
-            Method::Rk4 | Method::Gauss6 => "RK4 and Gauss6 take a fixed step: --dt 0.01",
-            _ => "check --rtol, --atol and --dt",
-        }),
-        e => Diagnostic::global(e.to_string()),
-    })?;
-    let seconds = start.elapsed().as_secs_f64();
+/// A scene ready to simulate: parsed and derived once, then compiled and
+/// integrated for as many parameter values and initial states as wanted
+/// (the runs of a sweep, [`super::sweep`]).
+#[derive(Clone, Debug)]
+pub struct Prepared {
+    scene: Scene,
+    lag: crate::mechanics::Lagrange,
+    drift: Vec<(String, Expr)>,
+}
 
-    let mut columns = vec!["t".to_string()];
-    columns.extend(names.iter().cloned());
-    columns.extend(names.iter().map(|q| format!("{q}'")));
-    if energy.is_some() {
-        columns.push("energy".into());
+/// A [`Prepared`] scene compiled for one set of parameter values: what
+/// every run with those values shares (clone it per run).
+#[derive(Clone, Debug)]
+pub struct Compiled {
+    dynamics: CompiledDynamics,
+    evaluator: Choice,
+    energy: Option<Program>,
+    drift: Option<Program>,
+    event: Option<Program>,
+    seconds: f64,
+}
+
+impl Prepared {
+    /// Parse `src` and derive its equations (`functions`: the definitions
+    /// of its given functions of time, `--function s=…`).
+    pub fn new(src: &str, functions: &[String]) -> Result<Prepared, Diagnostic> {
+        let scene = Scene::parse(src)?;
+        let lag = super::given::defined(&scene, scene.lagrange()?, functions)?;
+        let drift = super::constrained::drift(&lag);
+        let lag = super::constrained::stabilized(lag)?;
+        Ok(Prepared { scene, lag, drift })
     }
-    columns.extend(drift.iter().map(|(c, _)| c.clone()));
-    let mut max_drift: Option<f64> = drift_program.as_ref().map(|_| 0.0);
-    let (mut drift_regs, mut drift_out) = match &drift_program {
-        Some(p) => (p.registers(), vec![0.0; p.n_outputs()]),
-        None => (Vec::new(), Vec::new()),
-    };
-    let mut rows = Vec::with_capacity(solution.t.len());
-    let (mut regs, mut out) = match &energy {
-        Some(p) => (p.registers(), vec![0.0; p.n_outputs()]),
-        None => (Vec::new(), Vec::new()),
-    };
-    let mut solution = solution;
-    let mut not_finite = None;
-    for (t, y) in solution.t.iter().zip(&solution.y) {
-        let mut row = Vec::with_capacity(columns.len());
-        row.push(*t);
-        row.extend_from_slice(y);
-        if let Some(p) = &energy {
-            // the row so far, [t, q…, q̇…], is the program's input
-            p.eval(&row, &mut regs, &mut out);
-            row.push(out[0]);
+
+    /// The coordinates, in the order of the state y = (q, q̇).
+    pub fn coordinates(&self) -> &[String] {
+        &self.lag.coordinates
+    }
+
+    /// The scene's parameters, in declaration order.
+    pub fn parameters(&self) -> Vec<String> {
+        self.scene
+            .parameters
+            .iter()
+            .map(|p| p.name.clone())
+            .collect()
+    }
+
+    /// Compile for `req.set` (and `req.stop_when`, `req.baumgarte`).
+    pub fn compile(&self, req: &Request) -> Result<Compiled, Diagnostic> {
+        let mut params = parameter_values(&self.scene, req)?;
+        if !self.drift.is_empty() {
+            params.insert(super::constrained::alpha_var(), req.baumgarte);
         }
-        if let Some(p) = &drift_program {
-            p.eval(&row[..1 + 2 * names.len()], &mut drift_regs, &mut drift_out);
-            for &g in &drift_out {
-                max_drift = max_drift.map(|m| m.max(g.abs()));
+        let names = &self.lag.coordinates;
+        let start = Instant::now();
+        let (dynamics, evaluator) = CompiledDynamics::best(&self.lag, &params)
+            .map_err(|e| Diagnostic::global(format!("cannot compile the equations: {e}")))?;
+        let energy = conserved_quantity(&self.scene, names, &params)?;
+        let drift = if self.drift.is_empty() {
+            None
+        } else {
+            let exprs: Vec<Expr> = self.drift.iter().map(|(_, e)| e.clone()).collect();
+            Some(
+                compile_with(&exprs, &state_inputs(names), &params).map_err(|e| {
+                    Diagnostic::global(format!("cannot compile the constraints: {e}"))
+                })?,
+            )
+        };
+        let event = match &req.stop_when {
+            Some(text) => Some(event_program(&self.scene, names, &params, text)?),
+            None => None,
+        };
+        Ok(Compiled {
+            dynamics,
+            evaluator,
+            energy,
+            drift,
+            event,
+            seconds: start.elapsed().as_secs_f64(),
+        })
+    }
+
+    /// The errors [`Prepared::integrate`] would give for `req` before it
+    /// integrates: a missing or unknown initial value, a bad option.
+    pub fn check(&self, req: &Request) -> Result<(), Diagnostic> {
+        initial_values(&self.lag.coordinates, req)?;
+        check_numbers(req)
+    }
+
+    /// Compile and integrate.
+    pub fn run(&self, req: &Request) -> Result<Run, Diagnostic> {
+        let compiled = self.compile(req)?;
+        self.integrate(compiled, req)
+    }
+
+    /// Integrate from `req.init` with what [`Prepared::compile`] made for
+    /// `req.set` (only `req.init`, the times, tolerances and method are
+    /// read here).
+    pub fn integrate(&self, compiled: Compiled, req: &Request) -> Result<Run, Diagnostic> {
+        let names = &self.lag.coordinates;
+        let y0 = initial_values(names, req)?;
+        check_numbers(req)?;
+        let Compiled {
+            mut dynamics,
+            evaluator,
+            energy,
+            drift: drift_program,
+            event,
+            seconds: compile_seconds,
+        } = compiled;
+        let points = req.points;
+        let t_out: Vec<f64> = (0..points)
+            .map(|i| req.t_end * i as f64 / (points - 1) as f64)
+            .collect();
+        let opts = IntegratorOptions {
+            t0: 0.0,
+            t_end: req.t_end,
+            rtol: req.rtol,
+            atol: req.atol,
+            dt: req.dt,
+            t_out,
+            max_steps: req.max_steps,
+        };
+        let start = Instant::now();
+        #[cfg(feature = "cli")]
+        let solution = if req.progress {
+            let mut sys = Progress::new(&mut dynamics, opts.t0, opts.t_end);
+            run_method(&mut sys, req.method, &y0, &opts, event.as_ref())
+        } else {
+            run_method(&mut dynamics, req.method, &y0, &opts, event.as_ref())
+        };
+        // without the `cli` feature there is no bar to draw
+        #[cfg(not(feature = "cli"))]
+        let solution = run_method(&mut dynamics, req.method, &y0, &opts, event.as_ref());
+        let solution = solution.map_err(|e| match e {
+            SimError::BadInput(s) => Diagnostic::global(s).with_hint(match req.method {
+                Method::Rk4 | Method::Gauss6 => "RK4 and Gauss6 take a fixed step: --dt 0.01",
+                _ => "check --rtol, --atol and --dt",
+            }),
+            e => Diagnostic::global(e.to_string()),
+        })?;
+        let seconds = start.elapsed().as_secs_f64();
+        let mut run = self.rows(solution, energy.as_ref(), drift_program.as_ref(), evaluator);
+        run.method = req.method;
+        run.seconds = seconds;
+        run.compile_seconds = compile_seconds;
+        Ok(run)
+    }
+
+    /// The output rows of `solution`: t, q, q̇, the energy and the
+    /// constraints' drift; a non-finite value ends them. (The method and
+    /// the times are the caller's to fill in.)
+    fn rows(
+        &self,
+        mut solution: Solution,
+        energy: Option<&Program>,
+        drift: Option<&Program>,
+        evaluator: Choice,
+    ) -> Run {
+        let names = &self.lag.coordinates;
+        let mut columns = vec!["t".to_string()];
+        columns.extend(names.iter().cloned());
+        columns.extend(names.iter().map(|q| format!("{q}'")));
+        if energy.is_some() {
+            columns.push("energy".into());
+        }
+        columns.extend(self.drift.iter().map(|(c, _)| c.clone()));
+        let mut max_drift: Option<f64> = drift.map(|_| 0.0);
+        let (mut drift_regs, mut drift_out) = match drift {
+            Some(p) => (p.registers(), vec![0.0; p.n_outputs()]),
+            None => (Vec::new(), Vec::new()),
+        };
+        let mut rows = Vec::with_capacity(solution.t.len());
+        let (mut regs, mut out) = match energy {
+            Some(p) => (p.registers(), vec![0.0; p.n_outputs()]),
+            None => (Vec::new(), Vec::new()),
+        };
+        let mut not_finite = None;
+        for (t, y) in solution.t.iter().zip(&solution.y) {
+            let mut row = Vec::with_capacity(columns.len());
+            row.push(*t);
+            row.extend_from_slice(y);
+            if let Some(p) = energy {
+                // the row so far, [t, q…, q̇…], is the program's input
+                p.eval(&row, &mut regs, &mut out);
+                row.push(out[0]);
             }
-            row.extend_from_slice(&drift_out);
+            if let Some(p) = drift {
+                p.eval(&row[..1 + 2 * names.len()], &mut drift_regs, &mut drift_out);
+                for &g in &drift_out {
+                    max_drift = max_drift.map(|m| m.max(g.abs()));
+                }
+                row.extend_from_slice(&drift_out);
+            }
+            // a NaN or ∞ in any column ends the run there: no row prints one
+            if let Some(j) = row.iter().position(|x| !x.is_finite()) {
+                not_finite = Some((columns[j].clone(), *t));
+                break;
+            }
+            rows.push(row);
         }
-        // a NaN or ∞ in any column ends the run there: no row prints one
-        if let Some(j) = row.iter().position(|x| !x.is_finite()) {
-            not_finite = Some((columns[j].clone(), *t));
-            break;
+        if let Some((_, t)) = &not_finite {
+            solution.status = Status::NotFinite { t: *t };
         }
-        rows.push(row);
+        Run {
+            constraint_drift: max_drift,
+            not_finite_column: not_finite.map(|(c, _)| c),
+            columns,
+            rows,
+            solution,
+            method: Method::Dop853,
+            seconds: 0.0,
+            compile_seconds: 0.0,
+            evaluator,
+        }
     }
-    if let Some((_, t)) = &not_finite {
-        solution.status = Status::NotFinite { t: *t };
-    }
-    Ok(Run {
-        constraint_drift: max_drift,
-        not_finite_column: not_finite.map(|(c, _)| c),
-        columns,
-        rows,
-        solution,
-        method: req.method,
-        seconds,
-        compile_seconds,
-        evaluator,
-    })
 }
 
 /// [`integrate`], or [`integrate_with_event`] with the compiled event

@@ -1,0 +1,35 @@
+"""qdot: exact analytical mechanics from Python.
+
+    >>> import qdot
+    >>> s = qdot.Scene('''
+    ...     coordinates x
+    ...     parameters m, k
+    ...     kinetic E = 1/2*m*x'^2
+    ...     potential V = 1/2*k*x^2
+    ... ''')
+    >>> s.accelerations()["x"]
+    Expr('-k*x/m')
+
+Results are exact (qdot's own arithmetic), printed in qdot's syntax, typeset
+in a notebook, and ``.to_sympy()`` gives SymPy objects.
+"""
+
+from ._native import QdotError, version as _version
+from ._results import Equation, Equations, Expr, ExprMap, Matrix, Result
+from ._scene import QdotWarning, Scene
+from ._simulation import Simulation
+
+__version__ = _version()
+
+__all__ = [
+    "Equation",
+    "Equations",
+    "Expr",
+    "ExprMap",
+    "Matrix",
+    "QdotError",
+    "QdotWarning",
+    "Result",
+    "Scene",
+    "Simulation",
+]

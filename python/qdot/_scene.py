@@ -1,0 +1,192 @@
+"""``qdot.Scene``: a scene's text, and everything qdot derives from it."""
+
+from __future__ import annotations
+
+import json
+import os
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+from . import _native
+from ._results import Equation, Equations, Expr, ExprMap, Matrix, Result, markdown_of_latex
+from ._simulation import Simulation
+
+#: Values given as ``{"m": 1, "g": 9.81}`` or as the CLI writes them, ``"m=1,g=9.81"``.
+Values = Union[Mapping[str, float], str, None]
+
+
+def _pairs(values: Values, kind: str) -> List[Tuple[str, float]]:
+    if values is None:
+        return []
+    if isinstance(values, str):
+        return _native.parse_values(values, kind)
+    return [(str(k), float(v)) for k, v in values.items()]
+
+
+def _exact(values: Union[Mapping[str, Any], str, None]) -> Optional[str]:
+    """``--at``/``--init`` of ``modes``: exact values, as text (``th=pi``)."""
+    if values is None or isinstance(values, str):
+        return values
+    return ",".join(f"{k}={v}" for k, v in values.items())
+
+
+class Scene:
+    """A scene: ``Scene(text)`` or ``Scene.load(path)``.
+
+    A scene with an error raises :class:`qdot.QdotError` here, with qdot's
+    positioned diagnostic. Results are computed on first use and kept.
+    A Scene pickles as its text (``dask.distributed`` ships it to workers
+    that rebuild it in microseconds).
+    """
+
+    def __init__(self, text: str, *, name: str = "<scene>", max_terms: int = 0) -> None:
+        self.source = text
+        self.name = name
+        self.max_terms = max_terms
+        _native.check_scene(text, name)
+        self._cache: Dict[Any, Any] = {}
+
+    @classmethod
+    def load(cls, path: Union[str, "os.PathLike[str]"], *, max_terms: int = 0) -> "Scene":
+        """Read a ``.qd`` file."""
+        with open(path, encoding="utf-8") as f:
+            return cls(f.read(), name=os.fspath(path), max_terms=max_terms)
+
+    def __reduce__(self) -> Any:
+        return (_rebuild, (self.source, self.name, self.max_terms))
+
+    def __repr__(self) -> str:
+        return f"<qdot Scene {self.name}: coordinates {', '.join(self.coordinates)}>"
+
+    # -- the native calls --------------------------------------------------
+
+    def _run(self, command: str, fmt: str, set: Values = None, at: Any = None,
+             init: Any = None, steps: bool = False, standalone: bool = False,
+             title: Optional[str] = None) -> str:
+        key = (command, fmt, repr(_pairs(set, "set")), _exact(at), _exact(init), steps, standalone, title)
+        if key not in self._cache:
+            out, warnings = _native.run_command(
+                command, self.source, fmt, file=self.name, set=_pairs(set, "set"),
+                at=_exact(at), init=_exact(init), steps=steps, standalone=standalone,
+                title=title if title is not None else os.path.splitext(os.path.basename(self.name))[0],
+                max_terms=self.max_terms,
+            )
+            if warnings:
+                import warnings as w
+
+                for text in warnings:
+                    w.warn(text, QdotWarning, stacklevel=3)
+            self._cache[key] = out
+        return self._cache[key]
+
+    def _json(self, command: str, **options: Any) -> Dict[str, Any]:
+        return json.loads(self._run(command, "json", **options))
+
+    def _latex_of(self, texts: List[str]) -> List[str]:
+        return _native.latex_exprs(self.source, texts, file=self.name)
+
+    def _exprs(self, texts: Sequence[str]) -> List[Expr]:
+        latex = self._latex_of(list(texts))
+        return [Expr(t, l, self) for t, l in zip(texts, latex)]
+
+    # -- the derivation ----------------------------------------------------
+
+    @property
+    def coordinates(self) -> List[str]:
+        """The generalized coordinates, in the scene's order."""
+        return list(self._json("derive")["coordinates"])
+
+    def equations(self) -> Equations:
+        """Lagrange's equations, d/dt ∂E/∂q̇ₖ − ∂E/∂qₖ = Qₖ, collected in q̈."""
+        eqs = self._json("derive")["equations"]
+        lhs = self._exprs([e["lhs"] for e in eqs])
+        rhs = self._exprs([e["rhs"] for e in eqs])
+        return Equations([Equation(e["coordinate"], l, r) for e, l, r in zip(eqs, lhs, rhs)])
+
+    def mass_matrix(self) -> Matrix:
+        """M of M(q, t)·q̈ = f(q, q̇, t)."""
+        rows = self._json("derive")["mass_matrix"]
+        n = len(rows)
+        flat = self._exprs([x for r in rows for x in r])
+        return Matrix([flat[i * n : (i + 1) * n] for i in range(n)], "M")
+
+    def forcing(self) -> Matrix:
+        """f of M(q, t)·q̈ = f(q, q̇, t), a column."""
+        return Matrix([[x] for x in self._exprs(self._json("derive")["forcing"])], "f")
+
+    def accelerations(self) -> ExprMap:
+        """The exact accelerations q̈ = M⁻¹f, in lowest terms."""
+        acc = self._json("solve")["accelerations"]
+        names = list(acc)
+        lhs = self._latex_of([f"{q}''" for q in names])
+        return ExprMap(dict(zip(names, self._exprs([acc[q] for q in names]))),
+                       dict(zip(names, lhs)), "{}''")
+
+    def forces(self) -> ExprMap:
+        """The generalized forces Qₖ (virtual work δL = Σ Qₖ·δqₖ)."""
+        q = self._json("forces")["generalized_forces"]
+        names = list(q)
+        lhs = [f"Q_{{{self._latex_of([n])[0]}}}" for n in names]
+        return ExprMap(dict(zip(names, self._exprs([q[n] for n in names]))),
+                       dict(zip(names, lhs)), "Q_{}")
+
+    def solve(self) -> Result:
+        """``qdot solve``: the accelerations and the scene's ``solve`` blocks."""
+        return Result("solve", self, {})
+
+    def equilibria(self, set: Values = None) -> Result:
+        """The positions of equilibrium at rest and their stability
+        (``set``: parameter values that decide signs)."""
+        return Result("equilibrium", self, {"set": set})
+
+    def modes(self, set: Values = None, at: Any = None, init: Any = None) -> Result:
+        """Small oscillations about ``at`` (default every q = 0): M, C, K,
+        the natural frequencies in closed form, the modes, the response to
+        ``init``; numbers under ``set``."""
+        return Result("modes", self, {"set": set, "at": at, "init": init})
+
+    def hamilton(self) -> Result:
+        """The momenta, H(q, p, t) and Hamilton's equations."""
+        return Result("hamilton", self, {})
+
+    def integrals(self) -> Result:
+        """Cyclic coordinates, the energy integral, Routh's reduction."""
+        return Result("integrals", self, {})
+
+    def check(self) -> Result:
+        """The dimension of every name and result."""
+        return Result("check", self, {})
+
+    def latex(self, steps: bool = False, standalone: bool = False, title: Optional[str] = None) -> str:
+        """``qdot latex``: the equations and the solution, amsmath LaTeX
+        (``steps``: the derivation line by line; ``standalone``: a whole
+        document)."""
+        return self._run("latex", "latex", steps=steps, standalone=standalone, title=title)
+
+    def _repr_markdown_(self) -> str:
+        return markdown_of_latex(self._run("derive", "latex"))
+
+    # -- numbers -----------------------------------------------------------
+
+    def simulate(self, set: Values, init: Values, t_end: float, method: str = "dop853",
+                 rtol: float = 1e-8, atol: float = 1e-10, dt: Optional[float] = None,
+                 points: int = 101, max_steps: Optional[int] = None,
+                 stop_when: Optional[str] = None, functions: Sequence[str] = (),
+                 baumgarte: float = 1.0) -> Simulation:
+        """Integrate the equations from t = 0 to ``t_end`` (``qdot simulate``):
+        ``set`` every parameter, ``init`` every q and q'."""
+        extra = {} if max_steps is None else {"max_steps": max_steps}
+        raw = _native.simulate(
+            self.source, _pairs(set, "set"), _pairs(init, "init"), float(t_end),
+            method=method, rtol=rtol, atol=atol, dt=dt, points=points,
+            stop_when=stop_when, functions=list(functions), baumgarte=baumgarte,
+            file=self.name, **extra,
+        )
+        return Simulation(raw, self.coordinates)
+
+
+class QdotWarning(UserWarning):
+    """A warning of qdot's (a parameter named like a matrix, …)."""
+
+
+def _rebuild(source: str, name: str, max_terms: int) -> Scene:
+    return Scene(source, name=name, max_terms=max_terms)

@@ -1,0 +1,97 @@
+"""qdot expressions as SymPy objects.
+
+The native module writes an expression as calls of the builders below
+(``N_`` a name with primes, ``R_`` a rational, ``A_`` a sum, ``M_`` a
+product, ``P_`` a power, ``F_`` a function, ``V_`` a vector); this module
+evaluates that text with SymPy, and nothing else in scope.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Dict, Iterable, Mapping, Optional
+
+from . import _native
+
+#: qdot's built-in functions that SymPy names differently.
+_RENAMED = {"ln": "log"}
+
+
+def _require_sympy() -> Any:
+    try:
+        import sympy
+    except ImportError as e:  # pragma: no cover - exercised without SymPy
+        raise ImportError(
+            "to_sympy() needs SymPy: pip install sympy (or pip install './python[sympy]')"
+        ) from e
+    return sympy
+
+
+def builders(
+    dynamic: Iterable[str] = (),
+    symbols: Optional[Mapping[str, Any]] = None,
+) -> Dict[str, Any]:
+    """The names the SymPy source is evaluated with.
+
+    ``dynamic``: the names that become functions of time
+    (``sympy.physics.mechanics.dynamicsymbols``), whose primes are time
+    derivatives; every other name is a ``Symbol`` (or what ``symbols`` maps
+    it to, e.g. a positive Symbol of the user's own). A primed name that is
+    not dynamic is the Symbol ``x'``.
+    """
+    sp = _require_sympy()
+    dynamic = set(dynamic)
+    symbols = dict(symbols or {})
+    cache: Dict[str, Any] = {}
+    t = symbols.get("t")
+    if t is None:
+        if dynamic:
+            from sympy.physics.mechanics import dynamicsymbols
+
+            t = dynamicsymbols._t
+        else:
+            t = sp.Symbol("t")
+
+    def name(n: str, order: int) -> Any:
+        if n == "t" and order == 0:
+            return t
+        if n == "pi" and n not in symbols:
+            base: Any = sp.pi
+        elif n in symbols:
+            base = symbols[n]
+        elif n in dynamic:
+            if n not in cache:
+                from sympy.physics.mechanics import dynamicsymbols
+
+                cache[n] = dynamicsymbols(n)
+            base = cache[n]
+        else:
+            if order and n + "'" * order not in cache:
+                cache[n + "'" * order] = sp.Symbol(n + "'" * order)
+            if order:
+                return cache[n + "'" * order]
+            base = cache.setdefault(n, sp.Symbol(n))
+        return sp.diff(base, t, order) if order else base
+
+    def function(f: str, *args: Any) -> Any:
+        f = _RENAMED.get(f, f)
+        fn = getattr(sp, f, None)
+        if fn is None or not callable(fn):
+            fn = sp.Function(f)
+        return fn(*args)
+
+    return {
+        "N_": name,
+        "R_": lambda p, q: sp.Rational(int(p), int(q)),
+        "A_": lambda *xs: sp.Add(*xs),
+        "M_": lambda *xs: sp.Mul(*xs),
+        "P_": lambda b, e: sp.Pow(b, e),
+        "F_": function,
+        "V_": lambda *xs: sp.Matrix(xs),
+        "D_": lambda x, k: sp.diff(x, t, k),
+    }
+
+
+def to_sympy(text: str, env: Dict[str, Any]) -> Any:
+    """The SymPy object of ``text``, an expression in qdot's syntax."""
+    source = _native.sympy_source(text)
+    return eval(source, {"__builtins__": {}}, env)  # noqa: S307 - our own builders only

@@ -1,0 +1,256 @@
+//! `qdot._native`: the thin layer between Python and the qdot library.
+//!
+//! Everything crosses as strings, numbers and bytes: the commands' JSON and
+//! LaTeX (the public contracts of the command line), the simulation's rows
+//! as little-endian f64 bytes (NumPy reads them without a copy per value),
+//! and SymPy source text for `.to_sympy()`. The Python package (`qdot/`)
+//! builds its classes on these functions.
+
+use pyo3::create_exception;
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict};
+use qdot::algebra::sign::Values;
+use qdot::output::{self, CommandOptions, Format};
+use qdot::simulate::run::{self, Request};
+use qdot::Diagnostic;
+
+mod to_sympy;
+
+create_exception!(
+    _native,
+    QdotError,
+    PyException,
+    "An error of qdot: the message, and the positioned diagnostic (line:column, a caret, a hint) as qdot prints it."
+);
+
+/// The exception for a diagnostic about `src`: `str(e)` is the diagnostic as
+/// qdot prints it; `e.message`, `e.hint`, `e.line`, `e.column` (1-based; 0
+/// when it has no position).
+fn error(d: &Diagnostic, file: &str, src: &str) -> PyErr {
+    let (line, column) = match d.span {
+        Some(s) => Diagnostic::line_col(src, s.start),
+        None => (0, 0),
+    };
+    let err = QdotError::new_err(d.render(file, src).trim_end().to_string());
+    Python::attach(|py| {
+        let value = err.value(py);
+        // setting attributes on a fresh exception object cannot fail
+        let _ = value.setattr("message", d.message.clone());
+        let _ = value.setattr("hint", d.hint.clone());
+        let _ = value.setattr("line", line);
+        let _ = value.setattr("column", column);
+    });
+    err
+}
+
+fn values(pairs: Vec<(String, f64)>) -> Values {
+    pairs.into_iter().collect()
+}
+
+fn command_by_name(name: &str) -> PyResult<output::Command> {
+    use output::Command::*;
+    Ok(match name {
+        "derive" => Derive,
+        "solve" => Solve,
+        "forces" => Forces,
+        "equilibrium" => Equilibrium,
+        "modes" => Modes,
+        "latex" => Latex,
+        "check" => Check,
+        "hamilton" => Hamilton,
+        "integrals" => Integrals,
+        _ => {
+            return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "unknown command `{name}`"
+            )))
+        }
+    })
+}
+
+/// Run a command of the CLI on a scene: (output, warnings rendered).
+#[pyfunction]
+#[pyo3(signature = (command, source, format, file="<scene>", set=Vec::new(), at=None, init=None, steps=false, standalone=false, title=String::new(), max_terms=0))]
+#[allow(clippy::too_many_arguments)]
+fn run_command(
+    py: Python<'_>,
+    command: &str,
+    source: &str,
+    format: &str,
+    file: &str,
+    set: Vec<(String, f64)>,
+    at: Option<String>,
+    init: Option<String>,
+    steps: bool,
+    standalone: bool,
+    title: String,
+    max_terms: usize,
+) -> PyResult<(String, Vec<String>)> {
+    let cmd = command_by_name(command)?;
+    let fmt = match format {
+        "text" => Format::Text,
+        "json" => Format::Json,
+        "latex" => Format::Latex,
+        _ => {
+            return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "unknown format `{format}`: text, json or latex"
+            )))
+        }
+    };
+    let opts = CommandOptions {
+        set: values(set),
+        at,
+        init,
+        steps,
+        standalone,
+        title,
+        max_terms,
+    };
+    let result = py.detach(|| output::run_with(cmd, source, fmt, &opts));
+    match result {
+        Ok((out, warnings)) => Ok((
+            out,
+            warnings.iter().map(|w| w.render(file, source)).collect(),
+        )),
+        Err(d) => Err(error(&d, file, source)),
+    }
+}
+
+/// Parse and resolve a scene; a QdotError for the first problem.
+#[pyfunction]
+#[pyo3(signature = (source, file="<scene>"))]
+fn check_scene(source: &str, file: &str) -> PyResult<()> {
+    qdot::Scene::parse(source)
+        .map(|_| ())
+        .map_err(|d| error(&d, file, source))
+}
+
+/// `name=value,…` as (name, value) pairs: `kind` "set" (parameters, any
+/// sign) or "init" (coordinates and velocities, `q'`).
+#[pyfunction]
+fn parse_values(text: &str, kind: &str) -> PyResult<Vec<(String, f64)>> {
+    let parsed = match kind {
+        "set" => output::parse_set_any_sign(text),
+        _ => run::parse_init(text),
+    };
+    parsed
+        .map(|v| v.into_iter().collect())
+        .map_err(|d| error(&d, kind, text))
+}
+
+/// A simulation: a dict with `columns` (list of names), `data` (bytes of
+/// little-endian f64, row-major), `rows`, `status`, `t_reached`, `stats`,
+/// `method`, `evaluator`, `seconds`, `compile_seconds`.
+#[pyfunction]
+#[pyo3(signature = (source, set, init, t_end, method="dop853", rtol=1e-8, atol=1e-10, dt=None, points=101, max_steps=qdot::limits::DEFAULT_MAX_STEPS, stop_when=None, functions=Vec::new(), baumgarte=1.0, file="<scene>"))]
+#[allow(clippy::too_many_arguments)]
+fn simulate<'py>(
+    py: Python<'py>,
+    source: &str,
+    set: Vec<(String, f64)>,
+    init: Vec<(String, f64)>,
+    t_end: f64,
+    method: &str,
+    rtol: f64,
+    atol: f64,
+    dt: Option<f64>,
+    points: usize,
+    max_steps: usize,
+    stop_when: Option<String>,
+    functions: Vec<String>,
+    baumgarte: f64,
+    file: &str,
+) -> PyResult<Bound<'py, PyDict>> {
+    let method = run::method_by_name(method).map_err(|d| error(&d, file, ""))?;
+    let req = Request {
+        set: values(set),
+        init: values(init),
+        t_end,
+        method,
+        rtol,
+        atol,
+        dt,
+        points,
+        max_steps,
+        stop_when,
+        functions,
+        baumgarte,
+        progress: false,
+    };
+    let r = py
+        .detach(|| run::simulate(source, &req))
+        .map_err(|d| error(&d, file, source))?;
+    let mut bytes = Vec::with_capacity(r.rows.len() * r.columns.len() * 8);
+    for row in &r.rows {
+        for x in row {
+            bytes.extend_from_slice(&x.to_le_bytes());
+        }
+    }
+    let d = PyDict::new(py);
+    d.set_item("columns", &r.columns)?;
+    d.set_item("rows", r.rows.len())?;
+    d.set_item("data", PyBytes::new(py, &bytes))?;
+    d.set_item("status", run::status_word(&r.solution.status))?;
+    d.set_item("method", run::method_name(r.method))?;
+    d.set_item("evaluator", r.evaluator.evaluator.name())?;
+    d.set_item("seconds", r.seconds)?;
+    d.set_item("compile_seconds", r.compile_seconds)?;
+    let s = &r.solution.stats;
+    let stats = PyDict::new(py);
+    stats.set_item("steps", s.steps)?;
+    stats.set_item("rejected", s.rejected)?;
+    stats.set_item("rhs_evals", s.rhs_evals)?;
+    stats.set_item("jacobians", s.jacobians)?;
+    stats.set_item("factorizations", s.factorizations)?;
+    d.set_item("stats", stats)?;
+    d.set_item("csv", run::csv(&r))?;
+    Ok(d)
+}
+
+/// SymPy source text of an expression written in qdot's syntax (as the
+/// JSON output writes it), for `qdot/_sympy.py` to evaluate.
+#[pyfunction]
+fn sympy_source(expr: &str) -> PyResult<String> {
+    let ast = qdot::parse::parse_expr(expr).map_err(|d| error(&d, "<expression>", expr))?;
+    to_sympy::of(&ast).map_err(|m| error(&Diagnostic::global(m), "<expression>", expr))
+}
+
+/// The LaTeX of each expression (qdot's syntax) in the scene's notation
+/// (`latex` names of the scene, dots for time derivatives).
+#[pyfunction]
+#[pyo3(signature = (source, exprs, file="<scene>"))]
+fn latex_exprs(source: &str, exprs: Vec<String>, file: &str) -> PyResult<Vec<String>> {
+    let scene = qdot::Scene::parse(source).map_err(|d| error(&d, file, source))?;
+    let mut names = qdot::expr::latex::Names::new();
+    for n in &scene.latex_names {
+        names.set(&n.name, &n.tex);
+    }
+    exprs
+        .iter()
+        .map(|text| {
+            scene
+                .expr(text)
+                .map(|e| qdot::expr::latex::latex_with(&e, &names))
+                .map_err(|d| error(&d, "<expression>", text))
+        })
+        .collect()
+}
+
+/// The version of the qdot library inside.
+#[pyfunction]
+fn version() -> &'static str {
+    env!("CARGO_PKG_VERSION")
+}
+
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("QdotError", m.py().get_type::<QdotError>())?;
+    m.add_function(wrap_pyfunction!(run_command, m)?)?;
+    m.add_function(wrap_pyfunction!(check_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(parse_values, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(sympy_source, m)?)?;
+    m.add_function(wrap_pyfunction!(latex_exprs, m)?)?;
+    m.add_function(wrap_pyfunction!(version, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,373 @@
+//! `qdot sweep`: one scene, many runs, on every core.
+//!
+//! A parameter study (a stability chart over two parameters) or a
+//! Monte-Carlo study over initial conditions: the scene is parsed and
+//! derived once ([`Prepared`]); when only initial values vary it is also
+//! compiled once and each run clones the compiled program; when parameters
+//! vary each run compiles for its values (microseconds to milliseconds).
+//! The runs are spread over a rayon pool; each keeps a summary, not its
+//! trajectory, so memory stays O(runs).
+
+use super::run::{status_word, Prepared, Request, Run};
+use super::Status;
+use crate::diag::Diagnostic;
+use crate::limits::MAX_SWEEP_RUNS;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Instant;
+
+/// One varied name: a parameter, a coordinate (`theta`) or a velocity
+/// (`theta'`), from `from` to `to`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Axis {
+    /// The name, as in `--set` or `--init`.
+    pub name: String,
+    /// The first value.
+    pub from: f64,
+    /// The last value.
+    pub to: f64,
+    /// How many evenly spaced values, ends included, on a grid (1: `from`
+    /// alone); ignored by a random design.
+    pub count: usize,
+}
+
+/// How the runs' values are chosen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Design {
+    /// Every combination of the axes' values (the first axis varies slowest).
+    Grid,
+    /// `samples` points drawn uniformly in the box of the axes, from `seed`
+    /// (the same seed gives the same points on every machine).
+    Random {
+        /// How many runs.
+        samples: usize,
+        /// The generator's seed (SplitMix64).
+        seed: u64,
+    },
+}
+
+/// What one run ended with.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome {
+    /// How it ended (`done`, `event`, …).
+    pub status: Status,
+    /// The last output time reached.
+    pub t: f64,
+    /// The state y = (q, q̇) there.
+    pub y: Vec<f64>,
+    /// The largest |qₖ| over the output times, per coordinate.
+    pub max_abs_q: Vec<f64>,
+    /// max |h(t) − h(0)| of the conserved energy, when the scene has one.
+    pub energy_drift: Option<f64>,
+    /// Accepted steps.
+    pub steps: usize,
+}
+
+/// A finished sweep: one row per run, in the design's order.
+#[derive(Clone, Debug)]
+pub struct Sweep {
+    /// The varied names, in the order of each run's `values`.
+    pub names: Vec<String>,
+    /// The coordinates (the order of `y` and `max_abs_q`).
+    pub coordinates: Vec<String>,
+    /// The runs: the varied values, and the outcome or the error's message.
+    pub runs: Vec<(Vec<f64>, Result<Outcome, String>)>,
+    /// Wall time of all runs.
+    pub seconds: f64,
+    /// The threads of the pool.
+    pub threads: usize,
+    /// How many times the equations were compiled (1 when only initial
+    /// values vary).
+    pub compilations: usize,
+}
+
+/// `NAME=FROM:TO:COUNT` (grid) or `NAME=FROM:TO` (random design).
+pub fn parse_axis(text: &str) -> Result<Axis, Diagnostic> {
+    let hint = "--vary NAME=FROM:TO:COUNT, e.g. --vary \"l=0.5:2:16\" (COUNT may be left out with --samples)";
+    let bad = |what: String| Diagnostic::global(format!("`--vary {text}`: {what}")).with_hint(hint);
+    let (name, range) = text.split_once('=').ok_or_else(|| bad("no `=`".into()))?;
+    let name = name.trim();
+    if name.is_empty() {
+        return Err(bad("no name before `=`".into()));
+    }
+    let parts: Vec<&str> = range.split(':').map(str::trim).collect();
+    if !(2..=3).contains(&parts.len()) {
+        return Err(bad("the range is FROM:TO or FROM:TO:COUNT".into()));
+    }
+    let number = |s: &str| -> Result<f64, Diagnostic> {
+        match s.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(v),
+            _ => Err(bad(format!("`{s}` is not a number"))),
+        }
+    };
+    let (from, to) = (number(parts[0])?, number(parts[1])?);
+    let count = match parts.get(2) {
+        Some(c) => c
+            .parse::<usize>()
+            .ok()
+            .filter(|&c| (1..=MAX_SWEEP_RUNS).contains(&c))
+            .ok_or_else(|| {
+                bad(format!(
+                    "COUNT `{c}` must be a whole number from 1 to {MAX_SWEEP_RUNS}"
+                ))
+            })?,
+        None => 0,
+    };
+    Ok(Axis {
+        name: name.to_string(),
+        from,
+        to,
+        count,
+    })
+}
+
+/// The values of every run, in order: a grid's product or random points.
+pub fn design_points(axes: &[Axis], design: Design) -> Result<Vec<Vec<f64>>, Diagnostic> {
+    let too_many = |n: String| {
+        Diagnostic::global(format!("{n} runs: more than {MAX_SWEEP_RUNS}"))
+            .with_hint("fewer values per axis (COUNT), or fewer --samples; split the study into several sweeps")
+    };
+    match design {
+        Design::Grid => {
+            let mut total: usize = 1;
+            for a in axes {
+                if a.count == 0 {
+                    return Err(Diagnostic::global(format!(
+                        "`--vary {}`: a grid needs COUNT, the number of values",
+                        a.name
+                    ))
+                    .with_hint(format!(
+                        "--vary \"{}={}:{}:10\", or draw random points with --samples N",
+                        a.name, a.from, a.to
+                    )));
+                }
+                total = total
+                    .checked_mul(a.count)
+                    .filter(|&t| t <= MAX_SWEEP_RUNS)
+                    .ok_or_else(|| {
+                        too_many(format!(
+                            "{}",
+                            axes.iter()
+                                .map(|a| a.count.to_string())
+                                .collect::<Vec<_>>()
+                                .join(" × ")
+                        ))
+                    })?;
+            }
+            let mut points = Vec::with_capacity(total);
+            for mut k in 0..total {
+                let mut p = vec![0.0; axes.len()];
+                // the last axis varies fastest
+                for (j, a) in axes.iter().enumerate().rev() {
+                    let i = k % a.count;
+                    k /= a.count;
+                    p[j] = if a.count == 1 {
+                        a.from
+                    } else {
+                        a.from + (a.to - a.from) * i as f64 / (a.count - 1) as f64
+                    };
+                }
+                points.push(p);
+            }
+            Ok(points)
+        }
+        Design::Random { samples, seed } => {
+            if samples == 0 || samples > MAX_SWEEP_RUNS {
+                return Err(too_many(samples.to_string()));
+            }
+            let mut state = seed;
+            Ok((0..samples)
+                .map(|_| {
+                    axes.iter()
+                        .map(|a| a.from + (a.to - a.from) * unit(&mut state))
+                        .collect()
+                })
+                .collect())
+        }
+    }
+}
+
+/// SplitMix64 (Steele, Lea & Flood 2014): a uniform double in [0, 1).
+fn unit(state: &mut u64) -> f64 {
+    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    let mut z = *state;
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^= z >> 31;
+    (z >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// Run `base` once per point of the design, `axes` overriding its `set`
+/// and `init`, on `threads` threads (0: one per core). `progress` is
+/// called with the number of finished runs after each run.
+pub fn sweep(
+    prepared: &Prepared,
+    base: &Request,
+    axes: &[Axis],
+    design: Design,
+    threads: usize,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<Sweep, Diagnostic> {
+    let params = prepared.parameters();
+    let coordinates = prepared.coordinates().to_vec();
+    let mut varies_parameters = false;
+    for a in axes {
+        let base_name = a.name.trim_end_matches('\'');
+        if params.iter().any(|p| p == &a.name) {
+            varies_parameters = true;
+        } else if !coordinates.iter().any(|q| q == base_name) || a.name.len() - base_name.len() > 1
+        {
+            return Err(Diagnostic::global(format!(
+                "`--vary {}`: `{}` is not a parameter, a coordinate or a velocity",
+                a.name, a.name
+            ))
+            .with_hint(format!(
+                "the parameters are {}; the coordinates {} (velocities are written q')",
+                params.join(", "),
+                coordinates.join(", ")
+            )));
+        }
+    }
+    let points = design_points(axes, design)?;
+    let request_at = |values: &[f64]| {
+        let mut req = base.clone();
+        req.progress = false;
+        for (a, &v) in axes.iter().zip(values) {
+            if params.contains(&a.name) {
+                req.set.insert(a.name.clone(), v);
+            } else {
+                req.init.insert(a.name.clone(), v);
+            }
+        }
+        req
+    };
+    // Validate once, on the first point: a missing value or a bad option
+    // is one error, not one per run.
+    let first = request_at(points.first().map(Vec::as_slice).unwrap_or(&[]));
+    let shared = prepared.compile(&first)?;
+    prepared.check(&first)?;
+    let compilations = AtomicUsize::new(1);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| Diagnostic::global(format!("cannot start the sweep's threads: {e}")))?;
+    let done = AtomicUsize::new(0);
+    let start = Instant::now();
+    let runs: Vec<(Vec<f64>, Result<Outcome, String>)> = pool.install(|| {
+        points
+            .into_par_iter()
+            .map(|values| {
+                let req = request_at(&values);
+                let compiled = if varies_parameters {
+                    compilations.fetch_add(1, Ordering::Relaxed);
+                    prepared.compile(&req)
+                } else {
+                    Ok(shared.clone())
+                };
+                let outcome = compiled
+                    .and_then(|c| prepared.integrate(c, &req))
+                    .map(|run| summary(&run, coordinates.len()))
+                    .map_err(|d| d.message);
+                progress(done.fetch_add(1, Ordering::Relaxed) + 1);
+                (values, outcome)
+            })
+            .collect()
+    });
+    Ok(Sweep {
+        names: axes.iter().map(|a| a.name.clone()).collect(),
+        coordinates,
+        runs,
+        seconds: start.elapsed().as_secs_f64(),
+        threads: pool.current_num_threads(),
+        compilations: compilations.into_inner(),
+    })
+}
+
+/// What a sweep keeps of one run.
+fn summary(run: &Run, n: usize) -> Outcome {
+    let last = run.rows.last();
+    let energy = run.columns.iter().position(|c| c == "energy");
+    let mut max_abs_q = vec![0.0f64; n];
+    let mut energy_drift = energy.map(|_| 0.0f64);
+    for row in &run.rows {
+        for (k, m) in max_abs_q.iter_mut().enumerate() {
+            *m = m.max(row[1 + k].abs());
+        }
+        if let (Some(j), Some(d)) = (energy, energy_drift.as_mut()) {
+            *d = d.max((row[j] - run.rows[0][j]).abs());
+        }
+    }
+    Outcome {
+        status: run.solution.status.clone(),
+        t: last.map_or(0.0, |r| r[0]),
+        y: last.map_or_else(Vec::new, |r| r[1..1 + 2 * n].to_vec()),
+        max_abs_q,
+        energy_drift,
+        steps: run.solution.stats.steps,
+    }
+}
+
+/// The sweep as CSV: the varied values, `status`, `t`, the final state
+/// (`q(t)`, `q'(t)`),
+/// `max|q|` per coordinate, `energy_drift` (empty when not conserved),
+/// `steps`; a failed run has its message in `status` and empty cells.
+pub fn csv(s: &Sweep) -> String {
+    let mut header: Vec<String> = s.names.clone();
+    header.extend(["status".into(), "t".into()]);
+    // the final state, q(t): the varied names may include q itself
+    header.extend(s.coordinates.iter().map(|q| format!("{q}(t)")));
+    header.extend(s.coordinates.iter().map(|q| format!("{q}'(t)")));
+    header.extend(s.coordinates.iter().map(|q| format!("max|{q}|")));
+    header.extend(["energy_drift".into(), "steps".into()]);
+    let mut out = header.join(",") + "\n";
+    let n = s.coordinates.len();
+    for (values, outcome) in &s.runs {
+        let mut cells: Vec<String> = values.iter().map(|v| format!("{v}")).collect();
+        match outcome {
+            Ok(o) => {
+                cells.push(status_word(&o.status).into());
+                cells.push(format!("{:.17e}", o.t));
+                cells.extend(o.y.iter().chain(&o.max_abs_q).map(|x| format!("{x:.17e}")));
+                cells.push(o.energy_drift.map_or(String::new(), |d| format!("{d:.3e}")));
+                cells.push(o.steps.to_string());
+            }
+            Err(m) => {
+                cells.push(format!("\"error: {}\"", m.replace('"', "'")));
+                cells.extend(std::iter::repeat_n(String::new(), 1 + 3 * n + 2));
+            }
+        }
+        out.push_str(&cells.join(","));
+        out.push('\n');
+    }
+    out
+}
+
+/// The sweep as JSON: `names`, `coordinates`, `runs` (each `values`,
+/// `status`, `t`, `y`, `max_abs_q`, `energy_drift`, `steps`, or `values`
+/// and `error`), `seconds`, `threads`.
+pub fn json(s: &Sweep) -> String {
+    let runs: Vec<serde_json::Value> = s
+        .runs
+        .iter()
+        .map(|(values, outcome)| match outcome {
+            Ok(o) => serde_json::json!({
+                "values": values,
+                "status": status_word(&o.status),
+                "t": o.t,
+                "y": o.y,
+                "max_abs_q": o.max_abs_q,
+                "energy_drift": o.energy_drift,
+                "steps": o.steps,
+            }),
+            Err(m) => serde_json::json!({ "values": values, "error": m }),
+        })
+        .collect();
+    let v = serde_json::json!({
+        "names": s.names,
+        "coordinates": s.coordinates,
+        "runs": runs,
+        "seconds": s.seconds,
+        "threads": s.threads,
+    });
+    format!("{v}\n")
+}
