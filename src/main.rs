@@ -503,6 +503,9 @@ fn simulate(
         Ok(s) => req.init = s.unwrap_or_default(),
         Err(d) => return fail(d, ""),
     }
+    if plot.is_some() {
+        req.plot_samples = qdot::simulate::plot::SAMPLES;
+    }
     let r = match run::simulate(&src, &req) {
         Ok(r) => r,
         Err(d) => return fail(d, &src),

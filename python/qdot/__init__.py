@@ -17,7 +17,7 @@ in a notebook, and ``.to_sympy()`` gives SymPy objects.
 from ._native import QdotError, version as _version
 from ._results import Equation, Equations, Expr, ExprMap, Matrix, Result
 from ._scene import QdotWarning, Scene
-from ._simulation import Simulation
+from ._simulation import Simulation, Sweep
 
 __version__ = _version()
 
@@ -32,4 +32,5 @@ __all__ = [
     "Result",
     "Scene",
     "Simulation",
+    "Sweep",
 ]

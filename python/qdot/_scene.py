@@ -8,7 +8,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import _native
 from ._results import Equation, Equations, Expr, ExprMap, Matrix, Result, markdown_of_latex
-from ._simulation import Simulation
+from ._simulation import Simulation, Sweep
 
 #: Values given as ``{"m": 1, "g": 9.81}`` or as the CLI writes them, ``"m=1,g=9.81"``.
 Values = Union[Mapping[str, float], str, None]
@@ -182,6 +182,30 @@ class Scene:
             file=self.name, **extra,
         )
         return Simulation(raw, self.coordinates)
+
+
+    def sweep(self, set: Values, init: Values, vary: Mapping[str, Sequence[float]], t_end: float,
+              samples: Optional[int] = None, seed: int = 0, threads: int = 0,
+              method: str = "dop853", rtol: float = 1e-8, atol: float = 1e-10,
+              dt: Optional[float] = None, points: int = 101,
+              stop_when: Optional[str] = None) -> Sweep:
+        """Many runs on every core (``qdot sweep``): ``vary`` maps a parameter,
+        coordinate or velocity to ``(from, to, count)`` (a grid, the first
+        name varying slowest) or, with ``samples``, ``(from, to)`` (random
+        points, reproducible by ``seed``). Derived once; compiled once when
+        only initial values vary."""
+        axes = []
+        for name, r in vary.items():
+            r = tuple(r)
+            if len(r) not in (2, 3):
+                raise ValueError(f"vary[{name!r}]: (from, to, count) or (from, to)")
+            axes.append((str(name), float(r[0]), float(r[1]), int(r[2]) if len(r) == 3 else 0))
+        raw = _native.sweep(
+            self.source, _pairs(set, "set"), _pairs(init, "init"), axes, float(t_end),
+            samples=samples, seed=seed, threads=threads, method=method, rtol=rtol, atol=atol,
+            dt=dt, points=points, stop_when=stop_when, file=self.name,
+        )
+        return Sweep(raw)
 
 
 class QdotWarning(UserWarning):

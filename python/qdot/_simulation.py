@@ -81,3 +81,45 @@ class Simulation:
             f"{len(self)} rows, {self.method}, {self.status} "
             f"({self.stats['steps']} steps, {self.seconds * 1e3:.3g} ms)\n\n" + head + body
         )
+
+
+class Sweep:
+    """Many runs of one scene (``Scene.sweep``), one summary per run.
+
+    ``values`` (runs, varied names) in ``names`` order; ``t`` the last time
+    reached; ``q`` and ``qdot`` (runs, n) the final state; ``max_abs_q``
+    (runs, n) the largest |q| over the output times; ``energy_drift`` the
+    largest |h(t) − h(0)| (NaN when the scene does not conserve energy);
+    ``steps``; ``status`` a list (``done``, ``event``, or ``error: …``).
+    """
+
+    def __init__(self, raw: Dict[str, Any]) -> None:
+        self.names: List[str] = list(raw["names"])
+        self.coordinates: List[str] = list(raw["coordinates"])
+        k, n, runs = len(self.names), len(self.coordinates), int(raw["runs"])
+        width = k + 3 + 3 * n
+        table = np.frombuffer(raw["summary"], dtype="<f8").reshape(runs, width)
+        self.values: np.ndarray = table[:, :k]
+        self.t: np.ndarray = table[:, k]
+        self.q: np.ndarray = table[:, k + 1 : k + 1 + n]
+        self.qdot: np.ndarray = table[:, k + 1 + n : k + 1 + 2 * n]
+        self.max_abs_q: np.ndarray = table[:, k + 1 + 2 * n : k + 1 + 3 * n]
+        self.energy_drift: np.ndarray = table[:, k + 1 + 3 * n]
+        self.steps: np.ndarray = table[:, k + 2 + 3 * n]
+        self.status: List[str] = list(raw["status"])
+        self.seconds: float = raw["seconds"]
+        self.threads: int = raw["threads"]
+        self.compilations: int = raw["compilations"]
+
+    def __len__(self) -> int:
+        return self.values.shape[0]
+
+    @property
+    def runs_per_second(self) -> float:
+        return len(self) / max(self.seconds, 1e-9)
+
+    def __repr__(self) -> str:
+        return (
+            f"<qdot Sweep: {len(self)} runs over {', '.join(self.names)} on {self.threads} threads, "
+            f"{self.runs_per_second:.0f} runs/s>"
+        )

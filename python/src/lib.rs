@@ -175,7 +175,7 @@ fn simulate<'py>(
         stop_when,
         functions,
         baumgarte,
-        progress: false,
+        ..Request::default()
     };
     let r = py
         .detach(|| run::simulate(source, &req))
@@ -207,6 +207,101 @@ fn simulate<'py>(
     Ok(d)
 }
 
+/// A sweep (`qdot sweep`): `axes` as (name, from, to, count); `samples`
+/// (with `seed`) for random points instead of a grid. A dict with `names`,
+/// `coordinates`, `values` and `summary` (bytes of f64, row-major: the
+/// varied values; the final t, q, q̇, max |q|, energy drift (NaN when not
+/// conserved) and steps), `status` (a list of words or error messages),
+/// `seconds`, `threads`, `compilations`.
+#[pyfunction]
+#[pyo3(signature = (source, set, init, axes, t_end, samples=None, seed=0, threads=0, method="dop853", rtol=1e-8, atol=1e-10, dt=None, points=101, stop_when=None, file="<scene>"))]
+#[allow(clippy::too_many_arguments)]
+fn sweep<'py>(
+    py: Python<'py>,
+    source: &str,
+    set: Vec<(String, f64)>,
+    init: Vec<(String, f64)>,
+    axes: Vec<(String, f64, f64, usize)>,
+    t_end: f64,
+    samples: Option<usize>,
+    seed: u64,
+    threads: usize,
+    method: &str,
+    rtol: f64,
+    atol: f64,
+    dt: Option<f64>,
+    points: usize,
+    stop_when: Option<String>,
+    file: &str,
+) -> PyResult<Bound<'py, PyDict>> {
+    use qdot::simulate::sweep::{self as sw, Axis, Design};
+    let method = run::method_by_name(method).map_err(|d| error(&d, file, ""))?;
+    let base = Request {
+        set: values(set),
+        init: values(init),
+        t_end,
+        method,
+        rtol,
+        atol,
+        dt,
+        points,
+        stop_when,
+        ..Request::default()
+    };
+    let axes: Vec<Axis> = axes
+        .into_iter()
+        .map(|(name, from, to, count)| Axis {
+            name,
+            from,
+            to,
+            count,
+        })
+        .collect();
+    let design = match samples {
+        Some(samples) => Design::Random { samples, seed },
+        None => Design::Grid,
+    };
+    let s = py
+        .detach(|| {
+            let prepared = run::Prepared::new(source, &[])?;
+            sw::sweep(&prepared, &base, &axes, design, threads, &|_| {})
+        })
+        .map_err(|d| error(&d, file, source))?;
+    let n = s.coordinates.len();
+    let mut bytes = Vec::new();
+    let mut status = Vec::with_capacity(s.runs.len());
+    for (vals, outcome) in &s.runs {
+        let mut row: Vec<f64> = vals.clone();
+        match outcome {
+            Ok(o) => {
+                row.push(o.t);
+                row.extend_from_slice(&o.y);
+                row.extend_from_slice(&o.max_abs_q);
+                row.push(o.energy_drift.unwrap_or(f64::NAN));
+                row.push(o.steps as f64);
+                status.push(run::status_word(&o.status).to_string());
+            }
+            Err(m) => {
+                row.extend(std::iter::repeat_n(f64::NAN, 3 + 3 * n));
+                status.push(format!("error: {m}"));
+            }
+        }
+        for x in row {
+            bytes.extend_from_slice(&x.to_le_bytes());
+        }
+    }
+    let d = PyDict::new(py);
+    d.set_item("names", &s.names)?;
+    d.set_item("coordinates", &s.coordinates)?;
+    d.set_item("runs", s.runs.len())?;
+    d.set_item("summary", PyBytes::new(py, &bytes))?;
+    d.set_item("status", status)?;
+    d.set_item("seconds", s.seconds)?;
+    d.set_item("threads", s.threads)?;
+    d.set_item("compilations", s.compilations)?;
+    Ok(d)
+}
+
 /// SymPy source text of an expression written in qdot's syntax (as the
 /// JSON output writes it), for `qdot/_sympy.py` to evaluate.
 #[pyfunction]
@@ -225,15 +320,18 @@ fn latex_exprs(source: &str, exprs: Vec<String>, file: &str) -> PyResult<Vec<Str
     for n in &scene.latex_names {
         names.set(&n.name, &n.tex);
     }
-    exprs
-        .iter()
-        .map(|text| {
-            scene
-                .expr(text)
-                .map(|e| qdot::expr::latex::latex_with(&e, &names))
-                .map_err(|d| error(&d, "<expression>", text))
-        })
-        .collect()
+    let coordinates: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
+    qdot::expr::print::with_coordinate_order(&coordinates, || {
+        exprs
+            .iter()
+            .map(|text| {
+                scene
+                    .expr(text)
+                    .map(|e| qdot::expr::latex::latex_with(&e, &names))
+                    .map_err(|d| error(&d, "<expression>", text))
+            })
+            .collect()
+    })
 }
 
 /// The version of the qdot library inside.
@@ -251,6 +349,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(sympy_source, m)?)?;
     m.add_function(wrap_pyfunction!(latex_exprs, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())
 }

@@ -394,7 +394,7 @@ impl Tex<'_> {
         let mut groups = groups;
         groups.sort_by(|a, b| {
             print::display_order(&a.0, &b.0)
-                .then_with(|| b.0.cmp(&a.0))
+                .then_with(|| print::declared_order(&a.0, &b.0))
                 .then_with(|| print::unicode_term(&a.1, &a.0).cmp(&print::unicode_term(&b.1, &b.0)))
         });
         groups.iter().map(|(key, c)| self.term(c, key)).collect()
@@ -402,7 +402,7 @@ impl Tex<'_> {
 
     /// `coef·key`: (is negative, text without the sign).
     fn term(&self, c: &Expr, key: &Mono) -> (bool, String) {
-        let neg = print::leads_negative(c.num());
+        let neg = print::coefficient_negative(c);
         let c = if neg { c.neg() } else { c.clone() };
         let (cn, cd) = super::compact::display_parts(c.num(), c.den());
         let (_, mut fs) = self.fraction(&cn, &cd);

@@ -101,7 +101,7 @@ pub(crate) fn render_parts(num: &Poly, den: &Poly, st: Style) -> String {
         .collect();
     items.sort_by(|a, b| {
         display_order(&a.0, &b.0)
-            .then_with(|| b.0.cmp(&a.0))
+            .then_with(|| declared_order(&a.0, &b.0))
             .then_with(|| a.1.cmp(&b.1))
     });
     join_terms(items.into_iter().map(|(_, s, n)| (n, s)), st)
@@ -182,6 +182,56 @@ pub(crate) fn display_order(a: &Mono, b: &Mono) -> Ordering {
     kb.cmp(&ka)
 }
 
+thread_local! {
+    /// The coordinates of the scene being printed, in declaration order
+    /// ([`with_coordinate_order`]).
+    static COORDINATE_ORDER: std::cell::RefCell<Vec<String>> =
+        const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// Run `f` with the coordinates ranked in the order of `names` (a scene's
+/// declaration order): terms that [`display_order`] ties are written in
+/// that order, ÿ₃ before θ̈₃ when y3 is declared first. Outside it, and for
+/// other names, by name. Never by interning order, so a scene prints the
+/// same whatever the process parsed before it (the REPL, Python).
+pub fn with_coordinate_order<R>(names: &[String], f: impl FnOnce() -> R) -> R {
+    struct Restore(Vec<String>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            let old = std::mem::take(&mut self.0);
+            COORDINATE_ORDER.with(|c| *c.borrow_mut() = old);
+        }
+    }
+    let _restore = Restore(COORDINATE_ORDER.with(|c| c.replace(names.to_vec())));
+    f()
+}
+
+/// The tie-break of terms: the coordinates' declaration order
+/// ([`with_coordinate_order`]), then [`name_lex_order`].
+pub(crate) fn declared_order(a: &Mono, b: &Mono) -> Ordering {
+    let ranks = |m: &Mono| -> Vec<(usize, std::cmp::Reverse<u32>, std::cmp::Reverse<u32>)> {
+        let mut r: Vec<_> = COORDINATE_ORDER.with(|order| {
+            let order = order.borrow();
+            m.0.iter()
+                .filter_map(|&(v, e)| match atom::atom(v) {
+                    Atom::Coord(name, k) => Some((
+                        order
+                            .iter()
+                            .position(|n| n.as_str() == &*name)
+                            .unwrap_or(usize::MAX),
+                        std::cmp::Reverse(k),
+                        std::cmp::Reverse(e),
+                    )),
+                    _ => None,
+                })
+                .collect()
+        });
+        r.sort();
+        r
+    };
+    ranks(a).cmp(&ranks(b)).then_with(|| name_lex_order(a, b))
+}
+
 /// Lexicographic order of monomials with the variables ranked by
 /// [`factor_rank`] (by name, not by interning order): `l³, l²·m, l·m², m³`.
 pub(crate) fn name_lex_order(a: &Mono, b: &Mono) -> Ordering {
@@ -222,7 +272,7 @@ fn term_with_coef(c: &Expr, key: &Mono, st: Style) -> (bool, String) {
 fn term_with_coef_signed(c: &Expr, key: &Mono, st: Style) -> (bool, String) {
     // The sign goes outside: the coefficient's first displayed term is
     // positive (what still prints with a sign, `term_with_coef` takes out).
-    let neg = leads_negative(c.num());
+    let neg = coefficient_negative(c);
     let c = if neg { c.neg() } else { c.clone() };
     // a coefficient is compacted on its own: g·m·(R − r), p²/(3·m·(R − r)²)
     let (cn, cd) = super::compact::display_parts(c.num(), c.den());
@@ -362,6 +412,24 @@ pub(crate) fn sum_terms(p: &Poly) -> Vec<(Mono, Q)> {
         return pos.into_iter().chain(neg).collect();
     }
     t
+}
+
+/// num/den with the printers' sign convention, not the canonical form's
+/// (which follows the atoms' interning order, so it would depend on what
+/// the process parsed before): the denominator's first term, in display
+/// order (by name), is positive.
+pub(crate) fn name_signed(num: &Poly, den: &Poly) -> (Poly, Poly) {
+    if leads_negative(den) {
+        (-num, -den)
+    } else {
+        (num.clone(), den.clone())
+    }
+}
+
+/// Whether the coefficient `c` prints with its sign outside: its
+/// numerator's first term is negative under [`name_signed`].
+pub(crate) fn coefficient_negative(c: &Expr) -> bool {
+    leads_negative(c.num()) != leads_negative(c.den())
 }
 
 /// Whether the first term of `p` in display order is negative (the sign a

@@ -159,7 +159,10 @@ fn run_unbounded(
     opts: &CommandOptions,
 ) -> Result<(String, Vec<Diagnostic>), Diagnostic> {
     let scene = Scene::parse(src)?;
-    crate::algebra::assume::assuming(&scene.assumptions, || run_scene(cmd, &scene, fmt, opts))
+    let coordinates: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
+    crate::expr::print::with_coordinate_order(&coordinates, || {
+        crate::algebra::assume::assuming(&scene.assumptions, || run_scene(cmd, &scene, fmt, opts))
+    })
 }
 
 /// A command's JSON object as text, with the keys every command of this

@@ -232,7 +232,18 @@ impl Session {
         let max_terms = self.max_terms;
         // an entry over budget changes nothing: statements are committed
         // only after the scene they make has been resolved
-        crate::budget::within(max_terms, || self.execute_unbounded(entry)).unwrap_or_else(|e| {
+        // the scene as it stands orders the printed terms (a statement
+        // that changes the coordinates prints nothing that depends on it)
+        let coordinates: Vec<String> = self
+            .scene
+            .coordinates
+            .iter()
+            .map(|c| c.name.clone())
+            .collect();
+        crate::expr::print::with_coordinate_order(&coordinates, || {
+            crate::budget::within(max_terms, || self.execute_unbounded(entry))
+        })
+        .unwrap_or_else(|e| {
             let hint = format!(
                 "raise the limit with :max-terms {} (it is {})",
                 e.limit.saturating_mul(10),

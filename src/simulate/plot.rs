@@ -78,8 +78,19 @@ fn pretty_column(name: &str) -> String {
     crate::expr::print::pretty_name(base, dots)
 }
 
-/// The figure of a run, as SVG text.
+/// How many evenly spaced times `--plot` samples the dense output at,
+/// beside the output times of `--points`: smooth curves at any `--points`
+/// (4,000 is ~4 samples per pixel column of the 900-pixel figure).
+pub const SAMPLES: usize = 4_000;
+
+/// The figure of a run, as SVG text: [`Run::plot_rows`] when the run
+/// sampled them, else its rows.
 pub fn svg(run: &Run) -> Result<String, PlotError> {
+    let rows = if run.plot_rows.is_empty() {
+        &run.rows
+    } else {
+        &run.plot_rows
+    };
     let n = (run.columns.len() - 1) / 2;
     let energy = run.columns.last().is_some_and(|c| c == "energy");
     let panels = if energy { 3 } else { 2 };
@@ -89,8 +100,8 @@ pub fn svg(run: &Run) -> Result<String, PlotError> {
             SVGBackend::with_string(&mut out, (900, 320 * panels as u32)).into_drawing_area();
         root.fill(&WHITE).map_err(PlotError::drawing)?;
         let areas = root.split_evenly((panels, 1));
-        let t: Vec<f64> = run.rows.iter().map(|r| r[0]).collect();
-        let col = |k: usize| -> Vec<f64> { run.rows.iter().map(|r| r[k]).collect() };
+        let t: Vec<f64> = rows.iter().map(|r| r[0]).collect();
+        let col = |k: usize| -> Vec<f64> { rows.iter().map(|r| r[k]).collect() };
         let range = |vs: &[Vec<f64>]| -> (f64, f64) {
             let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
             for v in vs.iter().flatten().filter(|x| x.is_finite()) {

@@ -60,6 +60,10 @@ pub struct Request {
     /// feature); the command line sets it when standard error is a
     /// terminal. Without it nothing is wrapped.
     pub progress: bool,
+    /// Also sample the dense output at this many evenly spaced times for
+    /// a plot ([`Run::plot_rows`]; 0: none). The run's steps do not change:
+    /// the interpolant is evaluated between them.
+    pub plot_samples: usize,
 }
 
 impl Default for Request {
@@ -78,6 +82,7 @@ impl Default for Request {
             functions: Vec::new(),
             baumgarte: 1.0,
             progress: false,
+            plot_samples: 0,
         }
     }
 }
@@ -89,6 +94,9 @@ pub struct Run {
     pub columns: Vec<String>,
     /// One row per output time.
     pub rows: Vec<Vec<f64>>,
+    /// With [`Request::plot_samples`]: the rows at the output times and at
+    /// the plot's samples, in time order (what `--plot` draws); else empty.
+    pub plot_rows: Vec<Vec<f64>>,
     /// The integrator's trajectory, work counters and status.
     pub solution: Solution,
     /// The method used.
@@ -396,10 +404,24 @@ impl Prepared {
             event,
             seconds: compile_seconds,
         } = compiled;
-        let points = req.points;
-        let t_out: Vec<f64> = (0..points)
-            .map(|i| req.t_end * i as f64 / (points - 1) as f64)
-            .collect();
+        let evenly = |k: usize| -> Vec<f64> {
+            (0..k)
+                .map(|i| req.t_end * i as f64 / (k - 1) as f64)
+                .collect()
+        };
+        let requested = evenly(req.points);
+        // the plot's samples that are not output times, sorted
+        let plot_only: Vec<f64> = if req.plot_samples >= 2 {
+            evenly(req.plot_samples)
+                .into_iter()
+                .filter(|t| requested.binary_search_by(|r| r.total_cmp(t)).is_err())
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let mut t_out = requested.clone();
+        t_out.extend_from_slice(&plot_only);
+        t_out.sort_by(f64::total_cmp);
         let opts = IntegratorOptions {
             t0: 0.0,
             t_end: req.t_end,
@@ -429,6 +451,11 @@ impl Prepared {
         })?;
         let seconds = start.elapsed().as_secs_f64();
         let mut run = self.rows(solution, energy.as_ref(), drift_program.as_ref(), evaluator);
+        if req.plot_samples >= 2 {
+            let only = |t: f64| plot_only.binary_search_by(|p| p.total_cmp(&t)).is_ok();
+            run.plot_rows = run.rows.clone();
+            run.rows.retain(|r| !only(r[0]));
+        }
         run.method = req.method;
         run.seconds = seconds;
         run.compile_seconds = compile_seconds;
@@ -495,6 +522,7 @@ impl Prepared {
             not_finite_column: not_finite.map(|(c, _)| c),
             columns,
             rows,
+            plot_rows: Vec::new(),
             solution,
             method: Method::Dop853,
             seconds: 0.0,

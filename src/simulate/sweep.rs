@@ -124,7 +124,10 @@ pub fn parse_axis(text: &str) -> Result<Axis, Diagnostic> {
 /// The values of every run, in order: a grid's product or random points.
 pub fn design_points(axes: &[Axis], design: Design) -> Result<Vec<Vec<f64>>, Diagnostic> {
     let too_many = |n: String| {
-        Diagnostic::global(format!("{n} runs: more than {MAX_SWEEP_RUNS}"))
+        Diagnostic::global(format!(
+            "{n} runs: more than {}",
+            crate::budget::grouped(MAX_SWEEP_RUNS)
+        ))
             .with_hint("fewer values per axis (COUNT), or fewer --samples; split the study into several sweeps")
     };
     match design {

@@ -90,18 +90,47 @@ pub(super) fn polynomial(
 /// The roots λ of `p` (a polynomial in `lv`) and its factors; `real` when
 /// every root is known to be real (K and M symmetric, no gyroscopic terms).
 pub(super) fn roots(p: &Expr, lv: Var, real: bool, set: &Values) -> Roots {
-    if let Some((roots, factors)) = lambda_roots(p, lv).or_else(|| lambda_roots_factored(p, lv)) {
+    if let Some((roots, mut factors)) = lambda_roots(p, lv).or_else(|| lambda_roots_factored(p, lv))
+    {
+        signed_by_name(&mut factors, lv);
         return Roots {
             roots,
             factors,
             why: None,
         };
     }
-    let (factors, why) = unsolved(p, lv, real, set);
+    let (mut factors, why) = unsolved(p, lv, real, set);
+    signed_by_name(&mut factors, lv);
     Roots {
         roots: Vec::new(),
         factors,
         why: Some(why),
+    }
+}
+
+/// Each factor in λ signed so that its first term in display order (by
+/// name) is positive, as `positive_first` signs a printed group (k − 6·m·λ):
+/// the factorization's own sign follows the atoms' interning order, which
+/// would make the output depend on what the process parsed before. The
+/// constant content takes the signs given up, so the product is unchanged.
+fn signed_by_name(factors: &mut Vec<Expr>, lv: Var) {
+    let mut flips = 0;
+    for f in factors.iter_mut() {
+        if !f.depends_on(lv) {
+            continue;
+        }
+        if crate::expr::print::leads_negative(f.num())
+            != crate::expr::print::leads_negative(f.den())
+        {
+            *f = f.neg();
+            flips += 1;
+        }
+    }
+    if flips % 2 == 1 {
+        match factors.first_mut() {
+            Some(c) if !c.depends_on(lv) => *c = c.neg(),
+            _ => factors.insert(0, Expr::int(-1)),
+        }
     }
 }
 

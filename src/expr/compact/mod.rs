@@ -52,6 +52,10 @@ pub use crate::limits::{MAX_COMPACT_TERMS, MAX_FACTORED_TERMS, MAX_TRIG_EXPANSIO
 /// (see the module docs). The result may contain display atoms
 /// ([`Atom::Shown`], [`Atom::Group`]) and is only for the printers.
 pub fn display_parts(num: &Poly, den: &Poly) -> (Poly, Poly) {
+    // The canonical quotient's sign convention follows the atoms' interning
+    // order; the printers' must not (a scene prints the same whatever was
+    // parsed before it): the denominator's first term by name is positive.
+    let (num, den) = &print::name_signed(num, den);
     let folded = (
         print::fold_trig(num).unwrap_or_else(|| num.clone()),
         print::fold_trig(den).unwrap_or_else(|| den.clone()),
