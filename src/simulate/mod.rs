@@ -14,6 +14,7 @@
 //!
 //! [`integrate`] and [`integrate_with_event`] dispatch on [`Method`].
 
+pub mod codegen;
 pub mod elliptic;
 pub mod explicit;
 pub mod given;
