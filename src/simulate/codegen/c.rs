@@ -62,6 +62,9 @@ impl Syntax for C {
         if !uses.time {
             s.push_str("    (void)t;\n");
         }
+        if !uses.state.iter().any(|&u| u) {
+            s.push_str(&format!("    (void){};\n", f.kind.input()));
+        }
         for (p, used) in cx.params.iter().zip(&uses.params) {
             if !used {
                 s.push_str(&format!("    (void){p};\n"));
