@@ -83,19 +83,54 @@ pub(super) enum Stmt {
 pub(super) struct Lowering {
     pub(super) stmts: Vec<Stmt>,
     next: u32,
+    /// Whether each temporary depends on the parameters and literals only.
+    params_only: Vec<bool>,
+    /// 1/b for the parameter-only divisors b met so far.
+    reciprocals: Vec<(Val, Val)>,
 }
 
 impl Lowering {
     /// A temporary defined by `op`, or the literal it folds to when every
-    /// operand is a literal.
+    /// operand is a literal. A division of a value that moves by one that
+    /// does not (a parameter's, like g/l's l) becomes a product with the
+    /// reciprocal, computed apart: the division then runs beside the
+    /// state's work instead of at its end (C compilers may not do this
+    /// without -ffast-math; the result moves by at most one rounding).
     pub(super) fn temp(&mut self, op: Op) -> Val {
         if let Some(x) = fold(&op) {
             return Val::Lit(x);
         }
+        if let Op::Div(a, b) = op {
+            if !matches!(a, Val::Lit(_)) && !self.is_params_only(a) && self.is_params_only(b) {
+                let r = match self.reciprocals.iter().find(|(d, _)| *d == b) {
+                    Some(&(_, r)) => r,
+                    None => {
+                        let r = self.push(Op::Div(Val::Lit(1.0), b));
+                        self.reciprocals.push((b, r));
+                        r
+                    }
+                };
+                return self.push(Op::Mul(a, r));
+            }
+        }
+        self.push(op)
+    }
+
+    fn push(&mut self, op: Op) -> Val {
+        let params_only = operands(&op).iter().all(|v| self.is_params_only(*v));
         let k = self.next;
         self.next += 1;
+        self.params_only.push(params_only);
         self.stmts.push(Stmt::Let(k, op));
         Val::Temp(k)
+    }
+
+    fn is_params_only(&self, v: Val) -> bool {
+        match v {
+            Val::Lit(_) | Val::Param(_) => true,
+            Val::Time | Val::State(_) => false,
+            Val::Temp(k) => self.params_only[k as usize],
+        }
     }
 
     /// The instructions of `program` with `inputs` in its input registers;
@@ -146,6 +181,8 @@ impl Lowering {
                 Instr::SinCos { sin, cos, a } => {
                     let (s, c) = (self.next, self.next + 1);
                     self.next += 2;
+                    let p = self.is_params_only(g(a));
+                    self.params_only.extend([p, p]);
                     self.stmts.push(Stmt::SinCos {
                         sin: s,
                         cos: c,
@@ -257,6 +294,22 @@ impl Lowering {
                 }
             })
             .collect()
+    }
+}
+
+/// The operands of an operation.
+fn operands(op: &Op) -> Vec<Val> {
+    match op {
+        Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) => vec![*a, *b],
+        Op::Neg(a) | Op::Call(_, a) => vec![*a],
+        Op::Dot(init, ps) => init
+            .iter()
+            .copied()
+            .chain(ps.iter().flat_map(|&(a, b)| [a, b]))
+            .collect(),
+        Op::SubDot(init, ps) => std::iter::once(*init)
+            .chain(ps.iter().flat_map(|&(a, b)| [a, b]))
+            .collect(),
     }
 }
 
