@@ -20,14 +20,24 @@ fn problems() -> Vec<(&'static str, String, Vec<f64>, Vec<f64>)> {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..");
     let read = |p: &str| std::fs::read_to_string(root.join(p)).expect("the example");
     vec![
-        ("pendulum", read("examples/pendulum.qd"), vec![1.0, 1.0, 9.81], vec![3.0, 0.1]),
+        (
+            "pendulum",
+            read("examples/pendulum.qd"),
+            vec![1.0, 1.0, 9.81],
+            vec![3.0, 0.1],
+        ),
         (
             "double_pendulum",
             qdot::gallery::pendulum_chain(2),
             vec![1.0, 1.0, 9.81],
             vec![0.5, 1.0, 0.3, -0.2],
         ),
-        ("seed_24_2", read("examples/seed_24_2.qd"), vec![1.0, 4.0, 0.5], vec![0.1, -0.2, 0.3, 0.05]),
+        (
+            "seed_24_2",
+            read("examples/seed_24_2.qd"),
+            vec![1.0, 4.0, 0.5],
+            vec![0.1, -0.2, 0.3, 0.05],
+        ),
     ]
 }
 
@@ -49,7 +59,10 @@ fn main() {
         let n = y.len();
         let ps: Vec<String> = params.iter().map(|p| format!("{p:?}")).collect();
         let ys: Vec<String> = y.iter().map(|p| format!("{p:?}")).collect();
-        let sig = format!("int {{}}(double, const double *, {}double *);\n", "double, ".repeat(params.len()));
+        let sig = format!(
+            "int {{}}(double, const double *, {}double *);\n",
+            "double, ".repeat(params.len())
+        );
         driver.push_str(&sig.replace("{}", &format!("{name}_rhs")));
         driver.push_str(&sig.replace("{}", &format!("hand_{name}_rhs")));
         body.push_str(&format!(
@@ -71,18 +84,20 @@ fn main() {
     }
     body.push_str("    return 0;\n}\n");
     std::fs::write(dir.join("gen.c"), generated).unwrap();
-    std::fs::write(
-        dir.join("hand.c"),
-        include_str!("hand/rhs.c"),
-    )
-    .unwrap();
+    std::fs::write(dir.join("hand.c"), include_str!("hand/rhs.c")).unwrap();
     std::fs::write(dir.join("main.c"), driver + &body).unwrap();
     let cc = Command::new("gcc")
-        .args(["-O2", "-std=c99", "gen.c", "hand.c", "main.c", "-o", "bench", "-lm"])
+        .args([
+            "-O2", "-std=c99", "gen.c", "hand.c", "main.c", "-o", "bench", "-lm",
+        ])
         .current_dir(&dir)
         .output()
         .unwrap();
-    assert!(cc.status.success(), "{}", String::from_utf8_lossy(&cc.stderr));
+    assert!(
+        cc.status.success(),
+        "{}",
+        String::from_utf8_lossy(&cc.stderr)
+    );
     let out = Command::new(dir.join("bench")).output().unwrap();
     let text = String::from_utf8_lossy(&out.stdout);
     println!("| problem | generated C (ns/call) | hand-written C (ns/call) | ratio | max rel. difference |");
@@ -90,8 +105,16 @@ fn main() {
     let mut rows = Vec::new();
     for line in text.lines() {
         let f: Vec<&str> = line.split_whitespace().collect();
-        let (gen, hand, err): (f64, f64, f64) = (f[1].parse().unwrap(), f[2].parse().unwrap(), f[3].parse().unwrap());
-        println!("| {} | {gen:.2} | {hand:.2} | {:.3} | {err:.1e} |", f[0], gen / hand);
+        let (gen, hand, err): (f64, f64, f64) = (
+            f[1].parse().unwrap(),
+            f[2].parse().unwrap(),
+            f[3].parse().unwrap(),
+        );
+        println!(
+            "| {} | {gen:.2} | {hand:.2} | {:.3} | {err:.1e} |",
+            f[0],
+            gen / hand
+        );
         rows.push(serde_json::json!({
             "problem": f[0], "generated_ns": gen, "hand_ns": hand, "ratio": gen / hand, "max_rel_difference": err,
         }));

@@ -127,7 +127,9 @@ fn generate(lang: Lang) -> (String, Vec<Call>, usize) {
             };
             let (mut dynamics, _) = CompiledDynamics::best(&lag, &map).unwrap();
             let mut qdd = vec![0.0; n];
-            dynamics.accelerations(t, &y[..n], &y[n..], &mut qdd).unwrap();
+            dynamics
+                .accelerations(t, &y[..n], &y[n..], &mut qdd)
+                .unwrap();
             let mut dy = y[n..].to_vec();
             dy.extend(qdd);
             calls.push(call("rhs", sc.name.to_string(), dy));
@@ -151,7 +153,11 @@ fn generate(lang: Lang) -> (String, Vec<Call>, usize) {
                 }
             }
             calls.push(call("mass_matrix", format!("{}_m", sc.name), full));
-            calls.push(call("forcing", format!("{}_m", sc.name), eval(&lag.forcing)));
+            calls.push(call(
+                "forcing",
+                format!("{}_m", sc.name),
+                eval(&lag.forcing),
+            ));
             if let Some(p) = run::conserved_quantity(&scene, &lag.coordinates, &map).unwrap() {
                 let mut out = [0.0];
                 p.eval(&input, &mut p.registers(), &mut out);
@@ -197,9 +203,18 @@ fn compare(lang: &str, calls: &[Call], printed: &str) -> f64 {
     for (c, line) in calls.iter().zip(lines) {
         let got: Vec<f64> = line
             .split_whitespace()
-            .map(|s| s.parse().unwrap_or_else(|_| panic!("{lang}: `{s}` in `{line}`")))
+            .map(|s| {
+                s.parse()
+                    .unwrap_or_else(|_| panic!("{lang}: `{s}` in `{line}`"))
+            })
             .collect();
-        assert_eq!(got.len(), c.expected.len(), "{lang} {}_{}", c.prefix, c.function);
+        assert_eq!(
+            got.len(),
+            c.expected.len(),
+            "{lang} {}_{}",
+            c.prefix,
+            c.function
+        );
         let scale = c.expected.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         for (k, (g, e)) in got.iter().zip(&c.expected).enumerate() {
             let err = (g - e).abs() / e.abs().max(1e-2 * scale).max(f64::MIN_POSITIVE);
@@ -234,11 +249,18 @@ fn generated_c_matches_the_compiled_evaluator() {
     for c in &calls {
         let n = c.expected.len();
         let (y, ps) = (list(&c.y, &lit), list(&c.params, &lit));
-        let args = if ps.is_empty() { String::new() } else { format!(", {ps}") };
+        let args = if ps.is_empty() {
+            String::new()
+        } else {
+            format!(", {ps}")
+        };
         let f = format!("{}_{}", c.prefix, c.function);
         main.push_str(&format!("    {{\n        const double y[] = {{{y}}};\n"));
         if c.function == "energy" {
-            main.push_str(&format!("        printf(\"%.17g\\n\", {f}({:?}, y{args}));\n", c.t));
+            main.push_str(&format!(
+                "        printf(\"%.17g\\n\", {f}({:?}, y{args}));\n",
+                c.t
+            ));
         } else {
             main.push_str(&format!("        double out[{n}];\n"));
             let call = format!("{f}({:?}, y{args}, out)", c.t);
@@ -258,12 +280,17 @@ fn generated_c_matches_the_compiled_evaluator() {
     std::fs::write(dir.join("gen.c"), format!("{code}\n{main}")).unwrap();
     run_ok(
         Command::new("gcc")
-            .args(["-O2", "-std=c99", "-Wall", "-Wextra", "-Werror", "gen.c", "-o", "gen", "-lm"])
+            .args([
+                "-O2", "-std=c99", "-Wall", "-Wextra", "-Werror", "gen.c", "-o", "gen", "-lm",
+            ])
             .current_dir(&dir),
     );
     let printed = run_ok(&mut Command::new(dir.join("gen")));
     let worst = compare("C", &calls, &printed);
-    eprintln!("C: {} calls, largest relative difference {worst:.2e}", calls.len());
+    eprintln!(
+        "C: {} calls, largest relative difference {worst:.2e}",
+        calls.len()
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -280,7 +307,11 @@ fn generated_rust_matches_the_compiled_evaluator() {
     );
     for c in &calls {
         let (y, ps) = (list(&c.y, &lit), list(&c.params, &lit));
-        let args = if ps.is_empty() { String::new() } else { format!(", {ps}") };
+        let args = if ps.is_empty() {
+            String::new()
+        } else {
+            format!(", {ps}")
+        };
         let f = format!("{}_{}", c.prefix, c.function);
         let t = c.t;
         main.push_str(&format!("    {{\n        let y = [{y}];\n"));
@@ -309,12 +340,24 @@ fn generated_rust_matches_the_compiled_evaluator() {
     std::fs::write(dir.join("gen.rs"), format!("{code}\n{main}")).unwrap();
     run_ok(
         Command::new("rustc")
-            .args(["-O", "--edition", "2021", "-D", "warnings", "gen.rs", "-o", "gen"])
+            .args([
+                "-O",
+                "--edition",
+                "2021",
+                "-D",
+                "warnings",
+                "gen.rs",
+                "-o",
+                "gen",
+            ])
             .current_dir(&dir),
     );
     let printed = run_ok(&mut Command::new(dir.join("gen")));
     let worst = compare("Rust", &calls, &printed);
-    eprintln!("Rust: {} calls, largest relative difference {worst:.2e}", calls.len());
+    eprintln!(
+        "Rust: {} calls, largest relative difference {worst:.2e}",
+        calls.len()
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -326,16 +369,24 @@ fn generated_python_matches_the_compiled_evaluator() {
     }
     let (code, calls, _) = generate(Lang::Python);
     let lit = |x: f64| format!("{x:?}");
-    let mut main = String::from("\n\ndef show(xs):\n    print(' '.join(repr(float(x)) for x in xs))\n\n");
+    let mut main =
+        String::from("\n\ndef show(xs):\n    print(' '.join(repr(float(x)) for x in xs))\n\n");
     for c in &calls {
         let (y, ps) = (list(&c.y, &lit), list(&c.params, &lit));
-        let args = if ps.is_empty() { String::new() } else { format!(", {ps}") };
+        let args = if ps.is_empty() {
+            String::new()
+        } else {
+            format!(", {ps}")
+        };
         let f = format!("{}_{}", c.prefix, c.function);
         let t = c.t;
         main.push_str(&match c.function {
             "energy" => format!("show([{f}({t:?}, [{y}]{args})])\n"),
             "mass_matrix" => {
-                format!("show([x for row in {f}({t:?}, [{y}][:{}]{args}) for x in row])\n", c.y.len() / 2)
+                format!(
+                    "show([x for row in {f}({t:?}, [{y}][:{}]{args}) for x in row])\n",
+                    c.y.len() / 2
+                )
             }
             _ => format!("show({f}({t:?}, [{y}]{args}))\n"),
         });
@@ -344,7 +395,10 @@ fn generated_python_matches_the_compiled_evaluator() {
     std::fs::write(dir.join("gen.py"), format!("{code}{main}")).unwrap();
     let printed = run_ok(Command::new("python3").arg("gen.py").current_dir(&dir));
     let worst = compare("Python", &calls, &printed);
-    eprintln!("Python: {} calls, largest relative difference {worst:.2e}", calls.len());
+    eprintln!(
+        "Python: {} calls, largest relative difference {worst:.2e}",
+        calls.len()
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -396,7 +450,9 @@ fn names_become_identifiers_of_every_language() {
             lang == Lang::Python,
             "`lambda` is a keyword of Python only: {code}"
         );
-        let body = code.lines().filter(|l| !l.starts_with("//") && !l.starts_with('#'));
+        let body = code
+            .lines()
+            .filter(|l| !l.starts_with("//") && !l.starts_with('#'));
         for line in body {
             assert!(line.is_ascii(), "{lang:?}: non-ASCII code `{line}`");
         }
@@ -422,8 +478,14 @@ fn set_parameters_become_constants() {
         .into_iter()
         .collect();
     let code = codegen(&src, &req).unwrap();
-    assert!(code.contains("Parameters (arguments, in this order): m."), "{code}");
-    assert!(code.contains("Constants (--set): g = 9.81, l = 2."), "{code}");
+    assert!(
+        code.contains("Parameters (arguments, in this order): m."),
+        "{code}"
+    );
+    assert!(
+        code.contains("Constants (--set): g = 9.81, l = 2."),
+        "{code}"
+    );
     assert!(code.contains("int pendulum_rhs(double t, const double *y, double m, double *dy)"));
     // −g/l folded into one constant
     assert!(code.contains("-4.905"), "{code}");
@@ -439,7 +501,11 @@ fn errors_are_diagnostics() {
     let mut r = req.clone();
     r.set.insert("zz".into(), 1.0);
     let e = codegen(&read("examples/pendulum.qd"), &r).unwrap_err();
-    assert!(e.message.contains("`zz` is not a parameter"), "{}", e.message);
+    assert!(
+        e.message.contains("`zz` is not a parameter"),
+        "{}",
+        e.message
+    );
     // no coordinates: a kinetostatic scene
     let e = codegen(&read("examples/seed_21_1_kinetostatic.qd"), &req).unwrap_err();
     assert!(!e.message.is_empty());
@@ -450,7 +516,14 @@ fn errors_are_diagnostics() {
 #[test]
 fn cli_codegen() {
     let out = Command::new(env!("CARGO_BIN_EXE_qdot"))
-        .args(["codegen", "examples/pendulum.qd", "--lang", "python", "--set", "g=9.81"])
+        .args([
+            "codegen",
+            "examples/pendulum.qd",
+            "--lang",
+            "python",
+            "--set",
+            "g=9.81",
+        ])
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .output()
         .unwrap();

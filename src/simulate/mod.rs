@@ -11,6 +11,7 @@
 //!   output, Hairer's step-size control, stiffness detection, events.
 //! * `implicit`: Radau IIA (order 5, L-stable), Gauss–Legendre (symplectic).
 //! * `elliptic`: Jacobi elliptic functions (exact pendulum references).
+//! * [`codegen`]: the compiled equations as C, Rust, Python or Julia source.
 //!
 //! [`integrate`] and [`integrate_with_event`] dispatch on [`Method`].
 

@@ -248,8 +248,7 @@ impl Lowering {
                 let v = if j == 0 {
                     upper(0, i)
                 } else {
-                    let s =
-                        self.temp(Op::Dot(None, (0..j).map(|k| (l[i][k], l[j][k])).collect()));
+                    let s = self.temp(Op::Dot(None, (0..j).map(|k| (l[i][k], l[j][k])).collect()));
                     self.temp(Op::Sub(upper(j, i), s))
                 };
                 l[i][j] = self.temp(Op::Mul(v, inv));
@@ -270,7 +269,10 @@ impl Lowering {
             let num = if i + 1 == n {
                 b[i]
             } else {
-                self.temp(Op::SubDot(b[i], (i + 1..n).map(|k| (l[k][i], x[k])).collect()))
+                self.temp(Op::SubDot(
+                    b[i],
+                    (i + 1..n).map(|k| (l[k][i], x[k])).collect(),
+                ))
             };
             x[i] = self.temp(Op::Div(num, l[i][i]));
         }

@@ -7,12 +7,64 @@ use super::render::{shortest, Context, Function, Kind, Syntax, Uses};
 
 /// Julia's keywords, the functions the code calls and its own names.
 pub(super) const RESERVED: &[&str] = &[
-    "baremodule", "begin", "break", "catch", "const", "continue", "do", "else", "elseif", "end",
-    "export", "false", "finally", "for", "function", "global", "if", "import", "let", "local",
-    "macro", "module", "quote", "return", "struct", "true", "try", "using", "while", "abstract",
-    "mutable", "primitive", "type", "where", "outer", "in", "isa", "sin", "cos", "sincos", "exp",
-    "log", "sqrt", "atan", "asin", "acos", "error", "NaN", "Inf", "fill", "nothing", "t", "y",
-    "q", "p", "dy", "mass", "forcing",
+    "baremodule",
+    "begin",
+    "break",
+    "catch",
+    "const",
+    "continue",
+    "do",
+    "else",
+    "elseif",
+    "end",
+    "export",
+    "false",
+    "finally",
+    "for",
+    "function",
+    "global",
+    "if",
+    "import",
+    "let",
+    "local",
+    "macro",
+    "module",
+    "quote",
+    "return",
+    "struct",
+    "true",
+    "try",
+    "using",
+    "while",
+    "abstract",
+    "mutable",
+    "primitive",
+    "type",
+    "where",
+    "outer",
+    "in",
+    "isa",
+    "sin",
+    "cos",
+    "sincos",
+    "exp",
+    "log",
+    "sqrt",
+    "atan",
+    "asin",
+    "acos",
+    "error",
+    "NaN",
+    "Inf",
+    "fill",
+    "nothing",
+    "t",
+    "y",
+    "q",
+    "p",
+    "dy",
+    "mass",
+    "forcing",
 ];
 
 pub(super) struct Julia;
@@ -84,7 +136,11 @@ impl Syntax for Julia {
             Kind::Energy => s.push_str(&format!("    return {}\n", outs[0])),
             Kind::Mass => {
                 for (k, o) in outs.iter().enumerate() {
-                    s.push_str(&format!("    mass[{}, {}] = {o}\n", k / cx.n + 1, k % cx.n + 1));
+                    s.push_str(&format!(
+                        "    mass[{}, {}] = {o}\n",
+                        k / cx.n + 1,
+                        k % cx.n + 1
+                    ));
                 }
                 s.push_str("    return nothing\n");
             }

@@ -540,11 +540,11 @@ fn shown(name: &str, id: &str) -> String {
 fn describe(lang: Lang, f: &Function, n: usize) -> String {
     let fails = match (lang, f.can_fail) {
         (_, false) => String::new(),
-        (Lang::C, true) => "; 0, or k + 1 when M's Cholesky pivot k is not positive (dy NaN)".into(),
-        (Lang::Rust, true) => "; Err(k) when M's Cholesky pivot k is not positive (dy NaN)".into(),
-        (Lang::Python, true) => {
-            "; ValueError when M's Cholesky pivot is not positive".into()
+        (Lang::C, true) => {
+            "; 0, or k + 1 when M's Cholesky pivot k is not positive (dy NaN)".into()
         }
+        (Lang::Rust, true) => "; Err(k) when M's Cholesky pivot k is not positive (dy NaN)".into(),
+        (Lang::Python, true) => "; ValueError when M's Cholesky pivot is not positive".into(),
         (Lang::Julia, true) => "; an error when M's Cholesky pivot is not positive".into(),
     };
     let list = lang == Lang::Python;
@@ -556,8 +556,6 @@ fn describe(lang: Lang, f: &Function, n: usize) -> String {
         Kind::Mass => format!("M(q, t) into mass, {n}×{n} row by row"),
         Kind::Forcing if list => format!("f(q, q̇, t), a list of {n}"),
         Kind::Forcing => "f(q, q̇, t) into forcing".to_string(),
-        Kind::Energy => {
-            "the conserved energy (Jacobi integral h = Σ q̇·∂L/∂q̇ − L)".to_string()
-        }
+        Kind::Energy => "the conserved energy (Jacobi integral h = Σ q̇·∂L/∂q̇ − L)".to_string(),
     }
 }

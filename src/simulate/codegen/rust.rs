@@ -22,7 +22,12 @@ impl Syntax for Rust {
         if x.is_nan() {
             "f64::NAN".into()
         } else if x.is_infinite() {
-            if x > 0.0 { "f64::INFINITY" } else { "f64::NEG_INFINITY" }.into()
+            if x > 0.0 {
+                "f64::INFINITY"
+            } else {
+                "f64::NEG_INFINITY"
+            }
+            .into()
         } else {
             shortest(x)
         }
