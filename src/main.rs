@@ -313,25 +313,7 @@ fn main() -> ExitCode {
             set,
             function,
             baumgarte,
-        } => {
-            use qdot::simulate::codegen::{Form, Lang, Request};
-            let mut req = Request::new(
-                file,
-                match lang {
-                    CodegenLang::C => Lang::C,
-                    CodegenLang::Rust => Lang::Rust,
-                    CodegenLang::Python => Lang::Python,
-                    CodegenLang::Julia => Lang::Julia,
-                },
-            );
-            req.form = match form {
-                CodegenForm::Accelerations => Form::Accelerations,
-                CodegenForm::MassMatrix => Form::MassMatrix,
-            };
-            req.functions = function.clone();
-            req.baumgarte = *baumgarte;
-            return codegen(file, set.as_deref(), req);
-        }
+        } => return codegen(file, set.as_deref(), *lang, *form, function, *baumgarte),
         Command::Derive { file, format } => (output::Command::Derive, file, *format, None),
         Command::Solve { file, format } => (output::Command::Solve, file, *format, None),
         Command::Forces { file, format } => (output::Command::Forces, file, *format, None),
@@ -416,7 +398,30 @@ fn main() -> ExitCode {
     }
 }
 
-fn codegen(file: &str, set: Option<&str>, mut req: qdot::simulate::codegen::Request) -> ExitCode {
+fn codegen(
+    file: &str,
+    set: Option<&str>,
+    lang: CodegenLang,
+    form: CodegenForm,
+    functions: &[String],
+    baumgarte: f64,
+) -> ExitCode {
+    use qdot::simulate::codegen::{Form, Lang, Request};
+    let mut req = Request::new(
+        file,
+        match lang {
+            CodegenLang::C => Lang::C,
+            CodegenLang::Rust => Lang::Rust,
+            CodegenLang::Python => Lang::Python,
+            CodegenLang::Julia => Lang::Julia,
+        },
+    );
+    req.form = match form {
+        CodegenForm::Accelerations => Form::Accelerations,
+        CodegenForm::MassMatrix => Form::MassMatrix,
+    };
+    req.functions = functions.to_vec();
+    req.baumgarte = baumgarte;
     match set.map(output::parse_set_any_sign).transpose() {
         Ok(s) => req.set = s.unwrap_or_default(),
         Err(d) => {
