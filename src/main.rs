@@ -41,6 +41,22 @@ enum CheckFmt {
     Json,
 }
 
+#[derive(Clone, Copy, ValueEnum)]
+enum CodegenLang {
+    C,
+    Rust,
+    Python,
+    Julia,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum CodegenForm {
+    /// y' = F(t, y) for y = (q, q̇), M·q̈ = f solved inside
+    Accelerations,
+    /// M(q, t) and f(q, q̇, t) as two functions
+    MassMatrix,
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// The interactive session: build a scene line by line, ask for
@@ -249,6 +265,32 @@ enum Command {
         #[arg(long)]
         stats: bool,
     },
+    /// Source code for the equations of motion (C, Rust, Python or Julia):
+    /// the right-hand side of y' = F(t, y), or M and f, and the energy when
+    /// conserved; shared subexpressions computed once, the parameters as
+    /// arguments.
+    Codegen {
+        /// The scene file (.qd).
+        file: String,
+        /// The language of the code.
+        #[arg(long, value_enum)]
+        lang: CodegenLang,
+        /// The functions: the right-hand side, or M and f apart.
+        #[arg(long, value_enum, default_value = "accelerations")]
+        form: CodegenForm,
+        /// Parameters made constants of the code (the others stay
+        /// arguments): m=1,g=9.81
+        #[arg(long)]
+        set: Option<String>,
+        /// The definition of a given function of time, once per function:
+        /// --function "s=1/10*sin(2*t)"
+        #[arg(long = "function")]
+        function: Vec<String>,
+        /// Baumgarte's rate for a scene with constraints (a constant of
+        /// the code).
+        #[arg(long, default_value_t = 1.0)]
+        baumgarte: f64,
+    },
     /// The dimension of every name, declared or found, and of the results;
     /// an error at the first term of the wrong dimension.
     Check {
@@ -369,6 +411,14 @@ fn main() -> ExitCode {
             };
             return sweep(file, base, &options);
         }
+        Command::Codegen {
+            file,
+            lang,
+            form,
+            set,
+            function,
+            baumgarte,
+        } => return codegen(file, set.as_deref(), *lang, *form, function, *baumgarte),
         Command::Derive { file, format } => (output::Command::Derive, file, *format, None),
         Command::Solve { file, format } => (output::Command::Solve, file, *format, None),
         Command::Forces { file, format } => (output::Command::Forces, file, *format, None),
@@ -444,6 +494,56 @@ fn main() -> ExitCode {
                 eprint!("{}", w.render(file, &src));
             }
             print!("{out}");
+            ExitCode::SUCCESS
+        }
+        Err(d) => {
+            eprint!("{}", d.render(file, &src));
+            ExitCode::from(1)
+        }
+    }
+}
+
+fn codegen(
+    file: &str,
+    set: Option<&str>,
+    lang: CodegenLang,
+    form: CodegenForm,
+    functions: &[String],
+    baumgarte: f64,
+) -> ExitCode {
+    use qdot::simulate::codegen::{Form, Lang, Request};
+    let mut req = Request::new(
+        file,
+        match lang {
+            CodegenLang::C => Lang::C,
+            CodegenLang::Rust => Lang::Rust,
+            CodegenLang::Python => Lang::Python,
+            CodegenLang::Julia => Lang::Julia,
+        },
+    );
+    req.form = match form {
+        CodegenForm::Accelerations => Form::Accelerations,
+        CodegenForm::MassMatrix => Form::MassMatrix,
+    };
+    req.functions = functions.to_vec();
+    req.baumgarte = baumgarte;
+    match set.map(output::parse_set_any_sign).transpose() {
+        Ok(s) => req.set = s.unwrap_or_default(),
+        Err(d) => {
+            eprint!("{}", d.render(file, ""));
+            return ExitCode::from(1);
+        }
+    }
+    let src = match qdot::diag::read_source(file) {
+        Ok(s) => s,
+        Err(message) => {
+            eprint!("{message}");
+            return ExitCode::from(1);
+        }
+    };
+    match qdot::simulate::codegen::codegen(&src, &req) {
+        Ok(code) => {
+            print!("{code}");
             ExitCode::SUCCESS
         }
         Err(d) => {

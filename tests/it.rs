@@ -10,6 +10,7 @@ mod stress_common;
 mod assumptions;
 mod book;
 mod cli;
+mod codegen;
 mod compile;
 mod constraints;
 mod dimensions;

@@ -11,9 +11,11 @@
 //!   output, Hairer's step-size control, stiffness detection, events.
 //! * `implicit`: Radau IIA (order 5, L-stable), Gauss–Legendre (symplectic).
 //! * `elliptic`: Jacobi elliptic functions (exact pendulum references).
+//! * [`codegen`]: the compiled equations as C, Rust, Python or Julia source.
 //!
 //! [`integrate`] and [`integrate_with_event`] dispatch on [`Method`].
 
+pub mod codegen;
 pub mod elliptic;
 pub mod explicit;
 pub mod given;

@@ -592,6 +592,18 @@ pub fn conserved_quantity(
     coordinates: &[String],
     params: &FxHashMap<Var, f64>,
 ) -> Result<Option<Program>, Diagnostic> {
+    let Some(h) = jacobi_integral(scene, coordinates) else {
+        return Ok(None);
+    };
+    let program = compile_with(&[h], &state_inputs(coordinates), params)
+        .map_err(|e| Diagnostic::global(format!("cannot compile the energy: {e}")))?;
+    Ok(Some(program))
+}
+
+/// The Jacobi integral h = Σ q̇·∂L/∂q̇ − L of the scene, when it conserves
+/// it: no work, dissipation, forces, loads, torques, given functions or
+/// moving constraints, and no explicit t in L.
+pub fn jacobi_integral(scene: &Scene, coordinates: &[String]) -> Option<Expr> {
     let non_conservative = [Role::Work, Role::Dissipation, Role::Rayleigh]
         .into_iter()
         .any(|r| scene.has_role(r))
@@ -602,18 +614,15 @@ pub fn conserved_quantity(
         // a moving constraint (b ≠ 0) does work
         || scene.constraints.iter().any(|c| !c.rest.is_zero());
     if non_conservative {
-        return Ok(None);
+        return None;
     }
     // the Jacobi integral h = Σ q̇·∂L/∂q̇ − L, when L has no explicit t
     let l = crate::mechanics::lagrangian(scene);
     if l.depends_on(atom::time()) {
-        return Ok(None);
+        return None;
     }
     let qd: Vec<Var> = coordinates.iter().map(|q| atom::coord(q, 1)).collect();
-    let h = crate::mechanics::integrals::jacobi_integral(&l, &qd);
-    let program = compile_with(&[h], &state_inputs(coordinates), params)
-        .map_err(|e| Diagnostic::global(format!("cannot compile the energy: {e}")))?;
-    Ok(Some(program))
+    Some(crate::mechanics::integrals::jacobi_integral(&l, &qd))
 }
 
 /// The run as CSV: a header line, then one line per output time.

@@ -272,20 +272,7 @@ impl CompiledDynamics {
     /// n² multiplications and n(n − 1) additions. Nothing for the exact
     /// accelerations.
     pub fn estimated_cost(&self) -> f64 {
-        let (add, mul, div, call) = self.program.op_counts();
-        let n = self.n as f64;
-        let solve = match self.mode {
-            Mode::MassMatrix => {
-                n * n * n / 3.0
-                    + 2.0 * n * n
-                    + DIVISION_COST * (n * (n - 1.0) / 2.0 + 3.0 * n)
-                    + n * n
-                    + n
-            }
-            Mode::ConstantMass(_) => 2.0 * n * n - n,
-            Mode::Accelerations => 0.0,
-        };
-        (add + mul) as f64 + DIVISION_COST * div as f64 + CALL_COST * call as f64 + solve
+        estimated_cost_of(&self.program, self.evaluator(), self.n)
     }
 
     /// How q̈ is evaluated.
@@ -437,6 +424,27 @@ impl CompiledDynamics {
         }
         Ok(())
     }
+}
+
+/// [`CompiledDynamics::estimated_cost`] of `program` evaluated as
+/// `evaluator` for `n` coordinates (the program's outputs as
+/// [`CompiledDynamics`] lays them out: M's upper triangle then f, f alone,
+/// or q̈): also the yardstick of `simulate::codegen`'s choice.
+pub fn estimated_cost_of(program: &Program, evaluator: Evaluator, n: usize) -> f64 {
+    let (add, mul, div, call) = program.op_counts();
+    let n = n as f64;
+    let solve = match evaluator {
+        Evaluator::MassMatrix => {
+            n * n * n / 3.0
+                + 2.0 * n * n
+                + DIVISION_COST * (n * (n - 1.0) / 2.0 + 3.0 * n)
+                + n * n
+                + n
+        }
+        Evaluator::ConstantMass => 2.0 * n * n - n,
+        Evaluator::Accelerations => 0.0,
+    };
+    (add + mul) as f64 + DIVISION_COST * div as f64 + CALL_COST * call as f64 + solve
 }
 
 /// The full symmetric matrix from its upper triangle, row by row.

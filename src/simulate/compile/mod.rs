@@ -41,7 +41,9 @@ mod passes;
 mod program;
 
 pub use builder::{compile, compile_with, naive_op_count};
-pub use dynamics::{state_inputs, Choice, CompiledDynamics, Evaluator};
+pub use dynamics::{
+    estimated_cost_of, state_inputs, Choice, CompiledDynamics, Evaluator, BEST_MAX_N,
+};
 pub use error::CompileError;
 #[doc(hidden)]
 pub use program::Instr;
