@@ -8,7 +8,7 @@
 //!
 //! `cargo bench -p qdot-benches --bench codegen_c`
 
-use qdot::simulate::codegen::{codegen, Lang, Request};
+use qdot::simulate::codegen::{codegen, CodegenRequest, Lang};
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -54,7 +54,7 @@ fn main() {
     );
     let mut body = String::from("int main(void)\n{\n");
     for (name, scene, params, y) in problems() {
-        let code = codegen(&scene, &Request::new(&format!("{name}.qd"), Lang::C)).unwrap();
+        let code = codegen(&scene, &CodegenRequest::new(&format!("{name}.qd"), Lang::C)).unwrap();
         generated.push_str(&code);
         let n = y.len();
         let ps: Vec<String> = params.iter().map(|p| format!("{p:?}")).collect();

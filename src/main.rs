@@ -211,60 +211,7 @@ enum Command {
     /// Many simulations of one scene on every core: a grid over parameters
     /// and initial values (--vary NAME=FROM:TO:COUNT, repeated), or random
     /// points in that box (--samples N). One summary row per run.
-    Sweep {
-        /// The scene file (.qd).
-        file: String,
-        /// The values of the parameters that do not vary: m=1,g=9.81
-        #[arg(long)]
-        set: Option<String>,
-        /// The initial values that do not vary: theta'=0
-        #[arg(long)]
-        init: Option<String>,
-        /// A varied parameter, coordinate or velocity: "l=0.5:2:16"
-        /// (16 values from 0.5 to 2); repeat for a grid over several.
-        #[arg(long = "vary", required = true)]
-        vary: Vec<String>,
-        /// Draw this many random points in the box of the --vary ranges
-        /// instead of a grid (COUNT may then be left out).
-        #[arg(long)]
-        samples: Option<usize>,
-        /// The seed of --samples (the same seed, the same points).
-        #[arg(long, default_value_t = 0)]
-        seed: u64,
-        /// Threads (0: one per core).
-        #[arg(long, default_value_t = 0)]
-        threads: usize,
-        /// The final time of every run (from t = 0).
-        #[arg(long = "t-end")]
-        t_end: f64,
-        /// rk4, dopri5, dop853, vern7, gauss6 or radau5
-        #[arg(long, default_value = "dop853")]
-        method: String,
-        /// Relative tolerance of the adaptive methods.
-        #[arg(long, default_value_t = 1e-8)]
-        rtol: f64,
-        /// Absolute tolerance of the adaptive methods.
-        #[arg(long, default_value_t = 1e-10)]
-        atol: f64,
-        /// The step of rk4 and gauss6 (the first step of the others).
-        #[arg(long)]
-        dt: Option<f64>,
-        /// Output times per run, where max|q| and the energy drift are read.
-        #[arg(long, default_value_t = 101)]
-        points: usize,
-        /// Give up a run after this many steps.
-        #[arg(long = "max-steps", default_value_t = qdot::limits::DEFAULT_MAX_STEPS)]
-        max_steps: usize,
-        /// End each run where this changes sign: "theta = 0"
-        #[arg(long = "stop-when")]
-        stop_when: Option<String>,
-        /// csv or json
-        #[arg(long, default_value = "csv")]
-        output: String,
-        /// Runs, threads, wall time and runs per second (on stderr).
-        #[arg(long)]
-        stats: bool,
-    },
+    Sweep(SweepArgs),
     /// Source code for the equations of motion (C, Rust, Python or Julia):
     /// the right-hand side of y' = F(t, y), or M and f, and the energy when
     /// conserved; shared subexpressions computed once, the parameters as
@@ -363,54 +310,7 @@ fn main() -> ExitCode {
                 plot.as_deref(),
             )
         }
-        Command::Sweep {
-            file,
-            set,
-            init,
-            vary,
-            samples,
-            seed,
-            threads,
-            t_end,
-            method,
-            rtol,
-            atol,
-            dt,
-            points,
-            max_steps,
-            stop_when,
-            output,
-            stats,
-        } => {
-            let design = match samples {
-                Some(n) => qdot::simulate::sweep::Design::Random {
-                    samples: *n,
-                    seed: *seed,
-                },
-                None => qdot::simulate::sweep::Design::Grid,
-            };
-            let base = qdot::simulate::run::Request {
-                t_end: *t_end,
-                rtol: *rtol,
-                atol: *atol,
-                dt: *dt,
-                points: *points,
-                max_steps: *max_steps,
-                stop_when: stop_when.clone(),
-                ..Default::default()
-            };
-            let options = SweepOptions {
-                set: set.as_deref(),
-                init: init.as_deref(),
-                vary,
-                design,
-                threads: *threads,
-                method,
-                output,
-                stats: *stats,
-            };
-            return sweep(file, base, &options);
-        }
+        Command::Sweep(args) => return sweep(args),
         Command::Codegen {
             file,
             lang,
@@ -511,8 +411,8 @@ fn codegen(
     functions: &[String],
     baumgarte: f64,
 ) -> ExitCode {
-    use qdot::simulate::codegen::{Form, Lang, Request};
-    let mut req = Request::new(
+    use qdot::simulate::codegen::{CodegenRequest, Form, Lang};
+    let mut req = CodegenRequest::new(
         file,
         match lang {
             CodegenLang::C => Lang::C,
@@ -665,20 +565,83 @@ fn base_name(file: &str) -> String {
         .to_string()
 }
 
-/// `qdot sweep`'s options beyond the base request.
-struct SweepOptions<'a> {
-    set: Option<&'a str>,
-    init: Option<&'a str>,
-    vary: &'a [String],
-    design: qdot::simulate::sweep::Design,
+/// `qdot sweep`'s arguments.
+#[derive(clap::Args)]
+struct SweepArgs {
+    /// The scene file (.qd).
+    file: String,
+    /// The values of the parameters that do not vary: m=1,g=9.81
+    #[arg(long)]
+    set: Option<String>,
+    /// The initial values that do not vary: theta'=0
+    #[arg(long)]
+    init: Option<String>,
+    /// A varied parameter, coordinate or velocity: "l=0.5:2:16"
+    /// (16 values from 0.5 to 2); repeat for a grid over several.
+    #[arg(long = "vary", required = true)]
+    vary: Vec<String>,
+    /// Draw this many random points in the box of the --vary ranges
+    /// instead of a grid (COUNT may then be left out).
+    #[arg(long)]
+    samples: Option<usize>,
+    /// The seed of --samples (the same seed, the same points).
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Threads (0: one per core).
+    #[arg(long, default_value_t = 0)]
     threads: usize,
-    method: &'a str,
-    output: &'a str,
+    /// The final time of every run (from t = 0).
+    #[arg(long = "t-end")]
+    t_end: f64,
+    /// rk4, dopri5, dop853, vern7, gauss6 or radau5
+    #[arg(long, default_value = "dop853")]
+    method: String,
+    /// Relative tolerance of the adaptive methods.
+    #[arg(long, default_value_t = 1e-8)]
+    rtol: f64,
+    /// Absolute tolerance of the adaptive methods.
+    #[arg(long, default_value_t = 1e-10)]
+    atol: f64,
+    /// The step of rk4 and gauss6 (the first step of the others).
+    #[arg(long)]
+    dt: Option<f64>,
+    /// Output times per run, where max|q| and the energy drift are read.
+    #[arg(long, default_value_t = 101)]
+    points: usize,
+    /// Give up a run after this many steps.
+    #[arg(long = "max-steps", default_value_t = qdot::limits::DEFAULT_MAX_STEPS)]
+    max_steps: usize,
+    /// End each run where this changes sign: "theta = 0"
+    #[arg(long = "stop-when")]
+    stop_when: Option<String>,
+    /// csv or json
+    #[arg(long, default_value = "csv")]
+    output: String,
+    /// Runs, threads, wall time and runs per second (on stderr).
+    #[arg(long)]
     stats: bool,
 }
 
-fn sweep(file: &str, mut base: qdot::simulate::run::Request, o: &SweepOptions) -> ExitCode {
+fn sweep(o: &SweepArgs) -> ExitCode {
     use qdot::simulate::{run, sweep};
+    let file = o.file.as_str();
+    let design = match o.samples {
+        Some(samples) => sweep::Design::Random {
+            samples,
+            seed: o.seed,
+        },
+        None => sweep::Design::Grid,
+    };
+    let mut base = run::Request {
+        t_end: o.t_end,
+        rtol: o.rtol,
+        atol: o.atol,
+        dt: o.dt,
+        points: o.points,
+        max_steps: o.max_steps,
+        stop_when: o.stop_when.clone(),
+        ..Default::default()
+    };
     let src = match qdot::diag::read_source(file) {
         Ok(s) => s,
         Err(message) => {
@@ -693,13 +656,19 @@ fn sweep(file: &str, mut base: qdot::simulate::run::Request, o: &SweepOptions) -
                     .with_hint("--output csv or --output json"),
             );
         }
-        base.method = run::method_by_name(o.method)?;
+        base.method = run::method_by_name(&o.method)?;
         base.set = o
             .set
+            .as_deref()
             .map(output::parse_set_any_sign)
             .transpose()?
             .unwrap_or_default();
-        base.init = o.init.map(run::parse_init).transpose()?.unwrap_or_default();
+        base.init = o
+            .init
+            .as_deref()
+            .map(run::parse_init)
+            .transpose()?
+            .unwrap_or_default();
         let axes = o
             .vary
             .iter()
@@ -715,7 +684,7 @@ fn sweep(file: &str, mut base: qdot::simulate::run::Request, o: &SweepOptions) -
         }
     };
     let result = run::Prepared::new(&src, &base.functions).and_then(|p| {
-        let total = sweep::design_points(&axes, o.design)?.len();
+        let total = sweep::design_points(&axes, design)?.len();
         let bar = if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
             indicatif::ProgressBar::new(total as u64)
         } else {
@@ -728,7 +697,7 @@ fn sweep(file: &str, mut base: qdot::simulate::run::Request, o: &SweepOptions) -
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
         );
         let tick = |done: usize| bar.set_position(done as u64);
-        let s = sweep::sweep(&p, &base, &axes, o.design, o.threads, &tick);
+        let s = sweep::sweep(&p, &base, &axes, design, o.threads, &tick);
         bar.finish_and_clear();
         s
     });

@@ -503,7 +503,7 @@ fn forces_command() {
     assert_eq!(code, 0, "{err}");
     assert_eq!(
         out,
-        "Generalized forces  δL = Σ Q_k·δq_k\n  Q_θ = −G·l·sin(θ) + 2·l·P·cos(θ) + M\n"
+        "Generalized forces  δL = Σ Q_k·δq_k\n  Q_θ = 2·l·P·cos(θ) − G·l·sin(θ) + M\n"
     );
     let (code, out, _) = run_on(src, "forces", &["--format", "json"]);
     assert_eq!(code, 0);

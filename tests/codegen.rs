@@ -7,7 +7,7 @@
 //! missing is skipped with a message.
 
 use qdot::expr::atom;
-use qdot::simulate::codegen::{codegen, Form, Lang, Request};
+use qdot::simulate::codegen::{codegen, CodegenRequest, Form, Lang};
 use qdot::simulate::compile::{compile_with, state_inputs, CompiledDynamics};
 use qdot::simulate::{constrained, given, run};
 use qdot::Scene;
@@ -87,7 +87,7 @@ fn generate(lang: Lang) -> (String, Vec<Call>, usize) {
     let mut calls = Vec::new();
     let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
     for sc in scenes() {
-        let mut req = Request::new(&format!("{}.qd", sc.name), lang);
+        let mut req = CodegenRequest::new(&format!("{}.qd", sc.name), lang);
         req.functions = sc.functions.clone();
         code.push_str(&codegen(&sc.src, &req).unwrap_or_else(|d| panic!("{}: {d:?}", sc.name)));
         req.file = format!("{}_m.qd", sc.name);
@@ -421,7 +421,7 @@ fn julia_output_snapshot() {
         ("double_pendulum", qdot::gallery::pendulum_chain(2)),
         ("chain3", qdot::gallery::pendulum_chain(3)),
     ] {
-        let req = Request::new(&format!("{name}.qd"), Lang::Julia);
+        let req = CodegenRequest::new(&format!("{name}.qd"), Lang::Julia);
         let code = codegen(&src, &req).unwrap();
         insta::assert_snapshot!(format!("codegen_julia_{name}"), unversioned(&code));
         let mut req = req;
@@ -435,7 +435,7 @@ fn julia_output_snapshot() {
 fn names_become_identifiers_of_every_language() {
     let src = "coordinates θ1, x2\nparameters m, ω, int, y, w3, lambda\nkinetic E = 1/2*m*θ1'^2 + 1/2*int*x2'^2\npotential V = 1/2*ω^2*θ1^2 + y*x2 + w3*lambda*x2^2\n";
     for lang in [Lang::C, Lang::Rust, Lang::Python, Lang::Julia] {
-        let code = codegen(src, &Request::new("names.qd", lang)).unwrap();
+        let code = codegen(src, &CodegenRequest::new("names.qd", lang)).unwrap();
         assert!(code.contains("] = θ1 (theta1)"), "{code}");
         assert!(code.contains("ω (omega)"), "{code}");
         assert!(code.contains("w3 (w3_)"), "{code}");
@@ -459,7 +459,7 @@ fn names_become_identifiers_of_every_language() {
     }
     if have("gcc") {
         let dir = workdir("names");
-        let code = codegen(src, &Request::new("names.qd", Lang::C)).unwrap();
+        let code = codegen(src, &CodegenRequest::new("names.qd", Lang::C)).unwrap();
         std::fs::write(dir.join("names.c"), code).unwrap();
         run_ok(
             Command::new("gcc")
@@ -473,7 +473,7 @@ fn names_become_identifiers_of_every_language() {
 #[test]
 fn set_parameters_become_constants() {
     let src = read("examples/pendulum.qd");
-    let mut req = Request::new("pendulum.qd", Lang::C);
+    let mut req = CodegenRequest::new("pendulum.qd", Lang::C);
     req.set = [("g".to_string(), 9.81), ("l".to_string(), 2.0)]
         .into_iter()
         .collect();
@@ -493,7 +493,7 @@ fn set_parameters_become_constants() {
 
 #[test]
 fn errors_are_diagnostics() {
-    let req = Request::new("x.qd", Lang::C);
+    let req = CodegenRequest::new("x.qd", Lang::C);
     // a given function without its definition
     let e = codegen(&read("examples/moving_support.qd"), &req).unwrap_err();
     assert!(e.message.contains("needs a definition"), "{}", e.message);

@@ -236,23 +236,32 @@ fn bad_sweeps_are_refused_with_a_hint() {
 
 #[test]
 fn a_failed_run_is_a_row_not_an_abort() {
-    // l = 0 makes the mass matrix singular: that run fails, the others go on
+    // at a = b the mass matrix (a − b) is singular: that run fails, the
+    // others go on
+    let dir = std::env::temp_dir().join(format!("qdot-sweep-fail-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temp dir");
+    let scene = dir.join("singular.qd");
+    std::fs::write(
+        &scene,
+        "coordinates x\nparameters a, b, k\nkinetic E = 1/2*(a - b)*x'^2\npotential V = 1/2*k*x^2\n",
+    )
+    .expect("the scene");
     let (ok, out, err) = qdot(&[
         "sweep",
-        PENDULUM,
+        scene.to_str().expect("a path"),
         "--set",
-        "m=1,g=9.81",
+        "b=1,k=1",
         "--init",
-        "theta=1,theta'=0",
+        "x=1,x'=0",
         "--vary",
-        "l=0:1:2",
+        "a=1:2:2",
         "--t-end",
         "1",
     ]);
     assert!(ok, "{err}");
     let lines: Vec<&str> = out.lines().collect();
-    assert!(lines[1].contains("\"error: "), "{}", lines[1]);
-    assert!(lines[2].contains(",done,"), "{}", lines[2]);
+    assert!(lines[1].starts_with("1,\"error: "), "{}", lines[1]);
+    assert!(lines[2].starts_with("2,done,"), "{}", lines[2]);
     assert!(err.contains("1 of 2 runs failed"), "{err}");
 }
 

@@ -391,12 +391,15 @@ impl Tex<'_> {
         };
         // The text printer's order: by monomial, then (only terms free of
         // coordinates share a monomial) by the Unicode text of the term.
-        let mut groups = groups;
-        groups.sort_by(|a, b| {
-            print::display_order(&a.0, &b.0)
-                .then_with(|| print::declared_order(&a.0, &b.0))
-                .then_with(|| print::unicode_term(&a.1, &a.0).cmp(&print::unicode_term(&b.1, &b.0)))
-        });
+        let mut keyed: Vec<(print::TermKey, String, &(Mono, Expr))> = groups
+            .iter()
+            .map(|g| {
+                let (neg, text) = print::unicode_term(&g.1, &g.0);
+                (print::term_key(&g.0, neg), text, g)
+            })
+            .collect();
+        keyed.sort_by(|a, b| a.0.cmp(&b.0).then_with(|| a.1.cmp(&b.1)));
+        let groups: Vec<&(Mono, Expr)> = keyed.into_iter().map(|(_, _, g)| g).collect();
         groups.iter().map(|(key, c)| self.term(c, key)).collect()
     }
 

@@ -92,18 +92,14 @@ pub(crate) fn render_parts(num: &Poly, den: &Poly, st: Style) -> String {
     let Some(groups) = collect(num, den) else {
         return fraction(num, den, st);
     };
-    let mut items: Vec<(Mono, String, bool)> = groups
+    let mut items: Vec<(TermKey, String, bool)> = groups
         .into_iter()
         .map(|(key, c)| {
             let (neg, body) = term_with_coef(&c, &key, st);
-            (key, body, neg)
+            (term_key(&key, neg), body, neg)
         })
         .collect();
-    items.sort_by(|a, b| {
-        display_order(&a.0, &b.0)
-            .then_with(|| declared_order(&a.0, &b.0))
-            .then_with(|| a.1.cmp(&b.1))
-    });
+    items.sort_by(|a, b| a.0.cmp(&b.0).then_with(|| a.1.cmp(&b.1)));
     join_terms(items.into_iter().map(|(_, s, n)| (n, s)), st)
 }
 
@@ -167,19 +163,21 @@ fn is_dynamic(v: Var) -> bool {
 /// Sort key: highest derivative order first, then higher degree, then
 /// coordinates before functions of them.
 pub(crate) fn display_order(a: &Mono, b: &Mono) -> Ordering {
-    let key = |m: &Mono| {
-        let mut order = -1i64;
-        let mut deg = 0i64;
-        for &(v, e) in m.0.iter() {
-            if let Atom::Coord(_, k) = atom::atom(v) {
-                order = order.max(k as i64);
-                deg += e as i64;
-            }
+    display_key(b).cmp(&display_key(a))
+}
+
+/// The key of [`display_order`], greatest first: (the highest derivative
+/// order of a coordinate, the degree in coordinates, the total degree).
+fn display_key(m: &Mono) -> (i64, i64, i64) {
+    let mut order = -1i64;
+    let mut deg = 0i64;
+    for &(v, e) in m.0.iter() {
+        if let Atom::Coord(_, k) = atom::atom(v) {
+            order = order.max(k as i64);
+            deg += e as i64;
         }
-        (order, deg, m.total_degree() as i64)
-    };
-    let (ka, kb) = (key(a), key(b));
-    kb.cmp(&ka)
+    }
+    (order, deg, m.total_degree() as i64)
 }
 
 thread_local! {
@@ -206,55 +204,72 @@ pub fn with_coordinate_order<R>(names: &[String], f: impl FnOnce() -> R) -> R {
     f()
 }
 
-/// The tie-break of terms: the coordinates' declaration order
-/// ([`with_coordinate_order`]), then [`name_lex_order`].
-pub(crate) fn declared_order(a: &Mono, b: &Mono) -> Ordering {
-    let ranks = |m: &Mono| -> Vec<(usize, std::cmp::Reverse<u32>, std::cmp::Reverse<u32>)> {
-        let mut r: Vec<_> = COORDINATE_ORDER.with(|order| {
-            let order = order.borrow();
-            m.0.iter()
-                .filter_map(|&(v, e)| match atom::atom(v) {
-                    Atom::Coord(name, k) => Some((
-                        order
-                            .iter()
-                            .position(|n| n.as_str() == &*name)
-                            .unwrap_or(usize::MAX),
-                        std::cmp::Reverse(k),
-                        std::cmp::Reverse(e),
-                    )),
-                    _ => None,
-                })
-                .collect()
-        });
-        r.sort();
-        r
-    };
-    ranks(a).cmp(&ranks(b)).then_with(|| name_lex_order(a, b))
+/// Where a term of a printed sum goes, computed once per term (the keys
+/// name atoms, and sorting with a comparator that named them would print
+/// each atom O(n log n) times): [`display_order`] first, then the
+/// coordinates' declaration order ([`with_coordinate_order`]), then the
+/// positive terms of what is still tied, then by name ([`name_key`]).
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) struct TermKey {
+    display: std::cmp::Reverse<(i64, i64, i64)>,
+    coordinates: Vec<(usize, std::cmp::Reverse<u32>, std::cmp::Reverse<u32>)>,
+    negative: bool,
+    names: Vec<NameRank>,
+}
+
+/// One variable of [`TermKey::names`]; `End` sorts after every variable,
+/// so that of two monomials equal as far as the shorter goes the longer
+/// comes first ([`name_key`]).
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) enum NameRank {
+    Var((u8, u32, String, String), std::cmp::Reverse<u32>),
+    End,
+}
+
+/// The [`TermKey`] of the term `negative`·`m`.
+pub(crate) fn term_key(m: &Mono, negative: bool) -> TermKey {
+    let mut coordinates: Vec<_> = COORDINATE_ORDER.with(|order| {
+        let order = order.borrow();
+        m.0.iter()
+            .filter_map(|&(v, e)| match atom::atom(v) {
+                Atom::Coord(name, k) => Some((
+                    order
+                        .iter()
+                        .position(|n| n.as_str() == &*name)
+                        .unwrap_or(usize::MAX),
+                    std::cmp::Reverse(k),
+                    std::cmp::Reverse(e),
+                )),
+                _ => None,
+            })
+            .collect()
+    });
+    coordinates.sort();
+    TermKey {
+        display: std::cmp::Reverse(display_key(m)),
+        coordinates,
+        negative,
+        names: name_key(m),
+    }
 }
 
 /// Lexicographic order of monomials with the variables ranked by
-/// [`factor_rank`] (by name, not by interning order): `l³, l²·m, l·m², m³`.
-pub(crate) fn name_lex_order(a: &Mono, b: &Mono) -> Ordering {
-    let ranked = |m: &Mono| {
-        let mut v: Vec<_> = m.0.iter().map(|&(v, e)| (factor_rank(v), e)).collect();
-        v.sort();
-        v
-    };
-    let (ra, rb) = (ranked(a), ranked(b));
-    for (x, y) in ra.iter().zip(&rb) {
-        // the variable ranked first wins; on the same variable the higher power
-        let o = x.0.cmp(&y.0).then_with(|| y.1.cmp(&x.1));
-        if o != Ordering::Equal {
-            return o;
-        }
-    }
-    rb.len().cmp(&ra.len())
+/// [`factor_rank`] (by name, not by interning order): `l³, l²·m, l·m², m³`;
+/// of two monomials equal as far as the shorter goes, the longer first.
+pub(crate) fn name_key(m: &Mono) -> Vec<NameRank> {
+    let mut names: Vec<NameRank> =
+        m.0.iter()
+            .map(|&(v, e)| NameRank::Var(factor_rank(v), std::cmp::Reverse(e)))
+            .collect();
+    names.sort();
+    names.push(NameRank::End);
+    names
 }
 
-/// The Unicode text of `coef·key` without its sign: the text printer's
-/// order of terms with one monomial.
-pub(crate) fn unicode_term(c: &Expr, key: &Mono) -> String {
-    term_with_coef(c, key, Style::Unicode).1
+/// The Unicode text of `coef·key`, (is negative, text without the sign):
+/// the text printer's order of terms with one monomial.
+pub(crate) fn unicode_term(c: &Expr, key: &Mono) -> (bool, String) {
+    term_with_coef(c, key, Style::Unicode)
 }
 
 /// `coef·key`, returning (is negative, text without the sign).

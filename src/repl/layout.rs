@@ -161,10 +161,11 @@ fn terms_text(p: &Poly, st: Style) -> String {
             .map(|(_, e)| e)
             .sum()
     };
-    terms.sort_by(|(a, _), (b, _)| {
-        (moving(b), b.total_degree())
-            .cmp(&(moving(a), a.total_degree()))
-            .then_with(|| print::name_lex_order(a, b))
+    terms.sort_by_cached_key(|(m, _)| {
+        (
+            std::cmp::Reverse((moving(m), m.total_degree())),
+            print::name_key(m),
+        )
     });
     let items = terms.into_iter().map(|(m, c)| {
         let t = Expr::from_poly(Poly::monomial(m.clone(), c.abs()));

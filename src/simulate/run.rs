@@ -376,9 +376,10 @@ impl Prepared {
         })
     }
 
-    /// The errors [`Prepared::integrate`] would give for `req` before it
-    /// integrates: a missing or unknown initial value, a bad option.
+    /// The errors of `req` that do not depend on compiling: a missing or
+    /// unknown parameter or initial value, a bad option.
     pub fn check(&self, req: &Request) -> Result<(), Diagnostic> {
+        parameter_values(&self.scene, req)?;
         initial_values(&self.lag.coordinates, req)?;
         check_numbers(req)
     }

@@ -108,7 +108,8 @@ pub fn parse_axis(text: &str) -> Result<Axis, Diagnostic> {
             .filter(|&c| (1..=MAX_SWEEP_RUNS).contains(&c))
             .ok_or_else(|| {
                 bad(format!(
-                    "COUNT `{c}` must be a whole number from 1 to {MAX_SWEEP_RUNS}"
+                    "COUNT `{c}` must be a whole number from 1 to {}",
+                    crate::budget::grouped(MAX_SWEEP_RUNS)
                 ))
             })?,
         None => 0,
@@ -245,11 +246,17 @@ pub fn sweep(
         req
     };
     // Validate once, on the first point: a missing value or a bad option
-    // is one error, not one per run.
+    // is one error, not one per run. Compiled once here when only initial
+    // values vary; else each run compiles (and a run whose values make M
+    // singular fails alone).
     let first = request_at(points.first().map(Vec::as_slice).unwrap_or(&[]));
-    let shared = prepared.compile(&first)?;
     prepared.check(&first)?;
-    let compilations = AtomicUsize::new(1);
+    let shared = if varies_parameters {
+        None
+    } else {
+        Some(prepared.compile(&first)?)
+    };
+    let compilations = AtomicUsize::new(usize::from(shared.is_some()));
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
@@ -261,11 +268,12 @@ pub fn sweep(
             .into_par_iter()
             .map(|values| {
                 let req = request_at(&values);
-                let compiled = if varies_parameters {
-                    compilations.fetch_add(1, Ordering::Relaxed);
-                    prepared.compile(&req)
-                } else {
-                    Ok(shared.clone())
+                let compiled = match &shared {
+                    Some(c) => Ok(c.clone()),
+                    None => {
+                        compilations.fetch_add(1, Ordering::Relaxed);
+                        prepared.compile(&req)
+                    }
                 };
                 let outcome = compiled
                     .and_then(|c| prepared.integrate(c, &req))

@@ -108,20 +108,31 @@ pub(super) fn roots(p: &Expr, lv: Var, real: bool, set: &Values) -> Roots {
     }
 }
 
-/// Each factor in λ signed so that its first term in display order (by
-/// name) is positive, as `positive_first` signs a printed group (k − 6·m·λ):
-/// the factorization's own sign follows the atoms' interning order, which
-/// would make the output depend on what the process parsed before. The
-/// constant content takes the signs given up, so the product is unchanged.
+/// Each factor in λ signed as the printers write a polynomial in λ,
+/// lowest power first: its lowest coefficient positive (k − 6·m·λ,
+/// k + m·λ); when that coefficient has terms of both signs, its first term
+/// by name positive. The factorization's own sign follows the atoms'
+/// interning order, which would make the output depend on what the
+/// process parsed before. The constant content takes the signs given up,
+/// so the product is unchanged.
 fn signed_by_name(factors: &mut Vec<Expr>, lv: Var) {
     let mut flips = 0;
     for f in factors.iter_mut() {
         if !f.depends_on(lv) {
             continue;
         }
-        if crate::expr::print::leads_negative(f.num())
-            != crate::expr::print::leads_negative(f.den())
-        {
+        let cs = f.num().coeffs_in(lv);
+        let Some(low) = cs.iter().find(|c| !c.is_zero()) else {
+            continue;
+        };
+        let positive = low.terms().iter().any(|(_, c)| c.is_positive());
+        let negative = low.terms().iter().any(|(_, c)| c.is_negative());
+        let flip = if positive && negative {
+            crate::expr::print::leads_negative(low)
+        } else {
+            negative
+        };
+        if flip != crate::expr::print::leads_negative(f.den()) {
             *f = f.neg();
             flips += 1;
         }

@@ -391,7 +391,7 @@ fn folded_angles_have_parentheses_only_where_a_sign_needs_them() {
     let o = qdot_scene("folded", src.as_bytes(), "forces", &[]);
     assert!(
         o.stdout
-            .contains("Q_x = sin(x + sin(x) + cos(x)) − cos(x − (sin(x) + cos(x)))"),
+            .contains("Q_x = sin(x + cos(x) + sin(x)) − cos(x − (cos(x) + sin(x)))"),
         "{o:?}"
     );
     let o = qdot_scene(
@@ -402,7 +402,7 @@ fn folded_angles_have_parentheses_only_where_a_sign_needs_them() {
     );
     assert!(
         o.stdout
-            .contains(r"Q_{x} &= \sin(x + \sin x + \cos x) - \cos(x - (\sin x + \cos x))"),
+            .contains(r"Q_{x} &= \sin(x + \cos x + \sin x) - \cos(x - (\cos x + \sin x))"),
         "{o:?}"
     );
 }

@@ -95,7 +95,7 @@ impl Form {
 
 /// What `qdot codegen` was asked.
 #[derive(Clone, Debug)]
-pub struct Request {
+pub struct CodegenRequest {
     /// The scene's file name, for the header; its base name prefixes the
     /// functions' names (`pendulum_rhs`).
     pub file: String,
@@ -113,10 +113,10 @@ pub struct Request {
     pub baumgarte: f64,
 }
 
-impl Request {
+impl CodegenRequest {
     /// A request for `file` in `lang`, the default form, nothing bound.
-    pub fn new(file: &str, lang: Lang) -> Request {
-        Request {
+    pub fn new(file: &str, lang: Lang) -> CodegenRequest {
+        CodegenRequest {
             file: file.to_string(),
             lang,
             form: Form::Accelerations,
@@ -131,7 +131,7 @@ impl Request {
 /// and the functions. An error when the scene does not compile (a
 /// function the compiled code cannot evaluate, a given function without
 /// its definition, a `--set` of no parameter, no coordinates).
-pub fn codegen(src: &str, req: &Request) -> Result<String, Diagnostic> {
+pub fn codegen(src: &str, req: &CodegenRequest) -> Result<String, Diagnostic> {
     let scene = Scene::parse(src)?;
     let lag = given::defined(&scene, scene.lagrange()?, &req.functions)?;
     let constraints: Vec<String> = lag.constraints.multipliers.clone();
@@ -219,7 +219,10 @@ pub fn codegen(src: &str, req: &Request) -> Result<String, Diagnostic> {
 }
 
 /// The `--set` values by atom: each a parameter of the scene.
-fn bound_parameters(scene: &Scene, req: &Request) -> Result<FxHashMap<Var, f64>, Diagnostic> {
+fn bound_parameters(
+    scene: &Scene,
+    req: &CodegenRequest,
+) -> Result<FxHashMap<Var, f64>, Diagnostic> {
     crate::scene::given::parameter_signs(scene, &req.set)?;
     let mut bound = FxHashMap::default();
     for (k, &v) in &req.set {
@@ -436,7 +439,7 @@ fn base_name(file: &str) -> String {
 /// parameters, how q̈ is found, the functions.
 #[allow(clippy::too_many_arguments)]
 fn header(
-    req: &Request,
+    req: &CodegenRequest,
     lag: &Lagrange,
     cx: &Context,
     free: &[String],

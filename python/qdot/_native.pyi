@@ -1,0 +1,63 @@
+"""Type stubs of the native module (python/src/lib.rs)."""
+
+from typing import Any, Dict, List, Optional, Sequence, Tuple
+
+class QdotError(Exception):
+    """qdot's diagnostic: ``str(e)`` as the command line prints it."""
+
+    message: str
+    hint: Optional[str]
+    line: int
+    column: int
+
+def run_command(
+    command: str,
+    source: str,
+    format: str,
+    file: str = ...,
+    set: Sequence[Tuple[str, float]] = ...,
+    at: Optional[str] = ...,
+    init: Optional[str] = ...,
+    steps: bool = ...,
+    standalone: bool = ...,
+    title: str = ...,
+    max_terms: int = ...,
+) -> Tuple[str, List[str]]: ...
+def check_scene(source: str, file: str = ...) -> None: ...
+def parse_values(text: str, kind: str) -> List[Tuple[str, float]]: ...
+def simulate(
+    source: str,
+    set: Sequence[Tuple[str, float]],
+    init: Sequence[Tuple[str, float]],
+    t_end: float,
+    method: str = ...,
+    rtol: float = ...,
+    atol: float = ...,
+    dt: Optional[float] = ...,
+    points: int = ...,
+    max_steps: int = ...,
+    stop_when: Optional[str] = ...,
+    functions: Sequence[str] = ...,
+    baumgarte: float = ...,
+    file: str = ...,
+) -> Dict[str, Any]: ...
+def sweep(
+    source: str,
+    set: Sequence[Tuple[str, float]],
+    init: Sequence[Tuple[str, float]],
+    axes: Sequence[Tuple[str, float, float, int]],
+    t_end: float,
+    samples: Optional[int] = ...,
+    seed: int = ...,
+    threads: int = ...,
+    method: str = ...,
+    rtol: float = ...,
+    atol: float = ...,
+    dt: Optional[float] = ...,
+    points: int = ...,
+    stop_when: Optional[str] = ...,
+    file: str = ...,
+) -> Dict[str, Any]: ...
+def latex_exprs(source: str, exprs: Sequence[str], file: str = ...) -> List[str]: ...
+def sympy_source(expr: str) -> str: ...
+def version() -> str: ...
