@@ -207,6 +207,10 @@ enum Command {
         /// scene: drift from the constraints decays like exp(-rate*t); 0 turns it off.
         #[arg(long, default_value_t = 1.0)]
         baumgarte: f64,
+        /// What runs the compiled equations: auto (machine code where it
+        /// compiles), jit or interpreter.
+        #[arg(long, default_value = "auto")]
+        evaluator: String,
     },
     /// Many simulations of one scene on every core: a grid over parameters
     /// and initial values (--vary NAME=FROM:TO:COUNT, repeated), or random
@@ -339,7 +343,14 @@ fn main() -> ExitCode {
             stop_when,
             function,
             baumgarte,
+            evaluator,
         } => {
+            let Some(engine) = qdot::simulate::compile::Engine::by_name(evaluator) else {
+                let d = qdot::Diagnostic::global(format!("unknown evaluator `{evaluator}`"))
+                    .with_hint("--evaluator auto, jit (machine code) or interpreter");
+                eprint!("{}", d.render(file, ""));
+                return ExitCode::from(1);
+            };
             return simulate(
                 file,
                 set.as_deref(),
@@ -355,6 +366,7 @@ fn main() -> ExitCode {
                     functions: function.clone(),
                     baumgarte: *baumgarte,
                     progress: std::io::IsTerminal::is_terminal(&std::io::stderr()),
+                    engine,
                     ..Default::default()
                 },
                 method,
