@@ -118,6 +118,12 @@ fn report_problems_and_chains_agree_with_the_interpreter() {
         evaluators.push(d.evaluator());
         let finite = check_dynamics(&mut d, p.name, 50, 11);
         assert_eq!(finite, 50, "{}", p.name);
+        // and M, f (or the constant M) where `best` chose the accelerations
+        let scene = Scene::parse(&p.scene).expect("parses");
+        let lag = constrained::stabilized(scene.lagrange().expect("derives")).expect("stabilizes");
+        let mut d = CompiledDynamics::new(&lag, &p.param_map()).expect("compiles");
+        evaluators.push(d.evaluator());
+        check_dynamics(&mut d, p.name, 50, 12);
     }
     // all three tails
     use qdot::simulate::compile::Evaluator;
