@@ -192,6 +192,17 @@ fn a_pivot_that_is_not_positive_falls_back_to_the_interpreter() {
 }
 
 #[test]
+fn large_programs_allocate_registers_in_one_pass() {
+    use qdot::simulate::compile::jit::{estimated_size, FAST_ALLOCATION};
+    let size = |p: Problem| {
+        let d = p.dynamics().expect("compiles");
+        estimated_size(d.program(), d.n(), Tail::MassMatrix)
+    };
+    assert!(size(Problem::chain10()) > FAST_ALLOCATION);
+    assert!(size(Problem::double_pendulum()) < FAST_ALLOCATION / 4);
+}
+
+#[test]
 fn the_interpreter_when_asked() {
     let p = Problem::pendulum();
     let mut d = p.dynamics().expect("compiles");

@@ -166,6 +166,45 @@ fn err(what: &str) -> impl Fn(String) -> JitError + '_ {
     move |e| JitError(format!("{what}: {e}"))
 }
 
+/// The size ([`estimated_size`]) above which registers are allocated in
+/// one pass (regalloc2's `single_pass`) instead of by backtracking: for the
+/// 10-link chain, above it, that is ≈ 2–3 ms to compile instead of ≈ 10 ms,
+/// for ≈ 20 % more instructions per call (4,118 against 3,397, callgrind),
+/// mostly spill moves; below it both take well under a millisecond
+/// (measured by `benches/examples/rhs_engines.rs`).
+pub const FAST_ALLOCATION: usize = 1000;
+
+/// About how many IR operations the right-hand side of `p` with `tail`
+/// takes: a dot product of k pairs 2k, a power log₂ n + 1, a call 3, any
+/// other instruction 1; M's Cholesky factorization and solves n³/3 + 2n²,
+/// the product with M⁻¹ 2n².
+pub fn estimated_size(p: &Program, n: usize, tail: Tail) -> usize {
+    let program: usize = p
+        .code
+        .iter()
+        .map(|i| match *i {
+            Instr::Dot { len, .. } => 2 * len as usize + 1,
+            Instr::Powi { n, .. } => (32 - n.leading_zeros()) as usize + 1,
+            Instr::Sin { .. }
+            | Instr::Cos { .. }
+            | Instr::SinCos { .. }
+            | Instr::Exp { .. }
+            | Instr::Ln { .. }
+            | Instr::Atan { .. }
+            | Instr::Asin { .. }
+            | Instr::Acos { .. } => 3,
+            _ => 1,
+        })
+        .sum();
+    program
+        + 4 * n
+        + match tail {
+            Tail::MassMatrix => n * n * n / 3 + 2 * n * n,
+            Tail::ConstantMass(_) => 2 * n * n,
+            Tail::Accelerations => 0,
+        }
+}
+
 /// A module for the host with the shims declared.
 struct Jit {
     module: JITModule,
@@ -176,17 +215,22 @@ struct Jit {
 }
 
 impl Jit {
-    fn new() -> Result<Jit, JitError> {
+    /// A module for a function of about `size` operations
+    /// ([`estimated_size`]).
+    fn new(size: usize) -> Result<Jit, JitError> {
         let mut flags = settings::builder();
         let set = |f: &mut settings::Builder, k: &str, v: &str| {
             f.set(k, v).map_err(|e| JitError(format!("flag {k}: {e}")))
         };
         set(&mut flags, "use_colocated_libcalls", "false")?;
         set(&mut flags, "is_pic", "false")?;
-        let opt = std::env::var("QDOT_JIT_OPT").unwrap_or_else(|_| "speed".into());
-        set(&mut flags, "opt_level", &opt)?;
-        let ra = std::env::var("QDOT_JIT_RA").unwrap_or_else(|_| "backtracking".into());
-        set(&mut flags, "regalloc_algorithm", &ra)?;
+        set(&mut flags, "opt_level", "speed")?;
+        let ra = if size > FAST_ALLOCATION {
+            "single_pass"
+        } else {
+            "backtracking"
+        };
+        set(&mut flags, "regalloc_algorithm", ra)?;
         // the IR is straight-line and built by this module: the verifier
         // only costs compile time outside debug builds
         let verify = if cfg!(debug_assertions) { "true" } else { "false" };
@@ -203,6 +247,7 @@ impl Jit {
             SIN_COS,
             native::sin_cos as extern "C" fn(f64, *mut f64) as *const u8,
         );
+
         let mut module = JITModule::new(builder);
         let mut shims = Vec::new();
         let mut unary = module.make_signature();
@@ -521,7 +566,7 @@ pub fn compile_rhs(p: &Program, n: usize, tail: Tail) -> Result<JitRhs, JitError
             return Err(JitError(format!("M⁻¹ must be {n}×{n}")));
         }
     }
-    let jit = Jit::new()?;
+    let jit = Jit::new(estimated_size(p, n, tail))?;
     let ptr = jit.module.target_config().pointer_type();
     let mut sig = jit.module.make_signature();
     sig.params.push(AbiParam::new(types::F64));
@@ -581,7 +626,7 @@ pub fn compile_rhs(p: &Program, n: usize, tail: Tail) -> Result<JitRhs, JitError
 
 /// Compile a program alone: `eval(inputs, out)` as [`Program::eval`].
 pub fn compile_program(p: &Program) -> Result<JitProgram, JitError> {
-    let jit = Jit::new()?;
+    let jit = Jit::new(estimated_size(p, 0, Tail::Accelerations) + p.n_inputs + p.outputs.len())?;
     let ptr = jit.module.target_config().pointer_type();
     let mut sig = jit.module.make_signature();
     sig.params.push(AbiParam::new(ptr));
