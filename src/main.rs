@@ -373,7 +373,7 @@ fn main() -> ExitCode {
                 output,
                 *stats,
                 plot.as_deref(),
-            )
+            );
         }
         Command::Sweep {
             file,

@@ -92,7 +92,9 @@ fn every_example_agrees_with_the_interpreter() {
     let mut rng = Rng(5);
     for path in names {
         let src = std::fs::read_to_string(&path).expect("reads");
-        let Ok(scene) = Scene::parse(&src) else { continue };
+        let Ok(scene) = Scene::parse(&src) else {
+            continue;
+        };
         if !scene.has_dynamics() {
             continue;
         }
@@ -106,7 +108,10 @@ fn every_example_agrees_with_the_interpreter() {
             checked += 1;
         }
     }
-    assert!(checked >= 30, "only {checked} forms of the examples compiled");
+    assert!(
+        checked >= 30,
+        "only {checked} forms of the examples compiled"
+    );
     assert!(finite > 500, "only {finite} finite right-hand sides");
 }
 
@@ -161,21 +166,23 @@ fn a_pivot_that_is_not_positive_falls_back_to_the_interpreter() {
     ];
     let forcing = vec![Expr::int(1), q.clone()];
     let coords = vec!["q".to_string(), "p".to_string()];
-    let mut d =
-        CompiledDynamics::from_parts(&coords, &mass, &forcing, &FxHashMap::default())
-            .expect("compiles");
+    let mut d = CompiledDynamics::from_parts(&coords, &mass, &forcing, &FxHashMap::default())
+        .expect("compiles");
     assert_eq!(d.use_engine(Engine::Auto).ran, Engine::Jit);
     // an indefinite M: Cholesky fails at column 0, elimination solves it
     let mass = vec![
         vec![q.clone(), Expr::int(2)],
         vec![Expr::int(2), Expr::int(1)],
     ];
-    let mut e =
-        CompiledDynamics::from_parts(&coords, &mass, &forcing, &FxHashMap::default())
-            .expect("compiles");
+    let mut e = CompiledDynamics::from_parts(&coords, &mass, &forcing, &FxHashMap::default())
+        .expect("compiles");
     assert_eq!(e.use_engine(Engine::Jit).ran, Engine::Jit);
     for d in [&mut d, &mut e] {
-        for y in [[0.0, 0.3, 0.1, 0.2], [-0.5, 0.3, 0.1, 0.2], [0.7, 0.3, 0.1, 0.2]] {
+        for y in [
+            [0.0, 0.3, 0.1, 0.2],
+            [-0.5, 0.3, 0.1, 0.2],
+            [0.7, 0.3, 0.1, 0.2],
+        ] {
             let (mut a, mut b) = ([0.0; 4], [0.0; 4]);
             d.rhs(0.0, &y, &mut a);
             d.rhs_interpreted(0.0, &y, &mut b);
@@ -291,8 +298,15 @@ fn qdot(args: &[&str]) -> (bool, String, String) {
 fn simulate_evaluator_option() {
     let file = format!("{}/examples/pendulum.qd", env!("CARGO_MANIFEST_DIR"));
     let base = [
-        "simulate", &file, "--set", "m=1,l=1,g=9.81", "--init", "theta=1,theta'=0", "--t-end",
-        "2", "--stats",
+        "simulate",
+        &file,
+        "--set",
+        "m=1,l=1,g=9.81",
+        "--init",
+        "theta=1,theta'=0",
+        "--t-end",
+        "2",
+        "--stats",
     ];
     let mut outs = Vec::new();
     for (engine, word) in [
@@ -306,7 +320,12 @@ fn simulate_evaluator_option() {
         assert!(ok, "{engine}: {err}");
         let all = format!("{out}{err}");
         assert!(all.contains(word), "{engine}: {all}");
-        outs.push(out.lines().take_while(|l| !l.starts_with("method")).collect::<Vec<_>>().join("\n"));
+        outs.push(
+            out.lines()
+                .take_while(|l| !l.starts_with("method"))
+                .collect::<Vec<_>>()
+                .join("\n"),
+        );
     }
     // the same rows, digit for digit
     assert_eq!(outs[0], outs[1]);

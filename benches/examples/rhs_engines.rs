@@ -59,7 +59,10 @@ fn system(p: &Problem, engine: &str) -> Box<dyn System> {
             let mut d = p.dynamics().expect("compiles");
             let engine = Engine::by_name(e).expect("an engine");
             let r = d.use_engine(engine);
-            assert!(engine == Engine::Interpreter || r.ran == Engine::Jit, "{r:?}");
+            assert!(
+                engine == Engine::Interpreter || r.ran == Engine::Jit,
+                "{r:?}"
+            );
             Box::new(d)
         }
     }

@@ -754,7 +754,9 @@ fn engine_line(run: &Run) -> String {
         ),
         (reason, _) => format!(
             "engine interpreter: {}\n",
-            reason.as_deref().unwrap_or("the register program interpreted")
+            reason
+                .as_deref()
+                .unwrap_or("the register program interpreted")
         ),
     }
 }

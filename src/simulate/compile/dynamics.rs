@@ -339,7 +339,9 @@ impl CompiledDynamics {
         }
         #[cfg(not(feature = "jit"))]
         match engine {
-            Engine::Interpreter => EngineReport::interpreter(engine, 0.0, "--evaluator interpreter"),
+            Engine::Interpreter => {
+                EngineReport::interpreter(engine, 0.0, "--evaluator interpreter")
+            }
             _ => EngineReport::interpreter(engine, 0.0, "built without the `jit` feature"),
         }
     }

@@ -27,11 +27,11 @@
 mod native;
 
 use super::program::{Instr, Program, NONE};
+use cranelift_codegen::ir::condcodes::FloatCC;
 use cranelift_codegen::ir::{
     types, AbiParam, Block, FuncRef, InstBuilder, MemFlagsData, Signature, StackSlotData,
     StackSlotKind, UserFuncName, Value,
 };
-use cranelift_codegen::ir::condcodes::FloatCC;
 use cranelift_codegen::settings::{self, Configurable};
 use cranelift_codegen::Context;
 use cranelift_frontend::{FunctionBuilder, FunctionBuilderContext};
@@ -233,7 +233,11 @@ impl Jit {
         set(&mut flags, "regalloc_algorithm", ra)?;
         // the IR is straight-line and built by this module: the verifier
         // only costs compile time outside debug builds
-        let verify = if cfg!(debug_assertions) { "true" } else { "false" };
+        let verify = if cfg!(debug_assertions) {
+            "true"
+        } else {
+            "false"
+        };
         set(&mut flags, "enable_verifier", verify)?;
         let isa = cranelift_native::builder()
             .map_err(|e| JitError(format!("this machine is not supported: {e}")))?
@@ -588,9 +592,7 @@ pub fn compile_rhs(p: &Program, n: usize, tail: Tail) -> Result<JitRhs, JitError
             Tail::Accelerations => out,
             Tail::ConstantMass(inv) => (0..n)
                 .map(|i| {
-                    let pairs: Vec<_> = (0..n)
-                        .map(|j| (e.c(inv[i * n + j]), out[j]))
-                        .collect();
+                    let pairs: Vec<_> = (0..n).map(|j| (e.c(inv[i * n + j]), out[j])).collect();
                     e.dot(&pairs)
                 })
                 .collect(),
