@@ -14,7 +14,9 @@
 //! (ENGINE: `interpreter`, `jit`, `hand`, `tuned`) it only evaluates COUNT
 //! right-hand sides, for `valgrind --tool=callgrind`: the instructions of
 //! two counts, subtracted, over their difference are the instructions per
-//! right-hand side without the set-up.
+//! right-hand side without the set-up. With COUNT `sim` it integrates the
+//! problem once by DOP853 at rtol = atol = 1e-10 (the whole simulation, for
+//! callgrind).
 
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
@@ -25,7 +27,7 @@ mod hand;
 use hand::Hand;
 use qdot::simulate::compile::Engine;
 use qdot::simulate::problems::Problem;
-use qdot::simulate::System;
+use qdot::simulate::{integrate, IntegratorOptions, Method, System};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -103,6 +105,20 @@ fn main() {
             .find(|p| p.name == name)
             .expect("pendulum, double_pendulum, two_mode or chain10");
         let mut sys = system(&p, engine);
+        if count == "sim" {
+            // one DOP853 run over the problem's [0, t_end] at 1e-10
+            let opts = IntegratorOptions {
+                t_end: p.t_end,
+                rtol: 1e-10,
+                atol: 1e-10,
+                t_out: vec![p.t_end],
+                max_steps: 50_000_000,
+                ..IntegratorOptions::default()
+            };
+            let sol = integrate(sys.as_mut(), Method::Dop853, &p.y0, &opts).expect("integrates");
+            println!("{} RHS, y(T) = {:?}", sol.stats.rhs_evals, sol.y.last());
+            return;
+        }
         let ys = states(&p);
         let count: usize = count.parse().expect("a count");
         let mut dy = vec![0.0; p.y0.len()];

@@ -318,7 +318,13 @@ impl CompiledDynamics {
                 Mode::ConstantMass(inv) => super::jit::Tail::ConstantMass(inv),
                 Mode::Accelerations => super::jit::Tail::Accelerations,
             };
-            match super::jit::compile_rhs(&self.program, self.n, tail) {
+            // Cranelift reports its errors, but a panic inside it must not
+            // end the run either: the interpreter takes over
+            let compiled = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                super::jit::compile_rhs(&self.program, self.n, tail)
+            }))
+            .unwrap_or_else(|_| Err(super::jit::JitError("Cranelift panicked".into())));
+            match compiled {
                 Ok(j) => {
                     let report = EngineReport {
                         requested: engine,
