@@ -220,7 +220,7 @@ fn the_interpreter_when_asked() {
     assert_eq!(Engine::by_name("fast"), None);
     // a program whose shape is not the right-hand side's: an error, no panic
     let x = Expr::coord("x", 0);
-    let prog = compile(&[x.clone()], &[atom::coord("x", 0)]).expect("compiles");
+    let prog = compile(std::slice::from_ref(&x), &[atom::coord("x", 0)]).expect("compiles");
     assert!(compile_rhs(&prog, 1, Tail::MassMatrix).is_err());
     assert!(compile_rhs(&prog, 2, Tail::ConstantMass(&[1.0])).is_err());
 }

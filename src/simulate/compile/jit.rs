@@ -496,18 +496,11 @@ impl Emitter<'_> {
     /// by row; a pivot that is not positive jumps to `fail`.
     fn cholesky_solve(&mut self, n: usize, m: &[Value], f: &[Value], fail: Block) -> Vec<Value> {
         // a[i][j], j ≤ i: M's lower triangle (the upper one mirrored), then L
-        let mut a = vec![Vec::new(); n];
-        let mut k = 0;
-        let mut lower = vec![vec![None; n]; n];
-        for i in 0..n {
-            for j in i..n {
-                lower[j][i] = Some(m[k]);
-                k += 1;
-            }
-        }
-        for (i, row) in lower.iter().enumerate() {
-            a[i] = row[..=i].iter().map(|v| v.expect("filled")).collect();
-        }
+        // (the upper triangle's entry (i, j), i ≤ j, is m[i(2n − i + 1)/2 + j − i])
+        let upper = |i: usize, j: usize| m[i * (2 * n - i + 1) / 2 + j - i];
+        let mut a: Vec<Vec<Value>> = (0..n)
+            .map(|r| (0..=r).map(|c| upper(c, r)).collect())
+            .collect();
         let one = self.c(1.0);
         let zero = self.c(0.0);
         for j in 0..n {
