@@ -345,12 +345,6 @@ fn main() -> ExitCode {
             baumgarte,
             evaluator,
         } => {
-            let Some(engine) = qdot::simulate::compile::Engine::by_name(evaluator) else {
-                let d = qdot::Diagnostic::global(format!("unknown evaluator `{evaluator}`"))
-                    .with_hint("--evaluator auto, jit (machine code) or interpreter");
-                eprint!("{}", d.render(file, ""));
-                return ExitCode::from(1);
-            };
             return simulate(
                 file,
                 set.as_deref(),
@@ -366,10 +360,9 @@ fn main() -> ExitCode {
                     functions: function.clone(),
                     baumgarte: *baumgarte,
                     progress: std::io::IsTerminal::is_terminal(&std::io::stderr()),
-                    engine,
                     ..Default::default()
                 },
-                method,
+                (method, evaluator),
                 output,
                 *stats,
                 plot.as_deref(),
@@ -578,7 +571,7 @@ fn simulate(
     set: Option<&str>,
     init: Option<&str>,
     mut req: qdot::simulate::run::Request,
-    method: &str,
+    (method, evaluator): (&str, &str),
     output: &str,
     stats: bool,
     plot: Option<&str>,
@@ -606,6 +599,16 @@ fn simulate(
     match run::method_by_name(method) {
         Ok(m) => req.method = m,
         Err(d) => return fail(d, ""),
+    }
+    match qdot::simulate::compile::Engine::by_name(evaluator) {
+        Some(e) => req.engine = e,
+        None => {
+            let d = qdot::Diagnostic::global(format!("unknown evaluator `{evaluator}`"));
+            return fail(
+                d.with_hint("--evaluator auto, jit (machine code) or interpreter"),
+                "",
+            );
+        }
     }
     match set.map(output::parse_set_any_sign).transpose() {
         Ok(s) => req.set = s.unwrap_or_default(),
