@@ -7,10 +7,12 @@
 //!   `Expr::eval_f64` (tree walking), and M (full) and f by the
 //!   hand-written Rust of `hand/mod.rs` (the work-precision report's), plain
 //!   (one sin_cos per pair) and tuned (one per angle, addition theorems);
-//! * `rhs/chain10/{compiled,hand}`: the whole right-hand side y' = (q̇, M⁻¹f),
-//!   i.e. the above plus `solve_spd`;
-//! * `rhs/double_pendulum/{mass_matrix,accelerations}`: M and f compiled
-//!   and solved against the compiled exact accelerations.
+//! * `rhs/chain10/{compiled,jit,hand}`: the whole right-hand side y' = (q̇, M⁻¹f),
+//!   i.e. the above plus `solve_spd`, interpreted, as machine code
+//!   (`--evaluator jit`) and hand-written;
+//! * `rhs/double_pendulum/{mass_matrix,accelerations}[_jit]`: M and f
+//!   compiled and solved against the compiled exact accelerations, each
+//!   interpreted and as machine code.
 //!
 //! The hand-written chain is checked against qdot's M and f before timing.
 //!
@@ -29,7 +31,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use hand::Hand;
 use qdot::expr::atom::{self, Atom};
 use qdot::poly::Var;
-use qdot::simulate::compile::{compile_with, state_inputs, CompiledDynamics};
+use qdot::simulate::compile::{compile_with, state_inputs, CompiledDynamics, Engine};
 use qdot::simulate::problems::Problem;
 use qdot::simulate::System;
 use qdot::{Expr, Lagrange, Scene};
@@ -153,6 +155,8 @@ fn chain(c: &mut Criterion) {
     g.finish();
 
     let mut dynamics = CompiledDynamics::new(&lagrange, &params).expect("compiles");
+    let mut jit = dynamics.clone();
+    assert_eq!(jit.use_engine(Engine::Jit).ran, Engine::Jit);
     let mut y = q.clone();
     y.extend(&qd);
     let mut dy = vec![0.0; 2 * N];
@@ -160,6 +164,7 @@ fn chain(c: &mut Criterion) {
     g.bench_function("compiled", |b| {
         b.iter(|| dynamics.rhs(0.0, black_box(&y), &mut dy))
     });
+    g.bench_function("jit", |b| b.iter(|| jit.rhs(0.0, black_box(&y), &mut dy)));
     g.bench_function("hand", |b| {
         b.iter(|| plain.rhs(0.0, black_box(&y), &mut dy))
     });
@@ -193,6 +198,13 @@ fn double_pendulum(c: &mut Criterion) {
     g.bench_function("accelerations", |b| {
         b.iter(|| via_acc.rhs(0.0, black_box(&y), &mut d2))
     });
+    for (d, name) in [
+        (&mut via_m, "mass_matrix_jit"),
+        (&mut via_acc, "accelerations_jit"),
+    ] {
+        assert_eq!(d.use_engine(Engine::Jit).ran, Engine::Jit);
+        g.bench_function(name, |b| b.iter(|| d.rhs(0.0, black_box(&y), &mut d1)));
+    }
     g.finish();
 }
 

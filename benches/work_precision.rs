@@ -14,7 +14,10 @@
 //! Series, each a sweep of rtol = atol = 1e-3 … 1e-13 (fixed-step methods:
 //! a sweep of h = T/N):
 //! * qdot's Dopri5, Dop853, Vern7, Radau5 on the compiled equations (the path
-//!   of `qdot simulate`), and RK4, Gauss6 at fixed steps;
+//!   of `qdot simulate`: machine code, `--evaluator auto`), and RK4, Gauss6
+//!   at fixed steps;
+//! * qdot's Dop853 on the same equations interpreted (`--evaluator
+//!   interpreter`);
 //! * qdot's Dop853 on a hand-written Rust right-hand side (`hand/mod.rs`),
 //!   plain and tuned;
 //! * the `ode_solvers` crate's Dop853 on the same compiled right-hand side;
@@ -45,7 +48,7 @@ mod hand;
 
 use hand::Hand;
 use plotters::prelude::*;
-use qdot::simulate::compile::{CompiledDynamics, Program};
+use qdot::simulate::compile::{CompiledDynamics, Engine, Program};
 use qdot::simulate::problems::Problem;
 use qdot::simulate::{integrate, IntegratorOptions, Method, System};
 use serde_json::{json, Value};
@@ -334,6 +337,9 @@ fn method_label(m: Method) -> &'static str {
 
 fn run_problem(p: &Problem, tolerances: &[f64], quick: bool) -> Result<Report, String> {
     let mut sys = p.dynamics().map_err(|d| d.message)?;
+    // the interpreter's copy, then machine code as `qdot simulate` runs it
+    let mut interpreted = sys.clone();
+    sys.use_engine(Engine::Auto);
     let energy = p.energy().map_err(|d| d.message)?;
     let constraints = p.constraints().map_err(|d| d.message)?;
     let h0 = energy.as_ref().map(|e| energy_at(e, 0.0, &p.y0));
@@ -433,6 +439,27 @@ fn run_problem(p: &Problem, tolerances: &[f64], quick: bool) -> Result<Report, S
             points: pts,
         });
     }
+    let mut pts = Vec::new();
+    for &tol in tolerances {
+        eprint!("\r{:<16} qdot DOP853 interpreted {tol:.0e}   ", p.name);
+        if let Some(pt) = qdot_point(
+            &mut interpreted,
+            Method::Dop853,
+            p,
+            &reference,
+            en,
+            tol,
+            false,
+        ) {
+            pts.push(pt);
+        }
+    }
+    series.push(Series {
+        label: "qdot DOP853, interpreter".into(),
+        family: "qdot",
+        fixed_step: false,
+        points: pts,
+    });
     for (h, label) in [
         (&mut hand, "DOP853, hand-written RHS"),
         (&mut tuned, "DOP853, tuned hand-written RHS"),
@@ -948,6 +975,11 @@ fn markdown(reports: &[Report], scipy: &Result<Value, String>, started: &str, wa
     );
     let _ = writeln!(
         md,
+        "- interpreter / machine code (`--evaluator interpreter` / `jit`), both with qdot's DOP853: {}",
+        range("qdot DOP853, interpreter", "qdot DOP853", &[])
+    );
+    let _ = writeln!(
+        md,
         "\n`ode_solvers` 0.6.2's Dop853 has the node c₁₂ = 0 where Hairer's DOP853 has 1 \
          (`butcher_tableau.rs`; the fix is the open pull request srenevey/ode-solvers#42), so it \
          evaluates its 12th stage at t instead of t + h. Autonomous problems do not notice; on the \
@@ -988,6 +1020,11 @@ fn markdown(reports: &[Report], scipy: &Result<Value, String>, started: &str, wa
             "qdot DOP853",
             "qdot DOP853, tuned hand-written RHS",
             "compiled / tuned hand-written RHS",
+        ),
+        (
+            "qdot DOP853, interpreter",
+            "qdot DOP853",
+            "interpreter / machine code",
         ),
     ];
     for r in reports {

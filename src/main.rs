@@ -207,6 +207,10 @@ enum Command {
         /// scene: drift from the constraints decays like exp(-rate*t); 0 turns it off.
         #[arg(long, default_value_t = 1.0)]
         baumgarte: f64,
+        /// What runs the compiled equations: auto (machine code where it
+        /// compiles), jit or interpreter.
+        #[arg(long, default_value = "auto")]
+        evaluator: String,
     },
     /// Many simulations of one scene on every core: a grid over parameters
     /// and initial values (--vary NAME=FROM:TO:COUNT, repeated), or random
@@ -286,6 +290,7 @@ fn main() -> ExitCode {
             stop_when,
             function,
             baumgarte,
+            evaluator,
         } => {
             return simulate(
                 file,
@@ -304,11 +309,11 @@ fn main() -> ExitCode {
                     progress: std::io::IsTerminal::is_terminal(&std::io::stderr()),
                     ..Default::default()
                 },
-                method,
+                (method, evaluator),
                 output,
                 *stats,
                 plot.as_deref(),
-            )
+            );
         }
         Command::Sweep(args) => return sweep(args),
         Command::Codegen {
@@ -466,7 +471,7 @@ fn simulate(
     set: Option<&str>,
     init: Option<&str>,
     mut req: qdot::simulate::run::Request,
-    method: &str,
+    (method, evaluator): (&str, &str),
     output: &str,
     stats: bool,
     plot: Option<&str>,
@@ -494,6 +499,16 @@ fn simulate(
     match run::method_by_name(method) {
         Ok(m) => req.method = m,
         Err(d) => return fail(d, ""),
+    }
+    match qdot::simulate::compile::Engine::by_name(evaluator) {
+        Some(e) => req.engine = e,
+        None => {
+            let d = qdot::Diagnostic::global(format!("unknown evaluator `{evaluator}`"));
+            return fail(
+                d.with_hint("--evaluator auto, jit (machine code) or interpreter"),
+                "",
+            );
+        }
     }
     match set.map(output::parse_set_any_sign).transpose() {
         Ok(s) => req.set = s.unwrap_or_default(),

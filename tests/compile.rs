@@ -16,9 +16,9 @@ use qdot::{Expr, Lagrange, Scene};
 use rustc_hash::FxHashMap;
 
 /// A small deterministic generator (SplitMix64).
-struct Rng(u64);
+pub(crate) struct Rng(pub(crate) u64);
 impl Rng {
-    fn next(&mut self) -> f64 {
+    pub(crate) fn next(&mut self) -> f64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -26,14 +26,14 @@ impl Rng {
         z ^= z >> 31;
         (z >> 11) as f64 / (1u64 << 53) as f64
     }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
+    pub(crate) fn range(&mut self, a: f64, b: f64) -> f64 {
         a + (b - a) * self.next()
     }
 }
 
 /// Every parameter, unknown, coordinate and time atom the expressions
 /// mention (through function arguments too), sorted.
-fn leaves(exprs: &[Expr]) -> Vec<Var> {
+pub(crate) fn leaves(exprs: &[Expr]) -> Vec<Var> {
     fn walk(e: &Expr, out: &mut Vec<Var>) {
         for v in e.vars() {
             match atom::atom(v) {
@@ -499,7 +499,7 @@ fn solve_spd_agrees_with_multiplication() {
 
 /// Random expressions over x, y (coordinates) and a, b (parameters) from
 /// Expr's operations: sums, products, quotients, sin/cos of sums, √.
-fn random_expr() -> impl Strategy<Value = Expr> {
+pub(crate) fn random_expr() -> impl Strategy<Value = Expr> {
     let leaf = prop_oneof![
         (1i64..6).prop_map(Expr::int),
         Just(Expr::coord("x", 0)),

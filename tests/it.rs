@@ -25,6 +25,8 @@ use hostile::bound;
 mod implicit;
 mod integrators;
 mod integrators_alloc;
+#[cfg(feature = "jit")]
+mod jit;
 mod latex;
 mod latex_pdf;
 mod layers;

@@ -214,8 +214,24 @@ fn json_output_and_stats() {
             "factorizations",
             "seconds",
             "compile_seconds",
+            "engine",
             "evaluator"
         ]
+    );
+    // machine code where it compiles (`--evaluator auto`), its line third
+    let engine = if cfg!(feature = "jit") {
+        "jit"
+    } else {
+        "interpreter"
+    };
+    assert_eq!(v["stats"]["engine"]["name"], engine);
+    assert_eq!(v["stats"]["engine"]["requested"], "auto");
+    assert!(
+        err.lines()
+            .nth(2)
+            .unwrap()
+            .starts_with(&format!("engine {engine}: ")),
+        "{err}"
     );
     let ev = &v["stats"]["evaluator"];
     assert_eq!(ev["name"], "accelerations");

@@ -8,7 +8,9 @@
 //! system) is compiled too and reported as `energy`, so its drift shows
 //! the integration error.
 
-use super::compile::{compile_with, state_inputs, Choice, CompiledDynamics, Program};
+use super::compile::{
+    compile_with, state_inputs, Choice, CompiledDynamics, Engine, EngineReport, Program,
+};
 #[cfg(feature = "cli")]
 use super::progress::Progress;
 use super::{
@@ -64,6 +66,9 @@ pub struct Request {
     /// a plot ([`Run::plot_rows`]; 0: none). The run's steps do not change:
     /// the interpolant is evaluated between them.
     pub plot_samples: usize,
+    /// `--evaluator`: what runs the compiled right-hand side, the
+    /// interpreter or machine code ([`CompiledDynamics::use_engine`]).
+    pub engine: Engine,
 }
 
 impl Default for Request {
@@ -83,6 +88,7 @@ impl Default for Request {
             baumgarte: 1.0,
             progress: false,
             plot_samples: 0,
+            engine: Engine::Auto,
         }
     }
 }
@@ -107,6 +113,9 @@ pub struct Run {
     pub compile_seconds: f64,
     /// How q̈ was evaluated, and why ([`CompiledDynamics::best`]).
     pub evaluator: Choice,
+    /// What ran the right-hand side (the interpreter or machine code), the
+    /// time the machine code took to compile, or why the interpreter ran.
+    pub engine: EngineReport,
     /// The largest |g| (or |a·q̇ + b|) over the output rows and the
     /// constraints, for a scene with constraints (their `drift_…` columns).
     pub constraint_drift: Option<f64>,
@@ -310,6 +319,7 @@ pub struct Prepared {
 pub struct Compiled {
     dynamics: CompiledDynamics,
     evaluator: Choice,
+    engine: EngineReport,
     energy: Option<Program>,
     drift: Option<Program>,
     event: Option<Program>,
@@ -349,8 +359,10 @@ impl Prepared {
         }
         let names = &self.lag.coordinates;
         let start = Instant::now();
-        let (dynamics, evaluator) = CompiledDynamics::best(&self.lag, &params)
+        let (mut dynamics, evaluator) = CompiledDynamics::best(&self.lag, &params)
             .map_err(|e| Diagnostic::global(format!("cannot compile the equations: {e}")))?;
+        // timed apart (`EngineReport::compile_seconds`), so excluded below
+        let engine = dynamics.use_engine(req.engine);
         let energy = conserved_quantity(&self.scene, names, &params)?;
         let drift = if self.drift.is_empty() {
             None
@@ -372,7 +384,8 @@ impl Prepared {
             energy,
             drift,
             event,
-            seconds: start.elapsed().as_secs_f64(),
+            seconds: (start.elapsed().as_secs_f64() - engine.compile_seconds).max(0.0),
+            engine,
         })
     }
 
@@ -400,6 +413,7 @@ impl Prepared {
         let Compiled {
             mut dynamics,
             evaluator,
+            engine,
             energy,
             drift: drift_program,
             event,
@@ -460,6 +474,7 @@ impl Prepared {
         run.method = req.method;
         run.seconds = seconds;
         run.compile_seconds = compile_seconds;
+        run.engine = engine;
         Ok(run)
     }
 
@@ -529,6 +544,7 @@ impl Prepared {
             seconds: 0.0,
             compile_seconds: 0.0,
             evaluator,
+            engine: EngineReport::interpreter(Engine::Auto, 0.0, ""),
         }
     }
 }
@@ -641,7 +657,10 @@ pub fn csv(run: &Run) -> String {
 /// The run as JSON: `method`, `status`, `columns`, `rows`, `stats`,
 /// `stiff_at` and `event_t` (null unless they happened). `stats` holds
 /// `steps`, `rejected`, `rhs_evals`, `jacobians`, `factorizations`,
-/// `seconds`, `compile_seconds` and `evaluator`: `{"name", "reason",
+/// `seconds`, `compile_seconds`, `engine`: `{"name"` (`jit` or
+/// `interpreter`), `"requested"`, `"compile_seconds"` (of the machine
+/// code), `"code_bytes"`, `"reason"` (why the interpreter ran, else null)`}`
+/// and `evaluator`: `{"name", "reason",
 /// "cost": {"mass_matrix", "accelerations"}}` (the estimated flops per
 /// right-hand side of M, f and their solve, and of the exact
 /// accelerations, null when they were not derived), and for a scene with
@@ -661,6 +680,13 @@ pub fn json(run: &Run) -> String {
             "factorizations": s.factorizations,
             "seconds": run.seconds,
             "compile_seconds": run.compile_seconds,
+            "engine": {
+                "name": run.engine.ran.name(),
+                "requested": run.engine.requested.name(),
+                "compile_seconds": run.engine.compile_seconds,
+                "code_bytes": run.engine.code_bytes,
+                "reason": run.engine.reason,
+            },
             "evaluator": {
                 "name": run.evaluator.evaluator.name(),
                 "reason": run.evaluator.reason,
@@ -694,7 +720,8 @@ pub fn status_word(s: &Status) -> &'static str {
 }
 
 /// The `--stats` lines: the method's work, then the evaluator of q̈ and
-/// why it was chosen.
+/// why it was chosen, then what ran it (machine code and its compile time
+/// beside the integration's, or the interpreter and why).
 pub fn stats_text(run: &Run) -> String {
     let s = &run.solution.stats;
     format!(
@@ -709,8 +736,28 @@ pub fn stats_text(run: &Run) -> String {
         run.compile_seconds * 1e3,
         run.evaluator.evaluator.name(),
         run.evaluator.reason
-    ) + &match run.constraint_drift {
+    ) + &engine_line(run)
+        + &match run.constraint_drift {
         Some(d) => format!("constraint drift: max |g| = {d:.3e} over the output rows\n"),
         None => String::new(),
+    }
+}
+
+/// The `--stats` line of [`Run::engine`].
+fn engine_line(run: &Run) -> String {
+    let e = &run.engine;
+    match (&e.reason, e.ran) {
+        (None, Engine::Jit) => format!(
+            "engine jit: machine code ({} bytes) compiled in {:.3} ms; integration {:.3} ms\n",
+            e.code_bytes,
+            e.compile_seconds * 1e3,
+            run.seconds * 1e3
+        ),
+        (reason, _) => format!(
+            "engine interpreter: {}\n",
+            reason
+                .as_deref()
+                .unwrap_or("the register program interpreted")
+        ),
     }
 }

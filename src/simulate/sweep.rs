@@ -149,13 +149,12 @@ pub fn design_points(axes: &[Axis], design: Design) -> Result<Vec<Vec<f64>>, Dia
                     .checked_mul(a.count)
                     .filter(|&t| t <= MAX_SWEEP_RUNS)
                     .ok_or_else(|| {
-                        too_many(format!(
-                            "{}",
+                        too_many(
                             axes.iter()
                                 .map(|a| a.count.to_string())
                                 .collect::<Vec<_>>()
-                                .join(" × ")
-                        ))
+                                .join(" × "),
+                        )
                     })?;
             }
             let mut points = Vec::with_capacity(total);

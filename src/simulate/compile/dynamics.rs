@@ -8,6 +8,7 @@ use crate::simulate::System;
 use rustc_hash::FxHashMap;
 
 use super::builder::compile_with;
+use super::engine::{Engine, EngineReport};
 use super::error::CompileError;
 use super::program::Program;
 use super::solve_spd;
@@ -93,6 +94,9 @@ pub struct CompiledDynamics {
     regs: Vec<f64>,
     m: Vec<f64>,
     f: Vec<f64>,
+    /// The right-hand side as machine code, when [`Self::use_engine`] made it.
+    #[cfg(feature = "jit")]
+    jit: Option<super::jit::JitRhs>,
 }
 
 /// The input atoms `[t, q…, q̇…]` of a [`CompiledDynamics`] program.
@@ -292,6 +296,89 @@ impl CompiledDynamics {
             f: vec![0.0; n],
             program,
             mode,
+            #[cfg(feature = "jit")]
+            jit: None,
+        }
+    }
+
+    /// Run the right-hand side ([`System::rhs`]) on `engine`: the
+    /// interpreter, or the whole right-hand side compiled to machine code
+    /// (`Auto` and `Jit`; the interpreter stays when that fails or the
+    /// `jit` feature is off, with the reason in the report). Never panics.
+    pub fn use_engine(&mut self, engine: Engine) -> EngineReport {
+        #[cfg(feature = "jit")]
+        {
+            self.jit = None;
+            if engine == Engine::Interpreter {
+                return EngineReport::interpreter(engine, 0.0, "--evaluator interpreter");
+            }
+            let start = std::time::Instant::now();
+            let tail = match &self.mode {
+                Mode::MassMatrix => super::jit::Tail::MassMatrix,
+                Mode::ConstantMass(inv) => super::jit::Tail::ConstantMass(inv),
+                Mode::Accelerations => super::jit::Tail::Accelerations,
+            };
+            // Cranelift reports its errors, but a panic inside it must not
+            // end the run either: the interpreter takes over
+            let compiled = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                super::jit::compile_rhs(&self.program, self.n, tail)
+            }))
+            .unwrap_or_else(|_| Err(super::jit::JitError("Cranelift panicked".into())));
+            match compiled {
+                Ok(j) => {
+                    let report = EngineReport {
+                        requested: engine,
+                        ran: Engine::Jit,
+                        compile_seconds: j.compile_seconds(),
+                        code_bytes: j.code_bytes(),
+                        reason: None,
+                    };
+                    self.jit = Some(j);
+                    report
+                }
+                Err(e) => EngineReport::interpreter(
+                    engine,
+                    start.elapsed().as_secs_f64(),
+                    format!("the JIT could not compile the program: {e}"),
+                ),
+            }
+        }
+        #[cfg(not(feature = "jit"))]
+        match engine {
+            Engine::Interpreter => {
+                EngineReport::interpreter(engine, 0.0, "--evaluator interpreter")
+            }
+            _ => EngineReport::interpreter(engine, 0.0, "built without the `jit` feature"),
+        }
+    }
+
+    /// What runs [`System::rhs`]: [`Engine::Jit`] after a successful
+    /// [`Self::use_engine`], else [`Engine::Interpreter`].
+    pub fn engine(&self) -> Engine {
+        #[cfg(feature = "jit")]
+        if self.jit.is_some() {
+            return Engine::Jit;
+        }
+        Engine::Interpreter
+    }
+
+    /// y' at (t, y) by the interpreter whatever [`Self::engine`] is (the
+    /// oracle of the machine code).
+    pub fn rhs_interpreted(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        let n = self.n;
+        if y.len() != 2 * n || dy.len() != 2 * n {
+            dy.fill(f64::NAN);
+            return;
+        }
+        let (dq, dqd) = dy.split_at_mut(n);
+        copy_small(dq, &y[n..]);
+        // y = (q, q̇) is the program's input after t: one copy
+        let off = self.program.input_offset();
+        self.regs[off] = t;
+        copy_small(&mut self.regs[off + 1..off + 1 + 2 * n], y);
+        self.program.run(&mut self.regs);
+        if self.finish(dqd).is_err() {
+            dqd.fill(f64::NAN);
         }
     }
 
@@ -465,23 +552,19 @@ impl System for CompiledDynamics {
     }
 
     /// y = (q, q̇), y' = (q̇, M⁻¹·f); NaN accelerations where M is singular
-    /// (the integrators stop with `Status::NotFinite`).
+    /// (the integrators stop with `Status::NotFinite`). By the machine code
+    /// after [`CompiledDynamics::use_engine`], by the interpreter where its
+    /// Cholesky factorization fails (M not numerically positive definite:
+    /// `solve_spd` goes on by Gaussian elimination) or without it.
+    #[inline]
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
-        let n = self.n;
-        if y.len() != 2 * n || dy.len() != 2 * n {
-            dy.fill(f64::NAN);
-            return;
+        #[cfg(feature = "jit")]
+        if let Some(j) = &self.jit {
+            if y.len() == 2 * self.n && dy.len() == 2 * self.n && j.rhs(t, y, dy) {
+                return;
+            }
         }
-        let (dq, dqd) = dy.split_at_mut(n);
-        copy_small(dq, &y[n..]);
-        // y = (q, q̇) is the program's input after t: one copy
-        let off = self.program.input_offset();
-        self.regs[off] = t;
-        copy_small(&mut self.regs[off + 1..off + 1 + 2 * n], y);
-        self.program.run(&mut self.regs);
-        if self.finish(dqd).is_err() {
-            dqd.fill(f64::NAN);
-        }
+        self.rhs_interpreted(t, y, dy)
     }
 }
 

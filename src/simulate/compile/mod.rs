@@ -28,6 +28,12 @@
 //! fallback; Golub & Van Loan, Matrix Computations, 4.2 and 3.4), as a [`super::System`] for the
 //! integrators.
 //!
+//! [`CompiledDynamics::use_engine`] chooses what runs the program: the
+//! interpreter ([`Program::run`]) or, with the `jit` feature, the whole
+//! right-hand side compiled to machine code (`jit`, Cranelift), checked
+//! against the interpreter bit for bit in the tests: the interpreter is the
+//! fallback and the oracle.
+//!
 //! The stages, one file each: `builder` (expressions to a hash-consed
 //! graph of nodes, with constant folding and Horner schemes), `passes`
 //! (the named passes from that graph to a [`Program`]), `program` (the
@@ -36,7 +42,10 @@
 
 mod builder;
 mod dynamics;
+mod engine;
 mod error;
+#[cfg(feature = "jit")]
+pub mod jit;
 mod passes;
 mod program;
 
@@ -44,6 +53,7 @@ pub use builder::{compile, compile_with, naive_op_count};
 pub use dynamics::{
     estimated_cost_of, state_inputs, Choice, CompiledDynamics, Evaluator, BEST_MAX_N,
 };
+pub use engine::{Engine, EngineReport};
 pub use error::CompileError;
 #[doc(hidden)]
 pub use program::Instr;
