@@ -164,27 +164,8 @@ enum Command {
         /// Every coordinate's and velocity's initial value: theta=0.5,theta'=0
         #[arg(long)]
         init: Option<String>,
-        /// The final time (from t = 0).
-        #[arg(long = "t-end")]
-        t_end: f64,
-        /// rk4, dopri5, dop853, vern7, gauss6 (symplectic) or radau5 (stiff)
-        #[arg(long, default_value = "dop853")]
-        method: String,
-        /// Relative tolerance of the adaptive methods.
-        #[arg(long, default_value_t = 1e-8)]
-        rtol: f64,
-        /// Absolute tolerance of the adaptive methods.
-        #[arg(long, default_value_t = 1e-10)]
-        atol: f64,
-        /// The step of rk4 and gauss6 (the first step of the others).
-        #[arg(long)]
-        dt: Option<f64>,
-        /// Evenly spaced output times from 0 to --t-end (2 to 1,000,000).
-        #[arg(long, default_value_t = 101)]
-        points: usize,
-        /// Give up after this many steps (accepted and rejected).
-        #[arg(long = "max-steps", default_value_t = qdot::limits::DEFAULT_MAX_STEPS)]
-        max_steps: usize,
+        #[command(flatten)]
+        integration: Integration,
         /// csv or json
         #[arg(long, default_value = "csv")]
         output: String,
@@ -277,13 +258,7 @@ fn main() -> ExitCode {
             file,
             set,
             init,
-            t_end,
-            method,
-            rtol,
-            atol,
-            dt,
-            points,
-            max_steps,
+            integration,
             output,
             stats,
             plot,
@@ -297,19 +272,13 @@ fn main() -> ExitCode {
                 set.as_deref(),
                 init.as_deref(),
                 qdot::simulate::run::Request {
-                    t_end: *t_end,
-                    rtol: *rtol,
-                    atol: *atol,
-                    dt: *dt,
-                    points: *points,
-                    max_steps: *max_steps,
                     stop_when: stop_when.clone(),
                     functions: function.clone(),
                     baumgarte: *baumgarte,
                     progress: std::io::IsTerminal::is_terminal(&std::io::stderr()),
-                    ..Default::default()
+                    ..integration.request()
                 },
-                (method, evaluator),
+                (&integration.method, evaluator),
                 output,
                 *stats,
                 plot.as_deref(),
@@ -580,6 +549,49 @@ fn base_name(file: &str) -> String {
         .to_string()
 }
 
+/// The integration options `simulate` and `sweep` share.
+#[derive(clap::Args)]
+struct Integration {
+    /// The final time (from t = 0).
+    #[arg(long = "t-end")]
+    t_end: f64,
+    /// rk4, dopri5, dop853, vern7, gauss6 (symplectic) or radau5 (stiff)
+    #[arg(long, default_value = "dop853")]
+    method: String,
+    /// Relative tolerance of the adaptive methods.
+    #[arg(long, default_value_t = 1e-8)]
+    rtol: f64,
+    /// Absolute tolerance of the adaptive methods.
+    #[arg(long, default_value_t = 1e-10)]
+    atol: f64,
+    /// The step of rk4 and gauss6 (the first step of the others).
+    #[arg(long)]
+    dt: Option<f64>,
+    /// Evenly spaced output times from 0 to --t-end (2 to 1,000,000); a
+    /// sweep reads max|q| and the energy drift at them.
+    #[arg(long, default_value_t = 101)]
+    points: usize,
+    /// Give up (a run) after this many steps, accepted and rejected.
+    #[arg(long = "max-steps", default_value_t = qdot::limits::DEFAULT_MAX_STEPS)]
+    max_steps: usize,
+}
+
+impl Integration {
+    /// The request with these options (the method is read apart: its
+    /// name may be wrong).
+    fn request(&self) -> qdot::simulate::run::Request {
+        qdot::simulate::run::Request {
+            t_end: self.t_end,
+            rtol: self.rtol,
+            atol: self.atol,
+            dt: self.dt,
+            points: self.points,
+            max_steps: self.max_steps,
+            ..Default::default()
+        }
+    }
+}
+
 /// `qdot sweep`'s arguments.
 #[derive(clap::Args)]
 struct SweepArgs {
@@ -605,27 +617,8 @@ struct SweepArgs {
     /// Threads (0: one per core).
     #[arg(long, default_value_t = 0)]
     threads: usize,
-    /// The final time of every run (from t = 0).
-    #[arg(long = "t-end")]
-    t_end: f64,
-    /// rk4, dopri5, dop853, vern7, gauss6 or radau5
-    #[arg(long, default_value = "dop853")]
-    method: String,
-    /// Relative tolerance of the adaptive methods.
-    #[arg(long, default_value_t = 1e-8)]
-    rtol: f64,
-    /// Absolute tolerance of the adaptive methods.
-    #[arg(long, default_value_t = 1e-10)]
-    atol: f64,
-    /// The step of rk4 and gauss6 (the first step of the others).
-    #[arg(long)]
-    dt: Option<f64>,
-    /// Output times per run, where max|q| and the energy drift are read.
-    #[arg(long, default_value_t = 101)]
-    points: usize,
-    /// Give up a run after this many steps.
-    #[arg(long = "max-steps", default_value_t = qdot::limits::DEFAULT_MAX_STEPS)]
-    max_steps: usize,
+    #[command(flatten)]
+    integration: Integration,
     /// End each run where this changes sign: "theta = 0"
     #[arg(long = "stop-when")]
     stop_when: Option<String>,
@@ -648,14 +641,8 @@ fn sweep(o: &SweepArgs) -> ExitCode {
         None => sweep::Design::Grid,
     };
     let mut base = run::Request {
-        t_end: o.t_end,
-        rtol: o.rtol,
-        atol: o.atol,
-        dt: o.dt,
-        points: o.points,
-        max_steps: o.max_steps,
         stop_when: o.stop_when.clone(),
-        ..Default::default()
+        ..o.integration.request()
     };
     let src = match qdot::diag::read_source(file) {
         Ok(s) => s,
@@ -671,7 +658,7 @@ fn sweep(o: &SweepArgs) -> ExitCode {
                     .with_hint("--output csv or --output json"),
             );
         }
-        base.method = run::method_by_name(&o.method)?;
+        base.method = run::method_by_name(&o.integration.method)?;
         base.set = o
             .set
             .as_deref()

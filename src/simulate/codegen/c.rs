@@ -82,16 +82,7 @@ impl Syntax for C {
     }
 
     fn call(&self, f: Fun, arg: &str) -> String {
-        let name = match f {
-            Fun::Sin => "sin",
-            Fun::Cos => "cos",
-            Fun::Exp => "exp",
-            Fun::Ln => "log",
-            Fun::Sqrt => "sqrt",
-            Fun::Atan => "atan",
-            Fun::Asin => "asin",
-            Fun::Acos => "acos",
-        };
+        let name = f.libm_name();
         format!("{name}({arg})")
     }
 

@@ -33,6 +33,21 @@ pub(super) enum Fun {
 }
 
 impl Fun {
+    /// Its name in C's libm, which C, Python's `math` and Julia share
+    /// (Rust writes `ln` for `log`).
+    pub(super) fn libm_name(self) -> &'static str {
+        match self {
+            Fun::Sin => "sin",
+            Fun::Cos => "cos",
+            Fun::Exp => "exp",
+            Fun::Ln => "log",
+            Fun::Sqrt => "sqrt",
+            Fun::Atan => "atan",
+            Fun::Asin => "asin",
+            Fun::Acos => "acos",
+        }
+    }
+
     fn eval(self, x: f64) -> f64 {
         match self {
             Fun::Sin => x.sin(),

@@ -35,14 +35,8 @@ impl Syntax for Rust {
 
     fn call(&self, f: Fun, arg: &str) -> String {
         let name = match f {
-            Fun::Sin => "sin",
-            Fun::Cos => "cos",
-            Fun::Exp => "exp",
             Fun::Ln => "ln",
-            Fun::Sqrt => "sqrt",
-            Fun::Atan => "atan",
-            Fun::Asin => "asin",
-            Fun::Acos => "acos",
+            f => f.libm_name(),
         };
         if arg.starts_with(|c: char| c.is_ascii_digit() || c == '(') {
             format!("f64::{name}({arg})")
