@@ -188,10 +188,6 @@ enum Command {
         /// scene: drift from the constraints decays like exp(-rate*t); 0 turns it off.
         #[arg(long, default_value_t = 1.0)]
         baumgarte: f64,
-        /// What runs the compiled equations: auto (machine code where it
-        /// compiles), jit or interpreter.
-        #[arg(long, default_value = "auto")]
-        evaluator: String,
     },
     /// Many simulations of one scene on every core: a grid over parameters
     /// and initial values (--vary NAME=FROM:TO:COUNT, repeated), or random
@@ -265,7 +261,6 @@ fn main() -> ExitCode {
             stop_when,
             function,
             baumgarte,
-            evaluator,
         } => {
             return simulate(
                 file,
@@ -278,7 +273,7 @@ fn main() -> ExitCode {
                     progress: std::io::IsTerminal::is_terminal(&std::io::stderr()),
                     ..integration.request()
                 },
-                (&integration.method, evaluator),
+                (&integration.method, &integration.evaluator),
                 output,
                 *stats,
                 plot.as_deref(),
@@ -469,15 +464,9 @@ fn simulate(
         Ok(m) => req.method = m,
         Err(d) => return fail(d, ""),
     }
-    match qdot::simulate::compile::Engine::by_name(evaluator) {
-        Some(e) => req.engine = e,
-        None => {
-            let d = qdot::Diagnostic::global(format!("unknown evaluator `{evaluator}`"));
-            return fail(
-                d.with_hint("--evaluator auto, jit (machine code) or interpreter"),
-                "",
-            );
-        }
+    match engine_by_name(evaluator) {
+        Ok(e) => req.engine = e,
+        Err(d) => return fail(d, ""),
     }
     match set.map(output::parse_set_any_sign).transpose() {
         Ok(s) => req.set = s.unwrap_or_default(),
@@ -574,6 +563,18 @@ struct Integration {
     /// Give up (a run) after this many steps, accepted and rejected.
     #[arg(long = "max-steps", default_value_t = qdot::limits::DEFAULT_MAX_STEPS)]
     max_steps: usize,
+    /// What runs the compiled equations: auto (machine code where it
+    /// compiles), jit or interpreter.
+    #[arg(long, default_value = "auto")]
+    evaluator: String,
+}
+
+/// `--evaluator NAME`.
+fn engine_by_name(name: &str) -> Result<qdot::simulate::compile::Engine, qdot::Diagnostic> {
+    qdot::simulate::compile::Engine::by_name(name).ok_or_else(|| {
+        qdot::Diagnostic::global(format!("unknown evaluator `{name}`"))
+            .with_hint("--evaluator auto, jit (machine code) or interpreter")
+    })
 }
 
 impl Integration {
@@ -659,6 +660,7 @@ fn sweep(o: &SweepArgs) -> ExitCode {
             );
         }
         base.method = run::method_by_name(&o.integration.method)?;
+        base.engine = engine_by_name(&o.integration.evaluator)?;
         base.set = o
             .set
             .as_deref()

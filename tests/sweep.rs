@@ -113,6 +113,28 @@ fn random_points_are_reproducible_on_any_number_of_threads_and_compiled_once() {
         ])
     };
     let (ok1, a, err1) = run("1", "7");
+    // the interpreter asked for by name gives the same rows as auto
+    // (machine code, when built with it, is bit for bit the interpreter)
+    let (ok0, a0, _) = qdot(&[
+        "sweep",
+        PENDULUM,
+        "--set",
+        "m=1,g=9.81,l=1",
+        "--init",
+        "theta'=0",
+        "--vary",
+        "theta=0.1:3",
+        "--samples",
+        "300",
+        "--seed",
+        "7",
+        "--t-end",
+        "2",
+        "--evaluator",
+        "interpreter",
+    ]);
+    assert!(ok0);
+    assert_eq!(a0, a);
     let (ok2, b, err2) = run("2", "7");
     let (_, c, _) = run("2", "8");
     assert!(ok1 && ok2, "{err1}{err2}");
