@@ -103,7 +103,12 @@ impl Diagnostic {
             Severity::Warning => "warning",
         };
         let mut out = format!("{kind}: {}\n", self.message);
-        if let Some(span) = self.span {
+        // a span that is not a place in `src` (a diagnostic rendered
+        // without its source) is left out, never indexed
+        let placed = self
+            .span
+            .filter(|s| s.start <= src.len() && src.is_char_boundary(s.start));
+        if let Some(span) = placed {
             let (line, col) = Diagnostic::line_col(src, span.start);
             let line_start = src[..span.start.min(src.len())]
                 .rfind('\n')
@@ -224,6 +229,20 @@ impl std::fmt::Display for SourceError {
 }
 
 impl std::error::Error for SourceError {}
+
+/// The error of an exceeded work budget ([`crate::budget::within`]), at
+/// the statement it names.
+pub fn too_large(e: &crate::budget::TooLarge) -> Diagnostic {
+    let hint = format!(
+        "exact expressions this large are rarely what a scene means (expand less, or choose other coordinates); to go on, raise the limit: --max-terms {}",
+        e.limit.saturating_mul(10)
+    );
+    match e.context.as_ref().and_then(|c| c.span) {
+        Some((a, b)) => Diagnostic::error(Span::new(a, b), e.message()),
+        None => Diagnostic::global(e.message()),
+    }
+    .with_hint(hint)
+}
 
 /// Read a source file: its text, or why it can't be read or is not UTF-8
 /// (see [`decode_source`]).

@@ -262,24 +262,26 @@ fn main() -> ExitCode {
             function,
             baumgarte,
         } => {
-            return simulate(
-                file,
-                set.as_deref(),
-                init.as_deref(),
-                qdot::simulate::run::Request {
-                    stop_when: stop_when.clone(),
-                    functions: function.clone(),
-                    baumgarte: *baumgarte,
-                    progress: std::io::IsTerminal::is_terminal(&std::io::stderr()),
-                    ..integration.request()
-                },
-                (&integration.method, &integration.evaluator),
-                output,
-                *stats,
-                plot.as_deref(),
-            );
+            return budgeted(file, cli.max_terms, || {
+                simulate(
+                    file,
+                    set.as_deref(),
+                    init.as_deref(),
+                    qdot::simulate::run::Request {
+                        stop_when: stop_when.clone(),
+                        functions: function.clone(),
+                        baumgarte: *baumgarte,
+                        progress: std::io::IsTerminal::is_terminal(&std::io::stderr()),
+                        ..integration.request()
+                    },
+                    (&integration.method, &integration.evaluator),
+                    output,
+                    *stats,
+                    plot.as_deref(),
+                )
+            });
         }
-        Command::Sweep(args) => return sweep(args),
+        Command::Sweep(args) => return budgeted(&args.file, cli.max_terms, || sweep(args)),
         Command::Codegen {
             file,
             lang,
@@ -287,7 +289,11 @@ fn main() -> ExitCode {
             set,
             function,
             baumgarte,
-        } => return codegen(file, set.as_deref(), *lang, *form, function, *baumgarte),
+        } => {
+            return budgeted(file, cli.max_terms, || {
+                codegen(file, set.as_deref(), *lang, *form, function, *baumgarte)
+            })
+        }
         Command::Derive { file, format } => (output::Command::Derive, file, *format, None),
         Command::Solve { file, format } => (output::Command::Solve, file, *format, None),
         Command::Forces { file, format } => (output::Command::Forces, file, *format, None),
@@ -417,6 +423,20 @@ fn codegen(
         }
         Err(d) => {
             eprint!("{}", d.render(file, &src));
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// Run a command that derives outside `output::run_with` (simulate, sweep,
+/// codegen) under the work budget `--max-terms`, as every other command is.
+fn budgeted(file: &str, max_terms: usize, f: impl FnOnce() -> ExitCode) -> ExitCode {
+    match qdot::budget::within(max_terms, f) {
+        Ok(code) => code,
+        Err(e) => {
+            // the statement it names is shown in its source
+            let src = qdot::diag::read_source(file).unwrap_or_default();
+            eprint!("{}", output::too_large(&e).render(file, &src));
             ExitCode::from(1)
         }
     }

@@ -364,3 +364,22 @@ fn the_echoed_line_shows_invisible_characters() {
         "error: unknown character U+200B (ZERO WIDTH SPACE), which is invisible\n --> scene.qd:2:7\n  |\n2 | y =\t3 \u{FFFD} 4\r\n  |    \t  ^\n  = hint: delete it (invisible characters often come with text pasted from a web page or a word processor)\n"
     );
 }
+
+/// A diagnostic rendered without its source (or with another) shows no
+/// place rather than indexing past the text: `render` never panics.
+#[test]
+fn a_span_outside_the_source_is_rendered_without_a_place() {
+    use qdot::diag::{Diagnostic, Span};
+    let d = Diagnostic::error(Span::new(292, 300), "too large").with_hint("raise it");
+    assert_eq!(
+        d.render("x.qd", ""),
+        "error: too large\n  = hint: raise it\n"
+    );
+    assert_eq!(
+        d.render("x.qd", "θθθ"),
+        "error: too large\n  = hint: raise it\n"
+    );
+    // a span inside a character is not a place either
+    let d = Diagnostic::error(Span::new(1, 2), "m");
+    assert_eq!(d.render("x.qd", "θ"), "error: m\n");
+}

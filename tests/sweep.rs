@@ -326,3 +326,92 @@ fn the_plot_samples_the_dense_output_whatever_the_points() {
         "the longest polyline has {longest} points"
     );
 }
+
+/// simulate, sweep and codegen derive outside `output::run_with`; they run
+/// under `--max-terms` as every command does. The exact accelerations are
+/// an option: past the budget, M and f serve; past it for M and f, the
+/// error names the statement in its source.
+#[test]
+fn the_work_budget_holds_for_simulate_sweep_and_codegen() {
+    let scene = "examples/double_pendulum.qd";
+    let init = "th1=1,th2=1,th1'=0,th2'=0";
+    let simulate = |terms: &str| {
+        qdot(&[
+            "simulate",
+            scene,
+            "--set",
+            "m1=1,m2=1,l1=1,l2=1,g=9.81",
+            "--init",
+            init,
+            "--t-end",
+            "1",
+            "--points",
+            "2",
+            "--stats",
+            "--max-terms",
+            terms,
+        ])
+    };
+    let sweep = |terms: &str| {
+        qdot(&[
+            "sweep",
+            scene,
+            "--set",
+            "m1=1,l1=1,l2=1,g=9.81",
+            "--init",
+            init,
+            "--vary",
+            "m2=1:2:2",
+            "--t-end",
+            "1",
+            "--max-terms",
+            terms,
+        ])
+    };
+    let codegen = |terms: &str| qdot(&["codegen", scene, "--lang", "c", "--max-terms", terms]);
+    for (name, (ok, _, err)) in [
+        ("simulate", simulate("2")),
+        ("sweep", sweep("2")),
+        ("codegen", codegen("2")),
+    ] {
+        assert!(!ok, "{name}");
+        assert!(
+            err.contains("expression too large: 3 terms while evaluating `E` (the limit is 2)"),
+            "{name}: {err}"
+        );
+        assert!(
+            err.contains("--> examples/double_pendulum.qd:9:13"),
+            "{name}: {err}"
+        );
+        assert!(err.contains("--max-terms 20"), "{name}: {err}");
+    }
+    let (ok, out, err) = simulate("5");
+    assert!(ok, "{err}");
+    assert!(
+        err.contains("evaluator mass_matrix: no exact accelerations: past the work budget"),
+        "{err}"
+    );
+    // the same trajectory as with the exact accelerations, to rounding
+    let (_, full, _) = simulate("2000000");
+    let last = |s: &str| -> Vec<f64> {
+        s.lines()
+            .last()
+            .expect("a row")
+            .split(',')
+            .map(|x| x.parse().expect("a number"))
+            .collect()
+    };
+    for (a, b) in last(&out).iter().zip(last(&full)) {
+        assert!((a - b).abs() < 1e-6, "{a} {b}");
+    }
+    let (ok, out, err) = sweep("5");
+    assert!(ok, "{err}");
+    assert_eq!(
+        out.lines().filter(|l| l.contains(",done,")).count(),
+        2,
+        "{out}"
+    );
+    let (ok, out, err) = codegen("5");
+    assert!(ok, "{err}");
+    assert!(out.contains("M·q̈ = f solved by Cholesky"), "{out}");
+}

@@ -42,7 +42,7 @@ class Scene:
         self.source = text
         self.name = name
         self.max_terms = max_terms
-        _native.check_scene(text, name)
+        _native.check_scene(text, name, max_terms=max_terms)
         self._cache: Dict[Any, Any] = {}
 
     @classmethod
@@ -82,7 +82,7 @@ class Scene:
         return json.loads(self._run(command, "json", **options))
 
     def _latex_of(self, texts: List[str]) -> List[str]:
-        return _native.latex_exprs(self.source, texts, file=self.name)
+        return _native.latex_exprs(self.source, texts, file=self.name, max_terms=self.max_terms)
 
     def _exprs(self, texts: Sequence[str]) -> List[Expr]:
         latex = self._latex_of(list(texts))
@@ -179,9 +179,9 @@ class Scene:
             self.source, _pairs(set, "set"), _pairs(init, "init"), float(t_end),
             method=method, rtol=rtol, atol=atol, dt=dt, points=points,
             stop_when=stop_when, functions=list(functions), baumgarte=baumgarte,
-            file=self.name, **extra,
+            file=self.name, max_terms=self.max_terms, **extra,
         )
-        return Simulation(raw, self.coordinates)
+        return Simulation(raw)
 
 
     def sweep(self, set: Values, init: Values, vary: Mapping[str, Sequence[float]], t_end: float,
@@ -203,7 +203,7 @@ class Scene:
         raw = _native.sweep(
             self.source, _pairs(set, "set"), _pairs(init, "init"), axes, float(t_end),
             samples=samples, seed=seed, threads=threads, method=method, rtol=rtol, atol=atol,
-            dt=dt, points=points, stop_when=stop_when, file=self.name,
+            dt=dt, points=points, stop_when=stop_when, file=self.name, max_terms=self.max_terms,
         )
         return Sweep(raw)
 

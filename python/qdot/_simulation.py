@@ -16,11 +16,11 @@ class Simulation:
     ``event``, … as in ``--output json``; ``stats`` the integrator's counters.
     """
 
-    def __init__(self, raw: Dict[str, Any], coordinates: List[str]) -> None:
+    def __init__(self, raw: Dict[str, Any]) -> None:
         self.columns: List[str] = list(raw["columns"])
         rows = int(raw["rows"])
         self.data: np.ndarray = np.frombuffer(raw["data"], dtype="<f8").reshape(rows, len(self.columns))
-        self.coordinates = list(coordinates)
+        self.coordinates: List[str] = list(raw["coordinates"])
         n = len(self.coordinates)
         self.t: np.ndarray = self.data[:, 0]
         self.q: np.ndarray = self.data[:, 1 : 1 + n]

@@ -44,6 +44,29 @@ fn error(d: &Diagnostic, file: &str, src: &str) -> PyErr {
     err
 }
 
+/// `f` under the work budget of exact computation (`max_terms`, 0: the
+/// default), as the command line runs every command: an expression that
+/// grows past it is an error, not a hang.
+fn budgeted<T>(
+    max_terms: usize,
+    f: impl FnOnce() -> PyResult<T>,
+) -> impl FnOnce() -> Result<PyResult<T>, qdot::budget::TooLarge> {
+    let limit = match max_terms {
+        0 => qdot::limits::DEFAULT_MAX_TERMS,
+        n => n,
+    };
+    move || qdot::budget::within(limit, f)
+}
+
+/// The result of [`budgeted`], the exceeded budget as a diagnostic about `src`.
+fn within_budget<T>(
+    r: Result<PyResult<T>, qdot::budget::TooLarge>,
+    file: &str,
+    src: &str,
+) -> PyResult<T> {
+    r.unwrap_or_else(|e| Err(error(&qdot::diag::too_large(&e), file, src)))
+}
+
 fn values(pairs: Vec<(String, f64)>) -> Values {
     pairs.into_iter().collect()
 }
@@ -118,11 +141,14 @@ fn run_command(
 
 /// Parse and resolve a scene; a QdotError for the first problem.
 #[pyfunction]
-#[pyo3(signature = (source, file="<scene>"))]
-fn check_scene(source: &str, file: &str) -> PyResult<()> {
-    qdot::Scene::parse(source)
-        .map(|_| ())
-        .map_err(|d| error(&d, file, source))
+#[pyo3(signature = (source, file="<scene>", max_terms=0))]
+fn check_scene(py: Python<'_>, source: &str, file: &str, max_terms: usize) -> PyResult<()> {
+    let parse = budgeted(max_terms, || {
+        qdot::Scene::parse(source)
+            .map(|_| ())
+            .map_err(|d| error(&d, file, source))
+    });
+    within_budget(py.detach(parse), file, source)
 }
 
 /// `name=value,…` as (name, value) pairs: `kind` "set" (parameters, any
@@ -142,7 +168,7 @@ fn parse_values(text: &str, kind: &str) -> PyResult<Vec<(String, f64)>> {
 /// little-endian f64, row-major), `rows`, `status`, `t_reached`, `stats`,
 /// `method`, `evaluator`, `seconds`, `compile_seconds`.
 #[pyfunction]
-#[pyo3(signature = (source, set, init, t_end, method="dop853", rtol=1e-8, atol=1e-10, dt=None, points=101, max_steps=qdot::limits::DEFAULT_MAX_STEPS, stop_when=None, functions=Vec::new(), baumgarte=1.0, file="<scene>"))]
+#[pyo3(signature = (source, set, init, t_end, method="dop853", rtol=1e-8, atol=1e-10, dt=None, points=101, max_steps=qdot::limits::DEFAULT_MAX_STEPS, stop_when=None, functions=Vec::new(), baumgarte=1.0, file="<scene>", max_terms=0))]
 #[allow(clippy::too_many_arguments)]
 fn simulate<'py>(
     py: Python<'py>,
@@ -160,6 +186,7 @@ fn simulate<'py>(
     functions: Vec<String>,
     baumgarte: f64,
     file: &str,
+    max_terms: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
     let method = run::method_by_name(method).map_err(|d| error(&d, file, ""))?;
     let req = Request {
@@ -177,9 +204,10 @@ fn simulate<'py>(
         baumgarte,
         ..Request::default()
     };
-    let r = py
-        .detach(|| run::simulate(source, &req))
-        .map_err(|d| error(&d, file, source))?;
+    let run = budgeted(max_terms, || {
+        run::simulate(source, &req).map_err(|d| error(&d, file, source))
+    });
+    let r = within_budget(py.detach(run), file, source)?;
     let mut bytes = Vec::with_capacity(r.rows.len() * r.columns.len() * 8);
     for row in &r.rows {
         for x in row {
@@ -188,6 +216,14 @@ fn simulate<'py>(
     }
     let d = PyDict::new(py);
     d.set_item("columns", &r.columns)?;
+    // the columns are t, every q, every q', …: the q are those before the first primed name
+    let n = r
+        .columns
+        .iter()
+        .skip(1)
+        .take_while(|c| !c.ends_with('\''))
+        .count();
+    d.set_item("coordinates", &r.columns[1..1 + n])?;
     d.set_item("rows", r.rows.len())?;
     d.set_item("data", PyBytes::new(py, &bytes))?;
     d.set_item("status", run::status_word(&r.solution.status))?;
@@ -214,7 +250,7 @@ fn simulate<'py>(
 /// conserved) and steps), `status` (a list of words or error messages),
 /// `seconds`, `threads`, `compilations`.
 #[pyfunction]
-#[pyo3(signature = (source, set, init, axes, t_end, samples=None, seed=0, threads=0, method="dop853", rtol=1e-8, atol=1e-10, dt=None, points=101, stop_when=None, file="<scene>"))]
+#[pyo3(signature = (source, set, init, axes, t_end, samples=None, seed=0, threads=0, method="dop853", rtol=1e-8, atol=1e-10, dt=None, points=101, stop_when=None, file="<scene>", max_terms=0))]
 #[allow(clippy::too_many_arguments)]
 fn sweep<'py>(
     py: Python<'py>,
@@ -233,6 +269,7 @@ fn sweep<'py>(
     points: usize,
     stop_when: Option<String>,
     file: &str,
+    max_terms: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
     use qdot::simulate::sweep::{self as sw, Axis, Design};
     let method = run::method_by_name(method).map_err(|d| error(&d, file, ""))?;
@@ -261,12 +298,12 @@ fn sweep<'py>(
         Some(samples) => Design::Random { samples, seed },
         None => Design::Grid,
     };
-    let s = py
-        .detach(|| {
-            let prepared = run::Prepared::new(source, &[])?;
-            sw::sweep(&prepared, &base, &axes, design, threads, &|_| {})
-        })
-        .map_err(|d| error(&d, file, source))?;
+    let runs = budgeted(max_terms, || {
+        run::Prepared::new(source, &[])
+            .and_then(|prepared| sw::sweep(&prepared, &base, &axes, design, threads, &|_| {}))
+            .map_err(|d| error(&d, file, source))
+    });
+    let s = within_budget(py.detach(runs), file, source)?;
     let n = s.coordinates.len();
     let mut bytes = Vec::new();
     let mut status = Vec::with_capacity(s.runs.len());
@@ -313,8 +350,22 @@ fn sympy_source(expr: &str) -> PyResult<String> {
 /// The LaTeX of each expression (qdot's syntax) in the scene's notation
 /// (`latex` names of the scene, dots for time derivatives).
 #[pyfunction]
-#[pyo3(signature = (source, exprs, file="<scene>"))]
-fn latex_exprs(source: &str, exprs: Vec<String>, file: &str) -> PyResult<Vec<String>> {
+#[pyo3(signature = (source, exprs, file="<scene>", max_terms=0))]
+fn latex_exprs(
+    source: &str,
+    exprs: Vec<String>,
+    file: &str,
+    max_terms: usize,
+) -> PyResult<Vec<String>> {
+    within_budget(
+        budgeted(max_terms, || latex_of(source, &exprs, file))(),
+        file,
+        source,
+    )
+}
+
+/// [`latex_exprs`] within its budget.
+fn latex_of(source: &str, exprs: &[String], file: &str) -> PyResult<Vec<String>> {
     let scene = qdot::Scene::parse(source).map_err(|d| error(&d, file, source))?;
     let mut names = qdot::expr::latex::Names::new();
     for n in &scene.latex_names {

@@ -91,3 +91,19 @@ def test_sweep_errors():
     with pytest.raises(qdot.QdotError, match="more than 1,000,000"):
         scene.sweep(set={"m": 1, "g": 1}, init={"theta'": 0},
                     vary={"theta": (0, 1, 1001), "l": (1, 2, 1001)}, t_end=1)
+
+
+def test_the_work_budget_holds_in_python():
+    """Scene(max_terms=…) bounds the exact work of every native call: past
+    it, a QdotError naming the statement, never a hang."""
+    path = ROOT / "examples" / "double_pendulum.qd"
+    with pytest.raises(qdot.QdotError, match="expression too large: 3 terms while evaluating `E`"):
+        qdot.Scene.load(path, max_terms=2)
+    scene = qdot.Scene.load(path, max_terms=5)
+    # the exact accelerations are past the budget: M and f serve
+    sim = scene.simulate(set={"m1": 1, "m2": 1, "l1": 1, "l2": 1, "g": 9.81},
+                         init={"th1": 1, "th2": 1, "th1'": 0, "th2'": 0}, t_end=1)
+    assert sim.evaluator == "mass_matrix" and sim.status == "done"
+    sw = scene.sweep(set={"m1": 1, "l1": 1, "l2": 1, "g": 9.81},
+                     init={"th1": 1, "th2": 1, "th1'": 0, "th2'": 0}, vary={"m2": (1, 2, 2)}, t_end=1)
+    assert sw.status == ["done", "done"]

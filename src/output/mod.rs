@@ -139,18 +139,8 @@ pub fn run_with(
         .unwrap_or_else(|e| Err(too_large(&e)))
 }
 
-/// The error of an exceeded work budget, at the statement it names.
-pub fn too_large(e: &crate::budget::TooLarge) -> Diagnostic {
-    let hint = format!(
-        "exact expressions this large are rarely what a scene means (expand less, or choose other coordinates); to go on, raise the limit: --max-terms {}",
-        e.limit.saturating_mul(10)
-    );
-    match e.context.as_ref().and_then(|c| c.span) {
-        Some((a, b)) => Diagnostic::error(crate::parse::ast::Span::new(a, b), e.message()),
-        None => Diagnostic::global(e.message()),
-    }
-    .with_hint(hint)
-}
+/// The error of an exceeded work budget (kept here too: it was first public here).
+pub use crate::diag::too_large;
 
 fn run_unbounded(
     cmd: Command,

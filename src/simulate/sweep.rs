@@ -260,6 +260,9 @@ pub fn sweep(
         .num_threads(threads)
         .build()
         .map_err(|e| Diagnostic::global(format!("cannot start the sweep's threads: {e}")))?;
+    // the pool's threads work under this thread's budget (`--max-terms`):
+    // a run compiles exactly (the accelerations) when parameters vary
+    let limit = crate::budget::limit();
     let done = AtomicUsize::new(0);
     let start = Instant::now();
     let runs: Vec<(Vec<f64>, Result<Outcome, String>)> = pool.install(|| {
@@ -271,7 +274,8 @@ pub fn sweep(
                     Some(c) => Ok(c.clone()),
                     None => {
                         compilations.fetch_add(1, Ordering::Relaxed);
-                        prepared.compile(&req)
+                        crate::budget::within(limit, || prepared.compile(&req))
+                            .unwrap_or_else(|e| Err(crate::diag::too_large(&e)))
                     }
                 };
                 let outcome = compiled

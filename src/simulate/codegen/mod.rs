@@ -312,7 +312,10 @@ impl Generator<'_> {
             _ => "M·q̈ = f solved by Cholesky (unrolled) in the function".to_string(),
         };
         if n <= BEST_MAX_N {
-            if let Ok(acc) = self.lag.accelerations() {
+            // an option, as in `CompiledDynamics::best`: past the work
+            // budget M and f serve
+            let exact = crate::budget::within(crate::budget::limit(), || self.lag.accelerations());
+            if let Ok(Ok(acc)) = exact {
                 let exprs: Vec<Expr> = acc.into_iter().map(|(_, e)| e).collect();
                 if let Ok(p) = compile_with(&exprs, self.inputs, self.bound) {
                     let cost = estimated_cost_of(&p, Evaluator::Accelerations, n);

@@ -224,7 +224,18 @@ impl CompiledDynamics {
                 },
             ));
         }
-        let via_acc = match Self::from_accelerations(lagrange, params) {
+        // the exact accelerations are an option: past the work budget, M
+        // and f serve (the budget of the caller, nested so it unwinds here)
+        let exact = crate::budget::within(crate::budget::limit(), || {
+            Self::from_accelerations(lagrange, params)
+        });
+        let exact = exact.unwrap_or_else(|e| {
+            Err(CompileError::NoAccelerations(format!(
+                "past the work budget ({})",
+                e.message()
+            )))
+        });
+        let via_acc = match exact {
             Ok(d) => d,
             Err(e) => {
                 let reason = format!("no exact accelerations: {e}");
