@@ -49,6 +49,9 @@ pub enum Measure {
     /// An expression's symbols written out ([`check_printed`]): `terms`
     /// counts symbols.
     Printed,
+    /// The term products of a whole elimination ([`WorkMeter`]): `terms`
+    /// counts them.
+    Work,
 }
 
 impl TooLarge {
@@ -71,6 +74,12 @@ impl TooLarge {
                 "expression too large: {} terms{what} (the limit is {})",
                 grouped(self.terms),
                 grouped(self.limit)
+            ),
+            Measure::Work => format!(
+                "expression too large: {} term products in all{what} (the limit is {} terms, and {} term products in all)",
+                grouped(self.terms),
+                grouped(self.limit),
+                grouped(self.limit.saturating_mul(ELIMINATION_PRODUCTS_PER_TERM))
             ),
             Measure::Printed => format!(
                 "expression too large to print: {} symbols written out{what} (the limit is {})",
@@ -163,6 +172,42 @@ pub fn check_product(a: usize, b: usize) {
     let limit = limit();
     if a.saturating_mul(b) > limit.saturating_mul(PRODUCTS_PER_TERM) {
         exceeded_with(a.saturating_mul(b), limit, Measure::Product(a, b));
+    }
+}
+
+/// How many term-by-term products a whole elimination ([`WorkMeter`]) may
+/// take per term of the budget. Its n³ products can each stay under
+/// [`PRODUCTS_PER_TERM`] and still add up to minutes.
+pub const ELIMINATION_PRODUCTS_PER_TERM: usize = 64;
+
+/// The work of a computation made of many products (an elimination): each
+/// [`charge`](WorkMeter::charge) adds one product's term products, and past
+/// [`ELIMINATION_PRODUCTS_PER_TERM`] × the budget it unwinds.
+#[derive(Debug, Default)]
+pub struct WorkMeter {
+    used: Cell<usize>,
+}
+
+impl WorkMeter {
+    pub fn new() -> WorkMeter {
+        WorkMeter::default()
+    }
+
+    /// Charge a product of polynomials of `a` and `b` terms (or a division
+    /// of an `a`-term by a `b`-term one).
+    #[inline]
+    pub fn charge(&self, a: usize, b: usize) {
+        let used = self.used.get().saturating_add(a.saturating_mul(b));
+        self.used.set(used);
+        let limit = limit();
+        if used > limit.saturating_mul(ELIMINATION_PRODUCTS_PER_TERM) {
+            exceeded_with(used, limit, Measure::Work);
+        }
+    }
+
+    /// The term products charged so far.
+    pub fn used(&self) -> usize {
+        self.used.get()
     }
 }
 

@@ -7,13 +7,19 @@
 //! quotients X_i/det are brought to canonical form, so intermediate
 //! expressions never carry denominators and no gcd is computed until the end.
 //!
-//! The elimination runs in the free polynomial ring (sin and cos as
-//! independent variables), where Sylvester's identity makes every division
-//! exact; the relation sin² + cos² = 1 is applied when the results are made
-//! canonical, which is sound because reduction is a ring homomorphism.
+//! Systems with angles and no radicals are eliminated in the exponential
+//! basis zₖ = e^{iθₖ} ([`laurent`]), where sin² + cos² = 1 holds throughout
+//! and the entries stay as small as their reduced forms. The others run in
+//! the free polynomial ring (sin and cos as independent variables), where
+//! Sylvester's identity makes every division exact; the relation
+//! sin² + cos² = 1 is applied when the results are made canonical, which is
+//! sound because reduction is a ring homomorphism. Both give the same
+//! canonical answer.
 
 use crate::expr::{Expr, MathError};
 use crate::poly::{Poly, Var};
+
+mod laurent;
 
 #[derive(Clone, Debug)]
 pub enum SolveError {
@@ -46,7 +52,17 @@ pub fn solve(a: &[Vec<Expr>], b: &[Expr]) -> Result<Vec<Expr>, SolveError> {
     if n == 0 {
         return Ok(Vec::new());
     }
-    let mut m = cleared_rows(a, b);
+    let m = cleared_rows(a, b);
+    if let Some(answer) = laurent::solve(a, &m) {
+        return answer;
+    }
+    solve_free(a, m)
+}
+
+/// Bareiss elimination of the cleared rows `m` of `[a | b]` in the free ring.
+fn solve_free(a: &[Vec<Expr>], mut m: Vec<Vec<Poly>>) -> Result<Vec<Expr>, SolveError> {
+    let n = m.len();
+    let work = crate::budget::WorkMeter::new();
     let mut prev = Poly::one();
     for k in 0..n {
         // Pivot: the nonzero (also modulo sin² + cos² = 1) entry with fewest terms.
@@ -61,7 +77,10 @@ pub fn solve(a: &[Vec<Expr>], b: &[Expr]) -> Result<Vec<Expr>, SolveError> {
         m.swap(k, p);
         for i in k + 1..n {
             for j in k + 1..=n {
+                work.charge(m[k][k].len(), m[i][j].len());
+                work.charge(m[i][k].len(), m[k][j].len());
                 let t = &(&m[k][k] * &m[i][j]) - &(&m[i][k] * &m[k][j]);
+                work.charge(t.len(), prev.len());
                 m[i][j] = exact(&t, &prev)?;
             }
             m[i][k] = Poly::zero();
@@ -77,10 +96,13 @@ pub fn solve(a: &[Vec<Expr>], b: &[Expr]) -> Result<Vec<Expr>, SolveError> {
     // Cramer numerators X_i = det·x_i.
     let mut xs = vec![Poly::zero(); n];
     for i in (0..n).rev() {
+        work.charge(det.len(), m[i][n].len());
         let mut t = &det * &m[i][n];
         for j in i + 1..n {
+            work.charge(m[i][j].len(), xs[j].len());
             t = &t - &(&m[i][j] * &xs[j]);
         }
+        work.charge(t.len(), m[i][i].len());
         xs[i] = exact(&t, &m[i][i])?;
     }
     xs.into_iter()
