@@ -168,7 +168,7 @@ fn a_pivot_that_is_not_positive_falls_back_to_the_interpreter() {
     let coords = vec!["q".to_string(), "p".to_string()];
     let mut d = CompiledDynamics::from_parts(&coords, &mass, &forcing, &FxHashMap::default())
         .expect("compiles");
-    assert_eq!(d.use_engine(Engine::Auto).ran, Engine::Jit);
+    assert_eq!(d.use_engine(Engine::Jit).ran, Engine::Jit);
     // an indefinite M: Cholesky fails at column 0, elimination solves it
     let mass = vec![
         vec![q.clone(), Expr::int(2)],
@@ -333,4 +333,50 @@ fn simulate_evaluator_option() {
     args.extend(["--evaluator", "fast"]);
     let (ok, _, err) = qdot(&args);
     assert!(!ok && err.contains("interpreter"), "{err}");
+}
+
+/// `auto` counts the right-hand sides of all clones of one compiled system
+/// (a sweep's runs) and compiles once, in the clone that crosses
+/// `AUTO_JIT_AFTER_CALLS`; the other clones adopt that machine code.
+#[test]
+fn auto_compiles_once_for_all_clones_after_enough_calls() {
+    use qdot::simulate::compile::AUTO_JIT_AFTER_CALLS;
+    let q = Expr::coord("q", 0);
+    let mass = vec![vec![Expr::int(2).add(&q.mul(&q))]];
+    let forcing = vec![q.neg()];
+    let coords = vec!["q".to_string()];
+    let mut a = CompiledDynamics::from_parts(&coords, &mass, &forcing, &FxHashMap::default())
+        .expect("compiles");
+    let report = a.use_engine(Engine::Auto);
+    assert_eq!(report.ran, Engine::Interpreter);
+    let mut b = a.clone();
+    let (y, mut dy) = ([0.5, -0.25], [0.0; 2]);
+    let half = AUTO_JIT_AFTER_CALLS / 2 + 1024;
+    for _ in 0..half {
+        a.rhs(0.0, &y, &mut dy);
+    }
+    assert!(a.deferred_engine().is_none(), "half the calls: not yet");
+    assert_eq!(a.engine(), Engine::Interpreter);
+    for _ in 0..half {
+        b.rhs(0.0, &y, &mut dy);
+    }
+    let Some((report, compiled_here)) = b.deferred_engine() else {
+        panic!("the calls of both clones add up past the threshold");
+    };
+    assert_eq!(
+        (report.ran, report.requested, compiled_here),
+        (Engine::Jit, Engine::Auto, true)
+    );
+    assert_eq!(b.engine(), Engine::Jit);
+    // `a` adopts the same code at its next batch of calls
+    for _ in 0..1024 {
+        a.rhs(0.0, &y, &mut dy);
+    }
+    assert_eq!(a.engine(), Engine::Jit);
+    assert!(matches!(a.deferred_engine(), Some((_, false))));
+    // and computes what the interpreter computes
+    let mut interpreted = [0.0; 2];
+    a.rhs_interpreted(0.0, &y, &mut interpreted);
+    a.rhs(0.0, &y, &mut dy);
+    assert!(dy.iter().zip(&interpreted).all(|(x, y)| same(*x, *y)));
 }

@@ -218,19 +218,19 @@ fn json_output_and_stats() {
             "evaluator"
         ]
     );
-    // machine code where it compiles (`--evaluator auto`), its line third
-    let engine = if cfg!(feature = "jit") {
-        "jit"
-    } else {
-        "interpreter"
-    };
-    assert_eq!(v["stats"]["engine"]["name"], engine);
+    // `--evaluator auto` on a run of a few hundred right-hand sides: the
+    // interpreter, which compiling would not pay for; its line third
+    assert_eq!(v["stats"]["engine"]["name"], "interpreter");
     assert_eq!(v["stats"]["engine"]["requested"], "auto");
-    assert!(
-        err.lines()
-            .nth(2)
-            .unwrap()
-            .starts_with(&format!("engine {engine}: ")),
+    let reason = if cfg!(feature = "jit") {
+        "auto: fewer than 25,000 right-hand sides, too few to pay for machine code"
+    } else {
+        "built without the `jit` feature"
+    };
+    assert_eq!(v["stats"]["engine"]["reason"], reason);
+    assert_eq!(
+        err.lines().nth(2).unwrap(),
+        format!("engine interpreter: {reason}"),
         "{err}"
     );
     let ev = &v["stats"]["evaluator"];
@@ -245,6 +245,49 @@ fn json_output_and_stats() {
         ev["reason"],
         err.lines().nth(1).unwrap()["evaluator accelerations: ".len()..]
     );
+}
+
+/// `auto` compiles to machine code once a run has made 25,000 right-hand
+/// sides, and the rows do not change: the machine code computes what the
+/// interpreter computes, bit for bit.
+#[test]
+fn auto_compiles_a_long_run_midway_and_its_rows_do_not_change() {
+    let file = scene("pendulum_long.qd", PENDULUM);
+    let run = |evaluator: &str| {
+        let (ok, out, err) = qdot(&[
+            "simulate",
+            &file,
+            "--set",
+            "m=1,g=9.81,l=1",
+            "--init",
+            "th=1,th'=0",
+            "--t-end",
+            "1000",
+            "--points",
+            "101",
+            "--stats",
+            "--evaluator",
+            evaluator,
+        ]);
+        assert!(ok, "{err}");
+        (out, err)
+    };
+    let (auto, err) = run("auto");
+    let (interpreted, _) = run("interpreter");
+    assert_eq!(auto, interpreted);
+    let evals: u64 = err
+        .split(" RHS evaluations")
+        .next()
+        .and_then(|s| s.rsplit(' ').next())
+        .and_then(|s| s.parse().ok())
+        .expect("the RHS count");
+    assert!(evals > 25_000, "{err}");
+    let engine = if cfg!(feature = "jit") {
+        "engine jit: machine code"
+    } else {
+        "engine interpreter: built without"
+    };
+    assert!(err.lines().nth(2).unwrap().starts_with(engine), "{err}");
 }
 
 #[test]

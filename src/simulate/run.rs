@@ -464,7 +464,17 @@ impl Prepared {
             }),
             e => Diagnostic::global(e.to_string()),
         })?;
-        let seconds = start.elapsed().as_secs_f64();
+        let mut seconds = start.elapsed().as_secs_f64();
+        // `auto` may have compiled during the run
+        let engine = match dynamics.deferred_engine() {
+            Some((report, compiled_here)) => {
+                if compiled_here {
+                    seconds = (seconds - report.compile_seconds).max(0.0);
+                }
+                report
+            }
+            None => engine,
+        };
         let mut run = self.rows(solution, energy.as_ref(), drift_program.as_ref(), evaluator);
         if req.plot_samples >= 2 {
             let only = |t: f64| plot_only.binary_search_by(|p| p.total_cmp(&t)).is_ok();

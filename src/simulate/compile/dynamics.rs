@@ -97,6 +97,9 @@ pub struct CompiledDynamics {
     /// The right-hand side as machine code, when [`Self::use_engine`] made it.
     #[cfg(feature = "jit")]
     jit: Option<super::jit::JitRhs>,
+    /// `auto`'s compilation, until it is made or refused.
+    #[cfg(feature = "jit")]
+    tier: Option<super::engine::Tier>,
 }
 
 /// The input atoms `[t, q…, q̇…]` of a [`CompiledDynamics`] program.
@@ -309,49 +312,43 @@ impl CompiledDynamics {
             mode,
             #[cfg(feature = "jit")]
             jit: None,
+            #[cfg(feature = "jit")]
+            tier: None,
         }
     }
 
     /// Run the right-hand side ([`System::rhs`]) on `engine`: the
-    /// interpreter, or the whole right-hand side compiled to machine code
-    /// (`Auto` and `Jit`; the interpreter stays when that fails or the
-    /// `jit` feature is off, with the reason in the report). Never panics.
+    /// interpreter; the whole right-hand side compiled to machine code now
+    /// (`Jit`); or the interpreter until [`super::AUTO_JIT_AFTER_CALLS`]
+    /// right-hand sides, machine code after (`Auto`: see
+    /// [`Self::deferred_engine`]). The interpreter stays when compiling
+    /// fails or the `jit` feature is off, with the reason in the report.
+    /// Never panics.
     pub fn use_engine(&mut self, engine: Engine) -> EngineReport {
         #[cfg(feature = "jit")]
         {
             self.jit = None;
-            if engine == Engine::Interpreter {
-                return EngineReport::interpreter(engine, 0.0, "--evaluator interpreter");
-            }
-            let start = std::time::Instant::now();
-            let tail = match &self.mode {
-                Mode::MassMatrix => super::jit::Tail::MassMatrix,
-                Mode::ConstantMass(inv) => super::jit::Tail::ConstantMass(inv),
-                Mode::Accelerations => super::jit::Tail::Accelerations,
-            };
-            // Cranelift reports its errors, but a panic inside it must not
-            // end the run either: the interpreter takes over
-            let compiled = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                super::jit::compile_rhs(&self.program, self.n, tail)
-            }))
-            .unwrap_or_else(|_| Err(super::jit::JitError("Cranelift panicked".into())));
-            match compiled {
-                Ok(j) => {
-                    let report = EngineReport {
-                        requested: engine,
-                        ran: Engine::Jit,
-                        compile_seconds: j.compile_seconds(),
-                        code_bytes: j.code_bytes(),
-                        reason: None,
-                    };
-                    self.jit = Some(j);
+            self.tier = None;
+            match engine {
+                Engine::Interpreter => {
+                    EngineReport::interpreter(engine, 0.0, "--evaluator interpreter")
+                }
+                Engine::Auto => {
+                    self.tier = Some(super::engine::Tier::new());
+                    EngineReport::interpreter(
+                        engine,
+                        0.0,
+                        format!(
+                            "auto: fewer than {} right-hand sides, too few to pay for machine code",
+                            crate::budget::grouped(super::engine::AUTO_JIT_AFTER_CALLS as usize)
+                        ),
+                    )
+                }
+                Engine::Jit => {
+                    let (jit, report) = self.compile_jit(engine);
+                    self.jit = jit;
                     report
                 }
-                Err(e) => EngineReport::interpreter(
-                    engine,
-                    start.elapsed().as_secs_f64(),
-                    format!("the JIT could not compile the program: {e}"),
-                ),
             }
         }
         #[cfg(not(feature = "jit"))]
@@ -361,6 +358,67 @@ impl CompiledDynamics {
             }
             _ => EngineReport::interpreter(engine, 0.0, "built without the `jit` feature"),
         }
+    }
+
+    /// The machine code of the right-hand side, or the report of why not.
+    #[cfg(feature = "jit")]
+    fn compile_jit(&self, engine: Engine) -> (Option<super::jit::JitRhs>, EngineReport) {
+        let start = std::time::Instant::now();
+        let tail = match &self.mode {
+            Mode::MassMatrix => super::jit::Tail::MassMatrix,
+            Mode::ConstantMass(inv) => super::jit::Tail::ConstantMass(inv),
+            Mode::Accelerations => super::jit::Tail::Accelerations,
+        };
+        // Cranelift reports its errors, but a panic inside it must not
+        // end the run either: the interpreter takes over
+        let compiled = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            super::jit::compile_rhs(&self.program, self.n, tail)
+        }))
+        .unwrap_or_else(|_| Err(super::jit::JitError("Cranelift panicked".into())));
+        match compiled {
+            Ok(j) => {
+                let report = EngineReport {
+                    requested: engine,
+                    ran: Engine::Jit,
+                    compile_seconds: j.compile_seconds(),
+                    code_bytes: j.code_bytes(),
+                    reason: None,
+                };
+                (Some(j), report)
+            }
+            Err(e) => (
+                None,
+                EngineReport::interpreter(
+                    engine,
+                    start.elapsed().as_secs_f64(),
+                    format!("the JIT could not compile the program: {e}"),
+                ),
+            ),
+        }
+    }
+
+    /// `auto`'s compilation made during the run, if the run was long enough
+    /// (or a clone's was): its report, and whether this system spent the
+    /// compile time (inside its integration's wall time).
+    pub fn deferred_engine(&self) -> Option<(EngineReport, bool)> {
+        #[cfg(feature = "jit")]
+        if let Some(t) = &self.tier {
+            return t.report();
+        }
+        None
+    }
+
+    /// Adopt `auto`'s machine code (compiling it if no clone has).
+    #[cfg(feature = "jit")]
+    #[cold]
+    fn adopt_deferred(&mut self) {
+        let Some(mut tier) = self.tier.take() else {
+            return;
+        };
+        let (jit, _) = tier.outcome(|| self.compile_jit(Engine::Auto));
+        self.jit = jit.clone();
+        // kept for its report
+        self.tier = Some(tier);
     }
 
     /// What runs [`System::rhs`]: [`Engine::Jit`] after a successful
@@ -570,9 +628,14 @@ impl System for CompiledDynamics {
     #[inline]
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
         #[cfg(feature = "jit")]
-        if let Some(j) = &self.jit {
-            if y.len() == 2 * self.n && dy.len() == 2 * self.n && j.rhs(t, y, dy) {
-                return;
+        {
+            if self.jit.is_none() && self.tier.as_mut().is_some_and(|t| t.tick()) {
+                self.adopt_deferred();
+            }
+            if let Some(j) = &self.jit {
+                if y.len() == 2 * self.n && dy.len() == 2 * self.n && j.rhs(t, y, dy) {
+                    return;
+                }
             }
         }
         self.rhs_interpreted(t, y, dy)

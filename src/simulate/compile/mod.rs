@@ -53,7 +53,7 @@ pub use builder::{compile, compile_with, naive_op_count};
 pub use dynamics::{
     estimated_cost_of, state_inputs, Choice, CompiledDynamics, Evaluator, BEST_MAX_N,
 };
-pub use engine::{Engine, EngineReport};
+pub use engine::{Engine, EngineReport, AUTO_JIT_AFTER_CALLS};
 pub use error::CompileError;
 #[doc(hidden)]
 pub use program::Instr;
