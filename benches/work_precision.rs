@@ -13,9 +13,9 @@
 //!
 //! Series, each a sweep of rtol = atol = 1e-3 … 1e-13 (fixed-step methods:
 //! a sweep of h = T/N):
-//! * qdot's Dopri5, Dop853, Vern7, Radau5 on the compiled equations (the path
-//!   of `qdot simulate`: machine code, `--evaluator auto`), and RK4, Gauss6
-//!   at fixed steps;
+//! * qdot's Dopri5, Dop853, Vern7, Radau5 on the compiled equations as
+//!   machine code (`--evaluator jit`, what `auto` runs past 25,000
+//!   right-hand sides), and RK4, Gauss6 at fixed steps;
 //! * qdot's Dop853 on the same equations interpreted (`--evaluator
 //!   interpreter`);
 //! * qdot's Dop853 on a hand-written Rust right-hand side (`hand/mod.rs`),
@@ -35,6 +35,10 @@
 //! Baumgarte-stabilized augmented system) max |g| over the accepted steps
 //! (an untimed run).
 //!
+//! The report ends with the symbolic side (`wp_symbolic.rs`): the n-link
+//! chain derived by qdot and SymEngine, and the 5-link chain's exact
+//! accelerations by `qdot solve` as a process.
+//!
 //! For the constrained problem the report also measures Baumgarte's α:
 //! the qdot adaptive methods at α = 0, 1 and 10 on [0, T] (time at equal
 //! error, drift) and DOP853 over about 100 periods, where the drift of
@@ -45,6 +49,7 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 #[path = "hand/mod.rs"]
 mod hand;
+mod wp_symbolic;
 
 use hand::Hand;
 use plotters::prelude::*;
@@ -337,9 +342,10 @@ fn method_label(m: Method) -> &'static str {
 
 fn run_problem(p: &Problem, tolerances: &[f64], quick: bool) -> Result<Report, String> {
     let mut sys = p.dynamics().map_err(|d| d.message)?;
-    // the interpreter's copy, then machine code as `qdot simulate` runs it
+    // the interpreter's copy, then machine code (what `qdot simulate` runs
+    // past its first 25,000 right-hand sides; compiled before the timing)
     let mut interpreted = sys.clone();
-    sys.use_engine(Engine::Auto);
+    sys.use_engine(Engine::Jit);
     let energy = p.energy().map_err(|d| d.message)?;
     let constraints = p.constraints().map_err(|d| d.message)?;
     let h0 = energy.as_ref().map(|e| energy_at(e, 0.0, &p.y0));
@@ -1308,6 +1314,7 @@ fn main() {
     } else if let Err(e) = &scipy {
         eprintln!("work_precision: SciPy not measured: {e}");
     }
+    let symbolic = wp_symbolic::measure(root);
     let wall = t0.elapsed().as_secs_f64();
     if let Err(e) = std::fs::create_dir_all(&out_dir) {
         eprintln!("work_precision: {}: {e}", out_dir.display());
@@ -1331,7 +1338,8 @@ fn main() {
             }
         }
     }
-    let md = markdown(&reports, &scipy, &started, wall);
+    let mut md = markdown(&reports, &scipy, &started, wall);
+    md.push_str(&wp_symbolic::markdown(&symbolic));
     let md_path = out_dir.join("work-precision.md");
     if let Err(e) = std::fs::write(&md_path, &md) {
         eprintln!("work_precision: {}: {e}", md_path.display());
@@ -1369,8 +1377,19 @@ fn main() {
         .collect();
     let results = root.join("benches/results");
     let _ = std::fs::create_dir_all(&results);
-    let text = serde_json::to_string_pretty(&json!({"generated": started, "problems": raw}))
-        .unwrap_or_default();
+    let symbolic_json = match &symbolic {
+        Ok(s) => json!({
+            "derive": s.derive.iter().map(|(n, q, e)| json!({"n": n, "qdot": q, "symengine": e})).collect::<Vec<_>>(),
+            "symengine": s.symengine.as_ref().ok(),
+            "chain5_cli_seconds": s.chain5_cli.as_ref().ok(),
+            "chain5_library_seconds": s.chain5_library,
+        }),
+        Err(e) => json!({"error": e}),
+    };
+    let text = serde_json::to_string_pretty(
+        &json!({"generated": started, "problems": raw, "symbolic": symbolic_json}),
+    )
+    .unwrap_or_default();
     if let Err(e) = std::fs::write(results.join("work_precision.json"), text) {
         eprintln!("work_precision: {e}");
     }
