@@ -8,7 +8,7 @@
 //! expressions never carry denominators and no gcd is computed until the end.
 //!
 //! Systems with angles and no radicals are eliminated in the exponential
-//! basis zₖ = e^{iθₖ} ([`laurent`]), where sin² + cos² = 1 holds throughout
+//! basis zₖ = e^{iθₖ} (`linear/laurent.rs`), where sin² + cos² = 1 holds throughout
 //! and the entries stay as small as their reduced forms. The others run in
 //! the free polynomial ring (sin and cos as independent variables), where
 //! Sylvester's identity makes every division exact; the relation
