@@ -5,8 +5,9 @@
 /// --evaluator`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Engine {
-    /// Machine code when it compiles (the `jit` feature), else the
-    /// interpreter.
+    /// With the `jit` feature, the interpreter for the first
+    /// [`AUTO_JIT_AFTER_CALLS`] right-hand sides, then machine code where
+    /// it compiles; without it, the interpreter.
     #[default]
     Auto,
     /// The interpreter of the register program ([`super::Program::run`]):
