@@ -61,6 +61,8 @@ pub fn solve_rect(
     let mut rows = crate::algebra::linear::cleared_rows(a, b);
     let mut orig: Vec<usize> = (0..m).collect();
     let mut prev = Poly::one();
+    // the whole elimination is charged to the work budget, not only each product
+    let work = crate::budget::WorkMeter::new();
     let mut r = 0;
     let mut pivots = Vec::new();
     let mut free = Vec::new();
@@ -80,7 +82,10 @@ pub fn solve_rect(
         orig.swap(r, p);
         for i in r + 1..m {
             for j in c + 1..=n {
+                work.charge(rows[r][c].len(), rows[i][j].len());
+                work.charge(rows[i][c].len(), rows[r][j].len());
                 let t = &(&rows[r][c] * &rows[i][j]) - &(&rows[i][c] * &rows[r][j]);
+                work.charge(t.len(), prev.len());
                 rows[i][j] = crate::algebra::linear::exact(&t, &prev)?;
             }
             rows[i][c] = Poly::zero();
