@@ -22,9 +22,12 @@
 //! The stage vectors are allocated once per integration; the step loop does
 //! not allocate (except to record output).
 
+mod combine;
+mod stepper;
 mod tableaus;
 
 use super::{initial_step, IntegratorOptions, Method, SimError, Solution, Stats, Status, System};
+use stepper::{all_finite, Stepper};
 use tableaus::Tableau;
 
 /// Integrate with an explicit method (`Rk4`, `Dopri5`, `Dop853`, `Vern7`);
@@ -151,352 +154,6 @@ impl Kind {
             Kind::Rk4 => 4,
             Kind::Dopri5 => 5,
             Kind::Dop853 | Kind::Vern7 => 8,
-        }
-    }
-}
-
-/// One integration's work space.
-struct Stepper {
-    kind: Kind,
-    tab: &'static Tableau,
-    n: usize,
-    /// Stage derivatives, slot-major (`slots × n`); slot 0 = f(t, y).
-    k: Vec<f64>,
-    /// The last stage point of the step proper (kept for the stiffness test).
-    ytmp: Vec<f64>,
-    /// The proposed y(t + h).
-    y_new: Vec<f64>,
-    /// Error estimate vectors.
-    err: Vec<f64>,
-    err2: Vec<f64>,
-    /// Dense-output coefficient vectors (`n_cont × n`).
-    cont: Vec<f64>,
-    /// The tableau's rows a and b without zeros.
-    rows: Vec<Row>,
-    b: Row,
-    /// The weights of the (first) error estimate without zeros: DOPRI5's
-    /// e, DOP853's 5th-order estimate, Vern7's b − b̂.
-    est: Row,
-    /// n zeros (the base point of an estimate).
-    zeros: Vec<f64>,
-}
-
-/// A row of a Butcher tableau without its zeros: the slot offsets j·n and
-/// the coefficients aⱼ of the nonzero entries (built once per integration).
-#[derive(Clone, Debug, Default)]
-struct Row {
-    offsets: Vec<usize>,
-    coefs: Vec<f64>,
-}
-
-impl Row {
-    fn new(row: &[f64], n: usize) -> Row {
-        let mut r = Row::default();
-        for (j, &a) in row.iter().enumerate() {
-            if a != 0.0 {
-                r.offsets.push(j * n);
-                r.coefs.push(a);
-            }
-        }
-        r
-    }
-}
-
-/// out = y + h Σⱼ aⱼ kⱼ over the nonzero entries of `row`.
-///
-/// Systems of dimension n ≤ 8 use a copy of the loop with n known at
-/// compile time ([`combine_n`]), which the compiler unrolls into a few
-/// vector instructions per stage; with n unknown, the per-stage loops of
-/// length 2 or 4 cost more in overhead than in arithmetic (the `ode_solvers`
-/// comparison of the work-precision report showed it). Larger systems add
-/// one scaled stage vector at a time (axpy), which vectorizes.
-fn combine(y: &[f64], h: f64, row: &Row, k: &[f64], n: usize, out: &mut [f64]) {
-    match n {
-        1 => combine_n::<1>(y, h, row, k, out),
-        2 => combine_n::<2>(y, h, row, k, out),
-        3 => combine_n::<3>(y, h, row, k, out),
-        4 => combine_n::<4>(y, h, row, k, out),
-        5 => combine_n::<5>(y, h, row, k, out),
-        6 => combine_n::<6>(y, h, row, k, out),
-        7 => combine_n::<7>(y, h, row, k, out),
-        8 => combine_n::<8>(y, h, row, k, out),
-        _ => {
-            out.copy_from_slice(y);
-            for (&base, &a) in row.offsets.iter().zip(&row.coefs) {
-                let ha = h * a;
-                for (o, &kv) in out.iter_mut().zip(&k[base..base + n]) {
-                    *o += ha * kv;
-                }
-            }
-        }
-    }
-}
-
-/// [`combine`] for a dimension N known at compile time.
-#[inline]
-fn combine_n<const N: usize>(y: &[f64], h: f64, row: &Row, k: &[f64], out: &mut [f64]) {
-    let mut acc = [0.0f64; N];
-    for (&base, &a) in row.offsets.iter().zip(&row.coefs) {
-        if let Ok(kj) = <&[f64; N]>::try_from(&k[base..base + N]) {
-            for (s, kv) in acc.iter_mut().zip(kj) {
-                *s += a * kv;
-            }
-        }
-    }
-    for ((o, yi), s) in out.iter_mut().zip(y).zip(&acc) {
-        *o = yi + h * s;
-    }
-}
-
-fn all_finite(v: &[f64]) -> bool {
-    v.iter().all(|x| x.is_finite())
-}
-
-impl Stepper {
-    fn new(kind: Kind, n: usize) -> Stepper {
-        let tab = kind.tableau();
-        Stepper {
-            kind,
-            tab,
-            n,
-            k: vec![0.0; tab.slots * n],
-            ytmp: vec![0.0; n],
-            y_new: vec![0.0; n],
-            err: vec![0.0; n],
-            err2: vec![0.0; n],
-            cont: vec![0.0; kind.n_cont() * n],
-            rows: tab.a.iter().map(|r| Row::new(r, n)).collect(),
-            b: Row::new(tab.b, n),
-            est: match kind {
-                Kind::Rk4 => Row::default(),
-                Kind::Dopri5 => Row::new(&tableaus::DOPRI5_E, n),
-                Kind::Dop853 => Row::new(&tableaus::DOP853_ER, n),
-                Kind::Vern7 => {
-                    let e: Vec<f64> = tab
-                        .b
-                        .iter()
-                        .zip(&tableaus::VERN7_BHAT)
-                        .map(|(b, bh)| b - bh)
-                        .collect();
-                    Row::new(&e, n)
-                }
-            },
-            zeros: vec![0.0; n],
-        }
-    }
-
-    fn slot(&self, i: usize) -> &[f64] {
-        &self.k[i * self.n..(i + 1) * self.n]
-    }
-
-    /// Compute the stages of slots `from..to` (each from the slots before it).
-    #[allow(clippy::too_many_arguments)]
-    fn stages<S: System + ?Sized>(
-        &mut self,
-        sys: &mut S,
-        t: f64,
-        y: &[f64],
-        h: f64,
-        from: usize,
-        to: usize,
-        stats: &mut Stats,
-    ) {
-        let n = self.n;
-        for i in from..to {
-            let (done, rest) = self.k.split_at_mut(i * n);
-            combine(y, h, &self.rows[i], done, n, &mut self.ytmp);
-            sys.rhs(t + self.tab.c[i] * h, &self.ytmp, &mut rest[..n]);
-        }
-        stats.rhs_evals += to.saturating_sub(from);
-    }
-
-    /// One attempted step from (t, y) with slot 0 = f(t, y): the stages, the
-    /// proposed `y_new`, and the error norm (0 when `estimate` is false or
-    /// the method has no estimator).
-    #[allow(clippy::too_many_arguments, clippy::needless_range_loop)]
-    fn attempt<S: System + ?Sized>(
-        &mut self,
-        sys: &mut S,
-        t: f64,
-        y: &[f64],
-        h: f64,
-        rtol: f64,
-        atol: f64,
-        estimate: bool,
-        stats: &mut Stats,
-    ) -> f64 {
-        let n = self.n;
-        let s = self.tab.s;
-        self.stages(sys, t, y, h, 1, s, stats);
-        combine(y, h, &self.b, &self.k, n, &mut self.y_new);
-        if !estimate {
-            return 0.0;
-        }
-        match self.kind {
-            Kind::Rk4 => 0.0,
-            Kind::Dopri5 => {
-                // FSAL: slot 6 = f(t + h, y_new) enters the estimate
-                let (_, rest) = self.k.split_at_mut(s * n);
-                sys.rhs(t + h, &self.y_new, &mut rest[..n]);
-                stats.rhs_evals += 1;
-                combine(&self.zeros, h, &self.est, &self.k, n, &mut self.err);
-                super::error_norm(&self.err, y, &self.y_new, rtol, atol)
-            }
-            Kind::Dop853 => {
-                // 5th-order estimate `err`, 3rd-order estimate `err2`
-                combine(&self.zeros, 1.0, &self.est, &self.k, n, &mut self.err);
-                for i in 0..n {
-                    let mut v = (self.y_new[i] - y[i]) / h;
-                    for &(j, w) in &tableaus::DOP853_BHH {
-                        v -= w * self.k[j * n + i];
-                    }
-                    self.err2[i] = v;
-                }
-                let (mut e5, mut e3) = (0.0, 0.0);
-                for i in 0..n {
-                    let sk = atol + rtol * y[i].abs().max(self.y_new[i].abs());
-                    e5 += (self.err[i] / sk).powi(2);
-                    e3 += (self.err2[i] / sk).powi(2);
-                }
-                let mut deno = e5 + 0.01 * e3;
-                if deno <= 0.0 {
-                    deno = 1.0;
-                }
-                h.abs() * e5 * (1.0 / (n.max(1) as f64 * deno)).sqrt()
-            }
-            Kind::Vern7 => {
-                combine(&self.zeros, h, &self.est, &self.k, n, &mut self.err);
-                super::error_norm(&self.err, y, &self.y_new, rtol, atol)
-            }
-        }
-    }
-
-    /// After acceptance: slot `s` = f(t + h, y_new) (already there for
-    /// DOPRI5 when the estimate was made).
-    fn finish<S: System + ?Sized>(
-        &mut self,
-        sys: &mut S,
-        t: f64,
-        h: f64,
-        have_fsal: bool,
-        stats: &mut Stats,
-    ) {
-        if self.kind == Kind::Dopri5 && have_fsal {
-            return;
-        }
-        let n = self.n;
-        let s = self.tab.s;
-        let (_, rest) = self.k.split_at_mut(s * n);
-        sys.rhs(t + h, &self.y_new, &mut rest[..n]);
-        stats.rhs_evals += 1;
-    }
-
-    /// Hairer's stiffness estimate h·|λ| ≈ h·‖f(y₁) − f(ŷ)‖/‖y₁ − ŷ‖ with ŷ the
-    /// last stage point (also at t + h).
-    fn stiffness(&self, h: f64) -> Option<f64> {
-        let s = self.tab.s;
-        let (mut num, mut den) = (0.0, 0.0);
-        for i in 0..self.n {
-            num += (self.slot(s)[i] - self.slot(s - 1)[i]).powi(2);
-            den += (self.y_new[i] - self.ytmp[i]).powi(2);
-        }
-        (den > 0.0).then(|| h.abs() * (num / den).sqrt())
-    }
-
-    /// Build the dense output of the accepted step (t, y) → (t + h, y_new),
-    /// slot `s` holding f(t + h, y_new).
-    #[allow(clippy::needless_range_loop)]
-    fn prepare_dense<S: System + ?Sized>(
-        &mut self,
-        sys: &mut S,
-        t: f64,
-        y: &[f64],
-        h: f64,
-        stats: &mut Stats,
-    ) {
-        let n = self.n;
-        let s = self.tab.s;
-        if self.kind == Kind::Vern7 {
-            self.stages(sys, t, y, h, s + 1, self.tab.slots, stats);
-            // cont[0] = y, cont[k+1] = h Σᵢ bi[i][k] kᵢ
-            self.cont[..n].copy_from_slice(y);
-            for m in 0..7 {
-                let c = &mut self.cont[(m + 1) * n..(m + 2) * n];
-                c.fill(0.0);
-                for (i, row) in tableaus::VERN7_BI.iter().enumerate() {
-                    let w = h * row[m];
-                    if w != 0.0 {
-                        for (o, &kv) in c.iter_mut().zip(&self.k[i * n..(i + 1) * n]) {
-                            *o += w * kv;
-                        }
-                    }
-                }
-            }
-            return;
-        }
-        if self.kind == Kind::Dop853 {
-            self.stages(sys, t, y, h, s + 1, self.tab.slots, stats);
-        }
-        // Hairer's form: y + θ(Δ + θ₁(hf₀ − Δ + θ(Δ − hf₁ − (hf₀ − Δ) + θ₁(…))))
-        for i in 0..n {
-            let ydiff = self.y_new[i] - y[i];
-            let bspl = h * self.k[i] - ydiff;
-            self.cont[i] = y[i];
-            self.cont[n + i] = ydiff;
-            self.cont[2 * n + i] = bspl;
-            self.cont[3 * n + i] = ydiff - h * self.k[s * n + i] - bspl;
-        }
-        match self.kind {
-            Kind::Dopri5 => {
-                for i in 0..n {
-                    let mut v = 0.0;
-                    for (j, &d) in tableaus::DOPRI5_D.iter().enumerate() {
-                        v += d * self.k[j * n + i];
-                    }
-                    self.cont[4 * n + i] = h * v;
-                }
-            }
-            Kind::Dop853 => {
-                for (r, drow) in tableaus::DOP853_D.iter().enumerate() {
-                    for i in 0..n {
-                        let mut v = 0.0;
-                        for (j, &d) in drow.iter().enumerate() {
-                            if d != 0.0 {
-                                v += d * self.k[j * n + i];
-                            }
-                        }
-                        self.cont[(4 + r) * n + i] = h * v;
-                    }
-                }
-            }
-            Kind::Rk4 | Kind::Vern7 => {}
-        }
-    }
-
-    /// The dense output at θ = (t − t_step)/h into `out`.
-    fn dense(&self, theta: f64, out: &mut [f64]) {
-        let n = self.n;
-        let m = self.kind.n_cont();
-        let c = |j: usize, i: usize| self.cont[j * n + i];
-        if self.kind == Kind::Vern7 {
-            for (i, o) in out.iter_mut().enumerate() {
-                let mut acc = c(7, i);
-                for j in (1..7).rev() {
-                    acc = c(j, i) + theta * acc;
-                }
-                *o = c(0, i) + theta * acc;
-            }
-            return;
-        }
-        let theta1 = 1.0 - theta;
-        for (i, o) in out.iter_mut().enumerate() {
-            // multiplier after coefficient j (0-based): θ for even j, θ₁ for odd
-            let mut acc = c(m - 1, i);
-            for j in (0..m - 1).rev() {
-                let w = if j % 2 == 0 { theta } else { theta1 };
-                acc = c(j, i) + w * acc;
-            }
-            *o = acc;
         }
     }
 }
@@ -700,7 +357,6 @@ fn run<S: System + ?Sized>(
     let n = y0.len();
     let (t0, t_end) = (opts.t0, opts.t_end);
     let dir = if t_end >= t0 { 1.0 } else { -1.0 };
-    let par = kind.params();
     let mut st = Stepper::new(kind, n);
     let mut stats = Stats::default();
     let mut sol = Solution {
@@ -735,12 +391,15 @@ fn run<S: System + ?Sized>(
     let mut h = first_step(sys, &mut st, opts, fixed, &y, dir, hmax, &mut stats);
 
     let mut t = t0;
-    let mut facold: f64 = 1e-4;
-    let mut reject = false;
+    let mut ctl = Controller {
+        par: kind.params(),
+        facold: 1e-4,
+        reject: false,
+        hmax,
+        dir,
+    };
     let mut last_nonfinite = false;
     let (mut iasti, mut nonsti) = (0usize, 0usize);
-    let s = st.tab.s;
-
     loop {
         if stats.steps + stats.rejected >= opts.max_steps {
             return finish(sol, stats, Status::TooManySteps { t });
@@ -767,62 +426,55 @@ fn run<S: System + ?Sized>(
             st.finish(sys, t, h, false, &mut stats);
             h
         } else {
-            if !err.is_finite() {
-                // a stage left the domain or overflowed: retry smaller
-                last_nonfinite = true;
-                stats.rejected += 1;
-                reject = true;
-                h *= par.fac1;
-                continue;
+            last_nonfinite = !err.is_finite();
+            match ctl.judge(err, h) {
+                Ok(h_new) => {
+                    st.finish(sys, t, h, true, &mut stats);
+                    h_new
+                }
+                Err(smaller) => {
+                    stats.rejected += 1;
+                    h = smaller;
+                    continue;
+                }
             }
-            last_nonfinite = false;
-            let fac11 = err.powf(par.expo);
-            let fac =
-                (fac11 / facold.powf(par.beta) / par.safe).clamp(1.0 / par.fac2, 1.0 / par.fac1);
-            if err > 1.0 {
-                stats.rejected += 1;
-                reject = true;
-                h /= (1.0 / par.fac1).min(fac11 / par.safe);
-                continue;
-            }
-            facold = err.max(1e-4);
-            let mut h_new = h / fac;
-            if h_new.abs() > hmax {
-                h_new = hmax * dir;
-            }
-            if reject {
-                h_new = h_new.abs().min(h.abs()) * dir;
-            }
-            reject = false;
-            st.finish(sys, t, h, true, &mut stats);
-            accept_stiffness(&st, &par, h, t, &mut iasti, &mut nonsti, &mut sol);
-            h_new
         };
         stats.steps += 1;
-        if !all_finite(&st.y_new) || !all_finite(st.slot(s)) {
+        // the stiffness test (adaptive methods) and whether the step's end
+        // is finite, in one pass
+        let (finite, stiff) = st.check_end(h, if fixed { None } else { ctl.par.stiff_limit });
+        if let Some(stiff) = stiff {
+            count_stiffness(stiff, t, &mut iasti, &mut nonsti, &mut sol);
+        }
+        if !finite {
             return finish(sol, stats, Status::NotFinite { t });
         }
         let t_new = if last { t_end } else { t + h };
-        if let Some(te) = output(
-            sys,
-            &mut st,
-            &mut sol,
-            &mut stats,
-            &mut event,
-            &mut g_prev,
-            t_out,
-            &mut iout,
-            record_steps,
-            t,
-            t_new,
-            &y,
-            h,
-            &mut buf,
-        ) {
-            return finish(sol, stats, Status::Event { t: te });
+        // nothing to record or check in this step: skip the call
+        let quiet = event.is_none()
+            && !record_steps
+            && t_out.get(iout).is_none_or(|&to| (to - t_new) * dir > 0.0);
+        if !quiet {
+            if let Some(te) = output(
+                sys,
+                &mut st,
+                &mut sol,
+                &mut stats,
+                &mut event,
+                &mut g_prev,
+                t_out,
+                &mut iout,
+                record_steps,
+                t,
+                t_new,
+                &y,
+                h,
+                &mut buf,
+            ) {
+                return finish(sol, stats, Status::Event { t: te });
+            }
         }
-        std::mem::swap(&mut y, &mut st.y_new);
-        st.k.copy_within(s * n..(s + 1) * n, 0);
+        st.advance(&mut y);
         t = t_new;
         if last {
             return finish(sol, stats, Status::Done);
@@ -831,35 +483,66 @@ fn run<S: System + ?Sized>(
     }
 }
 
+/// Hairer's step-size controller with Lund stabilization.
+struct Controller {
+    par: Params,
+    /// The error norm of the last accepted step (at least 1e-4).
+    facold: f64,
+    /// The last attempt was rejected.
+    reject: bool,
+    hmax: f64,
+    dir: f64,
+}
+
+impl Controller {
+    /// The verdict on an attempt of step `h` with error norm `err`: the
+    /// next step when it is accepted, else the smaller step to retry with
+    /// (`err` not finite: a stage left the domain or overflowed).
+    fn judge(&mut self, err: f64, h: f64) -> Result<f64, f64> {
+        let par = &self.par;
+        if !err.is_finite() {
+            self.reject = true;
+            return Err(h * par.fac1);
+        }
+        let fac11 = err.powf(par.expo);
+        // with β = 0 (DOP853, Vern7) facold^β = 1 exactly: no pow call and
+        // no division by it on the way to the next step
+        let fac = if par.beta == 0.0 {
+            fac11 / par.safe
+        } else {
+            fac11 / self.facold.powf(par.beta) / par.safe
+        };
+        let fac = fac.clamp(1.0 / par.fac2, 1.0 / par.fac1);
+        if err > 1.0 {
+            self.reject = true;
+            return Err(h / (1.0 / par.fac1).min(fac11 / par.safe));
+        }
+        self.facold = err.max(1e-4);
+        let mut h_new = h / fac;
+        if h_new.abs() > self.hmax {
+            h_new = self.hmax * self.dir;
+        }
+        if self.reject {
+            h_new = h_new.abs().min(h.abs()) * self.dir;
+        }
+        self.reject = false;
+        Ok(h_new)
+    }
+}
+
 /// Hairer's stiffness bookkeeping after an accepted step: 15 positive tests
 /// (h·|λ| > limit) without 6 negative ones in a row in between → stiff.
-fn accept_stiffness(
-    st: &Stepper,
-    par: &Params,
-    h: f64,
-    t: f64,
-    iasti: &mut usize,
-    nonsti: &mut usize,
-    sol: &mut Solution,
-) {
-    let Some(limit) = par.stiff_limit else {
-        return;
-    };
-    if st.kind == Kind::Rk4 {
-        return;
-    }
-    if let Some(hlamb) = st.stiffness(h) {
-        if hlamb > limit {
-            *nonsti = 0;
-            *iasti += 1;
-            if *iasti == 15 && sol.stiff_at.is_none() {
-                sol.stiff_at = Some(t);
-            }
-        } else {
-            *nonsti += 1;
-            if *nonsti == 6 {
-                *iasti = 0;
-            }
+fn count_stiffness(stiff: bool, t: f64, iasti: &mut usize, nonsti: &mut usize, sol: &mut Solution) {
+    if stiff {
+        *nonsti = 0;
+        *iasti += 1;
+        if *iasti == 15 && sol.stiff_at.is_none() {
+            sol.stiff_at = Some(t);
+        }
+    } else {
+        *nonsti += 1;
+        if *nonsti == 6 {
+            *iasti = 0;
         }
     }
 }

@@ -577,6 +577,18 @@ pub(crate) const VERN7_BHAT: [f64; 10] = [
     0.2029518466335628222767054793810430358554e-1,
 ];
 
+/// Vern7's error weights b − b̂ over slots 0..10 (the estimate is
+/// h·Σ eᵢkᵢ), as the driver subtracted them at run time.
+pub(crate) const VERN7_E: [f64; 10] = {
+    let mut e = [0.0; 10];
+    let mut i = 0;
+    while i < 10 {
+        e[i] = B_VERN7[i] - VERN7_BHAT[i];
+        i += 1;
+    }
+    e
+};
+
 /// Vern7's interpolant: bᵢ(θ) = Σₖ `VERN7_BI[i][k]`·θ^(k+1) over slots 0..16,
 /// y(t + θh) ≈ y + h Σᵢ bᵢ(θ) kᵢ.
 pub(crate) const VERN7_BI: [[f64; 7]; 16] = [
