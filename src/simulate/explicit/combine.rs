@@ -11,7 +11,7 @@
 //! Both keep the order of the floating-point operations the driver always
 //! had, so that results do not depend on this choice: for n ≤ 8 the sum
 //! Σⱼ aⱼkⱼ from 0, then y + h·sum; for larger n, y then += (h·aⱼ)·kⱼ in
-//! order (one scaled stage vector at a time, which vectorizes).
+//! the row's order.
 
 /// A dimension and the combination of stage vectors at it.
 pub(super) trait Lanes: Copy {
