@@ -77,11 +77,7 @@ fn solve_free(a: &[Vec<Expr>], mut m: Vec<Vec<Poly>>) -> Result<Vec<Expr>, Solve
         m.swap(k, p);
         for i in k + 1..n {
             for j in k + 1..=n {
-                work.charge(m[k][k].len(), m[i][j].len());
-                work.charge(m[i][k].len(), m[k][j].len());
-                let t = &(&m[k][k] * &m[i][j]) - &(&m[i][k] * &m[k][j]);
-                work.charge(t.len(), prev.len());
-                m[i][j] = exact(&t, &prev)?;
+                m[i][j] = bareiss_entry(&work, [&m[k][k], &m[i][j], &m[i][k], &m[k][j]], &prev)?;
             }
             m[i][k] = Poly::zero();
         }
@@ -140,6 +136,22 @@ pub(crate) fn cleared_rows(a: &[Vec<Expr>], b: &[Expr]) -> Vec<Vec<Poly>> {
 /// ring, so a pivot must be tested after reduction).
 pub(crate) fn nonzero(p: &Poly) -> bool {
     !p.is_zero() && !crate::expr::reduce_poly(p).is_zero()
+}
+
+/// One entry of a fraction-free elimination step, (p·x − l·u) / prev with
+/// `[p, x, l, u]` the pivot, the entry, its row's pivot-column entry and
+/// its column's pivot-row entry (Sylvester's identity makes it exact);
+/// every product and the division charged to `work`.
+pub(crate) fn bareiss_entry(
+    work: &crate::budget::WorkMeter,
+    [p, x, l, u]: [&Poly; 4],
+    prev: &Poly,
+) -> Result<Poly, SolveError> {
+    work.charge(p.len(), x.len());
+    work.charge(l.len(), u.len());
+    let t = &(p * x) - &(l * u);
+    work.charge(t.len(), prev.len());
+    exact(&t, prev)
 }
 
 /// t / d, which fraction-free elimination guarantees to be exact.

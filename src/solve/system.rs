@@ -82,11 +82,11 @@ pub fn solve_rect(
         orig.swap(r, p);
         for i in r + 1..m {
             for j in c + 1..=n {
-                work.charge(rows[r][c].len(), rows[i][j].len());
-                work.charge(rows[i][c].len(), rows[r][j].len());
-                let t = &(&rows[r][c] * &rows[i][j]) - &(&rows[i][c] * &rows[r][j]);
-                work.charge(t.len(), prev.len());
-                rows[i][j] = crate::algebra::linear::exact(&t, &prev)?;
+                rows[i][j] = crate::algebra::linear::bareiss_entry(
+                    &work,
+                    [&rows[r][c], &rows[i][j], &rows[i][c], &rows[r][j]],
+                    &prev,
+                )?;
             }
             rows[i][c] = Poly::zero();
         }

@@ -136,7 +136,8 @@ impl Tier {
             ran = true;
             compile()
         });
-        self.compiled_here = ran;
+        // (later calls, after a failed compilation, must not clear it)
+        self.compiled_here |= ran;
         out
     }
 
