@@ -248,6 +248,20 @@ fn lowest_terms() {
     assert_eq!(e, s.expr("(x + y)/(2*b)").unwrap());
 }
 
+/// A case proptest found: |d| for a denominator of unknown sign is √(d²),
+/// which once kept a parameter's powers inside the root (√(a⁴·q)) where
+/// parsing the printed form takes them out (a²·√q), so the printed form
+/// read back as a different expression. Both are built by `sqrt` now.
+#[test]
+fn a_denominators_absolute_value_prints_and_parses_back() {
+    let s = scene();
+    let src = "sqrt(b + ((1) / (a + cos(x - y) * a*cos(x - y) * a))^2)";
+    let e = s.expr(src).unwrap();
+    let again = s.expr(&e.to_string()).unwrap();
+    assert_eq!(again, e, "{src} printed as {e}");
+    assert!(!e.to_string().contains("sqrt(a^"), "{e}");
+}
+
 /// A case proptest once found: the derivative of a square root of a
 /// rational function of cos(x − y) is exact, but its expanded form cancels
 /// catastrophically in floating point at some points. At a well-conditioned

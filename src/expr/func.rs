@@ -475,12 +475,17 @@ fn abs_of_denominator(d: &Poly) -> Expr {
     } else if certainly_negative(d) {
         Expr::from_poly(neg)
     } else {
-        // |c·p| = |c|·√(p²) with p primitive: the root shows as |g·M − 6·k·l|
+        // |c·p| = |c|·√(p²) with p primitive: the root shows as |g·M − 6·k·l|.
+        // √(p²) is taken by `sqrt` itself, so that it takes out what `sqrt`
+        // takes out (a parameter's powers, √(a⁴·q) = a²·√q) and reads back
+        // as the same expression when printed and parsed again.
         let c = d.content().abs();
         let p = d.scale(&Q::one().checked_div(&c).unwrap_or_else(Q::one));
-        let square = &p * &p;
-        let v = atom::intern_radical(Atom::SqrtOf(Expr::from_poly(square.clone())), square);
-        Expr::var(v).scale(&c)
+        match sqrt(&Expr::poly(&p * &p)) {
+            Ok(root) => root.scale(&c),
+            // unreachable: p² ≥ 0 is never certainly negative
+            Err(_) => Expr::from_poly(d.clone()),
+        }
     }
 }
 
