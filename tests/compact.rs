@@ -147,7 +147,7 @@ fn trig_poly() -> impl Strategy<Value = String> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 300, .. ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: crate::common::proptest_cases(300), ..ProptestConfig::default() })]
 
     /// Quotients of trigonometric polynomials in two angles (where the
     /// compact forms rewrite most: both reductions, Fourier form,

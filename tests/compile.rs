@@ -528,7 +528,7 @@ pub(crate) fn random_expr() -> impl Strategy<Value = Expr> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 200, .. ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: crate::common::proptest_cases(200), ..ProptestConfig::default() })]
     #[test]
     fn random_expressions_agree(es in prop::collection::vec(random_expr(), 1..4), seed in 0u64..1000) {
         check_program(&es, 3, seed);

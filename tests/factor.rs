@@ -312,7 +312,7 @@ fn pieces() -> impl Strategy<Value = Vec<Poly>> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 48, .. ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: crate::common::proptest_cases(48), ..ProptestConfig::default() })]
 
     #[test]
     fn random_products(pieces in pieces(), num in -6i64..=6, den in 1i64..=5) {

@@ -275,7 +275,7 @@ fn elementary_functions_and_powers_agree() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 64, .. ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: crate::common::proptest_cases(64), ..ProptestConfig::default() })]
     #[test]
     fn random_expressions_agree(es in prop::collection::vec(random_expr(), 1..4), seed in 0u64..1000) {
         check_program(&es, 4, seed);

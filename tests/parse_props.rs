@@ -185,7 +185,7 @@ fn check_one_expr(src: &str) -> Result<(), TestCaseError> {
 // (a) arbitrary input
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: crate::common::proptest_cases(512), ..ProptestConfig::default() })]
 
     #[test]
     fn random_bytes_never_panic(bytes in prop::collection::vec(any::<u8>(), 0..200)) {
@@ -354,7 +354,7 @@ fn reprint_roundtrip(stmts: &[Stmt]) -> Result<(), TestCaseError> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 1024, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: crate::common::proptest_cases(1024), ..ProptestConfig::default() })]
 
     #[test]
     fn token_sequences_never_panic(src in token_source()) {
@@ -455,7 +455,7 @@ fn tree() -> impl Strategy<Value = Expr> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: crate::common::proptest_cases(512), ..ProptestConfig::default() })]
 
     #[test]
     fn printed_trees_parse_back(e in tree()) {
@@ -530,7 +530,7 @@ fn layout(printed: &str, style: u8) -> String {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: crate::common::proptest_cases(512), ..ProptestConfig::default() })]
 
     #[test]
     fn printed_statements_parse_back(st in new_statement(), style in 0u8..3) {

@@ -156,7 +156,7 @@ fn within_limits(r: Result<qdot::Expr, qdot::Diagnostic>) -> Option<qdot::Expr> 
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 500, .. ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: crate::common::proptest_cases(500), ..ProptestConfig::default() })]
 
     #[test]
     fn canonical_form_agrees_with_numeric_evaluation(src in expr_src(), v in vals()) {
@@ -260,6 +260,29 @@ fn a_denominators_absolute_value_prints_and_parses_back() {
     let again = s.expr(&e.to_string()).unwrap();
     assert_eq!(again, e, "{src} printed as {e}");
     assert!(!e.to_string().contains("sqrt(a^"), "{e}");
+}
+
+/// A case proptest found: cos²(2π/5) folded to cos(4π/5)/2 + 1/2, which
+/// reads back as 1/2 − cos(π/5)/2 (supplementary angles, true of the
+/// number but not of the multiple-angle algebra), so the printed form was
+/// another expression. Constant angles fold only within [−π/2, π/2] and
+/// off the multiples of π/12 now.
+#[test]
+fn constant_angles_print_and_parse_back() {
+    let s = scene();
+    for src in [
+        "(1) / (a + cos(((2/5) * pi))*cos(((2/5) * pi)))",
+        "cos(2*pi/5)^2",
+        "sin(2*pi/5)^2",
+        "cos(2*pi/7)^2 + a",
+        "cos(x + 2*pi/5)^2",
+        "cos(pi/8)^2",
+        "sin(pi/10)*cos(pi/10)",
+    ] {
+        let e = s.expr(src).unwrap();
+        let again = s.expr(&e.to_string()).unwrap();
+        assert_eq!(again, e, "{src} printed as {e}");
+    }
 }
 
 /// A case proptest once found: the derivative of a square root of a

@@ -138,7 +138,7 @@ fn add_angles(sa: &Expr, ca: &Expr, sb: &Expr, cb: &Expr) -> (Expr, Expr) {
 /// Split a coefficient c = p/q of a term c·m into a base coefficient and a
 /// multiple: (1/q, p) when |p| ≤ MAX_MULTIPLE and `multiples` allows it,
 /// else (|c|, ±1). So sin(3θ/2) uses the base angle θ/2, three times.
-fn split_multiple(c: &Q, multiples: bool) -> (Q, i64) {
+pub(crate) fn split_multiple(c: &Q, multiples: bool) -> (Q, i64) {
     let p = c.numer();
     if multiples && p.abs() <= BigInt::from(MAX_MULTIPLE) {
         let base = Q::one()

@@ -445,3 +445,13 @@ pub fn refused_where_written(dir: &std::path::Path, min: usize) {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// A property test's number of cases: `n`, or `PROPTEST_CASES` when set,
+/// so a long campaign (`PROPTEST_CASES=50000 cargo test --release --test it
+/// -- properties::`) needs no edit.
+pub fn proptest_cases(n: u32) -> u32 {
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(n)
+}

@@ -222,13 +222,65 @@ pub(crate) fn to_display(series: &[(Vec<i32>, Poly, Poly)], angles: &[(Var, Var,
 
 /// Whether every frequency vector is one that sin/cos expand back onto
 /// the same angles (multiples and number of angles within
-/// [`MULTIPLE_ANGLE_BOUNDS`](super::super::func::MULTIPLE_ANGLE_BOUNDS)).
-pub(crate) fn within_bounds(series: &[(Vec<i32>, Poly, Poly)]) -> bool {
+/// [`MULTIPLE_ANGLE_BOUNDS`](super::super::func::MULTIPLE_ANGLE_BOUNDS)),
+/// so that the folded form reads back as the expression it came from.
+/// For angles c·m, one power product m each, sin and cos of the argument
+/// Σ k·c·m take each term's own base angle (`split_multiple`), so:
+/// - k·c must split into the base c and the multiple k (cos(2·(x/4)) would
+///   read back as an atom of x/2, a stranger to x/4's);
+/// - no two angles of one vector may share m (3·(x/4) + x reads back in
+///   x/4 alone);
+/// - a constant angle k·c·π stays in [−π/2, π/2] and off the multiples
+///   of π/12: sin and cos reduce other multiples of π by supplementary
+///   angles (cos(4π/5) = −cos(π/5)), a fact about that number, not about
+///   the multiple-angle algebra the fold used, and a multiple of π/12 is
+///   a number (cos(2·π/8) reads back as √2/2).
+pub(crate) fn within_bounds(
+    series: &[(Vec<i32>, Poly, Poly)],
+    angles: &[(Var, Var, Expr)],
+) -> bool {
     let (max_multiple, max_terms) = super::super::func::MULTIPLE_ANGLE_BOUNDS;
+    let terms: Vec<Option<(Mono, Q)>> = angles.iter().map(|a| one_term(&a.2)).collect();
     series.iter().all(|(k, _, _)| {
         k.iter().all(|&x| (x as i64).abs() <= max_multiple)
             && k.iter().filter(|&&x| x != 0).count() <= max_terms
+            && reads_back(k, &terms)
     })
+}
+
+/// The conditions of [`within_bounds`] on one frequency vector.
+fn reads_back(k: &[i32], terms: &[Option<(Mono, Q)>]) -> bool {
+    let half = Q::new(1, 2).unwrap_or_else(Q::one);
+    let pi = Mono::var(atom::pi());
+    let mut seen: Vec<&Mono> = Vec::new();
+    for (&x, term) in k.iter().zip(terms) {
+        let (Some((m, c)), true) = (term, x != 0) else {
+            continue;
+        };
+        if seen.contains(&m) {
+            return false;
+        }
+        seen.push(m);
+        let angle = c * &Q::from_i64(x as i64);
+        let (base, multiple) = super::super::func::split_multiple(&angle, !m.is_one());
+        if base != c.abs() || multiple * i64::from(c.signum()) != x as i64 {
+            return false;
+        }
+        let exact = (&angle * &Q::from_i64(12)).is_integer();
+        if *m == pi && (angle.abs() > half || exact) {
+            return false;
+        }
+    }
+    true
+}
+
+/// (m, c) for an angle c·m of one term.
+fn one_term(u: &Expr) -> Option<(Mono, Q)> {
+    if !u.is_poly() || u.num().len() != 1 {
+        return None;
+    }
+    let (m, c) = &u.num().terms()[0];
+    Some((m.clone(), c.clone()))
 }
 
 /// cos(k·u) or sin(k·u) as one atom.

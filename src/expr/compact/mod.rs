@@ -164,7 +164,7 @@ fn representations(
             .all(|(_, _, u)| super::func::is_multiple_angle_base(u))
     {
         let (sn, sd) = (fourier::fourier(num, angles), fourier::fourier(den, angles));
-        if fourier::within_bounds(&sn) && fourier::within_bounds(&sd) {
+        if fourier::within_bounds(&sn, angles) && fourier::within_bounds(&sd, angles) {
             out.push((
                 fourier::to_display(&sn, angles),
                 fourier::to_display(&sd, angles),
