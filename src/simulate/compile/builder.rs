@@ -112,6 +112,13 @@ pub(super) struct Builder<'a> {
     pub(super) atoms: FxHashMap<Var, u32>,
     pub(super) polys: FxHashMap<Poly, u32>,
     pub(super) monos: FxHashMap<NodeMonomial, u32>,
+    /// Per node: whether it depends on an input other than a parameter
+    /// (the state or the time). Nodes that do not are the same on every
+    /// call of a simulation, and are grouped so that they stay off the
+    /// state's critical path (`k/m` once, not `(k·x)·(1/m)`).
+    pub(super) varies: Vec<bool>,
+    /// The input slots that hold parameters.
+    param_slots: Vec<bool>,
 }
 
 impl<'a> Builder<'a> {
@@ -120,6 +127,10 @@ impl<'a> Builder<'a> {
         for (i, &v) in inputs.iter().enumerate() {
             map.entry(v).or_insert(i as u32);
         }
+        let param_slots = inputs
+            .iter()
+            .map(|&v| matches!(atom::atom(v), Atom::Param(_)))
+            .collect();
         Builder {
             nodes: Vec::new(),
             index: FxHashMap::default(),
@@ -128,6 +139,8 @@ impl<'a> Builder<'a> {
             atoms: FxHashMap::default(),
             polys: FxHashMap::default(),
             monos: FxHashMap::default(),
+            varies: Vec::new(),
+            param_slots,
         }
         .with_input_count(inputs.len())
     }
@@ -146,7 +159,12 @@ impl<'a> Builder<'a> {
             return id;
         }
         let id = self.nodes.len() as u32;
+        let varies = match n {
+            Node::Input(slot) => !self.param_slots[slot as usize],
+            _ => n.operands().iter().any(|&o| self.varies[o as usize]),
+        };
         self.nodes.push(n);
+        self.varies.push(varies);
         self.index.insert(n, id);
         id
     }
@@ -259,9 +277,45 @@ impl<'a> Builder<'a> {
             }
             return Ok(self.horner(num));
         }
-        let n = self.poly(e.num())?;
         let d = self.poly(e.den())?;
+        if !self.varies[d as usize] {
+            return self.over_parameters(e.num(), d);
+        }
+        let n = self.poly(e.num())?;
         Ok(self.div(n, d))
+    }
+
+    /// n/d for a denominator d of parameters only: (±g/d)·h, where g is
+    /// the power product of parameters common to n's terms and the sign
+    /// one all of them share, so that g/d is computed apart from the state
+    /// and shared by every output that has it (`(−g/l)·sin θ`, `k/m`).
+    fn over_parameters(&mut self, num: &Poly, d: u32) -> Result<u32, CompileError> {
+        let mut p = self.node_poly(num)?;
+        if p.is_empty() {
+            return Ok(self.constant(0.0));
+        }
+        let fixed = |b: &Self, m: &NodeMonomial| -> NodeMonomial {
+            m.iter()
+                .filter(|t| !b.varies[t.0 as usize])
+                .copied()
+                .collect()
+        };
+        let mut g = fixed(self, &p[0].0);
+        for (m, _) in &p[1..] {
+            g = mono_gcd(&g, &fixed(self, m));
+        }
+        let negative = p.iter().all(|t| t.1 < 0.0);
+        for t in p.iter_mut() {
+            t.0 = mono_div(&t.0, &g);
+            if negative {
+                t.1 = -t.1;
+            }
+        }
+        let gm = self.mono(&g);
+        let base = self.div(gm, d);
+        let scale = if negative { self.neg(base) } else { base };
+        let rest = self.horner(p);
+        Ok(self.mul(scale, rest))
     }
 
     /// A polynomial, memoized by its exact form.
