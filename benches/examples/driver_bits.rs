@@ -184,7 +184,7 @@ fn main() {
     // the report's problems on the machine code
     for p in Problem::all() {
         let mut sys = p.dynamics().expect("compiles");
-        sys.use_engine(Engine::Auto);
+        sys.use_engine(Engine::Jit);
         for m in METHODS {
             for tol in [1e-4, 1e-9] {
                 let o = IntegratorOptions {

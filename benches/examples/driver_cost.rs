@@ -87,7 +87,7 @@ fn main() {
     let tol: f64 = tol.parse().expect("a tolerance");
     let runs: usize = runs.parse().expect("a count");
     let mut sys = p.dynamics().expect("compiles");
-    let r = sys.use_engine(Engine::Auto);
+    let r = sys.use_engine(Engine::Jit);
     assert_eq!(r.ran, Engine::Jit, "{r:?}");
     match driver.as_str() {
         "qdot" => {
