@@ -242,25 +242,9 @@ fn qdot_point<S: System>(
     })
 }
 
-/// The compiled dynamics behind `ode_solvers`' `&self` interface.
-struct OdeSolversRhs<'a, const D: usize>(&'a RefCell<CompiledDynamics>);
-
-impl<const D: usize> ode_solvers::System<f64, ode_solvers::SVector<f64, D>>
-    for OdeSolversRhs<'_, D>
-{
-    fn system(
-        &self,
-        t: f64,
-        y: &ode_solvers::SVector<f64, D>,
-        dy: &mut ode_solvers::SVector<f64, D>,
-    ) {
-        self.0.borrow_mut().rhs(t, y.as_slice(), dy.as_mut_slice());
-    }
-}
-
-/// One `ode_solvers` Dop853 point (state as a stack vector of dimension D,
-/// the crate's fastest form) on `sys`, compiled once by the caller: the
-/// timed runs only build the stepper (its work space) and integrate.
+/// One `ode_solvers` Dop853 point ([`qdot_benches::ode_solvers_dop853`])
+/// on `sys`, compiled once by the caller: the timed runs only build the
+/// stepper (its work space) and integrate.
 fn ode_solvers_point<const D: usize>(
     p: &Problem,
     sys: &RefCell<CompiledDynamics>,
@@ -268,33 +252,8 @@ fn ode_solvers_point<const D: usize>(
     extra: Extra,
     tol: f64,
 ) -> Option<Point> {
-    use ode_solvers::{Dop853, OutputType, SVector};
-    let y0 = SVector::<f64, D>::from_column_slice(&p.y0);
-    // Sparse output: every accepted step is recorded, and no dense-output
-    // coefficients are computed (Dense costs DOP853 three extra evaluations
-    // per step).
-    let make = || {
-        Dop853::from_param(
-            OdeSolversRhs::<D>(sys),
-            0.0,
-            p.t_end,
-            p.t_end,
-            y0,
-            tol,
-            tol,
-            0.9,
-            0.0,
-            0.333,
-            6.0,
-            p.t_end,
-            0.0,
-            50_000_000,
-            u32::MAX,
-            OutputType::Sparse,
-        )
-    };
     let (seconds, (stepper, stats)) = time_min(|| {
-        let mut stepper = make();
+        let mut stepper = qdot_benches::ode_solvers_dop853::<D>(p, sys, tol);
         let stats = stepper.integrate();
         (stepper, stats)
     });

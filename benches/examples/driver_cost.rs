@@ -22,56 +22,48 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 use qdot::simulate::compile::{CompiledDynamics, Engine};
 use qdot::simulate::problems::Problem;
-use qdot::simulate::{integrate, IntegratorOptions, Method, System};
+use qdot::simulate::{integrate, IntegratorOptions, Method};
 use std::cell::RefCell;
 use std::hint::black_box;
 
-/// The compiled dynamics behind `ode_solvers`' `&self` interface, as in
-/// `work_precision.rs`.
-struct OdeSolversRhs<'a, const D: usize>(&'a RefCell<CompiledDynamics>);
-
-impl<const D: usize> ode_solvers::System<f64, ode_solvers::SVector<f64, D>>
-    for OdeSolversRhs<'_, D>
-{
-    fn system(
-        &self,
-        t: f64,
-        y: &ode_solvers::SVector<f64, D>,
-        dy: &mut ode_solvers::SVector<f64, D>,
-    ) {
-        self.0.borrow_mut().rhs(t, y.as_slice(), dy.as_mut_slice());
-    }
-}
-
-/// One `ode_solvers` run: (accepted steps, rejected, evaluations, y(T)).
+/// One `ode_solvers` run, the report's configuration
+/// ([`qdot_benches::ode_solvers_dop853`]): (accepted steps, rejected,
+/// evaluations, y(T)).
 fn ode_solvers_run<const D: usize>(
     p: &Problem,
     sys: &RefCell<CompiledDynamics>,
     tol: f64,
 ) -> (u32, u32, u32, Vec<f64>) {
-    use ode_solvers::{Dop853, OutputType, SVector};
-    let y0 = SVector::<f64, D>::from_column_slice(&p.y0);
-    let mut stepper = Dop853::from_param(
-        OdeSolversRhs::<D>(sys),
-        0.0,
-        p.t_end,
-        p.t_end,
-        y0,
-        tol,
-        tol,
-        0.9,
-        0.0,
-        0.333,
-        6.0,
-        p.t_end,
-        0.0,
-        50_000_000,
-        u32::MAX,
-        OutputType::Sparse,
-    );
+    let mut stepper = qdot_benches::ode_solvers_dop853::<D>(p, sys, tol);
     let st = stepper.integrate().expect("integrates");
     let y = stepper.y_out().last().expect("a state").as_slice().to_vec();
     (st.accepted_steps, st.rejected_steps, st.num_eval, y)
+}
+
+/// [`ode_solvers_run`] at the problem's dimension.
+fn ode_solvers_any(
+    p: &Problem,
+    sys: &RefCell<CompiledDynamics>,
+    tol: f64,
+) -> (u32, u32, u32, Vec<f64>) {
+    match p.y0.len() {
+        2 => ode_solvers_run::<2>(p, sys, tol),
+        4 => ode_solvers_run::<4>(p, sys, tol),
+        20 => ode_solvers_run::<20>(p, sys, tol),
+        d => panic!("no ode_solvers instance for dimension {d}"),
+    }
+}
+
+/// qdot's DOP853 as the report runs it: the final state only.
+fn qdot_options(p: &Problem, tol: f64) -> IntegratorOptions {
+    IntegratorOptions {
+        t_end: p.t_end,
+        rtol: tol,
+        atol: tol,
+        t_out: vec![p.t_end],
+        max_steps: 50_000_000,
+        ..IntegratorOptions::default()
+    }
 }
 
 fn main() {
@@ -91,14 +83,7 @@ fn main() {
     assert_eq!(r.ran, Engine::Jit, "{r:?}");
     match driver.as_str() {
         "qdot" => {
-            let opts = IntegratorOptions {
-                t_end: p.t_end,
-                rtol: tol,
-                atol: tol,
-                t_out: vec![p.t_end],
-                max_steps: 50_000_000,
-                ..IntegratorOptions::default()
-            };
+            let opts = qdot_options(&p, tol);
             for k in 0..runs {
                 let sol = integrate(&mut sys, Method::Dop853, black_box(&p.y0), &opts)
                     .expect("integrates");
@@ -118,12 +103,7 @@ fn main() {
         "ode_solvers" => {
             let shared = RefCell::new(sys);
             for k in 0..runs {
-                let (acc, rej, ev, y) = match p.y0.len() {
-                    2 => ode_solvers_run::<2>(&p, &shared, tol),
-                    4 => ode_solvers_run::<4>(&p, &shared, tol),
-                    20 => ode_solvers_run::<20>(&p, &shared, tol),
-                    d => panic!("no ode_solvers instance for dimension {d}"),
-                };
+                let (acc, rej, ev, y) = ode_solvers_any(&p, &shared, tol);
                 if k == 0 {
                     println!("ode_solvers: {acc} steps, {rej} rejected, {ev} RHS, y(T) = {y:?}");
                 }
@@ -132,14 +112,7 @@ fn main() {
         }
         "time" => {
             // both drivers interleaved, RUNS times each: min and median µs
-            let opts = IntegratorOptions {
-                t_end: p.t_end,
-                rtol: tol,
-                atol: tol,
-                t_out: vec![p.t_end],
-                max_steps: 50_000_000,
-                ..IntegratorOptions::default()
-            };
+            let opts = qdot_options(&p, tol);
             let shared = RefCell::new(sys);
             let (mut tq, mut to) = (Vec::new(), Vec::new());
             for _ in 0..runs {
@@ -148,11 +121,7 @@ fn main() {
                 tq.push(t0.elapsed().as_secs_f64() * 1e6);
                 black_box(&sol);
                 let t0 = std::time::Instant::now();
-                let r = match p.y0.len() {
-                    2 => ode_solvers_run::<2>(&p, &shared, tol),
-                    4 => ode_solvers_run::<4>(&p, &shared, tol),
-                    _ => ode_solvers_run::<20>(&p, &shared, tol),
-                };
+                let r = ode_solvers_any(&p, &shared, tol);
                 to.push(t0.elapsed().as_secs_f64() * 1e6);
                 black_box(&r);
             }
