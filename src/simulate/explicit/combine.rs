@@ -125,42 +125,20 @@ fn axpy(n: usize, y: &[f64], h: f64, row: &[f64], k: &[f64], out: &mut [f64]) {
     }
 }
 
-/// `$body` with `$l` the [`Lanes`] of dimension `$n`.
+/// `$body` with `$l` the [`Lanes`] of dimension `$n`: [`Fixed`] for
+/// n = 1…8, [`Blocks`] past it.
 macro_rules! by_dim {
     ($n:expr, $l:ident => $body:expr) => {
+        by_dim!(@arms $n, $l => $body; 1 2 3 4 5 6 7 8)
+    };
+    (@arms $n:expr, $l:ident => $body:expr; $($k:literal)+) => {
         match $n {
-            1 => {
-                let $l = Fixed::<1>;
-                $body
-            }
-            2 => {
-                let $l = Fixed::<2>;
-                $body
-            }
-            3 => {
-                let $l = Fixed::<3>;
-                $body
-            }
-            4 => {
-                let $l = Fixed::<4>;
-                $body
-            }
-            5 => {
-                let $l = Fixed::<5>;
-                $body
-            }
-            6 => {
-                let $l = Fixed::<6>;
-                $body
-            }
-            7 => {
-                let $l = Fixed::<7>;
-                $body
-            }
-            8 => {
-                let $l = Fixed::<8>;
-                $body
-            }
+            $(
+                $k => {
+                    let $l = Fixed::<$k>;
+                    $body
+                }
+            )+
             n => {
                 let $l = Blocks(n);
                 $body
