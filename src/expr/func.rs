@@ -481,10 +481,15 @@ fn abs_of_denominator(d: &Poly) -> Expr {
         // as the same expression when printed and parsed again.
         let c = d.content().abs();
         let p = d.scale(&Q::one().checked_div(&c).unwrap_or_else(Q::one));
-        match sqrt(&Expr::poly(&p * &p)) {
+        let square = &p * &p;
+        match sqrt(&Expr::poly(square.clone())) {
             Ok(root) => root.scale(&c),
-            // unreachable: p² ≥ 0 is never certainly negative
-            Err(_) => Expr::from_poly(d.clone()),
+            // p² ≥ 0 is never certainly negative; were it refused, √(p²)
+            // as an atom is still |p|
+            Err(_) => {
+                let v = atom::intern_radical(Atom::SqrtOf(Expr::from_poly(square.clone())), square);
+                Expr::var(v).scale(&c)
+            }
         }
     }
 }

@@ -116,7 +116,7 @@ pub(super) struct Builder<'a> {
     /// (the state or the time). Nodes that do not are the same on every
     /// call of a simulation, and are grouped so that they stay off the
     /// state's critical path (`k/m` once, not `(k·x)·(1/m)`).
-    pub(super) varies: Vec<bool>,
+    varies: Vec<bool>,
     /// The input slots that hold parameters.
     param_slots: Vec<bool>,
 }
