@@ -65,10 +65,11 @@ fn solve_free(a: &[Vec<Expr>], mut m: Vec<Vec<Poly>>) -> Result<Vec<Expr>, Solve
     let work = crate::budget::WorkMeter::new();
     let mut prev = Poly::one();
     for k in 0..n {
-        // Pivot: the nonzero (also modulo sin² + cos² = 1) entry with fewest terms.
+        // Pivot: the nonzero (also modulo sin² + cos² = 1) entry with fewest
+        // terms, one provably nonzero first (`may_be_zero`).
         let piv = (k..n)
             .filter(|&r| nonzero(&m[r][k]))
-            .min_by_key(|&r| m[r][k].len());
+            .min_by_key(|&r| (may_be_zero(&m[r][k]), m[r][k].len()));
         let Some(p) = piv else {
             return Err(SolveError::Singular {
                 dependent: dependent_unknowns(a),
@@ -136,6 +137,14 @@ pub(crate) fn cleared_rows(a: &[Vec<Expr>], b: &[Expr]) -> Vec<Vec<Poly>> {
 /// ring, so a pivot must be tested after reduction).
 pub(crate) fn nonzero(p: &Poly) -> bool {
     !p.is_zero() && !crate::expr::reduce_poly(p).is_zero()
+}
+
+/// Whether a pivot that is nonzero as a polynomial may be zero as a number
+/// ([`crate::expr::hidden_zero`]): such a pivot is taken last, and dividing
+/// by it is refused.
+pub(crate) fn may_be_zero(p: &Poly) -> bool {
+    crate::expr::atom::any_opaque_constant()
+        && crate::expr::hidden_zero::may_be_zero(&crate::expr::reduce_poly(p))
 }
 
 /// One entry of a fraction-free elimination step, (p·x − l·u) / prev with

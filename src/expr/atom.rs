@@ -133,7 +133,15 @@ struct Entry {
     inner: Arc<[Var]>,
     /// For reducible atoms: the polynomial P with atom² = P.
     square: Option<Poly>,
+    /// A number whose relations the canonical form may not know: a
+    /// function atom of constants only (`sin(π/5)`, `√(5 − √5)`,
+    /// `exp(1)`); see [`is_opaque_constant`].
+    opaque: bool,
 }
+
+/// Whether an atom with an opaque constant has been interned in this
+/// process: while none has, no zero test needs the numeric check.
+static OPAQUE_SEEN: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
 #[derive(Default)]
 struct Table {
@@ -214,6 +222,16 @@ impl Table {
             }
             _ => (0, 1, None, false),
         };
+        // constants only inside: π, √n and other such atoms, at any depth
+        let opaque = atom.argument().is_some()
+            && inner.iter().all(|&w| {
+                self.entry(w).is_some_and(|e| {
+                    matches!(e.atom, Atom::Pi | Atom::Root(_)) || e.atom.argument().is_some()
+                })
+            });
+        if opaque {
+            OPAQUE_SEEN.store(true, std::sync::atomic::Ordering::Relaxed);
+        }
         self.entries.push(Entry {
             atom: atom.clone(),
             depth,
@@ -222,6 +240,7 @@ impl Table {
             moving,
             inner: inner.into(),
             square,
+            opaque,
         });
         self.index.insert(atom, v);
         v
@@ -371,6 +390,21 @@ pub fn atom(v: Var) -> Atom {
         Some(e) => e.atom.clone(),
         None => Atom::Param(Arc::from(format!("?{v}"))),
     }
+}
+
+/// Whether `v` is a function of constants alone (`sin(π/5)`, `cos(1)`,
+/// `√(5 − √5)`, `exp(1)`): a real number that the canonical form relates to
+/// others only by r² = P and sin² + cos² = 1 and the multiple-angle
+/// formulas, so a polynomial in such atoms can be zero without its
+/// canonical form being zero (cos(π/5) − cos(2π/5) − 1/2). π and √n are not
+/// opaque: polynomials in them are zero exactly when their canonical form is.
+pub fn is_opaque_constant(v: Var) -> bool {
+    read().entry(v).is_some_and(|e| e.opaque)
+}
+
+/// Whether any opaque constant ([`is_opaque_constant`]) has been interned.
+pub fn any_opaque_constant() -> bool {
+    OPAQUE_SEEN.load(std::sync::atomic::Ordering::Relaxed)
 }
 
 /// For a reducible variable r, the polynomial P with r² = P.

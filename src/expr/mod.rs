@@ -25,6 +25,7 @@ pub mod atom;
 pub mod compact;
 pub mod diff;
 pub mod func;
+pub mod hidden_zero;
 pub mod latex;
 pub mod print;
 
@@ -158,6 +159,25 @@ fn reduced(p: Poly) -> Poly {
     }
 }
 
+/// The refusal to divide by a polynomial in opaque constants that is zero
+/// to 10^−[`hidden_zero::ZERO_DIGITS`] but not provably zero.
+fn undecided_division(den: Poly) -> MathError {
+    let shown = Expr::poly(den).to_string();
+    let shown = if shown.chars().count() > 120 {
+        "the denominator".to_string()
+    } else {
+        shown
+    };
+    MathError::new(format!(
+        "this divisor may be zero: {shown} is 0 to {} digits, and qdot cannot prove it is not \
+         (it holds constants such as cos(π/5) whose relations qdot does not use)",
+        hidden_zero::ZERO_DIGITS
+    ))
+    .hint(
+        "write such a constant by its exact value (cos(π/5) = (1 + √5)/4), or do not divide by it",
+    )
+}
+
 /// The first radical atom of a polynomial, if any.
 fn first_radical(p: &Poly) -> Option<Var> {
     for (m, _) in p.terms() {
@@ -203,6 +223,9 @@ impl Expr {
             if den.is_zero() {
                 return Err(MathError::new("division by zero"));
             }
+        }
+        if hidden_zero::may_be_zero(&den) {
+            return Err(undecided_division(den));
         }
         Ok(Expr::normalize(num, den))
     }
@@ -521,10 +544,21 @@ impl Expr {
         Ok(self.mul(&o.recip()?))
     }
 
+    /// Whether this nonzero expression may nevertheless be the number 0: a
+    /// polynomial in constants such as sin(π/5) whose relations the
+    /// canonical form does not use, zero to 9 digits ([`hidden_zero`]).
+    /// False for 0 itself and for every expression without such constants.
+    pub fn may_be_zero(&self) -> bool {
+        hidden_zero::may_be_zero(&self.0.num)
+    }
+
     /// `1 / self`.
     pub fn recip(&self) -> Result<Expr, MathError> {
         if self.is_zero() {
             return Err(MathError::new("division by zero"));
+        }
+        if hidden_zero::may_be_zero(&self.0.num) {
+            return Err(undecided_division(self.0.num.clone()));
         }
         if first_radical(&self.0.num).is_none() {
             // Already reduced and coprime: only the new denominator's

@@ -150,7 +150,11 @@ fn frequencies_text(md: &Modes, set: &Values) -> String {
     let mut out = String::new();
     if md.omega_squared.is_empty() {
         let why = md.no_closed_form.as_deref().unwrap_or("no closed form");
-        out.push_str(&format!("  (no closed form for its roots: {why})\n"));
+        if why.starts_with("no closed form") {
+            out.push_str(&format!("  ({why})\n"));
+        } else {
+            out.push_str(&format!("  (no closed form for its roots: {why})\n"));
+        }
     } else if md.gyroscopic {
         out.push_str(
             "\nNatural frequencies  (gyroscopic: the modes are complex, their coordinates move out of phase; not given)\n",

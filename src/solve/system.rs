@@ -45,6 +45,20 @@ pub struct RectSolution {
     pub residuals: Vec<(usize, Expr)>,
 }
 
+/// The refusal to call a dependent equation consistent or contradictory
+/// when its residual is zero to 10^−[`crate::expr::hidden_zero::ZERO_DIGITS`]
+/// but not provably either way.
+fn undecided_residual(res: &Expr) -> crate::expr::MathError {
+    crate::expr::MathError::new(format!(
+        "cannot decide whether a dependent equation holds: with the others' solution it reads \
+         0 = {}, which is 0 to {} digits but not provably (it holds constants such as cos(π/5) \
+         whose relations qdot does not use)",
+        crate::expr::print::unicode(res),
+        crate::expr::hidden_zero::ZERO_DIGITS
+    ))
+    .hint("write such a constant by its exact value (cos(π/5) = (1 + √5)/4)")
+}
+
 /// Solve `a·x = b` for `a` of any shape (m equations, n unknowns).
 ///
 /// `symbols[j]` stands for unknown j if it turns out free. Pivot rows are
@@ -69,7 +83,7 @@ pub fn solve_rect(
     for c in 0..n {
         let Some(p) = (r..m)
             .filter(|&i| crate::algebra::linear::nonzero(&rows[i][c]))
-            .min_by_key(|&i| orig[i])
+            .min_by_key(|&i| (crate::algebra::linear::may_be_zero(&rows[i][c]), orig[i]))
         else {
             // no pivot: the entries left are zero (modulo sin² + cos² = 1)
             for row in rows.iter_mut().skip(r) {
@@ -127,6 +141,9 @@ pub fn solve_rect(
             if !aij.is_zero() {
                 res = res.sub(&aij.mul(x));
             }
+        }
+        if !res.is_zero() && res.may_be_zero() {
+            return Err(SolveError::Math(undecided_residual(&res)));
         }
         residuals.push((i, res));
     }

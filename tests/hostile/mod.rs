@@ -6,6 +6,7 @@
 pub(crate) mod bound;
 mod exact;
 mod exact_values;
+mod hidden_zeros;
 mod input;
 mod mechanics;
 mod numeric;

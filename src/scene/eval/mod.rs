@@ -398,9 +398,17 @@ impl<'a> SyntaxEvaluator<'a> {
     ) -> Result<Value, Diagnostic> {
         let span = a.span.to(b.span);
         let div = |x: &Expr, y: &Expr| {
-            x.div(y).map_err(|_| {
-                Diagnostic::error(b.span, "division by zero: this divisor is exactly 0")
-                    .with_hint("check the definitions it uses")
+            x.div(y).map_err(|e| {
+                if y.is_zero() {
+                    Diagnostic::error(b.span, "division by zero: this divisor is exactly 0")
+                        .with_hint("check the definitions it uses")
+                } else {
+                    let d = Diagnostic::error(b.span, e.message);
+                    match e.hint {
+                        Some(h) => d.with_hint(h),
+                        None => d,
+                    }
+                }
             })
         };
         if matches!(x, Value::Rotation(_)) || matches!(y, Value::Rotation(_)) {
