@@ -134,7 +134,7 @@ struct Entry {
     /// For reducible atoms: the polynomial P with atom² = P.
     square: Option<Poly>,
     /// A number whose relations the canonical form may not know: a
-    /// function atom of constants only (`sin(π/5)`, `√(5 − √5)`,
+    /// function atom of constants only (`sin(π/7)`, `√(5 − √5)`,
     /// `exp(1)`); see [`is_opaque_constant`].
     opaque: bool,
 }
@@ -392,11 +392,11 @@ pub fn atom(v: Var) -> Atom {
     }
 }
 
-/// Whether `v` is a function of constants alone (`sin(π/5)`, `cos(1)`,
+/// Whether `v` is a function of constants alone (`sin(π/7)`, `cos(1)`,
 /// `√(5 − √5)`, `exp(1)`): a real number that the canonical form relates to
 /// others only by r² = P and sin² + cos² = 1 and the multiple-angle
 /// formulas, so a polynomial in such atoms can be zero without its
-/// canonical form being zero (cos(π/5) − cos(2π/5) − 1/2). π and √n are not
+/// canonical form being zero (cos(π/7) − cos(2π/7) + cos(3π/7) − 1/2). π and √n are not
 /// opaque: polynomials in them are zero exactly when their canonical form is.
 pub fn is_opaque_constant(v: Var) -> bool {
     read().entry(v).is_some_and(|e| e.opaque)

@@ -3,8 +3,9 @@
 //! * `sin`/`cos` of a sum expand by the addition theorems, integer multiples
 //!   by the multiple-angle formulas, so every trig atom has a *base angle*:
 //!   a single monomial divided by a positive integer (`θ`, `θ/2`, `Ω·t`), or
-//!   an irreducible non-polynomial argument. Multiples of π/12 have exact
-//!   values (`sin(π/6) = 1/2`, `cos(π/4) = √2/2`).
+//!   an irreducible non-polynomial argument. Multiples of π/12, π/10 and
+//!   π/8 have exact values (`sin(π/6) = 1/2`, `cos(π/4) = √2/2`,
+//!   `cos(π/5) = (1 + √5)/4`, `cos(π/8) = √(2 + √2)/2`).
 //! * `sqrt` of a rational is a product of prime radicals `√p`
 //!   (`√12 = 2√3`); of a polynomial, positive-parameter square factors come
 //!   out (`√(k·m²) = m·√k`) and the rest is a radical atom `√P`.
@@ -153,11 +154,11 @@ pub(crate) fn split_multiple(c: &Q, multiples: bool) -> (Q, i64) {
     }
 }
 
-/// sin u, expanded into base-angle atoms (exact at multiples of π/12).
+/// sin u, expanded into base-angle atoms (exact at multiples of π/12, π/10, π/8).
 pub fn sin(u: &Expr) -> Expr {
     sin_cos(u).0
 }
-/// cos u, expanded into base-angle atoms (exact at multiples of π/12).
+/// cos u, expanded into base-angle atoms (exact at multiples of π/12, π/10, π/8).
 pub fn cos(u: &Expr) -> Expr {
     sin_cos(u).1
 }
@@ -184,7 +185,10 @@ fn pi_sin_cos(k: &Q) -> (Expr, Expr) {
     } else {
         (k, 1)
     };
-    let (s, c) = term_sin_cos(&Mono::var_pow(atom::pi(), 1), &k);
+    let (s, c) = match exact_tenth_or_eighth(&k) {
+        Some(sc) => sc,
+        None => term_sin_cos(&Mono::var_pow(atom::pi(), 1), &k),
+    };
     (
         if sin_sign < 0 { s.neg() } else { s },
         if cos_sign < 0 { c.neg() } else { c },
@@ -210,6 +214,59 @@ pub fn reduce_pi_multiple(k: &Q) -> Q {
 
 fn is_twelfth(q: &Q) -> bool {
     (q * &Q::from_i64(12)).is_integer()
+}
+
+/// Whether sin(k·π) and cos(k·π) have exact values here: k a multiple of
+/// 1/12, 1/10 or 1/8 (the angles of the hexagon, the pentagon and the
+/// octagon). Other constant angles are atoms.
+pub(crate) fn has_exact_value(k: &Q) -> bool {
+    [12, 10, 8]
+        .iter()
+        .any(|&n| (k * &Q::from_i64(n)).is_integer())
+}
+
+/// sin, cos of k·π for k in (0, 1/2) a multiple of 1/10 or 1/8 (and not of
+/// 1/12), in radicals over ℚ(√5, √(5 − √5)) and ℚ(√2, √(2 + √2)):
+/// cos(π/5) = (1 + √5)/4, sin(π/5) = √2·√(5 − √5)/4, sin(π/10) =
+/// (√5 − 1)/4, cos(π/8) = √(2 + √2)/2, sin(π/8) = (√2 − 1)·√(2 + √2)/2.
+/// In each field the products of the radicals are a basis (√(5 − √5) is
+/// not in ℚ(√2, √5), √(2 + √2) not in ℚ(√2)), so the canonical form decides
+/// every identity between these values (cos(π/5) − cos(2π/5) = 1/2).
+fn exact_tenth_or_eighth(k: &Q) -> Option<(Expr, Expr)> {
+    static TABLE: std::sync::OnceLock<Option<[(Expr, Expr); 6]>> = std::sync::OnceLock::new();
+    let table = TABLE.get_or_init(|| {
+        let q = |n, d| Expr::rational(Q::new(n, d).unwrap_or_else(Q::one));
+        let (r2, r5) = (
+            sqrt_rational(&Q::from_i64(2)),
+            sqrt_rational(&Q::from_i64(5)),
+        );
+        let pentagon = sqrt(&Expr::int(5).sub(&r5)).ok()?; // √(5 − √5)
+        let octagon = sqrt(&Expr::int(2).add(&r2)).ok()?; // √(2 + √2)
+        let sin_fifth = r2.mul(&pentagon).mul(&q(1, 4));
+        let cos_fifth = r5.add(&Expr::one()).mul(&q(1, 4));
+        let sin_tenth = r5.sub(&Expr::one()).mul(&q(1, 4));
+        let cos_tenth = sin_fifth.mul(&r5.add(&Expr::one())).mul(&q(1, 2));
+        let cos_eighth = octagon.mul(&q(1, 2));
+        let sin_eighth = r2.sub(&Expr::one()).mul(&cos_eighth);
+        Some([
+            (sin_tenth.clone(), cos_tenth.clone()),   // π/10
+            (sin_fifth.clone(), cos_fifth.clone()),   // π/5
+            (cos_fifth, sin_fifth),                   // 3π/10
+            (cos_tenth, sin_tenth),                   // 2π/5
+            (sin_eighth.clone(), cos_eighth.clone()), // π/8
+            (cos_eighth, sin_eighth),                 // 3π/8
+        ])
+    });
+    let table = table.as_ref()?;
+    let ten = k * &Q::from_i64(10);
+    let eight = k * &Q::from_i64(8);
+    let row = match (ten.as_i64(), eight.as_i64()) {
+        (Some(j @ 1..=4), _) => j as usize - 1,
+        (_, Some(1)) => 4,
+        (_, Some(3)) => 5,
+        _ => return None,
+    };
+    Some(table[row].clone())
 }
 
 /// sin, cos of (k·π) where 12k is an integer and k ∈ (−1, 1] (reduced by

@@ -1,11 +1,12 @@
 //! Zeros the canonical form cannot see.
 //!
-//! A function of constants alone — `sin(π/5)`, `√(5 − √5)`, `exp(1)` — is an
+//! A function of constants alone — `sin(π/7)`, `√(5 − √5)`, `exp(1)` — is an
 //! atom related to the others only by r² = P, sin² + cos² = 1 and the
 //! multiple-angle formulas ([`atom::is_opaque_constant`]). A polynomial in
 //! such atoms can be zero while its canonical form is not:
-//! cos(π/5) − cos(2π/5) − 1/2 is 2·cos(π/5) − 4·cos²(π/5) + 1, which no
-//! rule reduces. Dividing by it would give an expression with a zero
+//! cos(π/7) − cos(2π/7) + cos(3π/7) − 1/2 is a polynomial in sin(π/7) and
+//! cos(π/7) that no rule reduces. Dividing by it would give an expression
+//! with a zero
 //! denominator, silently. [`may_be_zero`] finds the denominators that could
 //! be such a zero, so that the division refuses instead.
 //!
@@ -47,6 +48,9 @@ pub fn may_be_zero(p: &Poly) -> bool {
     if p.is_zero() || !atom::any_opaque_constant() {
         return false;
     }
+    if !p.vars().into_iter().any(atom::is_opaque_constant) {
+        return false;
+    }
     let mut kinds: FxHashMap<Var, Kind> = FxHashMap::default();
     let mut kind = |v: Var| {
         *kinds.entry(v).or_insert_with(|| {
@@ -61,22 +65,15 @@ pub fn may_be_zero(p: &Poly) -> bool {
     };
     // group the terms by their power product of non-constants
     let mut groups: FxHashMap<Mono, Vec<(Mono, &Q)>> = FxHashMap::default();
-    let mut any_opaque = false;
     for (m, c) in p.terms() {
         let (mut constant, mut variable) = (Mono::one(), Mono::one());
         for &(v, e) in m.0.iter() {
             match kind(v) {
                 Kind::Variable => variable.0.push((v, e)),
-                k => {
-                    any_opaque |= k == Kind::Opaque;
-                    constant.0.push((v, e));
-                }
+                _ => constant.0.push((v, e)),
             }
         }
         groups.entry(variable).or_default().push((constant, c));
-    }
-    if !any_opaque {
-        return false;
     }
     let threshold = 10f64.powi(-ZERO_DIGITS);
     let mut values: FxHashMap<Var, Option<f64>> = FxHashMap::default();

@@ -170,12 +170,10 @@ fn undecided_division(den: Poly) -> MathError {
     };
     MathError::new(format!(
         "this divisor may be zero: {shown} is 0 to {} digits, and qdot cannot prove it is not \
-         (it holds constants such as cos(π/5) whose relations qdot does not use)",
+         (it holds constants such as cos(π/7) whose relations qdot does not use)",
         hidden_zero::ZERO_DIGITS
     ))
-    .hint(
-        "write such a constant by its exact value (cos(π/5) = (1 + √5)/4), or do not divide by it",
-    )
+    .hint("write such a constant by an exact value if it has one, or do not divide by it")
 }
 
 /// The first radical atom of a polynomial, if any.
@@ -545,7 +543,7 @@ impl Expr {
     }
 
     /// Whether this nonzero expression may nevertheless be the number 0: a
-    /// polynomial in constants such as sin(π/5) whose relations the
+    /// polynomial in constants such as sin(π/7) whose relations the
     /// canonical form does not use, zero to 9 digits ([`hidden_zero`]).
     /// False for 0 itself and for every expression without such constants.
     pub fn may_be_zero(&self) -> bool {

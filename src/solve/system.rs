@@ -51,12 +51,12 @@ pub struct RectSolution {
 fn undecided_residual(res: &Expr) -> crate::expr::MathError {
     crate::expr::MathError::new(format!(
         "cannot decide whether a dependent equation holds: with the others' solution it reads \
-         0 = {}, which is 0 to {} digits but not provably (it holds constants such as cos(π/5) \
+         0 = {}, which is 0 to {} digits but not provably (it holds constants such as cos(π/7) \
          whose relations qdot does not use)",
         crate::expr::print::unicode(res),
         crate::expr::hidden_zero::ZERO_DIGITS
     ))
-    .hint("write such a constant by its exact value (cos(π/5) = (1 + √5)/4)")
+    .hint("write such a constant by an exact value if it has one")
 }
 
 /// Solve `a·x = b` for `a` of any shape (m equations, n unknowns).

@@ -37,6 +37,66 @@ fn multiples_of_pi_reduce_exactly_however_large() {
 }
 
 #[test]
+fn the_pentagon_and_octagon_angles_are_exact_radicals() {
+    let s = scene();
+    for (angle, radicals) in [
+        ("cos(pi/5)", "(1 + sqrt(5))/4"),
+        ("sin(pi/10)", "(sqrt(5) - 1)/4"),
+        ("cos(2*pi/5)", "(sqrt(5) - 1)/4"),
+        ("sin(pi/5)", "sqrt(10 - 2*sqrt(5))/4"),
+        ("cos(pi/10)", "sqrt(2)*sqrt(5 - sqrt(5))*(1 + sqrt(5))/8"),
+        ("cos(pi/8)", "sqrt(2 + sqrt(2))/2"),
+        ("sin(pi/8)", "(sqrt(2) - 1)*sqrt(2 + sqrt(2))/2"),
+        ("cos(7*pi/10)", "-sqrt(10 - 2*sqrt(5))/4"),
+        ("sin(-5*pi/8)", "-sqrt(2 + sqrt(2))/2"),
+    ] {
+        let (a, r) = (
+            s.expr(angle).expect(angle),
+            s.expr(radicals).expect(radicals),
+        );
+        assert_eq!(a, r, "{angle} = {a}, not {radicals} = {r}");
+    }
+    assert_eq!(value("cos(pi/5)"), "sqrt(5)/4 + 1/4");
+    // identities between them are decided
+    assert_eq!(value("cos(pi/5) - cos(2*pi/5)"), "1/2");
+    for zero in [
+        "sin(pi/5)^2 + cos(pi/5)^2 - 1",
+        "cos(2*pi/5) - (2*cos(pi/5)^2 - 1)",
+        "cos(pi/5) - (1 - 2*sin(pi/10)^2)",
+        "sin(pi/5) - 2*sin(pi/10)*cos(pi/10)",
+        "sin(3*pi/5) - (3*sin(pi/5) - 4*sin(pi/5)^3)",
+        "cos(pi/8)^2 - (1 + cos(pi/4))/2",
+        "sin(pi/8) - cos(3*pi/8)",
+        "sin(pi/4) - 2*sin(pi/8)*cos(pi/8)",
+        "cos(pi/10)^2 - cos(pi/5)/2 - 1/2",
+        "sin(x + pi/5) - (sin(x)*cos(pi/5) + cos(x)*sin(pi/5))",
+    ] {
+        assert_eq!(value(zero), "0", "{zero}");
+    }
+    assert_eq!(
+        error("1/(cos(pi/5) - cos(2*pi/5) - 1/2)"),
+        "division by zero: this divisor is exactly 0"
+    );
+    // every multiple of π/40 has the value of f64's sin and cos
+    for j in -80..=80 {
+        let angle = f64::from(j) * std::f64::consts::PI / 40.0;
+        for (f, want) in [("sin", angle.sin()), ("cos", angle.cos())] {
+            let src = format!("{f}({j}*pi/40)");
+            let got = s
+                .expr(&src)
+                .expect("a value")
+                .eval_f64(&|_| None)
+                .expect("a number");
+            assert!((got - want).abs() < 1e-15, "{src}: {got} vs {want}");
+        }
+        let one = s
+            .expr(&format!("sin({j}*pi/40)^2 + cos({j}*pi/40)^2"))
+            .expect("a value");
+        assert!(one.is_one(), "{j}: {one}");
+    }
+}
+
+#[test]
 fn tan_at_a_huge_odd_multiple_of_half_pi_is_an_error() {
     assert_eq!(
         error("tan((10^30+1/2)*pi)"),

@@ -1,7 +1,8 @@
-//! Hostile inputs: zeros the canonical form cannot see. cos(π/5) −
-//! cos(2π/5) − 1/2 is 0, but sin(π/5) and cos(π/5) are atoms related only
-//! by sin² + cos² = 1 and the multiple-angle formulas, so its canonical form
-//! is not 0. qdot used to divide by it and print a result with a zero
+//! Hostile inputs: zeros the canonical form cannot see. cos(π/7) −
+//! cos(2π/7) + cos(3π/7) − 1/2 is 0, but sin(π/7) and cos(π/7) are atoms
+//! related only by sin² + cos² = 1 and the multiple-angle formulas, so its
+//! canonical form is not 0. (The same held for cos(π/5) − cos(2π/5) − 1/2
+//! until the pentagon's angles got exact values.) qdot used to divide by it and print a result with a zero
 //! denominator; it now refuses to divide by what it cannot prove nonzero,
 //! and takes a provable pivot first in its eliminations.
 
@@ -12,8 +13,9 @@ use qdot::expr::Expr;
 use qdot::solve::system::solve_scene;
 use qdot::Scene;
 
-/// cos(π/5) − cos(2π/5) − 1/2, which is 0 (cos(π/5) = (1 + √5)/4).
-const HIDDEN_ZERO: &str = "(cos(pi/5) - cos(2*pi/5) - 1/2)";
+/// cos(π/7) − cos(2π/7) + cos(3π/7) − 1/2, which is 0 (the real part of
+/// ζ + ζ³ + ζ⁵ for ζ = exp(iπ/7), a sum of roots of ζ⁷ = −1, is 1/2).
+const HIDDEN_ZERO: &str = "(cos(pi/7) - cos(2*pi/7) + cos(3*pi/7) - 1/2)";
 
 fn scene() -> Scene {
     Scene::parse("coordinates x\nparameters a, b\n").expect("scene")
@@ -56,7 +58,7 @@ fn dividing_by_a_hidden_zero_is_refused_with_its_position() {
             e.message
         );
         assert!(
-            e.hint.as_deref().is_some_and(|h| h.contains("(1 + √5)/4")),
+            e.hint.as_deref().is_some_and(|h| h.contains("exact value")),
             "{src}: {:?}",
             e.hint
         );
@@ -80,11 +82,16 @@ fn dividing_by_a_hidden_zero_is_refused_with_its_position() {
 #[test]
 fn dividing_by_constants_that_are_not_zero_still_works() {
     let s = scene();
-    // cos(π/5) − cos(2π/5) = 1/2: its reciprocal is 2, printed unsimplified
+    let c = |k: f64| (k * std::f64::consts::PI / 7.0).cos();
+    // cos(π/7) − cos(2π/7) + cos(3π/7) = 1/2: its reciprocal is 2, printed unsimplified
     for (src, want) in [
-        ("1/(cos(pi/5) - cos(2*pi/5))", 2.0),
+        ("1/(cos(pi/7) - cos(2*pi/7) + cos(3*pi/7))", 2.0),
+        ("1/(cos(pi/7) - cos(2*pi/7))", 1.0 / (c(1.0) - c(2.0))),
         ("1/sin(pi/7)", 1.0 / (std::f64::consts::PI / 7.0).sin()),
-        ("a/(a*(cos(pi/5) - cos(2*pi/5) - 1/2) + b)", 2.0 / 3.0),
+        (
+            "a/(a*(cos(pi/7) - cos(2*pi/7) + cos(3*pi/7) - 1/2) + b)",
+            2.0 / 3.0,
+        ),
         ("1/(cos(1)^2 + sin(1)^2 - cos(2))", 1.0 / (1.0 - 2f64.cos())),
     ] {
         let v = numeric(&s.expr(src).expect(src));
@@ -127,7 +134,7 @@ fn eliminations_take_a_provable_pivot_first_and_refuse_a_doubtful_one() {
 }
 
 fn small_poly() -> impl Strategy<Value = String> {
-    let atom = prop::sample::select(vec!["sin(pi/5)", "cos(pi/5)", "sqrt(2)", "a", "1"]);
+    let atom = prop::sample::select(vec!["sin(pi/7)", "cos(pi/7)", "sqrt(2)", "a", "1"]);
     prop::collection::vec((-3i32..=3, atom.clone(), atom), 1..5).prop_map(|ts| {
         ts.iter()
             .map(|(c, u, v)| format!("({c})*{u}*{v}"))

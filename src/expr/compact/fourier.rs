@@ -231,10 +231,10 @@ pub(crate) fn to_display(series: &[(Vec<i32>, Poly, Poly)], angles: &[(Var, Var,
 /// - no two angles of one vector may share m (3·(x/4) + x reads back in
 ///   x/4 alone);
 /// - a constant angle k·c·π stays in [−π/2, π/2] and off the multiples
-///   of π/12: sin and cos reduce other multiples of π by supplementary
-///   angles (cos(4π/5) = −cos(π/5)), a fact about that number, not about
-///   the multiple-angle algebra the fold used, and a multiple of π/12 is
-///   a number (cos(2·π/8) reads back as √2/2).
+///   of π/12, π/10 and π/8: sin and cos reduce other multiples of π by
+///   supplementary angles (cos(6π/7) = −cos(π/7)), a fact about that
+///   number, not about the multiple-angle algebra the fold used, and those
+///   multiples are numbers (cos(2·π/16) reads back as √(2 + √2)/2).
 pub(crate) fn within_bounds(
     series: &[(Vec<i32>, Poly, Poly)],
     angles: &[(Var, Var, Expr)],
@@ -266,7 +266,7 @@ fn reads_back(k: &[i32], terms: &[Option<(Mono, Q)>]) -> bool {
         if base != c.abs() || multiple * i64::from(c.signum()) != x as i64 {
             return false;
         }
-        let exact = (&angle * &Q::from_i64(12)).is_integer();
+        let exact = super::super::func::has_exact_value(&angle);
         if *m == pi && (angle.abs() > half || exact) {
             return false;
         }
