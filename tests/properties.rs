@@ -298,6 +298,25 @@ fn constant_angles_print_and_parse_back() {
     }
 }
 
+/// A case proptest found: the argument (π + x + 3)³ has seven simple terms
+/// besides 27π; sin expanded the first six and kept the rest as one angle,
+/// whose printed atom, an argument of four terms, read back expanded. Now
+/// an argument of more than six simple terms is one angle whole.
+#[test]
+fn long_arguments_print_and_parse_back() {
+    let s = scene();
+    for src in [
+        "sin((((pi + x) + 3))^3)",
+        "cos((x + y + a + b + 1)^2)",
+        "sin(x + y + a + b + x*y + a*b + 1)",
+        "sin(x + y + a + b + x*y + a*b)",
+    ] {
+        let e = s.expr(src).unwrap();
+        let again = s.expr(&e.to_string()).unwrap();
+        assert_eq!(again, e, "{src} printed as {e}");
+    }
+}
+
 /// A case proptest found: this expression prints as a sum of more than
 /// `MAX_TREE_DEPTH` terms, which the parser refuses to read back (its tree
 /// is binary) with the documented message; whatever it reads back is the

@@ -29,7 +29,7 @@ use std::sync::Arc;
 const MAX_MULTIPLE: i64 = 12;
 
 /// Most terms of an argument expanded by the addition theorems; an argument
-/// with more keeps its extra terms together in one base angle.
+/// with more simple terms keeps them all together in one base angle.
 const MAX_EXPANDED_TERMS: usize = 6;
 
 /// Whether a term of an argument is expanded on its own: a power product of
@@ -107,15 +107,24 @@ pub fn sin_cos(u: &Expr) -> (Expr, Expr) {
         return base_sin_cos_signed(u);
     }
     let pi = atom::pi();
+    let is_pi = |m: &Mono| m.0.len() == 1 && m.0[0] == (pi, 1);
+    // All simple terms expand, or none: were only the first few expanded,
+    // the printed atom of the rest would be an argument of few terms,
+    // which reads back expanded, another canonical form.
+    let simple = u
+        .num()
+        .terms()
+        .iter()
+        .filter(|(m, _)| !is_pi(m) && is_simple_term(m))
+        .count();
+    let expand = simple <= MAX_EXPANDED_TERMS;
     let mut s = Expr::zero();
     let mut c = Expr::one();
     let mut rest: Vec<(Mono, Q)> = Vec::new();
-    let mut expanded = 0;
     for (m, coef) in u.num().terms() {
-        let (ts, tc) = if m.0.len() == 1 && m.0[0] == (pi, 1) {
+        let (ts, tc) = if is_pi(m) {
             pi_sin_cos(coef)
-        } else if expanded < MAX_EXPANDED_TERMS && is_simple_term(m) {
-            expanded += 1;
+        } else if expand && is_simple_term(m) {
             term_sin_cos(m, coef)
         } else {
             rest.push((m.clone(), coef.clone()));
