@@ -275,6 +275,16 @@ fn a_denominators_absolute_value_prints_and_parses_back() {
     assert!(!e.to_string().contains("sqrt(a^"), "{e}");
 }
 
+/// Each source's canonical form, printed, reads back as itself.
+fn prints_and_parses_back(sources: &[&str]) {
+    let s = scene();
+    for src in sources {
+        let e = s.expr(src).unwrap();
+        let again = s.expr(&e.to_string()).unwrap();
+        assert_eq!(again, e, "{src} printed as {e}");
+    }
+}
+
 /// A case proptest found: cos²(2π/5) folded to cos(4π/5)/2 + 1/2, which
 /// reads back as 1/2 − cos(π/5)/2 (supplementary angles, true of the
 /// number but not of the multiple-angle algebra), so the printed form was
@@ -282,8 +292,7 @@ fn a_denominators_absolute_value_prints_and_parses_back() {
 /// off the multiples of π/12 now.
 #[test]
 fn constant_angles_print_and_parse_back() {
-    let s = scene();
-    for src in [
+    prints_and_parses_back(&[
         "(1) / (a + cos(((2/5) * pi))*cos(((2/5) * pi)))",
         "cos(2*pi/5)^2",
         "sin(2*pi/5)^2",
@@ -291,11 +300,7 @@ fn constant_angles_print_and_parse_back() {
         "cos(x + 2*pi/5)^2",
         "cos(pi/8)^2",
         "sin(pi/10)*cos(pi/10)",
-    ] {
-        let e = s.expr(src).unwrap();
-        let again = s.expr(&e.to_string()).unwrap();
-        assert_eq!(again, e, "{src} printed as {e}");
-    }
+    ]);
 }
 
 /// A case proptest found: the argument (π + x + 3)³ has seven simple terms
@@ -304,17 +309,12 @@ fn constant_angles_print_and_parse_back() {
 /// an argument of more than six simple terms is one angle whole.
 #[test]
 fn long_arguments_print_and_parse_back() {
-    let s = scene();
-    for src in [
+    prints_and_parses_back(&[
         "sin((((pi + x) + 3))^3)",
         "cos((x + y + a + b + 1)^2)",
         "sin(x + y + a + b + x*y + a*b + 1)",
         "sin(x + y + a + b + x*y + a*b)",
-    ] {
-        let e = s.expr(src).unwrap();
-        let again = s.expr(&e.to_string()).unwrap();
-        assert_eq!(again, e, "{src} printed as {e}");
-    }
+    ]);
 }
 
 /// A case proptest found: this expression prints as a sum of more than
