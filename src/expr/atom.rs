@@ -147,7 +147,14 @@ static OPAQUE_SEEN: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBoo
 struct Table {
     entries: Vec<Entry>,
     index: FxHashMap<Atom, Var>,
+    /// For each power product m of a trig base angle c·m, the first c.
+    trig_bases: FxHashMap<crate::poly::Mono, crate::num::Q>,
 }
+
+/// Whether two trig base angles c·m and c'·m with c ≠ c' (x and x/2) have
+/// been interned in this process: see [`any_commensurable_angles`].
+static COMMENSURABLE_SEEN: std::sync::atomic::AtomicBool =
+    std::sync::atomic::AtomicBool::new(false);
 
 fn table() -> &'static RwLock<Table> {
     static T: OnceLock<RwLock<Table>> = OnceLock::new();
@@ -231,6 +238,18 @@ impl Table {
             });
         if opaque {
             OPAQUE_SEEN.store(true, std::sync::atomic::Ordering::Relaxed);
+        }
+        if let (Atom::Sin(u), Some((m, c))) = (&atom, single_term(atom.argument())) {
+            match self.trig_bases.get(&m) {
+                Some(first) if *first != c => {
+                    COMMENSURABLE_SEEN.store(true, std::sync::atomic::Ordering::Relaxed)
+                }
+                Some(_) => {}
+                None => {
+                    debug_assert!(u.is_poly());
+                    self.trig_bases.insert(m, c);
+                }
+            }
         }
         self.entries.push(Entry {
             atom: atom.clone(),
@@ -400,6 +419,24 @@ pub fn atom(v: Var) -> Atom {
 /// opaque: polynomials in them are zero exactly when their canonical form is.
 pub fn is_opaque_constant(v: Var) -> bool {
     read().entry(v).is_some_and(|e| e.opaque)
+}
+
+/// The power product and coefficient of a one-term polynomial argument
+/// with at least one atom (`x/2` → (x, 1/2)).
+pub fn single_term(u: Option<&Expr>) -> Option<(crate::poly::Mono, crate::num::Q)> {
+    let u = u?;
+    match (u.is_poly(), u.num().terms()) {
+        (true, [(m, c)]) if !m.is_one() => Some((m.clone(), c.clone())),
+        _ => None,
+    }
+}
+
+/// Whether sin and cos of two rationally related angles c·m and c'·m
+/// (x and x/2, π/7 and π/14) have been interned. They are independent
+/// atoms, so sin x − 2·sin(x/2)·cos(x/2) is zero without a zero canonical
+/// form ([`super::hidden_zero`]).
+pub fn any_commensurable_angles() -> bool {
+    COMMENSURABLE_SEEN.load(std::sync::atomic::Ordering::Relaxed)
 }
 
 /// Whether any opaque constant ([`is_opaque_constant`]) has been interned.

@@ -41,11 +41,19 @@ fn is_exact_constant(v: Var) -> bool {
 }
 
 /// Whether the nonzero canonical polynomial `p` may nevertheless be zero:
-/// some opaque constants in it, and every coefficient they make numerically
-/// zero. False at once (without touching the atom table) while no opaque
-/// constant exists in the process.
+/// with sin/cos of rationally related angles in it (x and x/2), when it
+/// vanishes at three sample points; else with opaque constants in it, when
+/// every coefficient they make is numerically zero. False at once (without
+/// touching the atom table) while neither kind of atom exists in the
+/// process.
 pub fn may_be_zero(p: &Poly) -> bool {
-    if p.is_zero() || !atom::any_opaque_constant() {
+    if p.is_zero() {
+        return false;
+    }
+    if atom::any_commensurable_angles() && has_commensurable_angles(p) {
+        return vanishes_at_sample_points(p);
+    }
+    if !atom::any_opaque_constant() {
         return false;
     }
     if !p.vars().into_iter().any(atom::is_opaque_constant) {
@@ -104,6 +112,78 @@ pub fn may_be_zero(p: &Poly) -> bool {
         }
     }
     true
+}
+
+/// Whether `p` holds, itself or inside its atoms' arguments, sin or cos
+/// of two angles c·m and c'·m with c ≠ c' (x and x/2): independent atoms
+/// whose relations the canonical form does not use.
+fn has_commensurable_angles(p: &Poly) -> bool {
+    let mut all: Vec<Var> = Vec::new();
+    for v in p.vars() {
+        all.push(v);
+        all.extend_from_slice(&atom::inner_atoms(v));
+    }
+    all.sort_unstable();
+    all.dedup();
+    let mut bases: FxHashMap<Mono, Q> = FxHashMap::default();
+    for v in all {
+        let a = atom::atom(v);
+        if !matches!(a, Atom::Sin(_) | Atom::Cos(_)) {
+            continue;
+        }
+        if let Some((m, c)) = atom::single_term(a.argument()) {
+            match bases.get(&m) {
+                Some(first) if *first != c => return true,
+                Some(_) => {}
+                None => {
+                    bases.insert(m, c);
+                }
+            }
+        }
+    }
+    false
+}
+
+/// Whether `p` is zero to 10^−[`ZERO_DIGITS`] of the sum of its terms'
+/// sizes at three points of every symbol (parameters and unknowns in
+/// [0.5, 2.5), coordinates, t and given functions in [−1.5, 1.5), from a
+/// fixed hash of each symbol, so the answer is reproducible). A polynomial
+/// in functions of the symbols that is not identically zero is nonzero at
+/// almost every point.
+fn vanishes_at_sample_points(p: &Poly) -> bool {
+    use std::hash::{Hash, Hasher};
+    let threshold = 10f64.powi(-ZERO_DIGITS);
+    (0u64..3).all(|point| {
+        let leaf = |a: &Atom| {
+            let mut h = rustc_hash::FxHasher::default();
+            (a, point).hash(&mut h);
+            // 53 bits of a mixed hash: a number in [0, 1)
+            let z = h.finish().wrapping_mul(0x9E37_79B9_7F4A_7C15);
+            let unit = (z >> 11) as f64 / (1u64 << 53) as f64;
+            match a {
+                Atom::Param(_) | Atom::Unknown(_) => Some(0.5 + 2.0 * unit),
+                Atom::Coord(..) | Atom::Given(..) | Atom::Time => Some(3.0 * unit - 1.5),
+                _ => None,
+            }
+        };
+        let mut values: FxHashMap<Var, Option<f64>> = FxHashMap::default();
+        let (mut sum, mut size) = (0.0f64, 0.0f64);
+        for (m, c) in p.terms() {
+            let mut t = c.to_f64();
+            for &(v, e) in m.0.iter() {
+                let x = *values
+                    .entry(v)
+                    .or_insert_with(|| super::func::eval_atom(v, &leaf));
+                match x {
+                    Some(x) => t *= x.powi(e.min(i32::MAX as u32) as i32),
+                    None => t = f64::NAN,
+                }
+            }
+            sum += t;
+            size += t.abs();
+        }
+        !(sum.is_finite() && size.is_finite() && sum.abs() > threshold * size)
+    })
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]

@@ -170,10 +170,14 @@ fn undecided_division(den: Poly) -> MathError {
     };
     MathError::new(format!(
         "this divisor may be zero: {shown} is 0 to {} digits, and qdot cannot prove it is not \
-         (it holds constants such as cos(π/7) whose relations qdot does not use)",
+         (it holds atoms whose relations qdot does not use: constants such as cos(π/7), or \
+         sin and cos of both x and x/2)",
         hidden_zero::ZERO_DIGITS
     ))
-    .hint("write such a constant by an exact value if it has one, or do not divide by it")
+    .hint(
+        "write a constant by its exact value if it has one, and an angle and its fraction on \
+         one base (sin x as 2·sin(x/2)·cos(x/2)), or do not divide by it",
+    )
 }
 
 /// The first radical atom of a polynomial, if any.

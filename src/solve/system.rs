@@ -51,12 +51,15 @@ pub struct RectSolution {
 fn undecided_residual(res: &Expr) -> crate::expr::MathError {
     crate::expr::MathError::new(format!(
         "cannot decide whether a dependent equation holds: with the others' solution it reads \
-         0 = {}, which is 0 to {} digits but not provably (it holds constants such as cos(π/7) \
-         whose relations qdot does not use)",
+         0 = {}, which is 0 to {} digits but not provably (it holds atoms whose relations qdot \
+         does not use: constants such as cos(π/7), or sin and cos of both x and x/2)",
         crate::expr::print::unicode(res),
         crate::expr::hidden_zero::ZERO_DIGITS
     ))
-    .hint("write such a constant by an exact value if it has one")
+    .hint(
+        "write a constant by its exact value if it has one, and an angle and its fraction on \
+         one base (sin x as 2·sin(x/2)·cos(x/2))",
+    )
 }
 
 /// Solve `a·x = b` for `a` of any shape (m equations, n unknowns).
