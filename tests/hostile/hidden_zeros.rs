@@ -65,12 +65,17 @@ fn dividing_by_a_hidden_zero_is_refused_with_its_position() {
             e.hint
         );
     }
-    let o = qdot_scene(
-        "hidden_zero",
-        format!("coordinates x\nparameters m, k\nc = {HIDDEN_ZERO}\nkinetic E = 1/2*m*x'^2\npotential V = k/c*x^2\n").as_bytes(),
-        "derive",
-        &[],
+    refused_in_a_scene("hidden_zero", HIDDEN_ZERO, "k/c*x^2", "scene.qd:5:17");
+}
+
+/// `qdot derive` of a scene (`tag`, its file's name) with c = `zero` and
+/// the potential `potential` (which divides by c) stops with the refusal
+/// at `position`.
+fn refused_in_a_scene(tag: &str, zero: &str, potential: &str, position: &str) {
+    let src = format!(
+        "coordinates x\nparameters m, k\nc = {zero}\nkinetic E = 1/2*m*x'^2\npotential V = {potential}\n"
     );
+    let o = qdot_scene(tag, src.as_bytes(), "derive", &[]);
     o.assert_clean();
     assert_eq!(o.code, Some(1), "{o:?}");
     assert!(
@@ -78,7 +83,7 @@ fn dividing_by_a_hidden_zero_is_refused_with_its_position() {
         "{}",
         o.stderr
     );
-    assert!(o.stderr.contains("scene.qd:5:17"), "{}", o.stderr);
+    assert!(o.stderr.contains(position), "{}", o.stderr);
 }
 
 #[test]
@@ -168,20 +173,12 @@ fn angles_and_their_fractions_are_not_divided_by_when_they_cancel() {
         );
     }
     // in a scene, the error points at the divisor
-    let o = qdot_scene(
+    refused_in_a_scene(
         "half_angle",
-        b"coordinates x\nparameters m, k\nc = sin(x) - 2*sin(x/2)*cos(x/2)\nkinetic E = 1/2*m*x'^2\npotential V = k*x^2/c\n",
-        "derive",
-        &[],
+        "sin(x) - 2*sin(x/2)*cos(x/2)",
+        "k*x^2/c",
+        "scene.qd:5:21",
     );
-    o.assert_clean();
-    assert_eq!(o.code, Some(1), "{o:?}");
-    assert!(
-        o.stderr.contains("error: this divisor may be zero: "),
-        "{}",
-        o.stderr
-    );
-    assert!(o.stderr.contains("scene.qd:5:21"), "{}", o.stderr);
 }
 
 fn small_poly() -> impl Strategy<Value = String> {
