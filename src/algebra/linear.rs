@@ -143,7 +143,7 @@ pub(crate) fn nonzero(p: &Poly) -> bool {
 /// ([`crate::expr::hidden_zero`]): such a pivot is taken last, and dividing
 /// by it is refused.
 pub(crate) fn may_be_zero(p: &Poly) -> bool {
-    crate::expr::atom::any_opaque_constant()
+    crate::expr::hidden_zero::can_arise()
         && crate::expr::hidden_zero::may_be_zero(&crate::expr::reduce_poly(p))
 }
 

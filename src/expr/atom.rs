@@ -239,14 +239,13 @@ impl Table {
         if opaque {
             OPAQUE_SEEN.store(true, std::sync::atomic::Ordering::Relaxed);
         }
-        if let (Atom::Sin(u), Some((m, c))) = (&atom, single_term(atom.argument())) {
+        if let (Atom::Sin(_), Some((m, c))) = (&atom, single_term(atom.argument())) {
             match self.trig_bases.get(&m) {
                 Some(first) if *first != c => {
                     COMMENSURABLE_SEEN.store(true, std::sync::atomic::Ordering::Relaxed)
                 }
                 Some(_) => {}
                 None => {
-                    debug_assert!(u.is_poly());
                     self.trig_bases.insert(m, c);
                 }
             }

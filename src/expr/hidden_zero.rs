@@ -40,6 +40,13 @@ fn is_exact_constant(v: Var) -> bool {
     matches!(atom::atom(v), Atom::Pi | Atom::Root(_))
 }
 
+/// Whether a hidden zero can arise in this process at all: some opaque
+/// constant or some pair of commensurable angles has been interned. Callers
+/// that must prepare a polynomial for [`may_be_zero`] ask this first.
+pub fn can_arise() -> bool {
+    atom::any_opaque_constant() || atom::any_commensurable_angles()
+}
+
 /// Whether the nonzero canonical polynomial `p` may nevertheless be zero:
 /// with sin/cos of rationally related angles in it (x and x/2), when it
 /// vanishes at three sample points; else with opaque constants in it, when
@@ -47,7 +54,7 @@ fn is_exact_constant(v: Var) -> bool {
 /// touching the atom table) while neither kind of atom exists in the
 /// process.
 pub fn may_be_zero(p: &Poly) -> bool {
-    if p.is_zero() {
+    if p.is_zero() || !can_arise() {
         return false;
     }
     if atom::any_commensurable_angles() && has_commensurable_angles(p) {

@@ -559,7 +559,7 @@ impl Expr {
         if self.is_zero() {
             return Err(MathError::new("division by zero"));
         }
-        if hidden_zero::may_be_zero(&self.0.num) {
+        if self.may_be_zero() {
             return Err(undecided_division(self.0.num.clone()));
         }
         if first_radical(&self.0.num).is_none() {

@@ -126,6 +126,10 @@ fn eliminations_take_a_provable_pivot_first_and_refuse_a_doubtful_one() {
             .expect("a number");
         assert!((v - 1.0).abs() < 1e-13, "{name} = {v}");
     }
+    // the same with k = sin a − 2·sin(a/2)·cos(a/2), zero for every a
+    let half_angle = "parameters G, a\nk = sin(a) - 2*sin(a/2)*cos(a/2)\nsolve x, y {\n  k*x + y = G\n  x - y = 0\n}\n";
+    let blocks = solve_scene(&Scene::parse(half_angle).expect("scene")).expect("solved");
+    assert_eq!(blocks[0].values.len(), 2);
     // inconsistent (k = 0: y = G and 2y = 3G): no pivot can be proved
     let inconsistent = format!(
         "parameters G\nk = {HIDDEN_ZERO}\nsolve x, y {{\n  k*x + y = G\n  2*k*x + 2*y = 3*G\n}}\n"

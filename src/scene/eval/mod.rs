@@ -403,11 +403,7 @@ impl<'a> SyntaxEvaluator<'a> {
                     Diagnostic::error(b.span, "division by zero: this divisor is exactly 0")
                         .with_hint("check the definitions it uses")
                 } else {
-                    let d = Diagnostic::error(b.span, e.message);
-                    match e.hint {
-                        Some(h) => d.with_hint(h),
-                        None => d,
-                    }
+                    self.err(b.span, e)
                 }
             })
         };
