@@ -528,6 +528,11 @@ fn simulate(
             "warning: the problem looks stiff from t = {t:.6e} on (Hairer's test); --method radau5 integrates it in far fewer steps"
         );
     }
+    for t in &r.solution.event_poles {
+        eprintln!(
+            "warning: the --stop-when condition changed sign at t = {t:.6e} without passing through zero (a pole or a jump): not an event, the run went on"
+        );
+    }
     if let qdot::simulate::Status::Event { t } = r.solution.status {
         eprintln!("stopped at t = {t:.15e}, where the --stop-when condition changes sign");
     }
@@ -536,10 +541,7 @@ fn simulate(
         Status::Done | Status::Event { .. } => return ExitCode::SUCCESS,
         Status::TooManySteps { t } => (t, format!("raise --max-steps (it is {}), loosen --rtol and --atol, or use --method radau5 if the problem is stiff", req_max_steps)),
         Status::StepTooSmall { t } => (t, "the solution may blow up there; check the scene and the initial values, or loosen the tolerances".to_string()),
-        Status::NotFinite { t } => (t, match &r.not_finite_column {
-            Some(c) => format!("`{c}` is not finite there (a value out of the double range, or a division by zero); the rows before it are printed"),
-            None => "a value left the double range".to_string(),
-        }),
+        Status::NotFinite { t } => (t, r.not_finite_reason()),
     };
     eprintln!(
         "error: the integration stopped early: {} at t = {t:.6e}\n  = hint: {hint}",
@@ -613,6 +615,10 @@ impl Integration {
     }
 }
 
+/// How often a sweep whose standard error is no terminal says how far it
+/// has come (a terminal gets a bar instead).
+const SWEEP_LOG_EVERY: std::time::Duration = std::time::Duration::from_secs(10);
+
 /// `qdot sweep`'s arguments.
 #[derive(clap::Args)]
 struct SweepArgs {
@@ -635,7 +641,7 @@ struct SweepArgs {
     /// The seed of --samples (the same seed, the same points).
     #[arg(long, default_value_t = 0)]
     seed: u64,
-    /// Threads (0: one per core).
+    /// Threads (0: one per core); never more than the cores or the runs.
     #[arg(long, default_value_t = 0)]
     threads: usize,
     #[command(flatten)]
@@ -720,7 +726,28 @@ fn sweep(o: &SweepArgs) -> ExitCode {
             )
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
         );
-        let tick = |done: usize| bar.set_position(done as u64);
+        // without a terminal (a log, a pipe) a line every LOG_EVERY instead
+        let logged = std::sync::Mutex::new(std::time::Instant::now());
+        let start = std::time::Instant::now();
+        let tick = |done: usize| {
+            bar.set_position(done as u64);
+            if !bar.is_hidden() {
+                return;
+            }
+            let Ok(mut last) = logged.try_lock() else {
+                return;
+            };
+            if last.elapsed() >= SWEEP_LOG_EVERY && done < total {
+                *last = std::time::Instant::now();
+                let spent = start.elapsed().as_secs_f64();
+                let left = spent * (total - done) as f64 / done.max(1) as f64;
+                eprintln!(
+                    "sweep: {} of {} runs done in {spent:.0} s, about {left:.0} s left",
+                    qdot::budget::grouped(done),
+                    qdot::budget::grouped(total)
+                );
+            }
+        };
         let s = sweep::sweep(&p, &base, &axes, design, o.threads, &tick);
         bar.finish_and_clear();
         s

@@ -432,6 +432,25 @@ impl Expr {
         diff::vars_depend_on(&self.vars(), v)
     }
 
+    /// The first given function of time (`functions s`) the expression
+    /// contains, at any depth, by name.
+    pub fn given_function(&self) -> Option<Arc<str>> {
+        self.vars().into_iter().find_map(|v| {
+            std::iter::once(v)
+                .chain(atom::inner_atoms(v).iter().copied())
+                .find_map(|w| match atom::atom(w) {
+                    Atom::Given(name, _) => Some(name.clone()),
+                    _ => None,
+                })
+        })
+    }
+
+    /// Whether the expression changes with time by itself, not only
+    /// through the coordinates: it holds t, or a given function of time.
+    pub fn depends_on_time(&self) -> bool {
+        self.depends_on(atom::time()) || self.given_function().is_some()
+    }
+
     /// Exact equality, also for denominators with `cos` atoms.
     pub fn equals(&self, other: &Expr) -> bool {
         if self == other {

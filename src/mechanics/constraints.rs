@@ -144,11 +144,31 @@ fn singular(coordinates: &[String], rows: &ConstraintRows, dependent: &[usize]) 
         .filter_map(|&i| rows.labels.get(i - n).cloned())
         .collect();
     if !constraints.is_empty() && dependent.iter().all(|&i| i >= n) {
-        return Diagnostic::global(format!(
-            "the constraints {} are redundant: one follows from the others, so their multipliers are not determined",
-            constraints.join(", ")
-        ))
-        .with_hint("remove the constraint that the others imply");
+        let pair = match dependent {
+            [i, j] => proportional_pair(rows, i - n, j - n),
+            _ => None,
+        };
+        let list = constraints.join(", ");
+        return match pair {
+            Some(Dependence::Redundant) => Diagnostic::global(format!(
+                "the constraints {list} are redundant: one follows from the others, so their multipliers are not determined"
+            ))
+            .with_hint("remove the constraint that the others imply"),
+            Some(Dependence::Contradict(gap)) => Diagnostic::global(format!(
+                "the constraints {list} contradict each other: they differ by {}, which is not 0",
+                crate::expr::print::unicode(&gap)
+            ))
+            .with_hint("no motion satisfies both; correct one of them"),
+            Some(Dependence::AgreeOnlyIf(gap)) => Diagnostic::global(format!(
+                "the constraints {list} are dependent: they agree only where {} = 0 (redundant then, contradictory otherwise), so their multipliers are not determined",
+                crate::expr::print::unicode(&gap)
+            ))
+            .with_hint("keep one of them, or correct the one that contradicts the other"),
+            None => Diagnostic::global(format!(
+                "the constraints {list} are dependent (one's row is a combination of the others'): they are redundant or contradict each other, so their multipliers are not determined"
+            ))
+            .with_hint("remove the constraint that the others imply, or correct the one that contradicts them"),
+        };
     }
     let names: Vec<&str> = dependent
         .iter()
@@ -159,4 +179,46 @@ fn singular(coordinates: &[String], rows: &ConstraintRows, dependent: &[usize]) 
         if names.is_empty() { "the coordinates".to_string() } else { names.join(", ") }
     ))
     .with_hint("give those coordinates inertia, or constrain them")
+}
+
+/// How two constraints with proportional rows relate.
+enum Dependence {
+    /// One is the other times a constant.
+    Redundant,
+    /// Their combination with the vanishing row is this nonzero constant.
+    Contradict(Expr),
+    /// They agree only when this constant of undecided sign is 0.
+    AgreeOnlyIf(Expr),
+}
+
+/// Rows i and j proportional by a constant r (a_i = r·a_j): then
+/// g_i − r·g_j (or b_i − r·b_j, for constraints on the velocities) is
+/// constant on every motion, and decides whether they agree. None when
+/// that cannot be told (r or the difference varies).
+fn proportional_pair(rows: &ConstraintRows, i: usize, j: usize) -> Option<Dependence> {
+    let (ai, aj) = (rows.matrix.get(i)?, rows.matrix.get(j)?);
+    let k = aj.iter().position(|a| !a.is_zero())?;
+    let r = ai[k].div(&aj[k]).ok()?;
+    if r.depends_on_time() || r.vars().into_iter().any(crate::expr::atom::is_moving) {
+        return None;
+    }
+    if !ai.iter().zip(aj).all(|(x, y)| x.equals(&r.mul(y))) {
+        return None;
+    }
+    let gap = match (&rows.position[i], &rows.position[j]) {
+        (Some(gi), Some(gj)) => gi.sub(&r.mul(gj)),
+        _ => rows.velocity[i].sub(&r.mul(&rows.velocity[j])),
+    };
+    if gap.is_zero() {
+        return Some(Dependence::Redundant);
+    }
+    if gap.vars().into_iter().any(crate::expr::atom::is_moving) {
+        return None;
+    }
+    use crate::algebra::sign::{sign_exact, Sign};
+    match sign_exact(&gap) {
+        Some(Sign::Positive | Sign::Negative) => Some(Dependence::Contradict(gap)),
+        Some(Sign::Zero) => Some(Dependence::Redundant),
+        None => Some(Dependence::AgreeOnlyIf(gap)),
+    }
 }

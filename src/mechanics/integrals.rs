@@ -103,6 +103,19 @@ impl Integrals {
     }
 }
 
+/// The energy (Jacobi) integral h of a scene when it is conserved: the
+/// one decision `integrals`, `simulate`'s energy drift and `codegen`'s
+/// energy function share.
+pub fn conserved_energy(scene: &Scene) -> Result<Option<Expr>, Diagnostic> {
+    let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
+    let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
+    let qdd: Vec<Var> = names.iter().map(|c| atom::coord(c, 2)).collect();
+    let rows = ConstraintRows::of(scene, &qd, &qdd)?;
+    let forced = forced_coordinates(scene, &rows);
+    let l = super::lagrangian(scene);
+    Ok(energy_integral(scene, &l, &qd, &forced, &mut Vec::new()).0)
+}
+
 /// For each coordinate, what acts on it besides the potential: a
 /// statement's kind, or a constraint.
 fn forced_coordinates(scene: &Scene, rows: &ConstraintRows) -> Vec<Option<String>> {
@@ -140,9 +153,14 @@ fn energy_integral(
     forced: &[Option<String>],
     notes: &mut Vec<String>,
 ) -> (Option<Expr>, bool) {
-    let t = atom::time();
-    if l.depends_on(t) {
+    if l.depends_on(atom::time()) {
         notes.push("L depends on t explicitly: no energy integral".into());
+        return (None, false);
+    }
+    if let Some(s) = l.given_function() {
+        notes.push(format!(
+            "L depends on t through the given function {s}: no energy integral (dh/dt = −∂L/∂t)"
+        ));
         return (None, false);
     }
     let non_constraint = forced
@@ -153,17 +171,14 @@ fn energy_integral(
         notes.push(format!("{why} does work: no energy integral"));
         return (None, false);
     }
-    let moving = scene
-        .constraints
-        .iter()
-        .enumerate()
-        .find(|(_, c)| !c.rest.is_zero() || c.coefficients.iter().any(|a| a.depends_on(t)));
-    if let Some((j, c)) = moving {
-        notes.push(format!(
-            "the constraint {} moves (it depends on t): no energy integral",
-            c.label(j)
-        ));
-        return (None, false);
+    for (j, c) in scene.constraints.iter().enumerate() {
+        if let Some(why) = constraint_does_work(c) {
+            notes.push(format!(
+                "the constraint {} {why}: no energy integral",
+                c.label(j)
+            ));
+            return (None, false);
+        }
     }
     let h = jacobi_integral(l, qd);
     let e = scene
@@ -174,6 +189,26 @@ fn energy_integral(
         .sub(&scene.role_sum(Role::ForceFunction));
     let e_plus_v = h.equals(&e.add(&v));
     (Some(h), e_plus_v)
+}
+
+/// Why a constraint's reaction can do work on the motion, when it can:
+/// with a·q̇ + b = 0 its power is λ·a·q̇ = −λ·b, which vanishes for every
+/// motion only when b = 0; a constraint that depends on t (a moving
+/// guide) does work too.
+fn constraint_does_work(c: &crate::scene::Constraint) -> Option<String> {
+    let moves = c.expression.depends_on_time()
+        || c.rest.depends_on_time()
+        || c.coefficients.iter().any(Expr::depends_on_time);
+    if moves {
+        return Some("moves (it depends on t)".into());
+    }
+    if !c.rest.is_zero() {
+        return Some(format!(
+            "is not homogeneous in the velocities (b = {} in a·q̇ + b = 0): its reaction does work",
+            crate::expr::print::unicode(&c.rest)
+        ));
+    }
+    None
 }
 
 /// The Jacobi integral h = Σ q̇_k·∂L/∂q̇_k − L (E + V when E is quadratic

@@ -199,7 +199,8 @@ fn frequencies_text(md: &Modes, set: &Values) -> String {
     out
 }
 
-/// q(t) = Σ Cᵢ·uᵢ·cos(ωᵢ·t + φᵢ), when every frequency is in closed form.
+/// q(t) = Σ Cᵢ·uᵢ·cos(ωᵢ·t + φᵢ), when every frequency is in closed form;
+/// a zero frequency's mode drifts, (Aᵢ + Bᵢ·t)·uᵢ.
 fn general_solution_text(md: &Modes, names: &[String]) -> String {
     if md.gyroscopic
         || md.omega_squared.is_empty()
@@ -207,7 +208,12 @@ fn general_solution_text(md: &Modes, names: &[String]) -> String {
     {
         return String::new();
     }
-    let mut out = String::from("\nGeneral solution (undamped)  q(t) = Σ Cᵢ·uᵢ·cos(ωᵢ·t + φᵢ)\n");
+    let drifts: Vec<bool> = md.omega_squared.iter().map(Expr::is_zero).collect();
+    let mut out = String::from("\nGeneral solution (undamped)  q(t) = Σ Cᵢ·uᵢ·cos(ωᵢ·t + φᵢ)");
+    if drifts.contains(&true) {
+        out.push_str(", and (Aᵢ + Bᵢ·t)·uᵢ where ωᵢ = 0");
+    }
+    out.push('\n');
     for (j, c) in names.iter().enumerate() {
         let mut terms = Vec::new();
         for (i, mode) in md.modes.iter().enumerate() {
@@ -216,14 +222,19 @@ fn general_solution_text(md: &Modes, names: &[String]) -> String {
                 continue;
             }
             let i1 = print::subscript(&(i + 1).to_string());
-            let wave = format!("C{i1}·cos(ω{i1}·t + φ{i1})");
+            let wave = if drifts[i] {
+                format!("(A{i1} + B{i1}·t)")
+            } else {
+                format!("C{i1}·cos(ω{i1}·t + φ{i1})")
+            };
             let (neg, body) = signed_coefficient(&as_unicode(mu));
             terms.push((
                 neg,
-                if body == "1" {
-                    wave
-                } else {
-                    format!("{body}·{wave}")
+                match body.as_str() {
+                    // added with coefficient 1, A₁ + B₁·t needs no parentheses
+                    "1" if drifts[i] && !neg => format!("A{i1} + B{i1}·t"),
+                    "1" => wave,
+                    _ => format!("{body}·{wave}"),
                 },
             ));
         }

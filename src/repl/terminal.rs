@@ -87,6 +87,13 @@ pub fn piped(mut session: Session, input: impl BufRead, echo: bool) -> bool {
     };
     for line in input.lines() {
         let Ok(line) = line else { break };
+        if !entry.is_empty() && starts_a_command(&line) {
+            // the unfinished entry is executed alone: its error says why
+            let r = session.execute(&entry);
+            show(&entry, &r);
+            entry.clear();
+            failed |= r.failed;
+        }
         entry.push_str(&line);
         entry.push('\n');
         if !is_complete(&entry) {
@@ -106,6 +113,12 @@ pub fn piped(mut session: Session, input: impl BufRead, echo: bool) -> bool {
         failed |= r.failed;
     }
     failed
+}
+
+/// A line that starts with `:` is a command: it never continues an
+/// unfinished entry (`x +` then `:solve`), which is executed alone first.
+fn starts_a_command(line: &str) -> bool {
+    line.trim_start().starts_with(':')
 }
 
 fn print_response(r: &Response) {
@@ -159,6 +172,12 @@ fn interactive(mut session: Session) {
                 // A bracketed paste returns several lines at once: each is
                 // taken as if typed on its own, in order.
                 for line in text.split('\n') {
+                    if !entry.is_empty() && starts_a_command(line) {
+                        let pending = std::mem::take(&mut entry);
+                        let (s, r) = execute_cancellable(session, &pending);
+                        session = s;
+                        print_response(&r);
+                    }
                     entry.push_str(line.strip_suffix('\r').unwrap_or(line));
                     entry.push('\n');
                     if !is_complete(&entry) {

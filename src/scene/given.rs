@@ -104,7 +104,9 @@ fn not_positive(k: &str, v: f64) -> Diagnostic {
 }
 
 /// An error unless every value of `set` for a parameter of `scene` is
-/// positive, but for the parameters the scene assumes `real`.
+/// positive, but for the parameters the scene assumes `real`, and unless
+/// the values keep every order fact (`assume R > r`) whose parameters they
+/// all give.
 pub fn parameter_signs(scene: &Scene, set: &Values) -> Result<(), Diagnostic> {
     for (k, &v) in set {
         let real = scene
@@ -115,7 +117,56 @@ pub fn parameter_signs(scene: &Scene, set: &Values) -> Result<(), Diagnostic> {
             return Err(not_positive(k, v));
         }
     }
+    for fact in &scene.assumptions.positive {
+        order_fact_holds(fact, set)?;
+    }
     Ok(())
+}
+
+/// An error when `fact` (assumed > 0) is not positive at the values of
+/// `set`, or too close to 0 beside its terms' sizes for doubles to tell;
+/// nothing when `set` does not give all its parameters.
+fn order_fact_holds(fact: &Expr, set: &Values) -> Result<(), Diagnostic> {
+    use crate::expr::atom::Atom;
+    use crate::poly::Poly;
+    let value_of = |a: &Atom| match a {
+        Atom::Param(name) => set.get(name.as_ref()).copied(),
+        _ => None,
+    };
+    let Some(value) = fact.eval_f64(&value_of) else {
+        return Ok(());
+    };
+    let val = |v| crate::expr::func::eval_atom(v, &value_of).unwrap_or(f64::NAN);
+    let terms: f64 = fact
+        .num()
+        .terms()
+        .iter()
+        .map(|(m, c)| Poly::monomial(m.clone(), c.clone()).eval_f64(&val).abs())
+        .sum();
+    let size = terms / fact.den().eval_f64(&val).abs();
+    if value > 1e-12 * size {
+        return Ok(());
+    }
+    let mut names: Vec<String> = fact
+        .vars()
+        .into_iter()
+        .filter_map(|v| match crate::expr::atom::atom(v) {
+            Atom::Param(n) => set.get(n.as_ref()).map(|x| format!("{n}={x}")),
+            _ => None,
+        })
+        .collect();
+    names.sort();
+    let fact_text = crate::expr::print::unicode(fact);
+    let is = if value > 0.0 {
+        "too close to 0 to tell its sign in doubles".to_string()
+    } else {
+        format!("{value} there")
+    };
+    Err(Diagnostic::global(format!(
+        "`--set {}` breaks the scene's assumption {fact_text} > 0: it is {is}",
+        names.join(",")
+    ))
+    .with_hint("give values that keep every `assume` fact, or change the fact"))
 }
 
 /// Parse `--set m=1,g=-9.81` into finite doubles of either sign (the

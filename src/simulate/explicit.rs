@@ -158,6 +158,37 @@ impl Kind {
     }
 }
 
+/// Whether g's sign change located at `te` in the step `span` is a zero:
+/// |g| must shrink toward `te` like a continuous function's (at a pole it
+/// grows, at a jump it stays), checked at two distances 1,000 times apart.
+/// Where the step leaves no room for them, |g(te)| must be small beside
+/// the step's end values `ends`.
+fn is_zero_crossing(
+    g: &mut dyn FnMut(f64) -> f64,
+    te: f64,
+    span: (f64, f64),
+    ends: (f64, f64),
+    tol: f64,
+) -> bool {
+    let at = g(te);
+    if !at.is_finite() {
+        return false;
+    }
+    if at == 0.0 {
+        return true;
+    }
+    let room = (te - span.0).abs().min((span.1 - te).abs());
+    let far = room / 2.0;
+    let near = far * 1e-3;
+    if near < 100.0 * tol {
+        return at.abs() <= 1e-2 * ends.0.abs().max(ends.1.abs());
+    }
+    let size = |d: f64, g: &mut dyn FnMut(f64) -> f64| (g(te - d).abs(), g(te + d).abs());
+    let (n1, n2) = size(near, g);
+    let (f1, f2) = size(far, g);
+    n1.is_finite() && n2.is_finite() && n1.max(n2) < 0.1 * f1.min(f2)
+}
+
 /// Brent's root finder (zeroin; Brent 1973, ch. 4) on [a, b] with
 /// f(a)·f(b) < 0: returns a point within `tol` (+4ε|t|) of a sign change.
 fn brent(f: &mut dyn FnMut(f64) -> f64, a0: f64, b0: f64, fa0: f64, fb0: f64, tol: f64) -> f64 {
@@ -365,6 +396,7 @@ fn run<S: System + ?Sized>(
         stats: Stats::default(),
         status: Status::Done,
         stiff_at: None,
+        event_poles: Vec::new(),
     };
     let mut y = y0.to_vec();
     let mut buf = vec![0.0; n];
@@ -577,8 +609,8 @@ fn output<S: System + ?Sized>(
             && g_new.is_finite()
             && (g_new == 0.0 || (g_new > 0.0) != (*g_prev > 0.0));
         if crossed {
-            let te = if g_new == 0.0 {
-                t_new
+            let (te, zero) = if g_new == 0.0 {
+                (t_new, true)
             } else {
                 st.prepare_dense(sys, t, y, h, stats);
                 dense_ready = true;
@@ -588,10 +620,16 @@ fn output<S: System + ?Sized>(
                     stp.dense((tt - t) / h, buf);
                     ev(tt, buf)
                 };
-                brent(&mut g, t, t_new, *g_prev, g_new, tol)
+                let te = brent(&mut g, t, t_new, *g_prev, g_new, tol);
+                let zero = is_zero_crossing(&mut g, te, (t, t_new), (*g_prev, g_new), tol);
+                (te, zero)
             };
-            t_stop = te;
-            hit = Some(te);
+            if zero {
+                t_stop = te;
+                hit = Some(te);
+            } else {
+                sol.event_poles.push(te);
+            }
         }
         if g_new.is_finite() && g_new != 0.0 {
             *g_prev = g_new;

@@ -209,6 +209,7 @@ impl<'a> Recorder<'a> {
             stats,
             status,
             stiff_at: None,
+            event_poles: Vec::new(),
         }
     }
 }

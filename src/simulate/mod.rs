@@ -171,6 +171,10 @@ pub struct Solution {
     /// Set by explicit adaptive methods when the stiffness test (Hairer's,
     /// as in DOPRI5/DOP853) fired: the time at which it did.
     pub stiff_at: Option<f64>,
+    /// The times where the event function changed sign without passing
+    /// through zero (a pole or a jump: `1/(θ − ½)` at θ = ½): not events,
+    /// so the integration went on.
+    pub event_poles: Vec<f64>,
 }
 
 /// Why an integration could not start.

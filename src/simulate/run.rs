@@ -19,7 +19,6 @@ use super::{
 use crate::algebra::sign::Values;
 use crate::diag::Diagnostic;
 use crate::expr::{atom, Expr};
-use crate::parse::ast::Role;
 use crate::poly::Var;
 use crate::scene::Scene;
 use rustc_hash::FxHashMap;
@@ -122,6 +121,26 @@ pub struct Run {
     /// The column where a NaN or ∞ appeared (the run then ends with
     /// [`Status::NotFinite`] at the last row before it).
     pub not_finite_column: Option<String>,
+    /// Whether that value was a NaN (a function outside its domain, 0/0,
+    /// ∞·0) rather than ±∞.
+    pub not_finite_is_nan: bool,
+}
+
+impl Run {
+    /// Why the run ended with [`Status::NotFinite`], for its message.
+    pub fn not_finite_reason(&self) -> String {
+        const NAN: &str = "a function outside its domain (√ or ln of a negative number, asin or acos past ±1), 0/0, or an overflow (∞·0, ∞ − ∞)";
+        const INF: &str = "a division by zero, or a value out of the double range";
+        match &self.not_finite_column {
+            Some(c) if self.not_finite_is_nan => {
+                format!("`{c}` is NaN there: {NAN}; the rows before it are printed")
+            }
+            Some(c) => format!("`{c}` is infinite there: {INF}; the rows before it are printed"),
+            None => format!(
+                "q̈ was NaN or infinite within the step after the last row: {NAN}, or {INF}"
+            ),
+        }
+    }
 }
 
 /// The value of every parameter of the scene from `--set`, and nothing
@@ -389,12 +408,17 @@ impl Prepared {
         })
     }
 
-    /// The errors of `req` that do not depend on compiling: a missing or
-    /// unknown parameter or initial value, a bad option.
+    /// The errors of `req` that do not depend on the values: a missing or
+    /// unknown parameter or initial value, a bad option, a `--stop-when`
+    /// that names no quantity of the scene.
     pub fn check(&self, req: &Request) -> Result<(), Diagnostic> {
-        parameter_values(&self.scene, req)?;
+        let params = parameter_values(&self.scene, req)?;
         initial_values(&self.lag.coordinates, req)?;
-        check_numbers(req)
+        check_numbers(req)?;
+        if let Some(text) = &req.stop_when {
+            event_program(&self.scene, &self.lag.coordinates, &params, text)?;
+        }
+        Ok(())
     }
 
     /// Compile and integrate.
@@ -535,17 +559,18 @@ impl Prepared {
             }
             // a NaN or ∞ in any column ends the run there: no row prints one
             if let Some(j) = row.iter().position(|x| !x.is_finite()) {
-                not_finite = Some((columns[j].clone(), *t));
+                not_finite = Some((columns[j].clone(), *t, row[j].is_nan()));
                 break;
             }
             rows.push(row);
         }
-        if let Some((_, t)) = &not_finite {
+        if let Some((_, t, _)) = &not_finite {
             solution.status = Status::NotFinite { t: *t };
         }
         Run {
             constraint_drift: max_drift,
-            not_finite_column: not_finite.map(|(c, _)| c),
+            not_finite_is_nan: not_finite.as_ref().is_some_and(|n| n.2),
+            not_finite_column: not_finite.map(|(c, _, _)| c),
             columns,
             rows,
             plot_rows: Vec::new(),
@@ -628,28 +653,15 @@ pub fn conserved_quantity(
 }
 
 /// The Jacobi integral h = Σ q̇·∂L/∂q̇ − L of the scene, when it conserves
-/// it: no work, dissipation, forces, loads, torques, given functions or
-/// moving constraints, and no explicit t in L.
-pub fn jacobi_integral(scene: &Scene, coordinates: &[String]) -> Option<Expr> {
-    let non_conservative = [Role::Work, Role::Dissipation, Role::Rayleigh]
-        .into_iter()
-        .any(|r| scene.has_role(r))
-        || !scene.forces.is_empty()
-        || !scene.loads.is_empty()
-        || !scene.torques.is_empty()
-        || !scene.functions.is_empty()
-        // a moving constraint (b ≠ 0) does work
-        || scene.constraints.iter().any(|c| !c.rest.is_zero());
-    if non_conservative {
-        return None;
-    }
-    // the Jacobi integral h = Σ q̇·∂L/∂q̇ − L, when L has no explicit t
-    let l = crate::mechanics::lagrangian(scene);
-    if l.depends_on(atom::time()) {
-        return None;
-    }
-    let qd: Vec<Var> = coordinates.iter().map(|q| atom::coord(q, 1)).collect();
-    Some(crate::mechanics::integrals::jacobi_integral(&l, &qd))
+/// it (`mechanics::integrals` decides: no work, dissipation or other
+/// force, no t in L directly or through a given function, no constraint
+/// that moves or does work).
+/// `_coordinates` are the scene's, in the state's order (h is written in
+/// their names, so their order does not change it).
+pub fn jacobi_integral(scene: &Scene, _coordinates: &[String]) -> Option<Expr> {
+    crate::mechanics::integrals::conserved_energy(scene)
+        .ok()
+        .flatten()
 }
 
 /// The run as CSV: a header line, then one line per output time.
@@ -665,7 +677,9 @@ pub fn csv(run: &Run) -> String {
 }
 
 /// The run as JSON: `method`, `status`, `columns`, `rows`, `stats`,
-/// `stiff_at` and `event_t` (null unless they happened). `stats` holds
+/// `stiff_at` and `event_t` (null unless they happened), `event_poles`
+/// (the times the `--stop-when` condition changed sign through a pole or
+/// a jump, not a zero: not events). `stats` holds
 /// `steps`, `rejected`, `rhs_evals`, `jacobians`, `factorizations`,
 /// `seconds`, `compile_seconds`, `engine`: `{"name"` (`jit` or
 /// `interpreter`), `"requested"`, `"compile_seconds"` (of the machine
@@ -711,6 +725,7 @@ pub fn json(run: &Run) -> String {
             Status::Event { t } => Some(t),
             _ => None,
         },
+        "event_poles": run.solution.event_poles,
     });
     if let Some(d) = run.constraint_drift {
         v["stats"]["constraint_drift"] = d.into();

@@ -175,7 +175,11 @@ pub fn design_points(axes: &[Axis], design: Design) -> Result<Vec<Vec<f64>>, Dia
             Ok(points)
         }
         Design::Random { samples, seed } => {
-            if samples == 0 || samples > MAX_SWEEP_RUNS {
+            if samples == 0 {
+                return Err(Diagnostic::global("`--samples 0`: a random design needs at least one run")
+                    .with_hint("--samples 100 draws 100 random points in the box of the --vary ranges"));
+            }
+            if samples > MAX_SWEEP_RUNS {
                 return Err(too_many(samples.to_string()));
             }
             let mut state = seed;
@@ -201,7 +205,8 @@ fn unit(state: &mut u64) -> f64 {
 }
 
 /// Run `base` once per point of the design, `axes` overriding its `set`
-/// and `init`, on `threads` threads (0: one per core). `progress` is
+/// and `init`, on `threads` threads (0: one per core; see
+/// [`thread_count`]). `progress` is
 /// called with the number of finished runs after each run.
 pub fn sweep(
     prepared: &Prepared,
@@ -214,7 +219,8 @@ pub fn sweep(
     let params = prepared.parameters();
     let coordinates = prepared.coordinates().to_vec();
     let mut varies_parameters = false;
-    for a in axes {
+    for (k, a) in axes.iter().enumerate() {
+        given_once(a, &axes[..k], base)?;
         let base_name = a.name.trim_end_matches('\'');
         if params.iter().any(|p| p == &a.name) {
             varies_parameters = true;
@@ -257,7 +263,7 @@ pub fn sweep(
     };
     let compilations = AtomicUsize::new(usize::from(shared.is_some()));
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
+        .num_threads(thread_count(threads, points.len()))
         .build()
         .map_err(|e| Diagnostic::global(format!("cannot start the sweep's threads: {e}")))?;
     // the pool's threads work under this thread's budget (`--max-terms`):
@@ -295,6 +301,33 @@ pub fn sweep(
         threads: pool.current_num_threads(),
         compilations: compilations.into_inner(),
     })
+}
+
+/// A varied name is given by its `--vary` alone: once among the axes, and
+/// not by `--set` or `--init` too (which of two values would a row's
+/// column mean?).
+fn given_once(axis: &Axis, earlier: &[Axis], base: &Request) -> Result<(), Diagnostic> {
+    let name = &axis.name;
+    let also = if earlier.iter().any(|e| &e.name == name) {
+        "is varied twice"
+    } else if base.set.contains_key(name) {
+        "is also given by --set"
+    } else if base.init.contains_key(name) {
+        "is also given by --init"
+    } else {
+        return Ok(());
+    };
+    Err(Diagnostic::global(format!("`--vary {name}`: `{name}` {also}"))
+        .with_hint("vary each name once, and leave it out of --set and --init"))
+}
+
+/// The threads a sweep of `runs` runs uses for `requested` (0: one per
+/// core): never more than the cores, nor than the runs (each thread costs
+/// a stack, and CPU-bound runs gain nothing from more threads than cores).
+pub fn thread_count(requested: usize, runs: usize) -> usize {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let wanted = if requested == 0 { cores } else { requested };
+    wanted.min(cores).min(runs).max(1)
 }
 
 /// What a sweep keeps of one run.

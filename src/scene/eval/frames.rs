@@ -181,11 +181,16 @@ impl SyntaxEvaluator<'_> {
         Rotation::turn(axis, angle)
             .map(|r| Value::Rotation(Box::new(r)))
             .map_err(|e| match e {
+                TurnError::NotUnit(length2) if length2 == "0" => Diagnostic::error(
+                    args[0].span,
+                    "the axis of a rotation must be a unit vector, and this one is the zero vector: it has no direction",
+                )
+                .with_hint("name the axis: rot(z, a), or a unit vector such as rot([0, 3/5, 4/5], a)"),
                 TurnError::NotUnit(length2) => Diagnostic::error(
                     args[0].span,
                     format!("the axis of a rotation must be a unit vector; the squared length of this one is {length2}"),
                 )
-                .with_hint("divide it by its length: rot([1, 1, 0]/sqrt(2), a)"),
+                .with_hint(format!("divide it by its length: rot(AXIS/sqrt({length2}), ANGLE)")),
                 TurnError::TooManyTurns => Diagnostic::global("internal: one turn is too many"),
                 TurnError::Moving => Diagnostic::error(
                     args[0].span,

@@ -19,6 +19,10 @@ pub(super) fn multiplier_name(name: Option<&ast::Ident>, index: usize) -> String
 
 const FORMS: &str = "a constraint is holonomic, `constraint rod: x^2 + y^2 = l^2` (coordinates and t), or linear in the velocities, `constraint roll: x' = r*phi'`";
 
+/// The hint of a constraint that involves no coordinate.
+const NO_COORDINATE_HINT: &str =
+    "a constraint restricts the coordinates or their velocities; a relation between parameters is an `assume` fact";
+
 impl Resolver<'_> {
     /// The `constraint` statements, in order.
     pub(super) fn constraints(&mut self, stmts: &[&Stmt]) -> Result<Vec<Constraint>, Diagnostic> {
@@ -111,7 +115,7 @@ impl Resolver<'_> {
                 "involves no coordinate".to_string()
             };
             return Err(Diagnostic::error(equation.span, format!("{label} {what}"))
-                .with_hint("a constraint restricts the coordinates or their velocities; a relation between parameters is an `assume` fact"));
+                .with_hint(NO_COORDINATE_HINT));
         }
         let velocity_level = if holonomic { g.dt() } else { g.clone() };
         let (coefficients, rest) = crate::algebra::linear::split_linear(&velocity_level, &qd)
@@ -125,6 +129,27 @@ impl Resolver<'_> {
             .with_hint(FORMS));
         }
         debug_assert!(coefficients.iter().any(|a| !a.is_zero()));
+        // a coefficient can be zero in a form the canonical one does not
+        // show (sin a − 2·sin(a/2)·cos(a/2)): all of them so, and the
+        // constraint involves no coordinate after all
+        if coefficients
+            .iter()
+            .all(|a| a.is_zero() || crate::expr::hidden_zero::may_be_zero(a.num()))
+        {
+            let zeros: Vec<String> = coefficients
+                .iter()
+                .filter(|a| !a.is_zero())
+                .map(crate::expr::print::unicode)
+                .collect();
+            return Err(Diagnostic::error(
+                equation.span,
+                format!(
+                    "{label} involves no coordinate: its coefficient {} is 0",
+                    zeros.join(", ")
+                ),
+            )
+            .with_hint(NO_COORDINATE_HINT));
+        }
         Ok(Constraint {
             name: name.map(|n| n.name.clone()),
             multiplier: multiplier_name(name, index),

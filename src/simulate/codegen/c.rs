@@ -68,6 +68,43 @@ pub(super) const RESERVED: &[&str] = &[
     "forcing",
 ];
 
+/// Whether a name may be a macro where the generated C is compiled, so
+/// that a local of that name would not compile (`const double M_E = …`
+/// expands M_E to a number): the names `<math.h>` and GCC define as
+/// macros, by their families (`M_PI`, `FP_NAN`, `MATH_ERRNO`, …), and the
+/// names C reserves to the implementation (`_X…`, `__…`).
+pub(super) fn may_be_a_macro(name: &str) -> bool {
+    const MACROS: &[&str] = &[
+        "HUGE_VAL",
+        "HUGE_VALF",
+        "HUGE_VALL",
+        "math_errhandling",
+        "fpclassify",
+        "isfinite",
+        "isinf",
+        "isnan",
+        "isnormal",
+        "signbit",
+        "isgreater",
+        "isgreaterequal",
+        "isless",
+        "islessequal",
+        "islessgreater",
+        "isunordered",
+        "errno",
+        "unix",
+        "linux",
+        "i386",
+    ];
+    let reserved_underscore = name.starts_with("__")
+        || name
+            .strip_prefix('_')
+            .is_some_and(|r| r.starts_with(|c: char| c.is_ascii_uppercase()));
+    MACROS.contains(&name)
+        || ["M_", "FP_", "MATH_"].iter().any(|p| name.starts_with(p))
+        || reserved_underscore
+}
+
 pub(super) struct C;
 
 impl Syntax for C {

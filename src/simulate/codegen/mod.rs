@@ -159,13 +159,14 @@ pub fn codegen(src: &str, req: &CodegenRequest) -> Result<String, Diagnostic> {
         .map(|p| p.name.clone())
         .collect();
     let prefix = names::base(&base_name(&req.file)).to_ascii_lowercase();
-    let (syn, reserved): (&dyn Syntax, &[&str]) = match req.lang {
-        Lang::C => (&c::C, c::RESERVED),
-        Lang::Rust => (&rust::Rust, rust::RESERVED),
-        Lang::Python => (&python::Python, python::RESERVED),
-        Lang::Julia => (&julia::Julia, julia::RESERVED),
+    let no_form: fn(&str) -> bool = |_| false;
+    let (syn, reserved, form): (&dyn Syntax, &[&str], fn(&str) -> bool) = match req.lang {
+        Lang::C => (&c::C, c::RESERVED, c::may_be_a_macro),
+        Lang::Rust => (&rust::Rust, rust::RESERVED, no_form),
+        Lang::Python => (&python::Python, python::RESERVED, no_form),
+        Lang::Julia => (&julia::Julia, julia::RESERVED, no_form),
     };
-    let mut namer = names::Namer::new(reserved);
+    let mut namer = names::Namer::new(reserved, form);
     for f in ["rhs", "mass_matrix", "forcing", "energy"] {
         namer.take(&format!("{prefix}_{f}"));
     }

@@ -2,7 +2,8 @@
 //! distinct, in each target language. ASCII letters, digits and `_` are
 //! kept; Greek letters are spelled out (θ → `theta`, Ω → `Omega`),
 //! subscript digits become digits (x₁ → `x1`), anything else `_`; a
-//! leading digit gets a `v_` prefix; a name that is a keyword of the
+//! leading digit, or a form the language reserves (C's `M_…` macros),
+//! gets a `v_` prefix; a name that is a keyword of the
 //! language, a function the generated code calls, or one of its own
 //! names (`t`, `y`, `dy`, temporaries `w12`, …) gets a `_` appended,
 //! again until it is distinct from every other.
@@ -52,14 +53,18 @@ pub(super) fn base(name: &str) -> String {
 /// Hands out distinct identifiers.
 pub(super) struct Namer {
     taken: FxHashSet<String>,
+    /// Names a language reserves by their form, not one by one.
+    reserved_form: fn(&str) -> bool,
 }
 
 impl Namer {
     /// A namer for which `reserved` (keywords, called functions, the
-    /// generated code's own names) are taken.
-    pub(super) fn new(reserved: &[&str]) -> Namer {
+    /// generated code's own names) and the names `reserved_form` accepts
+    /// are taken.
+    pub(super) fn new(reserved: &[&str], reserved_form: fn(&str) -> bool) -> Namer {
         Namer {
             taken: reserved.iter().map(|s| s.to_string()).collect(),
+            reserved_form,
         }
     }
 
@@ -71,6 +76,10 @@ impl Namer {
     /// A distinct identifier for the scene name `name`.
     pub(super) fn fresh(&mut self, name: &str) -> String {
         let mut s = base(name);
+        if (self.reserved_form)(&s) {
+            // a suffix keeps the form (`M_E_` is still an `M_` name)
+            s.insert_str(0, "v_");
+        }
         while self.taken.contains(&s) || is_temporary(&s) {
             s.push('_');
         }
