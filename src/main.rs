@@ -615,10 +615,6 @@ impl Integration {
     }
 }
 
-/// How often a sweep whose standard error is no terminal says how far it
-/// has come (a terminal gets a bar instead).
-const SWEEP_LOG_EVERY: std::time::Duration = std::time::Duration::from_secs(10);
-
 /// `qdot sweep`'s arguments.
 #[derive(clap::Args)]
 struct SweepArgs {
@@ -655,6 +651,10 @@ struct SweepArgs {
     /// Runs, threads, wall time and runs per second (on stderr).
     #[arg(long)]
     stats: bool,
+    /// Without a terminal (a log, a pipe): a progress line on stderr every
+    /// SECONDS (a terminal gets a bar).
+    #[arg(long, value_name = "SECONDS", default_value_t = 10.0)]
+    log_every: f64,
 }
 
 fn sweep(o: &SweepArgs) -> ExitCode {
@@ -679,6 +679,13 @@ fn sweep(o: &SweepArgs) -> ExitCode {
         }
     };
     let prepared = (|| {
+        if !(o.log_every.is_finite() && o.log_every >= 0.0) {
+            return Err(qdot::Diagnostic::global(format!(
+                "`--log-every {}`: not a number of seconds",
+                o.log_every
+            ))
+            .with_hint("--log-every 30 writes a progress line every 30 s"));
+        }
         if o.output != "csv" && o.output != "json" {
             return Err(
                 qdot::Diagnostic::global(format!("unknown output `{}`", o.output))
@@ -737,7 +744,7 @@ fn sweep(o: &SweepArgs) -> ExitCode {
             let Ok(mut last) = logged.try_lock() else {
                 return;
             };
-            if last.elapsed() >= SWEEP_LOG_EVERY && done < total {
+            if last.elapsed().as_secs_f64() >= o.log_every && done < total {
                 *last = std::time::Instant::now();
                 let spent = start.elapsed().as_secs_f64();
                 let left = spent * (total - done) as f64 / done.max(1) as f64;

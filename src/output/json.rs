@@ -157,7 +157,29 @@ pub fn equilibrium_json(eq: &Equilibria) -> Map<String, Value> {
     let mut multiplicity = Vec::new();
     let mut notes = Vec::new();
     let mut approx = Vec::new();
+    let mut digits = Vec::new();
+    let mut certified = Vec::new();
+    let mut enclosure = Vec::new();
     for e in &eq.equilibria {
+        let numeric = matches!(e.position, Position::Numeric(_));
+        // the digits the text prints: certified, else 6 significant
+        digits.push(match (&e.position, &e.certified) {
+            (Position::Numeric(_), Some(d)) => json!(d),
+            (Position::Numeric(xs), None) => json!(xs
+                .iter()
+                .map(|x| crate::solve::certify::significant(*x, 6))
+                .collect::<Vec<_>>()),
+            (Position::Exact(_), _) => Value::Null,
+        });
+        certified.push(if numeric {
+            json!(e.certified.is_some())
+        } else {
+            Value::Null
+        });
+        enclosure.push(match (e.enclosure, eq.coordinates.first()) {
+            (Some((lo, hi)), Some(c)) => json!({ c.clone(): [lo, hi] }),
+            _ => Value::Null,
+        });
         approx.push(match &e.approx {
             Some(a) => json!(a),
             None => Value::Null,
@@ -190,6 +212,7 @@ pub fn equilibrium_json(eq: &Equilibria) -> Map<String, Value> {
         if let equilibrium::Stability::Undecided(why) = &e.stability {
             n.push(why.clone());
         }
+        n.extend(super::uncertified_note(e).map(String::from));
         notes.push(json!(n.join("; ")));
     }
     m.insert("equilibria".into(), Value::Array(list));
@@ -197,6 +220,11 @@ pub fn equilibrium_json(eq: &Equilibria) -> Map<String, Value> {
     m.insert("notes".into(), Value::Array(notes));
     m.insert("approx".into(), Value::Array(approx));
     m.insert("multiplicity".into(), Value::Array(multiplicity));
+    m.insert("digits".into(), Value::Array(digits));
+    m.insert("certified".into(), Value::Array(certified));
+    m.insert("enclosure".into(), Value::Array(enclosure));
+    m.insert("complete".into(), json!(super::search_caveat(eq).is_none()));
+    m.insert("caveat".into(), json!(super::search_caveat(eq)));
     // with constraints: each equilibrium's multipliers (name → λ)
     if eq.equilibria.iter().any(|e| !e.multipliers.is_empty()) {
         let lists = eq

@@ -473,6 +473,30 @@ fn position_strings(
     .collect()
 }
 
+/// What a numeric search of equilibria cannot promise, said by every
+/// format: `None` for positions in closed form (or none found).
+pub(super) fn search_caveat(eq: &equilibrium::Equilibria) -> Option<&'static str> {
+    if eq.exact || eq.equilibria.is_empty() {
+        None
+    } else if eq.coordinates.len() == 1 {
+        Some("found by Newton's method from many starting points: roots far from them may be missed; digits shown are certified by a sign change")
+    } else {
+        Some("found by Newton's method from many starting points: roots far from them may be missed")
+    }
+}
+
+/// Why a numeric position's digits are not certified, when they are not.
+pub(super) fn uncertified_note(e: &equilibrium::Equilibrium) -> Option<&'static str> {
+    match (&e.position, &e.certified) {
+        (Position::Numeric(xs), None) => Some(if xs.len() == 1 {
+            "not certified: no sign change of the condition found around it (a multiple root, or one lost in rounding); 6 digits shown"
+        } else {
+            "not certified (several coordinates: qdot encloses roots of one equation only); 6 digits shown"
+        }),
+        _ => None,
+    }
+}
+
 /// A number with the typographic minus of the text output.
 pub(super) fn minus(s: String) -> String {
     match s.strip_prefix('-') {

@@ -6,7 +6,7 @@ use crate::expr::print::pretty_name;
 use crate::expr::Expr;
 use crate::mechanics::Lagrange;
 use crate::scene::Scene;
-use crate::solve::equilibrium::{self, Equilibria, Position};
+use crate::solve::equilibrium::{self, Equilibria};
 use crate::solve::system::{self, BlockSolution};
 
 /// The text of `qdot derive`.
@@ -222,12 +222,8 @@ pub fn equilibrium_text(eq: &Equilibria) -> String {
     if eq.equilibria.is_empty() {
         out.push_str("  none\n");
     }
-    if !eq.exact && !eq.equilibria.is_empty() {
-        out.push_str(if eq.coordinates.len() == 1 {
-            "  (found by Newton's method from many starting points: roots far from them may be missed; digits shown are certified by a sign change)\n"
-        } else {
-            "  (found by Newton's method from many starting points: roots far from them may be missed)\n"
-        });
+    if let Some(caveat) = super::search_caveat(eq) {
+        out.push_str(&format!("  ({caveat})\n"));
     }
     for (i, e) in eq.equilibria.iter().enumerate() {
         let vals = position_strings(eq, e, &as_unicode);
@@ -261,12 +257,8 @@ pub fn equilibrium_text(eq: &Equilibria) -> String {
                 e.multiplicity
             ));
         }
-        if let (Position::Numeric(xs), None) = (&e.position, &e.certified) {
-            out.push_str(if xs.len() == 1 {
-                "     not certified: no sign change of the condition found around it (a multiple root, or one lost in rounding); 6 digits shown\n"
-            } else {
-                "     not certified (several coordinates: qdot encloses roots of one equation only); 6 digits shown\n"
-            });
+        if let Some(why) = super::uncertified_note(e) {
+            out.push_str(&format!("     {why}\n"));
         }
         for c in &e.conditions {
             out.push_str(&format!("     exists when {c}\n"));

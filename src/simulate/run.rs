@@ -129,7 +129,7 @@ pub struct Run {
 impl Run {
     /// Why the run ended with [`Status::NotFinite`], for its message.
     pub fn not_finite_reason(&self) -> String {
-        const NAN: &str = "a function outside its domain (√ or ln of a negative number, asin or acos past ±1), 0/0, or an overflow (∞·0, ∞ − ∞)";
+        const NAN: &str = "a function outside its domain (√ or ln of a negative number, asin or acos past ±1), 0/0, ∞·0 or ∞ − ∞";
         const INF: &str = "a division by zero, or a value out of the double range";
         match &self.not_finite_column {
             Some(c) if self.not_finite_is_nan => {

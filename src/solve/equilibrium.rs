@@ -98,6 +98,9 @@ pub struct Equilibrium {
     /// A numeric position's digits that are certified (one coordinate: a
     /// sign change of F encloses the root); `None` when not certified.
     pub certified: Option<Vec<String>>,
+    /// The interval [lo, hi] where F changes sign around a certified
+    /// numeric root (one coordinate), beside its digits.
+    pub enclosure: Option<(f64, f64)>,
     /// With constraints: each multiplier's value there (name, λ); λ·∂g/∂q
     /// is the constraint's force at the equilibrium. Empty without.
     pub multipliers: Vec<(String, Expr)>,
@@ -114,6 +117,7 @@ impl Equilibrium {
             stability,
             multiplicity: 1,
             certified: None,
+            enclosure: None,
             multipliers: Vec::new(),
         }
     }
@@ -255,6 +259,7 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
                     stability,
                     multiplicity,
                     certified: None,
+                    enclosure: None,
                     multipliers: Vec::new(),
                 });
             }
@@ -1102,14 +1107,15 @@ fn solve_numeric(
                 }
             }
             // one coordinate: certify the digits by a sign change of F
-            let certified = (r.x.len() == 1)
+            let enclosure = (r.x.len() == 1)
                 .then(|| {
                     let f1 = |x: f64| f(&[x]).map(|v| v[0]);
-                    super::certify::enclose(&f1, r.x[0]).map(|e| vec![e.digits()])
+                    super::certify::enclose(&f1, r.x[0])
                 })
                 .flatten();
             let mut e = Equilibrium::new(Position::Numeric(r.x), stability);
-            e.certified = certified;
+            e.certified = enclosure.map(|e| vec![e.digits()]);
+            e.enclosure = enclosure.map(|e| (e.lo, e.hi));
             e
         })
         .collect()

@@ -11,3 +11,4 @@ mod input;
 mod mechanics;
 mod numeric;
 mod output;
+mod round3;

@@ -124,7 +124,7 @@ fn a_value_that_is_not_finite_ends_the_run() {
     assert!(!rows.contains("null"), "{o:?}");
     assert_eq!(
         o.stderr,
-        "error: the integration stopped early: not finite at t = 0.000000e0\n  = hint: `energy` is NaN there: a function outside its domain (√ or ln of a negative number, asin or acos past ±1), 0/0, or an overflow (∞·0, ∞ − ∞); the rows before it are printed\n"
+        "error: the integration stopped early: not finite at t = 0.000000e0\n  = hint: `energy` is NaN there: a function outside its domain (√ or ln of a negative number, asin or acos past ±1), 0/0, ∞·0 or ∞ − ∞; the rows before it are printed\n"
     );
 }
 
