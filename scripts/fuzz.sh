@@ -6,7 +6,7 @@
 #   scripts/fuzz.sh cmin [TARGET…]            minimize fuzz/corpus/TARGET in place
 #   scripts/fuzz.sh build                     build the targets only
 #
-# Targets: parse, pipeline, repl, simulate (fuzz/src/pipeline.rs says what
+# Targets: parse, pipeline, repl, simulate, commands (fuzz/src/pipeline.rs says what
 # each does). `run` reads the committed seeds (fuzz/corpus/TARGET, never
 # written) and keeps what it finds new in fuzz/work/TARGET (not committed),
 # so a long campaign resumes where the last one stopped. A crash, a time-out
@@ -20,7 +20,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-TARGETS=(parse pipeline repl simulate)
+TARGETS=(parse pipeline repl simulate commands)
 CARGO_FUZZ_VERSION=0.13.2
 TIMEOUT=${FUZZ_TIMEOUT:-10}
 RSS_MB=${FUZZ_RSS_MB:-2048}
@@ -119,7 +119,7 @@ ones() {
 
 seeds() {
     local c=fuzz/corpus
-    mkdir -p "$c/parse" "$c/pipeline" "$c/repl" "$c/simulate"
+    mkdir -p "$c/parse" "$c/pipeline" "$c/repl" "$c/simulate" "$c/commands"
     rm -f "$c"/*/seed-*
     local scenes=(examples/*.qd book/scenes/*.qd tests/data/dimensions/*/*.qd tests/data/frames/*/*.qd tests/data/constraints/*/*.qd)
     for f in "${scenes[@]}"; do
@@ -164,6 +164,28 @@ seeds() {
     done
     printf -- '--set m=1,l=1,g=9.81\n--init theta=2.5,theta'"'"'=0\n--t-end 5\n--plot\n--stop-when theta'"'"' = 0\n' >"$s/seed-plot-stop"
     { printf -- '--set m=1,k=1,c=1,F0=1,p=2\n--init x=0,x'"'"'=0\n--t-end 3\n--points 4\n---\n'; cat examples/forced_oscillator.qd; } >"$s/seed-forced"
+    # commands: each example's integrals and Hamiltonian as JSON, its C
+    # (every parameter bound) and its Python M and f (the example's name
+    # as the file name)
+    local k=$c/commands
+    for f in examples/*.qd; do
+        local n
+        n=$(seed_name "$f")
+        { printf -- '--command integrals\n--format json\n---\n'; cat "$f"; } >"$k/seed-$n-integrals"
+        { printf -- '--command hamilton\n--format latex\n---\n'; cat "$f"; } >"$k/seed-$n-hamilton"
+        { printf -- '--command codegen\n--lang c\n--file %s.qd\n--set %s\n---\n' "$n" "$(ones "$f")"; cat "$f"; } >"$k/seed-$n-codegen-c"
+        { printf -- '--command codegen\n--lang python\n--form mass-matrix\n--file %s.qd\n---\n' "$n"; cat "$f"; } >"$k/seed-$n-codegen-python"
+    done
+    # commands: sweeps (grids, random designs, events, threads, a name
+    # varied twice), codegen names that are keywords or macros
+    printf -- '--command sweep\n--set m=1,g=9.81\n--init theta'"'"'=0\n--vary l=0.5:2:3\n--vary theta=0.5:3:2\n--t-end 5\n--points 11\n' >"$k/seed-sweep-book"
+    printf -- '--command sweep\n--set m=1,g=1,l=1\n--init theta'"'"'=0\n--vary theta=0.1:3\n--samples 8\n--seed 7\n--threads 2\n--t-end 2\n--output json\n' >"$k/seed-sweep-random"
+    printf -- '--command sweep\n--set m=1,g=1\n--init theta=1,theta'"'"'=0\n--vary l=1:2:3\n--stop-when 1/(theta-0.5) = 0\n--t-end 3\n' >"$k/seed-sweep-pole"
+    printf -- '--command sweep\n--set m=1,g=1\n--init theta'"'"'=0\n--vary l=1:2:3\n--vary l=1:2:3\n--t-end 1\n' >"$k/seed-sweep-twice"
+    printf -- '--command sweep\n--set m=1,g=1\n--init theta=1,theta'"'"'=0\n--vary l=1:2:2\n--threads 100000\n--t-end 1\n' >"$k/seed-sweep-threads"
+    { printf -- '--command codegen\n--lang c\n--file M_PI.qd\n---\n'; printf 'coordinates x\nparameters M_E, unix, FP_NAN, _Bool, double\nkinetic E = 1/2*M_E*x'"'"'^2\npotential V = 1/2*(unix + FP_NAN + _Bool + double)*x^2\n'; } >"$k/seed-codegen-macros"
+    { printf -- '--command integrals\n--format json\n---\n'; cat examples/moving_support.qd; } >"$k/seed-integrals-given"
+    { printf -- '--command codegen\n--lang python\n--function s=t^2\n---\n'; cat examples/moving_support.qd; } >"$k/seed-codegen-given"
     echo "seeds: $(ls "$c"/*/seed-* | wc -l) files, $(cat "$c"/*/* | wc -c) bytes"
 }
 

@@ -12,7 +12,7 @@ use qdot::repl::{is_complete, Session};
 use qdot::simulate::run;
 
 /// The target names, in the order the script runs them.
-pub const TARGETS: [&str; 4] = ["parse", "pipeline", "repl", "simulate"];
+pub const TARGETS: [&str; 5] = ["parse", "pipeline", "repl", "simulate", "commands"];
 
 /// Replay `data` through the target called `name`.
 pub fn by_name(name: &str, data: &[u8]) {
@@ -21,6 +21,7 @@ pub fn by_name(name: &str, data: &[u8]) {
         "pipeline" => pipeline(data),
         "repl" => repl(data),
         "simulate" => simulate(data),
+        "commands" => commands(data),
         _ => panic!("no fuzz target `{name}`"), // ok: a typo in a test, not input
     }
 }
@@ -249,5 +250,206 @@ pub fn simulate(data: &[u8]) {
         Err(d) => {
             let _ = d.render("fuzz.qd", scene);
         }
+    }
+}
+
+/// The most runs a `commands` input's sweep may ask for: the fuzzer's
+/// time-out is per input, and the sweep's own bound (a million runs) is
+/// tested in tests/hostile.
+const MAX_FUZZ_SWEEP_RUNS: usize = 16;
+
+/// Target `commands`: the scene-level commands that came after the other
+/// targets, with fuzzed options: `integrals` and `hamilton` in every
+/// format (with `--set`), `sweep` (its `--vary` axes, `--samples`,
+/// `--threads`, `--stop-when`, CSV and JSON) and `codegen` (every
+/// language and form, `--set`, `--function`, and a fuzzed file name,
+/// which names the generated functions). The input is option lines, the
+/// first `--command NAME`, then optionally `---` and the scene (the
+/// pendulum without one):
+///
+/// ```text
+/// --command sweep
+/// --set m=1,g=9.81
+/// --init theta'=0
+/// --vary l=0.5:2:3
+/// --t-end 1
+/// ```
+pub fn commands(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let (opts, scene) = match text.split_once("\n---\n") {
+        Some((o, s)) => (o, s),
+        None => (text, PENDULUM),
+    };
+    let o = OptionLines::read(opts);
+    match o.one("--command") {
+        Some("integrals") => {
+            scene_command(Command::Integrals, scene, o.one("--format"), o.one("--set"))
+        }
+        Some("hamilton") => {
+            scene_command(Command::Hamilton, scene, o.one("--format"), o.one("--set"))
+        }
+        Some("sweep") => sweep(scene, &o),
+        Some("codegen") => codegen(scene, &o),
+        _ => {}
+    }
+}
+
+/// `--name value` lines, as a command line gives them.
+struct OptionLines<'a>(Vec<(&'a str, &'a str)>);
+
+impl<'a> OptionLines<'a> {
+    fn read(text: &'a str) -> OptionLines<'a> {
+        OptionLines(
+            text.lines()
+                .map(|line| {
+                    let line = line.trim();
+                    match line.split_once(char::is_whitespace) {
+                        Some((k, v)) => (k, v.trim()),
+                        None => (line, ""),
+                    }
+                })
+                .collect(),
+        )
+    }
+
+    /// The first value of `key`.
+    fn one(&self, key: &str) -> Option<&'a str> {
+        self.0.iter().find(|(k, _)| *k == key).map(|(_, v)| *v)
+    }
+
+    /// Every value of a repeated `key`, in order.
+    fn all(&self, key: &str) -> Vec<String> {
+        self.0
+            .iter()
+            .filter(|(k, _)| *k == key)
+            .map(|(_, v)| v.to_string())
+            .collect()
+    }
+
+    fn number<T: std::str::FromStr>(&self, key: &str) -> Option<T> {
+        self.one(key).and_then(|v| v.parse().ok())
+    }
+}
+
+/// `qdot COMMAND --format FORMAT [--set …]` on `src`.
+fn scene_command(cmd: Command, src: &str, format: Option<&str>, set: Option<&str>) {
+    let fmt = match format {
+        Some("json") => Format::Json,
+        Some("latex") => Format::Latex,
+        _ => Format::Text,
+    };
+    let mut opts = CommandOptions::default();
+    if let Some(set) = set {
+        match output::parse_set_any_sign(set) {
+            Ok(s) => opts.set = s,
+            Err(d) => {
+                let _ = d.render("--set", set);
+                return;
+            }
+        }
+    }
+    match output::run_with(cmd, src, fmt, &opts) {
+        Ok((_, warnings)) => {
+            for w in warnings {
+                let _ = w.render("fuzz.qd", src);
+            }
+        }
+        Err(d) => {
+            let _ = d.render("fuzz.qd", src);
+        }
+    }
+}
+
+/// `qdot sweep` as the CLI runs it (its design bounded for the fuzzer).
+fn sweep(src: &str, o: &OptionLines) {
+    use qdot::simulate::sweep::{self as sw, Design};
+    let mut req = run::Request {
+        t_end: o.number("--t-end").unwrap_or(1.0),
+        stop_when: o.one("--stop-when").map(String::from),
+        ..Default::default()
+    };
+    if let Some(p) = o.number("--points") {
+        req.points = p;
+    }
+    let parsed = (|| -> Result<_, qdot::Diagnostic> {
+        req.method = run::method_by_name(o.one("--method").unwrap_or("dop853"))?;
+        req.set = o
+            .one("--set")
+            .map(output::parse_set_any_sign)
+            .transpose()?
+            .unwrap_or_default();
+        req.init = o
+            .one("--init")
+            .map(run::parse_init)
+            .transpose()?
+            .unwrap_or_default();
+        let axes = o
+            .all("--vary")
+            .iter()
+            .map(|v| sw::parse_axis(v))
+            .collect::<Result<Vec<_>, _>>()?;
+        let design = match o.number("--samples") {
+            Some(samples) => Design::Random {
+                samples,
+                seed: o.number("--seed").unwrap_or(0),
+            },
+            None => Design::Grid,
+        };
+        Ok((axes, design))
+    })();
+    let (axes, design) = match parsed {
+        Ok(x) => x,
+        Err(d) => {
+            let _ = d.render("fuzz.qd", "");
+            return;
+        }
+    };
+    let threads = o.number("--threads").unwrap_or(0);
+    let result = run::Prepared::new(src, &[]).and_then(|p| {
+        if sw::design_points(&axes, design)?.len() > MAX_FUZZ_SWEEP_RUNS {
+            return Ok(None);
+        }
+        sw::sweep(&p, &req, &axes, design, threads, &|_| {}).map(Some)
+    });
+    match result {
+        Ok(Some(s)) => {
+            let _ = sw::csv(&s);
+            let _ = sw::json(&s);
+        }
+        Ok(None) => {}
+        Err(d) => {
+            let _ = d.render("fuzz.qd", src);
+        }
+    }
+}
+
+/// `qdot codegen` as the CLI runs it, the file name fuzzed too.
+fn codegen(src: &str, o: &OptionLines) {
+    use qdot::simulate::codegen::{self as cg, CodegenRequest, Form, Lang};
+    let lang = match o.one("--lang") {
+        Some("rust") => Lang::Rust,
+        Some("python") => Lang::Python,
+        Some("julia") => Lang::Julia,
+        _ => Lang::C,
+    };
+    let mut req = CodegenRequest::new(o.one("--file").unwrap_or("fuzz.qd"), lang);
+    if o.one("--form") == Some("mass-matrix") {
+        req.form = Form::MassMatrix;
+    }
+    req.functions = o.all("--function");
+    if let Some(b) = o.number("--baumgarte") {
+        req.baumgarte = b;
+    }
+    match o.one("--set").map(output::parse_set_any_sign).transpose() {
+        Ok(s) => req.set = s.unwrap_or_default(),
+        Err(d) => {
+            let _ = d.render("fuzz.qd", "");
+            return;
+        }
+    }
+    if let Err(d) = cg::codegen(src, &req) {
+        let _ = d.render("fuzz.qd", src);
     }
 }

@@ -481,7 +481,9 @@ pub(super) fn search_caveat(eq: &equilibrium::Equilibria) -> Option<&'static str
     } else if eq.coordinates.len() == 1 {
         Some("found by Newton's method from many starting points: roots far from them may be missed; digits shown are certified by a sign change")
     } else {
-        Some("found by Newton's method from many starting points: roots far from them may be missed")
+        Some(
+            "found by Newton's method from many starting points: roots far from them may be missed",
+        )
     }
 }
 

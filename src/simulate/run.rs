@@ -136,9 +136,9 @@ impl Run {
                 format!("`{c}` is NaN there: {NAN}; the rows before it are printed")
             }
             Some(c) => format!("`{c}` is infinite there: {INF}; the rows before it are printed"),
-            None => format!(
-                "q̈ was NaN or infinite within the step after the last row: {NAN}, or {INF}"
-            ),
+            None => {
+                format!("q̈ was NaN or infinite within the step after the last row: {NAN}, or {INF}")
+            }
         }
     }
 }

@@ -176,8 +176,12 @@ pub fn design_points(axes: &[Axis], design: Design) -> Result<Vec<Vec<f64>>, Dia
         }
         Design::Random { samples, seed } => {
             if samples == 0 {
-                return Err(Diagnostic::global("`--samples 0`: a random design needs at least one run")
-                    .with_hint("--samples 100 draws 100 random points in the box of the --vary ranges"));
+                return Err(Diagnostic::global(
+                    "`--samples 0`: a random design needs at least one run",
+                )
+                .with_hint(
+                    "--samples 100 draws 100 random points in the box of the --vary ranges",
+                ));
             }
             if samples > MAX_SWEEP_RUNS {
                 return Err(too_many(samples.to_string()));
@@ -317,8 +321,10 @@ fn given_once(axis: &Axis, earlier: &[Axis], base: &Request) -> Result<(), Diagn
     } else {
         return Ok(());
     };
-    Err(Diagnostic::global(format!("`--vary {name}`: `{name}` {also}"))
-        .with_hint("vary each name once, and leave it out of --set and --init"))
+    Err(
+        Diagnostic::global(format!("`--vary {name}`: `{name}` {also}"))
+            .with_hint("vary each name once, and leave it out of --set and --init"),
+    )
 }
 
 /// The threads a sweep of `runs` runs uses for `requested` (0: one per

@@ -47,7 +47,12 @@ fn a_given_function_of_time_has_no_energy_integral() {
         "{o:?}"
     );
     let j = qdot_bounded(
-        &["integrals", "examples/moving_support.qd", "--format", "json"],
+        &[
+            "integrals",
+            "examples/moving_support.qd",
+            "--format",
+            "json",
+        ],
         "",
         SECONDS,
         MEMORY_MIB,
@@ -90,7 +95,8 @@ fn a_given_function_of_time_has_no_energy_integral() {
 /// nothing in it moves with t.
 #[test]
 fn a_velocity_constraint_with_a_rest_term_does_work_and_does_not_move() {
-    let src = "coordinates x, y\nparameters m\nkinetic E = 1/2*m*(x'^2 + y'^2)\nconstraint c: x' = y\n";
+    let src =
+        "coordinates x, y\nparameters m\nkinetic E = 1/2*m*(x'^2 + y'^2)\nconstraint c: x' = y\n";
     let o = qdot_scene("rest_term", src.as_bytes(), "integrals", &[]);
     o.assert_clean();
     assert!(
@@ -108,8 +114,14 @@ fn a_velocity_constraint_with_a_rest_term_does_work_and_does_not_move() {
 /// enclosing sign change, and the search's caveat.
 #[test]
 fn json_carries_the_certified_digits_and_the_caveat() {
-    let src = "coordinates x\nparameters k\npotential V = k*(x^2/2 - sin(x))\nkinetic E = 1/2*x'^2\n";
-    let t = qdot_scene("cosx", src.as_bytes(), "equilibrium", &["--set", "k=1e-320"]);
+    let src =
+        "coordinates x\nparameters k\npotential V = k*(x^2/2 - sin(x))\nkinetic E = 1/2*x'^2\n";
+    let t = qdot_scene(
+        "cosx",
+        src.as_bytes(),
+        "equilibrium",
+        &["--set", "k=1e-320"],
+    );
     assert!(t.stdout.contains("  1. x = 0.739  — stable\n"), "{t:?}");
     let o = qdot_scene(
         "cosx",
@@ -213,8 +225,9 @@ fn a_sign_change_through_a_pole_is_not_an_event() {
     // the zero at the same place is an event
     let o = pendulum(&["--stop-when", "theta - 0.5 = 0"]);
     assert!(
-        o.stderr
-            .contains("stopped at t = 1.126844213346943e0, where the --stop-when condition changes sign"),
+        o.stderr.contains(
+            "stopped at t = 1.126844213346943e0, where the --stop-when condition changes sign"
+        ),
         "{o:?}"
     );
 }
@@ -255,7 +268,11 @@ fn set_values_that_break_an_assumption_are_refused() {
         );
         o.assert_clean();
         assert_eq!(o.code, Some(1), "{o:?}");
-        let pair = if set.starts_with("R=1,r=2") { "R=1,r=2" } else { "R=1,r=1" };
+        let pair = if set.starts_with("R=1,r=2") {
+            "R=1,r=2"
+        } else {
+            "R=1,r=1"
+        };
         assert_eq!(
             o.stderr,
             format!("error: `--set {pair}` breaks the scene's assumption R − r > 0: {shown}\n  = hint: give values that keep every `assume` fact, or change the fact\n"),
@@ -264,14 +281,24 @@ fn set_values_that_break_an_assumption_are_refused() {
     }
     // values that keep it, and values that leave it open, pass
     let o = qdot_bounded(
-        &["modes", "examples/disk_in_cylinder.qd", "--set", "R=2,r=1,m=1,g=1"],
+        &[
+            "modes",
+            "examples/disk_in_cylinder.qd",
+            "--set",
+            "R=2,r=1,m=1,g=1",
+        ],
         "",
         SECONDS,
         MEMORY_MIB,
     );
     assert_eq!(o.code, Some(0), "{o:?}");
     let o = qdot_bounded(
-        &["equilibrium", "examples/disk_in_cylinder.qd", "--set", "m=1"],
+        &[
+            "equilibrium",
+            "examples/disk_in_cylinder.qd",
+            "--set",
+            "m=1",
+        ],
         "",
         SECONDS,
         MEMORY_MIB,
@@ -291,8 +318,18 @@ fn sweep(extra: &[&str]) -> Outcome {
 fn a_name_varied_twice_or_also_set_is_refused() {
     let hint = "  = hint: vary each name once, and leave it out of --set and --init\n";
     for (set, init, vary2, why) in [
-        ("m=1,g=1", "theta=1,theta'=0", "l=1:2:3", "`l` is varied twice"),
-        ("m=1,g=1,l=1", "theta=1,theta'=0", "", "`l` is also given by --set"),
+        (
+            "m=1,g=1",
+            "theta=1,theta'=0",
+            "l=1:2:3",
+            "`l` is varied twice",
+        ),
+        (
+            "m=1,g=1,l=1",
+            "theta=1,theta'=0",
+            "",
+            "`l` is also given by --set",
+        ),
     ] {
         let mut args = vec!["--set", set, "--init", init, "--vary", "l=1:2:3"];
         if !vary2.is_empty() {
@@ -304,7 +341,12 @@ fn a_name_varied_twice_or_also_set_is_refused() {
         assert_eq!(o.stderr, format!("error: `--vary l`: {why}\n{hint}"));
     }
     let o = sweep(&[
-        "--set", "m=1,g=1,l=1", "--init", "theta=1,theta'=0", "--vary", "theta=0:1:2",
+        "--set",
+        "m=1,g=1,l=1",
+        "--init",
+        "theta=1,theta'=0",
+        "--vary",
+        "theta=0:1:2",
     ]);
     assert_eq!(
         o.stderr,
@@ -315,8 +357,16 @@ fn a_name_varied_twice_or_also_set_is_refused() {
 #[test]
 fn sweep_options_are_checked_before_any_run() {
     let o = sweep(&[
-        "--set", "m=1,g=1", "--init", "theta'=0", "--vary", "l=1:2", "--vary", "theta=0:1",
-        "--samples", "0",
+        "--set",
+        "m=1,g=1",
+        "--init",
+        "theta'=0",
+        "--vary",
+        "l=1:2",
+        "--vary",
+        "theta=0:1",
+        "--samples",
+        "0",
     ]);
     o.assert_clean();
     assert_eq!(
@@ -325,7 +375,13 @@ fn sweep_options_are_checked_before_any_run() {
     );
     // an event that names nothing is one error, not one per row
     let o = sweep(&[
-        "--set", "m=1,g=1", "--init", "theta=1,theta'=0", "--vary", "l=1:2:3", "--stop-when",
+        "--set",
+        "m=1,g=1",
+        "--init",
+        "theta=1,theta'=0",
+        "--vary",
+        "l=1:2:3",
+        "--stop-when",
         "zzz=0",
     ]);
     o.assert_clean();
@@ -345,8 +401,19 @@ fn sweep_threads_are_capped_by_cores_and_runs() {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let o = qdot_bounded(
         &[
-            "sweep", "examples/pendulum.qd", "--set", "m=1,g=1", "--init", "theta=1,theta'=0",
-            "--vary", "l=1:2:3", "--t-end", "1", "--threads", "100000", "--stats",
+            "sweep",
+            "examples/pendulum.qd",
+            "--set",
+            "m=1,g=1",
+            "--init",
+            "theta=1,theta'=0",
+            "--vary",
+            "l=1:2:3",
+            "--t-end",
+            "1",
+            "--threads",
+            "100000",
+            "--stats",
         ],
         "",
         SECONDS,
@@ -356,7 +423,8 @@ fn sweep_threads_are_capped_by_cores_and_runs() {
     assert_eq!(o.code, Some(0), "{o:?}");
     let threads = cores.min(3);
     assert!(
-        o.stderr.starts_with(&format!("3 runs on {threads} threads in ")),
+        o.stderr
+            .starts_with(&format!("3 runs on {threads} threads in ")),
         "{o:?}"
     );
 }
@@ -365,8 +433,20 @@ fn sweep_threads_are_capped_by_cores_and_runs() {
 #[test]
 fn a_sweep_without_a_terminal_logs_its_progress() {
     let o = sweep(&[
-        "--set", "m=1,g=1", "--init", "theta'=0", "--vary", "l=1:2:40", "--vary",
-        "theta=0.1:3:40", "--threads", "1", "--points", "2000", "--log-every", "0",
+        "--set",
+        "m=1,g=1",
+        "--init",
+        "theta'=0",
+        "--vary",
+        "l=1:2:40",
+        "--vary",
+        "theta=0.1:3:40",
+        "--threads",
+        "1",
+        "--points",
+        "2000",
+        "--log-every",
+        "0",
     ]);
     o.assert_clean();
     assert_eq!(o.code, Some(0), "{o:?}");
@@ -464,7 +544,16 @@ fn nan_and_infinity_are_told_apart() {
         "sqrt_negative",
         src.as_bytes(),
         "simulate",
-        &["--set", "m=1", "--init", "x=1,x'=-3", "--t-end", "3", "--points", "3"],
+        &[
+            "--set",
+            "m=1",
+            "--init",
+            "x=1,x'=-3",
+            "--t-end",
+            "3",
+            "--points",
+            "3",
+        ],
     );
     o.assert_clean();
     assert_eq!(o.code, Some(3), "{o:?}");
@@ -478,10 +567,20 @@ fn nan_and_infinity_are_told_apart() {
         "sqrt_negative",
         src.as_bytes(),
         "simulate",
-        &["--set", "m=1", "--init", "x=-1,x'=0", "--t-end", "1", "--points", "3"],
+        &[
+            "--set",
+            "m=1",
+            "--init",
+            "x=-1,x'=0",
+            "--t-end",
+            "1",
+            "--points",
+            "3",
+        ],
     );
     assert!(
-        o.stderr.contains("  = hint: `energy` is NaN there: a function outside its domain"),
+        o.stderr
+            .contains("  = hint: `energy` is NaN there: a function outside its domain"),
         "{o:?}"
     );
 }
@@ -500,7 +599,8 @@ fn a_repl_command_never_continues_an_unfinished_entry() {
         "{o:?}"
     );
     assert!(
-        o.stderr.contains("error: the scene has no kinetic energy\n"),
+        o.stderr
+            .contains("error: the scene has no kinetic energy\n"),
         "the entry was refused, and :solve ran on the scene without it: {o:?}"
     );
     assert!(!o.stderr.contains(":solve"), "{o:?}");
@@ -514,7 +614,8 @@ fn the_examples_still_have_their_energy_integral() {
         let o = qdot_scene(name, src.as_bytes(), "integrals", &[]);
         o.assert_clean();
         assert!(
-            o.stdout.contains("Energy integral  h = Σ q̇·∂L/∂q̇ − L\n  h = "),
+            o.stdout
+                .contains("Energy integral  h = Σ q̇·∂L/∂q̇ − L\n  h = "),
             "{name}: {o:?}"
         );
     }
