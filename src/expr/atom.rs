@@ -105,7 +105,15 @@ impl Atom {
             | Atom::Atan(u)
             | Atom::Asin(u)
             | Atom::Acos(u) => Some(u),
-            _ => None,
+            Atom::Param(_)
+            | Atom::Unknown(_)
+            | Atom::Coord(..)
+            | Atom::Given(..)
+            | Atom::Time
+            | Atom::Pi
+            | Atom::Root(_)
+            | Atom::Shown(_)
+            | Atom::Group(_) => None,
         }
     }
 }

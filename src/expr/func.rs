@@ -804,6 +804,16 @@ pub fn subs_atom(v: Var, map: &FxHashMap<Var, Expr>) -> Result<Option<Expr>, Mat
         Atom::Ln(_) => ln(&u)?,
         Atom::Asin(_) => asin(&u)?,
         Atom::Acos(_) => acos(&u)?,
-        _ => atan(&u),
+        Atom::Atan(_) => atan(&u),
+        // no argument: returned unchanged above
+        Atom::Param(_)
+        | Atom::Unknown(_)
+        | Atom::Coord(..)
+        | Atom::Given(..)
+        | Atom::Time
+        | Atom::Pi
+        | Atom::Root(_)
+        | Atom::Shown(_)
+        | Atom::Group(_) => return Ok(None),
     }))
 }
