@@ -4,7 +4,7 @@
 use super::{SyntaxEvaluator, Value};
 use crate::diag::Diagnostic;
 use crate::expr::Expr;
-use crate::parse::ast::{self, BinOp, ExprKind, Span};
+use crate::parse::ast::{self, BinOp, Builtin, ExprKind, Span};
 use crate::scene::rotation::{Rotation, TurnError};
 
 /// The hint for a rotation where a number or a vector is needed.
@@ -106,7 +106,7 @@ impl SyntaxEvaluator<'_> {
     /// `axis(F, k)`: the k-th unit vector of the frame F (its number of
     /// arguments is checked by the caller, as for `express`, `omega`, `rot`).
     pub(super) fn axis(&mut self, args: &[ast::Expr]) -> Result<Value, Diagnostic> {
-        let r = self.rotation(&args[0], "axis")?;
+        let r = self.rotation(&args[0], Builtin::Axis)?;
         let k = self.component_number(&args[1], 3, "a frame has the axes")?;
         Ok(Value::Vector(r.axis(k).to_vec()))
     }
@@ -124,13 +124,13 @@ impl SyntaxEvaluator<'_> {
             )
             .with_hint("a frame's axes are in space; write a plane vector as [x, y, 0]"));
         };
-        let r = self.rotation(&args[1], "express")?;
+        let r = self.rotation(&args[1], Builtin::Express)?;
         Ok(Value::Vector(r.to_frame(&v3).to_vec()))
     }
 
     /// `omega(F)`: the angular velocity of the frame F, in ground components.
     pub(super) fn omega(&mut self, args: &[ast::Expr]) -> Result<Value, Diagnostic> {
-        let r = self.rotation(&args[0], "omega")?;
+        let r = self.rotation(&args[0], Builtin::Omega)?;
         Ok(Value::Vector(r.omega_ground().to_vec()))
     }
 
@@ -190,7 +190,8 @@ impl SyntaxEvaluator<'_> {
     }
 
     /// The rotation `e` must be (`what`: the function asking).
-    fn rotation(&mut self, e: &ast::Expr, what: &str) -> Result<Rotation, Diagnostic> {
+    fn rotation(&mut self, e: &ast::Expr, what: Builtin) -> Result<Rotation, Diagnostic> {
+        let what = what.name();
         match self.value(e)? {
             Value::Rotation(r) => Ok(*r),
             v => Err(Diagnostic::error(

@@ -709,7 +709,7 @@ impl<'a> SyntaxEvaluator<'a> {
             Builtin::Cross => self.vector_product(Product::Cross, args, span),
             Builtin::Norm => self.norm(&args[0], span),
             Builtin::Diff => {
-                let v = self.variable(&args[1], "diff")?;
+                let v = self.variable(&args[1], Builtin::Diff)?;
                 let x = self.value(&args[0])?;
                 frames::not_a_rotation(
                     &x,
@@ -859,7 +859,8 @@ impl<'a> SyntaxEvaluator<'a> {
 
     /// The variable of `diff`, `subs` and `taylor`: a coordinate or one of
     /// its derivatives, a parameter, a `solve` unknown, or `t`.
-    fn variable(&mut self, a: &ast::Expr, what: &str) -> Result<Var, Diagnostic> {
+    fn variable(&mut self, a: &ast::Expr, what: Builtin) -> Result<Var, Diagnostic> {
+        let what = what.name();
         let v = self.expr(a)?;
         let var = v.as_var().filter(|&x| {
             matches!(
@@ -895,7 +896,7 @@ impl<'a> SyntaxEvaluator<'a> {
                 return Err(Diagnostic::error(a.span, "expected `x = value` here")
                     .with_hint("write subs(E, x = 0): each replacement names its variable"));
             };
-            let v = self.variable(x, "subs")?;
+            let v = self.variable(x, Builtin::Subs)?;
             let value = self.expr(value)?;
             if map.insert(v, value).is_some() {
                 return Err(Diagnostic::error(x.span, "this variable is replaced twice")
@@ -932,7 +933,7 @@ impl<'a> SyntaxEvaluator<'a> {
             ExprKind::Assign(x, a) => (&**x, Some(&**a)),
             _ => (&args[1], None),
         };
-        let v = self.variable(x, "taylor")?;
+        let v = self.variable(x, Builtin::Taylor)?;
         let a = match at {
             Some(a) => self.expr(a)?,
             None => Expr::zero(),
