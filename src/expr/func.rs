@@ -796,7 +796,11 @@ pub fn subs_atom(v: Var, map: &FxHashMap<Var, Expr>) -> Result<Option<Expr>, Mat
         return Ok(None);
     }
     let u = inner.subs_many(map)?;
-    Ok(Some(match &a {
+    #[deny(
+        clippy::wildcard_enum_match_arm,
+        clippy::match_wildcard_for_single_variants
+    )]
+    let value = match &a {
         Atom::SqrtOf(_) => sqrt(&u)?,
         Atom::Sin(_) => sin(&u),
         Atom::Cos(_) => cos(&u),
@@ -815,5 +819,6 @@ pub fn subs_atom(v: Var, map: &FxHashMap<Var, Expr>) -> Result<Option<Expr>, Mat
         | Atom::Root(_)
         | Atom::Shown(_)
         | Atom::Group(_) => return Ok(None),
-    }))
+    };
+    Ok(Some(value))
 }

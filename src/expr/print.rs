@@ -718,6 +718,10 @@ fn atom_text(v: Var, which: AtomText) -> std::rc::Rc<str> {
 /// Unicode alike); `None` for the atoms that are no named function call.
 /// Each is the name of the built-in function that makes the atom.
 fn fn_name(a: &Atom) -> Option<&'static str> {
+    #[deny(
+        clippy::wildcard_enum_match_arm,
+        clippy::match_wildcard_for_single_variants
+    )]
     match a {
         Atom::Sin(_) => Some("sin"),
         Atom::Cos(_) => Some("cos"),

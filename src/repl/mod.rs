@@ -426,7 +426,10 @@ impl Session {
         let ExprKind::Call(Callee::Builtin(f, _), args) = &e.kind else {
             return Layout::Plain;
         };
-        #[deny(clippy::wildcard_enum_match_arm)]
+        #[deny(
+            clippy::wildcard_enum_match_arm,
+            clippy::match_wildcard_for_single_variants
+        )]
         match f {
             Builtin::Expand => Layout::Expanded,
             Builtin::Factor => Layout::Factored,

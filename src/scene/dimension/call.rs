@@ -22,7 +22,10 @@ pub(super) fn call(w: &mut Walker, f: &Callee, args: &[Expr]) -> Checked<DimValu
             })
         }
     };
-    #[deny(clippy::wildcard_enum_match_arm)]
+    #[deny(
+        clippy::wildcard_enum_match_arm,
+        clippy::match_wildcard_for_single_variants
+    )]
     match b {
         Builtin::Sin
         | Builtin::Cos

@@ -696,7 +696,10 @@ impl<'a> SyntaxEvaluator<'a> {
             }
         }
         // every built-in function has its arm: no name falls through to another
-        #[deny(clippy::wildcard_enum_match_arm)]
+        #[deny(
+            clippy::wildcard_enum_match_arm,
+            clippy::match_wildcard_for_single_variants
+        )]
         match b {
             Builtin::Subs => self.subs(args, span),
             Builtin::Series => self.series(args, span),
