@@ -9,6 +9,7 @@ mod stress_common;
 
 mod assumptions;
 mod book;
+mod builtins;
 mod cli;
 mod codegen;
 mod compile;

@@ -2,7 +2,7 @@
 
 use crate::common::{def, ex, scene};
 use pretty_assertions::assert_eq;
-use qdot::parse::ast::{ExprKind, Span, Stmt};
+use qdot::parse::ast::{Builtin, Callee, ExprKind, Span, Stmt};
 use qdot::parse::{parse_expr, parse_scene};
 
 #[test]
@@ -317,7 +317,8 @@ fn spans_of_statements_and_nodes() {
     let ExprKind::Call(f, args) = &call.kind else {
         panic!()
     };
-    assert_eq!(text(f.span), "atan");
+    assert_eq!(text(f.span()), "atan");
+    assert!(matches!(f, Callee::Builtin(Builtin::Atan, _)));
     assert_eq!(text(args[1].span), "x");
 }
 

@@ -6,7 +6,7 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use proptest::prelude::*;
 use qdot::diag::Diagnostic;
-use qdot::parse::ast::{BinOp, Equation, Expr, ExprKind, Ident, SolveBlock, Span, Stmt};
+use qdot::parse::ast::{BinOp, Callee, Equation, Expr, ExprKind, Ident, SolveBlock, Span, Stmt};
 use qdot::parse::{parse_expr, parse_scene};
 
 /// An error must point inside the source, on character boundaries, and
@@ -45,8 +45,8 @@ fn check_expr_spans(src: &str, e: &Expr) -> Result<(), TestCaseError> {
             check_expr_spans(src, b)
         }
         ExprKind::Call(f, args) => {
-            check_span(src, f.span)?;
-            prop_assert_eq!(&src[f.span.start..f.span.end], f.name.as_str());
+            check_span(src, f.span())?;
+            prop_assert_eq!(&src[f.span().start..f.span().end], f.name());
             args.iter().try_for_each(|a| check_expr_spans(src, a))
         }
         ExprKind::Name(n) => {
@@ -441,10 +441,10 @@ fn tree() -> impl Strategy<Value = Expr> {
             ))),
             (name(), prop::collection::vec(inner.clone(), 0..4)).prop_map(|(f, args)| at(
                 ExprKind::Call(
-                    Ident {
+                    Callee::resolve(Ident {
                         name: f,
                         span: Span::default()
-                    },
+                    }),
                     args
                 )
             )),

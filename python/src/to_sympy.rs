@@ -95,7 +95,7 @@ fn write(e: &Expr, out: &mut String) -> Result<(), String> {
             out.push(')');
         }
         ExprKind::Call(f, args) => {
-            out.push_str(&format!("F_({}", quoted(&f.name)));
+            out.push_str(&format!("F_({}", quoted(f.name())));
             for a in args {
                 out.push_str(", ");
                 write(a, out)?;

@@ -96,6 +96,10 @@ impl Atom {
     /// The argument of a function atom (√P, sin, cos, exp, ln, atan, asin,
     /// acos); None for symbols, π and √n.
     pub fn argument(&self) -> Option<&Expr> {
+        #[deny(
+            clippy::wildcard_enum_match_arm,
+            clippy::match_wildcard_for_single_variants
+        )]
         match self {
             Atom::SqrtOf(u)
             | Atom::Sin(u)
@@ -105,7 +109,15 @@ impl Atom {
             | Atom::Atan(u)
             | Atom::Asin(u)
             | Atom::Acos(u) => Some(u),
-            _ => None,
+            Atom::Param(_)
+            | Atom::Unknown(_)
+            | Atom::Coord(..)
+            | Atom::Given(..)
+            | Atom::Time
+            | Atom::Pi
+            | Atom::Root(_)
+            | Atom::Shown(_)
+            | Atom::Group(_) => None,
         }
     }
 }

@@ -796,7 +796,11 @@ pub fn subs_atom(v: Var, map: &FxHashMap<Var, Expr>) -> Result<Option<Expr>, Mat
         return Ok(None);
     }
     let u = inner.subs_many(map)?;
-    Ok(Some(match &a {
+    #[deny(
+        clippy::wildcard_enum_match_arm,
+        clippy::match_wildcard_for_single_variants
+    )]
+    let value = match &a {
         Atom::SqrtOf(_) => sqrt(&u)?,
         Atom::Sin(_) => sin(&u),
         Atom::Cos(_) => cos(&u),
@@ -804,6 +808,17 @@ pub fn subs_atom(v: Var, map: &FxHashMap<Var, Expr>) -> Result<Option<Expr>, Mat
         Atom::Ln(_) => ln(&u)?,
         Atom::Asin(_) => asin(&u)?,
         Atom::Acos(_) => acos(&u)?,
-        _ => atan(&u),
-    }))
+        Atom::Atan(_) => atan(&u),
+        // no argument: returned unchanged above
+        Atom::Param(_)
+        | Atom::Unknown(_)
+        | Atom::Coord(..)
+        | Atom::Given(..)
+        | Atom::Time
+        | Atom::Pi
+        | Atom::Root(_)
+        | Atom::Shown(_)
+        | Atom::Group(_) => return Ok(None),
+    };
+    Ok(Some(value))
 }

@@ -669,8 +669,8 @@ fn power_str(v: Var, e: u32, st: Style) -> String {
             let sup = superscript(e);
             // a named function's power goes on its name: sin²(θ)
             match fn_name(&atom::atom(v)) {
-                "" => format!("{}{sup}", atom_text(v, AtomText::Unicode)),
-                f => format!("{f}{sup}({})", atom_text(v, AtomText::UnicodeArgument)),
+                None => format!("{}{sup}", atom_text(v, AtomText::Unicode)),
+                Some(f) => format!("{f}{sup}({})", atom_text(v, AtomText::UnicodeArgument)),
             }
         }
     }
@@ -714,16 +714,32 @@ fn atom_text(v: Var, which: AtomText) -> std::rc::Rc<str> {
     s
 }
 
-fn fn_name(a: &Atom) -> &'static str {
+/// The name a function atom is written with (in the input syntax and in
+/// Unicode alike); `None` for the atoms that are no named function call.
+/// Each is the name of the built-in function that makes the atom.
+fn fn_name(a: &Atom) -> Option<&'static str> {
+    #[deny(
+        clippy::wildcard_enum_match_arm,
+        clippy::match_wildcard_for_single_variants
+    )]
     match a {
-        Atom::Sin(_) => "sin",
-        Atom::Cos(_) => "cos",
-        Atom::Exp(_) => "exp",
-        Atom::Ln(_) => "ln",
-        Atom::Atan(_) => "atan",
-        Atom::Asin(_) => "asin",
-        Atom::Acos(_) => "acos",
-        _ => "",
+        Atom::Sin(_) => Some("sin"),
+        Atom::Cos(_) => Some("cos"),
+        Atom::Exp(_) => Some("exp"),
+        Atom::Ln(_) => Some("ln"),
+        Atom::Atan(_) => Some("atan"),
+        Atom::Asin(_) => Some("asin"),
+        Atom::Acos(_) => Some("acos"),
+        Atom::Param(_)
+        | Atom::Unknown(_)
+        | Atom::Coord(..)
+        | Atom::Given(..)
+        | Atom::Time
+        | Atom::Pi
+        | Atom::Root(_)
+        | Atom::SqrtOf(_)
+        | Atom::Shown(_)
+        | Atom::Group(_) => None,
     }
 }
 
@@ -738,12 +754,13 @@ pub fn atom_input(a: &Atom) -> String {
         Atom::Pi => "pi".into(),
         Atom::Root(n) => format!("sqrt({n})"),
         Atom::SqrtOf(u) => format!("sqrt({})", input(u)),
-        // sin, cos, exp, ln, atan, asin, acos
-        _ => format!(
-            "{}({})",
-            fn_name(a),
-            a.argument().map(input).unwrap_or_default()
-        ),
+        Atom::Sin(u)
+        | Atom::Cos(u)
+        | Atom::Exp(u)
+        | Atom::Ln(u)
+        | Atom::Atan(u)
+        | Atom::Asin(u)
+        | Atom::Acos(u) => format!("{}({})", fn_name(a).unwrap_or_default(), input(u)),
     }
 }
 
@@ -761,7 +778,13 @@ fn atom_unicode(a: &Atom) -> String {
             Some(q) => format!("|{}|", unicode(&q)),
             None => format!("√({})", unicode(u)),
         },
-        _ => format!("{}({})", fn_name(a), unicode_arg(a)),
+        Atom::Sin(u)
+        | Atom::Cos(u)
+        | Atom::Exp(u)
+        | Atom::Ln(u)
+        | Atom::Atan(u)
+        | Atom::Asin(u)
+        | Atom::Acos(u) => format!("{}({})", fn_name(a).unwrap_or_default(), unicode(u)),
     }
 }
 

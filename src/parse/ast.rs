@@ -6,6 +6,7 @@
 
 use num_rational::BigRational;
 
+pub use super::functions::Builtin;
 pub use crate::diag::Span;
 
 /// An identifier with its position.
@@ -373,8 +374,8 @@ pub enum ExprKind {
     Neg(Box<Expr>),
     /// `a + b`, `a - b`, `a * b` (also implicit: `2r`, `2(x+y)`), `a / b`, `a ^ b`.
     Bin(BinOp, Box<Expr>, Box<Expr>),
-    /// `sin(x)`, `sqrt(x)`, … — the function name and its arguments.
-    Call(Ident, Vec<Expr>),
+    /// `sin(x)`, `sqrt(x)`, `s(t)`, … — the function called and its arguments.
+    Call(Callee, Vec<Expr>),
     /// `x'` (order 1), `x''` (order 2), …: the total time derivative.
     Prime(Box<Expr>, u32),
     /// `[x, y]` or `[x, y, z]`: a vector literal (at least one component).
@@ -384,4 +385,38 @@ pub enum ExprKind {
     /// `x = value`: a call argument that names a value (`subs(E, x = 0)`,
     /// `taylor(f, x = a, 3)`); only inside call arguments.
     Assign(Box<Expr>, Box<Expr>),
+}
+
+/// The function a call names, resolved when the call is parsed.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Callee {
+    /// A built-in function (`sin`, `dot`, …), with where its name is written.
+    Builtin(Builtin, Span),
+    /// Any other name: a given function of time (`s(t)`), or a name that is
+    /// no function, which evaluation reports.
+    Named(Ident),
+}
+
+impl Callee {
+    /// The built-in function `name` names, else the name itself.
+    pub fn resolve(name: Ident) -> Callee {
+        match Builtin::from_name(&name.name) {
+            Some(b) => Callee::Builtin(b, name.span),
+            None => Callee::Named(name),
+        }
+    }
+    /// The name as written.
+    pub fn name(&self) -> &str {
+        match self {
+            Callee::Builtin(b, _) => b.name(),
+            Callee::Named(id) => &id.name,
+        }
+    }
+    /// Where the name is written.
+    pub fn span(&self) -> Span {
+        match self {
+            Callee::Builtin(_, span) => *span,
+            Callee::Named(id) => id.span,
+        }
+    }
 }

@@ -387,7 +387,8 @@ impl<'s> Parser<'s> {
         }
         let span = Span::new(name.span.start, self.pos(k));
         let at = name.span;
-        Ok((k, self.node(ExprKind::Call(name, args), span, d + 1, at)?))
+        let callee = Callee::resolve(name);
+        Ok((k, self.node(ExprKind::Call(callee, args), span, d + 1, at)?))
     }
 
     /// `arg ::= expr ( ws_nl "=" ws_nl expr )?`

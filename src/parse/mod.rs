@@ -51,7 +51,7 @@ use num_rational::BigRational;
 use num_traits::{One, Zero};
 
 use crate::diag::Diagnostic;
-use ast::{BinOp, Decl, Equation, Expr, ExprKind, Ident, Role, SolveBlock, Span, Stmt};
+use ast::{BinOp, Callee, Decl, Equation, Expr, ExprKind, Ident, Role, SolveBlock, Span, Stmt};
 use failure::*;
 use lexer::*;
 

@@ -29,7 +29,7 @@ use crate::expr::latex::{self as tex, Names};
 use crate::expr::print;
 use crate::expr::Expr;
 use crate::output::{self, Command, CommandOptions, Format};
-use crate::parse::ast::{ExprKind, Stmt};
+use crate::parse::ast::{Builtin, Callee, ExprKind, Stmt};
 use crate::scene::{Scene, Value};
 use layout::Layout;
 
@@ -423,39 +423,71 @@ impl Session {
 
     /// The layout the outermost call asks for.
     fn layout(&self, e: &crate::parse::ast::Expr, extra: &[(&str, Value)]) -> Layout {
-        let ExprKind::Call(f, args) = &e.kind else {
+        let ExprKind::Call(Callee::Builtin(f, _), args) = &e.kind else {
             return Layout::Plain;
         };
-        match f.name.as_str() {
-            "expand" => Layout::Expanded,
-            "factor" => Layout::Factored,
-            "taylor" | "series" if args.len() == 3 => {
-                let (x, a) = match &args[1].kind {
-                    ExprKind::Assign(x, a) => (&**x, Some(&**a)),
-                    _ => (&args[1], None),
-                };
-                let scalar = |x: &crate::parse::ast::Expr| match self.scene.evaluate(x, extra) {
-                    Ok((Value::Scalar(v), _)) => Some(v),
-                    _ => None,
-                };
-                let var = scalar(x).and_then(|v| v.as_var());
-                let point = match a {
-                    Some(a) => scalar(a),
-                    None => Some(Expr::zero()),
-                };
-                match (var, point) {
-                    // series(k1, k2, k3) of springs is a plain value
-                    (Some(var), Some(point))
-                        if f.name == "taylor"
-                            || crate::scene::is_taylor_form(args, |n| {
-                                n == "t" || self.scene.coordinates.iter().any(|c| c.name == n)
-                            }) =>
-                    {
-                        Layout::Series { var, point }
-                    }
-                    _ => Layout::Plain,
-                }
-            }
+        #[deny(
+            clippy::wildcard_enum_match_arm,
+            clippy::match_wildcard_for_single_variants
+        )]
+        match f {
+            Builtin::Expand => Layout::Expanded,
+            Builtin::Factor => Layout::Factored,
+            Builtin::Taylor | Builtin::Series => self.series_layout(*f, args, extra),
+            Builtin::Sin
+            | Builtin::Cos
+            | Builtin::Tan
+            | Builtin::Sqrt
+            | Builtin::Exp
+            | Builtin::Ln
+            | Builtin::Atan
+            | Builtin::Asin
+            | Builtin::Acos
+            | Builtin::Dot
+            | Builtin::Cross
+            | Builtin::Norm
+            | Builtin::Rot
+            | Builtin::Axis
+            | Builtin::Express
+            | Builtin::Omega
+            | Builtin::Inertia
+            | Builtin::Parallel
+            | Builtin::Diff
+            | Builtin::Dt
+            | Builtin::Subs => Layout::Plain,
+        }
+    }
+
+    /// `taylor(f, x, n)` or `series(f, x = a, n)` shown as a series in x
+    /// about its point; `series(k1, k2, k3)` of springs is a plain value.
+    fn series_layout(
+        &self,
+        f: Builtin,
+        args: &[crate::parse::ast::Expr],
+        extra: &[(&str, Value)],
+    ) -> Layout {
+        if args.len() != 3 {
+            return Layout::Plain;
+        }
+        let (x, a) = match &args[1].kind {
+            ExprKind::Assign(x, a) => (&**x, Some(&**a)),
+            _ => (&args[1], None),
+        };
+        let scalar = |x: &crate::parse::ast::Expr| match self.scene.evaluate(x, extra) {
+            Ok((Value::Scalar(v), _)) => Some(v),
+            _ => None,
+        };
+        let var = scalar(x).and_then(|v| v.as_var());
+        let point = match a {
+            Some(a) => scalar(a),
+            None => Some(Expr::zero()),
+        };
+        let taylor = f == Builtin::Taylor
+            || crate::scene::is_taylor_form(args, |n| {
+                n == "t" || self.scene.coordinates.iter().any(|c| c.name == n)
+            });
+        match (var, point) {
+            (Some(var), Some(point)) if taylor => Layout::Series { var, point },
             _ => Layout::Plain,
         }
     }

@@ -19,7 +19,7 @@
 //! and errors go to stdout too: a transcript, as the terminal would show.
 
 use super::{is_complete, keywords, Response, Session, COMMANDS};
-use crate::parse::functions;
+use crate::parse::functions::{self, Builtin};
 use rustyline::completion::{Completer, Pair};
 use rustyline::error::ReadlineError;
 use rustyline::highlight::{CmdKind, Highlighter};
@@ -508,7 +508,7 @@ pub fn highlight(line: &str, coords: &[String], params: &[String], others: &[Str
             LineTokenKind::Number => Some(NUMBER),
             LineTokenKind::Word => {
                 let call = line[t.end..].starts_with('(');
-                if call && functions::builtin(text).is_some() {
+                if call && Builtin::from_name(text).is_some() {
                     Some(FUNCTION)
                 } else if coords.iter().any(|n| n == text) {
                     Some(COORD)

@@ -6,7 +6,7 @@ pub mod numeric;
 pub mod run;
 
 use qdot::diag::Diagnostic;
-use qdot::parse::ast::{BinOp, Expr, ExprKind, Ident, Span, Stmt};
+use qdot::parse::ast::{BinOp, Callee, Expr, ExprKind, Ident, Span, Stmt};
 use qdot::parse::{parse_expr, parse_scene};
 
 fn op_str(op: BinOp) -> &'static str {
@@ -29,7 +29,7 @@ pub fn sexpr(e: &Expr) -> String {
         ExprKind::Neg(x) => format!("(- {})", sexpr(x)),
         ExprKind::Bin(op, a, b) => format!("({} {} {})", op_str(*op), sexpr(a), sexpr(b)),
         ExprKind::Call(f, args) => {
-            let mut s = format!("({}", f.name);
+            let mut s = format!("({}", f.name());
             for a in args {
                 s.push(' ');
                 s.push_str(&sexpr(a));
@@ -208,10 +208,10 @@ pub fn strip(e: &Expr) -> Expr {
         ExprKind::Neg(x) => ExprKind::Neg(Box::new(strip(x))),
         ExprKind::Bin(op, a, b) => ExprKind::Bin(*op, Box::new(strip(a)), Box::new(strip(b))),
         ExprKind::Call(f, args) => ExprKind::Call(
-            Ident {
-                name: f.name.clone(),
+            Callee::resolve(Ident {
+                name: f.name().to_string(),
                 span: Span::default(),
-            },
+            }),
             args.iter().map(strip).collect(),
         ),
         ExprKind::Prime(x, n) => ExprKind::Prime(Box::new(strip(x)), *n),
@@ -266,7 +266,7 @@ pub fn print_full(e: &Expr) -> String {
         }
         ExprKind::Call(f, args) => format!(
             "{}({})",
-            f.name,
+            f.name(),
             args.iter().map(print_full).collect::<Vec<_>>().join(", ")
         ),
         ExprKind::Prime(x, n) => {

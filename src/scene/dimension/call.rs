@@ -5,19 +5,40 @@ use super::form::DimForm;
 use super::walk::{DimValue, Walker, Want, Why};
 use crate::diag::Diagnostic;
 use crate::num::Q;
-use crate::parse::ast::{Expr, ExprKind, Ident};
+use crate::parse::ast::{Builtin, Callee, Expr, ExprKind};
 
 type Checked<T> = Result<T, Diagnostic>;
 
 /// The dimension of `f(args)`.
-pub(super) fn call(w: &mut Walker, f: &Ident, args: &[Expr]) -> Checked<DimValue> {
-    let name = f.name.as_str();
-    match name {
-        "sin" | "cos" | "tan" | "exp" | "ln" | "asin" | "acos" | "atan" => {
+pub(super) fn call(w: &mut Walker, f: &Callee, args: &[Expr]) -> Checked<DimValue> {
+    let b = match f {
+        Callee::Builtin(b, _) => *b,
+        // a given function `s(t)` has its declared or found dimension;
+        // unknown functions are reported when the scene is resolved
+        Callee::Named(id) => {
+            return Ok(match w.names.get(id.name.as_str()) {
+                Some(super::walk::NameDim::Fixed(_)) => w.name(&id.name),
+                _ => DimValue::Scalar(None),
+            })
+        }
+    };
+    #[deny(
+        clippy::wildcard_enum_match_arm,
+        clippy::match_wildcard_for_single_variants
+    )]
+    match b {
+        Builtin::Sin
+        | Builtin::Cos
+        | Builtin::Tan
+        | Builtin::Exp
+        | Builtin::Ln
+        | Builtin::Asin
+        | Builtin::Acos
+        | Builtin::Atan => {
             let want = Want {
                 form: DimForm::one(),
                 why: Why::Argument {
-                    function: name.to_string(),
+                    function: b.name().to_string(),
                 },
             };
             for a in args {
@@ -25,22 +46,22 @@ pub(super) fn call(w: &mut Walker, f: &Ident, args: &[Expr]) -> Checked<DimValue
             }
             Ok(DimValue::Scalar(Some(DimForm::one())))
         }
-        "sqrt" => match args.first() {
+        Builtin::Sqrt => match args.first() {
             Some(a) => Ok(w.value(a, None)?.map(|f| f.pow(&half()))),
             None => Ok(DimValue::Scalar(None)),
         },
-        "expand" | "factor" => match args.first() {
+        Builtin::Expand | Builtin::Factor => match args.first() {
             Some(a) => w.value(a, None),
             None => Ok(DimValue::Scalar(None)),
         },
-        "dt" => match args.first() {
+        Builtin::Dt => match args.first() {
             Some(a) => {
                 let v = w.value(a, None)?;
                 Ok(v.map(|f| f.div(&Walker::time())))
             }
             None => Ok(DimValue::Scalar(None)),
         },
-        "diff" => match args {
+        Builtin::Diff => match args {
             [f, x] => {
                 let v = w.value(f, None)?;
                 let by = scalar(&w.value(x, None)?);
@@ -51,7 +72,7 @@ pub(super) fn call(w: &mut Walker, f: &Ident, args: &[Expr]) -> Checked<DimValue
             }
             _ => Ok(DimValue::Scalar(None)),
         },
-        "inertia" => match args {
+        Builtin::Inertia => match args {
             [m, x] => {
                 let m = scalar(&w.value(m, None)?);
                 let x = w.value(x, None)?;
@@ -63,23 +84,44 @@ pub(super) fn call(w: &mut Walker, f: &Ident, args: &[Expr]) -> Checked<DimValue
             }
             _ => Ok(DimValue::Scalar(None)),
         },
-        "dot" | "cross" | "norm" => vector_function(w, name, args),
-        "rot" | "axis" | "express" | "omega" => frame_function(w, name, args),
-        "subs" => substitution(w, args),
-        "taylor" => taylor(w, args),
-        "series" | "parallel" => {
+        Builtin::Dot => vector_function(w, Product::Dot, args),
+        Builtin::Cross => vector_function(w, Product::Cross, args),
+        Builtin::Norm => vector_function(w, Product::Norm, args),
+        Builtin::Rot => rot(w, args),
+        Builtin::Axis => match args {
+            [f, _] => {
+                w.value(f, None)?;
+                Ok(DimValue::Vector(vec![Some(DimForm::one()); 3]))
+            }
+            _ => Ok(DimValue::Scalar(None)),
+        },
+        Builtin::Express => match args {
+            [v, f] => {
+                w.value(f, None)?;
+                let v = w.value(v, None)?;
+                let d = common(w, &v, &args[0])?;
+                Ok(DimValue::Vector(vec![d; 3]))
+            }
+            _ => Ok(DimValue::Scalar(None)),
+        },
+        Builtin::Omega => match args {
+            [f] => {
+                w.value(f, None)?;
+                let per_time = DimForm::one().div(&Walker::time());
+                Ok(DimValue::Vector(vec![Some(per_time); 3]))
+            }
+            _ => Ok(DimValue::Scalar(None)),
+        },
+        Builtin::Subs => substitution(w, args),
+        Builtin::Taylor => taylor(w, args),
+        Builtin::Series => {
             let moves = |n: &str| n == "t" || w.coordinates.contains(n);
-            if name == "series" && crate::scene::is_taylor_form(args, moves) {
+            if crate::scene::is_taylor_form(args, moves) {
                 return taylor(w, args);
             }
             springs(w, args)
         }
-        // a given function `s(t)` has its declared or found dimension;
-        // unknown functions are reported when the scene is resolved
-        _ => Ok(match w.names.get(name) {
-            Some(super::walk::NameDim::Fixed(_)) => w.name(name),
-            _ => DimValue::Scalar(None),
-        }),
+        Builtin::Parallel => springs(w, args),
     }
 }
 
@@ -88,40 +130,22 @@ pub(super) fn rotation() -> DimValue {
     DimValue::Vector(vec![Some(DimForm::one()); 9])
 }
 
-/// `rot(AXIS, ANGLE)` (a pure number), `axis(F, k)` (pure numbers),
-/// `express(v, F)` (v's dimension) and `omega(F)` (per time).
-fn frame_function(w: &mut Walker, name: &str, args: &[Expr]) -> Checked<DimValue> {
-    match (name, args) {
-        ("rot", [axis, angle]) => {
-            if crate::scene::axis_name(args).is_none() {
-                w.value(axis, None)?;
-            }
-            let want = Want {
-                form: DimForm::one(),
-                why: Why::Argument {
-                    function: "rot".to_string(),
-                },
-            };
-            w.value(angle, Some(&want))?;
-            Ok(rotation())
-        }
-        ("axis", [f, _]) => {
-            w.value(f, None)?;
-            Ok(DimValue::Vector(vec![Some(DimForm::one()); 3]))
-        }
-        ("express", [v, f]) => {
-            w.value(f, None)?;
-            let v = w.value(v, None)?;
-            let d = common(w, &v, &args[0])?;
-            Ok(DimValue::Vector(vec![d; 3]))
-        }
-        ("omega", [f]) => {
-            w.value(f, None)?;
-            let per_time = DimForm::one().div(&Walker::time());
-            Ok(DimValue::Vector(vec![Some(per_time); 3]))
-        }
-        _ => Ok(DimValue::Scalar(None)),
+/// `rot(AXIS, ANGLE)`: a rotation, its angle a pure number.
+fn rot(w: &mut Walker, args: &[Expr]) -> Checked<DimValue> {
+    let [axis, angle] = args else {
+        return Ok(DimValue::Scalar(None));
+    };
+    if crate::scene::axis_name(args).is_none() {
+        w.value(axis, None)?;
     }
+    let want = Want {
+        form: DimForm::one(),
+        why: Why::Argument {
+            function: Builtin::Rot.name().to_string(),
+        },
+    };
+    w.value(angle, Some(&want))?;
+    Ok(rotation())
 }
 
 fn half() -> Q {
@@ -159,7 +183,15 @@ fn common(w: &mut Walker, v: &DimValue, at: &Expr) -> Checked<Option<DimForm>> {
     Ok(first)
 }
 
-fn vector_function(w: &mut Walker, name: &str, args: &[Expr]) -> Checked<DimValue> {
+/// What `dot`, `cross` and `norm` make of their vectors' dimensions.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Product {
+    Dot,
+    Cross,
+    Norm,
+}
+
+fn vector_function(w: &mut Walker, product: Product, args: &[Expr]) -> Checked<DimValue> {
     let mut dims = Vec::with_capacity(args.len());
     let mut len = 0;
     for a in args {
@@ -167,15 +199,15 @@ fn vector_function(w: &mut Walker, name: &str, args: &[Expr]) -> Checked<DimValu
         len = v.components().len();
         dims.push(common(w, &v, a)?);
     }
-    let product = match (name, &dims[..]) {
-        ("norm", [a]) => a.clone(),
-        (_, [Some(a), Some(b)]) => Some(a.mul(b)),
+    let value = match (product, &dims[..]) {
+        (Product::Norm, [a]) => a.clone(),
+        (Product::Dot | Product::Cross, [Some(a), Some(b)]) => Some(a.mul(b)),
         _ => None,
     };
-    Ok(if name == "cross" && len == 3 {
-        DimValue::Vector(vec![product; 3])
+    Ok(if product == Product::Cross && len == 3 {
+        DimValue::Vector(vec![value; 3])
     } else {
-        DimValue::Scalar(product)
+        DimValue::Scalar(value)
     })
 }
 

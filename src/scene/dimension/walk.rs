@@ -12,7 +12,7 @@ use super::form::{DimForm, DimVar, DimVars};
 use super::hint;
 use crate::diag::Diagnostic;
 use crate::num::Q;
-use crate::parse::ast::{BinOp, Expr, ExprKind};
+use crate::parse::ast::{BinOp, Builtin, Callee, Expr, ExprKind};
 use rustc_hash::FxHashMap;
 
 /// The dimension of a value: `None` for the number 0 (of every dimension).
@@ -168,8 +168,8 @@ pub(super) fn for_each_name<'e>(roots: &[&'e Expr], mut f: impl FnMut(&'e str)) 
                 stack.push(b);
             }
             // `rot(x, a)`: the axis names x, y, z are no names of the scene
-            ExprKind::Call(f, args)
-                if f.name == "rot" && crate::scene::axis_name(args).is_some() =>
+            ExprKind::Call(Callee::Builtin(Builtin::Rot, _), args)
+                if crate::scene::axis_name(args).is_some() =>
             {
                 stack.extend(&args[1..])
             }

@@ -4,7 +4,7 @@
 use super::{SyntaxEvaluator, Value};
 use crate::diag::Diagnostic;
 use crate::expr::Expr;
-use crate::parse::ast::{self, BinOp, ExprKind, Span};
+use crate::parse::ast::{self, BinOp, Builtin, ExprKind, Span};
 use crate::scene::rotation::{Rotation, TurnError};
 
 /// The hint for a rotation where a number or a vector is needed.
@@ -103,45 +103,39 @@ pub(super) fn rotation_binary(
 }
 
 impl SyntaxEvaluator<'_> {
-    /// `rot(AXIS, ANGLE)`, `axis(F, k)`, `express(v, F)` and `omega(F)`
-    /// (their number of arguments is checked by the caller).
-    pub(super) fn frame_call(
-        &mut self,
-        f: &ast::Ident,
-        args: &[ast::Expr],
-    ) -> Result<Value, Diagnostic> {
-        match f.name.as_str() {
-            "rot" => self.rot(args),
-            "axis" => {
-                let r = self.rotation(&args[0], "axis")?;
-                let k = self.component_number(&args[1], 3, "a frame has the axes")?;
-                Ok(Value::Vector(r.axis(k).to_vec()))
-            }
-            "express" => {
-                let v = self.value(&args[0])?;
-                let Some(v3) = space(v.components()).filter(|_| matches!(v, Value::Vector(_)))
-                else {
-                    return Err(Diagnostic::error(
-                        args[0].span,
-                        format!(
-                            "express(v, F) needs a space vector [x, y, z], and this is {}",
-                            v.describe()
-                        ),
-                    )
-                    .with_hint("a frame's axes are in space; write a plane vector as [x, y, 0]"));
-                };
-                let r = self.rotation(&args[1], "express")?;
-                Ok(Value::Vector(r.to_frame(&v3).to_vec()))
-            }
-            _ => {
-                let r = self.rotation(&args[0], "omega")?;
-                Ok(Value::Vector(r.omega_ground().to_vec()))
-            }
-        }
+    /// `axis(F, k)`: the k-th unit vector of the frame F (its number of
+    /// arguments is checked by the caller, as for `express`, `omega`, `rot`).
+    pub(super) fn axis(&mut self, args: &[ast::Expr]) -> Result<Value, Diagnostic> {
+        let r = self.rotation(&args[0], Builtin::Axis)?;
+        let k = self.component_number(&args[1], 3, "a frame has the axes")?;
+        Ok(Value::Vector(r.axis(k).to_vec()))
+    }
+
+    /// `express(v, F)`: the components of the space vector v along F's axes.
+    pub(super) fn express(&mut self, args: &[ast::Expr]) -> Result<Value, Diagnostic> {
+        let v = self.value(&args[0])?;
+        let Some(v3) = space(v.components()).filter(|_| matches!(v, Value::Vector(_))) else {
+            return Err(Diagnostic::error(
+                args[0].span,
+                format!(
+                    "express(v, F) needs a space vector [x, y, z], and this is {}",
+                    v.describe()
+                ),
+            )
+            .with_hint("a frame's axes are in space; write a plane vector as [x, y, 0]"));
+        };
+        let r = self.rotation(&args[1], Builtin::Express)?;
+        Ok(Value::Vector(r.to_frame(&v3).to_vec()))
+    }
+
+    /// `omega(F)`: the angular velocity of the frame F, in ground components.
+    pub(super) fn omega(&mut self, args: &[ast::Expr]) -> Result<Value, Diagnostic> {
+        let r = self.rotation(&args[0], Builtin::Omega)?;
+        Ok(Value::Vector(r.omega_ground().to_vec()))
     }
 
     /// `rot(AXIS, ANGLE)`.
-    fn rot(&mut self, args: &[ast::Expr]) -> Result<Value, Diagnostic> {
+    pub(super) fn rot(&mut self, args: &[ast::Expr]) -> Result<Value, Diagnostic> {
         let axis = match axis_name(args) {
             Some(k) => Rotation::unit(k),
             None if matches!(&args[0].kind, ExprKind::Name(n) if !self.names.contains_key(n.as_str())) => {
@@ -201,7 +195,8 @@ impl SyntaxEvaluator<'_> {
     }
 
     /// The rotation `e` must be (`what`: the function asking).
-    fn rotation(&mut self, e: &ast::Expr, what: &str) -> Result<Rotation, Diagnostic> {
+    fn rotation(&mut self, e: &ast::Expr, what: Builtin) -> Result<Rotation, Diagnostic> {
+        let what = what.name();
         match self.value(e)? {
             Value::Rotation(r) => Ok(*r),
             v => Err(Diagnostic::error(

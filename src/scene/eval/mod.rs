@@ -9,7 +9,7 @@ use crate::expr::atom::{self, Atom};
 use crate::expr::{func, Expr, MathError};
 use crate::num::Q;
 use crate::parse::ast::{self, BinOp, ExprKind, Role, Span};
-use crate::parse::functions::{self, Arity};
+use crate::parse::functions::{self, Arity, Builtin};
 use crate::poly::Var;
 use rustc_hash::FxHashMap;
 
@@ -37,7 +37,40 @@ pub(crate) struct SyntaxEvaluator<'a> {
     pub assumed: crate::algebra::assume::Assumptions,
 }
 
-/// The functions of the language and their numbers of arguments.
+/// How `series` and `parallel` combine springs.
+#[derive(Clone, Copy)]
+enum Springs {
+    /// 1/Σ(1/k_i).
+    Series,
+    /// Σ k_i.
+    Parallel,
+}
+
+impl Springs {
+    fn builtin(self) -> Builtin {
+        match self {
+            Springs::Series => Builtin::Series,
+            Springs::Parallel => Builtin::Parallel,
+        }
+    }
+}
+
+/// The product `dot` or `cross` takes.
+#[derive(Clone, Copy)]
+enum Product {
+    Dot,
+    Cross,
+}
+
+impl Product {
+    fn builtin(self) -> Builtin {
+        match self {
+            Product::Dot => Builtin::Dot,
+            Product::Cross => Builtin::Cross,
+        }
+    }
+}
+
 /// A definition on the path of [`SyntaxEvaluator::evaluate_dependencies`]: its
 /// index, the definitions it uses (with the span of the name), and how many
 /// of those are handled.
@@ -188,7 +221,9 @@ impl<'a> SyntaxEvaluator<'a> {
                     stack.push(a);
                 }
                 // `rot(x, a)`: the axis names x, y, z are no definitions
-                ExprKind::Call(f, args) if f.name == "rot" && frames::axis_name(args).is_some() => {
+                ExprKind::Call(ast::Callee::Builtin(Builtin::Rot, _), args)
+                    if frames::axis_name(args).is_some() =>
+                {
                     stack.extend(args[1..].iter().rev())
                 }
                 // `x = a` in a call: the name on the left is not evaluated
@@ -593,11 +628,11 @@ impl<'a> SyntaxEvaluator<'a> {
     /// ([`atom::MAX_NESTING`]: every walk into arguments recurses per level).
     fn call(
         &mut self,
-        f: &ast::Ident,
+        callee: &ast::Callee,
         args: &[ast::Expr],
         span: Span,
     ) -> Result<Value, Diagnostic> {
-        let v = self.call_unbounded(f, args, span)?;
+        let v = self.call_unbounded(callee, args, span)?;
         bounded_functions(v.components(), span)?;
         Ok(v)
     }
@@ -606,40 +641,116 @@ impl<'a> SyntaxEvaluator<'a> {
     /// springs combined.
     fn springs(
         &mut self,
-        f: &ast::Ident,
+        how: Springs,
         args: &[ast::Expr],
         span: Span,
-        usage: &str,
     ) -> Result<Value, Diagnostic> {
+        let b = how.builtin();
         if args.len() < 2 {
             return Err(Diagnostic::error(
                 span,
-                format!("`{}` combines two or more springs", f.name),
+                format!("`{}` combines two or more springs", b.name()),
             )
-            .with_hint(usage));
+            .with_hint(b.usage()));
         }
         let mut acc = Expr::zero();
         for a in args {
             let k = self.expr(a)?;
-            acc = acc.add(&if f.name == "series" {
-                k.recip().map_err(|_| {
+            acc = acc.add(&match how {
+                Springs::Series => k.recip().map_err(|_| {
                     Diagnostic::error(a.span, "a spring of stiffness 0 in series")
                         .with_hint("series(k1, k2) = k1·k2/(k1 + k2) needs nonzero stiffnesses")
-                })?
-            } else {
-                k
+                })?,
+                Springs::Parallel => k,
             });
         }
-        if f.name == "series" {
-            acc.recip().map(Value::Scalar).map_err(|_| {
+        match how {
+            Springs::Series => acc.recip().map(Value::Scalar).map_err(|_| {
                 Diagnostic::error(span, "the series stiffness is undefined: Σ 1/k_i = 0")
-            })
-        } else {
-            Ok(Value::Scalar(acc))
+            }),
+            Springs::Parallel => Ok(Value::Scalar(acc)),
         }
     }
 
     fn call_unbounded(
+        &mut self,
+        callee: &ast::Callee,
+        args: &[ast::Expr],
+        span: Span,
+    ) -> Result<Value, Diagnostic> {
+        let b = match callee {
+            ast::Callee::Named(f) => return self.named_call(f, args, span),
+            ast::Callee::Builtin(b, at) => {
+                self.not_a_given_function(*b, *at)?;
+                *b
+            }
+        };
+        if let Arity::Exactly(n) = b.arity() {
+            if args.len() != n {
+                let what = if n == 1 { "argument" } else { "arguments" };
+                return Err(Diagnostic::error(
+                    span,
+                    format!("`{}` takes {n} {what}, not {}", b.name(), args.len()),
+                )
+                .with_hint(b.usage()));
+            }
+        }
+        // every built-in function has its arm: no name falls through to another
+        #[deny(
+            clippy::wildcard_enum_match_arm,
+            clippy::match_wildcard_for_single_variants
+        )]
+        match b {
+            Builtin::Subs => self.subs(args, span),
+            Builtin::Series => self.series(args, span),
+            Builtin::Parallel => self.springs(Springs::Parallel, args, span),
+            Builtin::Rot => self.rot(args),
+            Builtin::Axis => self.axis(args),
+            Builtin::Express => self.express(args),
+            Builtin::Omega => self.omega(args),
+            Builtin::Dot => self.vector_product(Product::Dot, args, span),
+            Builtin::Cross => self.vector_product(Product::Cross, args, span),
+            Builtin::Norm => self.norm(&args[0], span),
+            Builtin::Diff => {
+                let v = self.variable(&args[1], Builtin::Diff)?;
+                let x = self.value(&args[0])?;
+                frames::not_a_rotation(
+                    &x,
+                    args[0].span,
+                    "can't be differentiated; its angular velocity is omega(F)",
+                )?;
+                Ok(x.map(|c| c.diff(v)))
+            }
+            Builtin::Dt => {
+                let v = self.value(&args[0])?;
+                frames::not_a_rotation(
+                    &v,
+                    args[0].span,
+                    "has no time derivative; its angular velocity is omega(F)",
+                )?;
+                self.check_derivative_order(&v, 1, span)?;
+                Ok(v.map(|c| c.dt()))
+            }
+            // The value is the canonical form itself; the REPL shows the
+            // outermost expand/factor as a layout.
+            Builtin::Expand | Builtin::Factor => self.value(&args[0]),
+            Builtin::Taylor => self.taylor(args, span),
+            Builtin::Inertia => self.inertia(args),
+            Builtin::Sin => self.elementary(&args[0], span, |_, x| Ok(func::sin(x))),
+            Builtin::Cos => self.elementary(&args[0], span, |_, x| Ok(func::cos(x))),
+            Builtin::Tan => self.elementary(&args[0], span, |_, x| func::tan(x)),
+            Builtin::Sqrt => self.elementary(&args[0], span, |ev, x| ev.root(x)),
+            Builtin::Exp => self.elementary(&args[0], span, |_, x| Ok(func::exp(x))),
+            Builtin::Ln => self.elementary(&args[0], span, |_, x| func::ln(x)),
+            Builtin::Atan => self.elementary(&args[0], span, |_, x| Ok(func::atan(x))),
+            Builtin::Asin => self.elementary(&args[0], span, |_, x| func::asin(x)),
+            Builtin::Acos => self.elementary(&args[0], span, |_, x| func::acos(x)),
+        }
+    }
+
+    /// A call of a name that is no built-in function: a given function of
+    /// time `s(t)`, else an error.
+    fn named_call(
         &mut self,
         f: &ast::Ident,
         args: &[ast::Expr],
@@ -658,127 +769,101 @@ impl<'a> SyntaxEvaluator<'a> {
                 .with_hint(format!("its derivatives are `{0}'`, `{0}''`; a function of anything but t is not supported", f.name))),
             };
         }
-        let Some(builtin) = functions::builtin(&f.name) else {
-            let list: Vec<&str> = functions::names().collect();
-            let hint = if self.names.contains_key(&f.name) {
-                format!(
-                    "`{}` is not a function; write `{}*(…)` to multiply",
-                    f.name, f.name
-                )
-            } else {
-                format!("the functions are {}", list.join(", "))
-            };
-            return Err(
-                Diagnostic::error(f.span, format!("unknown function `{}`", f.name)).with_hint(hint),
-            );
-        };
-        match f.name.as_str() {
-            "subs" => return self.subs(f, args, span),
-            "series" if self.is_taylor_call(args) => return self.taylor(args, span),
-            "series" if args.len() == 3 && self.looks_like_taylor(args) => {
-                self.warnings.push(
-                    Diagnostic::warning(
-                        span,
-                        "series(a, b, n) combines three springs in series here",
-                    )
-                    .with_hint("for a Taylor series in a parameter write taylor(f, x, n) or series(f, x = 0, n)"),
-                );
-            }
-            _ => {}
-        }
-        let arity = match builtin.arity {
-            Arity::Exactly(n) => n,
-            Arity::Variadic => {
-                // series(k1, k2, …) = 1/Σ(1/k_i), parallel(k1, k2, …) = Σ k_i
-                return self.springs(f, args, span, builtin.usage);
-            }
-        };
-        if args.len() != arity {
-            let n = if arity == 1 { "argument" } else { "arguments" };
-            return Err(Diagnostic::error(
-                span,
-                format!("`{}` takes {arity} {n}, not {}", f.name, args.len()),
+        let hint = if self.names.contains_key(&f.name) {
+            format!(
+                "`{}` is not a function; write `{}*(…)` to multiply",
+                f.name, f.name
             )
-            .with_hint(builtin.usage));
-        }
-        match f.name.as_str() {
-            "rot" | "axis" | "express" | "omega" => return self.frame_call(f, args),
-            "dot" | "cross" => return self.vector_product(f, args, span),
-            "norm" => {
-                let v = self.value(&args[0])?;
-                let Value::Vector(c) = v else {
-                    return Err(Diagnostic::error(args[0].span, format!("norm needs a vector, found {}", v.describe()))
-                        .with_hint("the absolute value of a number is not exact-friendly; write sqrt(x^2) for a positive x"));
-                };
-                let sq = c.iter().fold(Expr::zero(), |acc, x| acc.add(&x.mul(x)));
-                return func::sqrt(&sq)
-                    .map(Value::Scalar)
-                    .map_err(|m| self.err(span, m));
-            }
-            "diff" => {
-                let v = self.variable(&args[1], "diff")?;
-                let x = self.value(&args[0])?;
-                frames::not_a_rotation(
-                    &x,
-                    args[0].span,
-                    "can't be differentiated; its angular velocity is omega(F)",
-                )?;
-                return Ok(x.map(|c| c.diff(v)));
-            }
-            "dt" => {
-                let v = self.value(&args[0])?;
-                frames::not_a_rotation(
-                    &v,
-                    args[0].span,
-                    "has no time derivative; its angular velocity is omega(F)",
-                )?;
-                self.check_derivative_order(&v, 1, span)?;
-                return Ok(v.map(|c| c.dt()));
-            }
-            // The value is the canonical form itself; the REPL shows the
-            // outermost expand/factor as a layout.
-            "expand" | "factor" => return self.value(&args[0]),
-            "taylor" => return self.taylor(args, span),
-            "inertia" => {
-                let m = self.expr(&args[0])?;
-                let x = self.value(&args[1])?;
-                frames::not_a_rotation(
-                    &x,
-                    args[1].span,
-                    "has no inertia force; a body's inertia is given in a `body` statement",
-                )?;
-                let moving = x.components().iter().any(|s| s.is_time_dependent());
-                if !moving {
-                    return Err(Diagnostic::error(
-                        args[1].span,
-                        "this does not move, so it has no inertia force",
-                    )
-                    .with_hint(
-                        "inertia(m, x) is m·x'': x must depend on the coordinates or on t",
-                    ));
-                }
-                return Ok(x.map(|c| self.dt(c, 2).mul(&m)));
-            }
-            _ => {}
-        }
-        let x = self.expr(&args[0])?;
-        let r = match f.name.as_str() {
-            "sin" => Ok(func::sin(&x)),
-            "cos" => Ok(func::cos(&x)),
-            "tan" => func::tan(&x),
-            "sqrt" => self.root(&x),
-            "exp" => Ok(func::exp(&x)),
-            "ln" => func::ln(&x),
-            "asin" => func::asin(&x),
-            "acos" => func::acos(&x),
-            _ => Ok(func::atan(&x)),
+        } else {
+            let list: Vec<&str> = functions::names().collect();
+            format!("the functions are {}", list.join(", "))
         };
-        r.map(Value::Scalar).map_err(|m| self.err(span, m))
+        Err(Diagnostic::error(f.span, format!("unknown function `{}`", f.name)).with_hint(hint))
+    }
+
+    /// A call of the built-in `b` when the scene declares a given function
+    /// of the same name (`functions exp`): the call can't say which it means.
+    fn not_a_given_function(&self, b: Builtin, at: Span) -> Result<(), Diagnostic> {
+        match self.names.get(b.name()) {
+            Some((Binding::Given, _)) => Err(Diagnostic::error(
+                at,
+                format!(
+                    "`{}` is a built-in function and also a given function of time here",
+                    b.name()
+                ),
+            )
+            .with_hint("give the given function another name in `functions …`")),
+            _ => Ok(()),
+        }
+    }
+
+    /// A function of one scalar (`sin`, `sqrt`, …) of `arg`, its math
+    /// error (a root of a negative number, …) reported at the call.
+    fn elementary(
+        &mut self,
+        arg: &ast::Expr,
+        span: Span,
+        f: impl FnOnce(&Self, &Expr) -> Result<Expr, MathError>,
+    ) -> Result<Value, Diagnostic> {
+        let x = self.expr(arg)?;
+        f(self, &x)
+            .map(Value::Scalar)
+            .map_err(|m| self.err(span, m))
+    }
+
+    /// `norm(v)`: the length of a vector.
+    fn norm(&mut self, arg: &ast::Expr, span: Span) -> Result<Value, Diagnostic> {
+        let v = self.value(arg)?;
+        let Value::Vector(c) = v else {
+            return Err(Diagnostic::error(arg.span, format!("norm needs a vector, found {}", v.describe()))
+                .with_hint("the absolute value of a number is not exact-friendly; write sqrt(x^2) for a positive x"));
+        };
+        let sq = c.iter().fold(Expr::zero(), |acc, x| acc.add(&x.mul(x)));
+        func::sqrt(&sq)
+            .map(Value::Scalar)
+            .map_err(|m| self.err(span, m))
+    }
+
+    /// `inertia(m, x)` = m·x'': the inertia force of a moving x.
+    fn inertia(&mut self, args: &[ast::Expr]) -> Result<Value, Diagnostic> {
+        let m = self.expr(&args[0])?;
+        let x = self.value(&args[1])?;
+        frames::not_a_rotation(
+            &x,
+            args[1].span,
+            "has no inertia force; a body's inertia is given in a `body` statement",
+        )?;
+        let moving = x.components().iter().any(|s| s.is_time_dependent());
+        if !moving {
+            return Err(Diagnostic::error(
+                args[1].span,
+                "this does not move, so it has no inertia force",
+            )
+            .with_hint("inertia(m, x) is m·x'': x must depend on the coordinates or on t"));
+        }
+        Ok(x.map(|c| self.dt(c, 2).mul(&m)))
+    }
+
+    /// `series(…)`: a Taylor series when its second argument is a moving
+    /// variable or a named point (`series(f, q, n)`, `series(f, x = a, n)`),
+    /// else springs in series.
+    fn series(&mut self, args: &[ast::Expr], span: Span) -> Result<Value, Diagnostic> {
+        if self.is_taylor_call(args) {
+            return self.taylor(args, span);
+        }
+        if args.len() == 3 && self.looks_like_taylor(args) {
+            self.warnings.push(
+                Diagnostic::warning(span, "series(a, b, n) combines three springs in series here")
+                    .with_hint("for a Taylor series in a parameter write taylor(f, x, n) or series(f, x = 0, n)"),
+            );
+        }
+        self.springs(Springs::Series, args, span)
     }
 
     /// The variable of `diff`, `subs` and `taylor`: a coordinate or one of
     /// its derivatives, a parameter, a `solve` unknown, or `t`.
-    fn variable(&mut self, a: &ast::Expr, what: &str) -> Result<Var, Diagnostic> {
+    fn variable(&mut self, a: &ast::Expr, what: Builtin) -> Result<Var, Diagnostic> {
+        let what = what.name();
         let v = self.expr(a)?;
         let var = v.as_var().filter(|&x| {
             matches!(
@@ -800,19 +885,11 @@ impl<'a> SyntaxEvaluator<'a> {
 
     /// `subs(f, x = a, y = b, …)`: every `x` replaced by `a` at once (also
     /// inside functions); `x'` is a variable of its own.
-    fn subs(
-        &mut self,
-        f: &ast::Ident,
-        args: &[ast::Expr],
-        span: Span,
-    ) -> Result<Value, Diagnostic> {
+    fn subs(&mut self, args: &[ast::Expr], span: Span) -> Result<Value, Diagnostic> {
         if args.len() < 2 {
             return Err(Diagnostic::error(
                 span,
-                format!(
-                    "`{}` needs an expression and at least one `x = value`",
-                    f.name
-                ),
+                "`subs` needs an expression and at least one `x = value`",
             )
             .with_hint("write subs(E, x = 0) or subs(E, x = 0, m = 2)"));
         }
@@ -822,7 +899,7 @@ impl<'a> SyntaxEvaluator<'a> {
                 return Err(Diagnostic::error(a.span, "expected `x = value` here")
                     .with_hint("write subs(E, x = 0): each replacement names its variable"));
             };
-            let v = self.variable(x, "subs")?;
+            let v = self.variable(x, Builtin::Subs)?;
             let value = self.expr(value)?;
             if map.insert(v, value).is_some() {
                 return Err(Diagnostic::error(x.span, "this variable is replaced twice")
@@ -859,7 +936,7 @@ impl<'a> SyntaxEvaluator<'a> {
             ExprKind::Assign(x, a) => (&**x, Some(&**a)),
             _ => (&args[1], None),
         };
-        let v = self.variable(x, "taylor")?;
+        let v = self.variable(x, Builtin::Taylor)?;
         let a = match at {
             Some(a) => self.expr(a)?,
             None => Expr::zero(),
@@ -942,10 +1019,11 @@ impl<'a> SyntaxEvaluator<'a> {
     /// a_x·b_y − a_y·b_x (the z component, as in the seed's eq. 21.71).
     fn vector_product(
         &mut self,
-        f: &ast::Ident,
+        product: Product,
         args: &[ast::Expr],
         span: Span,
     ) -> Result<Value, Diagnostic> {
+        let name = product.builtin().name();
         let mut vs = Vec::with_capacity(2);
         for a in args {
             match self.value(a)? {
@@ -953,7 +1031,7 @@ impl<'a> SyntaxEvaluator<'a> {
                 v @ (Value::Scalar(_) | Value::Rotation(_)) => {
                     return Err(Diagnostic::error(
                         a.span,
-                        format!("`{}` needs two vectors, and this is {}", f.name, v.describe()),
+                        format!("`{name}` needs two vectors, and this is {}", v.describe()),
                     )
                     .with_hint("write vectors as [x, y] or [x, y, z]; axis(F, k) is the k-th unit vector of a frame F"))
                 }
@@ -964,26 +1042,22 @@ impl<'a> SyntaxEvaluator<'a> {
             return Err(Diagnostic::error(
                 span,
                 format!(
-                    "`{}` of vectors of different sizes: {} and {} components",
-                    f.name,
+                    "`{name}` of vectors of different sizes: {} and {} components",
                     u.len(),
                     w.len()
                 ),
             )
             .with_hint("write plane vectors as [x, y, 0] to combine them with space vectors"));
         }
-        if f.name == "dot" {
-            let s = u
-                .iter()
-                .zip(w)
-                .fold(Expr::zero(), |acc, (p, q)| acc.add(&p.mul(q)));
-            return Ok(Value::Scalar(s));
-        }
         let c = |i: usize, j: usize| u[i].mul(&w[j]).sub(&u[j].mul(&w[i]));
-        Ok(if u.len() == 2 {
-            Value::Scalar(c(0, 1))
-        } else {
-            Value::Vector(vec![c(1, 2), c(2, 0), c(0, 1)])
+        Ok(match product {
+            Product::Dot => Value::Scalar(
+                u.iter()
+                    .zip(w)
+                    .fold(Expr::zero(), |acc, (p, q)| acc.add(&p.mul(q))),
+            ),
+            Product::Cross if u.len() == 2 => Value::Scalar(c(0, 1)),
+            Product::Cross => Value::Vector(vec![c(1, 2), c(2, 0), c(0, 1)]),
         })
     }
 }

@@ -33,6 +33,20 @@ pub(super) enum Fun {
 }
 
 impl Fun {
+    /// Every function (C and Julia call them by their bare names, so their
+    /// lists of reserved names must hold each one).
+    #[cfg(test)]
+    const ALL: [Fun; 8] = [
+        Fun::Sin,
+        Fun::Cos,
+        Fun::Exp,
+        Fun::Ln,
+        Fun::Sqrt,
+        Fun::Atan,
+        Fun::Asin,
+        Fun::Acos,
+    ];
+
     /// Its name in C's libm, which C, Python's `math` and Julia share
     /// (Rust writes `ln` for `log`).
     pub(super) fn libm_name(self) -> &'static str {
@@ -363,4 +377,36 @@ fn fold(op: &Op) -> Option<f64> {
         Op::SubDot(init, ps) => dot(Some(lit(init)?), ps, -1.0)?,
         Op::Call(f, a) => f.eval(lit(a)?),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Fun;
+
+    #[test]
+    fn every_function_is_listed_and_its_bare_name_reserved() {
+        // no wildcard: a new function fails to compile here until it has
+        // a position in ALL
+        let position = |f: Fun| match f {
+            Fun::Sin => 0,
+            Fun::Cos => 1,
+            Fun::Exp => 2,
+            Fun::Ln => 3,
+            Fun::Sqrt => 4,
+            Fun::Atan => 5,
+            Fun::Asin => 6,
+            Fun::Acos => 7,
+        };
+        assert_eq!(Fun::ALL.len(), 8);
+        for (i, f) in Fun::ALL.into_iter().enumerate() {
+            assert_eq!(position(f), i);
+            let name = f.libm_name();
+            // a parameter named like a called function would shadow it
+            assert!(super::super::c::RESERVED.contains(&name), "C: {name}");
+            assert!(
+                super::super::julia::RESERVED.contains(&name),
+                "Julia: {name}"
+            );
+        }
+    }
 }
