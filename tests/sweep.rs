@@ -229,8 +229,8 @@ fn bad_sweeps_are_refused_with_a_hint() {
         ),
         (
             &["--vary", "theta=0:1", "--samples", "0"],
-            "0 runs",
-            "--samples",
+            "`--samples 0`: a random design needs at least one run",
+            "--samples 100",
         ),
     ];
     for (extra, message, hint) in cases {

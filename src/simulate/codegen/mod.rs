@@ -159,8 +159,8 @@ pub fn codegen(src: &str, req: &CodegenRequest) -> Result<String, Diagnostic> {
         .map(|p| p.name.clone())
         .collect();
     let prefix = names::base(&base_name(&req.file)).to_ascii_lowercase();
-    let no_form: fn(&str) -> bool = |_| false;
-    let (syn, reserved, form): (&dyn Syntax, &[&str], fn(&str) -> bool) = match req.lang {
+    let no_form: names::ReservedForm = |_| false;
+    let (syn, reserved, form): (&dyn Syntax, &[&str], names::ReservedForm) = match req.lang {
         Lang::C => (&c::C, c::RESERVED, c::may_be_a_macro),
         Lang::Rust => (&rust::Rust, rust::RESERVED, no_form),
         Lang::Python => (&python::Python, python::RESERVED, no_form),

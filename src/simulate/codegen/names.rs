@@ -50,18 +50,21 @@ pub(super) fn base(name: &str) -> String {
     s
 }
 
+/// Whether a language reserves a name by its form (C's `M_…` macros).
+pub(super) type ReservedForm = fn(&str) -> bool;
+
 /// Hands out distinct identifiers.
 pub(super) struct Namer {
     taken: FxHashSet<String>,
     /// Names a language reserves by their form, not one by one.
-    reserved_form: fn(&str) -> bool,
+    reserved_form: ReservedForm,
 }
 
 impl Namer {
     /// A namer for which `reserved` (keywords, called functions, the
     /// generated code's own names) and the names `reserved_form` accepts
     /// are taken.
-    pub(super) fn new(reserved: &[&str], reserved_form: fn(&str) -> bool) -> Namer {
+    pub(super) fn new(reserved: &[&str], reserved_form: ReservedForm) -> Namer {
         Namer {
             taken: reserved.iter().map(|s| s.to_string()).collect(),
             reserved_form,
