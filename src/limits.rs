@@ -96,6 +96,13 @@ pub const MAX_FACTORED_TERMS: usize = 40;
 /// minutes and gigabytes.
 pub const MAX_EQUILIBRIUM_CASES: usize = 10_000;
 
+/// The most subsets of modular factors the factoring of one printed sum
+/// may try to recombine (the sums of [`MAX_FACTORED_TERMS`] terms); past
+/// it the sum prints expanded. A sum of 33 terms (a Swinnerton-Dyer
+/// polynomial of degree 64) splits into 32 factors modulo every prime and
+/// has 2³¹ subsets; printing it hung.
+pub const MAX_PRINTED_FACTOR_SUBSETS: usize = 10_000;
+
 /// The most output times `qdot simulate --points` records: each row keeps
 /// t, q and q̇ (and the energy) in memory until printed.
 pub const MAX_POINTS: usize = 1_000_000;

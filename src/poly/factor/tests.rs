@@ -63,8 +63,8 @@ fn kronecker_and_hensel_agree() {
     ];
     for (f, n) in cases {
         let vars = f.vars();
-        let mut k = kronecker_factor(&f, &vars);
-        let mut h = hensel_factor(&f, &vars).expect("a good point");
+        let mut k = kronecker_factor(&f, &vars, &Trials::budgeted());
+        let mut h = hensel_factor(&f, &vars, &Trials::budgeted()).expect("a good point");
         k.sort_by(canonical_cmp);
         h.sort_by(canonical_cmp);
         assert_eq!(k.len(), n, "{f}");
