@@ -279,8 +279,8 @@ impl LPoly {
                 }
             }
             q.push((t, tc));
-            if q.len() > limit {
-                crate::budget::check_terms(q.len());
+            if q.len() > limit || rem.len() > limit {
+                crate::budget::check_terms(q.len().max(rem.len()));
             }
         }
         Some(LPoly { terms: q })
