@@ -93,3 +93,20 @@ fn a_swinnerton_dyer_force_stops_factoring_within_the_budget() {
         "{o:?}"
     );
 }
+
+/// det(K − λ·M) of the 40-link chain: elimination over canonical fractions
+/// took a gcd per entry per step, unbounded (28 s for 30 links, minutes
+/// for 40); fraction-free, it is charged to the budget and takes a second.
+#[test]
+fn the_characteristic_polynomial_of_a_forty_link_chain_is_fraction_free() {
+    let o = run("modes40", &qdot::gallery::pendulum_chain(40), "modes", &[]);
+    assert_eq!(o.code, Some(0), "{o:?}");
+    assert!(
+        o.stdout.contains("\nCharacteristic equation  det(K − λ·M) = 0,  λ = ω²\n  815915283247897734345611269596115894272000000000·g⁴⁰·l⁴⁰·m⁴⁰ − 32636611329915909373824450783844635770880000000000·g³⁹·l⁴¹·m⁴⁰·λ + "),
+        "{o:?}"
+    );
+    assert!(
+        o.stdout.contains("\n  (no closed form for its roots: an irreducible factor of degree 40, not solved here)\n"),
+        "{o:?}"
+    );
+}
