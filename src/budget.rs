@@ -52,6 +52,12 @@ pub enum Measure {
     /// The term products of a whole elimination ([`WorkMeter`]): `terms`
     /// counts them.
     Work,
+    /// The subsets of modular factors a factorization tried to recombine
+    /// ([`check_subsets`]): `terms` counts them.
+    Subsets,
+    /// An exact division of polynomials of these sizes, stopped when its
+    /// term products passed the budget's ([`check_division`]).
+    Division(usize, usize),
 }
 
 impl TooLarge {
@@ -80,6 +86,19 @@ impl TooLarge {
                 grouped(self.terms),
                 grouped(self.limit),
                 grouped(self.limit.saturating_mul(ELIMINATION_PRODUCTS_PER_TERM))
+            ),
+            Measure::Subsets => format!(
+                "factoring too costly: {} subsets of modular factors tried{what} (the limit is {} terms, and {} subsets)",
+                grouped(self.terms),
+                grouped(self.limit),
+                grouped(self.limit / TERMS_PER_SUBSET)
+            ),
+            Measure::Division(a, b) => format!(
+                "expression too large: a division of {} by {} terms{what} (the limit is {} terms, and {} term products)",
+                grouped(a),
+                grouped(b),
+                grouped(self.limit),
+                grouped(self.limit.saturating_mul(PRODUCTS_PER_TERM))
             ),
             Measure::Printed => format!(
                 "expression too large to print: {} symbols written out{what} (the limit is {})",
@@ -208,6 +227,34 @@ impl WorkMeter {
     /// The term products charged so far.
     pub fn used(&self) -> usize {
         self.used.get()
+    }
+}
+
+/// How many terms of the budget one subset of modular factors tried in a
+/// factorization's recombination stands for: a trial multiplies the
+/// subset's factors and divides, so each costs many coefficient products,
+/// and the subsets of r factors number 2^(r−1) (Swinnerton-Dyer
+/// polynomials split into halves of their degree modulo every prime).
+pub const TERMS_PER_SUBSET: usize = 8;
+
+/// Unwind with [`TooLarge`] once a factorization has tried more than
+/// budget / [`TERMS_PER_SUBSET`] subsets of modular factors.
+#[inline]
+pub fn check_subsets(tried: usize) {
+    let limit = limit();
+    if tried > limit / TERMS_PER_SUBSET {
+        exceeded_with(tried, limit, Measure::Subsets);
+    }
+}
+
+/// Unwind with [`TooLarge`] once an exact division of an `a`-term by a
+/// `b`-term polynomial has taken `work` term products, more than a
+/// product may ([`PRODUCTS_PER_TERM`] × the budget).
+#[inline]
+pub fn check_division(work: usize, a: usize, b: usize) {
+    let limit = limit();
+    if work > limit.saturating_mul(PRODUCTS_PER_TERM) {
+        exceeded_with(work, limit, Measure::Division(a, b));
     }
 }
 

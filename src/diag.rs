@@ -233,8 +233,13 @@ impl std::error::Error for SourceError {}
 /// The error of an exceeded work budget ([`crate::budget::within`]), at
 /// the statement it names.
 pub fn too_large(e: &crate::budget::TooLarge) -> Diagnostic {
+    let why = match e.measure {
+        // the polynomial is small; its factors modulo primes are many
+        crate::budget::Measure::Subsets => "a polynomial whose factors modulo every prime are many takes time exponential in their number to factor over ℚ",
+        _ => "exact expressions this large are rarely what a scene means (expand less, or choose other coordinates)",
+    };
     let hint = format!(
-        "exact expressions this large are rarely what a scene means (expand less, or choose other coordinates); to go on, raise the limit: --max-terms {}",
+        "{why}; to go on, raise the limit: --max-terms {}",
         e.limit.saturating_mul(10)
     );
     match e.context.as_ref().and_then(|c| c.span) {

@@ -88,6 +88,21 @@ pub const MAX_TRIG_EXPANSION: usize = 4_000;
 /// printing ((R − r)²); factoring is exact but its cost grows quickly.
 pub const MAX_FACTORED_TERMS: usize = 40;
 
+/// The most cases the exact search for equilibria splits into (each root
+/// of one equation put into the others is a case; a branch that dies is
+/// one too). n uncoupled angles with two roots each make 2ⁿ equilibria and
+/// 2ⁿ⁺¹ − 1 cases, each listed and classified: 12 angles fit, 13 do not;
+/// past that the listing is more than anyone reads, and 30 angles took
+/// minutes and gigabytes.
+pub const MAX_EQUILIBRIUM_CASES: usize = 10_000;
+
+/// The most subsets of modular factors the factoring of one printed sum
+/// may try to recombine (the sums of [`MAX_FACTORED_TERMS`] terms); past
+/// it the sum prints expanded. A sum of 33 terms (a Swinnerton-Dyer
+/// polynomial of degree 64) splits into 32 factors modulo every prime and
+/// has 2³¹ subsets; printing it hung.
+pub const MAX_PRINTED_FACTOR_SUBSETS: usize = 10_000;
+
 /// The most output times `qdot simulate --points` records: each row keeps
 /// t, q and q̇ (and the energy) in memory until printed.
 pub const MAX_POINTS: usize = 1_000_000;

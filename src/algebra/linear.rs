@@ -224,35 +224,57 @@ pub fn dependent_unknowns(a: &[Vec<Expr>]) -> Vec<usize> {
     out
 }
 
-/// det of a small matrix of expressions (Gaussian elimination with exact
-/// zero tests).
-#[allow(clippy::needless_range_loop)] // matrix indices read best as indices
-pub(crate) fn det(mut m: Vec<Vec<Expr>>) -> Option<Expr> {
+/// det of a square matrix of expressions: each row is cleared of its
+/// denominators, the polynomial rows are eliminated fraction-free
+/// (Bareiss: exact divisions by the previous pivot, every product and
+/// division charged to one [`crate::budget::WorkMeter`]), and only the
+/// final quotient by the rows' multipliers takes a gcd. (Elimination over
+/// the canonical fractions took a gcd per entry per step, with
+/// coefficients growing: det(K − λ·M) of the 30-link chain took 28 s
+/// outside the budget.) The determinant is a polynomial identity in the
+/// free ring, so it holds whatever the pivots' values. `None` when the
+/// quotient has no canonical form.
+pub(crate) fn det(m: Vec<Vec<Expr>>) -> Option<Expr> {
     let n = m.len();
-    let mut d = Expr::one();
+    let mut den = Poly::one();
+    let mut a: Vec<Vec<Poly>> = Vec::with_capacity(n);
+    for row in &m {
+        let l = row.iter().fold(Poly::one(), |l, e| lcm(&l, e.den()));
+        a.push(
+            row.iter()
+                .map(|e| match l.div_exact(e.den()) {
+                    Some(f) => e.num() * &f,
+                    None => e.num() * &l,
+                })
+                .collect(),
+        );
+        den = &den * &l;
+    }
+    let work = crate::budget::WorkMeter::new();
+    let mut prev = Poly::one();
+    let mut negate = false;
     for k in 0..n {
-        let p = (k..n).find(|&r| !m[r][k].is_zero());
-        let Some(p) = p else {
+        let Some(p) = (k..n)
+            .filter(|&r| !a[r][k].is_zero())
+            .min_by_key(|&r| a[r][k].len())
+        else {
             return Some(Expr::zero());
         };
         if p != k {
-            m.swap(p, k);
-            d = d.neg();
+            a.swap(p, k);
+            negate = !negate;
         }
-        let piv = m[k][k].clone();
-        d = d.mul(&piv);
-        for r in k + 1..n {
-            if m[r][k].is_zero() {
-                continue;
+        for i in k + 1..n {
+            for j in k + 1..n {
+                a[i][j] =
+                    bareiss_entry(&work, [&a[k][k], &a[i][j], &a[i][k], &a[k][j]], &prev).ok()?;
             }
-            let f = m[r][k].div(&piv).ok()?;
-            for c in k..n {
-                let x = m[r][c].sub(&f.mul(&m[k][c]));
-                m[r][c] = x;
-            }
+            a[i][k] = Poly::zero();
         }
+        prev = a[k][k].clone();
     }
-    Some(d)
+    let d = if negate { -&prev } else { prev };
+    Expr::from_parts(d, den).ok()
 }
 
 /// Split `e` (linear in the variables `vs`) as Σ coef_j·vs_j + rest. An

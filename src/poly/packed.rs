@@ -287,11 +287,16 @@ fn div_with<R: Repr>(r: &R, a: &[(Mono, Q)], d: &[(Mono, Q)]) -> Option<Option<V
     let (ld, lc) = (&kd[0].0, kd[0].1);
     let lc_inv = lc.recip()?;
     let mut q: Vec<(R::K, Q)> = Vec::new();
+    // each quotient term takes |d| − 1 term products: the work a product
+    // of the two may take bounds it (a quotient need not be small)
+    let mut work = 0usize;
     while let Some(k) = heap.pop() {
         let c = match rem.remove(&k) {
             Some(c) if !c.is_zero() => c,
             _ => continue,
         };
+        work = work.saturating_add(kd.len());
+        crate::budget::check_division(work, a.len(), d.len());
         let t = match r.div_bounded(&k, ld) {
             Some(t) => t,
             None => return Some(None),
@@ -309,6 +314,7 @@ fn div_with<R: Repr>(r: &R, a: &[(Mono, Q)], d: &[(Mono, Q)]) -> Option<Option<V
             }
         }
         q.push((t, tc));
+        crate::budget::check_terms(q.len().max(rem.len()));
     }
     Some(Some(q.into_iter().map(|(k, c)| (r.dec(&k), c)).collect()))
 }

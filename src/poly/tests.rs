@@ -327,3 +327,21 @@ proptest! {
         }
     }
 }
+
+/// An exact division whose quotient is long though its dividend is two
+/// terms stops at the work a product may take (8 × the budget).
+#[test]
+fn a_long_division_is_bounded_by_its_work() {
+    let x = Poly::var(0);
+    let one = Poly::one();
+    // d = 1 + x + … + x⁹ divides x¹⁰⁰⁰ − 1 with a 200-term quotient
+    let d = (0..10).fold(Poly::zero(), |a, i| &a + &x.pow(i));
+    let a = &x.pow(1000) - &one;
+    assert_eq!(a.div_exact(&d).map(|q| q.len()), Some(200));
+    let e = crate::budget::within(100, || a.div_exact(&d)).expect_err("800 products allowed");
+    assert_eq!(e.measure, crate::budget::Measure::Division(2, 10));
+    assert_eq!(
+        e.message(),
+        "expression too large: a division of 2 by 10 terms (the limit is 100 terms, and 800 term products)"
+    );
+}

@@ -93,7 +93,7 @@ pub(super) fn constrained_equilibria(
     eqs.extend(gs.iter().cloned());
     let vars: Vec<Var> = q.iter().chain(&lambdas).copied().collect();
     let all_set = !set.is_empty() && scene.parameters.iter().all(|p| set.contains_key(&p.name));
-    let Some(sols) = solve_exact(&eqs, &vars) else {
+    let Some(sols) = solve_exact(&eqs, &vars).map_err(|e| e.diagnostic())? else {
         if !all_set {
             return Err(Diagnostic::global(
                 "no closed form for the equilibria on these constraints; they can be solved numerically given parameter values",

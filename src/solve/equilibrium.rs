@@ -39,6 +39,7 @@ use crate::dense::Lu;
 use crate::diag::Diagnostic;
 use crate::expr::atom::{self, Atom};
 use crate::expr::{func, Expr};
+use crate::limits::MAX_EQUILIBRIUM_CASES;
 use crate::num::Q;
 use crate::poly::{Poly, Var};
 use crate::scene::Scene;
@@ -219,7 +220,7 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
         });
     }
     let mut found = Vec::new();
-    let exact = match solve_exact(&conditions, &q) {
+    let exact = match solve_exact(&conditions, &q).map_err(|e| e.diagnostic())? {
         Some(sols) => {
             let all_set =
                 !set.is_empty() && scene.parameters.iter().all(|p| set.contains_key(&p.name));
@@ -342,15 +343,45 @@ pub(super) struct ExactSolution {
     pub(super) conditions: Vec<String>,
 }
 
-/// All equilibria in closed form, or None if some equation has none.
-pub(super) fn solve_exact(eqs: &[Expr], q: &[Var]) -> Option<Vec<ExactSolution>> {
-    let mut out = Vec::new();
-    let mut assigned: Vec<Option<Expr>> = vec![None; q.len()];
-    let mut conds = Vec::new();
-    solve_branch(eqs.to_vec(), q, &mut assigned, &mut conds, &mut out)?;
+/// The exact search split into more than [`MAX_EQUILIBRIUM_CASES`] cases.
+#[derive(Debug)]
+pub(super) struct TooManyCases;
+
+impl TooManyCases {
+    /// The error of the command, naming the phase and the limit.
+    pub(super) fn diagnostic(&self) -> Diagnostic {
+        Diagnostic::global(format!(
+            "too many equilibria: the exact search for the equilibria split into more than {} cases (each root of one equation put into the others is a case)",
+            crate::budget::grouped(MAX_EQUILIBRIUM_CASES)
+        ))
+        .with_hint("n angles with two equilibria each (a chain of n pendulums) have 2ⁿ equilibria; study fewer coordinates at once, or fix some with a constraint")
+    }
+}
+
+/// All equilibria in closed form, `Ok(None)` if some equation has none;
+/// an error when the search splits into too many cases to list.
+pub(super) fn solve_exact(
+    eqs: &[Expr],
+    q: &[Var],
+) -> Result<Option<Vec<ExactSolution>>, TooManyCases> {
+    let mut search = Search {
+        q,
+        assigned: vec![None; q.len()],
+        conds: Vec::new(),
+        out: Vec::new(),
+        cases: 0,
+        too_many: false,
+    };
+    let found = search.branch(eqs.to_vec());
+    if search.too_many {
+        return Err(TooManyCases);
+    }
+    if found.is_none() {
+        return Ok(None);
+    }
     // de-duplicate
     let mut uniq: Vec<ExactSolution> = Vec::new();
-    for s in out {
+    for s in search.out {
         if !uniq
             .iter()
             .any(|u| u.values.iter().zip(&s.values).all(|(a, b)| a.equals(b)))
@@ -358,45 +389,101 @@ pub(super) fn solve_exact(eqs: &[Expr], q: &[Var]) -> Option<Vec<ExactSolution>>
             uniq.push(s);
         }
     }
-    Some(uniq)
+    Ok(Some(uniq))
 }
 
-/// Solve `eqs` for the coordinates not yet assigned, pushing every
-/// solution of this branch to `out`; `None` when some equation has no
-/// closed form.
-fn solve_branch(
-    eqs: Vec<Expr>,
-    q: &[Var],
-    assigned: &mut Vec<Option<Expr>>,
-    conds: &mut Vec<String>,
-    out: &mut Vec<ExactSolution>,
-) -> Option<()> {
-    let eqs: Vec<Expr> = eqs.into_iter().filter(|e| !e.is_zero()).collect();
-    let open: Vec<usize> = (0..q.len()).filter(|&k| assigned[k].is_none()).collect();
-    let uses = |e: &Expr, k: usize| e.depends_on(q[k]);
-    if eqs.iter().any(|e| !open.iter().any(|&k| uses(e, k))) {
-        return Some(()); // a nonzero constant: no equilibrium on this branch
-    }
-    if eqs.is_empty() {
-        let free: Vec<usize> = open.clone();
-        let vals = (0..q.len())
-            .map(|k| assigned[k].clone().unwrap_or_else(|| Expr::var(q[k])))
+/// The state of the exact search: a depth-first walk over the roots of
+/// one equation at a time, each root put into the other equations.
+struct Search<'a> {
+    q: &'a [Var],
+    /// The value of each coordinate on the current branch.
+    assigned: Vec<Option<Expr>>,
+    /// The conditions for the current branch's roots to exist.
+    conds: Vec<String>,
+    /// The solutions found.
+    out: Vec<ExactSolution>,
+    /// The cases (calls of [`Search::branch`]) entered so far.
+    cases: usize,
+    /// Set when `cases` passed [`MAX_EQUILIBRIUM_CASES`]: the walk stops.
+    too_many: bool,
+}
+
+impl Search<'_> {
+    /// Solve `eqs` for the coordinates not yet assigned, pushing every
+    /// solution of this branch to `out`; `None` when some equation has no
+    /// closed form, or the search has too many cases (`too_many`).
+    fn branch(&mut self, eqs: Vec<Expr>) -> Option<()> {
+        // 2ⁿ equilibria of n uncoupled angles make 2ⁿ⁺¹ cases: count them
+        // before any work, so the walk stops within its bound
+        self.cases += 1;
+        if self.cases > MAX_EQUILIBRIUM_CASES {
+            self.too_many = true;
+            return None;
+        }
+        let q = self.q;
+        let eqs: Vec<Expr> = eqs.into_iter().filter(|e| !e.is_zero()).collect();
+        let open: Vec<usize> = (0..q.len())
+            .filter(|&k| self.assigned[k].is_none())
             .collect();
-        out.push(ExactSolution {
-            values: vals,
-            free,
-            conditions: conds.clone(),
-        });
-        return Some(());
+        let uses = |e: &Expr, k: usize| e.depends_on(q[k]);
+        if eqs.iter().any(|e| !open.iter().any(|&k| uses(e, k))) {
+            return Some(()); // a nonzero constant: no equilibrium on this branch
+        }
+        if eqs.is_empty() {
+            let free: Vec<usize> = open.clone();
+            let vals = (0..q.len())
+                .map(|k| self.assigned[k].clone().unwrap_or_else(|| Expr::var(q[k])))
+                .collect();
+            self.out.push(ExactSolution {
+                values: vals,
+                free,
+                conditions: self.conds.clone(),
+            });
+            return Some(());
+        }
+        // Linear in all open coordinates together?
+        let open_vars: Vec<Var> = open.iter().map(|&k| q[k]).collect();
+        if eqs.iter().all(|e| is_linear_in(e, &open_vars)) {
+            return self.linear(&eqs, &open, &open_vars);
+        }
+        // An equation in a single open coordinate, the smallest first.
+        let single = eqs
+            .iter()
+            .enumerate()
+            .filter_map(|(i, e)| {
+                let ks: Vec<usize> = open.iter().copied().filter(|&k| uses(e, k)).collect();
+                (ks.len() == 1).then(|| (i, ks[0]))
+            })
+            .min_by_key(|&(i, _)| eqs[i].num().len());
+        let Some((i, k)) = single else {
+            // A product of a factor in one coordinate and the rest: branch on
+            // both (sin θ·sin φ = 0 is θ ∈ {0, π} or sin φ = 0).
+            let (i, k, factor, cofactor) = eqs.iter().enumerate().find_map(|(i, e)| {
+                open.iter()
+                    .find_map(|&k| single_factor(e, q[k], &open_vars).map(|(f, c)| (i, k, f, c)))
+            })?;
+            for (root, cond) in univariate(&factor, q[k])? {
+                self.assign(&eqs, None, k, root, cond)?;
+            }
+            let mut rest = eqs.clone();
+            rest[i] = cofactor;
+            return self.branch(rest);
+        };
+        let roots = univariate(&eqs[i], q[k])?;
+        for (root, cond) in roots {
+            self.assign(&eqs, Some(i), k, root, cond)?;
+        }
+        Some(())
     }
-    // Linear in all open coordinates together?
-    let open_vars: Vec<Var> = open.iter().map(|&k| q[k]).collect();
-    if eqs.iter().all(|e| is_linear_in(e, &open_vars)) {
+
+    /// The equations, linear in all open coordinates, solved together.
+    fn linear(&mut self, eqs: &[Expr], open: &[usize], open_vars: &[Var]) -> Option<()> {
+        let q = self.q;
         let mut a = Vec::new();
         let mut b = Vec::new();
-        for e in &eqs {
+        for e in eqs {
             // (no closed form on this branch if a part has none)
-            let (coefs, r) = crate::mechanics::split_linear(e, &open_vars).ok()?;
+            let (coefs, r) = crate::mechanics::split_linear(e, open_vars).ok()?;
             a.push(coefs);
             b.push(r.neg());
         }
@@ -406,80 +493,48 @@ fn solve_branch(
             return Some(()); // inconsistent: none
         }
         let mut vals: Vec<Expr> = (0..q.len())
-            .map(|k| assigned[k].clone().unwrap_or_else(|| Expr::var(q[k])))
+            .map(|k| self.assigned[k].clone().unwrap_or_else(|| Expr::var(q[k])))
             .collect();
         for (j, &k) in open.iter().enumerate() {
             vals[k] = sol.values[j].clone();
         }
         let free = sol.shape.free.iter().map(|&j| open[j]).collect();
-        out.push(ExactSolution {
+        self.out.push(ExactSolution {
             values: vals,
             free,
-            conditions: conds.clone(),
+            conditions: self.conds.clone(),
         });
-        return Some(());
+        Some(())
     }
-    // An equation in a single open coordinate, the smallest first.
-    let single = eqs
-        .iter()
-        .enumerate()
-        .filter_map(|(i, e)| {
-            let ks: Vec<usize> = open.iter().copied().filter(|&k| uses(e, k)).collect();
-            (ks.len() == 1).then(|| (i, ks[0]))
-        })
-        .min_by_key(|&(i, _)| eqs[i].num().len());
-    let Some((i, k)) = single else {
-        // A product of a factor in one coordinate and the rest: branch on
-        // both (sin θ·sin φ = 0 is θ ∈ {0, π} or sin φ = 0).
-        let (i, k, factor, cofactor) = eqs.iter().enumerate().find_map(|(i, e)| {
-            open.iter()
-                .find_map(|&k| single_factor(e, q[k], &open_vars).map(|(f, c)| (i, k, f, c)))
-        })?;
-        for (root, cond) in univariate(&factor, q[k])? {
-            assign_and_solve(&eqs, None, q, k, root, cond, assigned, conds, out)?;
-        }
-        let mut rest = eqs.clone();
-        rest[i] = cofactor;
-        return solve_branch(rest, q, assigned, conds, out);
-    };
-    let roots = univariate(&eqs[i], q[k])?;
-    for (root, cond) in roots {
-        assign_and_solve(&eqs, Some(i), q, k, root, cond, assigned, conds, out)?;
-    }
-    Some(())
-}
 
-/// Put q_k = root into the equations (all but `solved`, the one the root
-/// came from) and go on.
-#[allow(clippy::too_many_arguments)]
-fn assign_and_solve(
-    eqs: &[Expr],
-    solved: Option<usize>,
-    q: &[Var],
-    k: usize,
-    root: Expr,
-    cond: Vec<String>,
-    assigned: &mut Vec<Option<Expr>>,
-    conds: &mut Vec<String>,
-    out: &mut Vec<ExactSolution>,
-) -> Option<()> {
-    let mut next = Vec::with_capacity(eqs.len());
-    for (j, e) in eqs.iter().enumerate() {
-        if solved == Some(j) {
-            continue;
+    /// Put q_k = root into the equations (all but `solved`, the one the
+    /// root came from) and go on.
+    fn assign(
+        &mut self,
+        eqs: &[Expr],
+        solved: Option<usize>,
+        k: usize,
+        root: Expr,
+        cond: Vec<String>,
+    ) -> Option<()> {
+        let mut next = Vec::with_capacity(eqs.len());
+        for (j, e) in eqs.iter().enumerate() {
+            if solved == Some(j) {
+                continue;
+            }
+            match e.subs(self.q[k], &root) {
+                Ok(x) => next.push(x),
+                Err(_) => return Some(()), // a denominator vanishes here
+            }
         }
-        match e.subs(q[k], &root) {
-            Ok(x) => next.push(x),
-            Err(_) => return Some(()), // a denominator vanishes here
-        }
+        self.assigned[k] = Some(root);
+        let n = self.conds.len();
+        self.conds.extend(cond);
+        let r = self.branch(next);
+        self.conds.truncate(n);
+        self.assigned[k] = None;
+        r
     }
-    assigned[k] = Some(root);
-    let n = conds.len();
-    conds.extend(cond);
-    let r = solve_branch(next, q, assigned, conds, out);
-    conds.truncate(n);
-    assigned[k] = None;
-    r
 }
 
 /// If `e`'s numerator is f·g with f a non-constant factor in `qk` alone

@@ -279,8 +279,8 @@ impl LPoly {
                 }
             }
             q.push((t, tc));
-            if q.len() > limit {
-                crate::budget::check_terms(q.len());
+            if q.len() > limit || rem.len() > limit {
+                crate::budget::check_terms(q.len().max(rem.len()));
             }
         }
         Some(LPoly { terms: q })
@@ -437,7 +437,11 @@ impl Basis {
                 if a + b > MAX_EXP as u32 {
                     return None;
                 }
-                term = term.mul(&self.power(a, b, j)?)?;
+                let power = self.power(a, b, j)?;
+                // a term of n angles expands into up to 3ⁿ: charged to
+                // the elimination's meter, and the sum bounded below
+                self.work.charge(term.len(), power.len());
+                term = term.mul(&power)?;
             }
             for (k, c) in term.terms {
                 match acc.entry(k) {
@@ -447,6 +451,7 @@ impl Basis {
                     }
                 }
             }
+            crate::budget::check_terms(acc.len());
         }
         Some(LPoly::from_unsorted(acc.into_iter().collect()))
     }

@@ -46,7 +46,9 @@ use crate::num::Q;
 use crate::poly::{Mono, Poly, Var};
 use std::sync::Arc;
 
-pub use crate::limits::{MAX_COMPACT_TERMS, MAX_FACTORED_TERMS, MAX_TRIG_EXPANSION};
+pub use crate::limits::{
+    MAX_COMPACT_TERMS, MAX_FACTORED_TERMS, MAX_PRINTED_FACTOR_SUBSETS, MAX_TRIG_EXPANSION,
+};
 
 /// The display polynomials of num/den: the shortest representation found
 /// (see the module docs). The result may contain display atoms
@@ -265,7 +267,7 @@ fn factored(p: &Poly) -> Option<Poly> {
     if p.len() < 2 || p.len() > MAX_FACTORED_TERMS {
         return None;
     }
-    let f = crate::poly::factor::factor(p);
+    let f = crate::poly::factor::factor_within(p, MAX_PRINTED_FACTOR_SUBSETS)?;
     let sums: Vec<&(Poly, u32)> = f.factors.iter().filter(|(g, _)| g.len() > 1).collect();
     if sums.is_empty() || (sums.len() == 1 && sums[0].1 == 1) {
         return None;

@@ -5,7 +5,7 @@
 use super::square_free::square_free;
 use super::univariate::zassenhaus;
 use super::zpoly::{from_dense, to_dense, z_mul, ZPoly};
-use super::{next_combination, normalize};
+use super::{next_combination, normalize, Trials};
 use crate::num::Q;
 use crate::poly::{Mono, Poly, Var};
 use num_bigint::BigInt;
@@ -19,7 +19,7 @@ pub const MAX_KRONECKER_DEGREE: u64 = 256;
 /// Irreducible factors of a multivariate `g` (primitive in every variable,
 /// square-free, no monomial content, positive leading coefficient) by
 /// Kronecker's substitution (see the module docs).
-pub(super) fn kronecker_factor(g: &Poly, vars: &[Var]) -> Vec<Poly> {
+pub(super) fn kronecker_factor(g: &Poly, vars: &[Var], trials: &Trials) -> Vec<Poly> {
     // mixed radices
     let mut weights: Vec<u64> = Vec::with_capacity(vars.len());
     let mut w = 1u64;
@@ -51,7 +51,7 @@ pub(super) fn kronecker_factor(g: &Poly, vars: &[Var]) -> Vec<Poly> {
     let mut distinct: Vec<ZPoly> = Vec::new();
     let mut ids: Vec<usize> = Vec::new();
     for (part, mult) in square_free(&from_dense(&img, y)) {
-        for h in zassenhaus(&to_dense(&part, y)) {
+        for h in zassenhaus(&to_dense(&part, y), trials) {
             distinct.push(h);
             ids.extend(std::iter::repeat_n(distinct.len() - 1, mult as usize));
         }
@@ -62,12 +62,15 @@ pub(super) fn kronecker_factor(g: &Poly, vars: &[Var]) -> Vec<Poly> {
     let mut fstar = g.clone();
     let mut out = Vec::new();
     let mut s = 1usize;
-    while 2 * s <= t.len() {
+    'sizes: while 2 * s <= t.len() {
         let degs: Vec<u32> = vars.iter().map(|&v| fstar.degree(v)).collect();
         let mut seen: FxHashSet<Vec<usize>> = FxHashSet::default();
         let mut found: Option<(Vec<usize>, usize, Poly, Poly)> = None;
         let mut c: Vec<usize> = (0..s).collect();
         'search: loop {
+            if !trials.next() {
+                break 'sizes;
+            }
             let mut key: Vec<usize> = c.iter().map(|&i| t[i]).collect();
             key.sort_unstable();
             if seen.insert(key.clone()) {

@@ -73,6 +73,7 @@ use super::{Poly, Var};
 use crate::num::Q;
 use kronecker::kronecker_factor;
 use multivariate::hensel_factor;
+use std::cell::Cell;
 use std::cmp::Ordering;
 use univariate::zassenhaus;
 use zpoly::{from_dense, to_dense};
@@ -102,10 +103,77 @@ impl Factorization {
     }
 }
 
+/// The subsets of modular (or image) factors a factorization may still
+/// try to recombine: under the work budget, or a fixed number of them.
+pub(super) struct Trials {
+    tried: Cell<usize>,
+    /// `None`: the work budget ([`crate::budget::check_subsets`]) bounds
+    /// them and unwinds past it; `Some(n)`: at most n, then `spent`.
+    most: Option<usize>,
+    spent: Cell<bool>,
+}
+
+impl Trials {
+    /// Bounded by the thread's work budget (unbounded outside one).
+    pub(super) fn budgeted() -> Trials {
+        Trials {
+            tried: Cell::new(0),
+            most: None,
+            spent: Cell::new(false),
+        }
+    }
+
+    /// At most `n` subsets.
+    fn at_most(n: usize) -> Trials {
+        Trials {
+            tried: Cell::new(0),
+            most: Some(n),
+            spent: Cell::new(false),
+        }
+    }
+
+    /// Count one more subset; `false` when a fixed allowance is spent (the
+    /// search then stops, and its result is not used).
+    pub(super) fn next(&self) -> bool {
+        let tried = self.tried.get() + 1;
+        self.tried.set(tried);
+        match self.most {
+            None => {
+                crate::budget::check_subsets(tried);
+                true
+            }
+            Some(n) if tried > n => {
+                self.spent.set(true);
+                false
+            }
+            Some(_) => true,
+        }
+    }
+
+    /// Whether a fixed allowance ran out (the search stopped early).
+    pub(super) fn spent(&self) -> bool {
+        self.spent.get()
+    }
+}
+
 /// Factors `p` into irreducibles over ℚ (see the module docs for the method
 /// and its limits). `factor(0)` has unit 0 and no factors; a constant has
-/// itself as unit and no factors.
+/// itself as unit and no factors. Under a work budget, a recombination
+/// that would try more subsets of factors than it allows
+/// ([`crate::budget::check_subsets`]) unwinds.
 pub fn factor(p: &Poly) -> Factorization {
+    factor_with(p, &Trials::budgeted())
+}
+
+/// [`factor`] trying at most `subsets` subsets of factors in all; `None`
+/// when that is not enough (for optional uses: a printed form).
+pub fn factor_within(p: &Poly, subsets: usize) -> Option<Factorization> {
+    let trials = Trials::at_most(subsets);
+    let f = factor_with(p, &trials);
+    (!trials.spent()).then_some(f)
+}
+
+fn factor_with(p: &Poly, trials: &Trials) -> Factorization {
     if let Some(c) = p.as_constant() {
         return Factorization {
             unit: c.clone(),
@@ -120,7 +188,7 @@ pub fn factor(p: &Poly) -> Factorization {
     let rest = normalize(&p.div_mono(&m).unwrap_or_else(|| p.clone()));
     for (part, mult) in square_free(&rest) {
         let mut irr = Vec::new();
-        factor_squarefree(&part, &mut irr);
+        factor_squarefree(&part, &mut irr, trials);
         factors.extend(irr.into_iter().map(|g| (g, mult)));
     }
     factors.sort_by(|a, b| canonical_cmp(&a.0, &b.0).then(a.1.cmp(&b.1)));
@@ -186,14 +254,14 @@ fn canonical_cmp(a: &Poly, b: &Poly) -> Ordering {
 
 /// Factors a square-free primitive polynomial with positive leading
 /// coefficient and no monomial content, pushing the irreducible factors.
-fn factor_squarefree(g: &Poly, out: &mut Vec<Poly>) {
+fn factor_squarefree(g: &Poly, out: &mut Vec<Poly>, trials: &Trials) {
     if g.is_constant() {
         return;
     }
     let vars = g.vars();
     if vars.len() == 1 {
         let v = vars[0];
-        for h in zassenhaus(&to_dense(g, v)) {
+        for h in zassenhaus(&to_dense(g, v), trials) {
             out.push(from_dense(&h, v));
         }
         return;
@@ -203,8 +271,8 @@ fn factor_squarefree(g: &Poly, out: &mut Vec<Poly>) {
         if !c.is_constant() {
             let pp = g.div_exact(&c).map(|q| normalize(&q));
             if let Some(pp) = pp {
-                factor_squarefree(&c, out);
-                factor_squarefree(&pp, out);
+                factor_squarefree(&c, out, trials);
+                factor_squarefree(&pp, out, trials);
                 return;
             }
         }
@@ -214,9 +282,9 @@ fn factor_squarefree(g: &Poly, out: &mut Vec<Poly>) {
         out.push(g.clone());
         return;
     }
-    match hensel_factor(g, &vars) {
+    match hensel_factor(g, &vars, trials) {
         Some(fs) => out.extend(fs),
-        None => out.extend(kronecker_factor(g, &vars)),
+        None => out.extend(kronecker_factor(g, &vars, trials)),
     }
 }
 

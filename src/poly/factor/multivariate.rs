@@ -5,7 +5,7 @@
 use super::qpoly::{q_divrem, q_inverse_mod, q_mul, q_trim, QPoly};
 use super::univariate::zassenhaus;
 use super::zpoly::{to_dense, ZPoly};
-use super::{content_in, next_combination, normalize};
+use super::{content_in, next_combination, normalize, Trials};
 use crate::num::Q;
 use crate::poly::modular::XorShift64Star;
 use crate::poly::{Mono, Poly, Var};
@@ -117,7 +117,7 @@ fn point(k: usize, n: usize) -> Vec<i64> {
 /// every factor `h`; subsets of the lifted factors, smallest first, are
 /// tested by exact division. `None` when no point among the first
 /// [`POINTS_TRIED`] is suitable (then Kronecker's method is used).
-pub(super) fn hensel_factor(g: &Poly, vars: &[Var]) -> Option<Vec<Poly>> {
+pub(super) fn hensel_factor(g: &Poly, vars: &[Var], trials: &Trials) -> Option<Vec<Poly>> {
     // candidates: every variable as the main one at the zero point (sparse),
     // then the smallest-degree variable at other points
     let mut order: Vec<Var> = vars.to_vec();
@@ -149,7 +149,7 @@ pub(super) fn hensel_factor(g: &Poly, vars: &[Var]) -> Option<Vec<Poly>> {
             continue;
         }
         let f0 = normalize(&f0);
-        let fs = zassenhaus(&to_dense(&f0, x));
+        let fs = zassenhaus(&to_dense(&f0, x), trials);
         if fs.len() == 1 {
             return Some(vec![g.clone()]);
         }
@@ -247,11 +247,14 @@ pub(super) fn hensel_factor(g: &Poly, vars: &[Var]) -> Option<Vec<Poly>> {
     let mut fstar = fs;
     let mut out = Vec::new();
     let mut s = 1usize;
-    while 2 * s <= t.len() {
+    'sizes: while 2 * s <= t.len() {
         let lcf = fstar.coeffs_in(x).pop().unwrap_or_else(Poly::one);
         let mut found: Option<(Vec<usize>, Poly, Poly)> = None;
         let mut comb: Vec<usize> = (0..s).collect();
         loop {
+            if !trials.next() {
+                break 'sizes;
+            }
             let mut cand = lcf.clone();
             for &i in &comb {
                 cand = truncate_y(&(&cand * &lifted[t[i]]), x, prec);

@@ -63,12 +63,43 @@ fn kronecker_and_hensel_agree() {
     ];
     for (f, n) in cases {
         let vars = f.vars();
-        let mut k = kronecker_factor(&f, &vars);
-        let mut h = hensel_factor(&f, &vars).expect("a good point");
+        let mut k = kronecker_factor(&f, &vars, &Trials::budgeted());
+        let mut h = hensel_factor(&f, &vars, &Trials::budgeted()).expect("a good point");
         k.sort_by(canonical_cmp);
         h.sort_by(canonical_cmp);
         assert_eq!(k.len(), n, "{f}");
         assert_eq!(k, h, "{f}");
         assert_eq!(k.iter().cloned().product::<Poly>(), f);
     }
+}
+
+/// The Swinnerton-Dyer polynomial of √2, √3, √5, √7 (degree 16,
+/// irreducible over ℚ, at least 8 factors modulo every prime): the
+/// product of the 16 x ± √2 ± √3 ± √5 ± √7 (coefficients from SymPy).
+fn swinnerton_dyer_4() -> Poly {
+    let coeffs: [i64; 9] = [
+        1, -136, 6476, -141912, 1513334, -7453176, 13950764, -5596840, 46225,
+    ];
+    coeffs
+        .iter()
+        .enumerate()
+        .map(|(i, &k)| &c(k) * &x().pow(16 - 2 * i as u32))
+        .fold(Poly::zero(), |a, b| &a + &b)
+}
+
+/// Within a fixed number of subsets the factorization is given up (`None`);
+/// under a work budget it unwinds with the subsets' measure; with room,
+/// the polynomial is found irreducible.
+#[test]
+fn recombination_is_bounded_by_its_subsets() {
+    let f = swinnerton_dyer_4();
+    assert_eq!(factor_within(&f, 3), None);
+    let r = factor_within(&f, 1_000_000).expect("room enough");
+    assert_eq!(r.factors, vec![(f.clone(), 1)]);
+    let e = crate::budget::within(16, || factor(&f)).expect_err("2 subsets allowed");
+    assert_eq!(e.measure, crate::budget::Measure::Subsets);
+    assert_eq!(
+        e.message(),
+        "factoring too costly: 3 subsets of modular factors tried (the limit is 16 terms, and 2 subsets)"
+    );
 }

@@ -6,11 +6,11 @@ use super::fp::{
     deg_fp, fp_ddf, fp_deriv, fp_edf, fp_ext_gcd, fp_from_z, fp_gcd, fp_monic, fp_mul, z_from_fp,
     Ddf, Fp,
 };
-use super::next_combination;
 use super::zpoly::{
     deg_z, z_add, z_div_exact, z_divrem_monic, z_mod, z_mul, z_mulm, z_primitive, z_sub, z_sym,
     ZPoly,
 };
+use super::{next_combination, Trials};
 use crate::poly::modular::XorShift64Star;
 use num_bigint::BigInt;
 use num_integer::Integer;
@@ -121,7 +121,7 @@ fn subset_sums(degs: &[usize], n: usize) -> Vec<bool> {
 
 /// Irreducible factors over ℤ of a primitive square-free `f` with positive
 /// leading coefficient (primitive, positive leading coefficients).
-pub(super) fn zassenhaus(f: &[BigInt]) -> Vec<ZPoly> {
+pub(super) fn zassenhaus(f: &[BigInt], trials: &Trials) -> Vec<ZPoly> {
     let n = deg_z(&f.to_vec());
     if n <= 1 {
         return vec![f.to_vec()];
@@ -194,22 +194,31 @@ pub(super) fn zassenhaus(f: &[BigInt]) -> Vec<ZPoly> {
         k += 1;
     }
     let lifted = hensel_lift(f, &us, p, k);
-    recombine(f, lifted, &m, &allowed)
+    recombine(f, lifted, &m, &allowed, trials)
 }
 
 /// Zassenhaus recombination (MCA Alg. 15.19 with trial division): subsets of
 /// the lifted monic factors, smallest first, each candidate
 /// `pp(lc·∏ uᵢ mods m)` tested by the degree table, the constant term and
 /// exact division.
-fn recombine(f: &[BigInt], lifted: Vec<ZPoly>, m: &BigInt, allowed: &[bool]) -> Vec<ZPoly> {
+fn recombine(
+    f: &[BigInt],
+    lifted: Vec<ZPoly>,
+    m: &BigInt,
+    allowed: &[bool],
+    trials: &Trials,
+) -> Vec<ZPoly> {
     let mut t: Vec<usize> = (0..lifted.len()).collect();
     let mut fstar = f.to_vec();
     let mut out = Vec::new();
     let mut s = 1usize;
-    while 2 * s <= t.len() {
+    'sizes: while 2 * s <= t.len() {
         let mut found: Option<(Vec<usize>, ZPoly, ZPoly)> = None;
         let mut c: Vec<usize> = (0..s).collect();
         loop {
+            if !trials.next() {
+                break 'sizes;
+            }
             let idx: Vec<usize> = c.iter().map(|&i| t[i]).collect();
             let deg: usize = idx.iter().map(|&i| deg_z(&lifted[i])).sum();
             if allowed.get(deg).copied().unwrap_or(false) {
@@ -290,7 +299,7 @@ mod tests {
         }
         assert_eq!(prod, z_mod(&f, &m));
         // the lifted factors recombine to the four linear factors
-        let fs = recombine(&f, lifted, &m, &[true; 5]);
+        let fs = recombine(&f, lifted, &m, &[true; 5], &Trials::budgeted());
         assert_eq!(fs.len(), 4);
     }
 }

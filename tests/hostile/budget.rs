@@ -1,0 +1,112 @@
+//! Hostile inputs for the work budget's reach: searches whose every step is
+//! small but whose steps are exponentially many (the equilibria of n
+//! uncoupled angles, the recombination of a polynomial's factors modulo a
+//! prime). Each stops within 30 s and 2 GiB with an error naming the
+//! phase, or answers.
+
+use crate::bound::*;
+
+/// `qdot COMMAND scene.qd ARGS` on `src` within 30 s and 2 GiB, ended by
+/// itself without a panic.
+fn run(tag: &str, src: &str, command: &str, args: &[&str]) -> Outcome {
+    let dir = std::env::temp_dir().join(format!("qdot-hostile-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temporary directory");
+    let path = dir.join(format!("{tag}.qd"));
+    std::fs::write(&path, src).expect("scene written");
+    let p = path.to_str().expect("utf-8 path").to_string();
+    let mut all = vec![command, p.as_str()];
+    all.extend_from_slice(args);
+    let mut o = qdot_bounded(&all, "", 30, 2048);
+    o.stderr = o.stderr.replace(&p, "scene.qd");
+    o.assert_clean();
+    o
+}
+
+/// Issue 33, item 10: the 30-link chain's 2³⁰ equilibria ran 300 s into
+/// 12 GB. The 12-link chain's 4,096 (8,191 cases) are listed; the 30-link
+/// chain stops at the case limit at once.
+#[test]
+fn the_equilibria_of_a_thirty_link_chain_stop_at_the_case_limit() {
+    let o = run(
+        "equilibria12",
+        &qdot::gallery::pendulum_chain(12),
+        "equilibrium",
+        &[],
+    );
+    assert_eq!(o.code, Some(0), "{o:?}");
+    assert!(o.stdout.contains("\n  4096. q₁ = π, q₂ = π, "), "{o:?}");
+    assert!(!o.stdout.contains("\n  4097. "), "{o:?}");
+    let o = run(
+        "equilibria30",
+        &qdot::gallery::pendulum_chain(30),
+        "equilibrium",
+        &[],
+    );
+    assert_eq!(o.code, Some(1), "{o:?}");
+    assert_eq!(
+        o.stderr,
+        "error: too many equilibria: the exact search for the equilibria split into more than 10,000 cases (each root of one equation put into the others is a case)\n  = hint: n angles with two equilibria each (a chain of n pendulums) have 2ⁿ equilibria; study fewer coordinates at once, or fix some with a constraint\n"
+    );
+}
+
+/// A force that is the Swinnerton-Dyer polynomial of √2, √3, √5, √7, √11
+/// and √13 (degree 64, irreducible over ℚ, 32 factors or more modulo every
+/// prime: 2³¹ subsets to recombine), written as its 64 linear factors.
+fn swinnerton_dyer_force() -> String {
+    let roots = [2, 3, 5, 7, 11, 13];
+    let factors: Vec<String> = (0..64u32)
+        .map(|signs| {
+            let terms: String = roots
+                .iter()
+                .enumerate()
+                .map(|(i, p)| {
+                    let sign = if signs >> i & 1 == 1 { '-' } else { '+' };
+                    format!(" {sign} sqrt({p})")
+                })
+                .collect();
+            format!("(x{terms})")
+        })
+        .collect();
+    format!(
+        "coordinates x\nparameters m\nkinetic E = 1/2*m*x'^2\nforce x: {}\n",
+        factors.join("*")
+    )
+}
+
+/// Factoring the force for its roots hung (`equilibrium`), and so did
+/// printing it (`derive`: the printer tries to factor short sums): the
+/// roots stop at the budget's subsets, the printed force is expanded.
+#[test]
+fn a_swinnerton_dyer_force_stops_factoring_within_the_budget() {
+    let src = swinnerton_dyer_force();
+    let o = run("swinnerton_dyer", &src, "equilibrium", &[]);
+    assert_eq!(o.code, Some(1), "{o:?}");
+    assert_eq!(
+        o.stderr,
+        "error: factoring too costly: 250,001 subsets of modular factors tried while finding the equilibria (the limit is 2,000,000 terms, and 250,000 subsets)\n  = hint: a polynomial whose factors modulo every prime are many takes time exponential in their number to factor over ℚ; to go on, raise the limit: --max-terms 20000000\n"
+    );
+    let o = run("swinnerton_dyer_derive", &src, "derive", &[]);
+    assert_eq!(o.code, Some(0), "{o:?}");
+    assert!(
+        o.stdout
+            .contains("  x  m·x\u{308} = x⁶⁴ − 1312·x⁶² + 792048·x⁶⁰ − 293134944·x⁵⁸ + "),
+        "{o:?}"
+    );
+}
+
+/// det(K − λ·M) of the 40-link chain: elimination over canonical fractions
+/// took a gcd per entry per step, unbounded (28 s for 30 links, minutes
+/// for 40); fraction-free, it is charged to the budget and takes a second.
+#[test]
+fn the_characteristic_polynomial_of_a_forty_link_chain_is_fraction_free() {
+    let o = run("modes40", &qdot::gallery::pendulum_chain(40), "modes", &[]);
+    assert_eq!(o.code, Some(0), "{o:?}");
+    assert!(
+        o.stdout.contains("\nCharacteristic equation  det(K − λ·M) = 0,  λ = ω²\n  815915283247897734345611269596115894272000000000·g⁴⁰·l⁴⁰·m⁴⁰ − 32636611329915909373824450783844635770880000000000·g³⁹·l⁴¹·m⁴⁰·λ + "),
+        "{o:?}"
+    );
+    assert!(
+        o.stdout.contains("\n  (no closed form for its roots: an irreducible factor of degree 40, not solved here)\n"),
+        "{o:?}"
+    );
+}
