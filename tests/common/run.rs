@@ -15,7 +15,7 @@ pub const DYNAMICS_KEYS: [&str; 5] = [
 pub const BLOCK_KEYS: [&str; 3] = ["solutions", "free_unknowns", "checks"];
 
 /// The JSON keys of `qdot equilibrium`, in order.
-pub const EQUILIBRIUM_KEYS: [&str; 9] = [
+pub const EQUILIBRIUM_KEYS: [&str; 14] = [
     "coordinates",
     "generalized_forces",
     "conditions",
@@ -25,6 +25,11 @@ pub const EQUILIBRIUM_KEYS: [&str; 9] = [
     "notes",
     "approx",
     "multiplicity",
+    "digits",
+    "certified",
+    "enclosure",
+    "complete",
+    "caveat",
 ];
 
 /// `qdot ARGS` from the repository root: exit code, stdout, stderr.
