@@ -31,6 +31,7 @@
 //! an even number of them may be stabilized by gyroscopic terms. For one
 //! coordinate with K = 0 the first non-vanishing derivative decides.
 
+use super::definite::{matrix_at, negated, negated_f64, AtRest, Mass, Stiffness};
 use super::numeric::{find_roots, RootOptions};
 use crate::algebra::linear::det;
 use crate::algebra::sign::sign_of;
@@ -172,10 +173,18 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
     }
     let mut conditions = forces.clone();
     let mut kinetic_terms = false;
-    if scene.has_role(crate::parse::ast::Role::Kinetic)
-        || scene.has_role(crate::parse::ast::Role::Lagrangian)
-    {
-        let l = scene.lagrange()?;
+    let energies = scene.has_role(crate::parse::ast::Role::Kinetic)
+        || scene.has_role(crate::parse::ast::Role::Lagrangian);
+    // the inertia the verdicts rest on; a scene with inertia forces only
+    // whose equations fail to form has none (it is read as static)
+    let lagrange = if energies {
+        Some(scene.lagrange()?)
+    } else if scene.has_dynamics() {
+        scene.lagrange().ok()
+    } else {
+        None
+    };
+    if let (true, Some(l)) = (energies, &lagrange) {
         for (k, eq) in l.equations.iter().enumerate() {
             let lhs = at_rest(&eq.lhs)?;
             if !lhs.is_zero() {
@@ -184,6 +193,8 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
             }
         }
     }
+    let inertia = lagrange.as_ref().and_then(AtRest::of);
+    let inertia = inertia.as_ref();
     let t = atom::time();
     for (k, f) in conditions.iter().enumerate() {
         if f.depends_on(t) || has_given_function(f) {
@@ -203,8 +214,14 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
     let periodic = periodic_coordinates(&conditions, &q);
 
     if !scene.constraints.is_empty() {
-        let (found, exact) =
-            super::constrained::constrained_equilibria(scene, &conditions, &q, set, gyroscopic)?;
+        let (found, exact) = super::constrained::constrained_equilibria(
+            scene,
+            &conditions,
+            &q,
+            set,
+            gyroscopic,
+            inertia,
+        )?;
         return Ok(Equilibria {
             coordinates: names,
             forces,
@@ -239,7 +256,7 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
                     }
                 }
                 let stability = if free.is_empty() {
-                    classify_exact(&conditions, &jac, &q, &vals, set, gyroscopic)
+                    classify_exact(&conditions, &jac, inertia, &q, &vals, set, gyroscopic)
                 } else {
                     Stability::Undecided("neutral: a coordinate is free".into())
                 };
@@ -281,7 +298,7 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
                         .join(",")
                 )));
             }
-            found = solve_numeric(&conditions, &jac, &q, &periodic, set, gyroscopic);
+            found = solve_numeric(&conditions, &jac, inertia, &q, &periodic, set, gyroscopic);
             false
         }
     };
@@ -876,34 +893,62 @@ pub(super) fn numeric_values(vals: &[Expr], set: &Values) -> Option<Vec<f64>> {
 
 // ---------------------------------------------------------------- stability
 
-#[allow(clippy::needless_range_loop)] // matrix indices read best as indices
+/// The verdict at an exact equilibrium: K's minors (Lagrange–Dirichlet,
+/// Jacobi) when the kinetic energy is positive definite there, and
+/// [`Mass::verdict`] otherwise.
 fn classify_exact(
     conditions: &[Expr],
     jac: &[Vec<Expr>],
+    inertia: Option<&AtRest>,
     q: &[Var],
     vals: &[Expr],
     set: &Values,
     gyroscopic: bool,
 ) -> Stability {
     let map: FxHashMap<Var, Expr> = q.iter().copied().zip(vals.iter().cloned()).collect();
-    let mut k = Vec::with_capacity(q.len());
-    for row in jac {
-        let mut r = Vec::with_capacity(row.len());
-        for x in row {
-            match x.subs_many(&map) {
-                Ok(v) => r.push(v),
-                Err(_) => return Stability::Undecided("the Hessian is undefined here".into()),
-            }
-        }
-        k.push(r);
-    }
+    let Some(k) = matrix_at(jac, &map) else {
+        return Stability::Undecided("the Hessian is undefined here".into());
+    };
+    let potential = |negate: bool| {
+        let (k, f) = if negate {
+            (negated(&k), conditions[0].neg())
+        } else {
+            (k.clone(), conditions[0].clone())
+        };
+        classify_potential(&f, &k, q, vals, set, gyroscopic)
+    };
+    let Some(inertia) = inertia else {
+        return potential(false);
+    };
+    let Some(m) = matrix_at(inertia.mass(), &map) else {
+        return Stability::Undecided("the mass matrix is undefined here".into());
+    };
+    Mass::exact(&m, set).verdict(
+        || Stiffness::exact(&k, set),
+        || inertia.velocity_free(),
+        || false,
+        potential,
+    )
+}
+
+/// The verdict of the potential's Hessian K (for a positive definite
+/// kinetic energy); `f` is the first condition (one coordinate: the
+/// derivatives past K decide when K = 0).
+fn classify_potential(
+    f: &Expr,
+    k: &[Vec<Expr>],
+    q: &[Var],
+    vals: &[Expr],
+    set: &Values,
+    gyroscopic: bool,
+) -> Stability {
     let n = q.len();
-    let signs = match minor_signs(&k, set) {
+    let signs = match minor_signs(k, set) {
         Ok(s) => s,
         Err(undecided) => return undecided,
     };
     if n == 1 && signs[0] == Some(Sign::Zero) {
-        return higher_order(&conditions[0], q[0], &vals[0], set);
+        return higher_order(f, q[0], &vals[0], set);
     }
     if n == 1 && signs[0].is_none() {
         return Stability::Undecided(format!(
@@ -1037,6 +1082,7 @@ pub fn multiplicity(f: &Expr, q: Var, at: &Expr) -> u32 {
 fn solve_numeric(
     conditions: &[Expr],
     jac: &[Vec<Expr>],
+    inertia: Option<&AtRest>,
     q: &[Var],
     periodic: &[bool],
     set: &Values,
@@ -1082,25 +1128,38 @@ fn solve_numeric(
                     .map(|row| row.into_iter().map(|v| -v).collect::<Vec<f64>>())
                     .collect::<Vec<_>>()
             });
-            let mut stability = match k {
-                Some(k) => classify_numeric(&k, gyroscopic),
-                None => Stability::Undecided("the Hessian is undefined here".into()),
-            };
-            if r.x.len() == 1 && matches!(stability, Stability::Undecided(_)) {
-                // one coordinate, flat: a restoring force on both sides is stable
-                let h = 1e-3 * (1.0 + r.x[0].abs());
-                let side = |x: f64| f(&[x]).map(|v| v[0]);
-                if let (Some(lo), Some(hi)) = (side(r.x[0] - h), side(r.x[0] + h)) {
-                    // restoring on both sides: stable; pushed away on
-                    // either side: unstable; a side with no force: not
-                    // decided (never guessed)
-                    if lo > 0.0 && hi < 0.0 {
-                        stability = Stability::Stable;
-                    } else if lo < 0.0 || hi > 0.0 {
-                        stability = Stability::Unstable;
+            let side = |x: f64| f(&[x]).map(|v| v[0]);
+            let stability = match k {
+                Some(k) => {
+                    let potential = |negate: bool| {
+                        let k = if negate { negated_f64(&k) } else { k.clone() };
+                        let s = classify_numeric(&k, gyroscopic);
+                        match (r.x.as_slice(), &s) {
+                            ([x], Stability::Undecided(_)) => flat(&side, *x, negate).unwrap_or(s),
+                            _ => s,
+                        }
+                    };
+                    let mass = inertia.map(|i| {
+                        i.mass()
+                            .iter()
+                            .map(|row| row.iter().map(|e| eval(e, &r.x)).collect())
+                            .collect::<Option<Vec<Vec<f64>>>>()
+                    });
+                    match mass {
+                        None => potential(false),
+                        Some(None) => {
+                            Stability::Undecided("the mass matrix is undefined here".into())
+                        }
+                        Some(Some(m)) => Mass::numeric(&m).verdict(
+                            || Stiffness::numeric(&k),
+                            || inertia.is_some_and(AtRest::velocity_free),
+                            || false,
+                            potential,
+                        ),
                     }
                 }
-            }
+                None => Stability::Undecided("the Hessian is undefined here".into()),
+            };
             // one coordinate: certify the digits by a sign change of F
             let certified = (r.x.len() == 1)
                 .then(|| {
@@ -1113,6 +1172,23 @@ fn solve_numeric(
             e
         })
         .collect()
+}
+
+/// One coordinate where K vanishes: the force `side(x)` just left and
+/// right of the root `x` decides. Restoring on both sides is stable,
+/// pushed away on either side unstable, a side with no force not decided
+/// (never guessed); `negate` for a negative mass (ẍ = −F/|m|).
+fn flat(side: &impl Fn(f64) -> Option<f64>, x: f64, negate: bool) -> Option<Stability> {
+    let h = 1e-3 * (1.0 + x.abs());
+    let sign = if negate { -1.0 } else { 1.0 };
+    let (lo, hi) = (sign * side(x - h)?, sign * side(x + h)?);
+    if lo > 0.0 && hi < 0.0 {
+        Some(Stability::Stable)
+    } else if lo < 0.0 || hi > 0.0 {
+        Some(Stability::Unstable)
+    } else {
+        None
+    }
 }
 
 #[allow(clippy::needless_range_loop)] // matrix indices read best as indices
@@ -1149,7 +1225,7 @@ pub(super) fn classify_numeric(k: &[Vec<f64>], gyroscopic: bool) -> Stability {
 
 /// The determinant of a numeric matrix, by LU with partial pivoting
 /// (0 for a zero pivot).
-fn det_f64(m: Vec<Vec<f64>>) -> f64 {
+pub(super) fn det_f64(m: Vec<Vec<f64>>) -> f64 {
     let mut lu = Lu::new(m.len(), 0.0);
     lu.a = m.concat();
     if lu.factor() {

@@ -1,6 +1,8 @@
 //! Stability of the linearized system M·q̈ + C·q̇ + K·q = 0 about an
-//! equilibrium (M positive definite), decided exactly where it can be and
-//! numerically whenever every entry has a value.
+//! equilibrium, decided exactly where it can be and numerically whenever
+//! every entry has a value. The steps below read M as positive definite;
+//! `definite.rs` decides M first (negative definite: the same verdict on
+//! −K; neither: unstable where that is proved, never stable).
 //!
 //! In this order:
 //! 1. K's definiteness by Sylvester's criterion (its leading minors, one
@@ -26,6 +28,7 @@
 //! Only a zero frequency (higher-order terms decide) and a repeated
 //! frequency of a gyroscopic system exactly at the boundary stay undecided.
 
+use super::definite::{negated, Mass, Stiffness};
 use super::equilibrium::{jacobi, minor_signs, Stability};
 use crate::algebra::sign::{sign_exact, sign_of, Sign, Values};
 use crate::expr::atom::Atom;
@@ -46,9 +49,50 @@ pub(super) struct Linearized<'a> {
 
 /// The verdict: K's minors, then the characteristic polynomial `p` in `lv`,
 /// then the numeric eigenvalues at `set`.
-pub(super) fn stability(sys: &Linearized, p: &Expr, lv: Var, set: &Values) -> Stability {
+///
+/// All of it reads M as positive definite; [`Mass::verdict`] decides M
+/// first (a negative definite M is the system of −L, whose verdict this
+/// is with −K; anything else is never "stable").
+pub(super) fn stability(
+    sys: &Linearized,
+    mass: &Mass,
+    p: &Expr,
+    lv: Var,
+    set: &Values,
+) -> Stability {
+    let damped = sys.damping.iter().flatten().any(|e| !e.is_zero());
+    mass.verdict(
+        || Stiffness::exact(sys.stiffness, set),
+        || !damped,
+        || {
+            // a root λ off [0, ∞) of a polynomial that holds C (none, or
+            // skew) grows whatever M is; so does an eigenvalue Re s > 0
+            let exact = (!damped || sys.gyroscopic)
+                && from_factors(p, lv, sys.gyroscopic, set) == Stability::Unstable;
+            exact || numeric(sys, set) == Some(Stability::Unstable)
+        },
+        |negate| {
+            let stiffness = if negate {
+                negated(sys.stiffness)
+            } else {
+                sys.stiffness.to_vec()
+            };
+            positive_mass(sys, &stiffness, p, lv, set)
+        },
+    )
+}
+
+/// The verdict for a positive definite M on the stiffness `stiffness`
+/// (K, or −K for the system of −L).
+fn positive_mass(
+    sys: &Linearized,
+    stiffness: &[Vec<Expr>],
+    p: &Expr,
+    lv: Var,
+    set: &Values,
+) -> Stability {
     let moving = sys.damping.iter().flatten().any(|e| !e.is_zero());
-    if let Ok(signs) = minor_signs(sys.stiffness, set) {
+    if let Ok(signs) = minor_signs(stiffness, set) {
         let v = jacobi(&signs, moving);
         if !matches!(v, Stability::Undecided(_)) {
             return v;

@@ -204,7 +204,13 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
     let characteristic = super::characteristic::polynomial(&stiffness, &mass, gyro.as_deref(), lv)
         .ok_or_else(|| Diagnostic::global("the characteristic polynomial failed"))?;
     let symmetric = (0..n).all(|i| (0..n).all(|j| stiffness[i][j].equals(&stiffness[j][i])));
-    let real = gyro.is_none() && symmetric;
+    // det(K − λ·M)'s roots are real for symmetric K and a definite M
+    let mass_kind = super::definite::Mass::exact(&mass, set);
+    let definite = matches!(
+        mass_kind.definiteness(),
+        super::definite::Definiteness::Positive | super::definite::Definiteness::Negative
+    );
+    let real = gyro.is_none() && symmetric && definite;
     let found = super::characteristic::roots(&characteristic, lv, real, set);
     let (mut roots, factors) = (found.roots, found.factors);
     sort_ascending(&mut roots, set);
@@ -231,7 +237,8 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
         stiffness: &stiffness,
         gyroscopic: gyro.is_some(),
     };
-    let stability = super::linear_stability::stability(&system, &characteristic, lv, set);
+    let stability =
+        super::linear_stability::stability(&system, &mass_kind, &characteristic, lv, set);
     Ok(Modes {
         coordinates: names,
         at: q0,
