@@ -228,10 +228,7 @@ impl Mass {
                     self.minors[j]
                 )
             }
-            Definiteness::Singular => format!(
-                "the mass matrix is singular here (det M = {} = 0: a direction without inertia): the linearization does not decide",
-                self.minors.last().map_or("0", String::as_str)
-            ),
+            Definiteness::Singular => "the mass matrix is singular here (det M = 0: a direction without inertia, or coordinates singular here such as an azimuth at the pole): the linearization does not decide".into(),
             Definiteness::Undecided(i) => format!(
                 "the sign of the kinetic energy here depends on the parameters: the mass matrix's leading minor D{} = {} has no decided sign; give values with --set",
                 i + 1,
