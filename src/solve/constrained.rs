@@ -24,7 +24,9 @@ use super::equilibrium::{
     classify_numeric, distinct_roots, jacobi, minor_signs, numeric_values, periodic_coordinates,
     solve_exact, Equilibrium, Position, Stability,
 };
-use super::definite::{matrix_at, negated, negated_f64, AtRest, Mass, Stiffness};
+use super::definite::{
+    matrix_at, negated, negated_f64, undamped_grows_f64, AtRest, Mass, Stiffness,
+};
 use super::numeric::{find_roots, RootOptions};
 use crate::algebra::sign::{Sign, Values};
 use crate::diag::Diagnostic;
@@ -205,12 +207,16 @@ impl Numeric<'_> {
                                 Some(None) => Stability::Undecided(
                                     "the mass matrix is undefined here".into(),
                                 ),
-                                Some(Some(m)) => Mass::numeric(&sandwich_f64(&m, &z)).verdict(
-                                    || Stiffness::numeric(&kc),
-                                    || self.inertia.is_some_and(AtRest::velocity_free),
-                                    || false,
-                                    potential,
-                                ),
+                                Some(Some(m)) => {
+                                    let mc = sandwich_f64(&m, &z);
+                                    let free = || self.inertia.is_some_and(AtRest::velocity_free);
+                                    Mass::numeric(&mc).verdict(
+                                        || Stiffness::numeric(&kc),
+                                        free,
+                                        || free() && undamped_grows_f64(&mc, &kc),
+                                        potential,
+                                    )
+                                }
                             }
                         }
                         Some(_) => Stability::Undecided("the constraints leave no motion".into()),
@@ -322,10 +328,11 @@ fn classify(
     let Some(m) = matrix_at(inertia.mass(), &map) else {
         return Stability::Undecided("the mass matrix is undefined here".into());
     };
-    Mass::exact(&sandwich(&m, &z), set).verdict(
+    let mc = sandwich(&m, &z);
+    Mass::exact(&mc, set).verdict(
         || Stiffness::exact(&kc, set),
         || inertia.velocity_free(),
-        || false,
+        || inertia.velocity_free() && super::linear_stability::undamped_grows(&mc, &kc, set),
         potential,
     )
 }

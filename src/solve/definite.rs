@@ -309,6 +309,25 @@ impl Stiffness {
     }
 }
 
+/// Whether M·q̈ + K·q = 0 (numeric, no velocity terms) has a growing
+/// solution: an eigenvalue λ of M⁻¹·K off the positive axis (complex, or
+/// negative) beyond 1e-9 of the largest.
+pub(super) fn undamped_grows_f64(m: &[Vec<f64>], k: &[Vec<f64>]) -> bool {
+    let n = m.len();
+    let mm = nalgebra::DMatrix::from_fn(n, n, |i, j| m[i][j]);
+    let kk = nalgebra::DMatrix::from_fn(n, n, |i, j| k[i][j]);
+    let Some(a) = mm.lu().solve(&kk) else {
+        return false;
+    };
+    if a.iter().any(|v| !v.is_finite()) {
+        return false;
+    }
+    let lambda = a.complex_eigenvalues();
+    let scale = lambda.iter().fold(0.0f64, |s, z| s.max(z.norm()));
+    let tol = 1e-9 * scale;
+    lambda.iter().any(|z| z.im.abs() > tol || z.re < -tol)
+}
+
 /// −X.
 pub(super) fn negated(x: &[Vec<Expr>]) -> Vec<Vec<Expr>> {
     x.iter().map(|r| r.iter().map(Expr::neg).collect()).collect()

@@ -31,7 +31,9 @@
 //! an even number of them may be stabilized by gyroscopic terms. For one
 //! coordinate with K = 0 the first non-vanishing derivative decides.
 
-use super::definite::{matrix_at, negated, negated_f64, AtRest, Mass, Stiffness};
+use super::definite::{
+    matrix_at, negated, negated_f64, undamped_grows_f64, AtRest, Mass, Stiffness,
+};
 use super::numeric::{find_roots, RootOptions};
 use crate::algebra::linear::det;
 use crate::algebra::sign::sign_of;
@@ -926,7 +928,7 @@ fn classify_exact(
     Mass::exact(&m, set).verdict(
         || Stiffness::exact(&k, set),
         || inertia.velocity_free(),
-        || false,
+        || inertia.velocity_free() && super::linear_stability::undamped_grows(&m, &k, set),
         potential,
     )
 }
@@ -1153,7 +1155,10 @@ fn solve_numeric(
                         Some(Some(m)) => Mass::numeric(&m).verdict(
                             || Stiffness::numeric(&k),
                             || inertia.is_some_and(AtRest::velocity_free),
-                            || false,
+                            || {
+                                inertia.is_some_and(AtRest::velocity_free)
+                                    && undamped_grows_f64(&m, &k)
+                            },
                             potential,
                         ),
                     }

@@ -68,7 +68,8 @@ pub(super) fn stability(
             // a root λ off [0, ∞) of a polynomial that holds C (none, or
             // skew) grows whatever M is; so does an eigenvalue Re s > 0
             let exact = (!damped || sys.gyroscopic)
-                && from_factors(p, lv, sys.gyroscopic, set) == Stability::Unstable;
+                && (from_factors(p, lv, sys.gyroscopic, set) == Stability::Unstable
+                    || complex_root(p, lv, set));
             exact || numeric(sys, set) == Some(Stability::Unstable)
         },
         |negate| {
@@ -147,6 +148,44 @@ fn from_factors(p: &Expr, lv: Var, gyroscopic: bool, set: &Values) -> Stability 
         "stable when {}; give values with --set",
         conditions.join(" and ")
     ))
+}
+
+/// Whether M·q̈ + K·q = 0 (no velocity terms) provably has a growing
+/// solution: a root of det(K − λ·M) off the positive axis, exactly, or an
+/// eigenvalue Re s > 0 at `set`.
+pub(super) fn undamped_grows(m: &[Vec<Expr>], k: &[Vec<Expr>], set: &Values) -> bool {
+    let lv = crate::expr::atom::unknown(super::oscillations::LAMBDA);
+    let Some(p) = super::characteristic::polynomial(k, m, None, lv) else {
+        return false;
+    };
+    if from_factors(&p, lv, false, set) == Stability::Unstable || complex_root(&p, lv, set) {
+        return true;
+    }
+    let zero = vec![vec![Expr::zero(); m.len()]; m.len()];
+    let sys = Linearized {
+        mass: m,
+        damping: &zero,
+        stiffness: k,
+        gyroscopic: false,
+    };
+    numeric(&sys, set) == Some(Stability::Unstable)
+}
+
+/// Whether a quadratic factor of `p` has non-real roots λ (then s² = −λ
+/// has a root with Re s > 0). Its roots are real when M is definite, so
+/// only an indefinite or undecided M asks.
+fn complex_root(p: &Expr, lv: Var, set: &Values) -> bool {
+    crate::poly::factor::factor(p.num())
+        .factors
+        .iter()
+        .any(|(f, _)| {
+            let cs: Vec<Expr> = f.coeffs_in(lv).into_iter().map(Expr::from_poly).collect();
+            let [c, b, a] = cs.as_slice() else {
+                return false;
+            };
+            let disc = b.mul(b).sub(&a.mul(c).scale(&Q::from_i64(4)));
+            sign_of(&disc, set) == Some(Sign::Negative)
+        })
 }
 
 /// What one factor says.
