@@ -4,6 +4,7 @@
 //! under a time and a memory bound (`bounded`).
 
 pub(crate) mod bound;
+mod definite;
 mod exact;
 mod exact_values;
 mod hidden_zeros;
