@@ -20,12 +20,12 @@
 //! reduced coordinates: δq = Z·δs with δs those coordinates' displacements,
 //! M_c = Zᵀ·M·Z, C_c = Zᵀ·C·Z, K_c = Zᵀ·K·Z and f_c = Zᵀ·f.
 
+use super::definite::{
+    matrix_at, negated, negated_f64, undamped_grows_f64, AtRest, Mass, Stiffness,
+};
 use super::equilibrium::{
     classify_numeric, distinct_roots, jacobi, minor_signs, numeric_values, periodic_coordinates,
     solve_exact, Equilibrium, Position, Stability,
-};
-use super::definite::{
-    matrix_at, negated, negated_f64, undamped_grows_f64, AtRest, Mass, Stiffness,
 };
 use super::numeric::{find_roots, RootOptions};
 use crate::algebra::sign::{Sign, Values};
@@ -204,9 +204,9 @@ impl Numeric<'_> {
                             };
                             match self.inertia.map(|i| matrix(i.mass(), &r.x)) {
                                 None => potential(false),
-                                Some(None) => Stability::Undecided(
-                                    "the mass matrix is undefined here".into(),
-                                ),
+                                Some(None) => {
+                                    Stability::Undecided("the mass matrix is undefined here".into())
+                                }
                                 Some(Some(m)) => {
                                     let mc = sandwich_f64(&m, &z);
                                     let free = || self.inertia.is_some_and(AtRest::velocity_free);
@@ -320,7 +320,11 @@ fn classify(
     // K_c = Zᵀ·K·Z, M_c = Zᵀ·M·Z
     let kc = sandwich(&k, &z);
     let potential = |negate: bool| {
-        classify_restricted(&if negate { negated(&kc) } else { kc.clone() }, set, gyroscopic)
+        classify_restricted(
+            &if negate { negated(&kc) } else { kc.clone() },
+            set,
+            gyroscopic,
+        )
     };
     let Some(inertia) = inertia else {
         return potential(false);

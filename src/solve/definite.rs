@@ -296,12 +296,14 @@ impl Stiffness {
     pub(super) fn numeric(k: &[Vec<f64>]) -> Stiffness {
         let scale = largest(k);
         let n = k.len();
-        let symmetric =
-            (0..n).all(|i| (0..n).all(|j| (k[i][j] - k[j][i]).abs() <= 1e-8 * scale));
+        let symmetric = (0..n).all(|i| (0..n).all(|j| (k[i][j] - k[j][i]).abs() <= 1e-8 * scale));
         let signs = numeric_signs(&leading_minors_f64(k), scale);
-        let det = numeric_signs(&[super::equilibrium::det_f64(k.to_vec())], scale.powi(n as i32))
-            .pop()
-            .flatten();
+        let det = numeric_signs(
+            &[super::equilibrium::det_f64(k.to_vec())],
+            scale.powi(n as i32),
+        )
+        .pop()
+        .flatten();
         Stiffness {
             kind: symmetric.then(|| from_signs(&signs)),
             det,
@@ -330,7 +332,9 @@ pub(super) fn undamped_grows_f64(m: &[Vec<f64>], k: &[Vec<f64>]) -> bool {
 
 /// −X.
 pub(super) fn negated(x: &[Vec<Expr>]) -> Vec<Vec<Expr>> {
-    x.iter().map(|r| r.iter().map(Expr::neg).collect()).collect()
+    x.iter()
+        .map(|r| r.iter().map(Expr::neg).collect())
+        .collect()
 }
 
 /// −X, numeric.
