@@ -71,6 +71,9 @@ pub struct Modes {
     /// With constraints: the coordinates they make dependent, with their
     /// values at the equilibrium (`coordinates` are the independent ones).
     pub dependent: Vec<(String, Expr)>,
+    /// A repeated ω² has fewer modes than its multiplicity (possible only
+    /// when M is not definite): `modes` is empty.
+    pub defective: bool,
 }
 
 /// One degree of freedom in the standard form ÿ + 2α·ẏ + ω²·y = f(t)/M.
@@ -215,6 +218,7 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
     let (mut roots, factors) = (found.roots, found.factors);
     sort_ascending(&mut roots, set);
     let mut modes: Vec<Vec<Expr>> = Vec::with_capacity(roots.len());
+    let mut defective = false;
     let mut i = 0;
     while gyro.is_none() && i < roots.len() {
         // equal roots share one null space: take its basis
@@ -223,6 +227,13 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
             .take_while(|r| r.equals(&roots[i]))
             .count();
         let basis = null_basis(&stiffness, &mass, &roots[i])?;
+        if basis.len() < same && !definite {
+            // an indefinite M can make a repeated root defective (a
+            // Jordan block): its modes do not span, and none are given
+            modes.clear();
+            defective = true;
+            break;
+        }
         if basis.len() < same {
             return Err(Diagnostic::global(
                 "internal error: fewer modes than the multiplicity of a root of det(K − λ·M)",
@@ -254,6 +265,7 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
         gyroscopic: gyro.is_some(),
         no_closed_form: found.why,
         dependent,
+        defective,
     })
 }
 
@@ -402,6 +414,12 @@ pub fn free_response(md: &Modes, q0: &[Expr], v0: &[Expr]) -> Result<Vec<Expr>, 
     if md.gyroscopic {
         return Err(Diagnostic::global(
             "the free response of a gyroscopic system needs its complex modes, which qdot does not give",
+        )
+        .with_hint("`qdot simulate` integrates the motion"));
+    }
+    if md.defective {
+        return Err(Diagnostic::global(
+            "the free response needs a mode per frequency, and a repeated ω² here has fewer (the mass matrix is not definite)",
         )
         .with_hint("`qdot simulate` integrates the motion"));
     }
