@@ -1191,7 +1191,7 @@ fn exact_agrees_with_the_numeric_eigen_solver() {
 
 // ------------------------------------------------------------------ JSON contract
 
-const KEYS: [&str; 19] = [
+const KEYS: [&str; 20] = [
     "coordinates",
     "at",
     "mass_matrix",

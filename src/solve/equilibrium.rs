@@ -1021,6 +1021,11 @@ pub(super) fn jacobi(signs: &[Option<Sign>], gyroscopic: bool) -> Stability {
         );
     }
     if signs.contains(&Some(Sign::Zero)) {
+        // a zero leading minor and det K ≠ 0: K is not positive definite
+        // and not singular, so it has a negative eigenvalue
+        if !gyroscopic && matches!(signs.last(), Some(Some(Sign::Positive | Sign::Negative))) {
+            return Stability::Unstable;
+        }
         return Stability::Undecided(
             "the Hessian is singular here: higher-order terms decide".into(),
         );

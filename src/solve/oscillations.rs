@@ -730,7 +730,24 @@ pub fn numeric_free_response(
         Diagnostic::global("the numeric free response needs a value for every parameter")
             .with_hint("give them with --set NAME=VALUE,…")
     };
-    let g = numeric_modes(md, set).ok_or_else(missing)?;
+    let g = numeric_modes(md, set).ok_or_else(|| {
+        let at = |a: &Atom| match a {
+            Atom::Param(n) => set.get(&**n).copied(),
+            _ => None,
+        };
+        let mass: Option<Vec<Vec<f64>>> = md
+            .mass
+            .iter()
+            .map(|r| r.iter().map(|e| e.eval_f64(&at)).collect())
+            .collect();
+        match mass.map(|m| super::definite::Mass::numeric(&m).definiteness()) {
+            Some(d) if d != super::definite::Definiteness::Positive => Diagnostic::global(
+                "the numeric free response needs a positive definite mass matrix, and this one is not at these values",
+            )
+            .with_hint("`qdot simulate` integrates the motion"),
+            _ => missing(),
+        }
+    })?;
     let at = |a: &Atom| match a {
         Atom::Param(n) => set.get(&**n).copied(),
         _ => None,
