@@ -20,6 +20,7 @@ use qdot::solve::oscillations::modes;
 use qdot::Scene;
 
 /// A symmetric n×n matrix of small rationals a/d.
+#[allow(clippy::needless_range_loop)] // matrix indices read best as indices
 fn symmetric(n: usize) -> impl Strategy<Value = Vec<Vec<(i64, i64)>>> {
     proptest::collection::vec((-6i64..=6, 1i64..=3), n * (n + 1) / 2).prop_map(move |v| {
         let mut m = vec![vec![(0, 1); n]; n];

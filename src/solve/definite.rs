@@ -51,7 +51,7 @@ pub(super) enum Definiteness {
 
 /// The sign Dᵢ (0-based i) has in a negative definite matrix: (−1)^(i+1).
 fn negative_definite_sign(i: usize) -> Sign {
-    if i % 2 == 0 {
+    if i.is_multiple_of(2) {
         Sign::Negative
     } else {
         Sign::Positive
