@@ -174,28 +174,7 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
         forces.push(at_rest(&f)?);
     }
     let mut conditions = forces.clone();
-    let mut kinetic_terms = false;
-    let energies = scene.has_role(crate::parse::ast::Role::Kinetic)
-        || scene.has_role(crate::parse::ast::Role::Lagrangian);
-    // the inertia the verdicts rest on; a scene with inertia forces only
-    // whose equations fail to form has none (it is read as static)
-    let lagrange = if energies {
-        Some(scene.lagrange()?)
-    } else if scene.has_dynamics() {
-        scene.lagrange().ok()
-    } else {
-        None
-    };
-    if let (true, Some(l)) = (energies, &lagrange) {
-        for (k, eq) in l.equations.iter().enumerate() {
-            let lhs = at_rest(&eq.lhs)?;
-            if !lhs.is_zero() {
-                kinetic_terms = true;
-                conditions[k] = conditions[k].sub(&lhs);
-            }
-        }
-    }
-    let inertia = lagrange.as_ref().and_then(AtRest::of);
+    let (kinetic_terms, inertia) = kinetic_at_rest(scene, &mut conditions, &at_rest)?;
     let inertia = inertia.as_ref();
     let t = atom::time();
     for (k, f) in conditions.iter().enumerate() {
@@ -312,6 +291,37 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
         equilibria: found,
         exact,
     })
+}
+
+/// The kinetic energy's terms at rest (centrifugal terms), taken from
+/// the `conditions`, and whether there were any; and the inertia the
+/// verdicts rest on (a scene with inertia forces only whose equations
+/// fail to form has none: it is read as static).
+fn kinetic_at_rest(
+    scene: &Scene,
+    conditions: &mut [Expr],
+    at_rest: &impl Fn(&Expr) -> Result<Expr, Diagnostic>,
+) -> Result<(bool, Option<AtRest>), Diagnostic> {
+    let energies = scene.has_role(crate::parse::ast::Role::Kinetic)
+        || scene.has_role(crate::parse::ast::Role::Lagrangian);
+    let lagrange = if energies {
+        Some(scene.lagrange()?)
+    } else if scene.has_dynamics() {
+        scene.lagrange().ok()
+    } else {
+        None
+    };
+    let mut kinetic_terms = false;
+    if let (true, Some(l)) = (energies, &lagrange) {
+        for (k, eq) in l.equations.iter().enumerate() {
+            let lhs = at_rest(&eq.lhs)?;
+            if !lhs.is_zero() {
+                kinetic_terms = true;
+                conditions[k] = conditions[k].sub(&lhs);
+            }
+        }
+    }
+    Ok((kinetic_terms, lagrange.as_ref().and_then(AtRest::of)))
 }
 
 /// Whether `e` contains a given function of time (`functions s`), at any

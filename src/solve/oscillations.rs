@@ -217,31 +217,11 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
     let found = super::characteristic::roots(&characteristic, lv, real, set);
     let (mut roots, factors) = (found.roots, found.factors);
     sort_ascending(&mut roots, set);
-    let mut modes: Vec<Vec<Expr>> = Vec::with_capacity(roots.len());
-    let mut defective = false;
-    let mut i = 0;
-    while gyro.is_none() && i < roots.len() {
-        // equal roots share one null space: take its basis
-        let same = roots[i..]
-            .iter()
-            .take_while(|r| r.equals(&roots[i]))
-            .count();
-        let basis = null_basis(&stiffness, &mass, &roots[i])?;
-        if basis.len() < same && !definite {
-            // an indefinite M can make a repeated root defective (a
-            // Jordan block): its modes do not span, and none are given
-            modes.clear();
-            defective = true;
-            break;
-        }
-        if basis.len() < same {
-            return Err(Diagnostic::global(
-                "internal error: fewer modes than the multiplicity of a root of det(K − λ·M)",
-            ));
-        }
-        modes.extend(basis.into_iter().take(same));
-        i += same;
-    }
+    let (modes, defective) = if gyro.is_none() {
+        modes_of(&stiffness, &mass, &roots, definite)?
+    } else {
+        (Vec::new(), false)
+    };
     let system = super::linear_stability::Linearized {
         mass: &mass,
         damping: &damping,
@@ -267,6 +247,41 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
         dependent,
         defective,
     })
+}
+
+/// The modes of the roots ω² (ascending, equal roots together), each a
+/// null vector of K − λ·M; and whether a repeated root has fewer modes
+/// than its multiplicity (possible only when M is not `definite`: then
+/// none are given).
+fn modes_of(
+    stiffness: &[Vec<Expr>],
+    mass: &[Vec<Expr>],
+    roots: &[Expr],
+    definite: bool,
+) -> Result<(Vec<Vec<Expr>>, bool), Diagnostic> {
+    let mut modes: Vec<Vec<Expr>> = Vec::with_capacity(roots.len());
+    let mut i = 0;
+    while i < roots.len() {
+        // equal roots share one null space: take its basis
+        let same = roots[i..]
+            .iter()
+            .take_while(|r| r.equals(&roots[i]))
+            .count();
+        let basis = null_basis(stiffness, mass, &roots[i])?;
+        if basis.len() < same && !definite {
+            // an indefinite M can make a repeated root defective (a
+            // Jordan block): its modes do not span
+            return Ok((Vec::new(), true));
+        }
+        if basis.len() < same {
+            return Err(Diagnostic::global(
+                "internal error: fewer modes than the multiplicity of a root of det(K − λ·M)",
+            ));
+        }
+        modes.extend(basis.into_iter().take(same));
+        i += same;
+    }
+    Ok((modes, false))
 }
 
 /// C when it is skew and not zero (purely gyroscopic velocity terms);
