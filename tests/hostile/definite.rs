@@ -229,3 +229,16 @@ fn an_inertia_of_undecided_sign_is_a_warning() {
     o.assert_clean();
     assert_eq!((o.code, o.stderr.as_str()), (Some(0), ""), "{o:?}");
 }
+
+/// M = [[0, 1], [1, 1]], K = [[0, −1], [−1, 0]]: det(K − λ·M) = (1 + λ)²
+/// with one mode only (an indefinite M allows a Jordan block). It was an
+/// internal error; the frequencies are given without modes, unstable.
+#[test]
+fn a_defective_repeated_root_gives_the_frequencies_without_modes() {
+    let src = "coordinates x1, x2\nkinetic E = 1/2*(x2'^2 + 2*x1'*x2')\npotential V = -x1*x2\n";
+    let out = ok("defective", src, "modes", &[]);
+    assert!(
+        out.contains("\nNatural frequencies  (a repeated ω² has fewer modes than its multiplicity, the mass matrix not being definite; not given)\n  ω₁² = −1\n  ω₂² = −1\n\nStability of the equilibrium: unstable\n"),
+        "{out}"
+    );
+}
