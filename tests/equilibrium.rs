@@ -602,13 +602,20 @@ fn spherical_pendulum_with_a_horizontal_force() {
         at(&s, &e, &["pi - atan(F/(m*g))", "pi"]).stability,
         Stability::Unstable
     );
+    // at the poles sin θ = 0 leaves φ without inertia (M singular): they
+    // are equilibria of the chart, not of the pendulum, and no verdict
+    // rests on a singular kinetic energy
     for pole in [
         ["0", "pi/2"],
         ["0", "-pi/2"],
         ["pi", "pi/2"],
         ["pi", "-pi/2"],
     ] {
-        assert_eq!(at(&s, &e, &pole).stability, Stability::Unstable, "{pole:?}");
+        assert!(
+            matches!(&at(&s, &e, &pole).stability,
+                Stability::Undecided(why) if why.starts_with("the mass matrix is singular here")),
+            "{pole:?}"
+        );
     }
     equilibrium_json("spherical", SPHERICAL, "");
     // the deflection for m g = F: 45°

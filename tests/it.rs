@@ -14,6 +14,7 @@ mod cli;
 mod codegen;
 mod compile;
 mod constraints;
+mod definite_props;
 mod dimensions;
 mod equilibrium;
 mod factor;

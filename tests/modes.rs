@@ -1191,7 +1191,7 @@ fn exact_agrees_with_the_numeric_eigen_solver() {
 
 // ------------------------------------------------------------------ JSON contract
 
-const KEYS: [&str; 19] = [
+const KEYS: [&str; 20] = [
     "coordinates",
     "at",
     "mass_matrix",
@@ -1205,6 +1205,7 @@ const KEYS: [&str; 19] = [
     "modes",
     "no_closed_form",
     "stability",
+    "stability_note",
     "standard_form",
     "numeric_omega_squared",
     "numeric_modes",
@@ -1336,6 +1337,10 @@ fn check_json(
         check_exprs(s, "modes", m, w);
     }
     assert_eq!(v["stability"], md.stability.word());
+    match &md.stability {
+        Stability::Undecided(why) => assert_eq!(v["stability_note"], why.as_str()),
+        _ => assert!(v["stability_note"].is_null()),
+    }
     match standard_form(&md, values) {
         None => assert_eq!(v["standard_form"], Value::Null),
         Some(sf) => {

@@ -319,6 +319,12 @@ pub fn modes_json(
     );
     m.insert("no_closed_form".into(), json!(md.no_closed_form));
     m.insert("stability".into(), json!(md.stability.word()));
+    // why, when undecided (the text's parenthesis)
+    let note = match &md.stability {
+        crate::solve::oscillations::Stability::Undecided(why) => Some(why),
+        _ => None,
+    };
+    m.insert("stability_note".into(), json!(note));
     let standard = crate::solve::oscillations::standard_form(md, set);
     let sf = standard.as_ref().map(|sf| {
         json!({

@@ -516,8 +516,12 @@ impl Writer {
             return;
         }
         if md.modes.is_empty() {
-            // gyroscopic: the modes are complex, the frequencies alone
-            self.line("The natural frequencies (the modes of a gyroscopic system are complex):");
+            // gyroscopic (complex modes) or defective: the frequencies alone
+            self.line(if md.gyroscopic {
+                "The natural frequencies (the modes of a gyroscopic system are complex):"
+            } else {
+                "The natural frequencies (a repeated one has fewer modes than its multiplicity):"
+            });
             let rows: Vec<Vec<Vec<(bool, String)>>> = md
                 .omega_squared
                 .iter()
@@ -556,8 +560,10 @@ impl Writer {
         self.align(false, &rows);
         let st = match &md.stability {
             Stability::Stable => "stable (every $\\omega^{2} > 0$)",
-            Stability::Unstable => "unstable (some $\\omega^{2} < 0$)",
-            Stability::Undecided(_) => "undecided without values of the parameters",
+            Stability::Unstable => "unstable (a solution of the linearization grows)",
+            Stability::Undecided(_) => {
+                "undecided (the parameters or the linearization leave it open)"
+            }
         };
         self.line(&format!("The equilibrium is {st}."));
     }

@@ -155,10 +155,12 @@ fn frequencies_text(md: &Modes, set: &Values) -> String {
         } else {
             out.push_str(&format!("  (no closed form for its roots: {why})\n"));
         }
-    } else if md.gyroscopic {
-        out.push_str(
-            "\nNatural frequencies  (gyroscopic: the modes are complex, their coordinates move out of phase; not given)\n",
-        );
+    } else if md.gyroscopic || md.defective {
+        out.push_str(if md.gyroscopic {
+            "\nNatural frequencies  (gyroscopic: the modes are complex, their coordinates move out of phase; not given)\n"
+        } else {
+            "\nNatural frequencies  (a repeated ω² has fewer modes than its multiplicity, the mass matrix not being definite; not given)\n"
+        });
         for (i, w2) in md.omega_squared.iter().enumerate() {
             out.push_str(&format!(
                 "  ω{}² = {}\n",
@@ -203,6 +205,7 @@ fn frequencies_text(md: &Modes, set: &Values) -> String {
 /// a zero frequency's mode drifts, (Aᵢ + Bᵢ·t)·uᵢ.
 fn general_solution_text(md: &Modes, names: &[String]) -> String {
     if md.gyroscopic
+        || md.defective
         || md.omega_squared.is_empty()
         || md.omega_squared.len() != md.coordinates.len()
     {

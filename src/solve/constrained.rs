@@ -20,6 +20,9 @@
 //! reduced coordinates: δq = Z·δs with δs those coordinates' displacements,
 //! M_c = Zᵀ·M·Z, C_c = Zᵀ·C·Z, K_c = Zᵀ·K·Z and f_c = Zᵀ·f.
 
+use super::definite::{
+    matrix_at, negated, negated_f64, undamped_grows_f64, AtRest, Mass, Stiffness,
+};
 use super::equilibrium::{
     classify_numeric, distinct_roots, jacobi, minor_signs, numeric_values, periodic_coordinates,
     solve_exact, Equilibrium, Position, Stability,
@@ -46,6 +49,7 @@ pub(super) fn constrained_equilibria(
     q: &[Var],
     set: &Values,
     gyroscopic: bool,
+    inertia: Option<&AtRest>,
 ) -> Result<(Vec<Equilibrium>, bool), Diagnostic> {
     let n = q.len();
     let mut gs = Vec::with_capacity(scene.constraints.len());
@@ -104,6 +108,7 @@ pub(super) fn constrained_equilibria(
             eqs: &eqs,
             k_full: &k_full,
             a: &a,
+            inertia,
             vars: &vars,
             n,
         };
@@ -117,7 +122,7 @@ pub(super) fn constrained_equilibria(
             continue;
         }
         let stability = if s.free.is_empty() {
-            classify(&k_full, &a, &vars, &s.values, set, gyroscopic)
+            classify(&k_full, &a, inertia, &vars, &s.values, set, gyroscopic)
         } else {
             Stability::Undecided("neutral: a coordinate or a multiplier is free".into())
         };
@@ -146,6 +151,7 @@ struct Numeric<'a> {
     eqs: &'a [Expr],
     k_full: &'a [Vec<Expr>],
     a: &'a [Vec<Expr>],
+    inertia: Option<&'a AtRest>,
     vars: &'a [Var],
     n: usize,
 }
@@ -189,7 +195,29 @@ impl Numeric<'_> {
                 let stability = match (matrix(self.k_full, &r.x), matrix(self.a, &r.x)) {
                     (Some(k), Some(a)) => match numeric_null_basis(&a, self.n) {
                         Some(z) if !z.is_empty() => {
-                            classify_numeric(&sandwich_f64(&k, &z), gyroscopic)
+                            let kc = sandwich_f64(&k, &z);
+                            let potential = |negate: bool| {
+                                classify_numeric(
+                                    &if negate { negated_f64(&kc) } else { kc.clone() },
+                                    gyroscopic,
+                                )
+                            };
+                            match self.inertia.map(|i| matrix(i.mass(), &r.x)) {
+                                None => potential(false),
+                                Some(None) => {
+                                    Stability::Undecided("the mass matrix is undefined here".into())
+                                }
+                                Some(Some(m)) => {
+                                    let mc = sandwich_f64(&m, &z);
+                                    let free = || self.inertia.is_some_and(AtRest::velocity_free);
+                                    Mass::numeric(&mc).verdict(
+                                        || Stiffness::numeric(&kc),
+                                        free,
+                                        || free() && undamped_grows_f64(&mc, &kc),
+                                        potential,
+                                    )
+                                }
+                            }
                         }
                         Some(_) => Stability::Undecided("the constraints leave no motion".into()),
                         None => Stability::Undecided("the constraints are dependent here".into()),
@@ -266,6 +294,7 @@ fn numeric_null_basis(a: &[Vec<f64>], n: usize) -> Option<Vec<Vec<f64>>> {
 fn classify(
     k_full: &[Vec<Expr>],
     a: &[Vec<Expr>],
+    inertia: Option<&AtRest>,
     vars: &[Var],
     values: &[Expr],
     set: &Values,
@@ -288,16 +317,46 @@ fn classify(
     if z.is_empty() {
         return Stability::Undecided("the constraints leave no motion".into());
     }
-    // K_c = Zᵀ·K·Z
-    let r = z.len();
-    let kz: Vec<Vec<Expr>> = z
+    // K_c = Zᵀ·K·Z, M_c = Zᵀ·M·Z
+    let kc = sandwich(&k, &z);
+    let potential = |negate: bool| {
+        classify_restricted(
+            &if negate { negated(&kc) } else { kc.clone() },
+            set,
+            gyroscopic,
+        )
+    };
+    let Some(inertia) = inertia else {
+        return potential(false);
+    };
+    let Some(m) = matrix_at(inertia.mass(), &map) else {
+        return Stability::Undecided("the mass matrix is undefined here".into());
+    };
+    let mc = sandwich(&m, &z);
+    Mass::exact(&mc, set).verdict(
+        || Stiffness::exact(&kc, set),
+        || inertia.velocity_free(),
+        || inertia.velocity_free() && super::linear_stability::undamped_grows(&mc, &kc, set),
+        potential,
+    )
+}
+
+/// Zᵀ·X·Z for the columns of Z.
+fn sandwich(x: &[Vec<Expr>], z: &[Vec<Expr>]) -> Vec<Vec<Expr>> {
+    let xz: Vec<Vec<Expr>> = z
         .iter()
-        .map(|zc| (0..k.len()).map(|i| dot(&k[i], zc)).collect())
+        .map(|zc| (0..x.len()).map(|i| dot(&x[i], zc)).collect())
         .collect();
-    let kc: Vec<Vec<Expr>> = (0..r)
-        .map(|i| (0..r).map(|j| dot(&z[i], &kz[j])).collect())
-        .collect();
-    let signs = match minor_signs(&kc, set) {
+    (0..z.len())
+        .map(|i| (0..z.len()).map(|j| dot(&z[i], &xz[j])).collect())
+        .collect()
+}
+
+/// The verdict of the restricted Hessian K_c (for a positive definite
+/// kinetic energy on the constraints).
+fn classify_restricted(kc: &[Vec<Expr>], set: &Values, gyroscopic: bool) -> Stability {
+    let r = kc.len();
+    let signs = match minor_signs(kc, set) {
         Ok(s) => s,
         Err(undecided) => return undecided,
     };

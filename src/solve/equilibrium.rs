@@ -31,6 +31,9 @@
 //! an even number of them may be stabilized by gyroscopic terms. For one
 //! coordinate with K = 0 the first non-vanishing derivative decides.
 
+use super::definite::{
+    matrix_at, negated, negated_f64, undamped_grows_f64, AtRest, Mass, Stiffness,
+};
 use super::numeric::{find_roots, RootOptions};
 use crate::algebra::linear::det;
 use crate::algebra::sign::sign_of;
@@ -176,19 +179,8 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
         forces.push(at_rest(&f)?);
     }
     let mut conditions = forces.clone();
-    let mut kinetic_terms = false;
-    if scene.has_role(crate::parse::ast::Role::Kinetic)
-        || scene.has_role(crate::parse::ast::Role::Lagrangian)
-    {
-        let l = scene.lagrange()?;
-        for (k, eq) in l.equations.iter().enumerate() {
-            let lhs = at_rest(&eq.lhs)?;
-            if !lhs.is_zero() {
-                kinetic_terms = true;
-                conditions[k] = conditions[k].sub(&lhs);
-            }
-        }
-    }
+    let (kinetic_terms, inertia) = kinetic_at_rest(scene, &mut conditions, &at_rest)?;
+    let inertia = inertia.as_ref();
     let t = atom::time();
     for (k, f) in conditions.iter().enumerate() {
         if f.depends_on(t) || has_given_function(f) {
@@ -208,8 +200,14 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
     let periodic = periodic_coordinates(&conditions, &q);
 
     if !scene.constraints.is_empty() {
-        let (found, exact) =
-            super::constrained::constrained_equilibria(scene, &conditions, &q, set, gyroscopic)?;
+        let (found, exact) = super::constrained::constrained_equilibria(
+            scene,
+            &conditions,
+            &q,
+            set,
+            gyroscopic,
+            inertia,
+        )?;
         return Ok(Equilibria {
             coordinates: names,
             forces,
@@ -244,7 +242,7 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
                     }
                 }
                 let stability = if free.is_empty() {
-                    classify_exact(&conditions, &jac, &q, &vals, set, gyroscopic)
+                    classify_exact(&conditions, &jac, inertia, &q, &vals, set, gyroscopic)
                 } else {
                     Stability::Undecided("neutral: a coordinate is free".into())
                 };
@@ -287,7 +285,7 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
                         .join(",")
                 )));
             }
-            found = solve_numeric(&conditions, &jac, &q, &periodic, set, gyroscopic);
+            found = solve_numeric(&conditions, &jac, inertia, &q, &periodic, set, gyroscopic);
             false
         }
     };
@@ -299,6 +297,37 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
         equilibria: found,
         exact,
     })
+}
+
+/// The kinetic energy's terms at rest (centrifugal terms), taken from
+/// the `conditions`, and whether there were any; and the inertia the
+/// verdicts rest on (a scene with inertia forces only whose equations
+/// fail to form has none: it is read as static).
+fn kinetic_at_rest(
+    scene: &Scene,
+    conditions: &mut [Expr],
+    at_rest: &impl Fn(&Expr) -> Result<Expr, Diagnostic>,
+) -> Result<(bool, Option<AtRest>), Diagnostic> {
+    let energies = scene.has_role(crate::parse::ast::Role::Kinetic)
+        || scene.has_role(crate::parse::ast::Role::Lagrangian);
+    let lagrange = if energies {
+        Some(scene.lagrange()?)
+    } else if scene.has_dynamics() {
+        scene.lagrange().ok()
+    } else {
+        None
+    };
+    let mut kinetic_terms = false;
+    if let (true, Some(l)) = (energies, &lagrange) {
+        for (k, eq) in l.equations.iter().enumerate() {
+            let lhs = at_rest(&eq.lhs)?;
+            if !lhs.is_zero() {
+                kinetic_terms = true;
+                conditions[k] = conditions[k].sub(&lhs);
+            }
+        }
+    }
+    Ok((kinetic_terms, lagrange.as_ref().and_then(AtRest::of)))
 }
 
 /// Whether `e` contains a given function of time (`functions s`), at any
@@ -936,34 +965,62 @@ pub(super) fn numeric_values(vals: &[Expr], set: &Values) -> Option<Vec<f64>> {
 
 // ---------------------------------------------------------------- stability
 
-#[allow(clippy::needless_range_loop)] // matrix indices read best as indices
+/// The verdict at an exact equilibrium: K's minors (Lagrange–Dirichlet,
+/// Jacobi) when the kinetic energy is positive definite there, and
+/// [`Mass::verdict`] otherwise.
 fn classify_exact(
     conditions: &[Expr],
     jac: &[Vec<Expr>],
+    inertia: Option<&AtRest>,
     q: &[Var],
     vals: &[Expr],
     set: &Values,
     gyroscopic: bool,
 ) -> Stability {
     let map: FxHashMap<Var, Expr> = q.iter().copied().zip(vals.iter().cloned()).collect();
-    let mut k = Vec::with_capacity(q.len());
-    for row in jac {
-        let mut r = Vec::with_capacity(row.len());
-        for x in row {
-            match x.subs_many(&map) {
-                Ok(v) => r.push(v),
-                Err(_) => return Stability::Undecided("the Hessian is undefined here".into()),
-            }
-        }
-        k.push(r);
-    }
+    let Some(k) = matrix_at(jac, &map) else {
+        return Stability::Undecided("the Hessian is undefined here".into());
+    };
+    let potential = |negate: bool| {
+        let (k, f) = if negate {
+            (negated(&k), conditions[0].neg())
+        } else {
+            (k.clone(), conditions[0].clone())
+        };
+        classify_potential(&f, &k, q, vals, set, gyroscopic)
+    };
+    let Some(inertia) = inertia else {
+        return potential(false);
+    };
+    let Some(m) = matrix_at(inertia.mass(), &map) else {
+        return Stability::Undecided("the mass matrix is undefined here".into());
+    };
+    Mass::exact(&m, set).verdict(
+        || Stiffness::exact(&k, set),
+        || inertia.velocity_free(),
+        || inertia.velocity_free() && super::linear_stability::undamped_grows(&m, &k, set),
+        potential,
+    )
+}
+
+/// The verdict of the potential's Hessian K (for a positive definite
+/// kinetic energy); `f` is the first condition (one coordinate: the
+/// derivatives past K decide when K = 0).
+fn classify_potential(
+    f: &Expr,
+    k: &[Vec<Expr>],
+    q: &[Var],
+    vals: &[Expr],
+    set: &Values,
+    gyroscopic: bool,
+) -> Stability {
     let n = q.len();
-    let signs = match minor_signs(&k, set) {
+    let signs = match minor_signs(k, set) {
         Ok(s) => s,
         Err(undecided) => return undecided,
     };
     if n == 1 && signs[0] == Some(Sign::Zero) {
-        return higher_order(&conditions[0], q[0], &vals[0], set);
+        return higher_order(f, q[0], &vals[0], set);
     }
     if n == 1 && signs[0].is_none() {
         return Stability::Undecided(format!(
@@ -1034,6 +1091,11 @@ pub(super) fn jacobi(signs: &[Option<Sign>], gyroscopic: bool) -> Stability {
         );
     }
     if signs.contains(&Some(Sign::Zero)) {
+        // a zero leading minor and det K ≠ 0: K is not positive definite
+        // and not singular, so it has a negative eigenvalue
+        if !gyroscopic && matches!(signs.last(), Some(Some(Sign::Positive | Sign::Negative))) {
+            return Stability::Unstable;
+        }
         return Stability::Undecided(
             "the Hessian is singular here: higher-order terms decide".into(),
         );
@@ -1097,6 +1159,7 @@ pub fn multiplicity(f: &Expr, q: Var, at: &Expr) -> u32 {
 fn solve_numeric(
     conditions: &[Expr],
     jac: &[Vec<Expr>],
+    inertia: Option<&AtRest>,
     q: &[Var],
     periodic: &[bool],
     set: &Values,
@@ -1142,25 +1205,41 @@ fn solve_numeric(
                     .map(|row| row.into_iter().map(|v| -v).collect::<Vec<f64>>())
                     .collect::<Vec<_>>()
             });
-            let mut stability = match k {
-                Some(k) => classify_numeric(&k, gyroscopic),
-                None => Stability::Undecided("the Hessian is undefined here".into()),
-            };
-            if r.x.len() == 1 && matches!(stability, Stability::Undecided(_)) {
-                // one coordinate, flat: a restoring force on both sides is stable
-                let h = 1e-3 * (1.0 + r.x[0].abs());
-                let side = |x: f64| f(&[x]).map(|v| v[0]);
-                if let (Some(lo), Some(hi)) = (side(r.x[0] - h), side(r.x[0] + h)) {
-                    // restoring on both sides: stable; pushed away on
-                    // either side: unstable; a side with no force: not
-                    // decided (never guessed)
-                    if lo > 0.0 && hi < 0.0 {
-                        stability = Stability::Stable;
-                    } else if lo < 0.0 || hi > 0.0 {
-                        stability = Stability::Unstable;
+            let side = |x: f64| f(&[x]).map(|v| v[0]);
+            let stability = match k {
+                Some(k) => {
+                    let potential = |negate: bool| {
+                        let k = if negate { negated_f64(&k) } else { k.clone() };
+                        let s = classify_numeric(&k, gyroscopic);
+                        match (r.x.as_slice(), &s) {
+                            ([x], Stability::Undecided(_)) => flat(&side, *x, negate).unwrap_or(s),
+                            _ => s,
+                        }
+                    };
+                    let mass = inertia.map(|i| {
+                        i.mass()
+                            .iter()
+                            .map(|row| row.iter().map(|e| eval(e, &r.x)).collect())
+                            .collect::<Option<Vec<Vec<f64>>>>()
+                    });
+                    match mass {
+                        None => potential(false),
+                        Some(None) => {
+                            Stability::Undecided("the mass matrix is undefined here".into())
+                        }
+                        Some(Some(m)) => Mass::numeric(&m).verdict(
+                            || Stiffness::numeric(&k),
+                            || inertia.is_some_and(AtRest::velocity_free),
+                            || {
+                                inertia.is_some_and(AtRest::velocity_free)
+                                    && undamped_grows_f64(&m, &k)
+                            },
+                            potential,
+                        ),
                     }
                 }
-            }
+                None => Stability::Undecided("the Hessian is undefined here".into()),
+            };
             // one coordinate: certify the digits by a sign change of F
             let enclosure = (r.x.len() == 1)
                 .then(|| {
@@ -1174,6 +1253,23 @@ fn solve_numeric(
             e
         })
         .collect()
+}
+
+/// One coordinate where K vanishes: the force `side(x)` just left and
+/// right of the root `x` decides. Restoring on both sides is stable,
+/// pushed away on either side unstable, a side with no force not decided
+/// (never guessed); `negate` for a negative mass (ẍ = −F/|m|).
+fn flat(side: &impl Fn(f64) -> Option<f64>, x: f64, negate: bool) -> Option<Stability> {
+    let h = 1e-3 * (1.0 + x.abs());
+    let sign = if negate { -1.0 } else { 1.0 };
+    let (lo, hi) = (sign * side(x - h)?, sign * side(x + h)?);
+    if lo > 0.0 && hi < 0.0 {
+        Some(Stability::Stable)
+    } else if lo < 0.0 || hi > 0.0 {
+        Some(Stability::Unstable)
+    } else {
+        None
+    }
 }
 
 #[allow(clippy::needless_range_loop)] // matrix indices read best as indices
@@ -1210,7 +1306,7 @@ pub(super) fn classify_numeric(k: &[Vec<f64>], gyroscopic: bool) -> Stability {
 
 /// The determinant of a numeric matrix, by LU with partial pivoting
 /// (0 for a zero pivot).
-fn det_f64(m: Vec<Vec<f64>>) -> f64 {
+pub(super) fn det_f64(m: Vec<Vec<f64>>) -> f64 {
     let mut lu = Lu::new(m.len(), 0.0);
     lu.a = m.concat();
     if lu.factor() {

@@ -1,6 +1,8 @@
 //! Stability of the linearized system M·q̈ + C·q̇ + K·q = 0 about an
-//! equilibrium (M positive definite), decided exactly where it can be and
-//! numerically whenever every entry has a value.
+//! equilibrium, decided exactly where it can be and numerically whenever
+//! every entry has a value. The steps below read M as positive definite;
+//! `definite.rs` decides M first (negative definite: the same verdict on
+//! −K; neither: unstable where that is proved, never stable).
 //!
 //! In this order:
 //! 1. K's definiteness by Sylvester's criterion (its leading minors, one
@@ -26,6 +28,7 @@
 //! Only a zero frequency (higher-order terms decide) and a repeated
 //! frequency of a gyroscopic system exactly at the boundary stay undecided.
 
+use super::definite::{negated, Mass, Stiffness};
 use super::equilibrium::{jacobi, minor_signs, Stability};
 use crate::algebra::sign::{sign_exact, sign_of, Sign, Values};
 use crate::expr::atom::Atom;
@@ -46,9 +49,51 @@ pub(super) struct Linearized<'a> {
 
 /// The verdict: K's minors, then the characteristic polynomial `p` in `lv`,
 /// then the numeric eigenvalues at `set`.
-pub(super) fn stability(sys: &Linearized, p: &Expr, lv: Var, set: &Values) -> Stability {
+///
+/// All of it reads M as positive definite; [`Mass::verdict`] decides M
+/// first (a negative definite M is the system of −L, whose verdict this
+/// is with −K; anything else is never "stable").
+pub(super) fn stability(
+    sys: &Linearized,
+    mass: &Mass,
+    p: &Expr,
+    lv: Var,
+    set: &Values,
+) -> Stability {
+    let damped = sys.damping.iter().flatten().any(|e| !e.is_zero());
+    mass.verdict(
+        || Stiffness::exact(sys.stiffness, set),
+        || !damped,
+        || {
+            // a root λ off [0, ∞) of a polynomial that holds C (none, or
+            // skew) grows whatever M is; so does an eigenvalue Re s > 0
+            let exact = (!damped || sys.gyroscopic)
+                && (from_factors(p, lv, sys.gyroscopic, set) == Stability::Unstable
+                    || complex_root(p, lv, set));
+            exact || numeric(sys, set) == Some(Stability::Unstable)
+        },
+        |negate| {
+            let stiffness = if negate {
+                negated(sys.stiffness)
+            } else {
+                sys.stiffness.to_vec()
+            };
+            positive_mass(sys, &stiffness, p, lv, set)
+        },
+    )
+}
+
+/// The verdict for a positive definite M on the stiffness `stiffness`
+/// (K, or −K for the system of −L).
+fn positive_mass(
+    sys: &Linearized,
+    stiffness: &[Vec<Expr>],
+    p: &Expr,
+    lv: Var,
+    set: &Values,
+) -> Stability {
     let moving = sys.damping.iter().flatten().any(|e| !e.is_zero());
-    if let Ok(signs) = minor_signs(sys.stiffness, set) {
+    if let Ok(signs) = minor_signs(stiffness, set) {
         let v = jacobi(&signs, moving);
         if !matches!(v, Stability::Undecided(_)) {
             return v;
@@ -103,6 +148,44 @@ fn from_factors(p: &Expr, lv: Var, gyroscopic: bool, set: &Values) -> Stability 
         "stable when {}; give values with --set",
         conditions.join(" and ")
     ))
+}
+
+/// Whether M·q̈ + K·q = 0 (no velocity terms) provably has a growing
+/// solution: a root of det(K − λ·M) off the positive axis, exactly, or an
+/// eigenvalue Re s > 0 at `set`.
+pub(super) fn undamped_grows(m: &[Vec<Expr>], k: &[Vec<Expr>], set: &Values) -> bool {
+    let lv = crate::expr::atom::unknown(super::oscillations::LAMBDA);
+    let Some(p) = super::characteristic::polynomial(k, m, None, lv) else {
+        return false;
+    };
+    if from_factors(&p, lv, false, set) == Stability::Unstable || complex_root(&p, lv, set) {
+        return true;
+    }
+    let zero = vec![vec![Expr::zero(); m.len()]; m.len()];
+    let sys = Linearized {
+        mass: m,
+        damping: &zero,
+        stiffness: k,
+        gyroscopic: false,
+    };
+    numeric(&sys, set) == Some(Stability::Unstable)
+}
+
+/// Whether a quadratic factor of `p` has non-real roots λ (then s² = −λ
+/// has a root with Re s > 0). Its roots are real when M is definite, so
+/// only an indefinite or undecided M asks.
+fn complex_root(p: &Expr, lv: Var, set: &Values) -> bool {
+    crate::poly::factor::factor(p.num())
+        .factors
+        .iter()
+        .any(|(f, _)| {
+            let cs: Vec<Expr> = f.coeffs_in(lv).into_iter().map(Expr::from_poly).collect();
+            let [c, b, a] = cs.as_slice() else {
+                return false;
+            };
+            let disc = b.mul(b).sub(&a.mul(c).scale(&Q::from_i64(4)));
+            sign_of(&disc, set) == Some(Sign::Negative)
+        })
 }
 
 /// What one factor says.

@@ -4,6 +4,7 @@
 pub mod certify;
 mod characteristic;
 pub mod constrained;
+mod definite;
 pub mod eigen;
 pub mod equilibrium;
 mod linear_stability;

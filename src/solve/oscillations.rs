@@ -71,6 +71,9 @@ pub struct Modes {
     /// With constraints: the coordinates they make dependent, with their
     /// values at the equilibrium (`coordinates` are the independent ones).
     pub dependent: Vec<(String, Expr)>,
+    /// A repeated ω² has fewer modes than its multiplicity (possible only
+    /// when M is not definite): `modes` is empty.
+    pub defective: bool,
 }
 
 /// One degree of freedom in the standard form ÿ + 2α·ẏ + ω²·y = f(t)/M.
@@ -204,34 +207,29 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
     let characteristic = super::characteristic::polynomial(&stiffness, &mass, gyro.as_deref(), lv)
         .ok_or_else(|| Diagnostic::global("the characteristic polynomial failed"))?;
     let symmetric = (0..n).all(|i| (0..n).all(|j| stiffness[i][j].equals(&stiffness[j][i])));
-    let real = gyro.is_none() && symmetric;
+    // det(K − λ·M)'s roots are real for symmetric K and a definite M
+    let mass_kind = super::definite::Mass::exact(&mass, set);
+    let definite = matches!(
+        mass_kind.definiteness(),
+        super::definite::Definiteness::Positive | super::definite::Definiteness::Negative
+    );
+    let real = gyro.is_none() && symmetric && definite;
     let found = super::characteristic::roots(&characteristic, lv, real, set);
     let (mut roots, factors) = (found.roots, found.factors);
     sort_ascending(&mut roots, set);
-    let mut modes: Vec<Vec<Expr>> = Vec::with_capacity(roots.len());
-    let mut i = 0;
-    while gyro.is_none() && i < roots.len() {
-        // equal roots share one null space: take its basis
-        let same = roots[i..]
-            .iter()
-            .take_while(|r| r.equals(&roots[i]))
-            .count();
-        let basis = null_basis(&stiffness, &mass, &roots[i])?;
-        if basis.len() < same {
-            return Err(Diagnostic::global(
-                "internal error: fewer modes than the multiplicity of a root of det(K − λ·M)",
-            ));
-        }
-        modes.extend(basis.into_iter().take(same));
-        i += same;
-    }
+    let (modes, defective) = if gyro.is_none() {
+        modes_of(&stiffness, &mass, &roots, definite)?
+    } else {
+        (Vec::new(), false)
+    };
     let system = super::linear_stability::Linearized {
         mass: &mass,
         damping: &damping,
         stiffness: &stiffness,
         gyroscopic: gyro.is_some(),
     };
-    let stability = super::linear_stability::stability(&system, &characteristic, lv, set);
+    let stability =
+        super::linear_stability::stability(&system, &mass_kind, &characteristic, lv, set);
     Ok(Modes {
         coordinates: names,
         at: q0,
@@ -247,7 +245,43 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
         gyroscopic: gyro.is_some(),
         no_closed_form: found.why,
         dependent,
+        defective,
     })
+}
+
+/// The modes of the roots ω² (ascending, equal roots together), each a
+/// null vector of K − λ·M; and whether a repeated root has fewer modes
+/// than its multiplicity (possible only when M is not `definite`: then
+/// none are given).
+fn modes_of(
+    stiffness: &[Vec<Expr>],
+    mass: &[Vec<Expr>],
+    roots: &[Expr],
+    definite: bool,
+) -> Result<(Vec<Vec<Expr>>, bool), Diagnostic> {
+    let mut modes: Vec<Vec<Expr>> = Vec::with_capacity(roots.len());
+    let mut i = 0;
+    while i < roots.len() {
+        // equal roots share one null space: take its basis
+        let same = roots[i..]
+            .iter()
+            .take_while(|r| r.equals(&roots[i]))
+            .count();
+        let basis = null_basis(stiffness, mass, &roots[i])?;
+        if basis.len() < same && !definite {
+            // an indefinite M can make a repeated root defective (a
+            // Jordan block): its modes do not span
+            return Ok((Vec::new(), true));
+        }
+        if basis.len() < same {
+            return Err(Diagnostic::global(
+                "internal error: fewer modes than the multiplicity of a root of det(K − λ·M)",
+            ));
+        }
+        modes.extend(basis.into_iter().take(same));
+        i += same;
+    }
+    Ok((modes, false))
 }
 
 /// C when it is skew and not zero (purely gyroscopic velocity terms);
@@ -395,6 +429,12 @@ pub fn free_response(md: &Modes, q0: &[Expr], v0: &[Expr]) -> Result<Vec<Expr>, 
     if md.gyroscopic {
         return Err(Diagnostic::global(
             "the free response of a gyroscopic system needs its complex modes, which qdot does not give",
+        )
+        .with_hint("`qdot simulate` integrates the motion"));
+    }
+    if md.defective {
+        return Err(Diagnostic::global(
+            "the free response needs a mode per frequency, and a repeated ω² here has fewer (the mass matrix is not definite)",
         )
         .with_hint("`qdot simulate` integrates the motion"));
     }
@@ -705,7 +745,24 @@ pub fn numeric_free_response(
         Diagnostic::global("the numeric free response needs a value for every parameter")
             .with_hint("give them with --set NAME=VALUE,…")
     };
-    let g = numeric_modes(md, set).ok_or_else(missing)?;
+    let g = numeric_modes(md, set).ok_or_else(|| {
+        let at = |a: &Atom| match a {
+            Atom::Param(n) => set.get(&**n).copied(),
+            _ => None,
+        };
+        let mass: Option<Vec<Vec<f64>>> = md
+            .mass
+            .iter()
+            .map(|r| r.iter().map(|e| e.eval_f64(&at)).collect())
+            .collect();
+        match mass.map(|m| super::definite::Mass::numeric(&m).definiteness()) {
+            Some(d) if d != super::definite::Definiteness::Positive => Diagnostic::global(
+                "the numeric free response needs a positive definite mass matrix, and this one is not at these values",
+            )
+            .with_hint("`qdot simulate` integrates the motion"),
+            _ => missing(),
+        }
+    })?;
     let at = |a: &Atom| match a {
         Atom::Param(n) => set.get(&**n).copied(),
         _ => None,

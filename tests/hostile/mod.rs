@@ -5,6 +5,7 @@
 
 pub(crate) mod bound;
 mod budget;
+mod definite;
 mod exact;
 mod exact_values;
 mod hidden_zeros;

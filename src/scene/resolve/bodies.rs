@@ -175,7 +175,7 @@ impl Resolver<'_> {
                     )
                     .with_hint("write it as [x, y, z]; a body in the plane has an `angle` instead of a frame"));
                 }
-                let i = self.inertia_tensor(inertia)?;
+                let i = self.inertia_tensor(inertia, &b.name.name)?;
                 let w = r.omega_frame();
                 energy = energy.add(&quadratic_form(&i, &w));
             } else if let Some(angle) = props.get(PropertyKey::Angle) {
@@ -189,7 +189,7 @@ impl Resolver<'_> {
                     )
                     .with_hint("write it as [x, y]; a body in space has a `frame` instead of an angle"));
                 }
-                let j = self.planar_inertia(inertia)?;
+                let j = self.planar_inertia(inertia, &b.name.name)?;
                 let theta = self.ev.expr(&angle.value)?;
                 positions_only(
                     std::slice::from_ref(&theta),
@@ -279,7 +279,7 @@ impl Resolver<'_> {
     }
 
     /// The inertia of a body in the plane: one constant, not negative.
-    fn planar_inertia(&mut self, p: &BodyProperty) -> Result<Expr, Diagnostic> {
+    fn planar_inertia(&mut self, p: &BodyProperty, body: &str) -> Result<Expr, Diagnostic> {
         let v = self.ev.value(&p.value)?;
         let Value::Scalar(j) = v else {
             return Err(Diagnostic::error(
@@ -292,6 +292,21 @@ impl Resolver<'_> {
             .with_hint("write `inertia J`; principal moments [I1, I2, I3] belong to a body in space, with a `frame`"));
         };
         self.moment(&j, p.value.span)?;
+        if crate::algebra::assume::assuming(&self.assumed, || sign_exact(&j)).is_none() {
+            self.warnings.push(
+                Diagnostic::warning(
+                    p.value.span,
+                    format!(
+                        "qdot can't tell that the inertia of `{body}` is one a rigid body can have: {} ≥ 0 is not decided",
+                        j.to_input()
+                    ),
+                )
+                .with_hint(format!(
+                    "a moment of inertia is ≥ 0; state it with `assume {} > 0` or give a number",
+                    j.to_input()
+                )),
+            );
+        }
         Ok(j)
     }
 
@@ -317,7 +332,11 @@ impl Resolver<'_> {
 
     /// The inertia of a body in space: `[I1, I2, I3]` (principal, along the
     /// body's axes) or a symmetric 3×3 `[[Ixx, Ixy, Ixz], …]`.
-    fn inertia_tensor(&mut self, p: &BodyProperty) -> Result<[[Expr; 3]; 3], Diagnostic> {
+    fn inertia_tensor(
+        &mut self,
+        p: &BodyProperty,
+        body: &str,
+    ) -> Result<[[Expr; 3]; 3], Diagnostic> {
         let e = &p.value;
         let hint = "write the principal moments [I1, I2, I3] or the symmetric matrix [[Ixx, Ixy, Ixz], [Ixy, Iyy, Iyz], [Ixz, Iyz, Izz]]";
         let mut m: [[Expr; 3]; 3] = std::array::from_fn(|_| std::array::from_fn(|_| Expr::zero()));
@@ -380,6 +399,23 @@ impl Resolver<'_> {
                     .with_hint(hint))
                 }
             },
+        }
+        let moments = match &e.kind {
+            ExprKind::Vector(items)
+                if items.len() == 3
+                    && !items.iter().any(|r| matches!(r.kind, ExprKind::Vector(_))) =>
+            {
+                Some([items[0].span, items[1].span, items[2].span])
+            }
+            _ => None,
+        };
+        let written = super::inertia::Written {
+            body,
+            span: e.span,
+            moments,
+        };
+        if let Some(w) = super::inertia::check(&m, &written, &self.assumed)? {
+            self.warnings.push(w);
         }
         Ok(m)
     }

@@ -17,6 +17,7 @@ use rustc_hash::FxHashMap;
 mod assume;
 mod bodies;
 mod constraints;
+mod inertia;
 
 /// A definition as written: its name, its body and its role, if any.
 type DefinitionAst<'a> = (&'a ast::Ident, &'a ast::Expr, Option<Role>);
