@@ -202,7 +202,8 @@ fn frequencies_text(md: &Modes, set: &Values) -> String {
 }
 
 /// q(t) = Σ Cᵢ·uᵢ·cos(ωᵢ·t + φᵢ), when every frequency is in closed form;
-/// a zero frequency's mode drifts, (Aᵢ + Bᵢ·t)·uᵢ.
+/// a zero frequency's mode drifts, (Aᵢ + Bᵢ·t)·uᵢ, and a negative ω²'s
+/// grows, (Aᵢ·e^(κᵢ·t) + Bᵢ·e^(−κᵢ·t))·uᵢ.
 fn general_solution_text(md: &Modes, names: &[String]) -> String {
     if md.gyroscopic
         || md.defective
@@ -211,10 +212,18 @@ fn general_solution_text(md: &Modes, names: &[String]) -> String {
     {
         return String::new();
     }
-    let drifts: Vec<bool> = md.omega_squared.iter().map(Expr::is_zero).collect();
+    use crate::algebra::sign::{sign_exact, Sign};
+    // each mode's motion: a drift at ω² = 0, a growth where ω² < 0
+    let kinds: Vec<Option<Sign>> = md.omega_squared.iter().map(sign_exact).collect();
     let mut out = String::from("\nGeneral solution (undamped)  q(t) = Σ Cᵢ·uᵢ·cos(ωᵢ·t + φᵢ)");
-    if drifts.contains(&true) {
+    if kinds.contains(&Some(Sign::Zero)) {
         out.push_str(", and (Aᵢ + Bᵢ·t)·uᵢ where ωᵢ = 0");
+    }
+    if kinds.contains(&Some(Sign::Negative)) {
+        out.push_str(", and (Aᵢ·e^(κᵢ·t) + Bᵢ·e^(−κᵢ·t))·uᵢ with κᵢ² = −ωᵢ² where ωᵢ² < 0");
+    }
+    if kinds.contains(&None) {
+        out.push_str(" (the cosine where ωᵢ² > 0)");
     }
     out.push('\n');
     for (j, c) in names.iter().enumerate() {
@@ -225,17 +234,23 @@ fn general_solution_text(md: &Modes, names: &[String]) -> String {
                 continue;
             }
             let i1 = print::subscript(&(i + 1).to_string());
-            let wave = if drifts[i] {
-                format!("(A{i1} + B{i1}·t)")
-            } else {
-                format!("C{i1}·cos(ω{i1}·t + φ{i1})")
+            let (wave, bare) = match kinds[i] {
+                Some(Sign::Zero) => (format!("(A{i1} + B{i1}·t)"), format!("A{i1} + B{i1}·t")),
+                Some(Sign::Negative) => {
+                    let w = format!("A{i1}·e^(κ{i1}·t) + B{i1}·e^(−κ{i1}·t)");
+                    (format!("({w})"), w)
+                }
+                _ => {
+                    let w = format!("C{i1}·cos(ω{i1}·t + φ{i1})");
+                    (w.clone(), w)
+                }
             };
             let (neg, body) = signed_coefficient(&as_unicode(mu));
             terms.push((
                 neg,
                 match body.as_str() {
-                    // added with coefficient 1, A₁ + B₁·t needs no parentheses
-                    "1" if drifts[i] && !neg => format!("A{i1} + B{i1}·t"),
+                    // added with coefficient 1, a sum needs no parentheses
+                    "1" if !neg => bare,
                     "1" => wave,
                     _ => format!("{body}·{wave}"),
                 },

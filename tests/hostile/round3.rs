@@ -235,15 +235,25 @@ fn a_sign_change_through_a_pole_is_not_an_event() {
 // ---- a zero frequency -----------------------------------------------------
 
 /// Two masses joined by a spring: ω₁ = 0 is a drift A₁ + B₁·t, not
-/// C₁·cos(0·t + φ₁).
+/// C₁·cos(0·t + φ₁); a negative ω² a growth, not a cosine.
 #[test]
-fn a_zero_frequency_mode_drifts() {
+fn a_mode_of_zero_or_negative_omega_squared_does_not_oscillate() {
     let src = "coordinates x, y\nparameters m, k\nkinetic E = 1/2*m*(x'^2 + y'^2)\npotential V = 1/2*k*(x - y)^2\n";
     let o = qdot_scene("free_pair", src.as_bytes(), "modes", &[]);
     o.assert_clean();
     assert!(
         o.stdout.contains(
             "General solution (undamped)  q(t) = Σ Cᵢ·uᵢ·cos(ωᵢ·t + φᵢ), and (Aᵢ + Bᵢ·t)·uᵢ where ωᵢ = 0\n  x = A₁ + B₁·t + C₂·cos(ω₂·t + φ₂)\n  y = A₁ + B₁·t − C₂·cos(ω₂·t + φ₂)\n"
+        ),
+        "{o:?}"
+    );
+    // ω² = −k/m: the mode grows, it does not oscillate
+    let src = "coordinates x, y\nparameters m, k\nkinetic E = 1/2*m*(x'^2 + y'^2)\npotential V = 1/2*k*x^2 - 1/2*k*y^2\n";
+    let o = qdot_scene("saddle", src.as_bytes(), "modes", &[]);
+    o.assert_clean();
+    assert!(
+        o.stdout.contains(
+            "General solution (undamped)  q(t) = Σ Cᵢ·uᵢ·cos(ωᵢ·t + φᵢ), and (Aᵢ·e^(κᵢ·t) + Bᵢ·e^(−κᵢ·t))·uᵢ with κᵢ² = −ωᵢ² where ωᵢ² < 0\n  x = C₂·cos(ω₂·t + φ₂)\n  y = A₁·e^(κ₁·t) + B₁·e^(−κ₁·t)\n"
         ),
         "{o:?}"
     );
