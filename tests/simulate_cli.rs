@@ -186,9 +186,19 @@ fn json_output_and_stats() {
     let keys: Vec<&str> = v.as_object().unwrap().keys().map(String::as_str).collect();
     assert_eq!(
         keys,
-        ["method", "status", "columns", "rows", "stats", "stiff_at", "event_t"]
+        [
+            "method",
+            "status",
+            "columns",
+            "rows",
+            "stats",
+            "stiff_at",
+            "event_t",
+            "event_poles"
+        ]
     );
     assert!(v["event_t"].is_null());
+    assert_eq!(v["event_poles"], serde_json::json!([]));
     assert_eq!(v["method"], "dop853");
     assert_eq!(v["status"], "done");
     assert_eq!(v["rows"].as_array().unwrap().len(), 3);

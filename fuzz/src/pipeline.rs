@@ -95,15 +95,20 @@ pub fn pipeline(data: &[u8]) {
         runs.push((cmd, fmt, opts));
     }
     for (cmd, fmt, opts) in runs {
-        match output::run_with(cmd, src, fmt, &opts) {
-            Ok((_, warnings)) => {
-                for w in warnings {
-                    let _ = w.render("fuzz.qd", src);
-                }
+        run_rendered(cmd, src, fmt, &opts);
+    }
+}
+
+/// `output::run_with`, its warnings or its error rendered.
+fn run_rendered(cmd: Command, src: &str, fmt: Format, opts: &CommandOptions) {
+    match output::run_with(cmd, src, fmt, opts) {
+        Ok((_, warnings)) => {
+            for w in warnings {
+                let _ = w.render("fuzz.qd", src);
             }
-            Err(d) => {
-                let _ = d.render("fuzz.qd", src);
-            }
+        }
+        Err(d) => {
+            let _ = d.render("fuzz.qd", src);
         }
     }
 }
@@ -350,16 +355,7 @@ fn scene_command(cmd: Command, src: &str, format: Option<&str>, set: Option<&str
             }
         }
     }
-    match output::run_with(cmd, src, fmt, &opts) {
-        Ok((_, warnings)) => {
-            for w in warnings {
-                let _ = w.render("fuzz.qd", src);
-            }
-        }
-        Err(d) => {
-            let _ = d.render("fuzz.qd", src);
-        }
-    }
+    run_rendered(cmd, src, fmt, &opts);
 }
 
 /// `qdot sweep` as the CLI runs it (its design bounded for the fuzzer).
