@@ -1191,7 +1191,7 @@ fn exact_agrees_with_the_numeric_eigen_solver() {
 
 // ------------------------------------------------------------------ JSON contract
 
-const KEYS: [&str; 20] = [
+const KEYS: [&str; 21] = [
     "coordinates",
     "at",
     "mass_matrix",
@@ -1209,6 +1209,7 @@ const KEYS: [&str; 20] = [
     "standard_form",
     "numeric_omega_squared",
     "numeric_modes",
+    "numeric_modes_note",
     "free_response",
     "numeric_free_response",
     "forced_response",

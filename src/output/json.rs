@@ -336,20 +336,22 @@ pub fn modes_json(
         })
     });
     m.insert("standard_form".into(), sf.unwrap_or(Value::Null));
-    let eigen = crate::solve::oscillations::numeric_modes(md, set);
+    let eigen_or_why = crate::solve::oscillations::numeric_modes_or_why(md, set);
+    let eigen = eigen_or_why.as_ref().ok().and_then(Option::as_ref);
     m.insert(
         "numeric_omega_squared".into(),
-        eigen
-            .as_ref()
-            .map(|g| json!(g.values))
-            .unwrap_or(Value::Null),
+        eigen.map(|g| json!(g.values)).unwrap_or(Value::Null),
     );
     m.insert(
         "numeric_modes".into(),
-        eigen
+        eigen.map(|g| json!(g.vectors)).unwrap_or(Value::Null),
+    );
+    m.insert(
+        "numeric_modes_note".into(),
+        eigen_or_why
             .as_ref()
-            .map(|g| json!(g.vectors))
-            .unwrap_or(Value::Null),
+            .err()
+            .map_or(Value::Null, |why| json!(why)),
     );
     m.insert(
         "free_response".into(),

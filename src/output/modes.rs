@@ -182,7 +182,11 @@ fn frequencies_text(md: &Modes, set: &Values) -> String {
             ));
         }
     }
-    if let Some(g) = osc::numeric_modes(md, set) {
+    let numeric = osc::numeric_modes_or_why(md, set);
+    if let Err(why) = &numeric {
+        out.push_str(&format!("  numeric ω²: none at these values: {why}\n"));
+    }
+    if let Ok(Some(g)) = numeric {
         let v: Vec<String> = g.values.iter().map(|x| minus(format!("{x:.10}"))).collect();
         if md.gyroscopic {
             out.push_str(&format!(

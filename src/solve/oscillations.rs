@@ -564,22 +564,36 @@ pub fn load_per_mass(md: &Modes) -> Option<Expr> {
 /// first-order system (each pair ±s once), when they are all real, with
 /// no vectors (its modes are complex).
 pub fn numeric_modes(md: &Modes, set: &Values) -> Option<crate::solve::eigen::GeneralizedEigen> {
+    numeric_modes_or_why(md, set).ok().flatten()
+}
+
+/// [`numeric_modes`], or why the eigen-solver refused the values (M not
+/// positive definite there, singular, …): `Ok(None)` when there is
+/// nothing to compute (no `--set`, or complex gyroscopic modes).
+pub fn numeric_modes_or_why(
+    md: &Modes,
+    set: &Values,
+) -> Result<Option<crate::solve::eigen::GeneralizedEigen>, String> {
     if set.is_empty() {
-        return None;
+        return Ok(None);
     }
     if md.gyroscopic {
-        let s = super::linear_stability::eigenvalues(&md.mass, &md.damping, &md.stiffness, set)?;
+        let Some(s) =
+            super::linear_stability::eigenvalues(&md.mass, &md.damping, &md.stiffness, set)
+        else {
+            return Ok(None);
+        };
         let lambda: Vec<_> = s.iter().map(|z| -(z * z)).collect();
         let scale = lambda.iter().fold(0.0f64, |a, z| a.max(z.norm()));
         if lambda.iter().any(|z| z.im.abs() > 1e-9 * scale) {
-            return None;
+            return Ok(None);
         }
         let mut re: Vec<f64> = lambda.iter().map(|z| z.re).collect();
         re.sort_by(f64::total_cmp);
-        return Some(crate::solve::eigen::GeneralizedEigen {
+        return Ok(Some(crate::solve::eigen::GeneralizedEigen {
             values: re.into_iter().step_by(2).collect(),
             vectors: Vec::new(),
-        });
+        }));
     }
     let at = |a: &Atom| match a {
         Atom::Param(n) => set.get(&**n).copied(),
@@ -590,7 +604,12 @@ pub fn numeric_modes(md: &Modes, set: &Values) -> Option<crate::solve::eigen::Ge
             .map(|r| r.iter().map(|e| e.eval_f64(&at)).collect())
             .collect()
     };
-    crate::solve::eigen::generalized_symmetric(&num(&md.stiffness)?, &num(&md.mass)?).ok()
+    let (Some(k), Some(m)) = (num(&md.stiffness), num(&md.mass)) else {
+        return Ok(None);
+    };
+    crate::solve::eigen::generalized_symmetric(&k, &m)
+        .map(Some)
+        .map_err(|e| e.to_string())
 }
 
 /// One coordinate, undamped: y = A·sin(ω·t + φ) from y(0) = y0, ẏ(0) = v0

@@ -630,3 +630,47 @@ fn the_examples_still_have_their_energy_integral() {
         );
     }
 }
+
+/// `--set` values where M is not positive definite: the eigen-solver's
+/// refusal is said (text and JSON), not a silently missing section.
+#[test]
+fn numeric_modes_refused_by_the_values_say_why() {
+    let src = "coordinates x, y\nparameters e, k\nassume e real\nkinetic E = 1/2*e*x'^2 + 1/2*y'^2\npotential V = 1/2*k*(x^2 + y^2)\n";
+    let why = "M is not positive definite (Cholesky factorization failed)";
+    let o = qdot_scene(
+        "numeric_modes_why",
+        src.as_bytes(),
+        "modes",
+        &["--set", "e=-1,k=1"],
+    );
+    o.assert_clean();
+    assert!(
+        o.stdout
+            .contains(&format!("  numeric ω²: none at these values: {why}\n")),
+        "{o:?}"
+    );
+    let o = qdot_scene(
+        "numeric_modes_why",
+        src.as_bytes(),
+        "modes",
+        &["--set", "e=-1,k=1", "--format", "json"],
+    );
+    let v = json(&o);
+    assert_eq!(v["numeric_modes"], serde_json::Value::Null);
+    assert_eq!(v["numeric_modes_note"], why);
+    // values where M is definite: modes, and no note
+    let o = qdot_scene(
+        "numeric_modes_why",
+        src.as_bytes(),
+        "modes",
+        &["--set", "e=2,k=1", "--format", "json"],
+    );
+    let v = json(&o);
+    assert_eq!(v["numeric_modes_note"], serde_json::Value::Null);
+    let w: Vec<f64> = v["numeric_omega_squared"]
+        .as_array()
+        .map(|a| a.iter().filter_map(serde_json::Value::as_f64).collect())
+        .unwrap_or_default();
+    assert_eq!(w.len(), 2, "{v}");
+    assert!((w[0] - 0.5).abs() < 1e-14 && (w[1] - 1.0).abs() < 1e-14, "{w:?}");
+}
