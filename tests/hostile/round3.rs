@@ -672,5 +672,8 @@ fn numeric_modes_refused_by_the_values_say_why() {
         .map(|a| a.iter().filter_map(serde_json::Value::as_f64).collect())
         .unwrap_or_default();
     assert_eq!(w.len(), 2, "{v}");
-    assert!((w[0] - 0.5).abs() < 1e-14 && (w[1] - 1.0).abs() < 1e-14, "{w:?}");
+    assert!(
+        (w[0] - 0.5).abs() < 1e-14 && (w[1] - 1.0).abs() < 1e-14,
+        "{w:?}"
+    );
 }
