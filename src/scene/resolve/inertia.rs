@@ -25,16 +25,17 @@ pub(super) struct Written<'a> {
     pub(super) moments: Option<[Span; 3]>,
 }
 
-/// The principal minors of a 3×3 matrix: the index sets and the values.
-fn principal_minors(m: &[[Expr; 3]; 3]) -> Vec<(Vec<usize>, Expr)> {
+/// The principal minors of a 3×3 matrix: the index sets and the values
+/// (`None` for a minor without a canonical form: its sign is undecided).
+fn principal_minors(m: &[[Expr; 3]; 3]) -> Vec<(Vec<usize>, Option<Expr>)> {
     let sets: [&[usize]; 7] = [&[0], &[1], &[2], &[0, 1], &[0, 2], &[1, 2], &[0, 1, 2]];
     sets.iter()
-        .filter_map(|set| {
+        .map(|set| {
             let sub: Vec<Vec<Expr>> = set
                 .iter()
                 .map(|&i| set.iter().map(|&j| m[i][j].clone()).collect())
                 .collect();
-            Some((set.to_vec(), crate::algebra::linear::det(sub)?))
+            (set.to_vec(), crate::algebra::linear::det(sub))
         })
         .collect()
 }
@@ -133,6 +134,20 @@ pub(super) fn check(
     let s = second_moments(i);
     for (triangle, m) in [(false, i), (true, &s)] {
         for (set, minor) in principal_minors(m) {
+            let Some(minor) = minor else {
+                undecided.get_or_insert_with(|| {
+                    Diagnostic::warning(
+                        at.span,
+                        format!(
+                            "qdot can't tell that the inertia of `{}` is one a rigid body can have: its minor of {} has no canonical form",
+                            at.body,
+                            rows(&set)
+                        ),
+                    )
+                    .with_hint(format!("{HINT}; give numbers"))
+                });
+                continue;
+            };
             match sign(&minor) {
                 Some(Sign::Negative) => return Err(refusal(i, &set, &minor, triangle, at)),
                 Some(_) => {}
