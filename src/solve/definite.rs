@@ -348,31 +348,31 @@ pub(super) fn negated_f64(x: &[Vec<f64>]) -> Vec<Vec<f64>> {
 pub(super) struct AtRest {
     mass: Vec<Vec<Expr>>,
     residuals: Vec<Expr>,
-    /// q̇ and q̈ (both 0 at rest)
+    /// q̇
     rates: Vec<Var>,
-    accelerations: Vec<Var>,
+    /// q̇ and q̈ at 0
+    rest: FxHashMap<Var, Expr>,
+    /// [`AtRest::velocity_free`], the same at every equilibrium: formed once.
+    velocity_free: std::cell::OnceCell<bool>,
 }
 
 impl AtRest {
     /// M and the residuals of `l`'s equations.
     pub(super) fn of(l: &Lagrange) -> Option<AtRest> {
         let rates: Vec<Var> = l.coordinates.iter().map(|c| atom::coord(c, 1)).collect();
-        let accelerations: Vec<Var> = l.coordinates.iter().map(|c| atom::coord(c, 2)).collect();
         let rest: FxHashMap<Var, Expr> = rates
             .iter()
-            .chain(&accelerations)
-            .map(|&v| (v, Expr::zero()))
+            .copied()
+            .chain(l.coordinates.iter().map(|c| atom::coord(c, 2)))
+            .map(|v| (v, Expr::zero()))
             .collect();
-        let mass = l
-            .mass_matrix
-            .iter()
-            .map(|r| r.iter().map(|x| x.subs_many(&rest).ok()).collect())
-            .collect::<Option<_>>()?;
+        let mass = matrix_at(&l.mass_matrix, &rest)?;
         Some(AtRest {
             mass,
             residuals: l.equations.iter().map(|e| e.lhs.sub(&e.rhs)).collect(),
             rates,
-            accelerations,
+            rest,
+            velocity_free: std::cell::OnceCell::new(),
         })
     }
 
@@ -382,30 +382,24 @@ impl AtRest {
     }
 
     /// C(q) = ∂R/∂q̇ at rest; `None` when it has no canonical form.
-    pub(super) fn velocity_terms(&self) -> Option<Vec<Vec<Expr>>> {
-        let rest: FxHashMap<Var, Expr> = self
-            .rates
-            .iter()
-            .chain(&self.accelerations)
-            .map(|&v| (v, Expr::zero()))
-            .collect();
+    fn velocity_terms(&self) -> Option<Vec<Vec<Expr>>> {
         self.residuals
             .iter()
             .map(|r| {
                 self.rates
                     .iter()
-                    .map(|&v| r.diff(v).subs_many(&rest).ok())
+                    .map(|&v| r.diff(v).subs_many(&self.rest).ok())
                     .collect()
             })
             .collect()
     }
-}
 
-impl AtRest {
     /// Whether the equations have no velocity terms at rest (C(q) = 0).
     pub(super) fn velocity_free(&self) -> bool {
-        self.velocity_terms()
-            .is_some_and(|c| c.iter().flatten().all(Expr::is_zero))
+        *self.velocity_free.get_or_init(|| {
+            self.velocity_terms()
+                .is_some_and(|c| c.iter().flatten().all(Expr::is_zero))
+        })
     }
 }
 

@@ -399,10 +399,9 @@ pub(super) fn solve_exact(
         conds: Vec::new(),
         out: Vec::new(),
         cases: 0,
-        too_many: false,
     };
     let found = search.branch(eqs.to_vec());
-    if search.too_many {
+    if search.too_many() {
         return Err(TooManyCases);
     }
     if found.is_none() {
@@ -431,22 +430,25 @@ struct Search<'a> {
     conds: Vec<String>,
     /// The solutions found.
     out: Vec<ExactSolution>,
-    /// The cases (calls of [`Search::branch`]) entered so far.
+    /// The cases (calls of [`Search::branch`]) entered so far; past
+    /// [`MAX_EQUILIBRIUM_CASES`] the walk stops.
     cases: usize,
-    /// Set when `cases` passed [`MAX_EQUILIBRIUM_CASES`]: the walk stops.
-    too_many: bool,
 }
 
 impl Search<'_> {
+    /// Whether the walk entered more than [`MAX_EQUILIBRIUM_CASES`] cases.
+    fn too_many(&self) -> bool {
+        self.cases > MAX_EQUILIBRIUM_CASES
+    }
+
     /// Solve `eqs` for the coordinates not yet assigned, pushing every
     /// solution of this branch to `out`; `None` when some equation has no
-    /// closed form, or the search has too many cases (`too_many`).
+    /// closed form, or the search has too many cases ([`Search::too_many`]).
     fn branch(&mut self, eqs: Vec<Expr>) -> Option<()> {
         // 2ⁿ equilibria of n uncoupled angles make 2ⁿ⁺¹ cases: count them
         // before any work, so the walk stops within its bound
         self.cases += 1;
-        if self.cases > MAX_EQUILIBRIUM_CASES {
-            self.too_many = true;
+        if self.too_many() {
             return None;
         }
         let q = self.q;

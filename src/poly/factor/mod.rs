@@ -110,7 +110,6 @@ pub(super) struct Trials {
     /// `None`: the work budget ([`crate::budget::check_subsets`]) bounds
     /// them and unwinds past it; `Some(n)`: at most n, then `spent`.
     most: Option<usize>,
-    spent: Cell<bool>,
 }
 
 impl Trials {
@@ -119,7 +118,6 @@ impl Trials {
         Trials {
             tried: Cell::new(0),
             most: None,
-            spent: Cell::new(false),
         }
     }
 
@@ -128,7 +126,6 @@ impl Trials {
         Trials {
             tried: Cell::new(0),
             most: Some(n),
-            spent: Cell::new(false),
         }
     }
 
@@ -142,17 +139,13 @@ impl Trials {
                 crate::budget::check_subsets(tried);
                 true
             }
-            Some(n) if tried > n => {
-                self.spent.set(true);
-                false
-            }
-            Some(_) => true,
+            Some(n) => tried <= n,
         }
     }
 
     /// Whether a fixed allowance ran out (the search stopped early).
     pub(super) fn spent(&self) -> bool {
-        self.spent.get()
+        self.most.is_some_and(|n| self.tried.get() > n)
     }
 }
 
