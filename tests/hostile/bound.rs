@@ -128,6 +128,18 @@ pub fn qdot_bounded(args: &[&str], stdin: &str, seconds: u64, memory_mib: u64) -
 /// written to a temporary file; the file's path in messages reads
 /// `scene.qd`. Default bounds.
 pub fn qdot_scene(tag: &str, src: &[u8], command: &str, rest: &[&str]) -> Outcome {
+    qdot_scene_within(tag, src, command, rest, SECONDS, MEMORY_MIB)
+}
+
+/// [`qdot_scene`] under `seconds` of wall clock and `memory_mib` MiB.
+pub fn qdot_scene_within(
+    tag: &str,
+    src: &[u8],
+    command: &str,
+    rest: &[&str],
+    seconds: u64,
+    memory_mib: u64,
+) -> Outcome {
     let dir = std::env::temp_dir().join(format!("qdot-hostile-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temporary directory");
     let path = dir.join(format!("{tag}.qd"));
@@ -135,7 +147,7 @@ pub fn qdot_scene(tag: &str, src: &[u8], command: &str, rest: &[&str]) -> Outcom
     let p = path.to_str().expect("utf-8 path").to_string();
     let mut all = vec![command, p.as_str()];
     all.extend_from_slice(rest);
-    let mut o = qdot_bounded(&all, "", SECONDS, MEMORY_MIB);
+    let mut o = qdot_bounded(&all, "", seconds, memory_mib);
     o.stdout = o.stdout.replace(&p, "scene.qd");
     o.stderr = o.stderr.replace(&p, "scene.qd");
     o

@@ -9,15 +9,7 @@ use crate::bound::*;
 /// `qdot COMMAND scene.qd ARGS` on `src` within 30 s and 2 GiB, ended by
 /// itself without a panic.
 fn run(tag: &str, src: &str, command: &str, args: &[&str]) -> Outcome {
-    let dir = std::env::temp_dir().join(format!("qdot-hostile-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temporary directory");
-    let path = dir.join(format!("{tag}.qd"));
-    std::fs::write(&path, src).expect("scene written");
-    let p = path.to_str().expect("utf-8 path").to_string();
-    let mut all = vec![command, p.as_str()];
-    all.extend_from_slice(args);
-    let mut o = qdot_bounded(&all, "", 30, 2048);
-    o.stderr = o.stderr.replace(&p, "scene.qd");
+    let o = qdot_scene_within(tag, src.as_bytes(), command, args, 30, 2048);
     o.assert_clean();
     o
 }
