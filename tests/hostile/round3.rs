@@ -17,6 +17,11 @@ fn example(name: &str) -> String {
         .expect("the example")
 }
 
+/// `qdot ARGS` from the repository root, no input, default bounds.
+fn qdot(args: &[&str]) -> Outcome {
+    qdot_bounded(args, "", SECONDS, MEMORY_MIB)
+}
+
 fn json(o: &Outcome) -> serde_json::Value {
     serde_json::from_str(&o.stdout).unwrap_or_else(|e| panic!("{e}: {o:?}"))
 }
@@ -27,12 +32,7 @@ fn json(o: &Outcome) -> serde_json::Value {
 /// not conserved (dh/dt = −∂L/∂t): no energy integral, in every format.
 #[test]
 fn a_given_function_of_time_has_no_energy_integral() {
-    let o = qdot_bounded(
-        &["integrals", "examples/moving_support.qd"],
-        "",
-        SECONDS,
-        MEMORY_MIB,
-    );
+    let o = qdot(&["integrals", "examples/moving_support.qd"]);
     o.assert_clean();
     assert_eq!(o.code, Some(0), "{o:?}");
     assert!(
@@ -46,17 +46,12 @@ fn a_given_function_of_time_has_no_energy_integral() {
         ),
         "{o:?}"
     );
-    let j = qdot_bounded(
-        &[
-            "integrals",
-            "examples/moving_support.qd",
-            "--format",
-            "json",
-        ],
-        "",
-        SECONDS,
-        MEMORY_MIB,
-    );
+    let j = qdot(&[
+        "integrals",
+        "examples/moving_support.qd",
+        "--format",
+        "json",
+    ]);
     let v = json(&j);
     assert_eq!(v["energy"], serde_json::Value::Null, "{j:?}");
     assert_eq!(
@@ -68,25 +63,20 @@ fn a_given_function_of_time_has_no_energy_integral() {
     let o = qdot_scene("given_inline", src.as_bytes(), "integrals", &[]);
     assert!(o.stdout.contains("  none\n"), "{o:?}");
     // and simulate has no energy column for it
-    let o = qdot_bounded(
-        &[
-            "simulate",
-            "examples/moving_support.qd",
-            "--set",
-            "m=1,l=1,g=1",
-            "--init",
-            "theta=0.1,theta'=0",
-            "--function",
-            "s=t^2",
-            "--t-end",
-            "1",
-            "--points",
-            "2",
-        ],
-        "",
-        SECONDS,
-        MEMORY_MIB,
-    );
+    let o = qdot(&[
+        "simulate",
+        "examples/moving_support.qd",
+        "--set",
+        "m=1,l=1,g=1",
+        "--init",
+        "theta=0.1,theta'=0",
+        "--function",
+        "s=t^2",
+        "--t-end",
+        "1",
+        "--points",
+        "2",
+    ]);
     assert_eq!(o.code, Some(0), "{o:?}");
     assert!(o.stdout.starts_with("t,theta,theta'\n"), "{o:?}");
 }
@@ -167,12 +157,7 @@ fn json_says_a_numeric_search_may_be_incomplete() {
     assert!(n > 0);
     assert_eq!(v["certified"].as_array().map(Vec::len), Some(n));
     // a closed form is complete, with no digits to certify
-    let o = qdot_bounded(
-        &["equilibrium", "examples/seed_22_3.qd", "--format", "json"],
-        "",
-        SECONDS,
-        MEMORY_MIB,
-    );
+    let o = qdot(&["equilibrium", "examples/seed_22_3.qd", "--format", "json"]);
     let v = json(&o);
     assert_eq!(v["complete"], true);
     assert_eq!(v["caveat"], serde_json::Value::Null);
@@ -197,7 +182,7 @@ fn pendulum(extra: &[&str]) -> Outcome {
         "3",
     ];
     args.extend_from_slice(extra);
-    qdot_bounded(&args, "", SECONDS, MEMORY_MIB)
+    qdot(&args)
 }
 
 /// 1/(θ − ½) changes sign where θ = ½, through a pole: not a zero, so not
@@ -270,12 +255,7 @@ fn set_values_that_break_an_assumption_are_refused() {
         ("modes", "R=1,r=2,m=1,g=1", "it is -1 there"),
         ("equilibrium", "R=1,r=1", "it is 0 there"),
     ] {
-        let o = qdot_bounded(
-            &[cmd, "examples/disk_in_cylinder.qd", "--set", set],
-            "",
-            SECONDS,
-            MEMORY_MIB,
-        );
+        let o = qdot(&[cmd, "examples/disk_in_cylinder.qd", "--set", set]);
         o.assert_clean();
         assert_eq!(o.code, Some(1), "{o:?}");
         let pair = if set.starts_with("R=1,r=2") {
@@ -290,36 +270,26 @@ fn set_values_that_break_an_assumption_are_refused() {
         );
     }
     // values that keep it, and values that leave it open, pass
-    let o = qdot_bounded(
-        &[
-            "modes",
-            "examples/disk_in_cylinder.qd",
-            "--set",
-            "R=2,r=1,m=1,g=1",
-        ],
-        "",
-        SECONDS,
-        MEMORY_MIB,
-    );
+    let o = qdot(&[
+        "modes",
+        "examples/disk_in_cylinder.qd",
+        "--set",
+        "R=2,r=1,m=1,g=1",
+    ]);
     assert_eq!(o.code, Some(0), "{o:?}");
-    let o = qdot_bounded(
-        &[
-            "equilibrium",
-            "examples/disk_in_cylinder.qd",
-            "--set",
-            "m=1",
-        ],
-        "",
-        SECONDS,
-        MEMORY_MIB,
-    );
+    let o = qdot(&[
+        "equilibrium",
+        "examples/disk_in_cylinder.qd",
+        "--set",
+        "m=1",
+    ]);
     assert_eq!(o.code, Some(0), "{o:?}");
 }
 
 fn sweep(extra: &[&str]) -> Outcome {
     let mut args = vec!["sweep", "examples/pendulum.qd", "--t-end", "1"];
     args.extend_from_slice(extra);
-    qdot_bounded(&args, "", SECONDS, MEMORY_MIB)
+    qdot(&args)
 }
 
 /// A column named twice would mislabel every row: a varied name is given
