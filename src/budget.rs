@@ -18,6 +18,7 @@ use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
 thread_local! {
     static LIMIT: Cell<usize> = const { Cell::new(usize::MAX) };
     static CONTEXT: RefCell<Vec<Context>> = const { RefCell::new(Vec::new()) };
+    static BIG_WORK: Cell<u64> = const { Cell::new(0) };
 }
 
 /// What was being computed: a description and, for a statement, its byte
@@ -58,6 +59,9 @@ pub enum Measure {
     /// An exact division of polynomials of these sizes, stopped when its
     /// term products passed the budget's ([`check_division`]).
     Division(usize, usize),
+    /// Arithmetic on numbers past machine size ([`charge_big_numbers`]):
+    /// `terms` counts word products, the last operand had this many digits.
+    Digits(usize),
 }
 
 impl TooLarge {
@@ -100,6 +104,13 @@ impl TooLarge {
                 grouped(self.limit),
                 grouped(self.limit.saturating_mul(PRODUCTS_PER_TERM))
             ),
+            Measure::Digits(digits) => format!(
+                "exact arithmetic too costly: {} word products on numbers of up to {} digits{what} (the limit is {} terms, and {} word products)",
+                grouped(self.terms),
+                grouped(digits),
+                grouped(self.limit),
+                grouped(self.limit.saturating_mul(WORD_PRODUCTS_PER_TERM))
+            ),
             Measure::Printed => format!(
                 "expression too large to print: {} symbols written out{what} (the limit is {})",
                 grouped(self.terms),
@@ -126,9 +137,12 @@ pub fn grouped(n: usize) -> String {
 /// Budgets nest: the inner one applies, and the outer is restored after.
 pub fn within<T>(max_terms: usize, f: impl FnOnce() -> T) -> Result<T, TooLarge> {
     let outer = LIMIT.with(|l| l.replace(max_terms));
+    let outer_work = BIG_WORK.with(|w| w.replace(0));
     let depth = CONTEXT.with(|c| c.borrow().len());
     let r = catch_unwind(AssertUnwindSafe(f));
     LIMIT.with(|l| l.set(outer));
+    // an inner budget's work is also the outer's
+    BIG_WORK.with(|w| w.set(outer_work.saturating_add(w.get())));
     CONTEXT.with(|c| c.borrow_mut().truncate(depth));
     match r {
         Ok(v) => Ok(v),
@@ -256,6 +270,48 @@ pub fn check_division(work: usize, a: usize, b: usize) {
     if work > limit.saturating_mul(PRODUCTS_PER_TERM) {
         exceeded_with(work, limit, Measure::Division(a, b));
     }
+}
+
+/// How many word products (64-bit limb by limb) of arithmetic on big
+/// numbers one term of the budget stands for, over a whole [`within`].
+/// Terms do not see a coefficient's size: `1e308·ẋ²` keeps the terms of
+/// `ẋ²`, yet each product of its 1,000-digit powers costs thousands of
+/// word products, and a rational's gcd more (a Hamiltonian of such a
+/// scene took half a minute under a budget it never passed). At 50, the
+/// default budget allows 10⁸ (about 2 s); the test suite's scenes take
+/// at most 8·10⁵.
+pub const WORD_PRODUCTS_PER_TERM: usize = 50;
+
+/// Charge one arithmetic operation on numbers of `a` and `b` 64-bit words
+/// (numerator and denominator together), the larger having `digits`
+/// digits; unwind with [`TooLarge`] once the [`within`] has charged more
+/// than [`WORD_PRODUCTS_PER_TERM`] × the budget. Only operations past
+/// machine size call it, and without a budget it costs one read.
+#[inline]
+pub fn charge_big_numbers(a: usize, b: usize, digits: impl FnOnce() -> usize) {
+    let limit = limit();
+    if limit == usize::MAX {
+        return;
+    }
+    let cost = (a.max(1) as u64).saturating_mul(b.max(1) as u64);
+    let used = BIG_WORK.with(|w| {
+        let used = w.get().saturating_add(cost);
+        w.set(used);
+        used
+    });
+    if used > (limit as u64).saturating_mul(WORD_PRODUCTS_PER_TERM as u64) {
+        exceeded_with(
+            usize::try_from(used).unwrap_or(usize::MAX),
+            limit,
+            Measure::Digits(digits()),
+        );
+    }
+}
+
+/// The word products [`charge_big_numbers`] has counted in this thread's
+/// innermost [`within`] (0 outside one).
+pub fn big_number_work() -> u64 {
+    BIG_WORK.with(Cell::get)
 }
 
 /// Unwind with [`TooLarge`] if an expression of `symbols` symbols written

@@ -236,6 +236,8 @@ pub fn too_large(e: &crate::budget::TooLarge) -> Diagnostic {
     let why = match e.measure {
         // the polynomial is small; its factors modulo primes are many
         crate::budget::Measure::Subsets => "a polynomial whose factors modulo every prime are many takes time exponential in their number to factor over ℚ",
+        // the terms are few; their numbers are long
+        crate::budget::Measure::Digits(_) => "exact numbers this long (a huge or very precise constant, raised to powers by the derivation) make every step slow; a constant in a unit nearer the scene's scale keeps them short",
         _ => "exact expressions this large are rarely what a scene means (expand less, or choose other coordinates)",
     };
     let hint = format!(

@@ -239,6 +239,19 @@ enum Command {
     },
 }
 
+/// Write a result to standard output. A reader that has gone (`qdot … |
+/// head`) is not an error of the run: `print!` would panic on the closed
+/// pipe; the rest is dropped instead.
+fn emit(text: &str) {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    if let Err(e) = out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        if e.kind() != std::io::ErrorKind::BrokenPipe {
+            eprintln!("error: cannot write the result: {e}");
+        }
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let Some(command) = cli.command else {
@@ -368,7 +381,7 @@ fn main() -> ExitCode {
             for w in warnings {
                 eprint!("{}", w.render(file, &src));
             }
-            print!("{out}");
+            emit(&out);
             ExitCode::SUCCESS
         }
         Err(d) => {
@@ -418,7 +431,7 @@ fn codegen(
     };
     match qdot::simulate::codegen::codegen(&src, &req) {
         Ok(code) => {
-            print!("{code}");
+            emit(&code);
             ExitCode::SUCCESS
         }
         Err(d) => {
@@ -503,14 +516,11 @@ fn simulate(
         Ok(r) => r,
         Err(d) => return fail(d, &src),
     };
-    print!(
-        "{}",
-        if output == "json" {
-            run::json(&r)
-        } else {
-            run::csv(&r)
-        }
-    );
+    emit(&if output == "json" {
+        run::json(&r)
+    } else {
+        run::csv(&r)
+    });
     if stats {
         eprint!("{}", run::stats_text(&r));
     }
@@ -766,14 +776,11 @@ fn sweep(o: &SweepArgs) -> ExitCode {
             return ExitCode::from(1);
         }
     };
-    print!(
-        "{}",
-        if o.output == "json" {
-            sweep::json(&s)
-        } else {
-            sweep::csv(&s)
-        }
-    );
+    emit(&if o.output == "json" {
+        sweep::json(&s)
+    } else {
+        sweep::csv(&s)
+    });
     if o.stats {
         eprintln!(
             "{} runs on {} threads in {:.3} s: {:.0} runs per second; equations compiled {} time{}",

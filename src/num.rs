@@ -345,6 +345,15 @@ impl Q {
         }
     }
 
+    /// The 64-bit words of numerator and denominator (1 for a machine
+    /// fraction): what an operation on the number costs.
+    fn words(&self) -> usize {
+        match &self.0 {
+            Repr::Small(..) => 1,
+            Repr::Big(r) => (r.numer().bits() + r.denom().bits()).div_ceil(64) as usize,
+        }
+    }
+
     /// `self^e`; `None` for `0^e` with `e < 0`. `0^0 == 1`.
     pub fn pow(&self, e: i32) -> Option<Q> {
         if e < 0 {
@@ -442,6 +451,9 @@ impl Q {
                 if other.is_zero() {
                     return self.abs();
                 }
+                crate::budget::charge_big_numbers(self.words(), other.words(), || {
+                    (self.log10_size().max(other.log10_size()) as usize).saturating_add(1)
+                });
                 let (x, y) = (self.to_big(), other.to_big());
                 let n = x.numer().gcd(y.numer());
                 let d = x.denom().lcm(y.denom());
@@ -479,6 +491,9 @@ impl Q {
         op: fn(&BigRational, &BigRational) -> BigRational,
         iop: Option<fn(&BigInt, &BigInt) -> BigInt>,
     ) -> Q {
+        crate::budget::charge_big_numbers(a.words(), b.words(), || {
+            (a.log10_size().max(b.log10_size()) as usize).saturating_add(1)
+        });
         if let Some(iop) = iop {
             if a.is_integer() && b.is_integer() {
                 return Q::from_bigint(iop(&a.int_cow(), &b.int_cow()));

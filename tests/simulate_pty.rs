@@ -3,8 +3,9 @@
 //! before the results are printed, and never appears when standard error
 //! is not a terminal.
 //!
-//! The run: the 10-link chain by RK4 with dt = 5·10⁻⁵ over 10 s (8·10⁵
-//! right-hand sides, ≈ 1–3 s), interpreted: machine code, the default past
+//! The run: the 10-link chain by RK4 with dt = 2·10⁻⁵ over 10 s (2·10⁶
+//! right-hand sides, ≈ 1.2–5 s; at 8·10⁵ an idle machine finished in
+//! 0.49 s, before the bar's half second), interpreted: machine code, the default past
 //! 25,000 right-hand sides, could end it before the bar shows.
 
 use rexpect::session::PtySession;
@@ -41,7 +42,7 @@ fn long_run(d: &std::path::Path) -> Vec<String> {
         "--method",
         "rk4",
         "--dt",
-        "5e-5",
+        "2e-5",
         "--points",
         "3",
         "--stats",
@@ -78,7 +79,7 @@ fn the_bar_shows_on_a_terminal_and_is_cleared() {
     // the CSV header comes after the bar has been cleared (ESC [2K)
     let rest = expect(&mut p, "t,q1,q2,");
     assert!(rest.contains("\u{1b}[2K"), "not cleared: {rest:?}");
-    let tail = expect(&mut p, "method rk4: 200001 steps");
+    let tail = expect(&mut p, "method rk4: 500001 steps");
     assert!(!tail.contains("simulating"), "{tail:?}");
     p.exp_eof().unwrap();
 }
@@ -105,7 +106,7 @@ fn no_bar_when_stderr_is_a_file() {
     assert!(out.contains("t,q1,q2,"), "{out:?}");
     assert!(!out.contains("simulating"), "{out:?}");
     let stderr = std::fs::read_to_string(&err).unwrap();
-    assert!(stderr.starts_with("method rk4: 200001 steps"), "{stderr:?}");
+    assert!(stderr.starts_with("method rk4: 500001 steps"), "{stderr:?}");
     assert!(!stderr.contains("simulating"), "{stderr:?}");
     assert!(!stderr.contains('\u{1b}'), "{stderr:?}");
     assert!(!stderr.contains('%'), "{stderr:?}");

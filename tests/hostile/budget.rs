@@ -102,3 +102,45 @@ fn the_characteristic_polynomial_of_a_forty_link_chain_is_fraction_free() {
         "{o:?}"
     );
 }
+
+/// The fuzzers' double pendulum with `1e308·ẋ₂²`: its terms are those of
+/// `ẋ₂²`, but every coefficient of the Hamiltonian's derivatives has
+/// thousands of digits, and `hamilton` took 29 s under a budget it never
+/// passed. The arithmetic on big numbers is charged now: it stops in about
+/// 2 s, naming the phase; `1e30` (1.7·10⁷ word products) answers.
+#[test]
+fn arithmetic_on_thousand_digit_numbers_is_charged_to_the_budget() {
+    let scene = |k: &str| {
+        format!(
+            "coordinates th1: angle, th2: angle\n\
+             parameters m1: mass, m2: mass, l1: length, l2: length, g: acceleration\n\
+             x1 = l1*sin(th1)\ny1 = -l1*cos(th1)\n\
+             x2 = x1 + l2*sin(th2)\ny2 = y1 - l2*cos(th2)\n\
+             kinetic E = 1/2*m1*(x1'^2 + y1'^2) + 1/2*m2*({k}*x2'^2 + y2'^2)\n\
+             potential V = m1*g*y1 + m2*g*y2\n"
+        )
+    };
+    let o = run("digits308", &scene("1e308"), "hamilton", &[]);
+    assert_eq!(o.code, Some(1), "{o:?}");
+    assert!(
+        o.stderr.starts_with("error: exact arithmetic too costly: "),
+        "{o:?}"
+    );
+    assert!(
+        o.stderr.contains(" word products on numbers of up to "),
+        "{o:?}"
+    );
+    assert!(
+        o.stderr
+            .contains("(the limit is 2,000,000 terms, and 100,000,000 word products)"),
+        "{o:?}"
+    );
+    assert!(o.stderr.contains("hint: exact numbers this long"), "{o:?}");
+    let o = run("digits30", &scene("1e30"), "hamilton", &[]);
+    assert_eq!(o.code, Some(0), "{o:?}");
+    assert!(
+        o.stdout
+            .contains("p_θ₁ = 999999999999999999999999999999·l₁²·m₂·cos²(θ₁)·θ̇₁ + "),
+        "{o:?}"
+    );
+}

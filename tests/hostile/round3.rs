@@ -647,3 +647,49 @@ fn numeric_modes_refused_by_the_values_say_why() {
         "{w:?}"
     );
 }
+
+// ---- a reader that leaves -------------------------------------------------
+
+/// `qdot simulate … | head -1`: the reader closes the pipe after one line,
+/// and `print!` panicked on it ("failed printing to stdout: Broken pipe",
+/// a backtrace). The rest is dropped now, quietly, with the run's status.
+#[test]
+fn a_closed_pipe_is_not_a_panic() {
+    use std::io::{BufRead, BufReader, Read};
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_qdot"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args([
+            "simulate",
+            "examples/seed_23_4.qd",
+            "--set",
+            "G=1,g=9.81,r=1",
+            "--init",
+            "y3=0,theta3=0,y3'=0,theta3'=0",
+            "--t-end",
+            "10",
+            "--points",
+            "100000",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("qdot starts");
+    let mut first = String::new();
+    BufReader::new(child.stdout.take().expect("stdout"))
+        .read_line(&mut first)
+        .expect("a line");
+    // the reader is dropped here: the pipe is closed
+    let mut err = String::new();
+    child
+        .stderr
+        .take()
+        .expect("stderr")
+        .read_to_string(&mut err)
+        .expect("stderr read");
+    let status = child.wait().expect("qdot ends");
+    assert!(first.starts_with("t,"), "{first:?}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(err, "", "nothing on stderr");
+    assert_eq!(status.code(), Some(0));
+}
