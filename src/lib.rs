@@ -28,33 +28,22 @@
 // user needs at the root. The modules marked `doc(hidden)` are the engine's
 // internals: public for the tests, benches and fuzz targets of this
 // repository, without a promise of stability.
-pub mod diag;
-pub mod expr;
-pub mod limits;
-pub mod mechanics;
-pub mod num;
+pub use qdot_exact::{expr, limits, num};
+pub use qdot_mechanics::{mechanics, scene, solve};
+pub use qdot_syntax::{diag, parse};
 pub mod output;
-pub mod parse;
-pub mod scene;
 pub mod simulate;
-pub mod solve;
 
 #[doc(hidden)]
-pub mod algebra;
+pub use qdot_exact::{algebra, budget, cancel, poly};
 #[doc(hidden)]
-pub mod budget;
-#[doc(hidden)]
-pub mod cancel;
-#[doc(hidden)]
-pub mod dense;
+pub use qdot_ode::dense;
 #[doc(hidden)]
 pub mod gallery;
 #[doc(hidden)]
-pub mod poly;
-#[doc(hidden)]
 pub mod repl;
 #[doc(hidden)]
-pub mod unicode;
+pub use qdot_syntax::unicode;
 
 pub use diag::{Diagnostic, Severity, Span};
 pub use expr::Expr;
@@ -64,13 +53,6 @@ pub use output::{run, run_with, Command, CommandOptions, Format};
 pub use scene::{Scene, Value};
 pub use solve::equilibrium::{equilibria, Equilibria, Stability};
 pub use solve::oscillations::{modes, Modes};
-
-impl Scene {
-    /// Derive Lagrange's equations.
-    pub fn lagrange(&self) -> Result<Lagrange, Diagnostic> {
-        Lagrange::derive(self)
-    }
-}
 
 #[cfg(doctest)]
 #[doc = include_str!("../book/src/library.md")]

@@ -21,13 +21,17 @@ use crate::poly::{Poly, Var};
 
 mod laurent;
 
+/// Why a linear system has no unique exact solution.
 #[derive(Clone, Debug)]
 pub enum SolveError {
     /// The matrix is singular; `dependent` lists the unknowns (column
     /// indices) of a null vector's support.
     Singular {
+        /// The unknowns (column indices) of a null vector's support.
         dependent: Vec<usize>,
     },
+    /// An entry could not be formed exactly (a division by zero, a
+    /// budget).
     Math(MathError),
 }
 
@@ -113,7 +117,7 @@ fn solve_free(a: &[Vec<Expr>], mut m: Vec<Vec<Poly>>) -> Result<Vec<Expr>, Solve
 
 /// The rows of `[A | b]`, each multiplied by the lcm of its denominators:
 /// polynomials, for fraction-free elimination.
-pub(crate) fn cleared_rows(a: &[Vec<Expr>], b: &[Expr]) -> Vec<Vec<Poly>> {
+pub fn cleared_rows(a: &[Vec<Expr>], b: &[Expr]) -> Vec<Vec<Poly>> {
     a.iter()
         .zip(b)
         .map(|(ai, bi)| {
@@ -135,14 +139,14 @@ pub(crate) fn cleared_rows(a: &[Vec<Expr>], b: &[Expr]) -> Vec<Vec<Poly>> {
 
 /// Nonzero also modulo sin² + cos² = 1 (the elimination runs in the free
 /// ring, so a pivot must be tested after reduction).
-pub(crate) fn nonzero(p: &Poly) -> bool {
+pub fn nonzero(p: &Poly) -> bool {
     !p.is_zero() && !crate::expr::reduce_poly(p).is_zero()
 }
 
 /// Whether a pivot that is nonzero as a polynomial may be zero as a number
 /// ([`crate::expr::hidden_zero`]): such a pivot is taken last, and dividing
 /// by it is refused.
-pub(crate) fn may_be_zero(p: &Poly) -> bool {
+pub fn may_be_zero(p: &Poly) -> bool {
     crate::expr::hidden_zero::can_arise()
         && crate::expr::hidden_zero::may_be_zero(&crate::expr::reduce_poly(p))
 }
@@ -151,7 +155,7 @@ pub(crate) fn may_be_zero(p: &Poly) -> bool {
 /// `[p, x, l, u]` the pivot, the entry, its row's pivot-column entry and
 /// its column's pivot-row entry (Sylvester's identity makes it exact);
 /// every product and the division charged to `work`.
-pub(crate) fn bareiss_entry(
+pub fn bareiss_entry(
     work: &crate::budget::WorkMeter,
     [p, x, l, u]: [&Poly; 4],
     prev: &Poly,
@@ -234,7 +238,7 @@ pub fn dependent_unknowns(a: &[Vec<Expr>]) -> Vec<usize> {
 /// outside the budget.) The determinant is a polynomial identity in the
 /// free ring, so it holds whatever the pivots' values. `None` when the
 /// quotient has no canonical form.
-pub(crate) fn det(m: Vec<Vec<Expr>>) -> Option<Expr> {
+pub fn det(m: Vec<Vec<Expr>>) -> Option<Expr> {
     let n = m.len();
     let mut den = Poly::one();
     let mut a: Vec<Vec<Poly>> = Vec::with_capacity(n);

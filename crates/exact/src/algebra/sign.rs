@@ -83,7 +83,7 @@ fn definite(p: &Poly) -> Option<Sign> {
 /// With parameter values, the numeric sign comes first: an exact sign is a
 /// claim for all positive parameters, and a radical in it (a discriminant)
 /// can vanish at particular values, where two equilibria merge.
-pub(crate) fn sign_of(e: &Expr, set: &Values) -> Option<Sign> {
+pub fn sign_of(e: &Expr, set: &Values) -> Option<Sign> {
     if let Some(s) = sign_numeric(e, set) {
         return Some(s);
     }

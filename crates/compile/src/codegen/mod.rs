@@ -1,7 +1,7 @@
 //! `qdot codegen`: the compiled equations written out as source code in C,
 //! Rust, Python or Julia, for a user's own simulator or controller.
 //!
-//! The functions are the [`crate::simulate::compile`] programs of `qdot
+//! The functions are the [`crate::compile`] programs of `qdot
 //! simulate` written one statement per instruction (`ir` lowers them,
 //! `render` walks the statements, one file per language says how each
 //! reads), so they share what the compiler shares: every common
@@ -25,7 +25,7 @@
 //! header lists every renaming. C and Rust take the state and the outputs
 //! as arrays the caller owns (no allocation), Python returns a list.
 //!
-//! [`CompiledDynamics::best`]: crate::simulate::compile::CompiledDynamics::best
+//! [`CompiledDynamics::best`]: crate::compile::CompiledDynamics::best
 
 mod c;
 mod ir;
@@ -41,10 +41,10 @@ use crate::expr::{atom, Expr};
 use crate::mechanics::Lagrange;
 use crate::poly::Var;
 use crate::scene::Scene;
-use crate::simulate::compile::{
+use crate::compile::{
     compile_with, estimated_cost_of, solve_spd, state_inputs, Evaluator, Program, BEST_MAX_N,
 };
-use crate::simulate::{constrained, given, run};
+use crate::{constrained, given};
 use ir::{Lowering, Op, Stmt, Val};
 use render::{Context, Function, Kind, Syntax};
 use rustc_hash::FxHashMap;
@@ -203,7 +203,7 @@ pub fn codegen(src: &str, req: &CodegenRequest) -> Result<String, Diagnostic> {
             "M and f apart: solve M·q̈ = f with them".to_string(),
         ),
     };
-    if let Some(h) = run::jacobi_integral(&scene, &lag.coordinates) {
+    if let Some(h) = crate::mechanics::integrals::conserved_energy(&scene).ok().flatten() {
         functions.push(g.energy(&h)?);
     }
     let mut out = header(req, &lag, &cx, &free, &constraints, &how, syn, &functions);

@@ -13,7 +13,7 @@ pub mod given;
 mod resolve;
 pub mod rotation;
 
-pub(crate) use eval::{axis_name, is_taylor_form};
+pub use eval::{axis_name, is_taylor_form};
 
 use crate::diag::Diagnostic;
 use crate::expr::Expr;

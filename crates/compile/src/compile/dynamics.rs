@@ -4,7 +4,7 @@ use crate::expr::atom;
 use crate::expr::Expr;
 use crate::mechanics::Lagrange;
 use crate::poly::Var;
-use crate::simulate::System;
+use qdot_ode::System;
 use rustc_hash::FxHashMap;
 
 use super::builder::compile_with;

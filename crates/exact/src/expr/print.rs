@@ -221,8 +221,10 @@ pub(crate) struct TermKey {
 /// so that of two monomials equal as far as the shorter goes the longer
 /// comes first ([`name_key`]).
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
-pub(crate) enum NameRank {
+pub enum NameRank {
+    /// A variable's print rank and its exponent (higher powers first).
     Var((u8, u32, String, String), std::cmp::Reverse<u32>),
+    /// Past the monomial's last variable.
     End,
 }
 
@@ -256,7 +258,7 @@ pub(crate) fn term_key(m: &Mono, negative: bool) -> TermKey {
 /// Lexicographic order of monomials with the variables ranked by
 /// [`factor_rank`] (by name, not by interning order): `l³, l²·m, l·m², m³`;
 /// of two monomials equal as far as the shorter goes, the longer first.
-pub(crate) fn name_key(m: &Mono) -> Vec<NameRank> {
+pub fn name_key(m: &Mono) -> Vec<NameRank> {
     let mut names: Vec<NameRank> =
         m.0.iter()
             .map(|&(v, e)| NameRank::Var(factor_rank(v), std::cmp::Reverse(e)))
@@ -321,7 +323,7 @@ fn term_with_coef_signed(c: &Expr, key: &Mono, st: Style) -> (bool, String) {
 
 /// Whether a printed expression is a sum at its top level (so it needs
 /// parentheses as a factor).
-pub(crate) fn is_sum(s: &str) -> bool {
+pub fn is_sum(s: &str) -> bool {
     let mut depth = 0i32;
     let mut prev = ' ';
     for (i, ch) in s.char_indices() {
@@ -392,7 +394,7 @@ pub fn join_terms(items: impl Iterator<Item = (bool, String)>, st: Style) -> Str
 
 /// (signed rational content, monomial gcd, primitive integer polynomial
 /// whose first displayed term is positive).
-pub(crate) fn split_poly(p: &Poly) -> (Q, Mono, Poly) {
+pub fn split_poly(p: &Poly) -> (Q, Mono, Poly) {
     let mut g: Option<Mono> = None;
     for (m, _) in p.terms() {
         g = Some(match g {
@@ -1039,7 +1041,7 @@ pub(crate) fn fold_trig(p: &Poly) -> Option<Poly> {
 }
 
 /// q when `u` is the polynomial q² (√u = |q|).
-pub(crate) fn square_root_of_square(u: &Expr) -> Option<Expr> {
+pub fn square_root_of_square(u: &Expr) -> Option<Expr> {
     if !u.is_poly() {
         return None;
     }

@@ -5,7 +5,7 @@
 //! the unrolled Cholesky solve and the constant-M⁻¹ product of
 //! `CompiledDynamics`, in the same operation order.
 
-use crate::simulate::compile::{Instr, Program};
+use crate::compile::{Instr, Program};
 
 /// An operand: a literal, a temporary, the time, an entry of the input
 /// array (y, or q for the mass matrix) or a parameter (by its index among

@@ -10,7 +10,7 @@
 use super::combine::{by_dim, Blocks, Fixed, Lanes};
 use super::tableaus::{self, Tableau};
 use super::Kind;
-use crate::simulate::{error_norm, Stats, System};
+use crate::{error_norm, Stats, System};
 
 /// One integration's work space.
 pub(super) struct Stepper {

@@ -25,7 +25,9 @@ thread_local! {
 /// range in the source.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Context {
+    /// "evaluating `E`", "deriving Hamilton's equations".
     pub what: String,
+    /// The statement's byte range in the source, if a statement.
     pub span: Option<(usize, usize)>,
 }
 
@@ -33,9 +35,13 @@ pub struct Context {
 /// while computing `context` (the innermost one declared).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct TooLarge {
+    /// How much was reached, in the unit of `measure`.
     pub terms: usize,
+    /// The budget, in terms.
     pub limit: usize,
+    /// The innermost context declared ([`enter`]).
     pub context: Option<Context>,
+    /// What passed the budget.
     pub measure: Measure,
 }
 
@@ -222,6 +228,7 @@ pub struct WorkMeter {
 }
 
 impl WorkMeter {
+    /// A meter at zero.
     pub fn new() -> WorkMeter {
         WorkMeter::default()
     }

@@ -62,7 +62,7 @@ impl std::error::Error for ParseQError {}
 
 /// Binary gcd on `u64`.
 #[inline]
-pub(crate) fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
+pub fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
     if a == 0 {
         return b;
     }
@@ -119,7 +119,7 @@ impl Q {
     /// `(n, d)` when the value is a fraction of machine integers (the fast
     /// paths of modular arithmetic).
     #[inline]
-    pub(crate) fn small(&self) -> Option<(i64, i64)> {
+    pub fn small(&self) -> Option<(i64, i64)> {
         match self.0 {
             Repr::Small(n, d) => Some((n, d)),
             Repr::Big(_) => None,

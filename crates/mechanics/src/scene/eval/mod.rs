@@ -1,7 +1,7 @@
 //! Evaluation of syntax trees into canonical expressions.
 
 mod frames;
-pub(crate) use frames::axis_name;
+pub use frames::axis_name;
 
 use super::{Binding, Value};
 use crate::diag::Diagnostic;
@@ -1065,7 +1065,7 @@ impl<'a> SyntaxEvaluator<'a> {
 /// `series(f, x = a, n)`, or `series(f, q, n)` with `q` a coordinate, a
 /// velocity or `t` (`moves(name)` tells which names are; never a
 /// stiffness): the Taylor series, not springs.
-pub(crate) fn is_taylor_form(args: &[ast::Expr], moves: impl Fn(&str) -> bool) -> bool {
+pub fn is_taylor_form(args: &[ast::Expr], moves: impl Fn(&str) -> bool) -> bool {
     if args.len() != 3 {
         return false;
     }

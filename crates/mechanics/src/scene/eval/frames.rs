@@ -13,7 +13,7 @@ pub(super) const HINT_ROTATION: &str = "a rotation is a frame's orientation: axi
 /// The axis named by a bare `x`, `y` or `z` as the first argument of
 /// `rot(…)` (0, 1, 2): there these letters name axes, whatever the scene
 /// declares.
-pub(crate) fn axis_name(args: &[ast::Expr]) -> Option<usize> {
+pub fn axis_name(args: &[ast::Expr]) -> Option<usize> {
     match args.first().map(|a| &a.kind) {
         Some(ExprKind::Name(n)) => ["x", "y", "z"].iter().position(|a| a == n),
         _ => None,
