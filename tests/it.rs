@@ -24,6 +24,7 @@ mod hamilton;
 mod hostile;
 // the hostile modules say `crate::bound` (they were a crate of their own)
 use hostile::bound;
+mod house;
 mod implicit;
 mod integrators;
 mod integrators_alloc;
@@ -31,7 +32,6 @@ mod integrators_alloc;
 mod jit;
 mod latex;
 mod latex_pdf;
-mod layers;
 mod limits_doc;
 mod modes;
 mod no_panic;

@@ -1,10 +1,10 @@
-//! The limits have one source of truth, src/limits.rs: every integer limit
+//! The limits have one source of truth, crates/exact/src/limits.rs: every integer limit
 //! there appears, with its value, in README's "Limits" section and in the
 //! book's limits page.
 
 /// `(NAME, value)` for every `pub const NAME: int = value;` of limits.rs.
 fn limits() -> Vec<(String, u64)> {
-    let src = include_str!("../src/limits.rs");
+    let src = include_str!("../crates/exact/src/limits.rs");
     let mut out = Vec::new();
     for line in src.lines() {
         let Some(rest) = line.strip_prefix("pub const ") else {

@@ -1,6 +1,6 @@
 //! The grammar file and the parser stay in step: every rule of
 //! `grammar/qd.ebnf` appears as a doc comment "/// `rule ::= body`" in
-//! the parser's files (`src/parse/*.rs`) with the same body (white space
+//! the parser's files (`crates/syntax/src/parse/*.rs`) with the same body (white space
 //! aside).
 
 use std::collections::BTreeMap;
@@ -49,11 +49,11 @@ fn grammar_rules() -> BTreeMap<String, String> {
     rules
 }
 
-/// The parser's source: every file of src/parse/, in name order.
+/// The parser's source: every file of crates/syntax/src/parse/, in name order.
 fn parser_source() -> String {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/src/parse");
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/crates/syntax/src/parse");
     let mut files: Vec<_> = std::fs::read_dir(dir)
-        .expect("src/parse")
+        .expect("crates/syntax/src/parse")
         .map(|e| e.expect("an entry").path())
         .filter(|p| p.extension().is_some_and(|x| x == "rs"))
         .collect();

@@ -22,4 +22,3 @@ pub mod problems;
 pub mod progress;
 pub mod run;
 pub mod sweep;
-

@@ -36,14 +36,14 @@ mod render;
 mod rust;
 
 use crate::algebra::sign::Values;
+use crate::compile::{
+    compile_with, estimated_cost_of, solve_spd, state_inputs, Evaluator, Program, BEST_MAX_N,
+};
 use crate::diag::Diagnostic;
 use crate::expr::{atom, Expr};
 use crate::mechanics::Lagrange;
 use crate::poly::Var;
 use crate::scene::Scene;
-use crate::compile::{
-    compile_with, estimated_cost_of, solve_spd, state_inputs, Evaluator, Program, BEST_MAX_N,
-};
 use crate::{constrained, given};
 use ir::{Lowering, Op, Stmt, Val};
 use render::{Context, Function, Kind, Syntax};
@@ -203,7 +203,10 @@ pub fn codegen(src: &str, req: &CodegenRequest) -> Result<String, Diagnostic> {
             "M and f apart: solve M·q̈ = f with them".to_string(),
         ),
     };
-    if let Some(h) = crate::mechanics::integrals::conserved_energy(&scene).ok().flatten() {
+    if let Some(h) = crate::mechanics::integrals::conserved_energy(&scene)
+        .ok()
+        .flatten()
+    {
         functions.push(g.energy(&h)?);
     }
     let mut out = header(req, &lag, &cx, &free, &constraints, &how, syn, &functions);

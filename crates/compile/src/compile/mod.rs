@@ -25,7 +25,7 @@
 //! [`CompiledDynamics`] evaluates M(q, t) (its upper triangle) and f(q, q̇, t)
 //! of Lagrange's equations in one program and solves M·q̈ = f by
 //! [`solve_spd`] ([`crate::dense`]: Cholesky, LU with partial pivoting as
-//! fallback; Golub & Van Loan, Matrix Computations, 4.2 and 3.4), as a [`super::System`] for the
+//! fallback; Golub & Van Loan, Matrix Computations, 4.2 and 3.4), as a [`qdot_ode::System`] for the
 //! integrators.
 //!
 //! [`CompiledDynamics::use_engine`] chooses what runs the program: the

@@ -77,16 +77,16 @@ struct Rat {
 /// Expressions can be built in code as well as parsed:
 ///
 /// ```
-/// use qdot::expr::{func, Expr};
+/// use qdot_exact::expr::{func, Expr};
 /// let (m, l, g) = (Expr::param("m"), Expr::param("l"), Expr::param("g"));
 /// let th = Expr::coord("th", 0);
 /// // E = ½·m·l²·θ̇², V = −m·g·l·cos θ
-/// let half = Expr::rational(qdot::num::Q::new(1, 2).unwrap());
+/// let half = Expr::rational(qdot_exact::num::Q::new(1, 2).unwrap());
 /// let thd = th.dt();
 /// let e = half.mul(&m).mul(&l.powi(2).unwrap()).mul(&thd.powi(2).unwrap());
 /// let v = m.mul(&g).mul(&l).mul(&func::cos(&th)).neg();
-/// let th_var = qdot::expr::atom::coord("th", 0);
-/// let thd_var = qdot::expr::atom::coord("th", 1);
+/// let th_var = qdot_exact::expr::atom::coord("th", 0);
+/// let thd_var = qdot_exact::expr::atom::coord("th", 1);
 /// // d/dt(∂E/∂θ̇) + ∂V/∂θ
 /// let lhs = e.diff(thd_var).dt().add(&v.diff(th_var));
 /// assert_eq!(lhs.to_string(), "l^2*m*th'' + g*l*m*sin(th)");
@@ -805,8 +805,10 @@ impl std::ops::Neg for Expr {
 /// sees (`−g/l·sin(θ)`, with `θ̈₃`, `√`, `π`).
 ///
 /// ```
-/// let e = qdot::Scene::parse("coordinates theta\nparameters g, l").unwrap()
-///     .expr("-g/l*sin(theta)").unwrap();
+/// use qdot_exact::expr::{func, Expr};
+/// let (g, l) = (Expr::param("g"), Expr::param("l"));
+/// let theta = Expr::coord("theta", 0);
+/// let e = g.mul(&func::sin(&theta)).mul(&l.powi(-1).unwrap()).neg();
 /// assert_eq!(format!("{e}"), "-g*sin(theta)/l");
 /// assert_eq!(format!("{e:#}"), "−g/l·sin(θ)");
 /// assert_eq!(e.to_latex(), r"-\frac{g}{l} \sin\theta");

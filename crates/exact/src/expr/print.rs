@@ -217,7 +217,7 @@ pub(crate) struct TermKey {
     names: Vec<NameRank>,
 }
 
-/// One variable of [`TermKey::names`]; `End` sorts after every variable,
+/// One variable of `TermKey::names`; `End` sorts after every variable,
 /// so that of two monomials equal as far as the shorter goes the longer
 /// comes first ([`name_key`]).
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -256,7 +256,7 @@ pub(crate) fn term_key(m: &Mono, negative: bool) -> TermKey {
 }
 
 /// Lexicographic order of monomials with the variables ranked by
-/// [`factor_rank`] (by name, not by interning order): `l³, l²·m, l·m², m³`;
+/// `factor_rank` (by name, not by interning order): `l³, l²·m, l·m², m³`;
 /// of two monomials equal as far as the shorter goes, the longer first.
 pub fn name_key(m: &Mono) -> Vec<NameRank> {
     let mut names: Vec<NameRank> =

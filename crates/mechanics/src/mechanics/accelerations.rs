@@ -5,7 +5,7 @@ use crate::expr::Expr;
 /// The exact accelerations, one per coordinate in declaration order.
 ///
 /// ```
-/// let scene = qdot::Scene::parse("coordinates x\nparameters m, k\n\
+/// let scene = qdot_mechanics::scene::Scene::parse("coordinates x\nparameters m, k\n\
 ///     kinetic E = 1/2*m*x'^2\npotential V = 1/2*k*x^2").unwrap();
 /// let acc = scene.lagrange().unwrap().accelerations().unwrap();
 /// assert_eq!(acc["x"].to_string(), "-k*x/m");

@@ -375,7 +375,7 @@ impl Scene {
     /// Parse and resolve a scene.
     ///
     /// ```
-    /// let scene = qdot::Scene::parse("coordinates x\nparameters m, k\n\
+    /// let scene = qdot_mechanics::scene::Scene::parse("coordinates x\nparameters m, k\n\
     ///     kinetic E = 1/2*m*x'^2\npotential V = 1/2*k*x^2").unwrap();
     /// assert_eq!(scene.coordinates[0].name, "x");
     /// ```

@@ -94,7 +94,7 @@ pub struct GeneralizedEigen {
 /// # Example
 ///
 /// ```
-/// use qdot::solve::eigen::generalized_symmetric;
+/// use qdot_mechanics::solve::eigen::generalized_symmetric;
 /// // Two masses 4 and 1.5 coupled by springs: λ = 1/6 and 1.
 /// let k = vec![vec![2.0, -1.0], vec![-1.0, 1.0]];
 /// let m = vec![vec![4.0, 0.0], vec![0.0, 1.5]];
@@ -215,7 +215,7 @@ pub fn generalized_symmetric(
 /// # Example
 ///
 /// ```
-/// use qdot::solve::eigen::distribution_coefficients;
+/// use qdot_mechanics::solve::eigen::distribution_coefficients;
 /// assert_eq!(distribution_coefficients(&[2.0, -4.0]), Some(vec![1.0, -2.0]));
 /// assert_eq!(distribution_coefficients(&[0.0, 1.0]), None);
 /// ```

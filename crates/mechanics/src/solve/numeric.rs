@@ -182,7 +182,7 @@ pub struct Root {
 /// starting points and the handling of singular Jacobians.
 ///
 /// ```
-/// use qdot::solve::numeric::{find_roots, RootOptions};
+/// use qdot_mechanics::solve::numeric::{find_roots, RootOptions};
 /// let opts = RootOptions { periodic: vec![true], ..RootOptions::default() };
 /// let f = |x: &[f64]| Some(vec![x[0].sin()]);
 /// let j = |x: &[f64]| Some(vec![vec![x[0].cos()]]);
