@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every exact command's output on every example, every book scene and a few
-# pendulum chains, one file per (scene, command, format), into DIR. Run it
+# pendulum chains, one file per (scene, command, format), and the REPL's
+# commands on each, into DIR. Run it
 # before and after a change meant to keep behaviour, then `diff -r A B`:
 # a restructuring must leave the two byte-identical. (simulate has its
 # own tests against exact solutions.)
@@ -40,7 +41,7 @@ done
 
 for f in "${scenes[@]}"; do
     name=$(basename "$(dirname "$f")")_$(basename "$f" .qd)
-    for cmd in derive solve forces equilibrium modes; do
+    for cmd in derive solve forces equilibrium modes hamilton integrals; do
         for fmt in text json latex; do
             # the exit code is part of the output
             { "$qdot" "$cmd" "$f" --format "$fmt" 2>&1; echo "exit $?"; } \
@@ -48,5 +49,11 @@ for f in "${scenes[@]}"; do
         done
     done
     { "$qdot" latex "$f" --steps --standalone 2>&1; echo "exit $?"; } > "$out/$name.latex-steps" || true
+    for fmt in text json; do
+        { "$qdot" check "$f" --format "$fmt" 2>&1; echo "exit $?"; } > "$out/$name.check.$fmt" || true
+    done
+    # the REPL's commands on the scene, in each format
+    printf ':load %s\n:derive\n:solve\n:forces\n:equilibrium\n:hamilton\n:integrals\n:format json\n:solve\n:modes\n:format latex\n:derive\n:latex\n' "$f" \
+        | { "$qdot" repl 2>&1; echo "exit $?"; } > "$out/$name.repl" || true
 done
 echo "$(ls "$out" | wc -l) outputs in $out"

@@ -31,6 +31,7 @@
 pub use qdot_exact::{expr, limits, num};
 pub use qdot_mechanics::{mechanics, scene, solve};
 pub use qdot_syntax::{diag, parse};
+pub mod app;
 pub mod output;
 pub mod simulate;
 

@@ -49,22 +49,14 @@ fn header(src: &str) -> (Command, Format, Option<&str>) {
         return (Command::Solve, Format::Text, None);
     };
     let mut words = rest.split_whitespace();
-    let cmd = match words.next() {
-        Some("derive") => Command::Derive,
-        Some("forces") => Command::Forces,
-        Some("equilibrium") => Command::Equilibrium,
-        Some("modes") => Command::Modes,
-        Some("latex") => Command::Latex,
-        Some("check") => Command::Check,
-        Some("hamilton") => Command::Hamilton,
-        Some("integrals") => Command::Integrals,
-        _ => Command::Solve,
-    };
-    let fmt = match words.next() {
-        Some("json") => Format::Json,
-        Some("latex") => Format::Latex,
-        _ => Format::Text,
-    };
+    let cmd = words
+        .next()
+        .and_then(Command::from_name)
+        .unwrap_or(Command::Solve);
+    let fmt = words
+        .next()
+        .and_then(Format::from_name)
+        .unwrap_or(Format::Text);
     (cmd, fmt, words.next())
 }
 
@@ -340,11 +332,7 @@ impl<'a> OptionLines<'a> {
 
 /// `qdot COMMAND --format FORMAT [--set …]` on `src`.
 fn scene_command(cmd: Command, src: &str, format: Option<&str>, set: Option<&str>) {
-    let fmt = match format {
-        Some("json") => Format::Json,
-        Some("latex") => Format::Latex,
-        _ => Format::Text,
-    };
+    let fmt = format.and_then(Format::from_name).unwrap_or(Format::Text);
     let mut opts = CommandOptions::default();
     if let Some(set) = set {
         match output::parse_set_any_sign(set) {

@@ -72,23 +72,8 @@ fn values(pairs: Vec<(String, f64)>) -> Values {
 }
 
 fn command_by_name(name: &str) -> PyResult<output::Command> {
-    use output::Command::*;
-    Ok(match name {
-        "derive" => Derive,
-        "solve" => Solve,
-        "forces" => Forces,
-        "equilibrium" => Equilibrium,
-        "modes" => Modes,
-        "latex" => Latex,
-        "check" => Check,
-        "hamilton" => Hamilton,
-        "integrals" => Integrals,
-        _ => {
-            return Err(pyo3::exceptions::PyValueError::new_err(format!(
-                "unknown command `{name}`"
-            )))
-        }
-    })
+    output::Command::from_name(name)
+        .ok_or_else(|| pyo3::exceptions::PyValueError::new_err(format!("unknown command `{name}`")))
 }
 
 /// Run a command of the CLI on a scene: (output, warnings rendered).
@@ -110,11 +95,9 @@ fn run_command(
     max_terms: usize,
 ) -> PyResult<(String, Vec<String>)> {
     let cmd = command_by_name(command)?;
-    let fmt = match format {
-        "text" => Format::Text,
-        "json" => Format::Json,
-        "latex" => Format::Latex,
-        _ => {
+    let fmt = match Format::from_name(format) {
+        Some(f) => f,
+        None => {
             return Err(pyo3::exceptions::PyValueError::new_err(format!(
                 "unknown format `{format}`: text, json or latex"
             )))

@@ -588,19 +588,15 @@ impl Session {
             Some(i) => (&cmd[..i], cmd[i..].trim()),
             None => (cmd, ""),
         };
+        if let Some(cmd) = repl_command(name) {
+            return self.run_result(cmd, args);
+        }
         match name {
             "q" | "quit" | "exit" => Response {
                 quit: true,
                 ..Response::default()
             },
             "help" | "h" | "?" => Response::out(help_text()),
-            "equations" | "eq" | "derive" => self.run_result(Command::Derive, args),
-            "solve" => self.run_result(Command::Solve, args),
-            "forces" => self.run_result(Command::Forces, args),
-            "hamilton" => self.run_result(Command::Hamilton, args),
-            "integrals" => self.run_result(Command::Integrals, args),
-            "equilibrium" => self.run_result(Command::Equilibrium, args),
-            "modes" => self.run_result(Command::Modes, args),
             "latex" => self.latex(args),
             "show" => self.show(args),
             "scene" => Response::out(self.scene_text()),
@@ -643,13 +639,13 @@ impl Session {
                 self.last_command = None;
                 Response::out("(an empty scene; :undo brings the old one back)")
             }
-            "format" => match args {
-                "text" => self.set_format(Format::Text),
-                "latex" => self.set_format(Format::Latex),
-                "json" => self.set_format(Format::Json),
-                "" => Response::out(format!("the format is {}", format_name(self.format))),
-                other => Response::error(format!(
-                    "error: unknown format `{other}`\n  = hint: :format text, :format latex or :format json\n"
+            "format" => match Format::from_name(args) {
+                Some(f) => self.set_format(f),
+                None if args.is_empty() => {
+                    Response::out(format!("the format is {}", self.format.name()))
+                }
+                None => Response::error(format!(
+                    "error: unknown format `{args}`\n  = hint: :format text, :format latex or :format json\n"
                 )),
             },
             _ => {
@@ -670,7 +666,7 @@ impl Session {
 
     fn set_format(&mut self, f: Format) -> Response {
         self.format = f;
-        Response::out(format!("(results as {})", format_name(f)))
+        Response::out(format!("(results as {})", f.name()))
     }
 
     /// [`Session::run`], remembered as the last result when it succeeds.
@@ -882,11 +878,13 @@ fn shift(
     Some(e)
 }
 
-fn format_name(f: Format) -> &'static str {
-    match f {
-        Format::Text => "text",
-        Format::Latex => "latex",
-        Format::Json => "json",
+/// The command a REPL command word runs through the application layer:
+/// the CLI's name (`:latex` and `:check` are the REPL's own), or
+/// `:equations`/`:eq` for `derive`.
+fn repl_command(word: &str) -> Option<Command> {
+    match word {
+        "equations" | "eq" => Some(Command::Derive),
+        _ => Command::from_name(word).filter(|c| !matches!(c, Command::Latex | Command::Check)),
     }
 }
 

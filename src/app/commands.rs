@@ -1,0 +1,238 @@
+//! Each command on a resolved scene, in its context: what it computes,
+//! as a typed report.
+
+use super::report::{AnyReport, Derived, Forces, LatexRequest, Oscillations, Report, Solved};
+use super::{Command, CommandOptions, Context};
+use crate::diag::Diagnostic;
+use crate::scene::Scene;
+use crate::solve::equilibrium::Values;
+use crate::solve::oscillations as osc;
+use std::sync::Arc;
+
+/// `cmd` on `scene` (already in `ctx`).
+pub(super) fn run_scene(
+    ctx: &Context,
+    cmd: Command,
+    scene: &Arc<Scene>,
+    opts: &CommandOptions,
+) -> Result<AnyReport, Diagnostic> {
+    crate::scene::given::parameter_signs(scene, &opts.set)?;
+    Ok(match cmd {
+        Command::Derive => AnyReport::Derive(derive(ctx, scene)?),
+        Command::Solve => AnyReport::Solve(solve(ctx, scene)?),
+        Command::Forces => AnyReport::Forces(forces(ctx, scene)?),
+        Command::Equilibrium => AnyReport::Equilibrium(equilibria(ctx, scene, &opts.set)?),
+        Command::Modes => AnyReport::Modes(modes(ctx, scene, opts)?),
+        Command::Hamilton => AnyReport::Hamilton(hamilton(ctx, scene)?),
+        Command::Integrals => AnyReport::Integrals(integrals(ctx, scene)?),
+        Command::Latex => {
+            check_set(scene, &opts.set)?;
+            AnyReport::Latex(report(
+                ctx,
+                scene,
+                LatexRequest {
+                    steps: opts.steps,
+                    standalone: opts.standalone,
+                    title: opts.title.clone(),
+                    set: opts.set.clone(),
+                },
+            ))
+        }
+        Command::Check => AnyReport::Check(report(ctx, scene, scene.dimension_report()?)),
+    })
+}
+
+/// `result` as a report on `scene`, with the scene's warnings.
+fn report<T>(ctx: &Context, scene: &Arc<Scene>, result: T) -> Report<T> {
+    Report::new(
+        result,
+        Arc::clone(scene),
+        ctx.clone(),
+        scene.warnings.clone(),
+    )
+}
+
+pub(super) fn derive(ctx: &Context, scene: &Arc<Scene>) -> Result<Report<Derived>, Diagnostic> {
+    let lagrange = scene.lagrange()?;
+    Ok(report(ctx, scene, Derived { lagrange }))
+}
+
+/// `solve`: the accelerations (and multipliers, and the constraints'
+/// reactions) and the `solve` blocks' solutions.
+pub(super) fn solve(ctx: &Context, scene: &Arc<Scene>) -> Result<Report<Solved>, Diagnostic> {
+    let has_dynamics = scene.has_dynamics();
+    if !has_dynamics && scene.systems.is_empty() {
+        // the usual error for a scene with nothing to solve
+        scene.lagrange()?;
+    }
+    let dynamics = if has_dynamics {
+        let l = scene.lagrange()?;
+        let acc = l.accelerations()?;
+        Some((l, acc))
+    } else {
+        None
+    };
+    let reactions = match &dynamics {
+        Some((_, acc)) => crate::solve::constrained::reaction_forces(scene, acc)?,
+        None => Vec::new(),
+    };
+    let blocks = crate::solve::system::solve_scene(scene)?;
+    Ok(report(
+        ctx,
+        scene,
+        Solved {
+            dynamics,
+            reactions,
+            blocks,
+        },
+    ))
+}
+
+fn forces(ctx: &Context, scene: &Arc<Scene>) -> Result<Report<Forces>, Diagnostic> {
+    let forces = crate::mechanics::generalized_forces(scene);
+    if scene.coordinates.is_empty() {
+        return Err(Diagnostic::global(
+            "the scene declares no coordinates, so there are no generalized forces",
+        )
+        .with_hint("declare the generalized coordinates with `coordinates q1, q2, …`"));
+    }
+    let coordinates = scene.coordinates.iter().map(|c| c.name.clone()).collect();
+    Ok(report(
+        ctx,
+        scene,
+        Forces {
+            coordinates,
+            forces,
+        },
+    ))
+}
+
+pub(super) fn equilibria(
+    ctx: &Context,
+    scene: &Arc<Scene>,
+    set: &Values,
+) -> Result<Report<crate::solve::equilibrium::Equilibria>, Diagnostic> {
+    check_set(scene, set)?;
+    crate::scene::given::parameter_signs(scene, set)?;
+    let eq = crate::solve::equilibrium::equilibria(scene, set)?;
+    Ok(report(ctx, scene, eq))
+}
+
+/// `modes`: about `--at` (or the equilibrium qdot finds), with the free
+/// response to `--init`, exact when it can be, else numeric at the `--set`
+/// values.
+pub(super) fn modes(
+    ctx: &Context,
+    scene: &Arc<Scene>,
+    opts: &CommandOptions,
+) -> Result<Report<Oscillations>, Diagnostic> {
+    let set = &opts.set;
+    check_set(scene, set)?;
+    crate::scene::given::parameter_signs(scene, set)?;
+    let at = match &opts.at {
+        Some(a) => Some(scene.coordinate_values(a)?),
+        None => None,
+    };
+    // an equilibrium is a constant position
+    if let Some(vals) = &at {
+        for (c, v) in scene.coordinates.iter().zip(vals) {
+            if v.is_time_dependent() {
+                return Err(Diagnostic::global(format!(
+                    "`--at {}={}`: an equilibrium is a constant position, and this changes with time",
+                    c.name,
+                    crate::expr::print::input(v)
+                ))
+                .with_hint("give the coordinates constant values: --at theta=0 (the motion about a moving state is not small oscillations)"));
+            }
+        }
+    }
+    let md = osc::modes(scene, at.as_deref(), set)?;
+    let (free, numeric) = match &opts.init {
+        Some(i) => {
+            let (q0, v0) = scene.initial_conditions(i)?;
+            match osc::free_response(&md, &q0, &v0) {
+                Ok(f) => (Some(f), None),
+                Err(_) if !md.gyroscopic && !set.is_empty() => {
+                    (None, Some(osc::numeric_free_response(&md, set, &q0, &v0)?))
+                }
+                Err(e) => return Err(e),
+            }
+        }
+        None => (None, None),
+    };
+    let mut r = report(
+        ctx,
+        scene,
+        Oscillations {
+            modes: md,
+            set: set.clone(),
+            free,
+            numeric,
+            standalone: opts.standalone.then(|| opts.title.clone()),
+        },
+    );
+    r.add_warnings(matrix_name_clashes(scene));
+    Ok(r)
+}
+
+pub(super) fn hamilton(
+    ctx: &Context,
+    scene: &Arc<Scene>,
+) -> Result<Report<crate::mechanics::Hamiltonian>, Diagnostic> {
+    let h = crate::mechanics::Hamiltonian::derive(scene)?;
+    Ok(report(ctx, scene, h))
+}
+
+pub(super) fn integrals(
+    ctx: &Context,
+    scene: &Arc<Scene>,
+) -> Result<Report<crate::mechanics::Integrals>, Diagnostic> {
+    let i = crate::mechanics::Integrals::find(scene)?;
+    Ok(report(ctx, scene, i))
+}
+
+/// The names `modes` gives its own matrices: a parameter with one of them
+/// would read as the matrix in M·q̈ + C·q̇ + K·q = f(t).
+const MODES_MATRIX_NAMES: [(&str, &str); 3] = [("M", "mass"), ("C", "damping"), ("K", "stiffness")];
+
+/// A warning for each parameter named like one of `modes`' matrices.
+fn matrix_name_clashes(scene: &Scene) -> Vec<Diagnostic> {
+    scene
+        .parameters
+        .iter()
+        .filter_map(|p| {
+            let (_, what) = MODES_MATRIX_NAMES.iter().find(|(n, _)| *n == p.name)?;
+            Some(
+                Diagnostic::warning(
+                    p.span,
+                    format!(
+                        "the parameter `{}` has the name of the {what} matrix {} of `modes`' output",
+                        p.name, p.name
+                    ),
+                )
+                .with_hint(format!(
+                    "the output writes M·q̈ + C·q̇ + K·q = f(t); a name like {}0 tells them apart",
+                    p.name
+                )),
+            )
+        })
+        .collect()
+}
+
+/// `--set` names must be parameters of the scene.
+fn check_set(scene: &Scene, set: &Values) -> Result<(), Diagnostic> {
+    for name in set.keys() {
+        if !scene.parameters.iter().any(|p| &p.name == name) {
+            let list: Vec<&str> = scene.parameters.iter().map(|p| p.name.as_str()).collect();
+            return Err(Diagnostic::global(format!(
+                "`--set {name}=…`: `{name}` is not a parameter of the scene"
+            ))
+            .with_hint(if list.is_empty() {
+                "the scene has no parameters".to_string()
+            } else {
+                format!("the parameters are {}", list.join(", "))
+            }));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,235 @@
+//! The application layer: qdot's commands run on a scene, each giving a
+//! typed report ([`report`]) that [`crate::output`] renders as text, JSON
+//! or LaTeX. The CLI, the REPL, Python and the fuzz targets all come
+//! through here: one table of commands and formats ([`Command`],
+//! [`Format`]), one [`Context`] passed explicitly.
+//!
+//! ```
+//! use qdot::app::{self, Context};
+//! let src = "coordinates x\nparameters m, k\n\
+//!            kinetic E = 1/2*m*x'^2\npotential V = 1/2*k*x^2";
+//! let r = app::solve(&Context::new(), src).unwrap();
+//! let a = r.result.acceleration("x").unwrap();
+//! assert_eq!(r.print(a).unwrap(), "-k*x/m");
+//! ```
+
+mod context;
+pub mod report;
+
+pub use context::Context;
+pub use report::{
+    AnyReport, CheckReport, DeriveReport, Derived, EquilibriaReport, Forces, ForcesReport,
+    HamiltonReport, IntegralsReport, LatexReport, LatexRequest, ModesReport, Oscillations, Report,
+    SolveReport, Solved,
+};
+
+use crate::diag::Diagnostic;
+use crate::scene::Scene;
+use crate::solve::equilibrium::Values;
+use std::sync::Arc;
+
+/// qdot's commands on a scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Command {
+    /// `qdot derive`: Lagrange's equations, the mass matrix M and the forcing f.
+    Derive,
+    /// `qdot solve`: the accelerations q̈ = M⁻¹f and the scene's `solve` blocks.
+    Solve,
+    /// `qdot forces`: the generalized forces Q_k.
+    Forces,
+    /// `qdot equilibrium`: the positions of equilibrium at rest and their stability.
+    Equilibrium,
+    /// `qdot modes`: small oscillations about an equilibrium (M, C, K, the
+    /// frequencies, the modes, the responses).
+    Modes,
+    /// LaTeX of the scene's main result (see [`crate::output::latex::document`]).
+    Latex,
+    /// `qdot check`: the dimension of every name and result (text or JSON).
+    Check,
+    /// `qdot hamilton`: the momenta, H(q, p, t) and Hamilton's equations.
+    Hamilton,
+    /// `qdot integrals`: cyclic coordinates, the energy integral, Routh.
+    Integrals,
+}
+
+impl Command {
+    /// Every command, in the order the CLI's help lists them.
+    pub const ALL: [Command; 9] = [
+        Command::Derive,
+        Command::Solve,
+        Command::Forces,
+        Command::Equilibrium,
+        Command::Modes,
+        Command::Hamilton,
+        Command::Integrals,
+        Command::Latex,
+        Command::Check,
+    ];
+
+    /// The command's name on the command line, in the REPL and in Python.
+    pub fn name(self) -> &'static str {
+        match self {
+            Command::Derive => "derive",
+            Command::Solve => "solve",
+            Command::Forces => "forces",
+            Command::Equilibrium => "equilibrium",
+            Command::Modes => "modes",
+            Command::Latex => "latex",
+            Command::Check => "check",
+            Command::Hamilton => "hamilton",
+            Command::Integrals => "integrals",
+        }
+    }
+
+    /// The command called `name`.
+    pub fn from_name(name: &str) -> Option<Command> {
+        Command::ALL.into_iter().find(|c| c.name() == name)
+    }
+
+    /// The formats the command writes (`latex` writes LaTeX whatever the
+    /// format; `check` writes text or JSON).
+    pub fn formats(self) -> &'static [Format] {
+        match self {
+            Command::Latex => &[Format::Latex],
+            Command::Check => &[Format::Text, Format::Json],
+            _ => &Format::ALL,
+        }
+    }
+}
+
+/// Output format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Format {
+    /// Plain text with Unicode notation (θ̈₃, ·, −).
+    Text,
+    /// JSON, expressions as strings in qdot's input syntax.
+    Json,
+    /// amsmath LaTeX (see [`crate::output::latex`]).
+    Latex,
+}
+
+impl Format {
+    /// Every format.
+    pub const ALL: [Format; 3] = [Format::Text, Format::Json, Format::Latex];
+
+    /// The format's name (`--format NAME`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Text => "text",
+            Format::Json => "json",
+            Format::Latex => "latex",
+        }
+    }
+
+    /// The format called `name`.
+    pub fn from_name(name: &str) -> Option<Format> {
+        Format::ALL.into_iter().find(|f| f.name() == name)
+    }
+}
+
+/// The options of the commands beyond the scene and the format.
+#[derive(Clone, Debug, Default)]
+pub struct CommandOptions {
+    /// `--set`: parameter values.
+    pub set: Values,
+    /// `modes --at q=value,…`: the equilibrium (expressions in the scene).
+    pub at: Option<String>,
+    /// `modes --init q=…,q'=…`: initial conditions.
+    pub init: Option<String>,
+    /// `latex --steps`: the derivation line by line.
+    pub steps: bool,
+    /// `latex --standalone`: a whole document, not a fragment.
+    pub standalone: bool,
+    /// The title of a standalone document (the file name).
+    pub title: String,
+    /// `--max-terms`: the work budget ([`crate::budget`]); 0 means the
+    /// default, [`crate::limits::DEFAULT_MAX_TERMS`].
+    pub max_terms: usize,
+}
+
+/// Run `cmd` on the scene source `src` in `ctx`: parse, resolve, compute,
+/// all within the context's budget.
+pub fn run(
+    ctx: &Context,
+    cmd: Command,
+    src: &str,
+    opts: &CommandOptions,
+) -> Result<AnyReport, Diagnostic> {
+    on_scene(ctx, src, |ctx, scene| {
+        commands::run_scene(ctx, cmd, scene, opts)
+    })
+}
+
+/// Parse and resolve `src` within `ctx`'s budget, then run `f` on the
+/// scene in the scene's context.
+fn on_scene<T>(
+    ctx: &Context,
+    src: &str,
+    f: impl FnOnce(&Context, &Arc<Scene>) -> Result<T, Diagnostic>,
+) -> Result<T, Diagnostic> {
+    ctx.run(|| {
+        let scene = Arc::new(Scene::parse(src)?);
+        let ctx = ctx.for_scene(&scene);
+        ctx.run(|| f(&ctx, &scene))
+    })
+}
+
+/// `derive` on the scene source `src`.
+pub fn derive(ctx: &Context, src: &str) -> Result<DeriveReport, Diagnostic> {
+    on_scene(ctx, src, commands::derive)
+}
+
+/// `solve` on the scene source `src`.
+pub fn solve(ctx: &Context, src: &str) -> Result<SolveReport, Diagnostic> {
+    on_scene(ctx, src, commands::solve)
+}
+
+/// `equilibrium` on the scene source `src`, parameters at `set`.
+pub fn equilibria(ctx: &Context, src: &str, set: &Values) -> Result<EquilibriaReport, Diagnostic> {
+    on_scene(ctx, src, |ctx, scene| commands::equilibria(ctx, scene, set))
+}
+
+/// `modes` on the scene source `src` (`--set`, `--at`, `--init` in `opts`).
+pub fn modes(ctx: &Context, src: &str, opts: &CommandOptions) -> Result<ModesReport, Diagnostic> {
+    on_scene(ctx, src, |ctx, scene| commands::modes(ctx, scene, opts))
+}
+
+/// `hamilton` on the scene source `src`.
+pub fn hamilton(ctx: &Context, src: &str) -> Result<HamiltonReport, Diagnostic> {
+    on_scene(ctx, src, commands::hamilton)
+}
+
+/// `integrals` on the scene source `src`.
+pub fn integrals(ctx: &Context, src: &str) -> Result<IntegralsReport, Diagnostic> {
+    on_scene(ctx, src, commands::integrals)
+}
+
+mod commands;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_command_and_format_is_found_by_its_name() {
+        for c in Command::ALL {
+            assert_eq!(Command::from_name(c.name()), Some(c));
+        }
+        for f in Format::ALL {
+            assert_eq!(Format::from_name(f.name()), Some(f));
+        }
+        assert_eq!(Command::from_name("Solve"), None);
+        assert_eq!(Format::from_name(""), None);
+    }
+
+    /// A report prints in its scene's coordinate order with nothing set up
+    /// around it; the bare printer, outside any context, orders by name.
+    #[test]
+    fn a_report_prints_in_its_scenes_order() {
+        let src = "coordinates y, a\nparameters m\nkinetic E = 1/2*m*(y'^2 + y'*a' + a'^2)";
+        let r = hamilton(&Context::new(), src).expect("hamilton");
+        let p = &r.result.momenta[0];
+        assert_eq!(r.print(p).expect("printed"), "m*y' + m*a'/2");
+        assert_eq!(crate::expr::print::input(p), "m*a'/2 + m*y'");
+    }
+}

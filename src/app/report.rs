@@ -1,0 +1,213 @@
+//! Typed reports: what each command computed, before any format.
+//! [`crate::output`] renders them as text, JSON or LaTeX.
+
+use super::{Command, Context};
+use crate::diag::Diagnostic;
+use crate::expr::Expr;
+use crate::mechanics::{Accelerations, Hamiltonian, Integrals, Lagrange};
+use crate::scene::dimension::DimensionReport;
+use crate::scene::Scene;
+use crate::solve::equilibrium::{Equilibria, Values};
+use crate::solve::oscillations::{Modes, NumericFree};
+use crate::solve::system::BlockSolution;
+use std::sync::Arc;
+
+/// A command's result on a scene: `result`, with the scene it came from,
+/// the context it was computed in (its print order and assumptions, so
+/// that [`Report::print`] writes what the CLI writes) and the scene's
+/// warnings.
+#[derive(Clone, Debug)]
+pub struct Report<T> {
+    /// What the command computed.
+    pub result: T,
+    scene: Arc<Scene>,
+    context: Context,
+    warnings: Vec<Diagnostic>,
+}
+
+impl<T> Report<T> {
+    pub(crate) fn new(
+        result: T,
+        scene: Arc<Scene>,
+        context: Context,
+        warnings: Vec<Diagnostic>,
+    ) -> Report<T> {
+        Report {
+            result,
+            scene,
+            context,
+            warnings,
+        }
+    }
+
+    pub(crate) fn add_warnings(&mut self, more: Vec<Diagnostic>) {
+        self.warnings.extend(more);
+    }
+
+    /// The scene the report is about.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The context the report was computed in.
+    pub fn context(&self) -> &Context {
+        &self.context
+    }
+
+    /// The warnings to show beside the result (the scene's, and the
+    /// command's own).
+    pub fn warnings(&self) -> &[Diagnostic] {
+        &self.warnings
+    }
+
+    /// `e` in qdot's input syntax, its terms in the scene's order: what the
+    /// CLI's JSON writes.
+    pub fn print(&self, e: &Expr) -> Result<String, Diagnostic> {
+        self.context.print(e)
+    }
+
+    /// `e` as the CLI's text output writes it.
+    pub fn print_unicode(&self, e: &Expr) -> Result<String, Diagnostic> {
+        self.context.print_unicode(e)
+    }
+}
+
+/// `derive`: Lagrange's equations.
+#[derive(Clone, Debug)]
+pub struct Derived {
+    /// The equations, the mass matrix M and the forcing f.
+    pub lagrange: Lagrange,
+}
+
+/// `solve`: the accelerations and the scene's `solve` blocks.
+#[derive(Clone, Debug)]
+pub struct Solved {
+    /// Lagrange's equations and the accelerations, for a scene with
+    /// dynamics.
+    pub dynamics: Option<(Lagrange, Accelerations)>,
+    /// The force of each `reaction` statement, by component.
+    pub reactions: Vec<Vec<Expr>>,
+    /// The solutions of the `solve` blocks.
+    pub blocks: Vec<BlockSolution>,
+}
+
+impl Solved {
+    /// The acceleration q̈ of `coordinate`.
+    pub fn acceleration(&self, coordinate: &str) -> Option<&Expr> {
+        self.dynamics.as_ref()?.1.get(coordinate)
+    }
+}
+
+/// `forces`: the generalized forces Q_k.
+#[derive(Clone, Debug)]
+pub struct Forces {
+    /// The coordinates, in declaration order.
+    pub coordinates: Vec<String>,
+    /// Q_k, parallel to `coordinates`.
+    pub forces: Vec<Expr>,
+}
+
+/// `modes`: the small oscillations, with a free response when initial
+/// conditions were given (exact, or numeric at the `--set` values).
+#[derive(Clone, Debug)]
+pub struct Oscillations {
+    /// M, C, K, the frequencies and the modes.
+    pub modes: Modes,
+    /// The `--set` values the frequencies are evaluated at.
+    pub set: Values,
+    /// The exact free response q_k(t), with `--init`.
+    pub free: Option<Vec<Expr>>,
+    /// The numeric free response, when the exact one cannot be written.
+    pub numeric: Option<NumericFree>,
+    /// `latex --standalone`: the title of a whole document, else `None`.
+    pub standalone: Option<String>,
+}
+
+/// `latex`: the scene's main result as a LaTeX document, written when it
+/// is rendered.
+#[derive(Clone, Debug)]
+pub struct LatexRequest {
+    /// `--steps`: the derivation line by line.
+    pub steps: bool,
+    /// `--standalone`: a whole document, not a fragment.
+    pub standalone: bool,
+    /// The title of a standalone document.
+    pub title: String,
+    /// The `--set` values.
+    pub set: Values,
+}
+
+/// `derive`'s report.
+pub type DeriveReport = Report<Derived>;
+/// `solve`'s report.
+pub type SolveReport = Report<Solved>;
+/// `forces`' report.
+pub type ForcesReport = Report<Forces>;
+/// `equilibrium`'s report.
+pub type EquilibriaReport = Report<Equilibria>;
+/// `modes`' report.
+pub type ModesReport = Report<Oscillations>;
+/// `hamilton`'s report.
+pub type HamiltonReport = Report<Hamiltonian>;
+/// `integrals`' report.
+pub type IntegralsReport = Report<Integrals>;
+/// `check`'s report: the dimension of every name and result.
+pub type CheckReport = Report<DimensionReport>;
+/// `latex`'s report.
+pub type LatexReport = Report<LatexRequest>;
+
+/// The report of any command ([`super::run`]).
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub enum AnyReport {
+    /// `derive`.
+    Derive(DeriveReport),
+    /// `solve`.
+    Solve(SolveReport),
+    /// `forces`.
+    Forces(ForcesReport),
+    /// `equilibrium`.
+    Equilibrium(EquilibriaReport),
+    /// `modes`.
+    Modes(ModesReport),
+    /// `hamilton`.
+    Hamilton(HamiltonReport),
+    /// `integrals`.
+    Integrals(IntegralsReport),
+    /// `check`.
+    Check(CheckReport),
+    /// `latex`.
+    Latex(LatexReport),
+}
+
+impl AnyReport {
+    /// The command that made it.
+    pub fn command(&self) -> Command {
+        match self {
+            AnyReport::Derive(_) => Command::Derive,
+            AnyReport::Solve(_) => Command::Solve,
+            AnyReport::Forces(_) => Command::Forces,
+            AnyReport::Equilibrium(_) => Command::Equilibrium,
+            AnyReport::Modes(_) => Command::Modes,
+            AnyReport::Hamilton(_) => Command::Hamilton,
+            AnyReport::Integrals(_) => Command::Integrals,
+            AnyReport::Check(_) => Command::Check,
+            AnyReport::Latex(_) => Command::Latex,
+        }
+    }
+
+    /// The warnings to show beside the result.
+    pub fn warnings(&self) -> &[Diagnostic] {
+        match self {
+            AnyReport::Derive(r) => r.warnings(),
+            AnyReport::Solve(r) => r.warnings(),
+            AnyReport::Forces(r) => r.warnings(),
+            AnyReport::Equilibrium(r) => r.warnings(),
+            AnyReport::Modes(r) => r.warnings(),
+            AnyReport::Hamilton(r) => r.warnings(),
+            AnyReport::Integrals(r) => r.warnings(),
+            AnyReport::Check(r) => r.warnings(),
+            AnyReport::Latex(r) => r.warnings(),
+        }
+    }
+}
