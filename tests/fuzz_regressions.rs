@@ -172,6 +172,11 @@ fn simulate_regressions() {
     regressions("simulate");
 }
 
+#[test]
+fn commands_regressions() {
+    regressions("commands");
+}
+
 /// The committed seeds replay cleanly (one child per target, a bound for
 /// the whole corpus), and there are seeds for every target.
 #[test]

@@ -11,6 +11,16 @@ use qdot::output::{self, Command, CommandOptions, Format};
 use qdot::repl::{is_complete, Session};
 use qdot::simulate::run;
 
+/// The work budget of every fuzzed command, a tenth of the default: the
+/// fuzz build (coverage counters, debug assertions) runs several times
+/// slower than a release build, and an input that only does much bounded
+/// work is not a finding; one that escapes the budget still is.
+const FUZZ_MAX_TERMS: usize = qdot::limits::DEFAULT_MAX_TERMS / 10;
+
+/// The most steps of a fuzzed simulation, a tenth of the default: the
+/// step limit's own refusal is tested in tests/simulate_cli.rs.
+const FUZZ_MAX_STEPS: usize = 100_000;
+
 /// The target names, in the order the script runs them.
 pub const TARGETS: [&str; 5] = ["parse", "pipeline", "repl", "simulate", "commands"];
 
@@ -69,7 +79,10 @@ pub fn pipeline(data: &[u8]) {
         return;
     };
     let (cmd, fmt, set) = header(src);
-    let mut opts = CommandOptions::default();
+    let mut opts = CommandOptions {
+        max_terms: FUZZ_MAX_TERMS,
+        ..CommandOptions::default()
+    };
     if let Some(set) = set {
         match output::parse_set(set) {
             Ok(s) => opts.set = s,
@@ -111,6 +124,7 @@ fn run_rendered(cmd: Command, src: &str, fmt: Format, opts: &CommandOptions) {
 pub fn repl(data: &[u8]) {
     let text = String::from_utf8_lossy(data);
     let mut session = Session::new();
+    session.max_terms = FUZZ_MAX_TERMS;
     let mut entry = String::new();
     let feed = |session: &mut Session, entry: &str| -> bool {
         let cmd = entry.trim_start();
@@ -167,7 +181,10 @@ pub fn simulate(data: &[u8]) {
         Some((o, s)) => (o, s),
         None => (text, PENDULUM),
     };
-    let mut req = run::Request::default();
+    let mut req = run::Request {
+        max_steps: FUZZ_MAX_STEPS,
+        ..run::Request::default()
+    };
     let (mut set, mut init, mut t_end, mut plot) = (None, None, None, false);
     let (mut output, mut method) = ("csv", "dop853");
     for line in opts.lines() {
@@ -234,7 +251,10 @@ pub fn simulate(data: &[u8]) {
             return;
         }
     }
-    match run::simulate(scene, &req) {
+    // as the CLI runs it: within the work budget
+    let ran = qdot::budget::within(FUZZ_MAX_TERMS, || run::simulate(scene, &req))
+        .unwrap_or_else(|e| Err(output::too_large(&e)));
+    match ran {
         Ok(r) => {
             let _ = run::csv(&r);
             let _ = run::json(&r);
@@ -287,8 +307,13 @@ pub fn commands(data: &[u8]) {
         Some("hamilton") => {
             scene_command(Command::Hamilton, scene, o.one("--format"), o.one("--set"))
         }
-        Some("sweep") => sweep(scene, &o),
-        Some("codegen") => codegen(scene, &o),
+        // as the CLI runs them: within the work budget
+        Some("sweep") => {
+            let _ = qdot::budget::within(FUZZ_MAX_TERMS, || sweep(scene, &o));
+        }
+        Some("codegen") => {
+            let _ = qdot::budget::within(FUZZ_MAX_TERMS, || codegen(scene, &o));
+        }
         _ => {}
     }
 }
@@ -333,7 +358,10 @@ impl<'a> OptionLines<'a> {
 /// `qdot COMMAND --format FORMAT [--set …]` on `src`.
 fn scene_command(cmd: Command, src: &str, format: Option<&str>, set: Option<&str>) {
     let fmt = format.and_then(Format::from_name).unwrap_or(Format::Text);
-    let mut opts = CommandOptions::default();
+    let mut opts = CommandOptions {
+        max_terms: FUZZ_MAX_TERMS,
+        ..CommandOptions::default()
+    };
     if let Some(set) = set {
         match output::parse_set_any_sign(set) {
             Ok(s) => opts.set = s,
@@ -350,6 +378,7 @@ fn scene_command(cmd: Command, src: &str, format: Option<&str>, set: Option<&str
 fn sweep(src: &str, o: &OptionLines) {
     use qdot::simulate::sweep::{self as sw, Design};
     let mut req = run::Request {
+        max_steps: FUZZ_MAX_STEPS,
         t_end: o.number("--t-end").unwrap_or(1.0),
         stop_when: o.one("--stop-when").map(String::from),
         ..Default::default()
