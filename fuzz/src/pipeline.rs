@@ -252,9 +252,8 @@ pub fn simulate(data: &[u8]) {
         }
     }
     // as the CLI runs it: within the work budget
-    let ran = qdot::budget::within(FUZZ_MAX_TERMS, || run::simulate(scene, &req))
-        .unwrap_or_else(|e| Err(output::too_large(&e)));
-    match ran {
+    let ctx = qdot::app::Context::new().with_max_terms(FUZZ_MAX_TERMS);
+    match qdot::app::simulate(&ctx, scene, &req) {
         Ok(r) => {
             let _ = run::csv(&r);
             let _ = run::json(&r);

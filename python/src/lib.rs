@@ -11,6 +11,7 @@ use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 use qdot::algebra::sign::Values;
+use qdot::app::{self, Context};
 use qdot::output::{self, CommandOptions, Format};
 use qdot::simulate::run::{self, Request};
 use qdot::Diagnostic;
@@ -44,27 +45,11 @@ fn error(d: &Diagnostic, file: &str, src: &str) -> PyErr {
     err
 }
 
-/// `f` under the work budget of exact computation (`max_terms`, 0: the
-/// default), as the command line runs every command: an expression that
-/// grows past it is an error, not a hang.
-fn budgeted<T>(
-    max_terms: usize,
-    f: impl FnOnce() -> PyResult<T>,
-) -> impl FnOnce() -> Result<PyResult<T>, qdot::budget::TooLarge> {
-    let limit = match max_terms {
-        0 => qdot::limits::DEFAULT_MAX_TERMS,
-        n => n,
-    };
-    move || qdot::budget::within(limit, f)
-}
-
-/// The result of [`budgeted`], the exceeded budget as a diagnostic about `src`.
-fn within_budget<T>(
-    r: Result<PyResult<T>, qdot::budget::TooLarge>,
-    file: &str,
-    src: &str,
-) -> PyResult<T> {
-    r.unwrap_or_else(|e| Err(error(&qdot::diag::too_large(&e), file, src)))
+/// The context of a call: the work budget of exact computation
+/// (`max_terms`, 0: the default), as the command line runs every command:
+/// an expression that grows past it is an error, not a hang.
+fn context(max_terms: usize) -> Context {
+    Context::new().with_max_terms(max_terms)
 }
 
 fn values(pairs: Vec<(String, f64)>) -> Values {
@@ -126,12 +111,8 @@ fn run_command(
 #[pyfunction]
 #[pyo3(signature = (source, file="<scene>", max_terms=0))]
 fn check_scene(py: Python<'_>, source: &str, file: &str, max_terms: usize) -> PyResult<()> {
-    let parse = budgeted(max_terms, || {
-        qdot::Scene::parse(source)
-            .map(|_| ())
-            .map_err(|d| error(&d, file, source))
-    });
-    within_budget(py.detach(parse), file, source)
+    py.detach(|| context(max_terms).run(|| qdot::Scene::parse(source).map(|_| ())))
+        .map_err(|d| error(&d, file, source))
 }
 
 /// `name=value,…` as (name, value) pairs: `kind` "set" (parameters, any
@@ -187,10 +168,9 @@ fn simulate<'py>(
         baumgarte,
         ..Request::default()
     };
-    let run = budgeted(max_terms, || {
-        run::simulate(source, &req).map_err(|d| error(&d, file, source))
-    });
-    let r = within_budget(py.detach(run), file, source)?;
+    let r = py
+        .detach(|| app::simulate(&context(max_terms), source, &req))
+        .map_err(|d| error(&d, file, source))?;
     let mut bytes = Vec::with_capacity(r.rows.len() * r.columns.len() * 8);
     for row in &r.rows {
         for x in row {
@@ -254,7 +234,7 @@ fn sweep<'py>(
     file: &str,
     max_terms: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
-    use qdot::simulate::sweep::{self as sw, Axis, Design};
+    use qdot::simulate::sweep::{Axis, Design};
     let method = run::method_by_name(method).map_err(|d| error(&d, file, ""))?;
     let base = Request {
         set: values(set),
@@ -281,12 +261,19 @@ fn sweep<'py>(
         Some(samples) => Design::Random { samples, seed },
         None => Design::Grid,
     };
-    let runs = budgeted(max_terms, || {
-        run::Prepared::new(source, &[])
-            .and_then(|prepared| sw::sweep(&prepared, &base, &axes, design, threads, &|_| {}))
-            .map_err(|d| error(&d, file, source))
-    });
-    let s = within_budget(py.detach(runs), file, source)?;
+    let s = py
+        .detach(|| {
+            app::sweep(
+                &context(max_terms),
+                source,
+                &base,
+                &axes,
+                design,
+                threads,
+                &|_| {},
+            )
+        })
+        .map_err(|d| error(&d, file, source))?;
     let n = s.coordinates.len();
     let mut bytes = Vec::new();
     let mut status = Vec::with_capacity(s.runs.len());
@@ -340,32 +327,27 @@ fn latex_exprs(
     file: &str,
     max_terms: usize,
 ) -> PyResult<Vec<String>> {
-    within_budget(
-        budgeted(max_terms, || latex_of(source, &exprs, file))(),
-        file,
-        source,
-    )
-}
-
-/// [`latex_exprs`] within its budget.
-fn latex_of(source: &str, exprs: &[String], file: &str) -> PyResult<Vec<String>> {
-    let scene = qdot::Scene::parse(source).map_err(|d| error(&d, file, source))?;
+    let ctx = context(max_terms);
+    let scene = ctx
+        .run(|| qdot::Scene::parse(source))
+        .map_err(|d| error(&d, file, source))?;
     let mut names = qdot::expr::latex::Names::new();
     for n in &scene.latex_names {
         names.set(&n.name, &n.tex);
     }
-    let coordinates: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
-    qdot::expr::print::with_coordinate_order(&coordinates, || {
-        exprs
-            .iter()
-            .map(|text| {
+    // in the scene's context: its budget, its coordinates' order
+    let ctx = ctx.for_scene(&scene);
+    exprs
+        .iter()
+        .map(|text| {
+            ctx.run(|| {
                 scene
                     .expr(text)
                     .map(|e| qdot::expr::latex::latex_with(&e, &names))
-                    .map_err(|d| error(&d, "<expression>", text))
             })
-            .collect()
-    })
+            .map_err(|d| error(&d, "<expression>", text))
+        })
+        .collect()
 }
 
 /// The version of the qdot library inside.

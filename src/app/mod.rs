@@ -204,6 +204,44 @@ pub fn integrals(ctx: &Context, src: &str) -> Result<IntegralsReport, Diagnostic
     on_scene(ctx, src, commands::integrals)
 }
 
+/// `simulate` on the scene source `src` (`qdot simulate`), within `ctx`'s
+/// budget.
+pub fn simulate(
+    ctx: &Context,
+    src: &str,
+    req: &crate::simulate::run::Request,
+) -> Result<crate::simulate::run::Run, Diagnostic> {
+    ctx.run(|| crate::simulate::run::simulate(src, req))
+}
+
+/// `sweep` on the scene source `src` (`qdot sweep`): `base` once per point
+/// of the design, within `ctx`'s budget (see
+/// [`crate::simulate::sweep::sweep`]).
+pub fn sweep(
+    ctx: &Context,
+    src: &str,
+    base: &crate::simulate::run::Request,
+    axes: &[crate::simulate::sweep::Axis],
+    design: crate::simulate::sweep::Design,
+    threads: usize,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<crate::simulate::sweep::Sweep, Diagnostic> {
+    ctx.run(|| {
+        let prepared = crate::simulate::run::Prepared::new(src, &base.functions)?;
+        crate::simulate::sweep::sweep(&prepared, base, axes, design, threads, progress)
+    })
+}
+
+/// `codegen` on the scene source `src` (`qdot codegen`): the source code,
+/// within `ctx`'s budget.
+pub fn codegen(
+    ctx: &Context,
+    src: &str,
+    req: &crate::simulate::codegen::CodegenRequest,
+) -> Result<String, Diagnostic> {
+    ctx.run(|| crate::simulate::codegen::codegen(src, req))
+}
+
 mod commands;
 
 #[cfg(test)]
