@@ -1,6 +1,6 @@
 """The work-precision report's symbolic anchor: SymEngine (C++ core) deriving
 Lagrange's equations of the n-link planar pendulum chain (equal m, l), the
-scene of qdot::gallery::pendulum_chain.
+scene of qdot::engine::gallery::pendulum_chain.
 
 Usage: anchor_symengine.py N [N ...]   (needs `pip install symengine`)
 Prints one JSON object: the SymEngine version and, per n, the best wall time

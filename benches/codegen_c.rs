@@ -28,7 +28,7 @@ fn problems() -> Vec<(&'static str, String, Vec<f64>, Vec<f64>)> {
         ),
         (
             "double_pendulum",
-            qdot::gallery::pendulum_chain(2),
+            qdot::engine::gallery::pendulum_chain(2),
             vec![1.0, 1.0, 9.81],
             vec![0.5, 1.0, 0.3, -0.2],
         ),

@@ -29,8 +29,8 @@ mod hand;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use hand::Hand;
+use qdot::engine::poly::Var;
 use qdot::expr::atom::{self, Atom};
-use qdot::poly::Var;
 use qdot::simulate::compile::{compile_with, state_inputs, CompiledDynamics, Engine};
 use qdot::simulate::problems::Problem;
 use qdot::simulate::System;
@@ -51,7 +51,7 @@ fn hand(tuned: bool) -> Hand {
 }
 
 fn setup() -> (Lagrange, Vec<Expr>, FxHashMap<Var, f64>) {
-    let l = Scene::parse(&qdot::gallery::pendulum_chain(N))
+    let l = Scene::parse(&qdot::engine::gallery::pendulum_chain(N))
         .expect("parses")
         .lagrange()
         .expect("derives");
@@ -174,7 +174,7 @@ fn chain(c: &mut Criterion) {
 /// The double pendulum (the 2-link chain): M⁻¹f by `solve_spd` against the
 /// compiled exact accelerations (`CompiledDynamics::from_accelerations`).
 fn double_pendulum(c: &mut Criterion) {
-    let l = Scene::parse(&qdot::gallery::pendulum_chain(2))
+    let l = Scene::parse(&qdot::engine::gallery::pendulum_chain(2))
         .expect("parses")
         .lagrange()
         .expect("derives");

@@ -28,7 +28,7 @@ use std::hint::black_box;
 
 fn seeds(c: &mut Criterion) {
     let mut g = c.benchmark_group("seed");
-    for name in qdot::gallery::SEED_EXAMPLES {
+    for name in qdot::engine::gallery::SEED_EXAMPLES {
         let path = format!(
             "{}/examples/{name}.qd",
             concat!(env!("CARGO_MANIFEST_DIR"), "/..")
@@ -95,7 +95,7 @@ fn npendulum(c: &mut Criterion) {
     let mut g = c.benchmark_group("npendulum/derive");
     g.sample_size(20);
     for n in [2usize, 3, 4, 6, 8, 10, 12] {
-        let src = qdot::gallery::pendulum_chain(n);
+        let src = qdot::engine::gallery::pendulum_chain(n);
         g.bench_with_input(BenchmarkId::from_parameter(n), &src, |b, src| {
             b.iter(|| {
                 let s = Scene::parse(black_box(src)).expect("parses");
@@ -107,7 +107,7 @@ fn npendulum(c: &mut Criterion) {
     let mut g = c.benchmark_group("npendulum/solve");
     g.sample_size(10);
     for n in [2usize, 3] {
-        let src = qdot::gallery::pendulum_chain(n);
+        let src = qdot::engine::gallery::pendulum_chain(n);
         g.bench_with_input(BenchmarkId::from_parameter(n), &src, |b, src| {
             b.iter(|| {
                 let s = Scene::parse(black_box(src)).expect("parses");
@@ -125,7 +125,7 @@ fn npendulum(c: &mut Criterion) {
 
 /// Frames and rigid bodies: the heavy top end to end (parse → equations →
 /// accelerations), and the equations of the chain of n rods in space
-/// (`qdot::gallery::rod_chain_3d`) beside SymPy's LagrangesMethod on the
+/// (`qdot::engine::gallery::rod_chain_3d`) beside SymPy's LagrangesMethod on the
 /// same system (`scripts/anchor_frames.py`, run by `scripts/anchors.sh`).
 fn frames(c: &mut Criterion) {
     let mut g = c.benchmark_group("frames");
@@ -145,7 +145,7 @@ fn frames(c: &mut Criterion) {
     let mut g = c.benchmark_group("frames/chain3d");
     g.sample_size(10);
     for n in [2usize, 3, 5, 10] {
-        let src = qdot::gallery::rod_chain_3d(n);
+        let src = qdot::engine::gallery::rod_chain_3d(n);
         g.bench_with_input(BenchmarkId::from_parameter(n), &src, |b, src| {
             b.iter(|| {
                 let s = Scene::parse(black_box(src)).expect("parses");

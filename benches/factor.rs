@@ -39,7 +39,7 @@ fn factor(c: &mut Criterion) {
         let e = scene.expr(src).expect("polynomial");
         let p = e.num().clone();
         g.bench_function(name, |b| {
-            b.iter(|| black_box(qdot::poly::factor::factor(black_box(&p))))
+            b.iter(|| black_box(qdot::engine::poly::factor::factor(black_box(&p))))
         });
     }
     g.finish();

@@ -10,7 +10,7 @@ use std::hint::black_box;
 
 fn parse(c: &mut Criterion) {
     let mut g = c.benchmark_group("parse");
-    for name in qdot::gallery::SEED_EXAMPLES {
+    for name in qdot::engine::gallery::SEED_EXAMPLES {
         let path = format!(
             "{}/examples/{name}.qd",
             concat!(env!("CARGO_MANIFEST_DIR"), "/..")

@@ -48,7 +48,7 @@ fn chain_end_to_end(src: &str, p: &Problem) -> f64 {
 
 fn chain(c: &mut Criterion) {
     let p = Problem::chain10();
-    let src = qdot::gallery::pendulum_chain(10);
+    let src = qdot::engine::gallery::pendulum_chain(10);
     let mut g = c.benchmark_group("end_to_end");
     g.sample_size(10)
         .warm_up_time(Duration::from_millis(500))

@@ -37,7 +37,7 @@ fn best_of<R>(runs: usize, mut f: impl FnMut() -> R) -> f64 {
 
 /// qdot's derivation of the n-link chain: parse, then Lagrange's equations.
 fn qdot_derive(n: usize) -> Result<f64, String> {
-    let src = qdot::gallery::pendulum_chain(n);
+    let src = qdot::engine::gallery::pendulum_chain(n);
     qdot::Scene::parse(&src)
         .and_then(|s| s.lagrange())
         .map_err(|d| d.message)?;
@@ -116,7 +116,7 @@ pub fn measure(root: &Path) -> Result<Symbolic, String> {
             .and_then(|(_, rows)| rows.iter().find(|r| r.0 == n).map(|r| r.1));
         derive.push((n, ours, theirs));
     }
-    let src = qdot::gallery::pendulum_chain(5);
+    let src = qdot::engine::gallery::pendulum_chain(5);
     let dir = root.join("target/wp");
     std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
     let scene = dir.join("chain5.qd");
@@ -150,7 +150,7 @@ pub fn markdown(s: &Result<Symbolic, String>) -> String {
     };
     match &s.symengine {
         Ok(v) => {
-            let _ = writeln!(md, "Lagrange's equations of the n-link pendulum chain (`qdot::gallery::pendulum_chain`), derived by qdot (parse and derive, in lowest terms) and by {v} (`benches/anchor_symengine.py`: the same energies, d/dt by the chain rule, expanded), best of 3:\n");
+            let _ = writeln!(md, "Lagrange's equations of the n-link pendulum chain (`qdot::engine::gallery::pendulum_chain`), derived by qdot (parse and derive, in lowest terms) and by {v} (`benches/anchor_symengine.py`: the same energies, d/dt by the chain rule, expanded), best of 3:\n");
         }
         Err(e) => {
             let _ = writeln!(md, "SymEngine was **not** measured in this run: {e}.\n");

@@ -24,33 +24,30 @@
 
 #![warn(missing_docs)]
 
-// The public API: the modules along the data's path, and the names a
-// user needs at the root. The modules marked `doc(hidden)` are the engine's
-// internals: public for the tests, benches and fuzz targets of this
-// repository, without a promise of stability.
+// The public API: the modules along the data's path, the application
+// layer, and the names a user needs at the root. The engine's internals
+// are behind one hidden module, `engine`.
 pub use qdot_exact::{expr, limits, num};
 pub use qdot_mechanics::{mechanics, scene, solve};
 pub use qdot_syntax::{diag, parse};
 pub mod app;
 pub mod output;
+pub mod repl;
 pub mod simulate;
 
 #[doc(hidden)]
-pub use qdot_exact::{algebra, budget, cancel, poly};
-#[doc(hidden)]
-pub use qdot_ode::dense;
-#[doc(hidden)]
-pub mod gallery;
-#[doc(hidden)]
-pub mod repl;
-#[doc(hidden)]
-pub use qdot_syntax::unicode;
+pub mod engine;
 
+// the engine's modules by the paths this crate's own code uses
+use engine::gallery;
+use qdot_exact::{algebra, budget, cancel, poly};
+
+pub use app::{AnyReport, Command, CommandOptions, Context, Format, Report};
 pub use diag::{Diagnostic, Severity, Span};
 pub use expr::Expr;
 pub use mechanics::{Accelerations, Equation, Lagrange};
 pub use num::Q;
-pub use output::{run, run_with, Command, CommandOptions, Format};
+pub use output::{render, run, run_with};
 pub use scene::{Scene, Value};
 pub use solve::equilibrium::{equilibria, Equilibria, Stability};
 pub use solve::oscillations::{modes, Modes};

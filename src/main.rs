@@ -444,7 +444,7 @@ fn codegen(
 /// Run a command that derives outside `output::run_with` (simulate, sweep,
 /// codegen) under the work budget `--max-terms`, as every other command is.
 fn budgeted(file: &str, max_terms: usize, f: impl FnOnce() -> ExitCode) -> ExitCode {
-    match qdot::budget::within(max_terms, f) {
+    match qdot::engine::budget::within(max_terms, f) {
         Ok(code) => code,
         Err(e) => {
             // the statement it names is shown in its source
@@ -760,8 +760,8 @@ fn sweep(o: &SweepArgs) -> ExitCode {
                 let left = spent * (total - done) as f64 / done.max(1) as f64;
                 eprintln!(
                     "sweep: {} of {} runs done in {spent:.0} s, about {left:.0} s left",
-                    qdot::budget::grouped(done),
-                    qdot::budget::grouped(total)
+                    qdot::engine::budget::grouped(done),
+                    qdot::engine::budget::grouped(total)
                 );
             }
         };

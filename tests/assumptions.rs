@@ -1,8 +1,8 @@
 //! `assume` (issue 16): parameters of either sign and order facts between
 //! parameters, used wherever qdot decides a sign.
 
-use qdot::algebra::assume::{assuming, Assumptions};
-use qdot::algebra::sign::{sign_exact, Sign};
+use qdot::engine::algebra::assume::{assuming, Assumptions};
+use qdot::engine::algebra::sign::{sign_exact, Sign};
 use qdot::output::{self, Command, Format};
 use qdot::Scene;
 

@@ -106,7 +106,7 @@ fn check_blocks(name: &str, scene: &Scene, v: &serde_json::Value) {
 #[test]
 fn json_contract_and_reparse() {
     let mut kinds = std::collections::BTreeSet::new();
-    for name in qdot::gallery::SEED_EXAMPLES {
+    for name in qdot::engine::gallery::SEED_EXAMPLES {
         let path = format!("examples/{name}.qd");
         let src =
             std::fs::read_to_string(format!("{}/{path}", env!("CARGO_MANIFEST_DIR"))).unwrap();

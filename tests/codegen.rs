@@ -40,10 +40,10 @@ fn scenes() -> Vec<SceneCase> {
     };
     vec![
         plain("pendulum", read("examples/pendulum.qd")),
-        plain("double_pendulum", qdot::gallery::pendulum_chain(2)),
+        plain("double_pendulum", qdot::engine::gallery::pendulum_chain(2)),
         plain("seed_24_2", read("examples/seed_24_2.qd")),
         plain("heavy_top", read("examples/heavy_top.qd")),
-        plain("chain5", qdot::gallery::pendulum_chain(5)),
+        plain("chain5", qdot::engine::gallery::pendulum_chain(5)),
         plain(
             "cartesian_pendulum",
             qdot::simulate::problems::Problem::cartesian_pendulum().scene,
@@ -422,8 +422,8 @@ fn julia_output_snapshot() {
     std::fs::create_dir_all(&dir).unwrap();
     for (name, src) in [
         ("pendulum", read("examples/pendulum.qd")),
-        ("double_pendulum", qdot::gallery::pendulum_chain(2)),
-        ("chain3", qdot::gallery::pendulum_chain(3)),
+        ("double_pendulum", qdot::engine::gallery::pendulum_chain(2)),
+        ("chain3", qdot::engine::gallery::pendulum_chain(3)),
     ] {
         let file = format!("{name}.qd");
         std::fs::write(dir.join(&file), src).unwrap();

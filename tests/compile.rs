@@ -4,9 +4,9 @@
 //! common-subexpression sharing; and `CompiledDynamics`' accelerations.
 
 use proptest::prelude::*;
+use qdot::engine::poly::{Poly, Var};
 use qdot::expr::atom::{self, Atom};
 use qdot::expr::func;
-use qdot::poly::{Poly, Var};
 use qdot::simulate::compile::{
     compile, compile_with, naive_op_count, solve_spd, CompileError, CompiledDynamics, Evaluator,
     Instr, Program,
@@ -160,7 +160,7 @@ fn example(name: &str) -> Scene {
 }
 
 fn chain(n: usize) -> Lagrange {
-    Scene::parse(&qdot::gallery::pendulum_chain(n))
+    Scene::parse(&qdot::engine::gallery::pendulum_chain(n))
         .expect("chain parses")
         .lagrange()
         .expect("chain derives")
@@ -175,7 +175,7 @@ fn parts(l: &Lagrange) -> Vec<Expr> {
 #[test]
 fn seed_examples_agree_with_tree_walk() {
     let mut dynamic = 0;
-    for name in qdot::gallery::SEED_EXAMPLES {
+    for name in qdot::engine::gallery::SEED_EXAMPLES {
         let s = example(name);
         if !s.has_dynamics() {
             continue;

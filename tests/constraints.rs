@@ -35,7 +35,7 @@ solve T { m*l*th'^2 = T - m*g*cos(th) }
 
 /// x = l·sin θ, y = −l·cos θ and their velocities: the Cartesian
 /// pendulum's state on its constraint, in the angle's.
-fn on_the_circle(s: &Scene) -> FxHashMap<qdot::poly::Var, Expr> {
+fn on_the_circle(s: &Scene) -> FxHashMap<qdot::engine::poly::Var, Expr> {
     let mut at = FxHashMap::default();
     for (v, text) in [
         (atom::coord("x", 0), "l*sin(th)"),

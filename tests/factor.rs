@@ -1,11 +1,11 @@
-//! Factorization over ℚ (`qdot::poly::factor`): known answers, the SymPy
+//! Factorization over ℚ (`qdot::engine::poly::factor`): known answers, the SymPy
 //! oracle (`tests/fixtures/factor.json`, written by `gen_factor.py` with
 //! `factor_list`), and properties on random products.
 
 use proptest::prelude::*;
+use qdot::engine::poly::factor::{factor, square_free, Factorization};
+use qdot::engine::poly::{Mono, Poly};
 use qdot::num::Q;
-use qdot::poly::factor::{factor, square_free, Factorization};
-use qdot::poly::{Mono, Poly};
 use serde_json::Value;
 
 /// Variable names of the test polynomials, by id (`l` stands for λ).

@@ -8,9 +8,9 @@
 
 use crate::compile::{random_expr, Rng};
 use proptest::prelude::*;
+use qdot::engine::poly::Var;
 use qdot::expr::atom;
 use qdot::expr::func;
-use qdot::poly::Var;
 use qdot::simulate::compile::jit::{compile_program, compile_rhs, Tail};
 use qdot::simulate::compile::{compile, CompiledDynamics, Engine};
 use qdot::simulate::problems::Problem;
@@ -141,9 +141,9 @@ fn report_problems_and_chains_agree_with_the_interpreter() {
     }
     let mut rng = Rng(3);
     for src in [
-        qdot::gallery::pendulum_chain(10),
-        qdot::gallery::pendulum_chain(20),
-        qdot::gallery::rod_chain_3d(3),
+        qdot::engine::gallery::pendulum_chain(10),
+        qdot::engine::gallery::pendulum_chain(20),
+        qdot::engine::gallery::rod_chain_3d(3),
     ] {
         let scene = Scene::parse(&src).expect("parses");
         let lag = scene.lagrange().expect("derives");

@@ -204,7 +204,7 @@ fn kinetostatic_and_equilibrium_scenes() {
 /// Long equations break before a sign; the number stays on the last line.
 #[test]
 fn long_equations_break() {
-    let src = qdot::gallery::pendulum_chain(3);
+    let src = qdot::engine::gallery::pendulum_chain(3);
     let dir = std::env::temp_dir().join(format!("qdot-latex-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let file = dir.join("chain3.qd");

@@ -115,7 +115,7 @@ fn condition(e: &Expr, vals: [f64; 4]) -> f64 {
     // each atom once: a radical's argument can be large, and occur in
     // thousands of terms
     let values = std::cell::RefCell::new(std::collections::HashMap::new());
-    let atom_value = |v: qdot::poly::Var| {
+    let atom_value = |v: qdot::engine::poly::Var| {
         *values.borrow_mut().entry(v).or_insert_with(|| {
             qdot::expr::func::eval_atom(v, &|a: &Atom| match a {
                 Atom::Param(n) => Some(env(n)),
@@ -125,7 +125,7 @@ fn condition(e: &Expr, vals: [f64; 4]) -> f64 {
             .unwrap_or(f64::NAN)
         })
     };
-    let part = |p: &qdot::poly::Poly| {
+    let part = |p: &qdot::engine::poly::Poly| {
         let mut sum = 0.0f64;
         let mut abs = 0.0f64;
         for (m, c) in p.terms() {

@@ -25,7 +25,7 @@ fn dir(name: &str) -> PathBuf {
 /// The chain's scene in `d`, and the arguments of a long run of it.
 fn long_run(d: &std::path::Path) -> Vec<String> {
     let file = d.join("chain10.qd");
-    std::fs::write(&file, qdot::gallery::pendulum_chain(10)).unwrap();
+    std::fs::write(&file, qdot::engine::gallery::pendulum_chain(10)).unwrap();
     let mut init: Vec<String> = (1..=10)
         .map(|i| format!("q{i}={}", 0.3 + 0.02 * (i - 1) as f64))
         .collect();

@@ -21,7 +21,7 @@ fn main() -> Result<(), qdot::Diagnostic> {
         .and_then(|s| s.parse().ok())
         .unwrap_or(3);
     for n in 1..=nmax {
-        let src = qdot::gallery::pendulum_chain(n);
+        let src = qdot::engine::gallery::pendulum_chain(n);
         // best of a few runs
         let mut best = f64::INFINITY;
         let mut terms = 0;

@@ -41,9 +41,13 @@ pub const INPUT: &str = "input";
 /// asked to quit.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Response {
+    /// For standard output.
     pub out: String,
+    /// For standard error: errors and warnings, rendered.
     pub err: String,
+    /// Whether the entry failed (the session is as it was).
     pub failed: bool,
+    /// Whether the user asked to leave.
     pub quit: bool,
 }
 

@@ -21,7 +21,7 @@ fn run(tag: &str, src: &str, command: &str, args: &[&str]) -> Outcome {
 fn the_equilibria_of_a_thirty_link_chain_stop_at_the_case_limit() {
     let o = run(
         "equilibria12",
-        &qdot::gallery::pendulum_chain(12),
+        &qdot::engine::gallery::pendulum_chain(12),
         "equilibrium",
         &[],
     );
@@ -30,7 +30,7 @@ fn the_equilibria_of_a_thirty_link_chain_stop_at_the_case_limit() {
     assert!(!o.stdout.contains("\n  4097. "), "{o:?}");
     let o = run(
         "equilibria30",
-        &qdot::gallery::pendulum_chain(30),
+        &qdot::engine::gallery::pendulum_chain(30),
         "equilibrium",
         &[],
     );
@@ -91,7 +91,12 @@ fn a_swinnerton_dyer_force_stops_factoring_within_the_budget() {
 /// for 40); fraction-free, it is charged to the budget and takes a second.
 #[test]
 fn the_characteristic_polynomial_of_a_forty_link_chain_is_fraction_free() {
-    let o = run("modes40", &qdot::gallery::pendulum_chain(40), "modes", &[]);
+    let o = run(
+        "modes40",
+        &qdot::engine::gallery::pendulum_chain(40),
+        "modes",
+        &[],
+    );
     assert_eq!(o.code, Some(0), "{o:?}");
     assert!(
         o.stdout.contains("\nCharacteristic equation  det(K − λ·M) = 0,  λ = ω²\n  815915283247897734345611269596115894272000000000·g⁴⁰·l⁴⁰·m⁴⁰ − 32636611329915909373824450783844635770880000000000·g³⁹·l⁴¹·m⁴⁰·λ + "),

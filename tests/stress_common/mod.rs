@@ -207,7 +207,7 @@ impl Rng {
 /// g = 9.81), and how long deriving and compiling took (s).
 pub fn chain_dynamics(n: usize) -> (CompiledDynamics, f64, f64) {
     let t0 = std::time::Instant::now();
-    let scene = qdot::Scene::parse(&qdot::gallery::pendulum_chain(n)).expect("parses");
+    let scene = qdot::Scene::parse(&qdot::engine::gallery::pendulum_chain(n)).expect("parses");
     let lag = scene.lagrange().expect("derives");
     let derive = t0.elapsed().as_secs_f64();
     let t1 = std::time::Instant::now();
