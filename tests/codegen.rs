@@ -11,6 +11,7 @@ use qdot::simulate::codegen::{codegen, CodegenRequest, Form, Lang};
 use qdot::simulate::compile::{compile_with, state_inputs, CompiledDynamics};
 use qdot::simulate::{constrained, given, run};
 use qdot::Scene;
+use qdot_exact::rng::SplitMix64;
 use rustc_hash::FxHashMap;
 use std::path::PathBuf;
 use std::process::Command;
@@ -56,18 +57,6 @@ fn scenes() -> Vec<SceneCase> {
     ]
 }
 
-/// xorshift64*: reproducible numbers in [lo, hi).
-struct Rng(u64);
-impl Rng {
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        let u = (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64;
-        lo + (hi - lo) * u
-    }
-}
-
 /// One call of a generated function and what qdot's evaluator gives.
 struct Call {
     /// `rhs`, `energy`, `mass_matrix`, `forcing`.
@@ -85,7 +74,7 @@ struct Call {
 fn generate(lang: Lang) -> (String, Vec<Call>, usize) {
     let mut code = String::new();
     let mut calls = Vec::new();
-    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+    let mut rng = SplitMix64::new(0x9E37_79B9_7F4A_7C15);
     for sc in scenes() {
         let mut req = CodegenRequest::new(&format!("{}.qd", sc.name), lang);
         req.functions = sc.functions.clone();

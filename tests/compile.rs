@@ -13,23 +13,8 @@ use qdot::simulate::compile::{
 };
 use qdot::simulate::System;
 use qdot::{Expr, Lagrange, Scene};
+use qdot_exact::rng::SplitMix64;
 use rustc_hash::FxHashMap;
-
-/// A small deterministic generator (SplitMix64).
-pub(crate) struct Rng(pub(crate) u64);
-impl Rng {
-    pub(crate) fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-    pub(crate) fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next()
-    }
-}
 
 /// Every parameter, unknown, coordinate and time atom the expressions
 /// mention (through function arguments too), sorted.
@@ -57,13 +42,13 @@ pub(crate) fn leaves(exprs: &[Expr]) -> Vec<Var> {
 
 /// A random value per leaf: parameters in [0.5, 2], coordinates and
 /// velocities in [−1.5, 1.5], t in [0, 2].
-fn random_point(vars: &[Var], rng: &mut Rng) -> FxHashMap<Var, f64> {
+fn random_point(vars: &[Var], rng: &mut SplitMix64) -> FxHashMap<Var, f64> {
     vars.iter()
         .map(|&v| {
             let x = match atom::atom(v) {
-                Atom::Param(_) | Atom::Unknown(_) => rng.range(0.5, 2.0),
-                Atom::Time => rng.range(0.0, 2.0),
-                _ => rng.range(-1.5, 1.5),
+                Atom::Param(_) | Atom::Unknown(_) => rng.uniform(0.5, 2.0),
+                Atom::Time => rng.uniform(0.0, 2.0),
+                _ => rng.uniform(-1.5, 1.5),
             };
             (v, x)
         })
@@ -132,7 +117,7 @@ fn check_program(exprs: &[Expr], points: usize, seed: u64) -> f64 {
     let prog = compile(exprs, &inputs).expect("compiles");
     let mut regs = prog.registers();
     let mut out = vec![0.0; exprs.len()];
-    let mut rng = Rng(seed);
+    let mut rng = SplitMix64::new(seed);
     let mut worst = 0.0f64;
     for _ in 0..points {
         let at = random_point(&inputs, &mut rng);
@@ -233,7 +218,7 @@ fn bound_parameters_fold_into_constants() {
             .ends_with(" has no value and is not an input"),
         "{err}"
     );
-    let mut rng = Rng(11);
+    let mut rng = SplitMix64::new(11);
     let mut regs = bound.registers();
     let mut out = vec![0.0; exprs.len()];
     for _ in 0..10 {
@@ -403,10 +388,10 @@ fn compiled_dynamics_matches_exact_accelerations() {
         let mut via_m = CompiledDynamics::new(&l, &map).expect("compiles");
         let mut via_acc = CompiledDynamics::from_accelerations(&l, &map).expect("compiles");
         assert!(!via_m.constant_mass());
-        let mut rng = Rng(5);
+        let mut rng = SplitMix64::new(5);
         for _ in 0..10 {
-            let q: Vec<f64> = (0..n).map(|_| rng.range(-1.5, 1.5)).collect();
-            let qd: Vec<f64> = (0..n).map(|_| rng.range(-1.5, 1.5)).collect();
+            let q: Vec<f64> = (0..n).map(|_| rng.uniform(-1.5, 1.5)).collect();
+            let qd: Vec<f64> = (0..n).map(|_| rng.uniform(-1.5, 1.5)).collect();
             let mut at = map.clone();
             for (i, c) in l.coordinates.iter().enumerate() {
                 at.insert(atom::coord(c, 0), q[i]);
@@ -465,10 +450,10 @@ fn constant_mass_matrix_is_factored_once() {
 
 #[test]
 fn solve_spd_agrees_with_multiplication() {
-    let mut rng = Rng(9);
+    let mut rng = SplitMix64::new(9);
     for n in 1..8 {
         // A = B·Bᵀ + I (SPD) and a symmetric indefinite matrix.
-        let b: Vec<f64> = (0..n * n).map(|_| rng.range(-1.0, 1.0)).collect();
+        let b: Vec<f64> = (0..n * n).map(|_| rng.uniform(-1.0, 1.0)).collect();
         for spd in [true, false] {
             let mut a = vec![0.0; n * n];
             for i in 0..n {
@@ -481,7 +466,7 @@ fn solve_spd_agrees_with_multiplication() {
                     };
                 }
             }
-            let x: Vec<f64> = (0..n).map(|_| rng.range(-1.0, 1.0)).collect();
+            let x: Vec<f64> = (0..n).map(|_| rng.uniform(-1.0, 1.0)).collect();
             let mut f: Vec<f64> = (0..n)
                 .map(|i| (0..n).map(|j| a[i * n + j] * x[j]).sum())
                 .collect();

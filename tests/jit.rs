@@ -6,7 +6,7 @@
 //! order, with no fused multiply-add). And the fallbacks: a mass matrix
 //! that is not positive definite, `--evaluator` on the command line.
 
-use crate::compile::{random_expr, Rng};
+use crate::compile::random_expr;
 use proptest::prelude::*;
 use qdot::engine::poly::Var;
 use qdot::expr::atom;
@@ -16,6 +16,7 @@ use qdot::simulate::compile::{compile, CompiledDynamics, Engine};
 use qdot::simulate::problems::Problem;
 use qdot::simulate::{constrained, System};
 use qdot::{Expr, Lagrange, Scene};
+use qdot_exact::rng::SplitMix64;
 use rustc_hash::FxHashMap;
 use std::process::Command;
 
@@ -31,11 +32,11 @@ fn check_dynamics(d: &mut CompiledDynamics, what: &str, points: usize, seed: u64
     assert_eq!(report.ran, Engine::Jit, "{what}: {:?}", report.reason);
     assert_eq!(d.engine(), Engine::Jit);
     let n = d.n();
-    let mut rng = Rng(seed);
+    let mut rng = SplitMix64::new(seed);
     let mut finite = 0;
     for _ in 0..points {
-        let y: Vec<f64> = (0..2 * n).map(|_| rng.range(-1.5, 1.5)).collect();
-        let t = rng.range(0.0, 2.0);
+        let y: Vec<f64> = (0..2 * n).map(|_| rng.uniform(-1.5, 1.5)).collect();
+        let t = rng.uniform(0.0, 2.0);
         let (mut a, mut b) = (vec![0.0; 2 * n], vec![0.0; 2 * n]);
         d.rhs(t, &y, &mut a);
         d.rhs_interpreted(t, &y, &mut b);
@@ -54,11 +55,11 @@ fn check_dynamics(d: &mut CompiledDynamics, what: &str, points: usize, seed: u64
 }
 
 /// Random values in [0.5, 2] for the scene's parameters, α = 1.
-fn params_of(scene: &Scene, rng: &mut Rng) -> FxHashMap<Var, f64> {
+fn params_of(scene: &Scene, rng: &mut SplitMix64) -> FxHashMap<Var, f64> {
     let mut p: FxHashMap<Var, f64> = scene
         .parameters
         .iter()
-        .map(|p| (atom::param(&p.name), rng.range(0.5, 2.0)))
+        .map(|p| (atom::param(&p.name), rng.uniform(0.5, 2.0)))
         .collect();
     p.insert(constrained::alpha_var(), 1.0);
     p
@@ -89,7 +90,7 @@ fn every_example_agrees_with_the_interpreter() {
         .collect();
     names.sort();
     let (mut checked, mut finite) = (0, 0);
-    let mut rng = Rng(5);
+    let mut rng = SplitMix64::new(5);
     for path in names {
         let src = std::fs::read_to_string(&path).expect("reads");
         let Ok(scene) = Scene::parse(&src) else {
@@ -139,7 +140,7 @@ fn report_problems_and_chains_agree_with_the_interpreter() {
     ] {
         assert!(evaluators.contains(&e), "no problem uses {e:?}");
     }
-    let mut rng = Rng(3);
+    let mut rng = SplitMix64::new(3);
     for src in [
         qdot::engine::gallery::pendulum_chain(10),
         qdot::engine::gallery::pendulum_chain(20),
@@ -231,14 +232,14 @@ fn check_program(exprs: &[Expr], points: usize, seed: u64) {
     let inputs = crate::compile::leaves(exprs);
     let p = compile(exprs, &inputs).expect("compiles");
     let j = compile_program(&p).expect("jit compiles");
-    let mut rng = Rng(seed);
+    let mut rng = SplitMix64::new(seed);
     let (mut regs, mut a, mut b) = (
         p.registers(),
         vec![0.0; exprs.len()],
         vec![0.0; exprs.len()],
     );
     for _ in 0..points {
-        let x: Vec<f64> = inputs.iter().map(|_| rng.range(-1.5, 1.5)).collect();
+        let x: Vec<f64> = inputs.iter().map(|_| rng.uniform(-1.5, 1.5)).collect();
         p.eval(&x, &mut regs, &mut a);
         j.eval(&x, &mut b);
         for k in 0..a.len() {

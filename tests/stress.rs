@@ -86,7 +86,7 @@ fn rk4_and_dop853_energy_errors_grow_linearly() {
 /// random states, equal the closed form to round-off (n ≤ 10).
 #[test]
 fn chain_matches_the_closed_form() {
-    let mut rng = Rng(7);
+    let mut rng = SplitMix64::new(7);
     for n in [2usize, 3, 5, 10] {
         let (mut d, _, _) = chain_dynamics(n);
         let (mut m, mut f) = (vec![0.0; n * n], vec![0.0; n]);

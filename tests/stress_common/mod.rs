@@ -17,6 +17,8 @@ use qdot::simulate::elliptic::pendulum_period;
 use qdot::simulate::problems::Problem;
 use qdot::simulate::{integrate, IntegratorOptions, Method, Solution, Stats, Status};
 use qdot::Expr;
+// the random states' generator, for `tests/stress.rs` too
+pub use qdot_exact::rng::SplitMix64;
 
 // ===================================================================== 1
 
@@ -185,24 +187,6 @@ fn slope(pts: &[(u64, f64)]) -> f64 {
 
 // ===================================================================== 2
 
-/// SplitMix64 (Steele, Lea & Flood, OOPSLA 2014): a reproducible stream.
-pub struct Rng(pub u64);
-
-impl Rng {
-    /// The next 64 random bits.
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// Uniform in [a, b).
-    pub fn uniform(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// The n-link chain compiled from qdot's exact M and f (m = l = 1,
 /// g = 9.81), and how long deriving and compiling took (s).
 pub fn chain_dynamics(n: usize) -> (CompiledDynamics, f64, f64) {
@@ -239,7 +223,7 @@ pub fn chain_closed_form(q: &[f64], qd: &[f64], g: f64) -> (Vec<f64>, Vec<f64>) 
 }
 
 /// A random chain state: angles uniform in [−π, π), rates in [−2, 2).
-pub fn random_state(rng: &mut Rng, n: usize) -> (Vec<f64>, Vec<f64>) {
+pub fn random_state(rng: &mut SplitMix64, n: usize) -> (Vec<f64>, Vec<f64>) {
     let pi = std::f64::consts::PI;
     let q = (0..n).map(|_| rng.uniform(-pi, pi)).collect();
     let qd = (0..n).map(|_| rng.uniform(-2.0, 2.0)).collect();
@@ -318,7 +302,7 @@ pub fn compare_solves(m: &[f64], f: &[f64]) -> SolveError {
 /// For each state: M and f of `dyn_` in f64, then [`compare_solves`].
 pub fn chain_accuracy(dyn_: &mut CompiledDynamics, states: usize, seed: u64) -> Vec<SolveError> {
     let n = dyn_.n();
-    let mut rng = Rng(seed);
+    let mut rng = SplitMix64::new(seed);
     let mut m = vec![0.0; n * n];
     let mut f = vec![0.0; n];
     (0..states)

@@ -136,15 +136,8 @@ pub fn pendulum_period(theta0: f64, omega0_sq: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use qdot_exact::rng::SplitMix64;
     use std::f64::consts::FRAC_PI_2 as K0;
-
-    /// A tiny deterministic generator (xorshift64*), for random points.
-    fn rng(state: &mut u64) -> f64 {
-        *state ^= *state >> 12;
-        *state ^= *state << 25;
-        *state ^= *state >> 27;
-        (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
 
     #[test]
     fn ellipk_known_values() {
@@ -207,10 +200,10 @@ mod tests {
 
     #[test]
     fn ellipj_identities_and_derivative_at_random_points() {
-        let mut s = 0x9E37_79B9_7F4A_7C15u64;
+        let mut s = SplitMix64::new(0x9E37_79B9_7F4A_7C15);
         for _ in 0..2000 {
-            let m = rng(&mut s) * 0.999;
-            let u = (rng(&mut s) - 0.5) * 20.0;
+            let m = s.unit() * 0.999;
+            let u = (s.unit() - 0.5) * 20.0;
             let (sn, cn, dn) = ellipj(u, m);
             assert!((sn * sn + cn * cn - 1.0).abs() < 1e-14, "{u} {m}");
             assert!((dn * dn + m * sn * sn - 1.0).abs() < 1e-14, "{u} {m}");
@@ -250,11 +243,11 @@ mod tests {
 
     #[test]
     fn pendulum_exact_solves_the_ode_and_conserves_energy() {
-        let mut s = 7u64;
+        let mut s = SplitMix64::new(7);
         for _ in 0..200 {
-            let th0 = (rng(&mut s) - 0.5) * 6.0; // |θ0| < 3
-            let w2 = 0.5 + 4.0 * rng(&mut s);
-            let t = 30.0 * rng(&mut s);
+            let th0 = (s.unit() - 0.5) * 6.0; // |θ0| < 3
+            let w2 = 0.5 + 4.0 * s.unit();
+            let t = 30.0 * s.unit();
             let (th, thd) = pendulum_exact(th0, w2, t);
             let e0 = -w2 * th0.cos();
             assert!((0.5 * thd * thd - w2 * th.cos() - e0).abs() < 1e-12 * (1.0 + w2));

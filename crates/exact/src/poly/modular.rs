@@ -1,13 +1,14 @@
 //! Arithmetic modulo a word-sized prime, shared by the gcd (62-bit primes)
 //! and the factorization (primes below 2^16): products, sums, powers and
 //! inverses of residues, rationals reduced mod p and lifted back, and the
-//! two pseudo-random generators.
+//! gcd's stream of pseudo-random numbers.
 
 use crate::num::Q;
+use crate::rng::SplitMix64;
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_traits::ToPrimitive;
-use std::cell::Cell;
+use std::cell::RefCell;
 
 /// 62-bit primes `2^62 - c` (small `c`, see [`mulmod`]) for the images of
 /// the gcd.
@@ -21,21 +22,15 @@ pub(super) const PRIMES: [u64; 6] = [
 ];
 
 thread_local! {
-    /// The state of [`next_rand`]'s stream (one per thread).
-    static RNG: Cell<u64> = const { Cell::new(0x9E37_79B9_7F4A_7C15) };
+    /// [`next_rand`]'s stream (one per thread).
+    static RNG: RefCell<SplitMix64> = const { RefCell::new(SplitMix64::new(0x9E37_79B9_7F4A_7C15)) };
 }
 
-/// The next number of this thread's SplitMix64 stream: the random primes and
+/// The next number of this thread's stream: the random primes and
 /// evaluation points of the gcd (a stream shared by every gcd on the thread,
 /// so results never depend on it, only the work done).
 pub(super) fn next_rand() -> u64 {
-    RNG.with(|s| {
-        let mut z = s.get().wrapping_add(0x9E37_79B9_7F4A_7C15);
-        s.set(z);
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    })
+    RNG.with(|rng| rng.borrow_mut().next_u64())
 }
 
 /// `a * b mod p` for `a, b < p`. The primes used are `2^62 - c` with small
@@ -150,32 +145,33 @@ pub(super) fn lift_sym(c: u64, p: u64) -> Q {
     }
 }
 
-/// A small seeded generator (xorshift64*): the deterministic choices of the
-/// factorization (equal-degree splits, evaluation points), the same for the
-/// same seed. (The gcd draws from [`next_rand`] instead.)
-pub(super) struct XorShift64Star(pub(super) u64);
-
-impl XorShift64Star {
-    pub(super) fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::poly::tests::lcg;
+
+    /// The gcd's stream is SplitMix64 from 0x9E3779B97F4A7C15, the state
+    /// after seed 0's first step: it continues seed 0's reference outputs
+    /// (see crate::rng).
+    #[test]
+    fn the_gcd_stream_is_splitmix64_seed_0_after_its_first_output() {
+        let fresh = std::thread::spawn(|| [next_rand(), next_rand(), next_rand()]);
+        assert_eq!(
+            fresh.join().expect("thread"),
+            [
+                0x6E78_9E6A_A1B9_65F4,
+                0x06C4_5D18_8009_454F,
+                0xF88B_B8A8_724C_81EC
+            ]
+        );
+    }
 
     #[test]
     fn modular_helpers() {
         for &p in PRIMES.iter() {
-            let mut st = p;
+            let mut rng = SplitMix64::new(p);
             for _ in 0..200 {
-                let a = lcg(&mut st) * lcg(&mut st) % p;
-                let b = (lcg(&mut st) << 31 | lcg(&mut st)) % p;
+                let a = rng.below(p);
+                let b = rng.below(p);
                 let expect = ((a as u128 * b as u128) % p as u128) as u64;
                 assert_eq!(mulmod(a, b, p), expect);
                 assert_eq!(mulmod(p - 1, p - 1, p), 1);

@@ -385,6 +385,7 @@ impl std::error::Error for EigenError {}
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::rng::SplitMix64;
 
     const SQRT2: f64 = std::f64::consts::SQRT_2;
 
@@ -589,40 +590,24 @@ mod tests {
         assert_vec_close(&mu1, &[1.0, -2.0], 1e-12);
     }
 
-    /// xorshift64* — a tiny deterministic generator for the tests.
-    struct XorShift(u64);
-
-    impl XorShift {
-        fn next_u64(&mut self) -> u64 {
-            self.0 ^= self.0 >> 12;
-            self.0 ^= self.0 << 25;
-            self.0 ^= self.0 >> 27;
-            self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-        }
-
-        /// Uniform in [−1, 1).
-        fn uniform(&mut self) -> f64 {
-            (self.next_u64() >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        }
-
-        fn matrix(&mut self, n: usize) -> Vec<Vec<f64>> {
-            (0..n)
-                .map(|_| (0..n).map(|_| self.uniform()).collect())
-                .collect()
-        }
+    /// An n×n matrix of entries uniform in [−1, 1).
+    fn random_matrix(rng: &mut SplitMix64, n: usize) -> Vec<Vec<f64>> {
+        (0..n)
+            .map(|_| (0..n).map(|_| rng.uniform(-1.0, 1.0)).collect())
+            .collect()
     }
 
     #[test]
     fn random_spd_m_and_symmetric_k() {
-        let mut rng = XorShift(0x9E37_79B9_7F4A_7C15);
+        let mut rng = SplitMix64::new(0x9E37_79B9_7F4A_7C15);
         let mut worst = (0.0_f64, 0.0_f64);
         let mut negatives = 0;
         for n in 1..=12 {
             for _ in 0..4 {
                 // M = AᵀA + n·I (SPD), K = (B + Bᵀ)/2·s (symmetric, indefinite in general).
-                let a = rng.matrix(n);
-                let b = rng.matrix(n);
-                let s = 10f64.powi((rng.next_u64() % 7) as i32 - 3);
+                let a = random_matrix(&mut rng, n);
+                let b = random_matrix(&mut rng, n);
+                let s = 10f64.powi(rng.below(7) as i32 - 3);
                 let m: Vec<Vec<f64>> = (0..n)
                     .map(|i| {
                         (0..n)

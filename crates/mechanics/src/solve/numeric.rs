@@ -97,6 +97,7 @@
 //!   and −0 is reported as 0. `residual` is max_k |F_k| at the reported x.
 
 use crate::dense::Lu;
+use crate::rng::SplitMix64;
 use std::cmp::Ordering;
 use std::f64::consts::{PI, TAU};
 
@@ -339,13 +340,13 @@ fn start_points(opts: &RootOptions) -> Vec<Vec<f64>> {
         }
     }
     points.truncate(total);
-    let mut rng = SplitMix64(SEED ^ (n as u64));
+    let mut rng = SplitMix64::new(SEED ^ (n as u64));
     while points.len() < total {
         let x = opts
             .periodic
             .iter()
             .map(|&p| {
-                let u = rng.uniform();
+                let u = rng.unit();
                 if p {
                     PI - TAU * u
                 } else {
@@ -356,24 +357,6 @@ fn start_points(opts: &RootOptions) -> Vec<Vec<f64>> {
         points.push(x);
     }
     points
-}
-
-/// SplitMix64 (Steele, Lea & Flood 2014): a tiny deterministic generator.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1).
-    fn uniform(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
 }
 
 struct Problem<'a> {
@@ -1022,5 +1005,36 @@ mod tests {
         // Full 3ⁿ grid for n = 2 (9 ≤ 32).
         let pts = start_points(&opts(&[false, false]));
         assert!(pts[..9].contains(&vec![5.0, -5.0]));
+    }
+
+    /// The random starts are SplitMix64's stream from SEED ^ n, bit for bit
+    /// (the values are the reference algorithm's, computed outside Rust):
+    /// the roots found, and so `equilibrium`'s output, depend on them.
+    #[test]
+    fn random_start_points_are_the_seeded_stream() {
+        let o = RootOptions {
+            scale: 2.0,
+            ..opts(&[false, true, false, true])
+        };
+        let pts = start_points(&o);
+        // the origin and the 8 points ±a·e_i come first
+        assert_eq!(
+            pts[9],
+            [
+                -1.6294310348067955,
+                0.9440956163024272,
+                -1.7859309296766868,
+                1.5235121355808632
+            ]
+        );
+        assert_eq!(
+            pts[10],
+            [
+                1.0196211766566714,
+                2.6503990116511376,
+                0.8148141318053645,
+                -1.9722688355012163
+            ]
+        );
     }
 }

@@ -418,18 +418,14 @@ fn exceeds(h: f64, num: f64, den: f64, limit: f64) -> bool {
 #[cfg(test)]
 mod tests {
     use super::exceeds;
+    use qdot_exact::rng::SplitMix64;
 
     /// The products decide as the formula does, near the limit too.
     #[test]
     fn the_stiffness_comparison_is_the_formula() {
         let plain = |h: f64, num: f64, den: f64, limit: f64| h.abs() * (num / den).sqrt() > limit;
-        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = SplitMix64::new(0x9E37_79B9_7F4A_7C15);
+        let mut next = || rng.unit();
         for _ in 0..200_000 {
             let limit = [3.25, 6.1, 4.5][(next() * 3.0) as usize];
             let h = (next() - 0.5) * 10f64.powf(next() * 40.0 - 20.0);

@@ -3,7 +3,8 @@
 //! and the distinct- and equal-degree factorizations.
 
 use super::zpoly::ZPoly;
-use crate::poly::modular::{invmod, trim, XorShift64Star};
+use crate::poly::modular::{invmod, trim};
+use crate::rng::SplitMix64;
 use num_bigint::{BigInt, BigUint};
 use num_integer::Integer;
 use num_traits::ToPrimitive;
@@ -193,7 +194,7 @@ pub(super) fn fp_ddf(f: &[u64], p: u64) -> Ddf {
 /// Equal-degree factorization (Cantor–Zassenhaus, odd `p`) of a monic
 /// product `g` of irreducibles of degree `d`; `None` if 64 random splits in
 /// a row fail (probability ≤ 2⁻⁶⁴ per split).
-pub(super) fn fp_edf(g: &[u64], d: usize, p: u64, rng: &mut XorShift64Star) -> Option<Vec<Fp>> {
+pub(super) fn fp_edf(g: &[u64], d: usize, p: u64, rng: &mut SplitMix64) -> Option<Vec<Fp>> {
     let n = deg_fp(&g.to_vec());
     if n == d {
         return Some(vec![g.to_vec()]);
@@ -201,7 +202,7 @@ pub(super) fn fp_edf(g: &[u64], d: usize, p: u64, rng: &mut XorShift64Star) -> O
     let e: BigUint = (BigUint::from(p).pow(d as u32) - 1u32) >> 1usize;
     let nbits = e.bits();
     for _ in 0..64 {
-        let mut a: Fp = (0..n).map(|_| rng.next() % p).collect();
+        let mut a: Fp = (0..n).map(|_| rng.below(p)).collect();
         trim(&mut a);
         if deg_fp(&a) == 0 {
             continue;
@@ -231,7 +232,7 @@ mod tests {
         let dd = fp_ddf(&f, 3);
         assert_eq!(dd.len(), 1);
         assert_eq!(dd[0].1, 2);
-        let fs = fp_edf(&dd[0].0, 2, 3, &mut XorShift64Star(1)).expect("splits");
+        let fs = fp_edf(&dd[0].0, 2, 3, &mut SplitMix64::new(1)).expect("splits");
         assert_eq!(fs.len(), 2);
         assert_eq!(fp_mul(&fs[0], &fs[1], 3), f);
     }

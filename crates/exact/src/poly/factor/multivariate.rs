@@ -7,8 +7,8 @@ use super::univariate::zassenhaus;
 use super::zpoly::{to_dense, ZPoly};
 use super::{content_in, next_combination, normalize, Trials};
 use crate::num::Q;
-use crate::poly::modular::XorShift64Star;
 use crate::poly::{Mono, Poly, Var};
+use crate::rng::SplitMix64;
 
 /// Total degree of a monomial in the variables other than `x`.
 fn ydeg(m: &Mono, x: Var) -> u32 {
@@ -99,10 +99,10 @@ fn point(k: usize, n: usize) -> Vec<i64> {
     if k == 0 {
         return vec![0; n];
     }
-    let mut rng = XorShift64Star(0x2545_F491_4F6C_DD1D ^ (k as u64).wrapping_mul(0x9E37_79B9));
+    let mut rng = SplitMix64::new(k as u64);
     let r = 1 + (k as u64) / 4;
     (0..n)
-        .map(|_| (rng.next() % (2 * r + 1)) as i64 - r as i64)
+        .map(|_| rng.below(2 * r + 1) as i64 - r as i64)
         .collect()
 }
 

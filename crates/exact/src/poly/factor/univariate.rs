@@ -11,7 +11,7 @@ use super::zpoly::{
     ZPoly,
 };
 use super::{next_combination, Trials};
-use crate::poly::modular::XorShift64Star;
+use crate::rng::SplitMix64;
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_traits::{One, Signed, ToPrimitive, Zero};
@@ -159,7 +159,7 @@ pub(super) fn zassenhaus(f: &[BigInt], trials: &Trials) -> Vec<ZPoly> {
         }
     }
     cands.sort_by_key(|c| (c.0, std::cmp::Reverse(c.1)));
-    let mut rng = XorShift64Star(0x9E37_79B9_7F4A_7C15);
+    let mut rng = SplitMix64::new(0x9E37_79B9_7F4A_7C15);
     let mut chosen = None;
     for (_, p, dd) in &cands {
         let mut us = Vec::new();
@@ -287,7 +287,7 @@ mod tests {
         assert!(deg_fp(&fp_gcd(&fp, &fp_deriv(&fp, p), p)) == 0);
         let us: Vec<Fp> = fp_ddf(&fp, p)
             .into_iter()
-            .flat_map(|(g, d)| fp_edf(&g, d, p, &mut XorShift64Star(3)).expect("splits"))
+            .flat_map(|(g, d)| fp_edf(&g, d, p, &mut SplitMix64::new(3)).expect("splits"))
             .collect();
         assert_eq!(us.len(), 4);
         let lifted = hensel_lift(&f, &us, p, 3);

@@ -5,8 +5,9 @@
 use super::prs::prem;
 use super::zippel::zippel_gcd;
 use crate::num::Q;
-use crate::poly::tests::{arb_poly, arb_small, c, cq, is_canonical, lcg, m, x};
+use crate::poly::tests::{arb_poly, arb_small, c, cq, is_canonical, m, x};
 use crate::poly::{Mono, Poly, Var};
+use crate::rng::SplitMix64;
 use proptest::prelude::*;
 
 fn check_gcd(a: &Poly, b: &Poly, expect: &Poly) {
@@ -236,26 +237,26 @@ fn ref_gcd(a: &Poly, b: &Poly) -> Poly {
     (&Poly::from_coeffs_in(v, &last) * &cont).normalize_z()
 }
 
-fn rand_poly(st: &mut u64, vars: &[Var], maxdeg: u32, nterms: usize, cmax: i64) -> Poly {
+fn rand_poly(st: &mut SplitMix64, vars: &[Var], maxdeg: u32, nterms: usize, cmax: i64) -> Poly {
     let mut t = Vec::new();
     for _ in 0..nterms {
         let mo = Mono::from_pairs(
             vars.iter()
-                .map(|&v| (v, (lcg(st) % (maxdeg as u64 + 1)) as u32)),
+                .map(|&v| (v, st.below(maxdeg as u64 + 1) as u32)),
         );
-        let cf = (lcg(st) % (2 * cmax as u64 + 1)) as i64 - cmax;
+        let cf = st.below(2 * cmax as u64 + 1) as i64 - cmax;
         t.push((mo, Q::from_i64(cf)));
     }
     Poly::from_terms(t)
 }
 
 /// 1…maxvars distinct variables out of twelve, sorted.
-fn random_vars(st: &mut u64, maxvars: usize) -> Vec<Var> {
+fn random_vars(st: &mut SplitMix64, maxvars: usize) -> Vec<Var> {
     let all: Vec<Var> = (0..12).map(|i| i * 3 + 1).collect();
-    let nv = 1 + (lcg(st) as usize % maxvars);
+    let nv = 1 + st.below(maxvars as u64) as usize;
     let mut vars: Vec<Var> = Vec::new();
     while vars.len() < nv {
-        let v = all[lcg(st) as usize % all.len()];
+        let v = all[st.below(all.len() as u64) as usize];
         if !vars.contains(&v) {
             vars.push(v);
         }
@@ -265,22 +266,19 @@ fn random_vars(st: &mut u64, maxvars: usize) -> Vec<Var> {
 }
 
 fn random_gcd_round(seed: u64, rounds: usize, maxvars: usize) {
-    let mut st = seed;
+    let mut st = SplitMix64::new(seed);
     for round in 0..rounds {
         let vars = random_vars(&mut st, maxvars);
-        let pick = |st: &mut u64| -> Vec<Var> {
-            vars.iter()
-                .copied()
-                .filter(|_| !lcg(st).is_multiple_of(3))
-                .collect()
+        let pick = |st: &mut SplitMix64| -> Vec<Var> {
+            vars.iter().copied().filter(|_| st.below(3) != 0).collect()
         };
         let (va, vb, vg) = (pick(&mut st), pick(&mut st), pick(&mut st));
-        let deg = 1 + (lcg(&mut st) % 3) as u32;
-        let na = 1 + lcg(&mut st) as usize % 5;
+        let deg = 1 + st.below(3) as u32;
+        let na = 1 + st.below(5) as usize;
         let a = rand_poly(&mut st, &va, deg, na, 5);
-        let nb = 1 + lcg(&mut st) as usize % 5;
+        let nb = 1 + st.below(5) as usize;
         let b = rand_poly(&mut st, &vb, deg, nb, 5);
-        let ng = 1 + lcg(&mut st) as usize % 4;
+        let ng = 1 + st.below(4) as usize;
         let g = rand_poly(&mut st, &vg, deg, ng, 5);
         let (ag, bg) = (&a * &g, &b * &g);
         if ag.len() + bg.len() > 24 || ag.total_degree() + bg.total_degree() > 12 {
@@ -327,7 +325,7 @@ fn urem(mut a: Poly, b: &Poly, v: Var) -> Poly {
 /// Independent coprimality proof: for every variable, the univariate
 /// images (all other variables at random rationals, leading coefficient
 /// kept) have a constant gcd. `false` means "not proven".
-fn proven_coprime(a: &Poly, b: &Poly, st: &mut u64) -> bool {
+fn proven_coprime(a: &Poly, b: &Poly, st: &mut SplitMix64) -> bool {
     if a.is_constant() || b.is_constant() {
         return !(a.is_zero() && b.is_zero());
     }
@@ -342,7 +340,7 @@ fn proven_coprime(a: &Poly, b: &Poly, st: &mut u64) -> bool {
                 .map(|&w| {
                     (
                         w,
-                        Q::new(lcg(st) as i64 % 97 - 48, 1 + lcg(st) as i64 % 5).expect("q"),
+                        Q::new(st.below(97) as i64 - 48, 1 + st.below(5) as i64).expect("q"),
                     )
                 })
                 .collect();
@@ -376,22 +374,19 @@ fn proven_coprime(a: &Poly, b: &Poly, st: &mut u64) -> bool {
 }
 
 fn random_gcd_proof_round(seed: u64, rounds: usize, maxvars: usize, maxdeg: u64) {
-    let mut st = seed;
+    let mut st = SplitMix64::new(seed);
     for round in 0..rounds {
         let vars = random_vars(&mut st, maxvars);
-        let pick = |st: &mut u64| -> Vec<Var> {
-            vars.iter()
-                .copied()
-                .filter(|_| !lcg(st).is_multiple_of(4))
-                .collect()
+        let pick = |st: &mut SplitMix64| -> Vec<Var> {
+            vars.iter().copied().filter(|_| st.below(4) != 0).collect()
         };
         let (va, vb, vg) = (pick(&mut st), pick(&mut st), pick(&mut st));
-        let deg = 1 + (lcg(&mut st) % maxdeg) as u32;
-        let na = 1 + lcg(&mut st) as usize % 8;
+        let deg = 1 + st.below(maxdeg) as u32;
+        let na = 1 + st.below(8) as usize;
         let a = rand_poly(&mut st, &va, deg, na, 9);
-        let nb = 1 + lcg(&mut st) as usize % 8;
+        let nb = 1 + st.below(8) as usize;
         let b = rand_poly(&mut st, &vb, deg, nb, 9);
-        let ng = 1 + lcg(&mut st) as usize % 6;
+        let ng = 1 + st.below(6) as usize;
         let g = rand_poly(&mut st, &vg, deg, ng, 9);
         let (ag, bg) = (&a * &g, &b * &g);
         if std::env::var("GCD_TRACE").is_ok() {
