@@ -19,7 +19,7 @@ qdot=${QDOT:-target/release/qdot}
 mkdir -p "$out"
 
 scenes=(examples/*.qd book/scenes/*.qd)
-# chains of 2 and 4 links, generated like the benches' (src/gallery.rs)
+# chains of 2 and 4 links, generated like the benches' (src/engine/gallery.rs)
 # (at a fixed path: the LaTeX title shows it)
 tmp=target/output-snapshot
 mkdir -p "$tmp/gallery"

@@ -71,12 +71,17 @@ impl Context {
     /// error of [`too_large`]), under the assumptions, terms in the print
     /// order. Contexts nest: the inner one applies, the outer is restored.
     pub fn run<T>(&self, f: impl FnOnce() -> Result<T, Diagnostic>) -> Result<T, Diagnostic> {
+        self.within(f).unwrap_or_else(|e| Err(too_large(&e)))
+    }
+
+    /// [`Context::run`] for a front end that words the exceeded budget
+    /// itself (the REPL names its `:max-terms`).
+    pub fn within<T>(&self, f: impl FnOnce() -> T) -> Result<T, budget::TooLarge> {
         budget::within(self.max_terms, || {
             print::with_coordinate_order(&self.coordinate_order, || {
                 assume::assuming(&self.assumptions, f)
             })
         })
-        .unwrap_or_else(|e| Err(too_large(&e)))
     }
 
     /// `e` in qdot's input syntax, as the CLI's JSON writes it (re-parses

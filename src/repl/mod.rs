@@ -238,27 +238,22 @@ impl Session {
         // only after the scene they make has been resolved
         // the scene as it stands orders the printed terms (a statement
         // that changes the coordinates prints nothing that depends on it)
-        let coordinates: Vec<String> = self
-            .scene
-            .coordinates
-            .iter()
-            .map(|c| c.name.clone())
-            .collect();
-        crate::expr::print::with_coordinate_order(&coordinates, || {
-            crate::budget::within(max_terms, || self.execute_unbounded(entry))
-        })
-        .unwrap_or_else(|e| {
-            let hint = format!(
-                "raise the limit with :max-terms {} (it is {})",
-                e.limit.saturating_mul(10),
-                e.limit
-            );
-            Response::error(
-                Diagnostic::global(e.message())
-                    .with_hint(hint)
-                    .render(INPUT, ""),
-            )
-        })
+        let ctx = crate::app::Context::new()
+            .with_max_terms(max_terms)
+            .for_scene(&self.scene);
+        ctx.within(|| self.execute_unbounded(entry))
+            .unwrap_or_else(|e| {
+                let hint = format!(
+                    "raise the limit with :max-terms {} (it is {})",
+                    e.limit.saturating_mul(10),
+                    e.limit
+                );
+                Response::error(
+                    Diagnostic::global(e.message())
+                        .with_hint(hint)
+                        .render(INPUT, ""),
+                )
+            })
     }
 
     fn execute_unbounded(&mut self, entry: &str) -> Response {
