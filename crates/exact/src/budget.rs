@@ -7,7 +7,7 @@
 //! polynomial arithmetic call [`check_terms`] with the size they reached;
 //! past the budget the thread unwinds with a [`TooLarge`] payload (by
 //! `resume_unwind`: no panic message), which `within` turns into an `Err`.
-//! The context a computation declares ([`enter`]) (the statement being evaluated,
+//! The [`Computation`] a thread declares ([`enter`]) (the statement being evaluated,
 //! the phase of a command) is carried in the error. Threads outside
 //! `within` have no budget: a library user who does not opt in is never
 //! stopped, and pays one thread-local read per check.
@@ -17,14 +17,14 @@ use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
 
 thread_local! {
     static LIMIT: Cell<usize> = const { Cell::new(usize::MAX) };
-    static CONTEXT: RefCell<Vec<Context>> = const { RefCell::new(Vec::new()) };
+    static CONTEXT: RefCell<Vec<Computation>> = const { RefCell::new(Vec::new()) };
     static BIG_WORK: Cell<u64> = const { Cell::new(0) };
 }
 
 /// What was being computed: a description and, for a statement, its byte
 /// range in the source.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Context {
+pub struct Computation {
     /// "evaluating `E`", "deriving Hamilton's equations".
     pub what: String,
     /// The statement's byte range in the source, if a statement.
@@ -40,7 +40,7 @@ pub struct TooLarge {
     /// The budget, in terms.
     pub limit: usize,
     /// The innermost context declared ([`enter`]).
-    pub context: Option<Context>,
+    pub context: Option<Computation>,
     /// What passed the budget.
     pub measure: Measure,
 }
@@ -161,22 +161,22 @@ pub fn within<T>(max_terms: usize, f: impl FnOnce() -> T) -> Result<T, TooLarge>
 
 /// Declare what the thread computes until the guard is dropped (for the
 /// error of [`within`]). `what` is only built under a budget.
-pub fn enter(what: impl FnOnce() -> String, span: Option<(usize, usize)>) -> ContextGuard {
+pub fn enter(what: impl FnOnce() -> String, span: Option<(usize, usize)>) -> ComputationGuard {
     // no budget, no bookkeeping
     if LIMIT.with(Cell::get) == usize::MAX {
-        return ContextGuard { active: false };
+        return ComputationGuard { active: false };
     }
-    CONTEXT.with(|c| c.borrow_mut().push(Context { what: what(), span }));
-    ContextGuard { active: true }
+    CONTEXT.with(|c| c.borrow_mut().push(Computation { what: what(), span }));
+    ComputationGuard { active: true }
 }
 
 /// Ends the context of [`enter`] when dropped.
 #[must_use = "the context lasts as long as the guard"]
-pub struct ContextGuard {
+pub struct ComputationGuard {
     active: bool,
 }
 
-impl Drop for ContextGuard {
+impl Drop for ComputationGuard {
     fn drop(&mut self) {
         if self.active {
             CONTEXT.with(|c| c.borrow_mut().pop());
