@@ -40,7 +40,9 @@ pub mod engine;
 
 // the engine's modules by the paths this crate's own code uses
 use engine::gallery;
-use qdot_exact::{algebra, budget, cancel, poly};
+#[cfg(feature = "cli")]
+use qdot_exact::cancel;
+use qdot_exact::{algebra, budget, poly};
 
 pub use app::{AnyReport, Command, CommandOptions, Context, Format, Report};
 pub use diag::{Diagnostic, Severity, Span};

@@ -480,7 +480,7 @@ fn piped_mode_reads_entries_without_prompts() {
 
 #[test]
 fn completion_and_highlighting() {
-    use qdot::repl::terminal::{completions, highlight};
+    use qdot::repl::editing::{completions, highlight};
     let names = ["theta3".to_string(), "theta4".to_string(), "G".to_string()];
     let (start, c) = completions("diff(E, the", 11, &[&names]);
     assert_eq!(start, 8);
@@ -509,7 +509,7 @@ fn completion_and_highlighting() {
 /// line, a `:command` only at its start, a comment to its end.
 #[test]
 fn the_line_scanner_covers_the_line() {
-    use qdot::repl::terminal::{line_tokens, LineTokenKind as K};
+    use qdot::repl::editing::{line_tokens, LineTokenKind as K};
     let line = "x2 = 1.5e3*sin(θ)' # ok";
     let t = line_tokens(line);
     let pieces: Vec<(K, &str)> = t.iter().map(|t| (t.kind, &line[t.start..t.end])).collect();
@@ -535,9 +535,9 @@ fn the_line_scanner_covers_the_line() {
     assert_eq!((t[2].kind, t[2].start, t[2].end), (K::Command, 2, 12));
     assert!(t.iter().skip(3).all(|t| t.kind != K::Command), "{t:?}");
     // completion of a word after an operator, and of nothing after a space
-    let (start, c) = qdot::repl::terminal::completions("x = 2*si", 8, &[]);
+    let (start, c) = qdot::repl::editing::completions("x = 2*si", 8, &[]);
     assert_eq!((start, c[0].display.as_str()), (6, "sin("));
-    let (_, c) = qdot::repl::terminal::completions("x = ", 4, &[]);
+    let (_, c) = qdot::repl::editing::completions("x = ", 4, &[]);
     assert!(c.is_empty());
 }
 

@@ -20,6 +20,7 @@
 //! assert!(s.execute(":solve").out.contains("= −k/m·x"));
 //! ```
 
+pub mod editing;
 mod layout;
 #[cfg(feature = "cli")]
 pub mod terminal;

@@ -18,8 +18,8 @@
 //! any entry failed. With `echo`, each entry is printed after its prompt
 //! and errors go to stdout too: a transcript, as the terminal would show.
 
-use super::{is_complete, keywords, Response, Session, COMMANDS};
-use crate::parse::functions::{self, Builtin};
+use super::editing::{completions, highlight};
+use super::{is_complete, Response, Session};
 use rustyline::completion::{Completer, Pair};
 use rustyline::error::ReadlineError;
 use rustyline::highlight::{CmdKind, Highlighter};
@@ -324,145 +324,20 @@ impl Completer for ReplHelper {
         pos: usize,
         _ctx: &Context<'_>,
     ) -> rustyline::Result<(usize, Vec<Pair>)> {
-        Ok(completions(
+        let (start, found) = completions(
             line,
             pos,
             &[&self.coordinates, &self.parameters, &self.others],
-        ))
+        );
+        let pairs = found
+            .into_iter()
+            .map(|c| Pair {
+                display: c.display,
+                replacement: c.replacement,
+            })
+            .collect();
+        Ok((start, pairs))
     }
-}
-
-/// What a piece of a REPL line is, for completion and highlighting.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LineTokenKind {
-    /// A name or keyword: a letter or `_`, then letters, digits and `_`.
-    Word,
-    /// A number: a digit, then ASCII letters, digits and dots (`1.5e3`).
-    Number,
-    /// A `# …` comment, to the end of the line.
-    Comment,
-    /// A `:command` word at the start of the line.
-    Command,
-    /// One other character (operators, brackets, white space).
-    Other,
-}
-
-/// One piece of a REPL line: its kind and byte range.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct LineToken {
-    /// What it is.
-    pub kind: LineTokenKind,
-    /// Where it starts (a byte offset).
-    pub start: usize,
-    /// Where it ends (exclusive).
-    pub end: usize,
-}
-
-/// The pieces of a REPL line, in order, covering it: the one scanner of
-/// completion and highlighting. Lenient where the parser is strict (an
-/// unfinished line is still being typed).
-pub fn line_tokens(line: &str) -> Vec<LineToken> {
-    let mut out = Vec::new();
-    let mut it = line.char_indices().peekable();
-    let token = |kind, start, end| LineToken { kind, start, end };
-    while let Some((i, c)) = it.next() {
-        let mut end = i + c.len_utf8();
-        let mut take = |accept: &dyn Fn(char) -> bool| {
-            while let Some(&(j, d)) = it.peek() {
-                if !accept(d) {
-                    break;
-                }
-                end = j + d.len_utf8();
-                it.next();
-            }
-            end
-        };
-        let t = if c == '#' {
-            out.push(token(LineTokenKind::Comment, i, line.len()));
-            break;
-        } else if c == ':' && line[..i].trim().is_empty() {
-            token(
-                LineTokenKind::Command,
-                i,
-                take(&|d| d.is_alphanumeric() || d == '_' || d == '-'),
-            )
-        } else if c.is_alphabetic() || c == '_' {
-            token(
-                LineTokenKind::Word,
-                i,
-                take(&|d| d.is_alphanumeric() || d == '_'),
-            )
-        } else if c.is_ascii_digit() {
-            token(
-                LineTokenKind::Number,
-                i,
-                take(&|d| d.is_ascii_alphanumeric() || d == '.'),
-            )
-        } else {
-            token(LineTokenKind::Other, i, end)
-        };
-        out.push(t);
-    }
-    out
-}
-
-/// The candidates for the word before `pos`: commands after a leading
-/// `:`, otherwise names, functions (with `(`) and keywords.
-pub fn completions(line: &str, pos: usize, names: &[&[String]]) -> (usize, Vec<Pair>) {
-    let before = &line[..pos.min(line.len())];
-    let last = line_tokens(before).pop();
-    let (start, kind) = match last {
-        Some(t) if t.end == before.len() && t.kind != LineTokenKind::Other => (t.start, t.kind),
-        _ => (before.len(), LineTokenKind::Other),
-    };
-    let word = &before[start..];
-    let mut out: Vec<Pair> = Vec::new();
-    match kind {
-        LineTokenKind::Command => {
-            for (c, _, _) in COMMANDS {
-                if c.starts_with(word) {
-                    out.push(Pair {
-                        display: c.to_string(),
-                        replacement: c.to_string(),
-                    });
-                }
-            }
-            return (start, out);
-        }
-        LineTokenKind::Word => {}
-        _ => return (start, Vec::new()),
-    }
-    for list in names {
-        for n in list.iter() {
-            if n.starts_with(word) {
-                out.push(Pair {
-                    display: n.clone(),
-                    replacement: n.clone(),
-                });
-            }
-        }
-    }
-    for f in functions::names() {
-        if f.starts_with(word) {
-            out.push(Pair {
-                display: format!("{f}("),
-                replacement: format!("{f}("),
-            });
-        }
-    }
-    if line[..start].trim().is_empty() {
-        for k in keywords::statement_keywords() {
-            if k.starts_with(word) {
-                out.push(Pair {
-                    display: k.to_string(),
-                    replacement: format!("{k} "),
-                });
-            }
-        }
-    }
-    out.sort_by(|a, b| a.display.cmp(&b.display));
-    out.dedup_by(|a, b| a.display == b.display);
-    (start, out)
 }
 
 impl Highlighter for ReplHelper {
@@ -481,64 +356,4 @@ impl Highlighter for ReplHelper {
     fn highlight_char(&self, _line: &str, _pos: usize, _kind: CmdKind) -> bool {
         self.colour
     }
-}
-
-const RESET: &str = "\x1b[0m";
-const KEYWORD: &str = "\x1b[1;34m";
-const COORD: &str = "\x1b[32m";
-const PARAM: &str = "\x1b[33m";
-const DEFINED: &str = "\x1b[36m";
-const FUNCTION: &str = "\x1b[35m";
-const NUMBER: &str = "\x1b[36m";
-const COMMENT: &str = "\x1b[2m";
-const COMMAND: &str = "\x1b[1;35m";
-
-/// ANSI colours for one line: keywords, coordinates, parameters, other
-/// names, functions, numbers, comments and `:commands`.
-pub fn highlight(line: &str, coords: &[String], params: &[String], others: &[String]) -> String {
-    if line.trim_start().starts_with(':') {
-        return format!("{COMMAND}{line}{RESET}");
-    }
-    let mut out = String::with_capacity(line.len() + 32);
-    let mut first_word = true;
-    for t in line_tokens(line) {
-        let text = &line[t.start..t.end];
-        let colour = match t.kind {
-            LineTokenKind::Comment => Some(COMMENT),
-            LineTokenKind::Number => Some(NUMBER),
-            LineTokenKind::Word => {
-                let call = line[t.end..].starts_with('(');
-                if call && Builtin::from_name(text).is_some() {
-                    Some(FUNCTION)
-                } else if coords.iter().any(|n| n == text) {
-                    Some(COORD)
-                } else if params.iter().any(|n| n == text) {
-                    Some(PARAM)
-                } else if others.iter().any(|n| n == text) {
-                    Some(DEFINED)
-                } else if (first_word || keywords::STOP.contains(&text))
-                    && keywords::all().any(|k| k == text)
-                {
-                    Some(KEYWORD)
-                } else {
-                    None
-                }
-            }
-            LineTokenKind::Command | LineTokenKind::Other => None,
-        };
-        match t.kind {
-            LineTokenKind::Other if text == ";" => first_word = true,
-            LineTokenKind::Other if text.trim().is_empty() => {}
-            _ => first_word = false,
-        }
-        match colour {
-            Some(col) => {
-                out.push_str(col);
-                out.push_str(text);
-                out.push_str(RESET);
-            }
-            None => out.push_str(text),
-        }
-    }
-    out
 }
