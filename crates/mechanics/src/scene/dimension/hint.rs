@@ -83,6 +83,8 @@ pub(super) fn origins(w: &Walker, e: &Expr) -> Vec<(Span, String)> {
             break;
         }
     }
+    // shown in the order of the source
+    out.sort_by_key(|(span, _)| span.start);
     out
 }
 
