@@ -256,10 +256,13 @@ impl Diagnostic {
             out.push_str(&format!("{pad} |\n"));
             out.push_str(&main.excerpt(gutter));
             out.push_str(&format!("{pad} | {}{}\n", main.indent, "^".repeat(main.width)));
+            // a label on the line shown last goes under the same copy of it
+            let mut shown = main.whole_line.then_some(main.line);
             for (c, message) in labels {
-                if !(c.line == main.line && main.whole_line && c.whole_line) {
+                if !(c.whole_line && shown == Some(c.line)) {
                     out.push_str(&format!("{pad} |\n"));
                     out.push_str(&c.excerpt(gutter));
+                    shown = c.whole_line.then_some(c.line);
                 }
                 out.push_str(&format!("{pad} | {}{} {message}\n", c.indent, "-".repeat(c.width)));
             }
