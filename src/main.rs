@@ -318,10 +318,11 @@ fn main() -> ExitCode {
             baumgarte,
         } => {
             let report = Reporter::new(file, false);
-            let req = match codegen_request(file, set.as_deref(), *lang, *form, function, *baumgarte) {
-                Ok(r) => r,
-                Err(d) => return report.fail(&d, ""),
-            };
+            let req =
+                match codegen_request(file, set.as_deref(), *lang, *form, function, *baumgarte) {
+                    Ok(r) => r,
+                    Err(d) => return report.fail(&d, ""),
+                };
             let src = match report.read_scene() {
                 Ok(s) => s,
                 Err(code) => return code,
@@ -477,11 +478,7 @@ fn codegen_request(
     Ok(req)
 }
 
-fn codegen(
-    report: Reporter,
-    src: &str,
-    req: &qdot::simulate::codegen::CodegenRequest,
-) -> ExitCode {
+fn codegen(report: Reporter, src: &str, req: &qdot::simulate::codegen::CodegenRequest) -> ExitCode {
     match qdot::simulate::codegen::codegen(src, req) {
         Ok(code) => {
             emit(&code);

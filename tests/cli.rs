@@ -120,7 +120,11 @@ fn json_contract_and_reparse() {
             // the command for it
             assert_eq!(code, 1, "{name}: {out}");
             assert!(out.is_empty());
-            assert_eq!(json(&err)["error"]["kind"], "nothing_to_solve", "{name}: {err}");
+            assert_eq!(
+                json(&err)["error"]["kind"],
+                "nothing_to_solve",
+                "{name}: {err}"
+            );
         } else {
             assert_eq!(code, 0, "{name}: {err}");
             let v = json(&out);

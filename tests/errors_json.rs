@@ -300,7 +300,8 @@ fn contradictory_constraints_are_kind_constraints() {
         1,
         Expected {
             kind: "constraints",
-            message: "the constraints `a`, `b` contradict each other: they differ by 1, which is not 0",
+            message:
+                "the constraints `a`, `b` contradict each other: they differ by 1, which is not 0",
             line: None,
             column: None,
         },

@@ -210,13 +210,12 @@ fn initial_values(names: &[String], req: &Request) -> Result<Vec<f64>, Diagnosti
     if !missing.is_empty() {
         let example: Vec<String> = missing.iter().map(|m| format!("{m}=0")).collect();
         return Err(
-            Diagnostic::global(format!("no initial value for {}", missing.join(", "))).with_hint(
-                format!(
+            Diagnostic::global(format!("no initial value for {}", missing.join(", ")))
+                .with_hint(format!(
                     "give every coordinate and velocity a value: --init {}",
                     example.join(",")
-                ),
-            )
-            .with_kind(ErrorKind::bad_option("--init")),
+                ))
+                .with_kind(ErrorKind::bad_option("--init")),
         );
     }
     for k in req.init.keys() {
@@ -241,11 +240,10 @@ fn initial_values(names: &[String], req: &Request) -> Result<Vec<f64>, Diagnosti
 fn check_numbers(req: &Request) -> Result<(), Diagnostic> {
     use crate::limits::{MAX_POINTS, MIN_RTOL};
     if !(req.t_end.is_finite() && req.t_end > 0.0) {
-        return Err(Diagnostic::global(format!(
-            "--t-end {} must be a positive number",
-            req.t_end
-        ))
-        .with_kind(ErrorKind::bad_option("--t-end")));
+        return Err(
+            Diagnostic::global(format!("--t-end {} must be a positive number", req.t_end))
+                .with_kind(ErrorKind::bad_option("--t-end")),
+        );
     }
     if let Some(dt) = req.dt {
         if !(dt.is_finite() && dt > 0.0) {
@@ -275,7 +273,8 @@ fn check_numbers(req: &Request) -> Result<(), Diagnostic> {
         .with_kind(ErrorKind::bad_option("--baumgarte")));
     }
     if req.max_steps == 0 {
-        return Err(Diagnostic::global("--max-steps must be at least 1").with_kind(ErrorKind::bad_option("--max-steps")));
+        return Err(Diagnostic::global("--max-steps must be at least 1")
+            .with_kind(ErrorKind::bad_option("--max-steps")));
     }
     if !(req.rtol.is_finite() && req.rtol >= MIN_RTOL) {
         return Err(Diagnostic::global(format!(
@@ -286,11 +285,10 @@ fn check_numbers(req: &Request) -> Result<(), Diagnostic> {
         .with_kind(ErrorKind::bad_option("--rtol")));
     }
     if !(req.atol.is_finite() && req.atol >= 0.0) {
-        return Err(Diagnostic::global(format!(
-            "--atol {} must be a number ≥ 0",
-            req.atol
-        ))
-        .with_kind(ErrorKind::bad_option("--atol")));
+        return Err(
+            Diagnostic::global(format!("--atol {} must be a number ≥ 0", req.atol))
+                .with_kind(ErrorKind::bad_option("--atol")),
+        );
     }
     Ok(())
 }

@@ -185,9 +185,7 @@ pub fn design_points(axes: &[Axis], design: Design) -> Result<Vec<Vec<f64>>, Dia
                 return Err(Diagnostic::global(
                     "`--samples 0`: a random design needs at least one run",
                 )
-                .with_hint(
-                    "--samples 100 draws 100 random points in the box of the --vary ranges",
-                )
+                .with_hint("--samples 100 draws 100 random points in the box of the --vary ranges")
                 .with_kind(ErrorKind::bad_option("--samples")));
             }
             if samples > MAX_SWEEP_RUNS {

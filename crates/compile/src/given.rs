@@ -28,7 +28,8 @@ pub fn defined(scene: &Scene, lag: Lagrange, defs: &[String]) -> Result<Lagrange
         let Some((name, text)) = d.split_once('=') else {
             return Err(
                 Diagnostic::global(format!("--function expects NAME=EXPR, found `{d}`"))
-                    .with_hint(HINT).with_kind(function_option()),
+                    .with_hint(HINT)
+                    .with_kind(function_option()),
             );
         };
         let name = name.trim();
@@ -46,7 +47,9 @@ pub fn defined(scene: &Scene, lag: Lagrange, defs: &[String]) -> Result<Lagrange
             .with_kind(function_option()));
         }
         let e = scene.expr(text).map_err(|e| {
-            Diagnostic::global(format!("--function {name}: {}", e.message)).with_hint(HINT).with_kind(function_option())
+            Diagnostic::global(format!("--function {name}: {}", e.message))
+                .with_hint(HINT)
+                .with_kind(function_option())
         })?;
         if let Some(bad) = e.vars().into_iter().find(|&v| !of_time(v)) {
             return Err(Diagnostic::global(format!(
@@ -57,7 +60,9 @@ pub fn defined(scene: &Scene, lag: Lagrange, defs: &[String]) -> Result<Lagrange
         }
         if values.insert(name, e).is_some() {
             return Err(
-                Diagnostic::global(format!("--function {name} is given twice")).with_hint(HINT).with_kind(function_option()),
+                Diagnostic::global(format!("--function {name} is given twice"))
+                    .with_hint(HINT)
+                    .with_kind(function_option()),
             );
         }
     }
@@ -70,7 +75,8 @@ pub fn defined(scene: &Scene, lag: Lagrange, defs: &[String]) -> Result<Lagrange
             "the given function `{}` needs a definition to simulate",
             f.name
         ))
-        .with_hint(HINT).with_kind(function_option()));
+        .with_hint(HINT)
+        .with_kind(function_option()));
     }
     if values.is_empty() {
         return Ok(lag);

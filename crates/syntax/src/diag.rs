@@ -145,8 +145,9 @@ pub struct Diagnostic {
     pub message: String,
     /// A suggestion for fixing it, when there is one.
     pub hint: Option<String>,
-    /// The class of error, for a program to match.
-    pub kind: ErrorKind,
+    /// The class of error, for a program to match (boxed: a
+    /// `Result<_, Diagnostic>` stays small).
+    pub kind: Box<ErrorKind>,
     /// Other places that matter, shown under the main one.
     pub labels: Vec<Label>,
 }
@@ -159,7 +160,7 @@ impl Diagnostic {
             span: Some(span),
             message: message.into(),
             hint: None,
-            kind: ErrorKind::Other,
+            kind: Box::default(),
             labels: Vec::new(),
         }
     }
@@ -170,7 +171,7 @@ impl Diagnostic {
             span: None,
             message: message.into(),
             hint: None,
-            kind: ErrorKind::Other,
+            kind: Box::default(),
             labels: Vec::new(),
         }
     }
@@ -181,7 +182,7 @@ impl Diagnostic {
             span: Some(span),
             message: message.into(),
             hint: None,
-            kind: ErrorKind::Other,
+            kind: Box::default(),
             labels: Vec::new(),
         }
     }
@@ -199,16 +200,8 @@ impl Diagnostic {
     }
     /// The same diagnostic of class `kind`.
     pub fn with_kind(mut self, kind: ErrorKind) -> Diagnostic {
-        self.kind = kind;
+        *self.kind = kind;
         self
-    }
-    /// The same diagnostic of class `kind` unless a more precise class
-    /// was set where it was made (a front end's default for its errors).
-    pub fn or_kind(self, kind: ErrorKind) -> Diagnostic {
-        match self.kind {
-            ErrorKind::Other => self.with_kind(kind),
-            _ => self,
-        }
     }
     /// The same diagnostic pointing also at `span`, with what is there.
     pub fn with_label(mut self, span: Span, message: impl Into<String>) -> Diagnostic {
@@ -249,13 +242,20 @@ impl Diagnostic {
                 .iter()
                 .filter_map(|l| Caret::of(src, l.span).map(|c| (c, l.message.as_str())))
                 .collect();
-            let widest = labels.iter().map(|(c, _)| c.line).fold(main.line, usize::max);
+            let widest = labels
+                .iter()
+                .map(|(c, _)| c.line)
+                .fold(main.line, usize::max);
             let gutter = widest.to_string().len();
             let pad = " ".repeat(gutter);
             out.push_str(&format!("{pad}--> {file}:{}:{}\n", main.line, main.column));
             out.push_str(&format!("{pad} |\n"));
             out.push_str(&main.excerpt(gutter));
-            out.push_str(&format!("{pad} | {}{}\n", main.indent, "^".repeat(main.width)));
+            out.push_str(&format!(
+                "{pad} | {}{}\n",
+                main.indent,
+                "^".repeat(main.width)
+            ));
             // a label on the line shown last goes under the same copy of it
             let mut shown = main.whole_line.then_some(main.line);
             for (c, message) in labels {
@@ -264,7 +264,11 @@ impl Diagnostic {
                     out.push_str(&c.excerpt(gutter));
                     shown = c.whole_line.then_some(c.line);
                 }
-                out.push_str(&format!("{pad} | {}{} {message}\n", c.indent, "-".repeat(c.width)));
+                out.push_str(&format!(
+                    "{pad} | {}{} {message}\n",
+                    c.indent,
+                    "-".repeat(c.width)
+                ));
             }
         }
         if let Some(h) = &self.hint {
@@ -551,12 +555,11 @@ pub fn decode_source(path: &str, bytes: Vec<u8>) -> Result<String, SourceError> 
     };
     // the text before `at` is the same in the lossy copy, so are positions
     let text = String::from_utf8_lossy(bytes).into_owned();
-    let diagnostic =
-        Diagnostic::error(Span::new(at, at + '\u{FFFD}'.len_utf8()), message)
-            .with_hint(hint)
-            .with_kind(ErrorKind::NotUtf8 {
-                path: path.to_string(),
-            });
+    let diagnostic = Diagnostic::error(Span::new(at, at + '\u{FFFD}'.len_utf8()), message)
+        .with_hint(hint)
+        .with_kind(ErrorKind::NotUtf8 {
+            path: path.to_string(),
+        });
     Err(SourceError::NotUtf8 {
         path: path.to_string(),
         diagnostic: Box::new(diagnostic),

@@ -247,8 +247,8 @@ impl<'a> Walker<'a> {
             )
             .with_hint("annotate the names whose dimensions are found from each other (`p: length`), or remove every annotation to skip the check");
         }
-        let mut d = Diagnostic::error(e.span, msg)
-            .with_kind(crate::diag::ErrorKind::DimensionMismatch);
+        let mut d =
+            Diagnostic::error(e.span, msg).with_kind(crate::diag::ErrorKind::DimensionMismatch);
         for (span, message) in hint::origins(self, e) {
             d = d.with_label(span, message);
         }
