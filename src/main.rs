@@ -277,14 +277,10 @@ fn main() -> ExitCode {
             baumgarte,
         } => {
             let report = Reporter::new(file, output == "json");
-            let src = match report.read_scene() {
-                Ok(s) => s,
-                Err(code) => return code,
-            };
-            return budgeted(report, &src, cli.max_terms, || {
+            return on_scene(report, cli.max_terms, |src| {
                 simulate(
                     report,
-                    &src,
+                    src,
                     set.as_deref(),
                     init.as_deref(),
                     qdot::simulate::run::Request {
@@ -303,11 +299,7 @@ fn main() -> ExitCode {
         }
         Command::Sweep(args) => {
             let report = Reporter::new(&args.file, args.output == "json");
-            let src = match report.read_scene() {
-                Ok(s) => s,
-                Err(code) => return code,
-            };
-            return budgeted(report, &src, cli.max_terms, || sweep(report, &src, args));
+            return on_scene(report, cli.max_terms, |src| sweep(report, src, args));
         }
         Command::Codegen {
             file,
@@ -323,11 +315,7 @@ fn main() -> ExitCode {
                     Ok(r) => r,
                     Err(d) => return report.fail(&d, ""),
                 };
-            let src = match report.read_scene() {
-                Ok(s) => s,
-                Err(code) => return code,
-            };
-            return budgeted(report, &src, cli.max_terms, || codegen(report, &src, &req));
+            return on_scene(report, cli.max_terms, |src| codegen(report, src, &req));
         }
         Command::Derive { file, format } => (output::Command::Derive, file, *format, None),
         Command::Solve { file, format } => (output::Command::Solve, file, *format, None),
@@ -489,17 +477,17 @@ fn codegen(report: Reporter, src: &str, req: &qdot::simulate::codegen::CodegenRe
 }
 
 /// Run a command that derives outside `output::run_with` (simulate, sweep,
-/// codegen) under the work budget `--max-terms`, as every other command is.
-fn budgeted(
-    report: Reporter,
-    src: &str,
-    max_terms: usize,
-    f: impl FnOnce() -> ExitCode,
-) -> ExitCode {
-    match qdot::budget::within(max_terms, f) {
+/// codegen) on the scene's text, under the work budget `--max-terms` as
+/// every other command is.
+fn on_scene(report: Reporter, max_terms: usize, f: impl FnOnce(&str) -> ExitCode) -> ExitCode {
+    let src = match report.read_scene() {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    match qdot::budget::within(max_terms, || f(&src)) {
         Ok(code) => code,
         // the statement it names is shown in its source
-        Err(e) => report.fail(&output::too_large(&e), src),
+        Err(e) => report.fail(&output::too_large(&e), &src),
     }
 }
 
