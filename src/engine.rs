@@ -2,7 +2,7 @@
 //! targets: public without a promise of stability (the crates they come
 //! from are the stable way in).
 
-pub use qdot_exact::{algebra, budget, cancel, poly};
+pub use qdot_exact::{algebra, cancel, poly};
 pub use qdot_ode::dense;
 pub use qdot_syntax::unicode;
 

@@ -27,7 +27,7 @@
 // The public API: the modules along the data's path, the application
 // layer, and the names a user needs at the root. The engine's internals
 // are behind one hidden module, `engine`.
-pub use qdot_exact::{expr, limits, num};
+pub use qdot_exact::{budget, expr, limits, num};
 pub use qdot_mechanics::{mechanics, scene, solve};
 pub use qdot_syntax::{diag, parse};
 pub mod app;
@@ -42,7 +42,7 @@ pub mod engine;
 use engine::gallery;
 #[cfg(feature = "cli")]
 use qdot_exact::cancel;
-use qdot_exact::{algebra, budget, poly};
+use qdot_exact::{algebra, poly};
 
 pub use app::{AnyReport, Command, CommandOptions, Context, Format, Report};
 pub use diag::{Diagnostic, Severity, Span};

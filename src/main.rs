@@ -1,6 +1,7 @@
 //! The `qdot` command line.
 
 use clap::{Parser, Subcommand, ValueEnum};
+use qdot::diag::ErrorKind;
 use qdot::output::{self, Format};
 use std::process::ExitCode;
 
@@ -275,9 +276,11 @@ fn main() -> ExitCode {
             function,
             baumgarte,
         } => {
-            return budgeted(file, cli.max_terms, || {
+            let report = Reporter::new(file, output == "json");
+            return on_scene(report, cli.max_terms, |src| {
                 simulate(
-                    file,
+                    report,
+                    src,
                     set.as_deref(),
                     init.as_deref(),
                     qdot::simulate::run::Request {
@@ -294,7 +297,10 @@ fn main() -> ExitCode {
                 )
             });
         }
-        Command::Sweep(args) => return budgeted(&args.file, cli.max_terms, || sweep(args)),
+        Command::Sweep(args) => {
+            let report = Reporter::new(&args.file, args.output == "json");
+            return on_scene(report, cli.max_terms, |src| sweep(report, src, args));
+        }
         Command::Codegen {
             file,
             lang,
@@ -303,9 +309,13 @@ fn main() -> ExitCode {
             function,
             baumgarte,
         } => {
-            return budgeted(file, cli.max_terms, || {
-                codegen(file, set.as_deref(), *lang, *form, function, *baumgarte)
-            })
+            let report = Reporter::new(file, false);
+            let req =
+                match codegen_request(file, set.as_deref(), *lang, *form, function, *baumgarte) {
+                    Ok(r) => r,
+                    Err(d) => return report.fail(&d, ""),
+                };
+            return on_scene(report, cli.max_terms, |src| codegen(report, src, &req));
         }
         Command::Derive { file, format } => (output::Command::Derive, file, *format, None),
         Command::Solve { file, format } => (output::Command::Solve, file, *format, None),
@@ -346,59 +356,93 @@ fn main() -> ExitCode {
             opts.at = at.clone();
             opts.init = init.clone();
             if *standalone && *format != Fmt::Latex {
-                eprintln!(
-                    "error: --standalone makes a LaTeX document\n  = hint: add --format latex"
-                );
-                std::process::exit(2);
+                let d = qdot::Diagnostic::global("--standalone makes a LaTeX document")
+                    .with_hint("add --format latex")
+                    .with_kind(ErrorKind::bad_option("--standalone"));
+                Reporter::new(file, *format == Fmt::Json).print(&d, "");
+                return ExitCode::from(2);
             }
             opts.standalone = *standalone;
             opts.title = title.clone().unwrap_or_else(|| base_name(file));
             (output::Command::Modes, file, *format, set.as_deref())
         }
     };
+    let report = Reporter::new(file, fmt == Fmt::Json);
     let fmt = match fmt {
         Fmt::Text => Format::Text,
         Fmt::Json => Format::Json,
         Fmt::Latex => Format::Latex,
     };
-    let set = match set.map(output::parse_set_any_sign).transpose() {
+    opts.set = match set.map(output::parse_set_any_sign).transpose() {
         Ok(s) => s.unwrap_or_default(),
-        Err(d) => {
-            eprint!("{}", d.render(file, ""));
-            return ExitCode::from(1);
-        }
+        Err(d) => return report.fail(&d, ""),
     };
-    let src = match qdot::diag::read_source(file) {
+    let src = match report.read_scene() {
         Ok(s) => s,
-        Err(message) => {
-            eprint!("{message}");
-            return ExitCode::from(1);
-        }
+        Err(code) => return code,
     };
-    opts.set = set;
     match output::run_with(cmd, &src, fmt, &opts) {
         Ok((out, warnings)) => {
-            for w in warnings {
-                eprint!("{}", w.render(file, &src));
+            for w in &warnings {
+                report.print(w, &src);
             }
             emit(&out);
             ExitCode::SUCCESS
         }
-        Err(d) => {
-            eprint!("{}", d.render(file, &src));
-            ExitCode::from(1)
-        }
+        Err(d) => report.fail(&d, &src),
     }
 }
 
-fn codegen(
+/// Where a command's errors and warnings go: standard error, as text about
+/// the scene file, or (`--format json`, `--output json`) one JSON object
+/// per line ([`qdot::Diagnostic::to_json`]).
+#[derive(Clone, Copy)]
+struct Reporter<'a> {
+    /// The scene file, as named on the command line.
+    file: &'a str,
+    /// Whether diagnostics are printed as JSON.
+    json: bool,
+}
+
+impl<'a> Reporter<'a> {
+    fn new(file: &'a str, json: bool) -> Reporter<'a> {
+        Reporter { file, json }
+    }
+
+    /// Print a diagnostic about `src` (an error or a warning).
+    fn print(&self, d: &qdot::Diagnostic, src: &str) {
+        if self.json {
+            eprintln!("{}", d.to_json(src));
+        } else {
+            eprint!("{}", d.render(self.file, src));
+        }
+    }
+
+    /// Print an error about `src`; the exit status of a failed command.
+    fn fail(&self, d: &qdot::Diagnostic, src: &str) -> ExitCode {
+        self.print(d, src);
+        ExitCode::from(1)
+    }
+
+    /// The scene file's text, or the exit status after reporting why it
+    /// cannot be read or is not UTF-8.
+    fn read_scene(&self) -> Result<String, ExitCode> {
+        qdot::diag::read_source(self.file).map_err(|e| {
+            let (d, text) = e.diagnostic();
+            self.fail(&d, text)
+        })
+    }
+}
+
+/// The request of `qdot codegen` from its options.
+fn codegen_request(
     file: &str,
     set: Option<&str>,
     lang: CodegenLang,
     form: CodegenForm,
     functions: &[String],
     baumgarte: f64,
-) -> ExitCode {
+) -> Result<qdot::simulate::codegen::CodegenRequest, qdot::Diagnostic> {
     use qdot::simulate::codegen::{CodegenRequest, Form, Lang};
     let mut req = CodegenRequest::new(
         file,
@@ -415,43 +459,38 @@ fn codegen(
     };
     req.functions = functions.to_vec();
     req.baumgarte = baumgarte;
-    match set.map(output::parse_set_any_sign).transpose() {
-        Ok(s) => req.set = s.unwrap_or_default(),
-        Err(d) => {
-            eprint!("{}", d.render(file, ""));
-            return ExitCode::from(1);
-        }
-    }
-    let src = match qdot::diag::read_source(file) {
-        Ok(s) => s,
-        Err(message) => {
-            eprint!("{message}");
-            return ExitCode::from(1);
-        }
-    };
-    match qdot::simulate::codegen::codegen(&src, &req) {
+    req.set = set
+        .map(output::parse_set_any_sign)
+        .transpose()?
+        .unwrap_or_default();
+    Ok(req)
+}
+
+fn codegen(report: Reporter, src: &str, req: &qdot::simulate::codegen::CodegenRequest) -> ExitCode {
+    match qdot::simulate::codegen::codegen(src, req) {
         Ok(code) => {
             emit(&code);
             ExitCode::SUCCESS
         }
-        Err(d) => {
-            eprint!("{}", d.render(file, &src));
-            ExitCode::from(1)
-        }
+        Err(d) => report.fail(&d, src),
     }
 }
 
 /// Run a command that derives outside `output::run_with` (simulate, sweep,
-/// codegen) under the work budget `--max-terms`, as every other command is.
-fn budgeted(file: &str, max_terms: usize, f: impl FnOnce() -> ExitCode) -> ExitCode {
-    match qdot::engine::budget::within(max_terms, f) {
+/// codegen) on the scene's text, under the work budget `--max-terms` as
+/// every other command is.
+fn on_scene(report: Reporter, max_terms: usize, f: impl FnOnce(&str) -> ExitCode) -> ExitCode {
+    let src = match report.read_scene() {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    match qdot::Context::new()
+        .with_max_terms(max_terms)
+        .within(|| f(&src))
+    {
         Ok(code) => code,
-        Err(e) => {
-            // the statement it names is shown in its source
-            let src = qdot::diag::read_source(file).unwrap_or_default();
-            eprint!("{}", output::too_large(&e).render(file, &src));
-            ExitCode::from(1)
-        }
+        // the statement it names is shown in its source
+        Err(e) => report.fail(&output::too_large(&e), &src),
     }
 }
 
@@ -464,7 +503,8 @@ fn repl(file: Option<&str>, echo: bool, max_terms: usize) -> ExitCode {
 
 #[allow(clippy::too_many_arguments)]
 fn simulate(
-    file: &str,
+    report: Reporter,
+    src: &str,
     set: Option<&str>,
     init: Option<&str>,
     mut req: qdot::simulate::run::Request,
@@ -475,46 +515,26 @@ fn simulate(
 ) -> ExitCode {
     use qdot::simulate::run;
     let req_max_steps = req.max_steps;
-    let fail = |d: qdot::Diagnostic, src: &str| {
-        eprint!("{}", d.render(file, src));
-        ExitCode::from(1)
-    };
-    let src = match qdot::diag::read_source(file) {
-        Ok(s) => s,
-        Err(message) => {
-            eprint!("{message}");
-            return ExitCode::from(1);
-        }
-    };
-    if output != "csv" && output != "json" {
-        return fail(
-            qdot::Diagnostic::global(format!("unknown output `{output}`"))
-                .with_hint("--output csv or --output json"),
-            "",
-        );
-    }
-    match run::method_by_name(method) {
-        Ok(m) => req.method = m,
-        Err(d) => return fail(d, ""),
-    }
-    match engine_by_name(evaluator) {
-        Ok(e) => req.engine = e,
-        Err(d) => return fail(d, ""),
-    }
-    match set.map(output::parse_set_any_sign).transpose() {
-        Ok(s) => req.set = s.unwrap_or_default(),
-        Err(d) => return fail(d, ""),
-    }
-    match init.map(run::parse_init).transpose() {
-        Ok(s) => req.init = s.unwrap_or_default(),
-        Err(d) => return fail(d, ""),
+    let options = (|| -> Result<(), qdot::Diagnostic> {
+        output_by_name(output)?;
+        req.method = run::method_by_name(method)?;
+        req.engine = engine_by_name(evaluator)?;
+        req.set = set
+            .map(output::parse_set_any_sign)
+            .transpose()?
+            .unwrap_or_default();
+        req.init = init.map(run::parse_init).transpose()?.unwrap_or_default();
+        Ok(())
+    })();
+    if let Err(d) = options {
+        return report.fail(&d, "");
     }
     if plot.is_some() {
         req.plot_samples = qdot::simulate::plot::SAMPLES;
     }
-    let r = match run::simulate(&src, &req) {
+    let r = match run::simulate(src, &req) {
         Ok(r) => r,
-        Err(d) => return fail(d, &src),
+        Err(d) => return report.fail(&d, src),
     };
     emit(&if output == "json" {
         run::json(&r)
@@ -529,19 +549,21 @@ fn simulate(
             .map_err(|e| e.to_string())
             .and_then(|svg| std::fs::write(path, svg).map_err(|e| e.to_string()));
         if let Err(e) = written {
-            eprintln!("error: cannot write the plot `{path}`: {e}");
-            return ExitCode::from(1);
+            let d = qdot::Diagnostic::global(format!("cannot write the plot `{path}`: {e}"));
+            return report.fail(&d, "");
         }
     }
     if let Some(t) = r.solution.stiff_at {
-        eprintln!(
-            "warning: the problem looks stiff from t = {t:.6e} on (Hairer's test); --method radau5 integrates it in far fewer steps"
-        );
+        let w = qdot::Diagnostic::global_warning(format!(
+            "the problem looks stiff from t = {t:.6e} on (Hairer's test); --method radau5 integrates it in far fewer steps"
+        ));
+        report.print(&w, "");
     }
     for t in &r.solution.event_poles {
-        eprintln!(
-            "warning: the --stop-when condition changed sign at t = {t:.6e} without passing through zero (a pole or a jump): not an event, the run went on"
-        );
+        let w = qdot::Diagnostic::global_warning(format!(
+            "the --stop-when condition changed sign at t = {t:.6e} without passing through zero (a pole or a jump): not an event, the run went on"
+        ));
+        report.print(&w, "");
     }
     if let qdot::simulate::Status::Event { t } = r.solution.status {
         eprintln!("stopped at t = {t:.15e}, where the --stop-when condition changes sign");
@@ -553,10 +575,13 @@ fn simulate(
         Status::StepTooSmall { t } => (t, "the solution may blow up there; check the scene and the initial values, or loosen the tolerances".to_string()),
         Status::NotFinite { t } => (t, r.not_finite_reason()),
     };
-    eprintln!(
-        "error: the integration stopped early: {} at t = {t:.6e}\n  = hint: {hint}",
+    let d = qdot::Diagnostic::global(format!(
+        "the integration stopped early: {} at t = {t:.6e}",
         run::status_word(&r.solution.status),
-    );
+    ))
+    .with_hint(hint)
+    .with_kind(ErrorKind::Integration);
+    report.print(&d, "");
     ExitCode::from(3)
 }
 
@@ -606,7 +631,18 @@ fn engine_by_name(name: &str) -> Result<qdot::simulate::compile::Engine, qdot::D
     qdot::simulate::compile::Engine::by_name(name).ok_or_else(|| {
         qdot::Diagnostic::global(format!("unknown evaluator `{name}`"))
             .with_hint("--evaluator auto, jit (machine code) or interpreter")
+            .with_kind(ErrorKind::bad_option("--evaluator"))
     })
+}
+
+/// `--output csv|json` of `simulate` and `sweep`.
+fn output_by_name(name: &str) -> Result<(), qdot::Diagnostic> {
+    if name == "csv" || name == "json" {
+        return Ok(());
+    }
+    Err(qdot::Diagnostic::global(format!("unknown output `{name}`"))
+        .with_hint("--output csv or --output json")
+        .with_kind(ErrorKind::bad_option("--output")))
 }
 
 impl Integration {
@@ -667,9 +703,8 @@ struct SweepArgs {
     log_every: f64,
 }
 
-fn sweep(o: &SweepArgs) -> ExitCode {
+fn sweep(report: Reporter, src: &str, o: &SweepArgs) -> ExitCode {
     use qdot::simulate::{run, sweep};
-    let file = o.file.as_str();
     let design = match o.samples {
         Some(samples) => sweep::Design::Random {
             samples,
@@ -681,27 +716,16 @@ fn sweep(o: &SweepArgs) -> ExitCode {
         stop_when: o.stop_when.clone(),
         ..o.integration.request()
     };
-    let src = match qdot::diag::read_source(file) {
-        Ok(s) => s,
-        Err(message) => {
-            eprint!("{message}");
-            return ExitCode::from(1);
-        }
-    };
     let prepared = (|| {
         if !(o.log_every.is_finite() && o.log_every >= 0.0) {
             return Err(qdot::Diagnostic::global(format!(
                 "`--log-every {}`: not a number of seconds",
                 o.log_every
             ))
-            .with_hint("--log-every 30 writes a progress line every 30 s"));
+            .with_hint("--log-every 30 writes a progress line every 30 s")
+            .with_kind(ErrorKind::bad_option("--log-every")));
         }
-        if o.output != "csv" && o.output != "json" {
-            return Err(
-                qdot::Diagnostic::global(format!("unknown output `{}`", o.output))
-                    .with_hint("--output csv or --output json"),
-            );
-        }
+        output_by_name(&o.output)?;
         base.method = run::method_by_name(&o.integration.method)?;
         base.engine = engine_by_name(&o.integration.evaluator)?;
         base.set = o
@@ -725,12 +749,9 @@ fn sweep(o: &SweepArgs) -> ExitCode {
     })();
     let axes = match prepared {
         Ok(a) => a,
-        Err(d) => {
-            eprint!("{}", d.render(file, ""));
-            return ExitCode::from(1);
-        }
+        Err(d) => return report.fail(&d, ""),
     };
-    let result = run::Prepared::new(&src, &base.functions).and_then(|p| {
+    let result = run::Prepared::new(src, &base.functions).and_then(|p| {
         let total = sweep::design_points(&axes, design)?.len();
         let bar = if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
             indicatif::ProgressBar::new(total as u64)
@@ -760,8 +781,8 @@ fn sweep(o: &SweepArgs) -> ExitCode {
                 let left = spent * (total - done) as f64 / done.max(1) as f64;
                 eprintln!(
                     "sweep: {} of {} runs done in {spent:.0} s, about {left:.0} s left",
-                    qdot::engine::budget::grouped(done),
-                    qdot::engine::budget::grouped(total)
+                    qdot::budget::grouped(done),
+                    qdot::budget::grouped(total)
                 );
             }
         };
@@ -771,10 +792,7 @@ fn sweep(o: &SweepArgs) -> ExitCode {
     });
     let s = match result {
         Ok(s) => s,
-        Err(d) => {
-            eprint!("{}", d.render(file, &src));
-            return ExitCode::from(1);
-        }
+        Err(d) => return report.fail(&d, src),
     };
     emit(&if o.output == "json" {
         sweep::json(&s)
@@ -794,10 +812,11 @@ fn sweep(o: &SweepArgs) -> ExitCode {
     }
     let failed = s.runs.iter().filter(|(_, r)| r.is_err()).count();
     if failed > 0 {
-        eprintln!(
-            "warning: {failed} of {} runs failed (their rows say why)",
+        let w = qdot::Diagnostic::global_warning(format!(
+            "{failed} of {} runs failed (their rows say why)",
             s.runs.len()
-        );
+        ));
+        report.print(&w, "");
     }
     ExitCode::SUCCESS
 }

@@ -17,6 +17,7 @@ mod constraints;
 mod definite_props;
 mod dimensions;
 mod equilibrium;
+mod errors_json;
 mod factor;
 mod frames;
 mod fuzz_regressions;

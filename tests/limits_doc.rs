@@ -27,7 +27,7 @@ fn limits() -> Vec<(String, u64)> {
 }
 
 fn grouped(n: u64) -> String {
-    qdot::engine::budget::grouped(n as usize)
+    qdot::budget::grouped(n as usize)
 }
 
 #[test]

@@ -657,3 +657,18 @@ fn latex_of_the_last_result_is_the_last_command_or_expression() {
     ok(&mut s, "k*m");
     assert_eq!(ok(&mut s, ":latex"), "k m\n");
 }
+
+/// A second place elsewhere in the scene is not in the entry the REPL
+/// shows: the error of a name declared twice points at the entry only,
+/// never at a label placed by the scene's offsets in the entry's text.
+#[test]
+fn a_label_outside_the_entry_is_left_out() {
+    let mut s = qdot::repl::Session::new();
+    assert!(!s.execute("coordinates x").failed);
+    let r = s.execute("coordinates x");
+    assert!(r.failed);
+    assert_eq!(
+        r.err,
+        "error: coordinate declared twice: `x` is already a coordinate\n --> input:1:13\n  |\n1 | coordinates x\n  |             ^\n  = hint: each name has one meaning in a scene; role statements add up, but their names must differ\n"
+    );
+}

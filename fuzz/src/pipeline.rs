@@ -308,10 +308,10 @@ pub fn commands(data: &[u8]) {
         }
         // as the CLI runs them: within the work budget
         Some("sweep") => {
-            let _ = qdot::engine::budget::within(FUZZ_MAX_TERMS, || sweep(scene, &o));
+            let _ = qdot::budget::within(FUZZ_MAX_TERMS, || sweep(scene, &o));
         }
         Some("codegen") => {
-            let _ = qdot::engine::budget::within(FUZZ_MAX_TERMS, || codegen(scene, &o));
+            let _ = qdot::budget::within(FUZZ_MAX_TERMS, || codegen(scene, &o));
         }
         _ => {}
     }

@@ -3,7 +3,7 @@
 
 use super::report::{AnyReport, Derived, Forces, LatexRequest, Oscillations, Report, Solved};
 use super::{Command, CommandOptions, Context};
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, ErrorKind};
 use crate::scene::Scene;
 use crate::solve::equilibrium::Values;
 use crate::solve::oscillations as osc;
@@ -94,7 +94,8 @@ fn forces(ctx: &Context, scene: &Arc<Scene>) -> Result<Report<Forces>, Diagnosti
         return Err(Diagnostic::global(
             "the scene declares no coordinates, so there are no generalized forces",
         )
-        .with_hint("declare the generalized coordinates with `coordinates q1, q2, …`"));
+        .with_hint("declare the generalized coordinates with `coordinates q1, q2, …`")
+        .with_kind(ErrorKind::NothingToSolve));
     }
     let coordinates = scene.coordinates.iter().map(|c| c.name.clone()).collect();
     Ok(report(
@@ -142,7 +143,8 @@ pub(super) fn modes(
                     c.name,
                     crate::expr::print::input(v)
                 ))
-                .with_hint("give the coordinates constant values: --at theta=0 (the motion about a moving state is not small oscillations)"));
+                .with_hint("give the coordinates constant values: --at theta=0 (the motion about a moving state is not small oscillations)")
+                .with_kind(ErrorKind::bad_option("--at")));
             }
         }
     }
@@ -231,7 +233,8 @@ fn check_set(scene: &Scene, set: &Values) -> Result<(), Diagnostic> {
                 "the scene has no parameters".to_string()
             } else {
                 format!("the parameters are {}", list.join(", "))
-            }));
+            })
+            .with_kind(ErrorKind::bad_option("--set")));
         }
     }
     Ok(())

@@ -875,6 +875,14 @@ fn shift(
     let mv = |x: usize| (x as isize + delta).max(0) as usize;
     let mut e = d.clone();
     e.span = Some(crate::parse::ast::Span::new(mv(span.start), mv(span.end)));
+    // a second place in the same statement moves with it; one elsewhere in
+    // the scene is not in the entry's text, which is all the entry shows
+    let end = offsets.get(i + 1).copied().unwrap_or(usize::MAX);
+    e.labels
+        .retain(|l| (offsets[i]..end).contains(&l.span.start));
+    for l in &mut e.labels {
+        l.span = crate::parse::ast::Span::new(mv(l.span.start), mv(l.span.end));
+    }
     Some(e)
 }
 

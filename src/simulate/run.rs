@@ -17,7 +17,7 @@ use super::{
     integrate, integrate_with_event, IntegratorOptions, Method, SimError, Solution, Status, System,
 };
 use crate::algebra::sign::Values;
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, ErrorKind};
 use crate::expr::{atom, Expr};
 use crate::poly::Var;
 use crate::scene::Scene;
@@ -167,7 +167,8 @@ fn parameter_values(scene: &Scene, req: &Request) -> Result<FxHashMap<Var, f64>,
         .with_hint(format!(
             "give every parameter a value: --set {}",
             example.join(",")
-        )));
+        ))
+        .with_kind(ErrorKind::bad_option("--set")));
     }
     for k in req.set.keys() {
         if !scene.parameters.iter().any(|p| &p.name == k) {
@@ -182,7 +183,8 @@ fn parameter_values(scene: &Scene, req: &Request) -> Result<FxHashMap<Var, f64>,
                     .map(|p| p.name.as_str())
                     .collect::<Vec<_>>()
                     .join(", ")
-            )));
+            ))
+            .with_kind(ErrorKind::bad_option("--set")));
         }
     }
     Ok(params)
@@ -208,12 +210,12 @@ fn initial_values(names: &[String], req: &Request) -> Result<Vec<f64>, Diagnosti
     if !missing.is_empty() {
         let example: Vec<String> = missing.iter().map(|m| format!("{m}=0")).collect();
         return Err(
-            Diagnostic::global(format!("no initial value for {}", missing.join(", "))).with_hint(
-                format!(
+            Diagnostic::global(format!("no initial value for {}", missing.join(", ")))
+                .with_hint(format!(
                     "give every coordinate and velocity a value: --init {}",
                     example.join(",")
-                ),
-            ),
+                ))
+                .with_kind(ErrorKind::bad_option("--init")),
         );
     }
     for k in req.init.keys() {
@@ -225,7 +227,8 @@ fn initial_values(names: &[String], req: &Request) -> Result<Vec<f64>, Diagnosti
             .with_hint(format!(
                 "the coordinates are {}; velocities are written q'",
                 names.join(", ")
-            )));
+            ))
+            .with_kind(ErrorKind::bad_option("--init")));
         }
     }
     Ok(y0)
@@ -237,16 +240,17 @@ fn initial_values(names: &[String], req: &Request) -> Result<Vec<f64>, Diagnosti
 fn check_numbers(req: &Request) -> Result<(), Diagnostic> {
     use crate::limits::{MAX_POINTS, MIN_RTOL};
     if !(req.t_end.is_finite() && req.t_end > 0.0) {
-        return Err(Diagnostic::global(format!(
-            "--t-end {} must be a positive number",
-            req.t_end
-        )));
+        return Err(
+            Diagnostic::global(format!("--t-end {} must be a positive number", req.t_end))
+                .with_kind(ErrorKind::bad_option("--t-end")),
+        );
     }
     if let Some(dt) = req.dt {
         if !(dt.is_finite() && dt > 0.0) {
             return Err(
                 Diagnostic::global(format!("--dt {dt} must be a positive number"))
-                    .with_hint("the run goes forward from t = 0 to --t-end: --dt 0.01"),
+                    .with_hint("the run goes forward from t = 0 to --t-end: --dt 0.01")
+                    .with_kind(ErrorKind::bad_option("--dt")),
             );
         }
     }
@@ -257,30 +261,34 @@ fn check_numbers(req: &Request) -> Result<(), Diagnostic> {
         ))
         .with_hint(
             "the output times include t = 0 and --t-end; for more, run in pieces with --t-end",
-        ));
+        )
+        .with_kind(ErrorKind::bad_option("--points")));
     }
     if !(req.baumgarte.is_finite() && req.baumgarte >= 0.0) {
         return Err(Diagnostic::global(format!(
             "--baumgarte {} must be a number ≥ 0",
             req.baumgarte
         ))
-        .with_hint("the rate at which constraint drift decays, in 1/time of the scene (0: no stabilization)"));
+        .with_hint("the rate at which constraint drift decays, in 1/time of the scene (0: no stabilization)")
+        .with_kind(ErrorKind::bad_option("--baumgarte")));
     }
     if req.max_steps == 0 {
-        return Err(Diagnostic::global("--max-steps must be at least 1"));
+        return Err(Diagnostic::global("--max-steps must be at least 1")
+            .with_kind(ErrorKind::bad_option("--max-steps")));
     }
     if !(req.rtol.is_finite() && req.rtol >= MIN_RTOL) {
         return Err(Diagnostic::global(format!(
             "--rtol {} is below what a double can meet ({MIN_RTOL:e}, ten units in the last place)",
             req.rtol
         ))
-        .with_hint("--rtol 1e-12 is about as tight as the integrators go"));
+        .with_hint("--rtol 1e-12 is about as tight as the integrators go")
+        .with_kind(ErrorKind::bad_option("--rtol")));
     }
     if !(req.atol.is_finite() && req.atol >= 0.0) {
-        return Err(Diagnostic::global(format!(
-            "--atol {} must be a number ≥ 0",
-            req.atol
-        )));
+        return Err(
+            Diagnostic::global(format!("--atol {} must be a number ≥ 0", req.atol))
+                .with_kind(ErrorKind::bad_option("--atol")),
+        );
     }
     Ok(())
 }
@@ -297,7 +305,7 @@ pub fn method_by_name(s: &str) -> Result<Method, Diagnostic> {
         _ => {
             return Err(Diagnostic::global(format!("unknown method `{s}`")).with_hint(
                 "the methods are rk4, dopri5, dop853, vern7 (explicit), gauss6 (symplectic) and radau5 (stiff)",
-            ))
+            ).with_kind(ErrorKind::bad_option("--method")))
         }
     })
 }
@@ -481,12 +489,15 @@ impl Prepared {
         // without the `cli` feature there is no bar to draw
         #[cfg(not(feature = "cli"))]
         let solution = run_method(&mut dynamics, req.method, &y0, &opts, event.as_ref());
-        let solution = solution.map_err(|e| match e {
-            SimError::BadInput(s) => Diagnostic::global(s).with_hint(match req.method {
-                Method::Rk4 | Method::Gauss6 => "RK4 and Gauss6 take a fixed step: --dt 0.01",
-                _ => "check --rtol, --atol and --dt",
-            }),
-            e => Diagnostic::global(e.to_string()),
+        let solution = solution.map_err(|e| {
+            match e {
+                SimError::BadInput(s) => Diagnostic::global(s).with_hint(match req.method {
+                    Method::Rk4 | Method::Gauss6 => "RK4 and Gauss6 take a fixed step: --dt 0.01",
+                    _ => "check --rtol, --atol and --dt",
+                }),
+                e => Diagnostic::global(e.to_string()),
+            }
+            .with_kind(ErrorKind::Integration)
         })?;
         let mut seconds = start.elapsed().as_secs_f64();
         // `auto` may have compiled during the run
@@ -617,7 +628,8 @@ fn event_program(
     text: &str,
 ) -> Result<Program, Diagnostic> {
     let located = |d: Diagnostic| {
-        let e = Diagnostic::global(format!("`--stop-when {text}`: {}", d.message));
+        let e = Diagnostic::global(format!("`--stop-when {text}`: {}", d.message))
+            .with_kind(ErrorKind::bad_option("--stop-when"));
         match d.hint {
             Some(h) => e.with_hint(h),
             None => e,
@@ -634,6 +646,7 @@ fn event_program(
     compile_with(&[g], &state_inputs(coordinates), params).map_err(|e| {
         Diagnostic::global(format!("`--stop-when {text}` cannot be evaluated during the run: {e}"))
             .with_hint("use t, the coordinates, their velocities (q') and parameters: --stop-when \"theta = 0\"")
+            .with_kind(ErrorKind::bad_option("--stop-when"))
     })
 }
 

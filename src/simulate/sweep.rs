@@ -10,7 +10,7 @@
 
 use super::run::{status_word, Prepared, Request, Run};
 use super::Status;
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, ErrorKind};
 use crate::limits::MAX_SWEEP_RUNS;
 use qdot_exact::rng::SplitMix64;
 use rayon::prelude::*;
@@ -85,7 +85,11 @@ pub struct Sweep {
 /// `NAME=FROM:TO:COUNT` (grid) or `NAME=FROM:TO` (random design).
 pub fn parse_axis(text: &str) -> Result<Axis, Diagnostic> {
     let hint = "--vary NAME=FROM:TO:COUNT, e.g. --vary \"l=0.5:2:16\" (COUNT may be left out with --samples)";
-    let bad = |what: String| Diagnostic::global(format!("`--vary {text}`: {what}")).with_hint(hint);
+    let bad = |what: String| {
+        Diagnostic::global(format!("`--vary {text}`: {what}"))
+            .with_hint(hint)
+            .with_kind(ErrorKind::bad_option("--vary"))
+    };
     let (name, range) = text.split_once('=').ok_or_else(|| bad("no `=`".into()))?;
     let name = name.trim();
     if name.is_empty() {
@@ -131,6 +135,7 @@ pub fn design_points(axes: &[Axis], design: Design) -> Result<Vec<Vec<f64>>, Dia
             crate::budget::grouped(MAX_SWEEP_RUNS)
         ))
             .with_hint("fewer values per axis (COUNT), or fewer --samples; split the study into several sweeps")
+            .with_kind(ErrorKind::bad_option("--vary"))
     };
     match design {
         Design::Grid => {
@@ -144,7 +149,8 @@ pub fn design_points(axes: &[Axis], design: Design) -> Result<Vec<Vec<f64>>, Dia
                     .with_hint(format!(
                         "--vary \"{}={}:{}:10\", or draw random points with --samples N",
                         a.name, a.from, a.to
-                    )));
+                    ))
+                    .with_kind(ErrorKind::bad_option("--vary")));
                 }
                 total = total
                     .checked_mul(a.count)
@@ -180,9 +186,8 @@ pub fn design_points(axes: &[Axis], design: Design) -> Result<Vec<Vec<f64>>, Dia
                 return Err(Diagnostic::global(
                     "`--samples 0`: a random design needs at least one run",
                 )
-                .with_hint(
-                    "--samples 100 draws 100 random points in the box of the --vary ranges",
-                ));
+                .with_hint("--samples 100 draws 100 random points in the box of the --vary ranges")
+                .with_kind(ErrorKind::bad_option("--samples")));
             }
             if samples > MAX_SWEEP_RUNS {
                 return Err(too_many(samples.to_string()));
@@ -225,7 +230,8 @@ pub fn sweep(
                 "the parameters are {}; the coordinates {} (velocities are written q')",
                 params.join(", "),
                 coordinates.join(", ")
-            )));
+            ))
+            .with_kind(ErrorKind::bad_option("--vary")));
         }
     }
     let points = design_points(axes, design)?;
@@ -310,7 +316,8 @@ fn given_once(axis: &Axis, earlier: &[Axis], base: &Request) -> Result<(), Diagn
     };
     Err(
         Diagnostic::global(format!("`--vary {name}`: `{name}` {also}"))
-            .with_hint("vary each name once, and leave it out of --set and --init"),
+            .with_hint("vary each name once, and leave it out of --set and --init")
+            .with_kind(ErrorKind::bad_option("--vary")),
     )
 }
 

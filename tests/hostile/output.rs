@@ -122,9 +122,11 @@ fn a_value_that_is_not_finite_ends_the_run() {
     let rows =
         &o.stdout[o.stdout.find("\"rows\"").unwrap_or(0)..o.stdout.find("\"stats\"").unwrap_or(0)];
     assert!(!rows.contains("null"), "{o:?}");
+    // under --output json the error is a JSON object
     assert_eq!(
         o.stderr,
-        "error: the integration stopped early: not finite at t = 0.000000e0\n  = hint: `energy` is NaN there: a function outside its domain (√ or ln of a negative number, asin or acos past ±1), 0/0, ∞·0 or ∞ − ∞; the rows before it are printed\n"
+        "{\"error\":{\"kind\":\"integration\",\"message\":\"the integration stopped early: not finite at t = 0.000000e0\",\"line\":null,\"column\":null,\
+         \"hint\":\"`energy` is NaN there: a function outside its domain (√ or ln of a negative number, asin or acos past ±1), 0/0, ∞·0 or ∞ − ∞; the rows before it are printed\",\"labels\":[]}}\n"
     );
 }
 

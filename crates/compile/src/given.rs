@@ -13,6 +13,11 @@ use rustc_hash::FxHashMap;
 
 const HINT: &str = "define each given function of the scene once, in t and the parameters: --function \"s=1/10*sin(2*t)\"";
 
+/// The kind of every error of the definitions given with `--function`.
+fn function_option() -> crate::diag::ErrorKind {
+    crate::diag::ErrorKind::bad_option("--function")
+}
+
 /// `lag` with the scene's given functions replaced by their definitions
 /// `defs` (`s=EXPR` each); an error names a function without a definition,
 /// a definition of no given function, or one that is not a function of t
@@ -23,7 +28,8 @@ pub fn defined(scene: &Scene, lag: Lagrange, defs: &[String]) -> Result<Lagrange
         let Some((name, text)) = d.split_once('=') else {
             return Err(
                 Diagnostic::global(format!("--function expects NAME=EXPR, found `{d}`"))
-                    .with_hint(HINT),
+                    .with_hint(HINT)
+                    .with_kind(function_option()),
             );
         };
         let name = name.trim();
@@ -37,21 +43,26 @@ pub fn defined(scene: &Scene, lag: Lagrange, defs: &[String]) -> Result<Lagrange
             return Err(Diagnostic::global(format!(
                 "--function defines `{name}`, which is not a given function of the scene ({have})"
             ))
-            .with_hint("declare it with `functions NAME`, or remove the option"));
+            .with_hint("declare it with `functions NAME`, or remove the option")
+            .with_kind(function_option()));
         }
         let e = scene.expr(text).map_err(|e| {
-            Diagnostic::global(format!("--function {name}: {}", e.message)).with_hint(HINT)
+            Diagnostic::global(format!("--function {name}: {}", e.message))
+                .with_hint(HINT)
+                .with_kind(function_option())
         })?;
         if let Some(bad) = e.vars().into_iter().find(|&v| !of_time(v)) {
             return Err(Diagnostic::global(format!(
                 "--function {name}: the definition uses {}, but a given function depends on t and the parameters only",
                 crate::expr::print::input(&Expr::var(bad))
             ))
-            .with_hint(HINT));
+            .with_hint(HINT).with_kind(function_option()));
         }
         if values.insert(name, e).is_some() {
             return Err(
-                Diagnostic::global(format!("--function {name} is given twice")).with_hint(HINT),
+                Diagnostic::global(format!("--function {name} is given twice"))
+                    .with_hint(HINT)
+                    .with_kind(function_option()),
             );
         }
     }
@@ -64,7 +75,8 @@ pub fn defined(scene: &Scene, lag: Lagrange, defs: &[String]) -> Result<Lagrange
             "the given function `{}` needs a definition to simulate",
             f.name
         ))
-        .with_hint(HINT));
+        .with_hint(HINT)
+        .with_kind(function_option()));
     }
     if values.is_empty() {
         return Ok(lag);

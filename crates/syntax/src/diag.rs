@@ -2,7 +2,9 @@
 //!
 //! Every user-facing error of qdot is a [`Diagnostic`]; [`Diagnostic::render`]
 //! prints it with `file:line:column`, the source line and a caret under the
-//! offending text.
+//! offending text, and under it the places its [`Label`]s point at. Its
+//! [`ErrorKind`] says what class of error it is, for a program to match;
+//! [`Diagnostic::to_json`] is the object `--format json` prints.
 
 use std::fmt;
 
@@ -36,6 +38,102 @@ pub enum Severity {
     Warning,
 }
 
+/// What class of error a [`Diagnostic`] is, for a program to match on
+/// (the message is for people and may be reworded). New classes may come:
+/// match with a `_` arm.
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum ErrorKind {
+    /// The text does not parse: the parser's errors.
+    Syntax,
+    /// A name, function or dimension the scene does not know.
+    UnknownName {
+        /// The name as written.
+        name: String,
+    },
+    /// A name declared or given twice; the first place is a label.
+    DuplicateName {
+        /// The name.
+        name: String,
+    },
+    /// A term whose dimension is not the one needed there.
+    DimensionMismatch,
+    /// A linear system without a unique solution: the mass matrix, the
+    /// momenta's velocities, a `solve` block.
+    SingularSystem {
+        /// The names of the unknowns (coordinates, velocities, `solve`
+        /// unknowns) that the system leaves undetermined.
+        unknowns: Vec<String>,
+    },
+    /// The work budget (`--max-terms`) was exceeded.
+    TooLarge {
+        /// What passed the budget.
+        measure: crate::budget::Measure,
+    },
+    /// A file that cannot be read.
+    UnreadableFile {
+        /// The path as given.
+        path: String,
+    },
+    /// A file that is not UTF-8.
+    NotUtf8 {
+        /// The path as given.
+        path: String,
+    },
+    /// A command-line option with a value qdot cannot use.
+    BadOption {
+        /// The option, `--set`.
+        option: String,
+    },
+    /// A scene with nothing the command can work on (no coordinates).
+    NothingToSolve,
+    /// Constraints that are redundant or contradict each other.
+    Constraints,
+    /// A numeric integration that stopped before its end.
+    Integration,
+    /// Every other error (and every warning).
+    #[default]
+    Other,
+}
+
+impl ErrorKind {
+    /// [`ErrorKind::BadOption`] of `option` (`"--set"`).
+    pub fn bad_option(option: &str) -> ErrorKind {
+        ErrorKind::BadOption {
+            option: option.to_string(),
+        }
+    }
+
+    /// The kind's name in `--format json` (`"unknown_name"`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            ErrorKind::Syntax => "syntax",
+            ErrorKind::UnknownName { .. } => "unknown_name",
+            ErrorKind::DuplicateName { .. } => "duplicate_name",
+            ErrorKind::DimensionMismatch => "dimension_mismatch",
+            ErrorKind::SingularSystem { .. } => "singular_system",
+            ErrorKind::TooLarge { .. } => "too_large",
+            ErrorKind::UnreadableFile { .. } => "unreadable_file",
+            ErrorKind::NotUtf8 { .. } => "not_utf8",
+            ErrorKind::BadOption { .. } => "bad_option",
+            ErrorKind::NothingToSolve => "nothing_to_solve",
+            ErrorKind::Constraints => "constraints",
+            ErrorKind::Integration => "integration",
+            ErrorKind::Other => "other",
+        }
+    }
+}
+
+/// A second place a [`Diagnostic`] points at (where the other side's
+/// dimension comes from, a name's first declaration), with what it is.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Label {
+    /// The place in the source.
+    pub span: Span,
+    /// What is there, in a few words.
+    pub message: String,
+}
+
 /// A message about the input, located by a byte span.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Diagnostic {
@@ -47,6 +145,11 @@ pub struct Diagnostic {
     pub message: String,
     /// A suggestion for fixing it, when there is one.
     pub hint: Option<String>,
+    /// The class of error, for a program to match (boxed: a
+    /// `Result<_, Diagnostic>` stays small).
+    pub kind: Box<ErrorKind>,
+    /// Other places that matter, shown under the main one.
+    pub labels: Vec<Label>,
 }
 
 impl Diagnostic {
@@ -57,6 +160,8 @@ impl Diagnostic {
             span: Some(span),
             message: message.into(),
             hint: None,
+            kind: Box::default(),
+            labels: Vec::new(),
         }
     }
     /// An error that is not tied to one place in the source.
@@ -66,6 +171,8 @@ impl Diagnostic {
             span: None,
             message: message.into(),
             hint: None,
+            kind: Box::default(),
+            labels: Vec::new(),
         }
     }
     /// A warning at `span`.
@@ -75,12 +182,38 @@ impl Diagnostic {
             span: Some(span),
             message: message.into(),
             hint: None,
+            kind: Box::default(),
+            labels: Vec::new(),
+        }
+    }
+    /// A warning that is not tied to one place in the source.
+    pub fn global_warning(message: impl Into<String>) -> Diagnostic {
+        Diagnostic {
+            severity: Severity::Warning,
+            ..Diagnostic::global(message)
         }
     }
     /// The same diagnostic with a hint attached.
     pub fn with_hint(mut self, hint: impl Into<String>) -> Diagnostic {
         self.hint = Some(hint.into());
         self
+    }
+    /// The same diagnostic of class `kind`.
+    pub fn with_kind(mut self, kind: ErrorKind) -> Diagnostic {
+        *self.kind = kind;
+        self
+    }
+    /// The same diagnostic pointing also at `span`, with what is there.
+    pub fn with_label(mut self, span: Span, message: impl Into<String>) -> Diagnostic {
+        self.labels.push(Label {
+            span,
+            message: message.into(),
+        });
+        self
+    }
+    /// The class of error, for a program to match.
+    pub fn kind(&self) -> &ErrorKind {
+        &self.kind
     }
 
     /// 1-based (line, column) of a byte offset; columns count characters.
@@ -103,40 +236,146 @@ impl Diagnostic {
             Severity::Warning => "warning",
         };
         let mut out = format!("{kind}: {}\n", self.message);
-        // a span that is not a place in `src` (a diagnostic rendered
-        // without its source) is left out, never indexed
-        let placed = self
-            .span
-            .filter(|s| s.start <= src.len() && src.is_char_boundary(s.start));
-        if let Some(span) = placed {
-            let (line, col) = Diagnostic::line_col(src, span.start);
-            let line_start = src[..span.start.min(src.len())]
-                .rfind('\n')
-                .map(|i| i + 1)
-                .unwrap_or(0);
-            let line_end = src[line_start..]
-                .find('\n')
-                .map(|i| line_start + i)
-                .unwrap_or(src.len());
-            let text: Vec<char> = shown_line(&src[line_start..line_end]).chars().collect();
-            let gutter = line.to_string().len();
+        if let Some(main) = self.span.and_then(|s| Caret::of(src, s)) {
+            let labels: Vec<(Caret, &str)> = self
+                .labels
+                .iter()
+                .filter_map(|l| Caret::of(src, l.span).map(|c| (c, l.message.as_str())))
+                .collect();
+            let widest = labels
+                .iter()
+                .map(|(c, _)| c.line)
+                .fold(main.line, usize::max);
+            let gutter = widest.to_string().len();
             let pad = " ".repeat(gutter);
-            let end = span.end.clamp(span.start, line_end);
-            let width = src
-                .get(span.start.min(src.len())..end)
-                .map(|s| s.chars().count())
-                .unwrap_or(0)
-                .max(1);
-            let (shown, indent, width) = excerpt_of_line(&text, col - 1, width);
-            out.push_str(&format!("{pad}--> {file}:{line}:{col}\n"));
+            out.push_str(&format!("{pad}--> {file}:{}:{}\n", main.line, main.column));
             out.push_str(&format!("{pad} |\n"));
-            out.push_str(&format!("{line} | {shown}\n"));
-            out.push_str(&format!("{pad} | {indent}{}\n", "^".repeat(width)));
+            out.push_str(&main.excerpt(gutter));
+            out.push_str(&format!(
+                "{pad} | {}{}\n",
+                main.indent,
+                "^".repeat(main.width)
+            ));
+            // a label on the line shown last goes under the same copy of it
+            let mut shown = main.whole_line.then_some(main.line);
+            for (c, message) in labels {
+                if !(c.whole_line && shown == Some(c.line)) {
+                    out.push_str(&format!("{pad} |\n"));
+                    out.push_str(&c.excerpt(gutter));
+                    shown = c.whole_line.then_some(c.line);
+                }
+                out.push_str(&format!(
+                    "{pad} | {}{} {message}\n",
+                    c.indent,
+                    "-".repeat(c.width)
+                ));
+            }
         }
         if let Some(h) = &self.hint {
             out.push_str(&format!("  = hint: {h}\n"));
         }
         out
+    }
+
+    /// The diagnostic as one line of JSON, the object `--format json`
+    /// prints on stderr: `{"error": {"kind", "message", "line", "column",
+    /// "hint", "labels": [{"line", "column", "message"}]}}` (`"warning"`
+    /// for a warning); line and column 1-based as in the text, `null` for
+    /// a diagnostic not tied to a place in `src`.
+    pub fn to_json(&self, src: &str) -> String {
+        let index = LineIndex::new(src);
+        let place = |span: Option<Span>| match span.filter(|&s| is_place(src, s)) {
+            Some(s) => {
+                let (line, column) = index.line_col(s.start);
+                (serde_json::json!(line), serde_json::json!(column))
+            }
+            None => (serde_json::Value::Null, serde_json::Value::Null),
+        };
+        let (line, column) = place(self.span);
+        let labels: Vec<serde_json::Value> = self
+            .labels
+            .iter()
+            .map(|l| {
+                let (line, column) = place(Some(l.span));
+                serde_json::json!({"line": line, "column": column, "message": l.message})
+            })
+            .collect();
+        let severity = match self.severity {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+        };
+        serde_json::json!({
+            severity: {
+                "kind": self.kind.name(),
+                "message": self.message,
+                "line": line,
+                "column": column,
+                "hint": self.hint,
+                "labels": labels,
+            }
+        })
+        .to_string()
+    }
+}
+
+/// Whether `span` starts at a place in `src` (a diagnostic shown with
+/// another source, or none, has spans that are not).
+fn is_place(src: &str, span: Span) -> bool {
+    span.start <= src.len() && src.is_char_boundary(span.start)
+}
+
+/// A caret under a span of the source: the line it is on, as shown.
+struct Caret {
+    /// 1-based line and column (in characters) of the span's start.
+    line: usize,
+    column: usize,
+    /// The line as shown (cut to a window around the caret when long).
+    shown: String,
+    /// What goes before the caret, under the shown line.
+    indent: String,
+    /// The caret's width in characters.
+    width: usize,
+    /// Whether `shown` is the whole line (no window): then carets of
+    /// several spans of it can go under one copy.
+    whole_line: bool,
+}
+
+impl Caret {
+    /// The caret under `span`, or `None` for a span that is not a place in
+    /// `src` (a diagnostic rendered without its source is left out, never
+    /// indexed).
+    fn of(src: &str, span: Span) -> Option<Caret> {
+        if !is_place(src, span) {
+            return None;
+        }
+        let (line, column) = Diagnostic::line_col(src, span.start);
+        let line_start = src[..span.start].rfind('\n').map(|i| i + 1).unwrap_or(0);
+        let line_end = src[line_start..]
+            .find('\n')
+            .map(|i| line_start + i)
+            .unwrap_or(src.len());
+        let text: Vec<char> = shown_line(&src[line_start..line_end]).chars().collect();
+        let end = span.end.clamp(span.start, line_end);
+        let width = src
+            .get(span.start..end)
+            .map(|s| s.chars().count())
+            .unwrap_or(0)
+            .max(1);
+        let whole_line = text.len() <= LINE_SHOWN;
+        let (shown, indent, width) = excerpt_of_line(&text, column - 1, width);
+        Some(Caret {
+            line,
+            column,
+            shown,
+            indent,
+            width,
+            whole_line,
+        })
+    }
+
+    /// `3 | m = x*2`, the line number right-aligned in `gutter` columns.
+    fn excerpt(&self, gutter: usize) -> String {
+        format!("{:>gutter$} | {}\n", self.line, self.shown)
     }
 }
 
@@ -230,6 +469,23 @@ impl std::fmt::Display for SourceError {
 
 impl std::error::Error for SourceError {}
 
+impl SourceError {
+    /// The error as a diagnostic (of kind [`ErrorKind::UnreadableFile`] or
+    /// [`ErrorKind::NotUtf8`]) and the text its span points into.
+    pub fn diagnostic(&self) -> (Diagnostic, &str) {
+        match self {
+            SourceError::Unreadable { path, error } => (
+                Diagnostic::global(format!("cannot read `{path}`: {error}"))
+                    .with_kind(ErrorKind::UnreadableFile { path: path.clone() }),
+                "",
+            ),
+            SourceError::NotUtf8 {
+                diagnostic, text, ..
+            } => ((**diagnostic).clone(), text),
+        }
+    }
+}
+
 /// The error of an exceeded work budget ([`crate::budget::within`]), at
 /// the statement it names.
 pub fn too_large(e: &crate::budget::TooLarge) -> Diagnostic {
@@ -249,6 +505,7 @@ pub fn too_large(e: &crate::budget::TooLarge) -> Diagnostic {
         None => Diagnostic::global(e.message()),
     }
     .with_hint(hint)
+    .with_kind(ErrorKind::TooLarge { measure: e.measure })
 }
 
 /// Read a source file: its text, or why it can't be read or is not UTF-8
@@ -298,8 +555,11 @@ pub fn decode_source(path: &str, bytes: Vec<u8>) -> Result<String, SourceError> 
     };
     // the text before `at` is the same in the lossy copy, so are positions
     let text = String::from_utf8_lossy(bytes).into_owned();
-    let diagnostic =
-        Diagnostic::error(Span::new(at, at + '\u{FFFD}'.len_utf8()), message).with_hint(hint);
+    let diagnostic = Diagnostic::error(Span::new(at, at + '\u{FFFD}'.len_utf8()), message)
+        .with_hint(hint)
+        .with_kind(ErrorKind::NotUtf8 {
+            path: path.to_string(),
+        });
     Err(SourceError::NotUtf8 {
         path: path.to_string(),
         diagnostic: Box::new(diagnostic),

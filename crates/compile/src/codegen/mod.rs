@@ -140,7 +140,8 @@ pub fn codegen(src: &str, req: &CodegenRequest) -> Result<String, Diagnostic> {
     if n == 0 {
         return Err(Diagnostic::global(
             "the scene has no coordinates: there are no equations of motion to generate",
-        ));
+        )
+        .with_kind(crate::diag::ErrorKind::NothingToSolve));
     }
     let mut bound = bound_parameters(&scene, req)?;
     if !constraints.is_empty() {

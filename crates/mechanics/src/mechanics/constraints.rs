@@ -149,7 +149,7 @@ fn singular(coordinates: &[String], rows: &ConstraintRows, dependent: &[usize]) 
             _ => None,
         };
         let list = constraints.join(", ");
-        return match pair {
+        let d = match pair {
             Some(Dependence::Redundant) => Diagnostic::global(format!(
                 "the constraints {list} are redundant: one follows from the others, so their multipliers are not determined"
             ))
@@ -169,16 +169,18 @@ fn singular(coordinates: &[String], rows: &ConstraintRows, dependent: &[usize]) 
             ))
             .with_hint("remove the constraint that the others imply, or correct the one that contradicts them"),
         };
+        return d.with_kind(crate::diag::ErrorKind::Constraints);
     }
-    let names: Vec<&str> = dependent
+    let names: Vec<String> = dependent
         .iter()
-        .filter_map(|&i| coordinates.get(i).map(String::as_str))
+        .filter_map(|&i| coordinates.get(i).cloned())
         .collect();
     Diagnostic::global(format!(
         "the constrained system is singular: the motion of {} is determined neither by the kinetic energy nor by the constraints",
         if names.is_empty() { "the coordinates".to_string() } else { names.join(", ") }
     ))
     .with_hint("give those coordinates inertia, or constrain them")
+    .with_kind(crate::diag::ErrorKind::SingularSystem { unknowns: names })
 }
 
 /// How two constraints with proportional rows relate.

@@ -76,15 +76,18 @@ impl Hamiltonian {
         }
         let rhs: Vec<Expr> = p.iter().zip(&offset).map(|(pk, b)| pk.sub(b)).collect();
         let velocities = linear::solve(&mass, &rhs).map_err(|e| match e {
-            SolveError::Singular { dependent } => Diagnostic::global(format!(
-                "the momenta do not determine the velocities of {}: the Lagrangian is degenerate in them",
-                dependent
+            SolveError::Singular { dependent } => {
+                let unknowns: Vec<String> = dependent
                     .iter()
-                    .filter_map(|&i| names.get(i).map(String::as_str))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ))
-            .with_hint("Hamilton's equations need a kinetic energy in every velocity (a regular Lagrangian)"),
+                    .filter_map(|&i| names.get(i).cloned())
+                    .collect();
+                Diagnostic::global(format!(
+                    "the momenta do not determine the velocities of {}: the Lagrangian is degenerate in them",
+                    unknowns.join(", ")
+                ))
+                .with_hint("Hamilton's equations need a kinetic energy in every velocity (a regular Lagrangian)")
+                .with_kind(crate::diag::ErrorKind::SingularSystem { unknowns })
+            }
             SolveError::Math(m) => Diagnostic::global(m.message),
         })?;
         let to_p: FxHashMap<Var, Expr> =
@@ -133,13 +136,15 @@ fn check_scene(scene: &Scene, names: &[String]) -> Result<(), Diagnostic> {
         return Err(Diagnostic::global(
             "the scene declares no coordinates, so there are no Hamilton's equations",
         )
-        .with_hint("declare the generalized coordinates with `coordinates q1, q2, …`"));
+        .with_hint("declare the generalized coordinates with `coordinates q1, q2, …`")
+        .with_kind(crate::diag::ErrorKind::NothingToSolve));
     }
     if !scene.has_role(Role::Kinetic) && !scene.has_role(Role::Lagrangian) {
         return Err(Diagnostic::global(
             "Hamilton's equations need a kinetic energy or a Lagrangian, and the scene has neither",
         )
-        .with_hint("inertia forces written as loads (D'Alembert's form) have no Legendre transform: write `kinetic E = …`"));
+        .with_hint("inertia forces written as loads (D'Alembert's form) have no Legendre transform: write `kinetic E = …`")
+        .with_kind(crate::diag::ErrorKind::NothingToSolve));
     }
     for n in names {
         let p = momentum_name(n);

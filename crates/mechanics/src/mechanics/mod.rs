@@ -75,17 +75,20 @@ impl Lagrange {
             return Err(Diagnostic::global(
                 "the scene declares no coordinates, so there are no Lagrange equations",
             )
-            .with_hint("declare the generalized coordinates with `coordinates q1, q2, …`"));
+            .with_hint("declare the generalized coordinates with `coordinates q1, q2, …`")
+            .with_kind(crate::diag::ErrorKind::NothingToSolve));
         }
         if !scene.has_dynamics() {
             if !scene.loads.is_empty() || !scene.torques.is_empty() {
                 return Err(Diagnostic::global(
                     "the scene is static: it has loads but no kinetic energy and no inertia forces, so there are no accelerations",
                 )
-                .with_hint("`qdot forces` prints its generalized forces and `qdot equilibrium` its equilibria; for motion add `kinetic E = …` or inertia forces `load G - inertia(m, y) at y`"));
+                .with_hint("`qdot forces` prints its generalized forces and `qdot equilibrium` its equilibria; for motion add `kinetic E = …` or inertia forces `load G - inertia(m, y) at y`")
+                .with_kind(crate::diag::ErrorKind::NothingToSolve));
             }
             return Err(Diagnostic::global("the scene has no kinetic energy")
-                .with_hint("add `kinetic E = …` (several `kinetic` lines add up), or write the inertia forces as loads: `load G - inertia(m, y) at y`"));
+                .with_hint("add `kinetic E = …` (several `kinetic` lines add up), or write the inertia forces as loads: `load G - inertia(m, y) at y`")
+                .with_kind(crate::diag::ErrorKind::NothingToSolve));
         }
         let _context = crate::budget::enter(|| "deriving Lagrange's equations".into(), None);
         let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
@@ -192,6 +195,9 @@ impl Lagrange {
                         names.join(", ")
                     ))
                     .with_hint("a combination of their velocities carries no kinetic energy; remove a redundant coordinate or add the missing inertia")
+                    .with_kind(crate::diag::ErrorKind::SingularSystem {
+                        unknowns: names.iter().map(|s| s.to_string()).collect(),
+                    })
                 }
                 crate::algebra::linear::SolveError::Math(m) => Diagnostic::global(m.message),
             }

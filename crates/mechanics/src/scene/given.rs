@@ -6,7 +6,7 @@
 
 use super::Scene;
 use crate::algebra::sign::Values;
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, ErrorKind};
 use crate::expr::Expr;
 
 /// How an option is written, for its messages.
@@ -67,11 +67,13 @@ pub fn name_value_pairs(syntax: OptionSyntax, s: &str) -> Result<Vec<NameValue<'
                 "`{} {part}`: expected name=value",
                 syntax.option
             ))
-            .with_hint(format!("for example {}", syntax.example)));
+            .with_hint(format!("for example {}", syntax.example))
+            .with_kind(ErrorKind::bad_option(syntax.option)));
         };
         let k = k.trim();
         if out.iter().any(|nv| nv.name == k) {
-            let d = Diagnostic::global(format!("`{}`: `{k}` is given twice", syntax.option));
+            let d = Diagnostic::global(format!("`{}`: `{k}` is given twice", syntax.option))
+                .with_kind(ErrorKind::bad_option(syntax.option));
             return Err(match syntax.once {
                 Some(h) => d.with_hint(h),
                 None => d,
@@ -101,6 +103,7 @@ pub fn parameter_values(s: &str) -> Result<Values, Diagnostic> {
 fn not_positive(k: &str, v: f64) -> Diagnostic {
     Diagnostic::global(format!("`--set {k}={v}`: parameters are positive, and {v} is not"))
         .with_hint("qdot takes every parameter to be positive; write a negative quantity as −p in the scene, or `assume p real`")
+        .with_kind(ErrorKind::bad_option(SET.option))
 }
 
 /// An error unless every value of `set` for a parameter of `scene` is
@@ -166,7 +169,8 @@ fn order_fact_holds(fact: &Expr, set: &Values) -> Result<(), Diagnostic> {
         "`--set {}` breaks the scene's assumption {fact_text} > 0: it is {is}",
         names.join(",")
     ))
-    .with_hint("give values that keep every `assume` fact, or change the fact"))
+    .with_hint("give values that keep every `assume` fact, or change the fact")
+    .with_kind(ErrorKind::bad_option(SET.option)))
 }
 
 /// Parse `--set m=1,g=-9.81` into finite doubles of either sign (the
@@ -189,20 +193,23 @@ pub fn parameter_values_any_sign(s: &str) -> Result<Values, Diagnostic> {
                 return Err(Diagnostic::global(format!(
                     "`--set {part}`: `{v_text}` is beyond the range of double precision (about 1.8e308)"
                 ))
-                .with_hint("numeric work is done in doubles; rescale the units"))
+                .with_hint("numeric work is done in doubles; rescale the units")
+                .with_kind(ErrorKind::bad_option(SET.option)))
             }
             _ => {
                 return Err(Diagnostic::global(format!(
                     "`--set {part}`: `{v_text}` is not a number"
                 ))
-                .with_hint("write decimal numbers: --set m=1.5,g=9.81"))
+                .with_hint("write decimal numbers: --set m=1.5,g=9.81")
+                .with_kind(ErrorKind::bad_option(SET.option)))
             }
         };
         if v == 0.0 && has_nonzero_digit(v_text) {
             return Err(Diagnostic::global(format!(
                 "`--set {part}`: `{v_text}` is below the smallest double (about 4.9e-324)"
             ))
-            .with_hint("numeric work is done in doubles; rescale the units"));
+            .with_hint("numeric work is done in doubles; rescale the units")
+            .with_kind(ErrorKind::bad_option(SET.option)));
         }
         out.insert(k.to_string(), v);
     }
@@ -223,7 +230,8 @@ pub fn numeric_initial_values(s: &str) -> Result<Values, Diagnostic> {
             _ => {
                 return Err(
                     Diagnostic::global(format!("`--init {part}`: `{v}` is not a number"))
-                        .with_hint("write decimal numbers: --init x=0.1,x'=-2.5"),
+                        .with_hint("write decimal numbers: --init x=0.1,x'=-2.5")
+                        .with_kind(ErrorKind::bad_option(SIMULATE_INIT.option)),
                 )
             }
         };
@@ -259,6 +267,7 @@ impl Scene {
                     .with_hint(
                         "values are exact expressions in the scene's parameters: 1/10, pi, 2*r",
                     )
+                    .with_kind(ErrorKind::bad_option(syntax.option))
             })?;
             out.push((name.to_string(), e));
         }
@@ -275,6 +284,7 @@ impl Scene {
                     "`{option}`: `{name}` is not a coordinate of the scene"
                 ))
                 .with_hint(format!("the coordinates are {}", list.join(", ")))
+                .with_kind(ErrorKind::bad_option(option))
             })
     }
 

@@ -486,6 +486,7 @@ pub(super) fn multipliers_at(
         .collect::<Result<Vec<_>, _>>()?;
     let sol = super::system::solve_rect(&at_rows, &r0, &lambdas).map_err(|_| {
         Diagnostic::global("the constraints' gradients are dependent at this position")
+            .with_kind(crate::diag::ErrorKind::Constraints)
     })?;
     if sol.residuals.iter().any(|(_, r)| !r.is_zero()) || !sol.shape.free.is_empty() {
         return Err(Diagnostic::global(
@@ -527,12 +528,14 @@ pub(super) fn reduce(
         return Err(Diagnostic::global(
             "the constraints' gradients are dependent at this position",
         )
-        .with_hint("remove the constraint that the others imply"));
+        .with_hint("remove the constraint that the others imply")
+        .with_kind(crate::diag::ErrorKind::Constraints));
     };
     if z.is_empty() {
         return Err(Diagnostic::global(
             "the constraints leave no motion: there are no oscillations",
-        ));
+        )
+        .with_kind(crate::diag::ErrorKind::Constraints));
     }
     let sandwich = |m: &[Vec<Expr>]| -> Vec<Vec<Expr>> {
         let mz: Vec<Vec<Expr>> = z

@@ -159,7 +159,8 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
         return Err(Diagnostic::global(
             "the scene declares no coordinates, so there is no equilibrium to find",
         )
-        .with_hint("declare the generalized coordinates with `coordinates q1, q2, …`"));
+        .with_hint("declare the generalized coordinates with `coordinates q1, q2, …`")
+        .with_kind(crate::diag::ErrorKind::NothingToSolve));
     }
     let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
     let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();

@@ -287,7 +287,13 @@ fn solve_block(
     let symbols: Vec<Expr> = unknowns.iter().map(|&v| Expr::var(v)).collect();
     let sol = solve_rect(&a, &b, &symbols).map_err(|e| match e {
         SolveError::Math(m) => math(sys.span, m),
-        SolveError::Singular { .. } => Diagnostic::error(sys.span, "the system is singular"),
+        SolveError::Singular { dependent } => Diagnostic::error(sys.span, "the system is singular")
+            .with_kind(crate::diag::ErrorKind::SingularSystem {
+                unknowns: dependent
+                    .iter()
+                    .filter_map(|&i| sys.unknowns.get(i).map(|u| u.name.clone()))
+                    .collect(),
+            }),
     })?;
     let mut checks = Vec::new();
     for (i, res) in &sol.residuals {

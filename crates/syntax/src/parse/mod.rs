@@ -61,8 +61,12 @@ pub use crate::limits::MAX_TREE_DEPTH as MAX_DEPTH;
 
 pub use crate::limits::MAX_DECIMAL_EXPONENT as MAX_EXPONENT;
 
-/// Parse a whole scene.
+/// Parse a whole scene. Every error is of kind [`crate::diag::ErrorKind::Syntax`].
 pub fn parse_scene(src: &str) -> Result<Vec<Stmt>, Diagnostic> {
+    parse_scene_text(src).map_err(|d| d.with_kind(crate::diag::ErrorKind::Syntax))
+}
+
+fn parse_scene_text(src: &str) -> Result<Vec<Stmt>, Diagnostic> {
     chars::no_bidi_control(src)?;
     let p = Parser::new(src);
     match p.scene(src) {
@@ -73,8 +77,13 @@ pub fn parse_scene(src: &str) -> Result<Vec<Stmt>, Diagnostic> {
 
 /// Parse a string that must hold exactly one expression (surrounding white
 /// space, newlines and comments are allowed; newlines are white space
-/// throughout, as inside parentheses).
+/// throughout, as inside parentheses). Every error is of kind
+/// [`crate::diag::ErrorKind::Syntax`].
 pub fn parse_expr(src: &str) -> Result<Expr, Diagnostic> {
+    parse_expr_text(src).map_err(|d| d.with_kind(crate::diag::ErrorKind::Syntax))
+}
+
+fn parse_expr_text(src: &str) -> Result<Expr, Diagnostic> {
     chars::no_bidi_control(src)?;
     let p = Parser::new(src);
     match p.whole_expr(src) {

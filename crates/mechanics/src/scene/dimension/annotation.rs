@@ -58,5 +58,9 @@ fn unknown(e: &Expr, n: &str) -> Diagnostic {
             list(true)
         ),
     };
-    Diagnostic::error(e.span, format!("unknown dimension `{n}`")).with_hint(hint)
+    Diagnostic::error(e.span, format!("unknown dimension `{n}`"))
+        .with_hint(hint)
+        .with_kind(crate::diag::ErrorKind::UnknownName {
+            name: n.to_string(),
+        })
 }

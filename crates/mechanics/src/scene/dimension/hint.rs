@@ -6,7 +6,7 @@ use super::form::DimForm;
 use super::walk::{DimValue, NameDim, Walker};
 use crate::diag::Diagnostic;
 use crate::num::Q;
-use crate::parse::ast::{Expr, ExprKind};
+use crate::parse::ast::{Expr, ExprKind, Span};
 
 /// A name or a derivative of one written in an expression, with its
 /// dimension and how often it occurs.
@@ -49,6 +49,43 @@ pub(super) fn hint(w: &Walker, e: &Expr, have: &DimForm, want: &DimForm) -> Opti
         ));
     }
     (!parts.is_empty()).then(|| parts.join("; "))
+}
+
+/// The most places an error's labels show.
+const ORIGINS_SHOWN: usize = 3;
+
+/// Where the dimensions of the names written in `e` come from, as an
+/// error's labels: an annotation (`m: mass`), a definition, or the
+/// expression an unannotated name's dimension was found from.
+pub(super) fn origins(w: &Walker, e: &Expr) -> Vec<(Span, String)> {
+    let mut out: Vec<(Span, String)> = Vec::new();
+    for x in written(w, e) {
+        let Some(dimension) = name_dimension(w, &x.name) else {
+            continue;
+        };
+        let phrase = w.vars.phrase(&DimForm::known(dimension));
+        let found = w
+            .unknown_of(&x.name)
+            .and_then(|v| w.vars.solution(v))
+            .map(|s| (s.at, "found"));
+        let written_at = match w.names.get(x.name.as_str()) {
+            Some(NameDim::Def(_)) => w.origins.get(x.name.as_str()).map(|&s| (s, "defined")),
+            _ => w.origins.get(x.name.as_str()).map(|&s| (s, "declared")),
+        };
+        let Some((span, how)) = written_at.or(found) else {
+            continue;
+        };
+        if span == e.span || out.iter().any(|(s, _)| *s == span) {
+            continue;
+        }
+        out.push((span, format!("`{}` is {phrase}, {how} here", x.name)));
+        if out.len() == ORIGINS_SHOWN {
+            break;
+        }
+    }
+    // shown in the order of the source
+    out.sort_by_key(|(span, _)| span.start);
+    out
 }
 
 fn short(s: &str) -> String {

@@ -184,6 +184,7 @@ fn attempt(
         defs: Vec::new(),
         constant,
         forward: false,
+        origins: FxHashMap::default(),
     };
     let forward = |w: &Walker| !by_dependency && w.forward;
     match walk_statements(&mut w, stmts, by_dependency) {
@@ -226,6 +227,9 @@ fn walk_statements<'a>(
                         None => DimForm::var(w.vars.fresh(n)),
                     };
                     w.names.insert(n, NameDim::Fixed(f));
+                    if let Some(e) = &d.dimension {
+                        w.origins.insert(n, e.span);
+                    }
                     order.push((n, kind, Some(d.dimension.as_ref().map(|e| e.span))));
                 }
             }
@@ -248,6 +252,7 @@ fn walk_statements<'a>(
     }
     for (i, (name, _, _)) in definitions.iter().enumerate() {
         w.names.insert(name.name.as_str(), NameDim::Def(i));
+        w.origins.insert(name.name.as_str(), name.span);
         order.push((name.name.as_str(), DimensionedName::Definition, None));
     }
     w.names.insert("t", NameDim::Time);

@@ -124,6 +124,9 @@ pub(super) struct Walker<'a> {
     pub constant: &'a dyn Fn(&str) -> Option<Q>,
     /// Whether a definition was used before it was checked.
     pub forward: bool,
+    /// Where a name's dimension is written: its annotation, or its
+    /// definition's name (an error's labels point there).
+    pub origins: FxHashMap<&'a str, crate::diag::Span>,
 }
 
 type Checked<T> = Result<T, Diagnostic>;
@@ -244,7 +247,11 @@ impl<'a> Walker<'a> {
             )
             .with_hint("annotate the names whose dimensions are found from each other (`p: length`), or remove every annotation to skip the check");
         }
-        let d = Diagnostic::error(e.span, msg);
+        let mut d =
+            Diagnostic::error(e.span, msg).with_kind(crate::diag::ErrorKind::DimensionMismatch);
+        for (span, message) in hint::origins(self, e) {
+            d = d.with_label(span, message);
+        }
         match hint::hint(self, e, have, want) {
             Some(h) => d.with_hint(h),
             None => d,

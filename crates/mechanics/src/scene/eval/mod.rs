@@ -564,7 +564,11 @@ impl<'a> SyntaxEvaluator<'a> {
                 self.definition(i)
             }
             None => {
-                let mut d = Diagnostic::error(span, format!("unknown name `{n}`"));
+                let mut d = Diagnostic::error(span, format!("unknown name `{n}`")).with_kind(
+                    crate::diag::ErrorKind::UnknownName {
+                        name: n.to_string(),
+                    },
+                );
                 let near = self.nearest(n);
                 d = d.with_hint(match near {
                     Some(m) => format!("did you mean `{m}`? Otherwise declare it with `parameters {n}` or define it with `{n} = …`"),
@@ -778,7 +782,13 @@ impl<'a> SyntaxEvaluator<'a> {
             let list: Vec<&str> = functions::names().collect();
             format!("the functions are {}", list.join(", "))
         };
-        Err(Diagnostic::error(f.span, format!("unknown function `{}`", f.name)).with_hint(hint))
+        Err(
+            Diagnostic::error(f.span, format!("unknown function `{}`", f.name))
+                .with_hint(hint)
+                .with_kind(crate::diag::ErrorKind::UnknownName {
+                    name: f.name.clone(),
+                }),
+        )
     }
 
     /// A call of the built-in `b` when the scene declares a given function

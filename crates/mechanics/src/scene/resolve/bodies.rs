@@ -61,7 +61,8 @@ impl Declarations<'_> {
                             gravity_name(&b.name.name)
                         ),
                     )
-                    .with_hint("rename the body or the other name"));
+                    .with_hint("rename the body or the other name")
+                    .with_kind(crate::diag::ErrorKind::DuplicateName { name: generated }));
                 }
             }
         }
@@ -84,7 +85,10 @@ impl<'a> Properties<'a> {
                     p.key_span,
                     format!("`{}` is given twice for `{}`", p.key.keyword(), b.name.name),
                 )
-                .with_hint("give each property once"));
+                .with_hint("give each property once")
+                .with_kind(crate::diag::ErrorKind::DuplicateName {
+                    name: p.key.keyword().to_string(),
+                }));
             }
             *slot = Some(p);
         }
@@ -429,7 +433,10 @@ impl Resolver<'_> {
             };
             if found.is_some() {
                 return Err(Diagnostic::error(*span, "gravity is given twice")
-                    .with_hint("one `gravity` statement acts on every body and particle"));
+                    .with_hint("one `gravity` statement acts on every body and particle")
+                    .with_kind(crate::diag::ErrorKind::DuplicateName {
+                        name: "gravity".into(),
+                    }));
             }
             found = Some(*span);
             self.gravity = Some(*span);

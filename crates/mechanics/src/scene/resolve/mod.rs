@@ -178,6 +178,8 @@ impl<'a> Declarations<'a> {
         Ok(())
     }
 
+    /// The error of `name` declared again as `b`, with its first
+    /// declaration as a label.
     fn declared_twice(
         &self,
         name: &ast::Ident,
@@ -195,6 +197,12 @@ impl<'a> Declarations<'a> {
             _ => "defined",
         };
         let (line, _) = Diagnostic::line_col(self.src, prev_span.start);
+        let first = |d: Diagnostic| {
+            d.with_kind(crate::diag::ErrorKind::DuplicateName {
+                name: name.name.clone(),
+            })
+            .with_label(prev_span, format!("`{}` is {what} here", name.name))
+        };
         if matches!(b, Binding::Unknown) {
             let hint = match prev {
                 Binding::Param => format!("a `solve` unknown is a new name that the equations determine; remove `{}` from `parameters` (line {line}) or solve for another name", name.name),
@@ -206,28 +214,28 @@ impl<'a> Declarations<'a> {
             } else {
                 format!("the unknown `{}` is already {what}", name.name)
             };
-            return Diagnostic::error(name.span, message).with_hint(hint);
+            return first(Diagnostic::error(name.span, message).with_hint(hint));
         }
         if matches!(b, Binding::Multiplier) {
-            return Diagnostic::error(
+            return first(Diagnostic::error(
                 name.span,
                 format!(
                     "this constraint's multiplier `{}` is already {what}",
                     name.name
                 ),
             )
-            .with_hint("a constraint NAME brings the multiplier `lambda_NAME`: rename the constraint or the other name");
+            .with_hint("a constraint NAME brings the multiplier `lambda_NAME`: rename the constraint or the other name"));
         }
         let again = match (b, prev) {
             (Binding::Coord, Binding::Coord) => "coordinate declared twice",
             (Binding::Param, Binding::Param) => "parameter declared twice",
             _ => "name used twice",
         };
-        Diagnostic::error(
+        first(Diagnostic::error(
             name.span,
             format!("{again}: `{}` is already {what}", name.name),
         )
-        .with_hint("each name has one meaning in a scene; role statements add up, but their names must differ")
+        .with_hint("each name has one meaning in a scene; role statements add up, but their names must differ"))
     }
 }
 
