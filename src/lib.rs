@@ -40,8 +40,6 @@ pub mod engine;
 
 // the engine's modules by the paths this crate's own code uses
 use engine::gallery;
-#[cfg(feature = "cli")]
-use qdot_exact::cancel;
 use qdot_exact::{algebra, poly};
 
 pub use app::{AnyReport, Command, CommandOptions, Context, Format, Report};

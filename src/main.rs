@@ -1,5 +1,10 @@
 //! The `qdot` command line.
 
+/// The command line's own modules (not the library's).
+mod cli {
+    pub mod terminal;
+}
+
 use clap::{Parser, Subcommand, ValueEnum};
 use qdot::diag::ErrorKind;
 use qdot::output::{self, Format};
@@ -495,7 +500,7 @@ fn on_scene(report: Reporter, max_terms: usize, f: impl FnOnce(&str) -> ExitCode
 }
 
 fn repl(file: Option<&str>, echo: bool, max_terms: usize) -> ExitCode {
-    match qdot::repl::terminal::run(file, echo, max_terms) {
+    match cli::terminal::run(file, echo, max_terms) {
         0 => ExitCode::SUCCESS,
         _ => ExitCode::from(1),
     }

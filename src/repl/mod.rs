@@ -6,8 +6,8 @@
 //! is kept as the list of its statements' texts, re-resolved by
 //! [`Scene::parse`] after every change, so a statement that fails leaves
 //! the session exactly as it was, `:scene` prints a file `qdot solve`
-//! accepts, and `:undo` restores the previous list. [`terminal`] puts a
-//! line editor, history, completion and Ctrl-C around it.
+//! accepts, and `:undo` restores the previous list. The `qdot` binary puts
+//! a line editor, history, completion and Ctrl-C around it.
 //!
 //! ```
 //! use qdot::repl::Session;
@@ -22,8 +22,6 @@
 
 pub mod editing;
 mod layout;
-#[cfg(feature = "cli")]
-pub mod terminal;
 
 use crate::diag::Diagnostic;
 use crate::expr::latex::{self as tex, Names};

@@ -5,7 +5,7 @@
 //! commands and functions, highlighting, `  ...` continuation prompts for
 //! unfinished entries (an open bracket or `{`, a trailing operator). Every
 //! entry runs on a worker thread: Ctrl-C while it computes abandons it
-//! (and asks it to stop, see [`crate::cancel`]) and leaves the session as
+//! (and asks it to stop, see [`qdot::engine::cancel`]) and leaves the session as
 //! it was; Ctrl-C while typing drops the entry; Ctrl-D or `:quit` leave.
 //!
 //! Lines typed ahead (a fast paste, a script driving the terminal) are all
@@ -18,8 +18,8 @@
 //! any entry failed. With `echo`, each entry is printed after its prompt
 //! and errors go to stdout too: a transcript, as the terminal would show.
 
-use super::editing::{completions, highlight};
-use super::{is_complete, Response, Session};
+use qdot::repl::editing::{completions, highlight};
+use qdot::repl::{is_complete, Response, Session};
 use rustyline::completion::{Completer, Pair};
 use rustyline::error::ReadlineError;
 use rustyline::highlight::{CmdKind, Highlighter};
@@ -228,14 +228,14 @@ fn execute_cancellable(session: Session, entry: &str) -> (Session, Response) {
     let mut work = session.clone();
     let original = entry;
     let entry = entry.to_string();
-    let ticket = crate::cancel::ticket();
+    let ticket = qdot::engine::cancel::ticket();
     INTERRUPTED.store(false, Ordering::SeqCst);
     let (tx, rx) = mpsc::channel();
     let spawned = std::thread::Builder::new()
         .name("qdot-entry".into())
         .stack_size(64 << 20)
         .spawn(move || {
-            crate::cancel::enter(ticket);
+            qdot::engine::cancel::enter(ticket);
             let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                 let r = work.execute(&entry);
                 (work, r)
@@ -261,7 +261,7 @@ fn execute_cancellable(session: Session, entry: &str) -> (Session, Response) {
             }
             Err(mpsc::RecvTimeoutError::Timeout) => {
                 if INTERRUPTED.swap(false, Ordering::SeqCst) {
-                    crate::cancel::cancel(ticket);
+                    qdot::engine::cancel::cancel(ticket);
                     let r = Response {
                         err: "(interrupted; the session is as it was)\n".into(),
                         failed: true,
