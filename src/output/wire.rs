@@ -235,9 +235,9 @@ pub struct DeriveJson {
 pub struct EquationJson {
     /// The coordinate it belongs to.
     pub coordinate: String,
-    /// d/dt ∂L/∂q̇ − ∂L/∂q side.
+    /// d/dt(∂E/∂q̇) − ∂E/∂q.
     pub lhs: String,
-    /// The generalized force side.
+    /// The generalized force Q.
     pub rhs: String,
 }
 
@@ -460,7 +460,8 @@ pub struct EquilibriumJson {
     /// coordinate → `[lo, hi]`, an interval certified to hold the root; or
     /// null.
     pub enclosure: Vec<Option<Named<[f64; 2]>>>,
-    /// Whether the search is known to have found every equilibrium.
+    /// Whether `caveat` is null: the positions are in closed form (or none
+    /// was found).
     pub complete: bool,
     /// What a numeric search cannot promise, or null.
     pub caveat: Option<&'static str>,
@@ -576,13 +577,14 @@ pub struct ModesJson {
     pub characteristic_polynomial: String,
     /// Its factors.
     pub characteristic_factors: Vec<String>,
-    /// Whether velocity-linear terms couple the coordinates.
+    /// Whether C is skew and not zero (a spinning rotor, a rotating frame):
+    /// then `modes` is empty (the modes are complex).
     pub gyroscopic: bool,
     /// ω² per mode, term by term over a monomial denominator.
     pub omega_squared: Vec<String>,
     /// The mode shapes.
     pub modes: Vec<Vec<String>>,
-    /// Why the frequencies have no closed form, or null.
+    /// Why `omega_squared` is empty, or null.
     pub no_closed_form: Option<String>,
     /// `"stable"`, `"unstable"` or `"undecided"`.
     pub stability: &'static str,
@@ -616,7 +618,8 @@ pub struct StandardFormJson {
     pub zeta: Option<String>,
     /// f.
     pub forcing: String,
-    /// The damping regime in words.
+    /// `"undamped"`, `"underdamped"`, `"critically damped"`,
+    /// `"overdamped"` or `"undecided"`.
     pub regime: String,
 }
 
@@ -778,7 +781,7 @@ pub struct IntegralsJson {
     pub cyclic: Vec<String>,
     /// The energy integral h, or null.
     pub energy: Option<String>,
-    /// Whether h = E + V.
+    /// Whether h is E + V.
     pub energy_is_e_plus_v: bool,
     /// Routh's function, or null without a reduction.
     pub routhian: Option<String>,
@@ -786,7 +789,7 @@ pub struct IntegralsJson {
     pub effective_potential: Option<String>,
     /// remaining coordinate → q̈, or null without a reduction.
     pub reduced_accelerations: Option<Named<String>>,
-    /// What the text says beside the integrals.
+    /// Why an integral is missing: one line each.
     pub notes: Vec<String>,
 }
 
@@ -894,4 +897,40 @@ pub fn dimensions_json(report: &DimensionReport) -> serde_json::Value {
 /// The JSON of `solve`'s dynamics for `l` and its accelerations `acc`.
 pub fn solve_json(l: &Lagrange, acc: &Accelerations) -> DynamicsJson {
     DynamicsJson::new(l, acc)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Keys keep their first place; a key given again takes the new value.
+    #[test]
+    fn named_keeps_insertion_order_and_the_last_value() {
+        let m: Named<i32> = [("b", 1), ("a", 2), ("b", 3)]
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), v))
+            .collect();
+        assert_eq!(serde_json::to_string(&m).unwrap(), r#"{"b":3,"a":2}"#);
+    }
+
+    /// The scene's keys follow the command's; absent ones are left out, a
+    /// null one is written.
+    #[test]
+    fn scene_keys_follow_the_command_keys() {
+        let wire = WithScene {
+            command: ForcesJson {
+                coordinates: vec!["x".into()],
+                generalized_forces: Named(vec![("x".into(), "-k*x".into())]),
+            },
+            scene: SceneJson {
+                bodies: None,
+                constraints: None,
+                dimensions: Some(Named(vec![("x".into(), None)])),
+            },
+        };
+        assert_eq!(
+            serde_json::to_string(&wire).unwrap(),
+            r#"{"coordinates":["x"],"generalized_forces":{"x":"-k*x"},"dimensions":{"x":null}}"#
+        );
+    }
 }
