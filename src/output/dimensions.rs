@@ -1,6 +1,6 @@
 //! `qdot check`: the dimension of every name of a scene, declared or
-//! found, and of its results (accelerations, generalized forces); and the
-//! `dimensions` key every JSON output of an annotated scene carries.
+//! found, and of its results (accelerations, generalized forces). Its
+//! JSON is [`super::wire::CheckJson`].
 
 use super::text::padded;
 use crate::diag::LineIndex;
@@ -9,15 +9,14 @@ use crate::scene::dimension::{
     Dimension, DimensionReport, DimensionSource, DimensionedName, NamedDimension,
 };
 use crate::scene::Scene;
-use serde_json::{Map, Value};
 
 /// A coordinate's acceleration and generalized force: their dimensions.
-struct ResultDimensions {
-    acceleration: Option<Dimension>,
-    force: Option<Dimension>,
+pub(super) struct ResultDimensions {
+    pub(super) acceleration: Option<Dimension>,
+    pub(super) force: Option<Dimension>,
 }
 
-fn results(report: &DimensionReport, coordinate: &str) -> ResultDimensions {
+pub(super) fn results(report: &DimensionReport, coordinate: &str) -> ResultDimensions {
     let q = report.of(coordinate);
     let time2 = Dimension::TIME.mul(&Dimension::TIME);
     ResultDimensions {
@@ -129,54 +128,4 @@ fn shown_width(s: &str) -> usize {
     s.chars()
         .filter(|c| !('\u{300}'..='\u{36f}').contains(c))
         .count()
-}
-
-fn ascii(d: Option<&Dimension>) -> Value {
-    d.map_or(Value::Null, |d| Value::String(d.ascii()))
-}
-
-/// `dimensions`: coordinate, parameter and `solve` unknown → dimension in
-/// annotation syntax, or null when the scene leaves it free.
-pub fn dimensions_json(report: &DimensionReport) -> Value {
-    let mut m = Map::new();
-    for n in &report.names {
-        if n.kind != DimensionedName::Definition {
-            m.insert(n.name.clone(), ascii(n.dimension.as_ref()));
-        }
-    }
-    Value::Object(m)
-}
-
-/// The JSON of `qdot check`: `dimensions`, `definitions`, `sources`
-/// (name → "declared", "inferred", "defined" or "free"), `accelerations`
-/// and `generalized_forces` (coordinate → dimension or null).
-pub fn check_json(scene: &Scene, report: &DimensionReport) -> Map<String, Value> {
-    let mut m = Map::new();
-    m.insert("dimensions".into(), dimensions_json(report));
-    let mut defs = Map::new();
-    let mut sources = Map::new();
-    for n in &report.names {
-        if n.kind == DimensionedName::Definition {
-            defs.insert(n.name.clone(), ascii(n.dimension.as_ref()));
-        }
-        let s = match n.source {
-            DimensionSource::Declared(_) => "declared",
-            DimensionSource::Inferred(_) => "inferred",
-            DimensionSource::Defined => "defined",
-            DimensionSource::Free => "free",
-        };
-        sources.insert(n.name.clone(), Value::String(s.into()));
-    }
-    m.insert("definitions".into(), Value::Object(defs));
-    m.insert("sources".into(), Value::Object(sources));
-    let mut acc = Map::new();
-    let mut forces = Map::new();
-    for c in &scene.coordinates {
-        let r = results(report, &c.name);
-        acc.insert(c.name.clone(), ascii(r.acceleration.as_ref()));
-        forces.insert(c.name.clone(), ascii(r.force.as_ref()));
-    }
-    m.insert("accelerations".into(), Value::Object(acc));
-    m.insert("generalized_forces".into(), Value::Object(forces));
-    m
 }

@@ -1,44 +1,13 @@
 //! Rendering results: readable text and the JSON contract.
 //!
-//! JSON keys are a public interface (scripts depend on them):
-//! * `derive`: `coordinates`, `equations` (`coordinate`, `lhs`, `rhs`),
-//!   `mass_matrix`, `forcing`;
-//! * `solve`: those plus `accelerations` (when the scene has dynamics), and
-//!   `solutions` (unknown → value), `free_unknowns`, `checks` (equations
-//!   implied by the others, each `{"block", "equation"}`, 1-based) when it
-//!   has `solve` blocks;
-//! * `forces`: `coordinates`, `generalized_forces`;
-//! * `hamilton`: `coordinates`, `momenta` (coordinate → p in q, q̇),
-//!   `velocities` (coordinate → q̇ in q, p), `hamiltonian`, `equations`
-//!   (`coordinate`, `momentum`, `qdot`, `pdot`), `other_forces`
-//!   (coordinate → Q̃, the generalized forces outside H);
-//! * `integrals`: `coordinates`, `momenta` (cyclic coordinate → p),
-//!   `cyclic`, `energy` (or null), `energy_is_e_plus_v`, `routhian`,
-//!   `effective_potential`, `reduced_accelerations` (null without a
-//!   reduction), `notes`;
-//! * `equilibrium`: `coordinates`, `generalized_forces`, `conditions`,
-//!   `exact`, `equilibria` (a list of coordinate → value objects, "any" for
-//!   a free coordinate; numeric values as numbers), `stability` (parallel
-//!   to `equilibria`: "stable", "unstable", "undecided"), `notes` (parallel:
-//!   the reason when undecided, existence conditions), `approx` (parallel:
-//!   the numeric values of an exact position under `--set`, else null),
-//!   and with constraints `multipliers` (parallel: multiplier → λ);
-//!   A check of a vector equation also has `component` ("x", "y", "z").
-//! * `check`: `dimensions`, `definitions`, `sources`, `accelerations`,
-//!   `generalized_forces` (dimensions as strings in annotation syntax, or
-//!   null where the scene leaves one free);
-//! * every command but `check`, for a scene with `body`, `particle` or `gravity`
-//!   statements: `bodies` (a list of `{"name", "kind", "line", "kinetic",
-//!   "potential"}`, the energies as `{"name", "value"}` or null);
-//! * every command but `check`, for a scene with `constraint` statements:
-//!   `constraints` (a list of `{"name", "multiplier", "kind", "expression",
-//!   "coefficients", "rest"}`: kind "holonomic" or "velocity", the
-//!   constraint a·q̇ + b = 0 as its coefficients a per coordinate and b);
-//!   `solve` adds `multipliers` (multiplier → λ, after `accelerations`)
-//!   and, for `reaction` statements, `reactions` (a list of
-//!   `{"constraint", "point", "force"}`, the force a list of components);
-//! * every command, for a scene that annotates a dimension: `dimensions`
-//!   last (coordinate, parameter, `solve` unknown → dimension or null).
+//! JSON keys are a public interface (scripts depend on them): each
+//! command's JSON object is a typed wire struct of [`wire`], whose
+//! documentation lists its keys in order: [`wire::DeriveJson`],
+//! [`wire::SolveJson`], [`wire::ForcesJson`], [`wire::HamiltonJson`],
+//! [`wire::IntegralsJson`], [`wire::EquilibriumJson`],
+//! [`wire::ModesJson`], [`wire::CheckJson`]; every command but `check`
+//! then adds its scene's keys, [`wire::SceneJson`] (`bodies`,
+//! `constraints`, and `dimensions` last).
 //!
 //! Every expression string is in qdot's input syntax and re-parses to the
 //! same expression.
@@ -49,22 +18,21 @@ use crate::expr::print::{self};
 use crate::expr::Expr;
 use crate::scene::Scene;
 use crate::solve::equilibrium::{self, Equilibria, Position, Values};
-use serde_json::{json, Map};
 
 mod dimensions;
-mod json;
 pub mod latex;
 mod modes;
 mod text;
+pub mod wire;
 
-pub use dimensions::{check_json, check_text, dimensions_json};
-use json::named;
-pub use json::{
-    bodies_json, constraints_json, derive_json, equilibrium_json, modes_json, solutions_json,
-    solve_json,
-};
+pub use dimensions::check_text;
 pub use modes::modes_text;
 pub use text::{derive_text, equilibrium_text, forces_text, padded, solutions_text, solve_text};
+pub use wire::{bodies_json, dimensions_json, solve_json};
+use wire::{
+    json_string, CheckJson, DeriveJson, EquilibriumJson, ForcesJson, HamiltonJson, IntegralsJson,
+    ModesJson, SceneJson, SolveJson, WithScene,
+};
 
 pub use crate::app::{Command, CommandOptions, Format};
 
@@ -108,7 +76,7 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
             let scene = r.scene();
             Ok(match fmt {
                 Format::Text => text::bodies_text(scene) + &derive_text(lag),
-                Format::Json => scene_json(scene, derive_json(lag))?,
+                Format::Json => scene_json(scene, DeriveJson::new(lag))?,
                 Format::Latex => latex::write(scene, |w| w.derive(lag)),
             })
         }),
@@ -119,19 +87,14 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
             Ok(match fmt {
                 Format::Text => forces_text(names, q),
                 Format::Latex => latex::write(scene, |w| w.forces(names, q)),
-                Format::Json => {
-                    let mut m = Map::new();
-                    m.insert("coordinates".into(), json!(names));
-                    m.insert("generalized_forces".into(), named(names, q));
-                    scene_json(scene, m)?
-                }
+                Format::Json => scene_json(scene, ForcesJson::new(names, q))?,
             })
         }),
         AnyReport::Equilibrium(r) => in_context(r, |r| {
             let eq = &r.result;
             Ok(match fmt {
                 Format::Text => equilibrium_text(eq),
-                Format::Json => scene_json(r.scene(), equilibrium_json(eq))?,
+                Format::Json => scene_json(r.scene(), EquilibriumJson::new(eq))?,
                 Format::Latex => latex::write(r.scene(), |w| w.equilibrium(eq)),
             })
         }),
@@ -142,7 +105,7 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
                 Format::Text => modes_text(md, set, o.free.as_deref(), o.numeric.as_ref()),
                 Format::Json => scene_json(
                     r.scene(),
-                    modes_json(md, set, o.free.as_deref(), o.numeric.as_ref()),
+                    ModesJson::new(md, set, o.free.as_deref(), o.numeric.as_ref()),
                 )?,
                 Format::Latex => {
                     let body = latex::write(r.scene(), |w| w.modes(md));
@@ -157,7 +120,7 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
             let h = &r.result;
             Ok(match fmt {
                 Format::Text => text::hamilton_text(h),
-                Format::Json => scene_json(r.scene(), json::hamilton_json(h))?,
+                Format::Json => scene_json(r.scene(), HamiltonJson::new(h))?,
                 Format::Latex => latex::write(r.scene(), |w| w.hamilton(h)),
             })
         }),
@@ -165,7 +128,7 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
             let i = &r.result;
             Ok(match fmt {
                 Format::Text => text::integrals_text(i),
-                Format::Json => scene_json(r.scene(), json::integrals_json(i))?,
+                Format::Json => scene_json(r.scene(), IntegralsJson::new(i))?,
                 Format::Latex => latex::write(r.scene(), |w| w.integrals(i)),
             })
         }),
@@ -183,7 +146,7 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
         }),
         AnyReport::Check(r) => in_context(r, |r| {
             Ok(match fmt {
-                Format::Json => json::json_string(check_json(r.scene(), &r.result)),
+                Format::Json => json_string(&CheckJson::new(r.scene(), &r.result)),
                 // `check` has no LaTeX: its text
                 Format::Text | Format::Latex => check_text(r.scene(), &r.result),
             })
@@ -199,23 +162,11 @@ fn in_context<T>(
     report.context().run(|| f(report))
 }
 
-/// A command's JSON object as text, with the keys every command of this
-/// scene carries: `bodies` for a scene with bodies, `dimensions` (last)
-/// for an annotated one.
-fn scene_json(scene: &Scene, mut m: Map<String, serde_json::Value>) -> Result<String, Diagnostic> {
-    if !scene.bodies.is_empty() {
-        m.insert("bodies".into(), json::bodies_json(scene));
-    }
-    if !scene.constraints.is_empty() {
-        m.insert("constraints".into(), json::constraints_json(scene));
-    }
-    if scene.dimensions_checked {
-        m.insert(
-            "dimensions".into(),
-            dimensions_json(&scene.dimension_report()?),
-        );
-    }
-    Ok(json::json_string(m))
+/// A command's JSON object as text, followed by the keys every command
+/// of this scene carries ([`SceneJson`]).
+fn scene_json(scene: &Scene, command: impl serde::Serialize) -> Result<String, Diagnostic> {
+    let scene = SceneJson::new(scene)?;
+    Ok(json_string(&WithScene { command, scene }))
 }
 
 /// `qdot solve`: the accelerations (and multipliers, and the constraints'
@@ -251,19 +202,10 @@ fn solve_output(
             }
             w.blocks(scene, blocks);
         }),
-        Format::Json => {
-            let mut m = match lag {
-                Some((l, acc)) => solve_json(l, acc),
-                None => Map::new(),
-            };
-            if !reactions.is_empty() {
-                m.insert("reactions".into(), json::reactions_json(scene, reactions));
-            }
-            if !blocks.is_empty() {
-                solutions_json(scene, blocks, &mut m);
-            }
-            scene_json(scene, m)?
-        }
+        Format::Json => scene_json(
+            scene,
+            SolveJson::new(scene, lag.as_ref(), reactions, blocks),
+        )?,
     })
 }
 

@@ -389,34 +389,78 @@ pub fn csv(s: &Sweep) -> String {
     out
 }
 
-/// The sweep as JSON: `names`, `coordinates`, `runs` (each `values`,
-/// `status`, `t`, `y`, `max_abs_q`, `energy_drift`, `steps`, or `values`
-/// and `error`), `seconds`, `threads`.
+/// The sweep as JSON (one line): [`SweepJson`].
 pub fn json(s: &Sweep) -> String {
-    let runs: Vec<serde_json::Value> = s
-        .runs
-        .iter()
-        .map(|(values, outcome)| match outcome {
-            Ok(o) => serde_json::json!({
-                "values": values,
-                "status": status_word(&o.status),
-                "t": o.t,
-                "y": o.y,
-                "max_abs_q": o.max_abs_q,
-                "energy_drift": o.energy_drift,
-                "steps": o.steps,
-            }),
-            Err(m) => serde_json::json!({ "values": values, "error": m }),
-        })
-        .collect();
-    let v = serde_json::json!({
-        "names": s.names,
-        "coordinates": s.coordinates,
-        "runs": runs,
-        "seconds": s.seconds,
-        "threads": s.threads,
-    });
-    format!("{v}\n")
+    let wire = SweepJson {
+        names: &s.names,
+        coordinates: &s.coordinates,
+        runs: s
+            .runs
+            .iter()
+            .map(|(values, outcome)| match outcome {
+                Ok(o) => SweepRunJson::Done {
+                    values,
+                    status: status_word(&o.status),
+                    t: o.t,
+                    y: &o.y,
+                    max_abs_q: &o.max_abs_q,
+                    energy_drift: o.energy_drift,
+                    steps: o.steps,
+                },
+                Err(error) => SweepRunJson::Failed { values, error },
+            })
+            .collect(),
+        seconds: s.seconds,
+        threads: s.threads,
+    };
+    let mut out = serde_json::to_string(&wire).unwrap_or_default();
+    out.push('\n');
+    out
+}
+
+/// `sweep --output json`.
+#[derive(serde::Serialize)]
+pub struct SweepJson<'a> {
+    /// The varied names.
+    pub names: &'a [String],
+    /// The coordinates.
+    pub coordinates: &'a [String],
+    /// One entry per run.
+    pub runs: Vec<SweepRunJson<'a>>,
+    /// The sweep's wall time.
+    pub seconds: f64,
+    /// The threads used.
+    pub threads: usize,
+}
+
+/// One run of a sweep.
+#[derive(serde::Serialize)]
+#[serde(untagged)]
+pub enum SweepRunJson<'a> {
+    /// A run that integrated.
+    Done {
+        /// The varied names' values.
+        values: &'a [f64],
+        /// How it ended.
+        status: &'static str,
+        /// The time it reached.
+        t: f64,
+        /// The state there.
+        y: &'a [f64],
+        /// max |q| per coordinate over the output times.
+        max_abs_q: &'a [f64],
+        /// The energy drift, or null.
+        energy_drift: Option<f64>,
+        /// Accepted steps.
+        steps: usize,
+    },
+    /// A run that could not start.
+    Failed {
+        /// The varied names' values.
+        values: &'a [f64],
+        /// Why.
+        error: &'a str,
+    },
 }
 
 #[cfg(test)]
