@@ -934,3 +934,36 @@ mod tests {
         );
     }
 }
+
+/// The REPL's value of a name or an expression under `:format json`, on
+/// one line: `{"name": "E", "value": …}`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ReplValueJson {
+    /// The name shown (absent for a bare expression).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// The value: a string (a scalar), a list of strings (a vector's
+    /// components) or a list of rows (a rotation's matrix).
+    pub value: ReplValueKindJson,
+}
+
+/// The shapes of [`ReplValueJson::value`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum ReplValueKindJson {
+    /// A scalar.
+    Scalar(String),
+    /// A vector's components.
+    Vector(Vec<String>),
+    /// A rotation's matrix, by rows.
+    Matrix(Vec<Vec<String>>),
+}
+
+impl ReplValueJson {
+    /// The value as one line of JSON and a newline.
+    pub fn line(&self) -> String {
+        let mut s = serde_json::to_string(self).unwrap_or_default();
+        s.push('\n');
+        s
+    }
+}

@@ -548,32 +548,18 @@ impl Session {
                 }
             }
             Format::Json => {
+                use crate::output::wire::{ReplValueJson, ReplValueKindJson as Kind};
+                let all = |es: &[Expr]| es.iter().map(print::input).collect();
                 let value = match v {
-                    Value::Scalar(e) => serde_json::Value::String(print::input(e)),
-                    Value::Vector(c) => serde_json::Value::Array(
-                        c.iter()
-                            .map(|e| serde_json::Value::String(print::input(e)))
-                            .collect(),
-                    ),
-                    Value::Rotation(r) => serde_json::Value::Array(
-                        r.matrix()
-                            .iter()
-                            .map(|row| {
-                                serde_json::Value::Array(
-                                    row.iter()
-                                        .map(|e| serde_json::Value::String(print::input(e)))
-                                        .collect(),
-                                )
-                            })
-                            .collect(),
-                    ),
+                    Value::Scalar(e) => Kind::Scalar(print::input(e)),
+                    Value::Vector(c) => Kind::Vector(all(c)),
+                    Value::Rotation(r) => Kind::Matrix(r.matrix().iter().map(|row| all(row)).collect()),
                 };
-                let mut m = serde_json::Map::new();
-                if let Some(n) = name {
-                    m.insert("name".into(), serde_json::Value::String(n.to_string()));
+                ReplValueJson {
+                    name: name.map(str::to_string),
+                    value,
                 }
-                m.insert("value".into(), value);
-                format!("{}\n", serde_json::Value::Object(m))
+                .line()
             }
         }
     }
