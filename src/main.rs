@@ -33,18 +33,21 @@ struct Cli {
     max_terms: usize,
 }
 
-#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
-enum Fmt {
-    Text,
-    Json,
-    /// amsmath LaTeX, a fragment to \input
-    Latex,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum CheckFmt {
-    Text,
-    Json,
+/// `--format` of `cmd`: the formats it writes, by their names in the one
+/// table of formats (`qdot::app::Format`).
+fn format_arg(cmd: output::Command) -> impl clap::builder::TypedValueParser<Value = Format> {
+    let names = cmd.formats().iter().map(|f| {
+        let value = clap::builder::PossibleValue::new(f.name());
+        match f.about() {
+            Some(about) => value.help(about),
+            None => value,
+        }
+    });
+    // only the listed names get through, and each is a format
+    clap::builder::TypedValueParser::map(
+        clap::builder::PossibleValuesParser::new(names),
+        |name: String| Format::from_name(&name).unwrap_or(Format::Text),
+    )
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -80,47 +83,47 @@ enum Command {
     Derive {
         /// The scene file (.qd).
         file: String,
-        #[arg(long, value_enum, default_value = "text")]
-        format: Fmt,
+        #[arg(long, value_parser = format_arg(output::Command::Derive), default_value = "text")]
+        format: Format,
     },
     /// Solve exactly: the accelerations of Lagrange's equations, and the
     /// scene's `solve` blocks (reactions, kinetostatic systems).
     Solve {
         /// The scene file (.qd).
         file: String,
-        #[arg(long, value_enum, default_value = "text")]
-        format: Fmt,
+        #[arg(long, value_parser = format_arg(output::Command::Solve), default_value = "text")]
+        format: Format,
     },
     /// The generalized forces Q_k (virtual work δL = Σ Q_k·δq_k).
     Forces {
         /// The scene file (.qd).
         file: String,
-        #[arg(long, value_enum, default_value = "text")]
-        format: Fmt,
+        #[arg(long, value_parser = format_arg(output::Command::Forces), default_value = "text")]
+        format: Format,
     },
     /// Hamilton's equations: the momenta p = ∂L/∂q̇, the velocities in
     /// terms of them, H(q, p, t) and q̇ = ∂H/∂p, ṗ = −∂H/∂q + Q̃.
     Hamilton {
         /// The scene file (.qd).
         file: String,
-        #[arg(long, value_enum, default_value = "text")]
-        format: Fmt,
+        #[arg(long, value_parser = format_arg(output::Command::Hamilton), default_value = "text")]
+        format: Format,
     },
     /// Integrals of motion: cyclic coordinates and their momenta, the
     /// energy integral, Routh's reduction.
     Integrals {
         /// The scene file (.qd).
         file: String,
-        #[arg(long, value_enum, default_value = "text")]
-        format: Fmt,
+        #[arg(long, value_parser = format_arg(output::Command::Integrals), default_value = "text")]
+        format: Format,
     },
     /// Small oscillations about an equilibrium: M, C, K, det(K − ω²M),
     /// the natural frequencies, the modes, and the responses.
     Modes {
         /// The scene file (.qd).
         file: String,
-        #[arg(long, value_enum, default_value = "text")]
-        format: Fmt,
+        #[arg(long, value_parser = format_arg(output::Command::Modes), default_value = "text")]
+        format: Format,
         /// The equilibrium to linearize about (default: every q = 0), e.g. th=pi
         #[arg(long)]
         at: Option<String>,
@@ -230,15 +233,15 @@ enum Command {
     Check {
         /// The scene file (.qd).
         file: String,
-        #[arg(long, value_enum, default_value = "text")]
-        format: CheckFmt,
+        #[arg(long, value_parser = format_arg(output::Command::Check), default_value = "text")]
+        format: Format,
     },
     /// Equilibrium positions (Q_k = 0) and their stability.
     Equilibrium {
         /// The scene file (.qd).
         file: String,
-        #[arg(long, value_enum, default_value = "text")]
-        format: Fmt,
+        #[arg(long, value_parser = format_arg(output::Command::Equilibrium), default_value = "text")]
+        format: Format,
         /// Parameter values for numeric roots and sign decisions: m=1,g=9.81
         #[arg(long)]
         set: Option<String>,
@@ -327,13 +330,7 @@ fn main() -> ExitCode {
         Command::Forces { file, format } => (output::Command::Forces, file, *format, None),
         Command::Hamilton { file, format } => (output::Command::Hamilton, file, *format, None),
         Command::Integrals { file, format } => (output::Command::Integrals, file, *format, None),
-        Command::Check { file, format } => {
-            let fmt = match format {
-                CheckFmt::Text => Fmt::Text,
-                CheckFmt::Json => Fmt::Json,
-            };
-            (output::Command::Check, file, fmt, None)
-        }
+        Command::Check { file, format } => (output::Command::Check, file, *format, None),
         Command::Equilibrium { file, format, set } => {
             (output::Command::Equilibrium, file, *format, set.as_deref())
         }
@@ -347,7 +344,7 @@ fn main() -> ExitCode {
             opts.steps = *steps;
             opts.standalone = *standalone;
             opts.title = title.clone().unwrap_or_else(|| base_name(file));
-            (output::Command::Latex, file, Fmt::Latex, set.as_deref())
+            (output::Command::Latex, file, Format::Latex, set.as_deref())
         }
         Command::Modes {
             file,
@@ -360,11 +357,11 @@ fn main() -> ExitCode {
         } => {
             opts.at = at.clone();
             opts.init = init.clone();
-            if *standalone && *format != Fmt::Latex {
+            if *standalone && *format != Format::Latex {
                 let d = qdot::Diagnostic::global("--standalone makes a LaTeX document")
                     .with_hint("add --format latex")
                     .with_kind(ErrorKind::bad_option("--standalone"));
-                Reporter::new(file, *format == Fmt::Json).print(&d, "");
+                Reporter::new(file, *format == Format::Json).print(&d, "");
                 return ExitCode::from(2);
             }
             opts.standalone = *standalone;
@@ -372,12 +369,7 @@ fn main() -> ExitCode {
             (output::Command::Modes, file, *format, set.as_deref())
         }
     };
-    let report = Reporter::new(file, fmt == Fmt::Json);
-    let fmt = match fmt {
-        Fmt::Text => Format::Text,
-        Fmt::Json => Format::Json,
-        Fmt::Latex => Format::Latex,
-    };
+    let report = Reporter::new(file, fmt == Format::Json);
     opts.set = match set.map(output::parse_set_any_sign).transpose() {
         Ok(s) => s.unwrap_or_default(),
         Err(d) => return report.fail(&d, ""),

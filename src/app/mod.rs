@@ -125,6 +125,14 @@ impl Format {
     pub fn from_name(name: &str) -> Option<Format> {
         Format::ALL.into_iter().find(|f| f.name() == name)
     }
+
+    /// What the command line's help says of the format, if anything.
+    pub fn about(self) -> Option<&'static str> {
+        match self {
+            Format::Text | Format::Json => None,
+            Format::Latex => Some("amsmath LaTeX, a fragment to \\input"),
+        }
+    }
 }
 
 /// The options of the commands beyond the scene and the format.

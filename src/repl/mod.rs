@@ -553,7 +553,9 @@ impl Session {
                 let value = match v {
                     Value::Scalar(e) => Kind::Scalar(print::input(e)),
                     Value::Vector(c) => Kind::Vector(all(c)),
-                    Value::Rotation(r) => Kind::Matrix(r.matrix().iter().map(|row| all(row)).collect()),
+                    Value::Rotation(r) => {
+                        Kind::Matrix(r.matrix().iter().map(|row| all(row)).collect())
+                    }
                 };
                 ReplValueJson {
                     name: name.map(str::to_string),
