@@ -26,8 +26,9 @@ create_exception!(
 );
 
 /// The exception for a diagnostic about `src`: `str(e)` is the diagnostic as
-/// qdot prints it; `e.message`, `e.hint`, `e.line`, `e.column` (1-based; 0
-/// when it has no position).
+/// qdot prints it; `e.kind` (the name `--format json` gives it:
+/// `"unknown_name"`, …), `e.message`, `e.hint`, `e.line`, `e.column`
+/// (1-based; 0 when it has no position).
 fn error(d: &Diagnostic, file: &str, src: &str) -> PyErr {
     let (line, column) = match d.span {
         Some(s) => Diagnostic::line_col(src, s.start),
@@ -37,6 +38,7 @@ fn error(d: &Diagnostic, file: &str, src: &str) -> PyErr {
     Python::attach(|py| {
         let value = err.value(py);
         // setting attributes on a fresh exception object cannot fail
+        let _ = value.setattr("kind", d.kind().name());
         let _ = value.setattr("message", d.message.clone());
         let _ = value.setattr("hint", d.hint.clone());
         let _ = value.setattr("line", line);

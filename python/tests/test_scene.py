@@ -16,10 +16,13 @@ def test_every_example_round_trips(path, cli):
     scene = qdot.Scene.load(path)
     derive = cli("derive", str(path), "--format", "json")
     if derive.returncode != 0:
-        # a scene with no equations (static, kinetostatic): the same error
+        # a scene with no equations (static, kinetostatic): the same error,
+        # as the CLI's text and as its JSON error object
         with pytest.raises(qdot.QdotError) as e:
             scene.equations()
-        assert str(e.value) == derive.stderr.rstrip()
+        assert str(e.value) == cli("derive", str(path)).stderr.rstrip()
+        err = json.loads(derive.stderr)["error"]
+        assert (err["kind"], err["message"], err["hint"]) == (e.value.kind, e.value.message, e.value.hint)
         return
     want = json.loads(derive.stdout)
     assert scene.coordinates == want["coordinates"]
