@@ -455,7 +455,7 @@ fn warnings_go_to_stderr_and_the_run_succeeds() {
              = hint: a force at a fixed point (a reaction of a support) does not enter the generalized forces; check the point's definition\n"
         } else {
             // with --format json, one JSON object a line
-            "{\"warning\":{\"kind\":\"other\",\"message\":\"this load does no virtual work: its point does not move with any coordinate\",\
+            "{\"warning\":{\"kind\":\"other\",\"data\":{},\"message\":\"this load does no virtual work: its point does not move with any coordinate\",\
              \"line\":4,\"column\":16,\"hint\":\"a force at a fixed point (a reaction of a support) does not enter the generalized forces; check the point's definition\",\
              \"labels\":[]}}\n"
         };

@@ -31,7 +31,7 @@ fn assert_json_error(o: &crate::bound::Outcome, code: i32, want: Expected) -> se
     let keys: Vec<&str> = e.as_object().unwrap().keys().map(String::as_str).collect();
     assert_eq!(
         keys,
-        ["kind", "message", "line", "column", "hint", "labels"]
+        ["kind", "data", "message", "line", "column", "hint", "labels"]
     );
     assert_eq!(e["kind"], want.kind, "{o:?}");
     assert_eq!(e["message"], want.message, "{o:?}");
@@ -62,6 +62,7 @@ fn a_syntax_error_is_kind_syntax() {
             column: Some(13),
         },
     );
+    assert_eq!(e["data"], serde_json::json!({}));
     assert_eq!(e["hint"], "add the matching `)`");
     assert_eq!(e["labels"], serde_json::json!([]));
 }
@@ -74,7 +75,7 @@ fn an_unknown_name_is_kind_unknown_name() {
         "derive",
         &["--format", "json"],
     );
-    assert_json_error(
+    let e = assert_json_error(
         &o,
         1,
         Expected {
@@ -84,6 +85,7 @@ fn an_unknown_name_is_kind_unknown_name() {
             column: Some(13),
         },
     );
+    assert_eq!(e["data"], serde_json::json!({"name": "m"}));
 }
 
 #[test]
@@ -145,7 +147,7 @@ fn a_singular_mass_matrix_is_kind_singular_system() {
         "solve",
         &["--format", "json"],
     );
-    assert_json_error(
+    let e = assert_json_error(
         &o,
         1,
         Expected {
@@ -155,6 +157,7 @@ fn a_singular_mass_matrix_is_kind_singular_system() {
             column: None,
         },
     );
+    assert_eq!(e["data"], serde_json::json!({"unknowns": ["x", "y"]}));
 }
 
 #[test]
@@ -165,7 +168,7 @@ fn the_budget_exceeded_is_kind_too_large() {
         "derive",
         &["--format", "json", "--max-terms", "100"],
     );
-    assert_json_error(
+    let e = assert_json_error(
         &o,
         1,
         Expected {
@@ -175,6 +178,7 @@ fn the_budget_exceeded_is_kind_too_large() {
             column: Some(15),
         },
     );
+    assert_eq!(e["data"], serde_json::json!({"measure": "product"}));
 }
 
 #[test]
@@ -185,7 +189,7 @@ fn a_file_that_cannot_be_read_is_kind_unreadable_file() {
         SECONDS,
         MEMORY_MIB,
     );
-    assert_json_error(
+    let e = assert_json_error(
         &o,
         1,
         Expected {
@@ -195,6 +199,7 @@ fn a_file_that_cannot_be_read_is_kind_unreadable_file() {
             column: None,
         },
     );
+    assert_eq!(e["data"], serde_json::json!({"path": "no/such/scene.qd"}));
 }
 
 #[test]
@@ -229,7 +234,7 @@ fn a_bad_option_value_is_kind_bad_option() {
         "equilibrium",
         &["--set", "m=abc", "--format", "json"],
     );
-    assert_json_error(
+    let e = assert_json_error(
         &o,
         1,
         Expected {
@@ -239,6 +244,7 @@ fn a_bad_option_value_is_kind_bad_option() {
             column: None,
         },
     );
+    assert_eq!(e["data"], serde_json::json!({"option": "--set"}));
     // simulate's options, under --output json
     let o = qdot_scene(
         "json-option-simulate",
@@ -497,7 +503,7 @@ fn to_json_of_a_global_error_has_null_places() {
     let d = Diagnostic::global("no").with_kind(ErrorKind::bad_option("--set"));
     assert_eq!(
         d.to_json(""),
-        r#"{"error":{"kind":"bad_option","message":"no","line":null,"column":null,"hint":null,"labels":[]}}"#
+        r#"{"error":{"kind":"bad_option","data":{"option":"--set"},"message":"no","line":null,"column":null,"hint":null,"labels":[]}}"#
     );
 }
 

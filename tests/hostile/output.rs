@@ -125,7 +125,7 @@ fn a_value_that_is_not_finite_ends_the_run() {
     // under --output json the error is a JSON object
     assert_eq!(
         o.stderr,
-        "{\"error\":{\"kind\":\"integration\",\"message\":\"the integration stopped early: not finite at t = 0.000000e0\",\"line\":null,\"column\":null,\
+        "{\"error\":{\"kind\":\"integration\",\"data\":{},\"message\":\"the integration stopped early: not finite at t = 0.000000e0\",\"line\":null,\"column\":null,\
          \"hint\":\"`energy` is NaN there: a function outside its domain (√ or ln of a negative number, asin or acos past ±1), 0/0, ∞·0 or ∞ − ∞; the rows before it are printed\",\"labels\":[]}}\n"
     );
 }

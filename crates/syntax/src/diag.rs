@@ -104,6 +104,41 @@ impl ErrorKind {
         }
     }
 
+    /// The kind's data in `--format json`: `{"name"}` of an unknown or
+    /// duplicate name, `{"unknowns"}` of a singular system, `{"measure"}`
+    /// of an exceeded budget, `{"path"}` of a file, `{"option"}` of a bad
+    /// option value; `{}` for the kinds without data.
+    pub fn data(&self) -> serde_json::Value {
+        use crate::budget::Measure;
+        match self {
+            ErrorKind::UnknownName { name } | ErrorKind::DuplicateName { name } => {
+                serde_json::json!({ "name": name })
+            }
+            ErrorKind::SingularSystem { unknowns } => serde_json::json!({ "unknowns": unknowns }),
+            ErrorKind::TooLarge { measure } => serde_json::json!({
+                "measure": match measure {
+                    Measure::Terms => "terms",
+                    Measure::Product(..) => "product",
+                    Measure::Printed => "printed",
+                    Measure::Work => "work",
+                    Measure::Subsets => "subsets",
+                    Measure::Division(..) => "division",
+                    Measure::Digits(..) => "digits",
+                }
+            }),
+            ErrorKind::UnreadableFile { path } | ErrorKind::NotUtf8 { path } => {
+                serde_json::json!({ "path": path })
+            }
+            ErrorKind::BadOption { option } => serde_json::json!({ "option": option }),
+            ErrorKind::Syntax
+            | ErrorKind::DimensionMismatch
+            | ErrorKind::NothingToSolve
+            | ErrorKind::Constraints
+            | ErrorKind::Integration
+            | ErrorKind::Other => serde_json::json!({}),
+        }
+    }
+
     /// The kind's name in `--format json` (`"unknown_name"`).
     pub fn name(&self) -> &'static str {
         match self {
@@ -307,6 +342,7 @@ impl Diagnostic {
         serde_json::json!({
             severity: {
                 "kind": self.kind.name(),
+                "data": self.kind.data(),
                 "message": self.message,
                 "line": line,
                 "column": column,
