@@ -26,7 +26,7 @@ pub(super) fn run_scene(
         Command::Hamilton => AnyReport::Hamilton(hamilton(ctx, scene)?),
         Command::Integrals => AnyReport::Integrals(integrals(ctx, scene)?),
         Command::Latex => {
-            check_set(scene, &opts.set)?;
+            crate::scene::given::set_names_are_parameters(scene, &opts.set)?;
             AnyReport::Latex(report(
                 ctx,
                 scene,
@@ -113,7 +113,7 @@ pub(super) fn equilibria(
     scene: &Arc<Scene>,
     set: &Values,
 ) -> Result<Report<crate::solve::equilibrium::Equilibria>, Diagnostic> {
-    check_set(scene, set)?;
+    crate::scene::given::set_names_are_parameters(scene, set)?;
     crate::scene::given::parameter_signs(scene, set)?;
     let eq = crate::solve::equilibrium::equilibria(scene, set)?;
     Ok(report(ctx, scene, eq))
@@ -128,7 +128,7 @@ pub(super) fn modes(
     opts: &CommandOptions,
 ) -> Result<Report<Oscillations>, Diagnostic> {
     let set = &opts.set;
-    check_set(scene, set)?;
+    crate::scene::given::set_names_are_parameters(scene, set)?;
     crate::scene::given::parameter_signs(scene, set)?;
     let at = match &opts.at {
         Some(a) => Some(scene.coordinate_values(a)?),
@@ -219,23 +219,4 @@ fn matrix_name_clashes(scene: &Scene) -> Vec<Diagnostic> {
             )
         })
         .collect()
-}
-
-/// `--set` names must be parameters of the scene.
-fn check_set(scene: &Scene, set: &Values) -> Result<(), Diagnostic> {
-    for name in set.keys() {
-        if !scene.parameters.iter().any(|p| &p.name == name) {
-            let list: Vec<&str> = scene.parameters.iter().map(|p| p.name.as_str()).collect();
-            return Err(Diagnostic::global(format!(
-                "`--set {name}=…`: `{name}` is not a parameter of the scene"
-            ))
-            .with_hint(if list.is_empty() {
-                "the scene has no parameters".to_string()
-            } else {
-                format!("the parameters are {}", list.join(", "))
-            })
-            .with_kind(ErrorKind::bad_option("--set")));
-        }
-    }
-    Ok(())
 }

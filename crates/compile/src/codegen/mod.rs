@@ -229,19 +229,9 @@ fn bound_parameters(
     req: &CodegenRequest,
 ) -> Result<FxHashMap<Var, f64>, Diagnostic> {
     crate::scene::given::parameter_signs(scene, &req.set)?;
+    crate::scene::given::set_names_are_parameters(scene, &req.set)?;
     let mut bound = FxHashMap::default();
     for (k, &v) in &req.set {
-        if !scene.parameters.iter().any(|p| &p.name == k) {
-            let list: Vec<&str> = scene.parameters.iter().map(|p| p.name.as_str()).collect();
-            return Err(Diagnostic::global(format!(
-                "`--set {k}=…`: `{k}` is not a parameter of the scene"
-            ))
-            .with_hint(if list.is_empty() {
-                "the scene has no parameters".to_string()
-            } else {
-                format!("the parameters are {}", list.join(", "))
-            }));
-        }
         bound.insert(atom::param(k), v);
     }
     Ok(bound)

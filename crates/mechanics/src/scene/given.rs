@@ -106,6 +106,26 @@ fn not_positive(k: &str, v: f64) -> Diagnostic {
         .with_kind(ErrorKind::bad_option(SET.option))
 }
 
+/// `--set` names must be parameters of the scene: the one check every
+/// command with `--set` makes.
+pub fn set_names_are_parameters(scene: &Scene, set: &Values) -> Result<(), Diagnostic> {
+    for name in set.keys() {
+        if !scene.parameters.iter().any(|p| &p.name == name) {
+            let list: Vec<&str> = scene.parameters.iter().map(|p| p.name.as_str()).collect();
+            return Err(Diagnostic::global(format!(
+                "`--set {name}=…`: `{name}` is not a parameter of the scene"
+            ))
+            .with_hint(if list.is_empty() {
+                "the scene has no parameters".to_string()
+            } else {
+                format!("the parameters are {}", list.join(", "))
+            })
+            .with_kind(ErrorKind::bad_option("--set")));
+        }
+    }
+    Ok(())
+}
+
 /// An error unless every value of `set` for a parameter of `scene` is
 /// positive, but for the parameters the scene assumes `real`, and unless
 /// the values keep every order fact (`assume R > r`) whose parameters they
