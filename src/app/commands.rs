@@ -16,7 +16,11 @@ pub(super) fn run_scene(
     scene: &Arc<Scene>,
     opts: &CommandOptions,
 ) -> Result<AnyReport, Diagnostic> {
-    crate::scene::given::parameter_signs(scene, &opts.set)?;
+    // `equilibrium` and `modes` check their `--set` themselves (they are
+    // also called directly, by `app::equilibria` and `app::modes`)
+    if !matches!(cmd, Command::Equilibrium | Command::Modes) {
+        crate::scene::given::parameter_signs(scene, &opts.set)?;
+    }
     Ok(match cmd {
         Command::Derive => AnyReport::Derive(derive(ctx, scene)?),
         Command::Solve => AnyReport::Solve(solve(ctx, scene)?),
@@ -113,8 +117,8 @@ pub(super) fn equilibria(
     scene: &Arc<Scene>,
     set: &Values,
 ) -> Result<Report<crate::solve::equilibrium::Equilibria>, Diagnostic> {
-    crate::scene::given::set_names_are_parameters(scene, set)?;
     crate::scene::given::parameter_signs(scene, set)?;
+    crate::scene::given::set_names_are_parameters(scene, set)?;
     let eq = crate::solve::equilibrium::equilibria(scene, set)?;
     Ok(report(ctx, scene, eq))
 }
@@ -128,8 +132,8 @@ pub(super) fn modes(
     opts: &CommandOptions,
 ) -> Result<Report<Oscillations>, Diagnostic> {
     let set = &opts.set;
-    crate::scene::given::set_names_are_parameters(scene, set)?;
     crate::scene::given::parameter_signs(scene, set)?;
+    crate::scene::given::set_names_are_parameters(scene, set)?;
     let at = match &opts.at {
         Some(a) => Some(scene.coordinate_values(a)?),
         None => None,
