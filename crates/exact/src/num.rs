@@ -345,6 +345,14 @@ impl Q {
         }
     }
 
+    /// Charge an operation on `a` and `b` past machine size to the work
+    /// budget ([`crate::budget::charge_big_numbers`]).
+    fn charge(a: &Q, b: &Q) {
+        crate::budget::charge_big_numbers(a.words(), b.words(), || {
+            (a.log10_size().max(b.log10_size()) as usize).saturating_add(1)
+        });
+    }
+
     /// The 64-bit words of numerator and denominator (1 for a machine
     /// fraction): what an operation on the number costs.
     fn words(&self) -> usize {
@@ -451,9 +459,7 @@ impl Q {
                 if other.is_zero() {
                     return self.abs();
                 }
-                crate::budget::charge_big_numbers(self.words(), other.words(), || {
-                    (self.log10_size().max(other.log10_size()) as usize).saturating_add(1)
-                });
+                Q::charge(self, other);
                 let (x, y) = (self.to_big(), other.to_big());
                 let n = x.numer().gcd(y.numer());
                 let d = x.denom().lcm(y.denom());
@@ -491,9 +497,7 @@ impl Q {
         op: fn(&BigRational, &BigRational) -> BigRational,
         iop: Option<fn(&BigInt, &BigInt) -> BigInt>,
     ) -> Q {
-        crate::budget::charge_big_numbers(a.words(), b.words(), || {
-            (a.log10_size().max(b.log10_size()) as usize).saturating_add(1)
-        });
+        Q::charge(a, b);
         if let Some(iop) = iop {
             if a.is_integer() && b.is_integer() {
                 return Q::from_bigint(iop(&a.int_cow(), &b.int_cow()));
