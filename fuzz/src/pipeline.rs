@@ -310,9 +310,7 @@ pub fn commands(data: &[u8]) {
         Some("sweep") => {
             let _ = qdot::budget::within(FUZZ_MAX_TERMS, || sweep(scene, &o));
         }
-        Some("codegen") => {
-            let _ = qdot::budget::within(FUZZ_MAX_TERMS, || codegen(scene, &o));
-        }
+        Some("codegen") => codegen(scene, &o),
         _ => {}
     }
 }
@@ -439,7 +437,7 @@ fn sweep(src: &str, o: &OptionLines) {
 
 /// `qdot codegen` as the CLI runs it, the file name fuzzed too.
 fn codegen(src: &str, o: &OptionLines) {
-    use qdot::simulate::codegen::{self as cg, CodegenRequest, Form, Lang};
+    use qdot::simulate::codegen::{CodegenRequest, Form, Lang};
     let lang = match o.one("--lang") {
         Some("rust") => Lang::Rust,
         Some("python") => Lang::Python,
@@ -461,7 +459,8 @@ fn codegen(src: &str, o: &OptionLines) {
             return;
         }
     }
-    if let Err(d) = cg::codegen(src, &req) {
+    let ctx = qdot::app::Context::new().with_max_terms(FUZZ_MAX_TERMS);
+    if let Err(d) = qdot::app::codegen(&ctx, src, &req) {
         let _ = d.render("fuzz.qd", src);
     }
 }
