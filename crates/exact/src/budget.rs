@@ -143,12 +143,19 @@ pub fn grouped(n: usize) -> String {
 /// Budgets nest: the inner one applies, and the outer is restored after.
 pub fn within<T>(max_terms: usize, f: impl FnOnce() -> T) -> Result<T, TooLarge> {
     let outer = LIMIT.with(|l| l.replace(max_terms));
-    let outer_work = BIG_WORK.with(|w| w.replace(0));
+    // the work of big numbers is counted from the outermost budget on: a
+    // nested one goes on counting (a fresh count would allow it its limit
+    // again on top of the outer's)
+    let outermost = outer == usize::MAX;
+    if outermost {
+        BIG_WORK.with(|w| w.set(0));
+    }
     let depth = CONTEXT.with(|c| c.borrow().len());
     let r = catch_unwind(AssertUnwindSafe(f));
     LIMIT.with(|l| l.set(outer));
-    // an inner budget's work is also the outer's
-    BIG_WORK.with(|w| w.set(outer_work.saturating_add(w.get())));
+    if outermost {
+        BIG_WORK.with(|w| w.set(0));
+    }
     CONTEXT.with(|c| c.borrow_mut().truncate(depth));
     match r {
         Ok(v) => Ok(v),
@@ -291,7 +298,7 @@ pub const WORD_PRODUCTS_PER_TERM: usize = 50;
 
 /// Charge one arithmetic operation on numbers of `a` and `b` 64-bit words
 /// (numerator and denominator together), the larger having `digits`
-/// digits; unwind with [`TooLarge`] once the [`within`] has charged more
+/// digits; unwind with [`TooLarge`] once the outermost [`within`] has charged more
 /// than [`WORD_PRODUCTS_PER_TERM`] × the budget. Only operations past
 /// machine size call it, and without a budget it costs one read.
 #[inline]
@@ -315,8 +322,8 @@ pub fn charge_big_numbers(a: usize, b: usize, digits: impl FnOnce() -> usize) {
     }
 }
 
-/// The word products [`charge_big_numbers`] has counted in this thread's
-/// innermost [`within`] (0 outside one).
+/// The word products [`charge_big_numbers`] has counted in this thread
+/// since its outermost [`within`] began (0 outside one).
 pub fn big_number_work() -> u64 {
     BIG_WORK.with(Cell::get)
 }
@@ -380,6 +387,27 @@ mod tests {
         check_terms(usize::MAX - 1);
         assert_eq!(limit(), usize::MAX);
         assert_eq!(within(5, || 7), Ok(7));
+    }
+
+    /// A nested budget goes on counting the outer's work on big numbers:
+    /// a parse and a derivation in two nested budgets share one allowance.
+    #[test]
+    fn nested_budgets_share_the_work_on_big_numbers() {
+        let limit = 10; // 500 word products
+        let r = within(limit, || {
+            charge_big_numbers(20, 20, || 100); // 400
+            assert_eq!(big_number_work(), 400);
+            within(limit, || {
+                assert_eq!(big_number_work(), 400);
+                charge_big_numbers(10, 10, || 100); // 500 in all: at the limit
+                charge_big_numbers(1, 1, || 100); // 501: past it
+            })
+        });
+        let e = r
+            .expect("the inner budget's error is its value")
+            .expect_err("past 500");
+        assert_eq!(e.terms, 501);
+        assert_eq!(e.measure, Measure::Digits(100));
     }
 
     #[test]
