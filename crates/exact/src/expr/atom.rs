@@ -74,10 +74,34 @@ pub enum Atom {
     /// A factor that exists only in printed output (`cos(q1 − q2)` folded
     /// back from its expansion). Never part of a canonical expression.
     Shown(Arc<Folded>),
+    /// An intermediate of a [`super::tape::Tape`]: a name standing for an
+    /// exact expression defined before it. The canonical form treats it as
+    /// an independent real symbol; only its tape knows its value, so
+    /// differentiation through it is the tape's (its chain rule), never
+    /// [`Expr::dt`]'s, which sees a constant.
+    Named(Arc<NamedAtom>),
     /// A sum kept as one factor in printed output, written in parentheses
     /// (`(R − r)²`, `(l²·m + A − C)·cos²(θ)`): what the compact forms of
     /// `expr::compact` group. Never part of a canonical expression.
     Group(Arc<Poly>),
+}
+
+/// The identity of an intermediate ([`Atom::Named`]): its name, unique in
+/// its tape, and the tape's number, unique in the process, so two tapes
+/// that both name a `B2_11` never share an atom.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct NamedAtom {
+    /// The name as printed.
+    pub name: Arc<str>,
+    /// How many times it is differentiated in time (printed as dots or
+    /// primes, like a coordinate's): `alpha` and its rate `alpha'`.
+    pub order: u32,
+    /// The tape's number.
+    pub tape: u64,
+    /// The highest time derivative of a coordinate its value depends on.
+    pub highest: Option<(Arc<str>, u32)>,
+    /// Whether its value changes with time.
+    pub moving: bool,
 }
 
 /// `cos(a ∓ b)` or `sin(a ± b)`, folded back by the addition theorems for
@@ -111,6 +135,7 @@ impl Atom {
             | Atom::Acos(u) => Some(u),
             Atom::Param(_)
             | Atom::Unknown(_)
+            | Atom::Named(_)
             | Atom::Coord(..)
             | Atom::Given(..)
             | Atom::Time
@@ -214,6 +239,7 @@ impl Table {
             }
             (Atom::Coord(name, k), None) => (0, 1, Some((name.clone(), *k)), true),
             (Atom::Time | Atom::Given(..), None) => (0, 1, None, true),
+            (Atom::Named(n), None) => (0, 1, n.highest.clone(), n.moving),
             (Atom::Shown(f), None) => {
                 let vars: Vec<Var> = f.a.vars().into_iter().chain(f.b.vars()).collect();
                 (
@@ -466,6 +492,10 @@ pub fn square_of(v: Var) -> Option<Poly> {
 /// Shorthands.
 pub fn param(name: &str) -> Var {
     intern(Atom::Param(Arc::from(name)))
+}
+/// A tape's intermediate (see [`Atom::Named`]).
+pub fn named(n: NamedAtom) -> Var {
+    intern(Atom::Named(Arc::new(n)))
 }
 pub fn unknown(name: &str) -> Var {
     intern(Atom::Unknown(Arc::from(name)))

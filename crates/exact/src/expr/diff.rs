@@ -60,6 +60,7 @@ fn compute_atom_derivative(a: Var, wrt: Wrt) -> Option<Expr> {
         (
             Atom::Param(_)
             | Atom::Unknown(_)
+            | Atom::Named(_)
             | Atom::Pi
             | Atom::Root(_)
             | Atom::Shown(..)

@@ -764,7 +764,12 @@ pub fn eval_atom(v: Var, f: &dyn Fn(&Atom) -> Option<f64>) -> Option<f64> {
     let a = atom::atom(v);
     let ev = |e: &Expr| e.eval_f64(f);
     match &a {
-        Atom::Param(_) | Atom::Unknown(_) | Atom::Coord(..) | Atom::Given(..) | Atom::Time => f(&a),
+        Atom::Param(_)
+        | Atom::Unknown(_)
+        | Atom::Named(_)
+        | Atom::Coord(..)
+        | Atom::Given(..)
+        | Atom::Time => f(&a),
         Atom::Pi => Some(std::f64::consts::PI),
         Atom::Root(n) => n.parse::<f64>().ok().map(f64::sqrt),
         Atom::SqrtOf(u) => ev(u).map(f64::sqrt),
@@ -812,6 +817,7 @@ pub fn subs_atom(v: Var, map: &FxHashMap<Var, Expr>) -> Result<Option<Expr>, Mat
         // no argument: returned unchanged above
         Atom::Param(_)
         | Atom::Unknown(_)
+        | Atom::Named(_)
         | Atom::Coord(..)
         | Atom::Given(..)
         | Atom::Time

@@ -615,6 +615,10 @@ impl Tex<'_> {
             Atom::Coord(n, k) | Atom::Given(n, k) => {
                 Factor::new(format!("{}{sup}", self.names.symbol(n, *k)), Kind::Plain)
             }
+            Atom::Named(n) => Factor::new(
+                format!("{}{sup}", self.names.symbol(&n.name, n.order)),
+                Kind::Plain,
+            ),
         }
     }
 
@@ -636,6 +640,7 @@ impl Tex<'_> {
                 atom::atom(v),
                 Atom::Param(_)
                     | Atom::Unknown(_)
+                    | Atom::Named(_)
                     | Atom::Coord(..)
                     | Atom::Given(..)
                     | Atom::Time

@@ -28,6 +28,7 @@ pub mod func;
 pub mod hidden_zero;
 pub mod latex;
 pub mod print;
+pub mod tape;
 
 use crate::num::Q;
 use crate::poly::{Mono, Poly, Var};

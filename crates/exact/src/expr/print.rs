@@ -624,6 +624,8 @@ pub(crate) fn factor_rank(v: Var) -> (u8, u32, String, String) {
     let name = (name.to_lowercase(), name);
     match a {
         Atom::Param(_) | Atom::Unknown(_) => (0, 0, name.0, name.1),
+        // intermediates stand for what moves: after the constants
+        Atom::Named(_) => (3, 1, name.0, name.1),
         // a grouped sum after the symbols: g·m·(R − r)·sin(θ)
         Atom::Group(_) => (0, 1, name.0, name.1),
         Atom::Pi => (1, 0, name.0, name.1),
@@ -734,6 +736,7 @@ fn fn_name(a: &Atom) -> Option<&'static str> {
         Atom::Acos(_) => Some("acos"),
         Atom::Param(_)
         | Atom::Unknown(_)
+        | Atom::Named(_)
         | Atom::Coord(..)
         | Atom::Given(..)
         | Atom::Time
@@ -752,6 +755,7 @@ pub fn atom_input(a: &Atom) -> String {
         Atom::Group(p) => format!("({})", render_parts(p, &Poly::one(), Style::Input)),
         Atom::Param(n) | Atom::Unknown(n) => n.to_string(),
         Atom::Coord(n, k) | Atom::Given(n, k) => format!("{n}{}", "'".repeat(*k as usize)),
+        Atom::Named(n) => format!("{}{}", n.name, "'".repeat(n.order as usize)),
         Atom::Time => "t".into(),
         Atom::Pi => "pi".into(),
         Atom::Root(n) => format!("sqrt({n})"),
@@ -772,6 +776,7 @@ fn atom_unicode(a: &Atom) -> String {
         Atom::Group(p) => format!("({})", render_parts(p, &Poly::one(), Style::Unicode)),
         Atom::Param(n) | Atom::Unknown(n) => pretty_name(n, 0),
         Atom::Coord(n, k) | Atom::Given(n, k) => pretty_name(n, *k),
+        Atom::Named(n) => pretty_name(&n.name, n.order),
         Atom::Time => "t".into(),
         Atom::Pi => "π".into(),
         Atom::Root(n) => format!("√{n}"),
