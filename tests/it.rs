@@ -50,6 +50,7 @@ mod simulate_cli;
 mod simulate_pty;
 mod solve_blocks;
 mod stress;
+mod structured;
 mod sweep;
 mod sympy_fixtures;
 mod work_precision;

@@ -385,6 +385,13 @@ impl<'a> Builder<'a> {
                     )))
                 }
                 Atom::Time => return Err(CompileError::NotAnInput("the time t".to_string())),
+                // a tape's entries are compiled before what mentions them
+                Atom::Named(n) => {
+                    return Err(CompileError::NotAnInput(format!(
+                        "the intermediate {}",
+                        n.name
+                    )))
+                }
                 Atom::Given(name, k) => {
                     return Err(CompileError::UndefinedFunction(format!(
                         "{name}{}",

@@ -68,6 +68,13 @@ pub struct Tape {
     terms: usize,
 }
 
+/// Two tapes are equal when they are the same tape at the same length.
+impl PartialEq for Tape {
+    fn eq(&self, other: &Tape) -> bool {
+        self.id == other.id && self.entries.len() == other.entries.len()
+    }
+}
+
 impl Default for Tape {
     fn default() -> Self {
         Tape::new()
@@ -88,7 +95,10 @@ fn is_rate_of_coordinate(v: Var) -> Option<Var> {
 /// Whether `v` is a base symbol that moves: a coordinate of any order, a
 /// given function of time or t itself.
 fn is_leaf(v: Var) -> bool {
-    matches!(atom::atom(v), Atom::Coord(..) | Atom::Given(..) | Atom::Time)
+    matches!(
+        atom::atom(v),
+        Atom::Coord(..) | Atom::Given(..) | Atom::Time
+    )
 }
 
 impl Tape {
@@ -364,7 +374,11 @@ impl Tape {
             let entry = &self.entries[top];
             let named = if is_trivial(&d) {
                 d
-            } else if entry.leaves.iter().any(|&w| is_rate_of_coordinate(w).is_some()) {
+            } else if entry
+                .leaves
+                .iter()
+                .any(|&w| is_rate_of_coordinate(w).is_some())
+            {
                 // not the whole derivative (its q̈ terms are outside): no prime
                 let hint = format!("{}_dt", entry.name);
                 self.name(&hint, 0, d)
@@ -409,6 +423,27 @@ impl Tape {
         (0..self.entries.len()).filter(|&i| seen[i]).collect()
     }
 
+    /// The numeric value of `e`, with `f` giving the parameters,
+    /// coordinates and t, every intermediate it needs evaluated once in
+    /// order. `None` where a value is undefined (a division by zero).
+    pub fn eval_f64(&self, e: &Expr, f: &dyn Fn(&Atom) -> Option<f64>) -> Option<f64> {
+        let order = self.used_by(std::iter::once(e));
+        let mut values: FxHashMap<Var, f64> = FxHashMap::default();
+        for i in order {
+            let entry = &self.entries[i];
+            let lookup = |a: &Atom| match a {
+                Atom::Named(_) => values.get(&atom::intern(a.clone())).copied(),
+                other => f(other),
+            };
+            let v = entry.value.eval_f64(&lookup)?;
+            values.insert(entry.var, v);
+        }
+        e.eval_f64(&|a: &Atom| match a {
+            Atom::Named(_) => values.get(&atom::intern(a.clone())).copied(),
+            other => f(other),
+        })
+    }
+
     /// `e` with every intermediate replaced by its expanded value: the
     /// canonical result the tape stands for. Work on the expansions is
     /// charged to the budget like any other.
@@ -424,6 +459,49 @@ impl Tape {
             return Ok(e.clone());
         }
         e.subs_many(&map)
+    }
+}
+
+/// How a derivation differentiates: on expanded expressions
+/// ([`Expanded`]) or through a tape's intermediates ([`Tape`]). Lagrange's
+/// equations are written once, over this.
+pub trait Calculus {
+    /// ∂e/∂v.
+    fn partial(&mut self, e: &Expr, v: Var) -> Expr;
+    /// de/dt, with the coordinate accelerations in the result itself.
+    fn dt(&mut self, e: &Expr) -> Expr;
+    /// Whether `e` depends on `v` at all (a cheap test before a derivative).
+    fn depends(&self, e: &Expr, v: Var) -> bool;
+}
+
+/// Differentiation of canonical expressions without intermediates.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Expanded;
+
+impl Calculus for Expanded {
+    fn partial(&mut self, e: &Expr, v: Var) -> Expr {
+        e.diff(v)
+    }
+    fn dt(&mut self, e: &Expr) -> Expr {
+        e.dt()
+    }
+    fn depends(&self, e: &Expr, v: Var) -> bool {
+        crate::expr::diff::vars_depend_on(&e.vars(), v)
+    }
+}
+
+impl Calculus for Tape {
+    fn partial(&mut self, e: &Expr, v: Var) -> Expr {
+        Tape::partial(self, e, v)
+    }
+    fn dt(&mut self, e: &Expr) -> Expr {
+        Tape::dt(self, e)
+    }
+    fn depends(&self, e: &Expr, v: Var) -> bool {
+        e.vars().into_iter().any(|w| match self.index.get(&w) {
+            Some(&i) => self.entry_depends_on(i, v),
+            None => crate::expr::diff::atom_depends_on(w, v),
+        })
     }
 }
 
@@ -495,7 +573,10 @@ mod tests {
         // q̈ stays outside the intermediates
         assert!(dw.depends_on(atom::coord("a", 2)));
         for e in tape.entries() {
-            assert!(e.value.highest_time_derivative().map_or(true, |(_, k)| k < 2));
+            assert!(e
+                .value
+                .highest_time_derivative()
+                .map_or(true, |(_, k)| k < 2));
         }
     }
 

@@ -19,6 +19,8 @@ pub struct Accelerations {
     values: Vec<Expr>,
     /// The constraints' multipliers (name, λ), in constraint order.
     multipliers: Vec<(String, Expr)>,
+    /// The intermediates the values are written through, if any.
+    intermediates: Option<crate::expr::tape::Tape>,
 }
 
 impl Accelerations {
@@ -29,7 +31,19 @@ impl Accelerations {
             coordinates,
             values,
             multipliers: Vec::new(),
+            intermediates: None,
         }
+    }
+
+    /// Write the values through `tape`'s intermediates.
+    pub(crate) fn set_intermediates(&mut self, tape: crate::expr::tape::Tape) {
+        self.intermediates = Some(tape);
+    }
+
+    /// The intermediates the values mention, if they are written through
+    /// some (see [`crate::expr::tape`]).
+    pub fn intermediates(&self) -> Option<&crate::expr::tape::Tape> {
+        self.intermediates.as_ref()
     }
 
     /// Attach the multipliers λ of the constraints (same length as `names`).

@@ -23,9 +23,11 @@ mod accelerations;
 mod constraints;
 pub mod hamilton;
 pub mod integrals;
+mod structured;
 
 pub use crate::algebra::linear::split_linear;
 use crate::diag::Diagnostic;
+use crate::expr::tape::{Calculus, Expanded, Tape};
 use crate::expr::{atom, Expr};
 use crate::parse::ast::Role;
 use crate::poly::Var;
@@ -65,6 +67,10 @@ pub struct Lagrange {
     /// The scene's constraints at the level of the accelerations (empty
     /// without `constraint` statements).
     pub constraints: ConstraintRows,
+    /// The intermediates the expressions above are written through, for a
+    /// scene read with its kinematics kept ([`Scene::parse_structured`]);
+    /// `None` when they are expanded.
+    pub intermediates: Option<Tape>,
 }
 
 impl Lagrange {
@@ -91,6 +97,20 @@ impl Lagrange {
                 .with_kind(crate::diag::ErrorKind::NothingToSolve));
         }
         let _context = crate::budget::enter(|| "deriving Lagrange's equations".into(), None);
+        match &scene.tape {
+            Some(tape) => {
+                let mut tape = tape.clone();
+                let mut l = Lagrange::derive_with(scene, &mut tape)?;
+                l.intermediates = Some(tape);
+                Ok(l)
+            }
+            None => Lagrange::derive_with(scene, &mut Expanded),
+        }
+    }
+
+    /// [`Lagrange::derive`] with the derivatives of `calc`.
+    fn derive_with(scene: &Scene, calc: &mut impl Calculus) -> Result<Lagrange, Diagnostic> {
+        let n = scene.coordinates.len();
         let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
         let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();
         let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
@@ -102,9 +122,7 @@ impl Lagrange {
         } else {
             e
         };
-        let e_vars = e.vars();
-        let mentions = crate::expr::diff::vars_depend_on;
-        let forces = generalized_force_terms(scene);
+        let forces = force_terms_with(scene, calc);
 
         let constraints = ConstraintRows::of(scene, &qd, &qdd)?;
         let mut equations = Vec::with_capacity(n);
@@ -112,14 +130,14 @@ impl Lagrange {
         let mut forcing = Vec::with_capacity(n);
         for (k, mut rhs_terms) in forces.into_iter().enumerate() {
             let rhs = sum_terms(&rhs_terms);
-            let p = if mentions(&e_vars, qd[k]) {
-                e.diff(qd[k])
+            let p = if calc.depends(&e, qd[k]) {
+                calc.partial(&e, qd[k])
             } else {
                 Expr::zero()
             };
-            let mut lhs = p.dt();
-            if mentions(&e_vars, q[k]) {
-                lhs = lhs.sub(&e.diff(q[k]));
+            let mut lhs = calc.dt(&p);
+            if calc.depends(&e, q[k]) {
+                lhs = lhs.sub(&calc.partial(&e, q[k]));
             }
             // Mass-matrix row and the rest: lhs − Q = M_k·q̈ − f_k.
             let (row, rest) =
@@ -157,6 +175,7 @@ impl Lagrange {
             mass_matrix: mass,
             forcing,
             constraints,
+            intermediates: None,
         })
     }
 
@@ -183,6 +202,18 @@ impl Lagrange {
         }
         let _context =
             crate::budget::enter(|| "solving M·q̈ = f for the accelerations".into(), None);
+        if let Some(tape) = &self.intermediates {
+            let mut tape = tape.clone();
+            let acc = structured::solve_ldl(
+                &mut tape,
+                &self.coordinates,
+                &self.mass_matrix,
+                &self.forcing,
+            )?;
+            let mut a = Accelerations::new(self.coordinates.clone(), acc);
+            a.set_intermediates(tape);
+            return Ok(a);
+        }
         let sol = crate::algebra::linear::solve(&self.mass_matrix, &self.forcing).map_err(|e| {
             match e {
                 crate::algebra::linear::SolveError::Singular { dependent } => {
@@ -262,6 +293,11 @@ pub struct ForceTerm {
 /// The contributions to each Q_k, per coordinate in declaration order, in
 /// the order of the module docs; only the sources that mention q_k.
 pub fn generalized_force_terms(scene: &Scene) -> Vec<Vec<ForceTerm>> {
+    force_terms_with(scene, &mut Expanded)
+}
+
+/// [`generalized_force_terms`] with the derivatives of `calc`.
+fn force_terms_with(scene: &Scene, calc: &mut impl Calculus) -> Vec<Vec<ForceTerm>> {
     let names: Vec<&str> = scene.coordinates.iter().map(|c| c.name.as_str()).collect();
     let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();
     let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
@@ -283,16 +319,6 @@ pub fn generalized_force_terms(scene: &Scene) -> Vec<Vec<ForceTerm>> {
     } else {
         Expr::zero()
     };
-    let mentions = crate::expr::diff::vars_depend_on;
-    let v_vars = v.vars();
-    let l_vars = l.vars();
-    let d_vars = d.vars();
-    let points: Vec<Vec<Vec<Var>>> = scene
-        .loads
-        .iter()
-        .map(|ld| ld.point.components().iter().map(|c| c.vars()).collect())
-        .collect();
-    let angles: Vec<Vec<Var>> = scene.torques.iter().map(|t| t.angle.vars()).collect();
     let mut out = Vec::with_capacity(q.len());
     for k in 0..q.len() {
         let mut terms = Vec::new();
@@ -302,19 +328,20 @@ pub fn generalized_force_terms(scene: &Scene) -> Vec<Vec<ForceTerm>> {
             }
         };
         let mut potential = Expr::zero();
-        if mentions(&v_vars, q[k]) {
-            potential = v.diff(q[k]).neg();
+        if calc.depends(&v, q[k]) {
+            potential = calc.partial(&v, q[k]).neg();
         }
-        if mentions(&v_vars, qd[k]) {
+        if calc.depends(&v, qd[k]) {
             // a generalized potential U(q, q̇, t): Q_k = d/dt(∂U/∂q̇_k) − ∂U/∂q_k
-            potential = potential.add(&v.diff(qd[k]).dt());
+            let p = calc.partial(&v, qd[k]);
+            potential = potential.add(&calc.dt(&p));
         }
         push(Source::Potential, potential);
-        if mentions(&l_vars, q[k]) {
-            push(Source::Work, l.diff(q[k]));
+        if calc.depends(&l, q[k]) {
+            push(Source::Work, calc.partial(&l, q[k]));
         }
-        if mentions(&d_vars, qd[k]) {
-            push(Source::Dissipation, d.diff(qd[k]));
+        if calc.depends(&d, qd[k]) {
+            push(Source::Dissipation, calc.partial(&d, qd[k]));
         }
         let force = scene
             .forces
@@ -322,24 +349,21 @@ pub fn generalized_force_terms(scene: &Scene) -> Vec<Vec<ForceTerm>> {
             .filter(|f| f.coordinate == k)
             .fold(Expr::zero(), |s, f| s.add(&f.value));
         push(Source::Force, force);
-        for (i, (ld, vars)) in scene.loads.iter().zip(&points).enumerate() {
+        for (i, ld) in scene.loads.iter().enumerate() {
             let mut w = Expr::zero();
-            for ((f, p), pv) in ld
-                .force
-                .components()
-                .iter()
-                .zip(ld.point.components())
-                .zip(vars)
-            {
-                if mentions(pv, q[k]) {
-                    w = w.add(&f.mul(&p.diff(q[k])));
+            for (f, p) in ld.force.components().iter().zip(ld.point.components()) {
+                if calc.depends(p, q[k]) {
+                    w = w.add(&f.mul(&calc.partial(p, q[k])));
                 }
             }
             push(Source::Load(i), w);
         }
-        for (i, (t, vars)) in scene.torques.iter().zip(&angles).enumerate() {
-            if mentions(vars, q[k]) {
-                push(Source::Torque(i), t.moment.mul(&t.angle.diff(q[k])));
+        for (i, t) in scene.torques.iter().enumerate() {
+            if calc.depends(&t.angle, q[k]) {
+                push(
+                    Source::Torque(i),
+                    t.moment.mul(&calc.partial(&t.angle, q[k])),
+                );
             }
         }
         out.push(terms);

@@ -238,6 +238,10 @@ pub struct Scene {
     /// checked then ([`dimension::validate`]), and
     /// [`Scene::dimension_report`] gives every name's dimension.
     pub dimensions_checked: bool,
+    /// For a scene read by [`Scene::parse_structured`]: the intermediates
+    /// its moving vectors and frames are kept as, which its values (and so
+    /// the energies of its bodies) mention. `None` for an expanded scene.
+    pub tape: Option<crate::expr::tape::Tape>,
 }
 
 /// The name of the momentum conjugate to the coordinate `q` (`p_theta`),
@@ -386,7 +390,20 @@ impl Scene {
 
     /// Resolve parsed statements (see [`Scene::parse`]).
     pub fn from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, Diagnostic> {
-        resolve::scene_from_statements(src, stmts)
+        resolve::scene_from_statements(src, stmts, false)
+    }
+
+    /// Parse a scene keeping its kinematics structured: every moving vector
+    /// and frame it defines becomes named intermediates on
+    /// [`Scene::tape`] (`P1_x`, `B2_13`, `omega_B2_x`), and values that use
+    /// them mention the names instead of their expansions. A chain of
+    /// bodies stays the size of its links; [`crate::mechanics::Lagrange`]
+    /// then derives through the tape. Scenes with constraints, reactions,
+    /// `solve` blocks or given functions are refused (the error says so);
+    /// they are read by [`Scene::parse`].
+    pub fn parse_structured(src: &str) -> Result<Scene, Diagnostic> {
+        let stmts = crate::parse::parse_scene(src)?;
+        resolve::scene_from_statements(src, &stmts, true)
     }
 
     /// Evaluate an expression written in the scene's names (its parameters,

@@ -41,6 +41,11 @@ pub struct Rotation {
     /// The nine entries of `matrix`, row by row (what [`super::Value`]'s
     /// components are for a rotation).
     entries: Vec<Expr>,
+    /// The angular velocity in the frame's components, when it is kept
+    /// (named on a tape, with the matrix): then the matrix's entries are
+    /// the tape's names for the product of the turns, and composition
+    /// goes on from the names instead of the turns.
+    omega: Option<[Expr; 3]>,
 }
 
 /// Why a turn can't be built, or two rotations composed.
@@ -105,6 +110,7 @@ impl Rotation {
             turns: Vec::new(),
             entries: entries_of(&matrix),
             matrix,
+            omega: None,
         }
     }
 
@@ -143,6 +149,7 @@ impl Rotation {
                 matrix: matrix.clone(),
             }],
             matrix,
+            omega: None,
         })
     }
 
@@ -173,10 +180,17 @@ impl Rotation {
         crate::budget::check_terms(terms.saturating_mul(8));
         let mut turns = self.turns.clone();
         turns.extend(other.turns.iter().cloned());
+        let omega = (self.omega.is_some() || other.omega.is_some()).then(|| {
+            // ω of R·S along S's axes: Sᵀ·ω_R + ω_S
+            let back = apply(&other.matrix, &self.omega_frame(), true);
+            let own = other.omega_frame();
+            std::array::from_fn(|i| back[i].add(&own[i]))
+        });
         Ok(Rotation {
             entries,
             turns,
             matrix,
+            omega,
         })
     }
 
@@ -205,8 +219,22 @@ impl Rotation {
         apply(&self.matrix, v, true)
     }
 
+    /// The same turns with `matrix` and `omega` standing for their
+    /// product and angular velocity (a tape's names for them).
+    pub fn with_structure(&self, matrix: Matrix3, omega: [Expr; 3]) -> Rotation {
+        Rotation {
+            entries: entries_of(&matrix),
+            turns: self.turns.clone(),
+            matrix,
+            omega: Some(omega),
+        }
+    }
+
     /// The angular velocity in ground components (see the module docs).
     pub fn omega_ground(&self) -> [Expr; 3] {
+        if let Some(w) = &self.omega {
+            return apply(&self.matrix, w, false);
+        }
         let mut w: [Expr; 3] = std::array::from_fn(|_| Expr::zero());
         for t in self.turns.iter().rev() {
             let rate = t.angle.dt();
@@ -218,6 +246,9 @@ impl Rotation {
 
     /// The angular velocity in the frame's own components.
     pub fn omega_frame(&self) -> [Expr; 3] {
+        if let Some(w) = &self.omega {
+            return w.clone();
+        }
         let mut w: [Expr; 3] = std::array::from_fn(|_| Expr::zero());
         for t in &self.turns {
             let rate = t.angle.dt();

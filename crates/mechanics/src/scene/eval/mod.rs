@@ -6,6 +6,7 @@ pub use frames::axis_name;
 use super::{Binding, Value};
 use crate::diag::Diagnostic;
 use crate::expr::atom::{self, Atom};
+use crate::expr::tape::Tape;
 use crate::expr::{func, Expr, MathError};
 use crate::num::Q;
 use crate::parse::ast::{self, BinOp, ExprKind, Role, Span};
@@ -35,6 +36,12 @@ pub(crate) struct SyntaxEvaluator<'a> {
     /// The scene's `assume` facts, once read: √(q²) is q where they make
     /// q positive (−q where negative).
     pub assumed: crate::algebra::assume::Assumptions,
+    /// With a tape, moving vectors and frames are kept as intermediates:
+    /// their components are named on it, and later values mention the
+    /// names ([`crate::scene::Scene::parse_structured`]).
+    pub tape: Option<Tape>,
+    /// Per definition: whether it may be kept (not an energy or other role).
+    keepable: Vec<bool>,
 }
 
 /// How `series` and `parallel` combine springs.
@@ -111,6 +118,8 @@ impl<'a> SyntaxEvaluator<'a> {
             derivatives: FxHashMap::default(),
             warnings: Vec::new(),
             assumed: Default::default(),
+            tape: None,
+            keepable: defs.iter().map(|d| d.2.is_none()).collect(),
         }
     }
 
@@ -150,6 +159,8 @@ impl<'a> SyntaxEvaluator<'a> {
             derivatives: FxHashMap::default(),
             warnings: Vec::new(),
             assumed: Default::default(),
+            tape: None,
+            keepable: Vec::new(),
         }
     }
 
@@ -259,9 +270,80 @@ impl<'a> SyntaxEvaluator<'a> {
         );
         let v = self.value(body);
         self.stack.pop();
-        let v = v?;
+        let v = self.kept(i, v?);
         self.state[i] = State::Done(v.clone());
         Ok(v)
+    }
+
+    /// With a tape, definition `i`'s value as later values see it: a moving
+    /// vector's components and a moving frame's matrix and angular velocity
+    /// named on the tape (`P_x`, `B_12`, `omega_B_x`).
+    fn kept(&mut self, i: usize, v: Value) -> Value {
+        let Some(tape) = self.tape.as_mut() else {
+            return v;
+        };
+        if !self.keepable.get(i).copied().unwrap_or(false) {
+            return v;
+        }
+        let name = self.defs[i].0.name.as_str();
+        match v {
+            Value::Vector(c) if c.iter().any(Expr::is_time_dependent) => {
+                let n = c.len();
+                Value::Vector(
+                    c.into_iter()
+                        .enumerate()
+                        .map(|(k, x)| tape.define(&format!("{name}_{}", component_name(k, n)), x))
+                        .collect(),
+                )
+            }
+            Value::Rotation(r) if r.is_moving() => {
+                let omega = r.omega_frame();
+                let m = r.matrix();
+                let matrix: crate::scene::rotation::Matrix3 = std::array::from_fn(|a| {
+                    std::array::from_fn(|b| {
+                        tape.define(&format!("{name}_{}{}", a + 1, b + 1), m[a][b].clone())
+                    })
+                });
+                let omega: [Expr; 3] = std::array::from_fn(|k| {
+                    tape.define(
+                        &format!("omega_{name}_{}", component_name(k, 3)),
+                        omega[k].clone(),
+                    )
+                });
+                Value::Rotation(Box::new(r.with_structure(matrix, omega)))
+            }
+            other => other,
+        }
+    }
+
+    /// d/dt through the tape's intermediates when there is one.
+    pub(crate) fn time_derivative(&mut self, e: &Expr) -> Expr {
+        match self.tape.as_mut() {
+            Some(tape) => tape.dt(e),
+            None => e.dt(),
+        }
+    }
+
+    /// An error unless `v` is written without intermediates: `subs` and
+    /// `taylor` need the expanded value (an intermediate hides the
+    /// coordinates it depends on).
+    fn expanded_only(&self, v: &Value, span: Span, what: &str) -> Result<(), Diagnostic> {
+        if self.tape.is_none() {
+            return Ok(());
+        }
+        let named = v.components().iter().any(|c| {
+            c.vars()
+                .into_iter()
+                .any(|w| matches!(atom::atom(w), Atom::Named(_)))
+        });
+        if named {
+            return Err(Diagnostic::error(
+                span,
+                format!("{what} needs this value expanded, and it is kept as intermediates"),
+            )
+            .with_hint("derive the scene expanded (`--expand`)"));
+        }
+        Ok(())
     }
 
     fn err(&self, span: Span, e: MathError) -> Diagnostic {
@@ -416,7 +498,7 @@ impl<'a> SyntaxEvaluator<'a> {
         }
         let mut d = v.clone();
         for _ in 0..order {
-            d = d.dt();
+            d = self.time_derivative(&d);
         }
         self.derivatives.insert(key, (v.clone(), d.clone()));
         d
@@ -723,7 +805,10 @@ impl<'a> SyntaxEvaluator<'a> {
                     args[0].span,
                     "can't be differentiated; its angular velocity is omega(F)",
                 )?;
-                Ok(x.map(|c| c.diff(v)))
+                match self.tape.as_mut() {
+                    Some(tape) => Ok(x.map(|c| tape.partial(c, v))),
+                    None => Ok(x.map(|c| c.diff(v))),
+                }
             }
             Builtin::Dt => {
                 let v = self.value(&args[0])?;
@@ -733,7 +818,10 @@ impl<'a> SyntaxEvaluator<'a> {
                     "has no time derivative; its angular velocity is omega(F)",
                 )?;
                 self.check_derivative_order(&v, 1, span)?;
-                Ok(v.map(|c| c.dt()))
+                match self.tape.as_mut() {
+                    Some(tape) => Ok(v.map(|c| tape.dt(c))),
+                    None => Ok(v.map(|c| c.dt())),
+                }
             }
             // The value is the canonical form itself; the REPL shows the
             // outermost expand/factor as a layout.
@@ -922,6 +1010,7 @@ impl<'a> SyntaxEvaluator<'a> {
             args[0].span,
             "can't be substituted into; substitute in its angles",
         )?;
+        self.expanded_only(&target, args[0].span, "a substitution")?;
         let mut out = Vec::with_capacity(target.components().len());
         for c in target.components() {
             out.push(c.subs_many(&map).map_err(|m| self.err(span, m))?);
@@ -970,6 +1059,7 @@ impl<'a> SyntaxEvaluator<'a> {
             args[0].span,
             "has no Taylor series here; expand its angles",
         )?;
+        self.expanded_only(&f, args[0].span, "a Taylor series")?;
         let dx = Expr::var(v).sub(&a);
         let mut out = Vec::with_capacity(f.components().len());
         for c in f.components() {
@@ -1132,4 +1222,15 @@ fn bounded_functions(es: &[Expr], span: Span) -> Result<(), Diagnostic> {
         .with_hint("definitions that each use the previous one twice inside a function (`f2 = sin(f1) + cos(f1)`) double its length per line; no mechanics needs this"));
     }
     Ok(())
+}
+
+/// The name of component `k` of a vector with `n`: x, y, z in the plane
+/// and in space, else 1-based.
+fn component_name(k: usize, n: usize) -> String {
+    match (n, k) {
+        (2 | 3, 0) => "x".into(),
+        (2 | 3, 1) => "y".into(),
+        (3, 2) => "z".into(),
+        _ => (k + 1).to_string(),
+    }
 }

@@ -164,10 +164,11 @@ impl Resolver<'_> {
         };
         let m = self.mass(mass)?;
         let position = self.position(at)?;
-        let speed2 = position.iter().fold(Expr::zero(), |s, c| {
-            let v = c.dt();
-            s.add(&v.mul(&v))
-        });
+        let mut speed2 = Expr::zero();
+        for c in &position {
+            let v = self.ev.time_derivative(c);
+            speed2 = speed2.add(&v.mul(&v));
+        }
         let mut energy = m.mul(&speed2);
         if let Some(inertia) = props.get(PropertyKey::Inertia) {
             if let Some(frame) = props.get(PropertyKey::Frame) {
@@ -200,7 +201,7 @@ impl Resolver<'_> {
                     angle.value.span,
                     "a body's angle",
                 )?;
-                let w = theta.dt();
+                let w = self.ev.time_derivative(&theta);
                 energy = energy.add(&j.mul(&w).mul(&w));
             }
         }

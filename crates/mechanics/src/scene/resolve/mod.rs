@@ -262,8 +262,15 @@ struct Resolver<'d> {
     assumed: crate::algebra::assume::Assumptions,
 }
 
-pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, Diagnostic> {
+pub(super) fn scene_from_statements(
+    src: &str,
+    stmts: &[Stmt],
+    structured: bool,
+) -> Result<Scene, Diagnostic> {
     let decl = Declarations::collect(src, stmts)?;
+    if structured {
+        structure_allowed(stmts)?;
+    }
     // Intern q, q̇, q̈ in declaration order: printing lists terms of equal
     // rank in the order the coordinates were declared.
     for c in &decl.coordinates {
@@ -294,6 +301,13 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
     let assumptions = r.assumptions(stmts, &decl.parameters)?;
     r.assumed = assumptions.clone();
     r.ev.assumed = assumptions.clone();
+    if structured {
+        let mut tape = crate::expr::tape::Tape::new();
+        for name in decl.names.keys() {
+            tape.reserve(name);
+        }
+        r.ev.tape = Some(tape);
+    }
     let mut definitions = Vec::with_capacity(decl.definitions.len());
     for (i, &(name, body, role)) in decl.definitions.iter().enumerate() {
         let value = r.ev.definition(i)?;
@@ -330,7 +344,7 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
     let reactions = r.reactions(&decl.reactions, &constraints)?;
     definitions.append(&mut r.body_energies);
     let Resolver {
-        ev,
+        mut ev,
         loads,
         torques,
         systems,
@@ -340,6 +354,7 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
         ..
     } = r;
     let bodies = bodies.into_iter().map(|b| b.info).collect();
+    let tape = ev.tape.take();
     warnings.extend(ev.warnings);
     let Declarations {
         coordinates,
@@ -389,7 +404,28 @@ pub(super) fn scene_from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, 
         assumptions,
         warnings,
         latex_names,
+        tape,
     })
+}
+
+/// What a scene read with its kinematics kept may not have: the
+/// statements whose derivation needs expanded values.
+fn structure_allowed(stmts: &[Stmt]) -> Result<(), Diagnostic> {
+    for st in stmts {
+        let what = match st {
+            Stmt::Constraint { .. } => "constraints",
+            Stmt::Reaction { .. } => "reactions",
+            Stmt::Solve(_) => "`solve` blocks",
+            Stmt::Functions(..) => "given functions of time",
+            _ => continue,
+        };
+        return Err(Diagnostic::error(
+            st.span(),
+            format!("a scene with {what} is derived expanded, not through intermediates"),
+        )
+        .with_hint("drop `--structured`: qdot expands this scene"));
+    }
+    Ok(())
 }
 
 /// A role's value must be a number of the coordinates, velocities,
