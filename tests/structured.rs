@@ -121,3 +121,59 @@ fn timing_chain() {
         );
     }
 }
+
+/// The value of an atom at a fixture's state: parameters by name,
+/// coordinates and velocities by index.
+fn state_value(case: &serde_json::Value, a: &Atom) -> Option<f64> {
+    let at = |key: &str, name: &str| -> Option<f64> {
+        let k: usize = name.strip_prefix('q')?.parse().ok()?;
+        case[key][k - 1].as_f64()
+    };
+    match a {
+        Atom::Param(p) => case["params"][p.as_ref()].as_f64(),
+        Atom::Coord(q, 0) => at("q", q),
+        Atom::Coord(q, 1) => at("qd", q),
+        _ => None,
+    }
+}
+
+/// The chain's accelerations, mass matrix and forcing, evaluated through
+/// the intermediates, equal Pinocchio's articulated-body algorithm (`aba`),
+/// `crba` and nonlinear effects at the fixture's random states
+/// (`scripts/pinocchio_chain.py` writes the fixture offline).
+#[test]
+fn chain_accelerations_equal_pinocchio_aba() {
+    let text = std::fs::read_to_string("tests/fixtures/pinocchio_chain3d.json").unwrap();
+    let fixture: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let mut checked = 0;
+    for case in fixture["cases"].as_array().unwrap() {
+        let n = case["n"].as_u64().unwrap() as usize;
+        let src = fixture["scenes"][n.to_string()].as_str().unwrap();
+        let body = |s: &str| -> Vec<String> {
+            s.lines().filter(|l| !l.starts_with('#')).map(|l| l.trim().to_string()).collect()
+        };
+        assert_eq!(body(src), body(&chain3d(n)), "the fixture's scene is this file's chain");
+        let l = Scene::parse_structured(src).unwrap().lagrange().unwrap();
+        let acc = l.accelerations().unwrap();
+        let tape = acc.intermediates().unwrap();
+        let value = |a: &Atom| state_value(case, a);
+        let scale = |xs: &[f64]| xs.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+        let want: Vec<f64> = case["qdd"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        let got: Vec<f64> = acc.values().iter().map(|e| tape.eval_f64(e, &value).unwrap()).collect();
+        let err = got.iter().zip(&want).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(err <= 1e-12 * scale(&want), "n = {n}: q̈ {got:?} vs aba {want:?}");
+        let lt = l.intermediates.as_ref().unwrap();
+        for i in 0..n {
+            let nle = case["nle"][i].as_f64().unwrap();
+            let f = lt.eval_f64(&l.forcing[i], &value).unwrap();
+            assert!((f + nle).abs() <= 1e-12 * (1.0 + nle.abs()), "n = {n}: f[{i}] {f} vs -nle {}", -nle);
+            for j in 0..n {
+                let m = case["mass_matrix"][i][j].as_f64().unwrap();
+                let e = lt.eval_f64(&l.mass_matrix[i][j], &value).unwrap();
+                assert!((e - m).abs() <= 1e-12 * (1.0 + m.abs()), "n = {n}: M[{i}][{j}] {e} vs crba {m}");
+            }
+        }
+        checked += 1;
+    }
+    assert_eq!(checked, 20);
+}
