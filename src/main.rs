@@ -85,6 +85,8 @@ enum Command {
         file: String,
         #[arg(long, value_parser = format_arg(output::Command::Derive), default_value = "text")]
         format: Format,
+        #[command(flatten)]
+        structure: StructureArgs,
     },
     /// Solve exactly: the accelerations of Lagrange's equations, and the
     /// scene's `solve` blocks (reactions, kinetostatic systems).
@@ -93,6 +95,8 @@ enum Command {
         file: String,
         #[arg(long, value_parser = format_arg(output::Command::Solve), default_value = "text")]
         format: Format,
+        #[command(flatten)]
+        structure: StructureArgs,
     },
     /// The generalized forces Q_k (virtual work δL = Σ Q_k·δq_k).
     Forces {
@@ -261,6 +265,30 @@ fn emit(text: &str) {
     }
 }
 
+/// `--expand` / `--structured`: how results are written.
+#[derive(clap::Args, Debug, Clone, Copy)]
+struct StructureArgs {
+    /// Write the results fully expanded, however large.
+    #[arg(long, conflicts_with = "structured")]
+    expand: bool,
+    /// Write the results through named intermediates (a scene's moving
+    /// vectors and frames kept, M = L·D·Lᵀ for the accelerations), however
+    /// small. Without either flag, qdot expands unless the expanded M and
+    /// f would pass 256 terms.
+    #[arg(long)]
+    structured: bool,
+}
+
+impl StructureArgs {
+    fn choice(self) -> qdot::app::Structure {
+        match (self.expand, self.structured) {
+            (true, _) => qdot::app::Structure::Expanded,
+            (_, true) => qdot::app::Structure::Kept,
+            _ => qdot::app::Structure::Auto,
+        }
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let Some(command) = cli.command else {
@@ -325,8 +353,22 @@ fn main() -> ExitCode {
                 };
             return on_scene(report, cli.max_terms, |src| codegen(report, src, &req));
         }
-        Command::Derive { file, format } => (output::Command::Derive, file, *format, None),
-        Command::Solve { file, format } => (output::Command::Solve, file, *format, None),
+        Command::Derive {
+            file,
+            format,
+            structure,
+        } => {
+            opts.structure = structure.choice();
+            (output::Command::Derive, file, *format, None)
+        }
+        Command::Solve {
+            file,
+            format,
+            structure,
+        } => {
+            opts.structure = structure.choice();
+            (output::Command::Solve, file, *format, None)
+        }
         Command::Forces { file, format } => (output::Command::Forces, file, *format, None),
         Command::Hamilton { file, format } => (output::Command::Hamilton, file, *format, None),
         Command::Integrals { file, format } => (output::Command::Integrals, file, *format, None),

@@ -150,30 +150,116 @@ fn chain_accelerations_equal_pinocchio_aba() {
         let n = case["n"].as_u64().unwrap() as usize;
         let src = fixture["scenes"][n.to_string()].as_str().unwrap();
         let body = |s: &str| -> Vec<String> {
-            s.lines().filter(|l| !l.starts_with('#')).map(|l| l.trim().to_string()).collect()
+            s.lines()
+                .filter(|l| !l.starts_with('#'))
+                .map(|l| l.trim().to_string())
+                .collect()
         };
-        assert_eq!(body(src), body(&chain3d(n)), "the fixture's scene is this file's chain");
+        assert_eq!(
+            body(src),
+            body(&chain3d(n)),
+            "the fixture's scene is this file's chain"
+        );
         let l = Scene::parse_structured(src).unwrap().lagrange().unwrap();
         let acc = l.accelerations().unwrap();
         let tape = acc.intermediates().unwrap();
         let value = |a: &Atom| state_value(case, a);
         let scale = |xs: &[f64]| xs.iter().fold(1.0f64, |m, x| m.max(x.abs()));
-        let want: Vec<f64> = case["qdd"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
-        let got: Vec<f64> = acc.values().iter().map(|e| tape.eval_f64(e, &value).unwrap()).collect();
-        let err = got.iter().zip(&want).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-        assert!(err <= 1e-12 * scale(&want), "n = {n}: q̈ {got:?} vs aba {want:?}");
+        let want: Vec<f64> = case["qdd"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        let got: Vec<f64> = acc
+            .values()
+            .iter()
+            .map(|e| tape.eval_f64(e, &value).unwrap())
+            .collect();
+        let err = got
+            .iter()
+            .zip(&want)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(
+            err <= 1e-12 * scale(&want),
+            "n = {n}: q̈ {got:?} vs aba {want:?}"
+        );
         let lt = l.intermediates.as_ref().unwrap();
         for i in 0..n {
             let nle = case["nle"][i].as_f64().unwrap();
             let f = lt.eval_f64(&l.forcing[i], &value).unwrap();
-            assert!((f + nle).abs() <= 1e-12 * (1.0 + nle.abs()), "n = {n}: f[{i}] {f} vs -nle {}", -nle);
+            assert!(
+                (f + nle).abs() <= 1e-12 * (1.0 + nle.abs()),
+                "n = {n}: f[{i}] {f} vs -nle {}",
+                -nle
+            );
             for j in 0..n {
                 let m = case["mass_matrix"][i][j].as_f64().unwrap();
                 let e = lt.eval_f64(&l.mass_matrix[i][j], &value).unwrap();
-                assert!((e - m).abs() <= 1e-12 * (1.0 + m.abs()), "n = {n}: M[{i}][{j}] {e} vs crba {m}");
+                assert!(
+                    (e - m).abs() <= 1e-12 * (1.0 + m.abs()),
+                    "n = {n}: M[{i}][{j}] {e} vs crba {m}"
+                );
             }
         }
         checked += 1;
     }
     assert_eq!(checked, 20);
+}
+
+#[test]
+fn energy_sizes() {
+    for n in 2..=5 {
+        let s = Scene::parse_structured(&chain3d(n)).unwrap();
+        let tape = s.tape.as_ref().unwrap();
+        let e = s.role_sum(qdot::parse::ast::Role::Kinetic);
+        let t = std::time::Instant::now();
+        let x = tape.expand(&e).unwrap();
+        eprintln!(
+            "n={n}: T expanded {} terms in {:?}",
+            x.num().len() + x.den().len(),
+            t.elapsed()
+        );
+    }
+}
+
+#[test]
+fn mf_sizes() {
+    let mut srcs: Vec<(String, String)> =
+        (2..=5).map(|n| (format!("chain{n}"), chain3d(n))).collect();
+    for e in std::fs::read_dir("examples").unwrap() {
+        let p = e.unwrap().path();
+        if p.extension().is_some_and(|x| x == "qd") {
+            srcs.push((
+                p.display().to_string(),
+                std::fs::read_to_string(&p).unwrap(),
+            ));
+        }
+    }
+    for (name, src) in srcs {
+        let Ok(s) = Scene::parse_structured(&src) else {
+            eprintln!("{name}: refused");
+            continue;
+        };
+        let tape = s.tape.as_ref().unwrap();
+        if tape.is_empty() {
+            eprintln!("{name}: empty tape");
+            continue;
+        }
+        let Ok(l) = s.lagrange() else {
+            eprintln!("{name}: no lagrange");
+            continue;
+        };
+        let tape = l.intermediates.as_ref().unwrap();
+        let mut terms = 0;
+        for e in l.mass_matrix.iter().flatten().chain(&l.forcing) {
+            let x = tape.expand(e).unwrap();
+            terms += x.num().len() + x.den().len();
+        }
+        eprintln!(
+            "{name}: n={} tape={} M+f expanded terms {terms}",
+            l.coordinates.len(),
+            tape.len()
+        );
+    }
 }

@@ -153,6 +153,26 @@ pub struct CommandOptions {
     /// `--max-terms`: the work budget ([`crate::budget`]); 0 means the
     /// default, [`crate::limits::DEFAULT_MAX_TERMS`].
     pub max_terms: usize,
+    /// `--expand` / `--structured`: whether `derive` and `solve` write their
+    /// results through named intermediates.
+    pub structure: Structure,
+}
+
+/// Whether results are written expanded or through named intermediates
+/// ([`crate::expr::tape`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Structure {
+    /// Expanded where that stays small: unless the expanded M and f of the
+    /// structured derivation pass
+    /// [`crate::limits::STRUCTURE_ABOVE_TERMS`] terms.
+    #[default]
+    Auto,
+    /// Always expanded (`--expand`): the canonical form throughout.
+    Expanded,
+    /// Always through intermediates where the scene allows it
+    /// (`--structured`).
+    Kept,
 }
 
 /// Run `cmd` on the scene source `src` in `ctx`: parse, resolve, compute,
@@ -163,7 +183,11 @@ pub fn run(
     src: &str,
     opts: &CommandOptions,
 ) -> Result<AnyReport, Diagnostic> {
-    on_scene(ctx, src, |ctx, scene| {
+    let structure = match cmd {
+        Command::Derive | Command::Solve => opts.structure,
+        _ => Structure::Expanded,
+    };
+    on_scene_as(ctx, src, structure, |ctx, scene| {
         commands::run_scene(ctx, cmd, scene, opts)
     })
 }
@@ -175,8 +199,18 @@ fn on_scene<T>(
     src: &str,
     f: impl FnOnce(&Context, &Arc<Scene>) -> Result<T, Diagnostic>,
 ) -> Result<T, Diagnostic> {
+    on_scene_as(ctx, src, Structure::Expanded, f)
+}
+
+/// [`on_scene`] with the scene read as `structure` asks.
+fn on_scene_as<T>(
+    ctx: &Context,
+    src: &str,
+    structure: Structure,
+    f: impl FnOnce(&Context, &Arc<Scene>) -> Result<T, Diagnostic>,
+) -> Result<T, Diagnostic> {
     ctx.run(|| {
-        let scene = Arc::new(Scene::parse(src)?);
+        let scene = Arc::new(structure::read(src, structure)?);
         let ctx = ctx.for_scene(&scene);
         ctx.run(|| f(&ctx, &scene))
     })
@@ -251,6 +285,7 @@ pub fn codegen(
 }
 
 mod commands;
+mod structure;
 
 #[cfg(test)]
 mod tests {

@@ -229,6 +229,29 @@ impl Writer {
         }
     }
 
+    /// The named intermediates `roots` are written through, in evaluation
+    /// order (nothing without them).
+    pub fn intermediates<'a>(
+        &mut self,
+        tape: Option<&crate::expr::tape::Tape>,
+        roots: impl IntoIterator<Item = &'a Expr>,
+    ) {
+        let Some(tape) = tape else { return };
+        let used = tape.used_by(roots);
+        if used.is_empty() {
+            return;
+        }
+        self.line("The intermediates, in order (each is written in the ones before it):");
+        let rows: Vec<_> = used
+            .into_iter()
+            .map(|i| {
+                let e = &tape.entries()[i];
+                vec![self.one(self.tex(&e.expr())), self.terms(&e.value)]
+            })
+            .collect();
+        self.align(false, &rows);
+    }
+
     /// `qdot derive`: the equations, the mass matrix and the forcing.
     pub fn derive(&mut self, lag: &Lagrange) {
         self.equations(lag);

@@ -75,9 +75,14 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
             let lag = &r.result.lagrange;
             let scene = r.scene();
             Ok(match fmt {
-                Format::Text => text::bodies_text(scene) + &derive_text(lag),
-                Format::Json => scene_json(scene, DeriveJson::new(lag))?,
-                Format::Latex => latex::write(scene, |w| w.derive(lag)),
+                Format::Text => text::dynamics_text(scene, lag, None),
+                Format::Json => scene_json(scene, DeriveJson::new(scene, lag))?,
+                Format::Latex => latex::write(scene, |w| {
+                    if let Some((tape, roots)) = wire::structured_roots(scene, lag, None) {
+                        w.intermediates(Some(tape), roots);
+                    }
+                    w.derive(lag)
+                }),
             })
         }),
         AnyReport::Solve(r) => in_context(r, |r| solve_output(r.scene(), &r.result, fmt)),
@@ -181,8 +186,7 @@ fn solve_output(
         Format::Text => {
             let mut out = match lag {
                 Some((l, acc)) => {
-                    text::bodies_text(scene)
-                        + &solve_text(l, acc)
+                    text::dynamics_text(scene, l, Some(acc))
                         + &text::reactions_text(scene, reactions)
                 }
                 None => String::new(),
@@ -197,6 +201,9 @@ fn solve_output(
         }
         Format::Latex => latex::write(scene, |w| {
             if let Some((l, acc)) = lag {
+                if let Some((tape, roots)) = wire::structured_roots(scene, l, Some(acc)) {
+                    w.intermediates(Some(tape), roots);
+                }
                 w.equations(l);
                 w.accelerations(acc);
             }

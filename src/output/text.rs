@@ -11,7 +11,41 @@ use crate::solve::system::{self, BlockSolution};
 
 /// The text of `qdot derive`.
 pub fn derive_text(l: &Lagrange) -> String {
-    let mut out = String::from("Lagrange's equations  d/dt(∂E/∂q̇) − ∂E/∂q = Q\n");
+    let mut out = intermediates_text(l.intermediates.as_ref(), super::wire::lagrange_exprs(l));
+    equations_text(&mut out, l);
+    out
+}
+
+/// The named intermediates `roots` are written through, in evaluation
+/// order, as a block before the results (empty without them).
+pub fn intermediates_text<'a>(
+    tape: Option<&crate::expr::tape::Tape>,
+    roots: impl IntoIterator<Item = &'a Expr>,
+) -> String {
+    let Some(tape) = tape else {
+        return String::new();
+    };
+    let used = tape.used_by(roots);
+    if used.is_empty() {
+        return String::new();
+    }
+    let mut out =
+        String::from("Intermediates  (in order: each is written in the ones before it)\n");
+    for i in used {
+        let e = &tape.entries()[i];
+        out.push_str(&format!(
+            "  {} = {}\n",
+            as_unicode(&e.expr()),
+            as_unicode(&e.value)
+        ));
+    }
+    out.push('\n');
+    out
+}
+
+/// Lagrange's equations, M and f.
+fn equations_text(out: &mut String, l: &Lagrange) {
+    out.push_str("Lagrange's equations  d/dt(∂E/∂q̇) − ∂E/∂q = Q\n");
     let width = l
         .coordinates
         .iter()
@@ -28,7 +62,7 @@ pub fn derive_text(l: &Lagrange) -> String {
         ));
     }
     out.push('\n');
-    matrix_text(&mut out, "Mass matrix M  (M·q̈ = f)", &l.mass_matrix);
+    matrix_text(out, "Mass matrix M  (M·q̈ = f)", &l.mass_matrix);
     out.push_str("\nForcing f\n");
     for (c, f) in l.coordinates.iter().zip(&l.forcing) {
         out.push_str(&format!(
@@ -37,8 +71,7 @@ pub fn derive_text(l: &Lagrange) -> String {
             as_unicode(f)
         ));
     }
-    constraints_text(&mut out, l);
-    out
+    constraints_text(out, l);
 }
 
 /// The constraints at the level of the accelerations, A·q̈ = γ, and the
@@ -122,7 +155,40 @@ pub fn bodies_text(scene: &Scene) -> String {
 
 /// The text of `qdot solve`: the accelerations, after the equations.
 pub fn solve_text(l: &Lagrange, acc: &crate::mechanics::Accelerations) -> String {
-    let mut out = derive_text(l);
+    let mut out = match acc.intermediates() {
+        Some(tape) => {
+            let roots = super::wire::lagrange_exprs(l).chain(acc.values());
+            intermediates_text(Some(tape), roots)
+        }
+        None => String::new(),
+    };
+    equations_text(&mut out, l);
+    accelerations_text(&mut out, acc);
+    out
+}
+
+/// `derive` (`acc` None) or `solve`'s dynamics on `scene`: the
+/// intermediates first when there are (they cover the bodies' energies
+/// too), the bodies' energies, the equations, the accelerations.
+pub(crate) fn dynamics_text(
+    scene: &Scene,
+    l: &Lagrange,
+    acc: Option<&crate::mechanics::Accelerations>,
+) -> String {
+    let mut out = match super::wire::structured_roots(scene, l, acc) {
+        Some((tape, roots)) => intermediates_text(Some(tape), roots),
+        None => String::new(),
+    };
+    out.push_str(&bodies_text(scene));
+    equations_text(&mut out, l);
+    if let Some(acc) = acc {
+        accelerations_text(&mut out, acc);
+    }
+    out
+}
+
+/// The accelerations and the multipliers.
+fn accelerations_text(out: &mut String, acc: &crate::mechanics::Accelerations) {
     out.push_str("\nAccelerations\n");
     for (q, e) in acc {
         out.push_str(&format!("  {} = {}\n", pretty_name(q, 2), as_unicode(e)));
@@ -133,7 +199,6 @@ pub fn solve_text(l: &Lagrange, acc: &crate::mechanics::Accelerations) -> String
             out.push_str(&format!("  {} = {}\n", pretty_name(name, 0), as_unicode(e)));
         }
     }
-    out
 }
 
 /// The text of `qdot forces`.

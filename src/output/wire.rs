@@ -220,6 +220,11 @@ impl ConstraintJson {
 /// `qdot derive`.
 #[derive(Serialize)]
 pub struct DeriveJson {
+    /// The named intermediates the expressions below are written through,
+    /// in evaluation order (each uses only the names before it); absent
+    /// when the results are expanded.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub intermediates: Option<Vec<IntermediateJson>>,
     /// The coordinates, in declaration order.
     pub coordinates: Vec<String>,
     /// Lagrange's equations, one per coordinate.
@@ -241,10 +246,75 @@ pub struct EquationJson {
     pub rhs: String,
 }
 
+/// One named intermediate: `name = value`.
+#[derive(Serialize)]
+pub struct IntermediateJson {
+    /// Its name, an identifier (`B2_13`, `P1_x_dot`).
+    pub name: String,
+    /// Its value, in the names before it.
+    pub value: String,
+}
+
+/// The entries of `tape` that `roots` use, in order; `None` when none.
+fn intermediates_json<'a>(
+    tape: Option<&crate::expr::tape::Tape>,
+    roots: impl IntoIterator<Item = &'a Expr>,
+) -> Option<Vec<IntermediateJson>> {
+    let tape = tape?;
+    let used = tape.used_by(roots);
+    (!used.is_empty()).then(|| {
+        used.into_iter()
+            .map(|i| {
+                let e = &tape.entries()[i];
+                IntermediateJson {
+                    name: e.input_name(),
+                    value: as_input(&e.value),
+                }
+            })
+            .collect()
+    })
+}
+
+/// Every expression of `l` that the output prints.
+pub(crate) fn lagrange_exprs(l: &Lagrange) -> impl Iterator<Item = &Expr> {
+    l.equations
+        .iter()
+        .flat_map(|e| [&e.lhs, &e.rhs])
+        .chain(l.mass_matrix.iter().flatten())
+        .chain(&l.forcing)
+}
+
+/// The tape a result is written through, and every expression that
+/// output prints with it: the scene's energies (its bodies'), the
+/// equations, and the accelerations when there are.
+pub(crate) fn structured_roots<'a>(
+    scene: &'a Scene,
+    l: &'a Lagrange,
+    acc: Option<&'a Accelerations>,
+) -> Option<(&'a crate::expr::tape::Tape, Vec<&'a Expr>)> {
+    let tape = acc
+        .and_then(Accelerations::intermediates)
+        .or(l.intermediates.as_ref())?;
+    let energies = scene
+        .definitions
+        .iter()
+        .filter(|d| d.role.is_some())
+        .flat_map(|d| d.value.components());
+    let roots = energies
+        .chain(lagrange_exprs(l))
+        .chain(acc.map_or(&[][..], |a| a.values()))
+        .collect();
+    Some((tape, roots))
+}
+
 impl DeriveJson {
-    /// The JSON of `derive` for `l`.
-    pub fn new(l: &Lagrange) -> DeriveJson {
+    /// The JSON of `derive` for `l` (on `scene`, whose energies it may
+    /// write through the same intermediates).
+    pub fn new(scene: &Scene, l: &Lagrange) -> DeriveJson {
+        let intermediates = structured_roots(scene, l, None)
+            .and_then(|(tape, roots)| intermediates_json(Some(tape), roots));
         DeriveJson {
+            intermediates,
             coordinates: l.coordinates.clone(),
             equations: l
                 .equations
@@ -277,10 +347,15 @@ pub struct DynamicsJson {
 
 impl DynamicsJson {
     /// The JSON of `solve`'s dynamics: `l` and its accelerations `acc`.
-    pub fn new(l: &Lagrange, acc: &Accelerations) -> DynamicsJson {
+    pub fn new(scene: &Scene, l: &Lagrange, acc: &Accelerations) -> DynamicsJson {
         let multipliers = acc.multipliers();
+        let mut derive = DeriveJson::new(scene, l);
+        if let Some((tape, roots)) = structured_roots(scene, l, Some(acc)) {
+            // the accelerations' tape extends the equations'
+            derive.intermediates = intermediates_json(Some(tape), roots);
+        }
         DynamicsJson {
-            derive: DeriveJson::new(l),
+            derive,
             accelerations: acc
                 .into_iter()
                 .map(|(q, e)| (q.to_string(), as_input(e)))
@@ -314,7 +389,7 @@ impl SolveJson {
         blocks: &[BlockSolution],
     ) -> SolveJson {
         SolveJson {
-            dynamics: dynamics.map(|(l, acc)| DynamicsJson::new(l, acc)),
+            dynamics: dynamics.map(|(l, acc)| DynamicsJson::new(scene, l, acc)),
             reactions: (!reactions.is_empty()).then(|| ReactionJson::all(scene, reactions)),
             blocks: (!blocks.is_empty()).then(|| BlocksJson::new(scene, blocks)),
         }
@@ -896,7 +971,7 @@ pub fn dimensions_json(report: &DimensionReport) -> serde_json::Value {
 
 /// The JSON of `solve`'s dynamics for `l` and its accelerations `acc`.
 pub fn solve_json(l: &Lagrange, acc: &Accelerations) -> DynamicsJson {
-    DynamicsJson::new(l, acc)
+    DynamicsJson::new(&Scene::default(), l, acc)
 }
 
 #[cfg(test)]

@@ -616,7 +616,7 @@ impl Tex<'_> {
                 Factor::new(format!("{}{sup}", self.names.symbol(n, *k)), Kind::Plain)
             }
             Atom::Named(n) => Factor::new(
-                format!("{}{sup}", self.names.symbol(&n.name, n.order)),
+                format!("{}{sup}", super::tape::latex_name(&n.name, n.order)),
                 Kind::Plain,
             ),
         }

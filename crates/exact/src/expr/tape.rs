@@ -31,7 +31,7 @@ use std::sync::Arc;
 /// One intermediate: `name = value`.
 #[derive(Clone, Debug)]
 pub struct TapeEntry {
-    /// The name as printed (with `order` primes in input syntax).
+    /// The name as given (its input syntax is [`TapeEntry::input_name`]).
     pub name: String,
     /// The atom that stands for it in later values and in results.
     pub var: Var,
@@ -44,6 +44,11 @@ pub struct TapeEntry {
 }
 
 impl TapeEntry {
+    /// The name in input syntax (with its order: `P1_x_dot`).
+    pub fn input_name(&self) -> String {
+        crate::expr::print::atom_input(&atom::atom(self.var))
+    }
+
     /// The entry's atom as an expression.
     pub fn expr(&self) -> Expr {
         Expr::var(self.var)
@@ -66,6 +71,9 @@ pub struct Tape {
     rates: FxHashMap<usize, Expr>,
     /// The terms of all values: the tape's size, under the work budget.
     terms: usize,
+    /// For the rate Ẋ of an entry X of the coordinates and t alone: X.
+    /// Then ∂Ẋ/∂q̇ = ∂X/∂q, which is reused instead of differentiated again.
+    rate_of: FxHashMap<usize, usize>,
 }
 
 /// Two tapes are equal when they are the same tape at the same length.
@@ -112,6 +120,7 @@ impl Tape {
             partials: FxHashMap::default(),
             rates: FxHashMap::default(),
             terms: 0,
+            rate_of: FxHashMap::default(),
         }
     }
 
@@ -157,7 +166,7 @@ impl Tape {
     }
 
     fn free_name(&self, hint: &str, order: u32) -> String {
-        let mark = |n: &str| format!("{n}{}", "'".repeat(order as usize));
+        let mark = |n: &str| input_name(n, order);
         if !self.taken.contains(&mark(hint)) {
             return hint.to_string();
         }
@@ -195,8 +204,7 @@ impl Tape {
             highest,
             moving: !leaves.is_empty(),
         });
-        self.taken
-            .insert(format!("{name}{}", "'".repeat(order as usize)));
+        self.taken.insert(input_name(&name, order));
         self.index.insert(var, self.entries.len());
         self.entries.push(TapeEntry {
             name,
@@ -269,6 +277,11 @@ impl Tape {
                 stack.pop();
                 continue;
             }
+            if let Some(d) = self.velocity_partial_of_rate(top, v) {
+                stack.pop();
+                self.partials.insert((top, v), d);
+                continue;
+            }
             let value = self.entries[top].value.clone();
             let missing: Vec<usize> = self
                 .dependent_entries(&value, v)
@@ -291,6 +304,18 @@ impl Tape {
             let named = self.define(&hint, d);
             self.partials.insert((top, v), named);
         }
+    }
+
+    /// ∂Ẋ/∂q̇ = ∂X/∂q when entry `i` is the rate of an X of the
+    /// coordinates and t and `v` is a velocity q̇.
+    fn velocity_partial_of_rate(&mut self, i: usize, v: Var) -> Option<Expr> {
+        let &x = self.rate_of.get(&i)?;
+        let Atom::Coord(name, 1) = atom::atom(v) else {
+            return None;
+        };
+        let q = atom::coord(&name, 0);
+        let e = self.entries[x].expr();
+        Some(self.partial(&e, q))
     }
 
     /// de/dt, the total time derivative, with every coordinate acceleration
@@ -385,7 +410,9 @@ impl Tape {
             } else {
                 // a function of q and t: the rate is the derivative, `NAME'`
                 let (name, order) = (entry.name.clone(), self.order_of(top) + 1);
-                self.name(&name, order, d)
+                let named = self.name(&name, order, d);
+                self.rate_of.insert(self.entries.len() - 1, top);
+                named
             };
             self.rates.insert(top, named);
         }
@@ -502,6 +529,53 @@ impl Calculus for Tape {
             Some(&i) => self.entry_depends_on(i, v),
             None => crate::expr::diff::atom_depends_on(w, v),
         })
+    }
+}
+
+/// The name of an intermediate in input syntax and JSON: an identifier,
+/// `P1_x` and its rate `P1_x_dot` (`_ddot`, then `_d3`, …), so that a
+/// consumer binds every name of the list as a plain variable.
+pub fn input_name(name: &str, order: u32) -> String {
+    match order {
+        0 => name.to_string(),
+        1 => format!("{name}_dot"),
+        2 => format!("{name}_ddot"),
+        k => format!("{name}_d{k}"),
+    }
+}
+
+/// The name of an intermediate in text: as given, a leading `omega` as ω,
+/// with a prime per time derivative (`P1_x′`, `ω_B2_x`).
+pub fn unicode_name(name: &str, order: u32) -> String {
+    let base = match name.strip_prefix("omega") {
+        Some(rest) if rest.is_empty() || rest.starts_with('_') => format!("ω{rest}"),
+        _ => name.to_string(),
+    };
+    format!("{base}{}", "′".repeat(order as usize))
+}
+
+/// The name of an intermediate in LaTeX: the part before the first `_`
+/// with the rest as its subscript, further underscores as commas
+/// (`B2_{23}`, `\omega_{B2,x}`), and a prime per time derivative.
+pub fn latex_name(name: &str, order: u32) -> String {
+    let escape = |s: &str| s.replace('_', ",");
+    let (head, tail) = match name.split_once('_') {
+        Some((h, t)) if !h.is_empty() && !t.is_empty() => (h, Some(t)),
+        _ => (name, None),
+    };
+    let head = if head == "omega" {
+        "\\omega".to_string()
+    } else {
+        head.to_string()
+    };
+    let body = match tail {
+        Some(t) => format!("{head}_{{{}}}", escape(t)),
+        None => head,
+    };
+    if order == 0 {
+        body
+    } else {
+        format!("{{{body}}}{}", "'".repeat(order as usize))
     }
 }
 

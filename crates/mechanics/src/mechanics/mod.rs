@@ -101,6 +101,7 @@ impl Lagrange {
             Some(tape) => {
                 let mut tape = tape.clone();
                 let mut l = Lagrange::derive_with(scene, &mut tape)?;
+                structured::name_equations(&mut tape, &mut l);
                 l.intermediates = Some(tape);
                 Ok(l)
             }

@@ -20,6 +20,40 @@ use crate::expr::atom::Atom;
 use crate::expr::tape::Tape;
 use crate::expr::Expr;
 
+/// Write the equations of `l` through `tape`: M_ij (once for M_ji), f_i
+/// and Q_k become intermediates, and each equation reads
+/// M_k·q̈ − f_k + Q_k = Q_k, the form whose expansion is the derived one.
+pub(crate) fn name_equations(tape: &mut Tape, l: &mut super::Lagrange) {
+    let n = l.coordinates.len();
+    let index = |i: usize, j: usize| {
+        if n < 10 {
+            format!("{}{}", i + 1, j + 1)
+        } else {
+            format!("{}_{}", i + 1, j + 1)
+        }
+    };
+    for i in 0..n {
+        for j in i..n {
+            let m = tape.define(&format!("M_{}", index(i, j)), l.mass_matrix[i][j].clone());
+            l.mass_matrix[i][j] = m.clone();
+            l.mass_matrix[j][i] = m;
+        }
+    }
+    for k in 0..n {
+        let f = tape.define(&format!("f_{}", k + 1), l.forcing[k].clone());
+        l.forcing[k] = f;
+        let eq = &mut l.equations[k];
+        let q = tape.define(&format!("Q_{}", eq.coordinate), eq.rhs.clone());
+        let mut lhs = q.sub(&l.forcing[k]);
+        for j in 0..n {
+            let acc = Expr::coord(&l.coordinates[j], 2);
+            lhs = lhs.add(&l.mass_matrix[k][j].mul(&acc));
+        }
+        eq.lhs = lhs;
+        eq.rhs = q;
+    }
+}
+
 /// How many random states a pivot is evaluated at.
 const PIVOT_PROBES: u64 = 3;
 

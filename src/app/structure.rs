@@ -1,0 +1,58 @@
+//! Reading a scene expanded or with its kinematics kept (`--expand`,
+//! `--structured`, and the size rule between them).
+
+use super::Structure;
+use crate::diag::Diagnostic;
+use crate::scene::Scene;
+
+/// The scene of `src`, read as `structure` asks. `Auto` keeps the
+/// kinematics when the scene allows it and the expanded M and f of its
+/// structured derivation would pass
+/// [`crate::limits::STRUCTURE_ABOVE_TERMS`] terms; otherwise (and for every
+/// scene it cannot keep) it reads the scene expanded, so small scenes
+/// print exactly as they always have.
+pub(super) fn read(src: &str, structure: Structure) -> Result<Scene, Diagnostic> {
+    match structure {
+        Structure::Expanded => Scene::parse(src),
+        Structure::Kept => Scene::parse_structured(src),
+        Structure::Auto => match Scene::parse_structured(src) {
+            Ok(kept) if worth_keeping(&kept) => Ok(kept),
+            _ => Scene::parse(src),
+        },
+    }
+}
+
+/// Whether a structured scene's equations expand past the size rule. The
+/// expansion is measured under a budget just above the rule, so a large
+/// scene costs little to tell.
+fn worth_keeping(scene: &Scene) -> bool {
+    let Some(tape) = scene.tape.as_ref().filter(|t| !t.is_empty()) else {
+        return false;
+    };
+    if !scene.has_dynamics() {
+        return false;
+    }
+    let limit = crate::limits::STRUCTURE_ABOVE_TERMS;
+    let measured = crate::budget::within(limit.saturating_mul(16), || {
+        let Ok(l) = scene.lagrange() else {
+            return None;
+        };
+        let tape = l.intermediates.as_ref().unwrap_or(tape);
+        let mut terms = 0usize;
+        for e in l.mass_matrix.iter().flatten().chain(&l.forcing) {
+            let x = tape.expand(e).ok()?;
+            terms += x.num().len() + x.den().len();
+            if terms > limit {
+                return Some(true);
+            }
+        }
+        Some(false)
+    });
+    match measured {
+        Ok(Some(keep)) => keep,
+        // a derivation that fails is reported by the expanded reading
+        Ok(None) => false,
+        // past the measuring budget: far past the rule
+        Err(_) => true,
+    }
+}
