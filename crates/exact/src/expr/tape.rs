@@ -16,9 +16,11 @@
 //! memoized. [`Tape::expand`] substitutes the values back: the expanded
 //! result equals the one derived without a tape.
 //!
-//! Invariant: an entry's value mentions only entries before it (checked by
-//! `debug_assert` when it is defined), so one pass in order evaluates,
-//! expands or prints the whole tape, and no walk recurses.
+//! Invariants: an entry's value mentions only entries before it (checked
+//! by `debug_assert` when it is defined), so one pass in order evaluates,
+//! expands or prints the whole tape, and no walk recurses; and no entry
+//! mentions a coordinate's acceleration, so the q̈ of a result are all in
+//! sight (the rates are taken with q̈ = 0, their q̈ terms written out).
 
 use super::atom::{self, Atom, NamedAtom};
 use super::Expr;
@@ -71,6 +73,9 @@ pub struct Tape {
     rates: FxHashMap<usize, Expr>,
     /// The terms of all values: the tape's size, under the work budget.
     terms: usize,
+    /// Each value once: an intermediate whose value is already on the tape
+    /// is that entry (∂Ẋ/∂q and the rate of ∂X/∂q are one).
+    by_value: FxHashMap<Expr, Var>,
     /// For the rate Ẋ of an entry X of the coordinates and t alone: X.
     /// Then ∂Ẋ/∂q̇ = ∂X/∂q, which is reused instead of differentiated again.
     rate_of: FxHashMap<usize, usize>,
@@ -120,6 +125,7 @@ impl Tape {
             partials: FxHashMap::default(),
             rates: FxHashMap::default(),
             terms: 0,
+            by_value: FxHashMap::default(),
             rate_of: FxHashMap::default(),
         }
     }
@@ -153,7 +159,7 @@ impl Tape {
     /// be worth one (a number, or a number times one symbol): then `value`
     /// itself.
     pub fn define(&mut self, hint: &str, value: Expr) -> Expr {
-        if is_trivial(&value) {
+        if is_trivial(&value) || mentions_acceleration(&value) {
             return value;
         }
         self.name(hint, 0, value)
@@ -162,6 +168,9 @@ impl Tape {
     /// `value` under the name `hint` (or the first free `hint_k`), however
     /// small: a name the user asked to keep.
     pub fn keep(&mut self, hint: &str, value: Expr) -> Expr {
+        if mentions_acceleration(&value) {
+            return value;
+        }
         self.name(hint, 0, value)
     }
 
@@ -177,6 +186,9 @@ impl Tape {
     }
 
     fn name(&mut self, hint: &str, order: u32, value: Expr) -> Expr {
+        if let Some(&v) = self.by_value.get(&value) {
+            return Expr::var(v);
+        }
         let name = self.free_name(hint, order);
         self.terms = self
             .terms
@@ -206,6 +218,7 @@ impl Tape {
         });
         self.taken.insert(input_name(&name, order));
         self.index.insert(var, self.entries.len());
+        self.by_value.insert(value.clone(), var);
         self.entries.push(TapeEntry {
             name,
             var,
@@ -411,7 +424,11 @@ impl Tape {
                 // a function of q and t: the rate is the derivative, `NAME'`
                 let (name, order) = (entry.name.clone(), self.order_of(top) + 1);
                 let named = self.name(&name, order, d);
-                self.rate_of.insert(self.entries.len() - 1, top);
+                if let Some(&i) = named.as_var().and_then(|v| self.index.get(&v)) {
+                    // a value met before is that entry's: ∂Ẋ/∂q̇ = ∂X/∂q holds
+                    // for it all the same (it is Ẋ)
+                    self.rate_of.entry(i).or_insert(top);
+                }
                 named
             };
             self.rates.insert(top, named);
@@ -577,6 +594,13 @@ pub fn latex_name(name: &str, order: u32) -> String {
     } else {
         format!("{{{body}}}{}", "'".repeat(order as usize))
     }
+}
+
+/// Whether `e` mentions a coordinate's acceleration (or a higher
+/// derivative): such a value is never named, so that the equations keep
+/// every q̈ in sight (they are split into M·q̈ and the rest by reading q̈).
+fn mentions_acceleration(e: &Expr) -> bool {
+    e.highest_time_derivative().is_some_and(|(_, k)| k >= 2)
 }
 
 /// Whether a value is too small for a name: a number, or a number times a

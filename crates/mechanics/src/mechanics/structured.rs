@@ -20,9 +20,9 @@ use crate::expr::atom::Atom;
 use crate::expr::tape::Tape;
 use crate::expr::Expr;
 
-/// Write the equations of `l` through `tape`: M_ij (once for M_ji), f_i
-/// and Q_k become intermediates, and each equation reads
-/// M_k·q̈ − f_k + Q_k = Q_k, the form whose expansion is the derived one.
+/// Write the equations of `l` through `tape`: M_ij (once for M_ji), the
+/// velocity terms h_k, the generalized forces Q_k and f_k = Q_k − h_k
+/// become intermediates, and each equation reads M_k·q̈ + h_k = Q_k.
 pub(crate) fn name_equations(tape: &mut Tape, l: &mut super::Lagrange) {
     let n = l.coordinates.len();
     let index = |i: usize, j: usize| {
@@ -39,19 +39,46 @@ pub(crate) fn name_equations(tape: &mut Tape, l: &mut super::Lagrange) {
             l.mass_matrix[j][i] = m;
         }
     }
-    for k in 0..n {
-        let f = tape.define(&format!("f_{}", k + 1), l.forcing[k].clone());
-        l.forcing[k] = f;
-        let eq = &mut l.equations[k];
-        let q = tape.define(&format!("Q_{}", eq.coordinate), eq.rhs.clone());
-        let mut lhs = q.sub(&l.forcing[k]);
-        for j in 0..n {
-            let acc = Expr::coord(&l.coordinates[j], 2);
-            lhs = lhs.add(&l.mass_matrix[k][j].mul(&acc));
+    let accelerations: Vec<Expr> = l.coordinates.iter().map(|c| Expr::coord(c, 2)).collect();
+    let inertial_loads = l.equations.iter().any(|e| {
+        accelerations
+            .iter()
+            .filter_map(Expr::as_var)
+            .any(|a| e.rhs.depends_on(a))
+    });
+    if inertial_loads {
+        // D'Alembert's form: Q carries inertia forces that M took over, so
+        // the equations stay as derived and only f is named
+        for k in 0..n {
+            l.forcing[k] = tape.define(&format!("f_{}", k + 1), l.forcing[k].clone());
         }
-        eq.lhs = lhs;
+        return;
+    }
+    for k in 0..n {
+        let eq = &mut l.equations[k];
+        // lhs = M_k·q̈ + h_k, h_k the velocity terms (q̈ = 0), f_k = Q_k − h_k
+        let at_rest: rustc_hash::FxHashMap<_, _> = accelerations
+            .iter()
+            .filter_map(Expr::as_var)
+            .map(|v| (v, Expr::zero()))
+            .collect();
+        let h = eq
+            .lhs
+            .subs_many(&at_rest)
+            .unwrap_or_else(|_| eq.lhs.clone());
+        let h = tape.define(&format!("h_{}", eq.coordinate), h);
+        let q = tape.define(&format!("Q_{}", eq.coordinate), eq.rhs.clone());
+        l.forcing[k] = tape.define(&format!("f_{}", k + 1), q.sub(&h));
+        eq.lhs = dot(&l.mass_matrix[k], &accelerations).add(&h);
         eq.rhs = q;
     }
+}
+
+/// Σ a_j·b_j.
+fn dot(a: &[Expr], b: &[Expr]) -> Expr {
+    a.iter()
+        .zip(b)
+        .fold(Expr::zero(), |s, (x, y)| s.add(&x.mul(y)))
 }
 
 /// How many random states a pivot is evaluated at.
