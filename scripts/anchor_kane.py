@@ -43,11 +43,31 @@ error is max |a - b| / max(1, max |b|); tolerance 1e-10.  Exits 1 if any
 check fails.
 
 Figures measured on this project's 2-core machine (SymPy 1.14, qdot release
-build of 2026-11-27, one cold run each, nothing else of ours running, for
-orientation only: always measure qdot and the anchor in the same run):
+build of 2026-11-27 with named intermediates, 2026-11; best of 3 cold runs
+for n <= 8, one run for n = 10 and 12; other builds were running, load 1.5
+to 2.9; for orientation only: always measure qdot and the anchor in the same
+run).  "ops" is mass_matrix_ops + forcing_ops:
 
-    n   kanes_s   M + f ops (mass_matrix_ops + forcing_ops)   qdot_s   qdot JSON bytes
-    (filled in below)
+     n   kanes_s          ops   qdot_s   qdot JSON bytes
+     2     0.061          157   0.0063             1,938
+     3     0.14         1,358   0.19              58,335
+     4     0.34         7,132   0.027             38,808
+     5     0.86        27,530   0.043             67,068
+     6     2.0         88,250   0.062            103,342
+     7     4.7        247,988   0.089            147,860
+     8    10.0        635,515   0.12             201,079
+    10    43        3,436,956   0.33             337,960
+    12   165       15,703,088   0.38             522,714
+
+KanesMethod is far faster than LagrangesMethod on this chain (n = 6: 2.0 s
+against 104 s in anchor_frames.py; n = 10: 43 s against more than 84
+minutes) because it forms no Lagrangian to differentiate; its M and f are
+left unexpanded and grow about 2.3x to 2.7x per rod in ops (n = 12: 15.7 M
+ops, 240 MB peak for the whole process).  qdot's n = 3 stands out: its
+expanded M and f are under the size rule (256 terms) so it writes them, and
+the exact accelerations, in full (52 kB of the 58 kB); from n = 4 on it
+writes named intermediates and names the accelerations through the
+factorization of M, which is cheaper.
 
 Usage:
     python3 scripts/anchor_kane.py --n 5 [--repeat 3] [--qdot PATH] [--timeout 600]
@@ -251,6 +271,9 @@ def main():
         ap.error("--n must be at least 1")
     if a.repeat < 1:
         ap.error("--repeat must be at least 1")
+    if not os.access(a.qdot, os.X_OK):
+        ap.error("no qdot binary at %s (build it with `cargo build --release "
+                 "--features cli` or pass --qdot PATH)" % a.qdot)
     print(json.dumps(measure(a.n, a.repeat, a.qdot, a.timeout)), flush=True)
 
 
