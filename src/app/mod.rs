@@ -218,12 +218,12 @@ fn on_scene_as<T>(
 
 /// `derive` on the scene source `src`.
 pub fn derive(ctx: &Context, src: &str) -> Result<DeriveReport, Diagnostic> {
-    on_scene(ctx, src, commands::derive)
+    on_scene_as(ctx, src, Structure::Auto, commands::derive)
 }
 
 /// `solve` on the scene source `src`.
 pub fn solve(ctx: &Context, src: &str) -> Result<SolveReport, Diagnostic> {
-    on_scene(ctx, src, commands::solve)
+    on_scene_as(ctx, src, Structure::Auto, commands::solve)
 }
 
 /// `equilibrium` on the scene source `src`, parameters at `set`.
@@ -286,6 +286,7 @@ pub fn codegen(
 
 mod commands;
 mod structure;
+pub(crate) use structure::read as read_scene;
 
 #[cfg(test)]
 mod tests {

@@ -6,20 +6,32 @@ use crate::diag::Diagnostic;
 use crate::scene::Scene;
 
 /// The scene of `src`, read as `structure` asks. `Auto` keeps the
-/// kinematics when the scene allows it and the expanded M and f of its
+/// kinematics of a scene with bodies when it allows it and the expanded M
+/// and f of its
 /// structured derivation would pass
 /// [`crate::limits::STRUCTURE_ABOVE_TERMS`] terms; otherwise (and for every
 /// scene it cannot keep) it reads the scene expanded, so small scenes
 /// print exactly as they always have.
-pub(super) fn read(src: &str, structure: Structure) -> Result<Scene, Diagnostic> {
+pub(crate) fn read(src: &str, structure: Structure) -> Result<Scene, Diagnostic> {
     match structure {
         Structure::Expanded => Scene::parse(src),
         Structure::Kept => Scene::parse_structured(src),
+        Structure::Auto if !has_bodies(src) => Scene::parse(src),
         Structure::Auto => match Scene::parse_structured(src) {
             Ok(kept) if worth_keeping(&kept) => Ok(kept),
             _ => Scene::parse(src),
         },
     }
+}
+
+/// Whether the scene has `body` or `particle` statements, the scenes whose
+/// kinematics can grow past the rule (the others are read once, expanded).
+fn has_bodies(src: &str) -> bool {
+    crate::parse::parse_scene(src).is_ok_and(|stmts| {
+        stmts
+            .iter()
+            .any(|s| matches!(s, crate::parse::ast::Stmt::Body(_)))
+    })
 }
 
 /// Whether a structured scene's equations expand past the size rule. The

@@ -357,7 +357,8 @@ impl Prepared {
     /// Parse `src` and derive its equations (`functions`: the definitions
     /// of its given functions of time, `--function s=…`).
     pub fn new(src: &str, functions: &[String]) -> Result<Prepared, Diagnostic> {
-        let scene = Scene::parse(src)?;
+        // a large body scene is simulated from its intermediates
+        let scene = crate::app::read_scene(src, crate::app::Structure::Auto)?;
         let lag = super::given::defined(&scene, scene.lagrange()?, functions)?;
         let drift = super::constrained::drift(&lag);
         let lag = super::constrained::stabilized(lag)?;

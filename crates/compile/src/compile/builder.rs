@@ -25,7 +25,27 @@ pub fn compile_with(
     inputs: &[Var],
     params: &FxHashMap<Var, f64>,
 ) -> Result<Program, CompileError> {
+    compile_through(outputs, inputs, params, None)
+}
+
+/// [`compile_with`] for outputs written through the intermediates of
+/// `tape`: each intermediate they use is compiled once, in the tape's
+/// order, and its node stands for it wherever it appears (the shared
+/// subexpressions of a recursive derivation, by construction).
+pub fn compile_through(
+    outputs: &[Expr],
+    inputs: &[Var],
+    params: &FxHashMap<Var, f64>,
+    tape: Option<&crate::expr::tape::Tape>,
+) -> Result<Program, CompileError> {
     let mut b = Builder::new(inputs, params);
+    if let Some(tape) = tape {
+        for i in tape.used_by(outputs) {
+            let entry = &tape.entries()[i];
+            let node = b.expr(&entry.value)?;
+            b.atoms.insert(entry.var, node);
+        }
+    }
     let mut outs = Vec::with_capacity(outputs.len());
     for e in outputs {
         outs.push(b.expr(e)?);

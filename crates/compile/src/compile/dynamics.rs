@@ -7,7 +7,7 @@ use crate::poly::Var;
 use qdot_ode::System;
 use rustc_hash::FxHashMap;
 
-use super::builder::compile_with;
+use super::builder::{compile_through, compile_with};
 use super::engine::{Engine, EngineReport};
 use super::error::CompileError;
 use super::program::Program;
@@ -113,11 +113,12 @@ pub fn state_inputs(coordinates: &[String]) -> Vec<Var> {
 impl CompiledDynamics {
     /// Compile M and f of `lagrange` with the parameter values `params`.
     pub fn new(lagrange: &Lagrange, params: &FxHashMap<Var, f64>) -> Result<Self, CompileError> {
-        Self::from_parts(
+        Self::from_parts_through(
             &lagrange.coordinates,
             &lagrange.mass_matrix,
             &lagrange.forcing,
             params,
+            lagrange.intermediates.as_ref(),
         )
     }
 
@@ -130,6 +131,18 @@ impl CompiledDynamics {
         forcing: &[Expr],
         params: &FxHashMap<Var, f64>,
     ) -> Result<Self, CompileError> {
+        Self::from_parts_through(coordinates, mass, forcing, params, None)
+    }
+
+    /// [`CompiledDynamics::from_parts`] for M and f written through the
+    /// intermediates of `tape` ([`compile_through`]).
+    pub fn from_parts_through(
+        coordinates: &[String],
+        mass: &[Vec<Expr>],
+        forcing: &[Expr],
+        params: &FxHashMap<Var, f64>,
+        tape: Option<&crate::expr::tape::Tape>,
+    ) -> Result<Self, CompileError> {
         let n = coordinates.len();
         if mass.len() != n || mass.iter().any(|r| r.len() != n) || forcing.len() != n {
             return Err(CompileError::Shape(format!(
@@ -141,9 +154,11 @@ impl CompiledDynamics {
             .flat_map(|i| (i..n).map(move |j| (i, j)))
             .map(|(i, j)| mass[i][j].clone())
             .collect();
-        let constant = upper
-            .iter()
-            .all(|e| inputs.iter().all(|&v| !e.depends_on(v)));
+        // an intermediate is taken to move (its tape knows, the atom not)
+        let constant = tape.is_none_or(|t| t.used_by(&upper).is_empty())
+            && upper
+                .iter()
+                .all(|e| inputs.iter().all(|&v| !e.depends_on(v)));
         if constant {
             let pm = compile_with(&upper, &inputs, params)?;
             let mut vals = vec![0.0; upper.len()];
@@ -169,12 +184,12 @@ impl CompiledDynamics {
                     inverse[i * n + j] = col[i];
                 }
             }
-            let program = compile_with(forcing, &inputs, params)?;
+            let program = compile_through(forcing, &inputs, params, tape)?;
             return Ok(Self::with(n, program, Mode::ConstantMass(inverse)));
         }
         let mut outputs = upper;
         outputs.extend(forcing.iter().cloned());
-        let program = compile_with(&outputs, &inputs, params)?;
+        let program = compile_through(&outputs, &inputs, params, tape)?;
         Ok(Self::with(n, program, Mode::MassMatrix))
     }
 
@@ -187,9 +202,10 @@ impl CompiledDynamics {
         let acc = lagrange
             .accelerations()
             .map_err(|d| CompileError::NoAccelerations(d.message))?;
-        let exprs: Vec<Expr> = acc.into_iter().map(|(_, e)| e).collect();
+        let exprs: Vec<Expr> = acc.values().to_vec();
         let n = lagrange.coordinates.len();
-        let program = compile_with(&exprs, &state_inputs(&lagrange.coordinates), params)?;
+        let inputs = state_inputs(&lagrange.coordinates);
+        let program = compile_through(&exprs, &inputs, params, acc.intermediates())?;
         Ok(Self::with(n, program, Mode::Accelerations))
     }
 

@@ -49,7 +49,7 @@ pub mod jit;
 mod passes;
 mod program;
 
-pub use builder::{compile, compile_with, naive_op_count};
+pub use builder::{compile, compile_through, compile_with, naive_op_count};
 pub use dynamics::{
     estimated_cost_of, state_inputs, Choice, CompiledDynamics, Evaluator, BEST_MAX_N,
 };

@@ -46,6 +46,7 @@ pub use crate::scene::momentum_name;
 impl Hamiltonian {
     /// The Legendre transform of the scene's Lagrangian.
     pub fn derive(scene: &Scene) -> Result<Hamiltonian, Diagnostic> {
+        scene.expanded_only("Hamilton's equations")?;
         let _context = crate::budget::enter(|| "deriving Hamilton's equations".into(), None);
         let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
         check_scene(scene, &names)?;

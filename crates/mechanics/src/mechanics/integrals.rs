@@ -54,6 +54,7 @@ pub struct Routh {
 impl Integrals {
     /// Find the integrals of a scene.
     pub fn find(scene: &Scene) -> Result<Integrals, Diagnostic> {
+        scene.expanded_only("the search for first integrals")?;
         let _context = crate::budget::enter(|| "finding the integrals of motion".into(), None);
         let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
         if names.is_empty() || !(scene.has_role(Role::Kinetic) || scene.has_role(Role::Lagrangian))
@@ -107,6 +108,7 @@ impl Integrals {
 /// one decision `integrals`, `simulate`'s energy drift and `codegen`'s
 /// energy function share.
 pub fn conserved_energy(scene: &Scene) -> Result<Option<Expr>, Diagnostic> {
+    scene.expanded_only("the energy integral")?;
     let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
     let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
     let qdd: Vec<Var> = names.iter().map(|c| atom::coord(c, 2)).collect();

@@ -294,7 +294,19 @@ pub struct ForceTerm {
 /// The contributions to each Q_k, per coordinate in declaration order, in
 /// the order of the module docs; only the sources that mention q_k.
 pub fn generalized_force_terms(scene: &Scene) -> Vec<Vec<ForceTerm>> {
-    force_terms_with(scene, &mut Expanded)
+    let Some(tape) = &scene.tape else {
+        return force_terms_with(scene, &mut Expanded);
+    };
+    // through the scene's intermediates, then expanded: the terms are
+    // returned without a tape to read them by
+    let mut tape = tape.clone();
+    let mut terms = force_terms_with(scene, &mut tape);
+    for t in terms.iter_mut().flatten() {
+        if let Ok(v) = tape.expand(&t.value) {
+            t.value = v;
+        }
+    }
+    terms
 }
 
 /// [`generalized_force_terms`] with the derivatives of `calc`.

@@ -500,6 +500,19 @@ impl Scene {
         })
     }
 
+    /// An error when the scene was read with its kinematics kept
+    /// ([`Scene::parse_structured`]) and has intermediates: `what` works on
+    /// expanded values only (an intermediate hides what it depends on).
+    pub fn expanded_only(&self, what: &str) -> Result<(), Diagnostic> {
+        if self.tape.as_ref().is_some_and(|t| !t.is_empty()) {
+            return Err(Diagnostic::global(format!(
+                "{what} needs the scene expanded, and it was read with its kinematics kept as intermediates"
+            ))
+            .with_hint("read it with Scene::parse (the command line does so for every command but derive, solve and simulate)"));
+        }
+        Ok(())
+    }
+
     /// Whether any statement plays `role`.
     pub fn has_role(&self, role: Role) -> bool {
         self.role(role).next().is_some()

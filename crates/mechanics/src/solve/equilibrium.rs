@@ -148,6 +148,7 @@ pub struct Equilibria {
 
 /// Find and classify the equilibria of a scene.
 pub fn equilibria(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic> {
+    scene.expanded_only("the search for equilibria")?;
     crate::algebra::assume::assuming(&scene.assumptions, || equilibria_assumed(scene, set))
 }
 

@@ -107,6 +107,7 @@ fn math(m: crate::expr::MathError) -> Diagnostic {
 
 /// Linearize about `at` (default q = 0) and find the modes.
 pub fn modes(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Modes, Diagnostic> {
+    scene.expanded_only("small oscillations")?;
     crate::algebra::assume::assuming(&scene.assumptions, || modes_assumed(scene, at, set))
 }
 

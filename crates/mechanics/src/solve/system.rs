@@ -206,6 +206,9 @@ pub fn equation_label(sys: &SolveSystem, i: usize) -> String {
 /// Solve every `solve` block of a scene, in order; a block may use the
 /// unknowns of earlier blocks, whose solutions are put in.
 pub fn solve_scene(scene: &Scene) -> Result<Vec<BlockSolution>, Diagnostic> {
+    if !scene.systems.is_empty() {
+        scene.expanded_only("a `solve` block")?;
+    }
     let _context = crate::budget::enter(|| "solving the `solve` blocks".into(), None);
     let mut known: FxHashMap<Var, Expr> = FxHashMap::default();
     let mut acc: Option<FxHashMap<Var, Expr>> = None;
