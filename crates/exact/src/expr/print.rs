@@ -816,7 +816,7 @@ pub fn subscript(s: &str) -> String {
         .collect()
 }
 
-const GREEK: &[(&str, &str)] = &[
+pub(crate) const GREEK: &[(&str, &str)] = &[
     ("alpha", "α"),
     ("beta", "β"),
     ("gamma", "γ"),

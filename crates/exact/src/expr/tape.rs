@@ -561,14 +561,18 @@ pub fn input_name(name: &str, order: u32) -> String {
     }
 }
 
-/// The name of an intermediate in text: as given, a leading `omega` as ω,
-/// with a prime per time derivative (`P1_x′`, `ω_B2_x`).
+/// The name of an intermediate in text: as given, each part between
+/// underscores that names a Greek letter written as that letter, with a
+/// prime per time derivative (`P1_x′`, `ω_B2_x`, `h_θ`).
 pub fn unicode_name(name: &str, order: u32) -> String {
-    let base = match name.strip_prefix("omega") {
-        Some(rest) if rest.is_empty() || rest.starts_with('_') => format!("ω{rest}"),
-        _ => name.to_string(),
+    let greek = |part: &str| -> String {
+        crate::expr::print::GREEK
+            .iter()
+            .find(|(k, _)| *k == part)
+            .map_or_else(|| part.to_string(), |(_, g)| (*g).to_string())
     };
-    format!("{base}{}", "′".repeat(order as usize))
+    let base: Vec<String> = name.split('_').map(greek).collect();
+    format!("{}{}", base.join("_"), "′".repeat(order as usize))
 }
 
 /// The name of an intermediate in LaTeX: the part before the first `_`
