@@ -49,7 +49,7 @@ fn assert_same_as_expanded(src: &str, exact_accelerations: bool) {
 
 /// M and f through the intermediates equal the expanded ones exactly.
 fn assert_same_equations(plain: &qdot::Lagrange, kept: &qdot::Lagrange) {
-    let tape = kept.intermediates.as_ref().expect("a tape");
+    let tape = kept.intermediates.as_deref().expect("a tape");
     let n = plain.coordinates.len();
     for i in 0..n {
         for j in 0..n {
@@ -66,7 +66,7 @@ fn assert_same_equations(plain: &qdot::Lagrange, kept: &qdot::Lagrange) {
 }
 
 fn assert_same(plain: &qdot::Lagrange, kept: &qdot::Lagrange, exact_accelerations: bool) {
-    let tape = kept.intermediates.as_ref().expect("a tape");
+    let tape = kept.intermediates.as_deref().expect("a tape");
     let n = plain.coordinates.len();
     for i in 0..n {
         for j in 0..n {
@@ -180,7 +180,7 @@ fn chain_accelerations_equal_pinocchio_aba() {
             err <= 1e-12 * scale(&want),
             "n = {n}: q̈ {got:?} vs aba {want:?}"
         );
-        let lt = l.intermediates.as_ref().unwrap();
+        let lt = l.intermediates.as_deref().unwrap();
         for i in 0..n {
             let nle = case["nle"][i].as_f64().unwrap();
             let f = lt.eval_f64(&l.forcing[i], &value).unwrap();

@@ -49,7 +49,7 @@ fn worth_keeping(scene: &Scene) -> bool {
         let Ok(l) = scene.lagrange() else {
             return None;
         };
-        let tape = l.intermediates.as_ref().unwrap_or(tape);
+        let tape = l.intermediates.as_deref().unwrap_or(tape);
         let mut terms = 0usize;
         for e in l.mass_matrix.iter().flatten().chain(&l.forcing) {
             let x = tape.expand(e).ok()?;

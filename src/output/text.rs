@@ -11,7 +11,7 @@ use crate::solve::system::{self, BlockSolution};
 
 /// The text of `qdot derive`.
 pub fn derive_text(l: &Lagrange) -> String {
-    let mut out = intermediates_text(l.intermediates.as_ref(), super::wire::lagrange_exprs(l));
+    let mut out = intermediates_text(l.intermediates.as_deref(), super::wire::lagrange_exprs(l));
     equations_text(&mut out, l);
     out
 }

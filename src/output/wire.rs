@@ -294,7 +294,7 @@ pub(crate) fn structured_roots<'a>(
 ) -> Option<(&'a crate::expr::tape::Tape, Vec<&'a Expr>)> {
     let tape = acc
         .and_then(Accelerations::intermediates)
-        .or(l.intermediates.as_ref())?;
+        .or(l.intermediates.as_deref())?;
     let energies = scene
         .definitions
         .iter()

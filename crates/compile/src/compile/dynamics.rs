@@ -118,7 +118,7 @@ impl CompiledDynamics {
             &lagrange.mass_matrix,
             &lagrange.forcing,
             params,
-            lagrange.intermediates.as_ref(),
+            lagrange.intermediates.as_deref(),
         )
     }
 

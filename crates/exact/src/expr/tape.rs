@@ -675,10 +675,7 @@ mod tests {
         // q̈ stays outside the intermediates
         assert!(dw.depends_on(atom::coord("a", 2)));
         for e in tape.entries() {
-            assert!(e
-                .value
-                .highest_time_derivative()
-                .map_or(true, |(_, k)| k < 2));
+            assert!(e.value.highest_time_derivative().is_none_or(|(_, k)| k < 2));
         }
     }
 

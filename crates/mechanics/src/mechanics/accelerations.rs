@@ -20,7 +20,7 @@ pub struct Accelerations {
     /// The constraints' multipliers (name, λ), in constraint order.
     multipliers: Vec<(String, Expr)>,
     /// The intermediates the values are written through, if any.
-    intermediates: Option<crate::expr::tape::Tape>,
+    intermediates: Option<Box<crate::expr::tape::Tape>>,
 }
 
 impl Accelerations {
@@ -37,13 +37,13 @@ impl Accelerations {
 
     /// Write the values through `tape`'s intermediates.
     pub(crate) fn set_intermediates(&mut self, tape: crate::expr::tape::Tape) {
-        self.intermediates = Some(tape);
+        self.intermediates = Some(Box::new(tape));
     }
 
     /// The intermediates the values mention, if they are written through
     /// some (see [`crate::expr::tape`]).
     pub fn intermediates(&self) -> Option<&crate::expr::tape::Tape> {
-        self.intermediates.as_ref()
+        self.intermediates.as_deref()
     }
 
     /// Attach the multipliers λ of the constraints (same length as `names`).

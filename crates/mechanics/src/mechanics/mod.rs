@@ -70,7 +70,7 @@ pub struct Lagrange {
     /// The intermediates the expressions above are written through, for a
     /// scene read with its kinematics kept ([`Scene::parse_structured`]);
     /// `None` when they are expanded.
-    pub intermediates: Option<Tape>,
+    pub intermediates: Option<Box<Tape>>,
 }
 
 impl Lagrange {
@@ -102,7 +102,7 @@ impl Lagrange {
                 let mut tape = tape.clone();
                 let mut l = Lagrange::derive_with(scene, &mut tape)?;
                 structured::name_equations(&mut tape, &mut l);
-                l.intermediates = Some(tape);
+                l.intermediates = Some(Box::new(tape));
                 Ok(l)
             }
             None => Lagrange::derive_with(scene, &mut Expanded),
@@ -204,7 +204,7 @@ impl Lagrange {
         let _context =
             crate::budget::enter(|| "solving M·q̈ = f for the accelerations".into(), None);
         if let Some(tape) = &self.intermediates {
-            let mut tape = tape.clone();
+            let mut tape: Tape = (**tape).clone();
             let acc = structured::solve_ldl(
                 &mut tape,
                 &self.coordinates,

@@ -93,9 +93,9 @@ pub(crate) fn solve_ldl(
 ) -> Result<Vec<Expr>, Diagnostic> {
     let n = f.len();
     let mut mn: Vec<Vec<Expr>> = vec![Vec::new(); n];
-    for i in 0..n {
-        for j in 0..=i {
-            let e = tape.define(&format!("M_{}{}", i + 1, j + 1), m[i][j].clone());
+    for (i, row) in m.iter().enumerate() {
+        for (j, e) in row.iter().enumerate().take(i + 1) {
+            let e = tape.define(&format!("M_{}{}", i + 1, j + 1), e.clone());
             mn[i].push(e);
         }
     }
