@@ -11,7 +11,7 @@
 //! every operation on tape expressions is exact: a relation between
 //! intermediates the canonical form cannot see (R·Rᵀ = I) is only left
 //! unsimplified, never used wrongly. Differentiation goes through the
-//! tape's chain rule ([`Tape::partial`], [`Tape::rate`]), which defines
+//! tape's chain rule ([`Tape::partial`], [`Tape::dt`]), which defines
 //! the derivatives of the intermediates as intermediates in their turn,
 //! memoized. [`Tape::expand`] substitutes the values back: the expanded
 //! result equals the one derived without a tape.
