@@ -13,7 +13,10 @@
 //! * `npendulum/solve/<n>`: the exact accelerations in lowest terms.
 //! * `frames/heavy_top`: the heavy top end to end (target: under 1 ms);
 //!   `frames/chain3d/<n>`: the equations of n rods in space, beside SymPy's
-//!   LagrangesMethod (`scripts/anchor_frames.py`).
+//!   LagrangesMethod (`scripts/anchor_frames.py`);
+//!   `frames/chain3d_structured/<n>`: the same chain's equations and
+//!   accelerations through named intermediates, beside SymPy's KanesMethod
+//!   (`scripts/anchor_kane.py`).
 //! * `compact/<scene>`: printing every acceleration of a panel scene in its
 //!   compact form (the search of `qdot::expr::compact`; target: the double
 //!   pendulum under 10 ms) — beside SymPy's `simplify` on the same
@@ -150,6 +153,21 @@ fn frames(c: &mut Criterion) {
             b.iter(|| {
                 let s = Scene::parse(black_box(src)).expect("parses");
                 black_box(s.lagrange().expect("derives"))
+            })
+        });
+    }
+    g.finish();
+    // through named intermediates (`Scene::parse_structured`): the
+    // accelerations too, beside SymPy's KanesMethod (`scripts/anchor_kane.py`)
+    let mut g = c.benchmark_group("frames/chain3d_structured");
+    g.sample_size(10);
+    for n in [4usize, 8, 20] {
+        let src = qdot::engine::gallery::rod_chain_3d(n);
+        g.bench_with_input(BenchmarkId::from_parameter(n), &src, |b, src| {
+            b.iter(|| {
+                let s = Scene::parse_structured(black_box(src)).expect("parses");
+                let l = s.lagrange().expect("derives");
+                black_box(l.accelerations().expect("solves"))
             })
         });
     }

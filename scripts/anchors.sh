@@ -38,3 +38,11 @@ cargo bench -q -p qdot-benches --bench derive -- "frames/heavy_top|frames/chain3
 for n in 2 3 5 10; do
   [ "$n" -le "$FRAMES_NMAX" ] && "$PY" scripts/anchor_frames.py --n "$n"
 done
+
+echo
+echo "# The chain of n rods through named intermediates (qdot criterion: equations and accelerations), SymPy KanesMethod on the same chain, same run"
+cargo bench -q -p qdot-benches --bench derive -- "frames/chain3d_structured/" \
+  --warm-up-time 1 --measurement-time 4 2>&1 | grep -E "time:" -B1 | grep -vE "^--|Warming|Collecting|Analyzing"
+for n in 4 8; do
+  "$PY" scripts/anchor_kane.py --n "$n" --timeout 120
+done

@@ -6,38 +6,8 @@ use qdot::expr::Expr;
 use qdot::scene::Scene;
 
 /// The 3D chain of `scripts/anchor_frames.py`.
-pub fn chain3d(n: usize) -> String {
-    let mut s = String::from("coordinates ");
-    s += &(1..=n)
-        .map(|k| format!("q{k}"))
-        .collect::<Vec<_>>()
-        .join(", ");
-    s += "\nparameters m, A, C, l, g\n";
-    for k in 1..=n {
-        let ax = if k % 2 == 1 { "x" } else { "y" };
-        if k == 1 {
-            s += "frame B1 = rot(x, q1)\n";
-        } else {
-            s += &format!("frame B{k} = B{} * rot({ax}, q{k})\n", k - 1);
-        }
-    }
-    for k in 1..=n {
-        let base = if k == 1 {
-            String::new()
-        } else {
-            format!("P{} ", k - 1)
-        };
-        let lead = if k == 1 { "-l/2*" } else { "- l/2*" };
-        s += &format!(
-            "body b{k}: mass m, inertia [A, A, C], frame B{k}, at {base}{lead}axis(B{k}, 3)\n"
-        );
-        if k < n {
-            let lead = if k == 1 { "-l*" } else { "- l*" };
-            s += &format!("P{k} = {base}{lead}axis(B{k}, 3)\n");
-        }
-    }
-    s += "gravity [0, 0, -g]\n";
-    s
+fn chain3d(n: usize) -> String {
+    qdot::engine::gallery::rod_chain_3d(n)
 }
 
 /// Every structured M, f and q̈, expanded, equals the expanded derivation.
@@ -144,18 +114,8 @@ fn chain_accelerations_equal_pinocchio_aba() {
     let mut checked = 0;
     for case in fixture["cases"].as_array().unwrap() {
         let n = case["n"].as_u64().unwrap() as usize;
+        // the scene Pinocchio's model was checked against (through SymPy)
         let src = fixture["scenes"][n.to_string()].as_str().unwrap();
-        let body = |s: &str| -> Vec<String> {
-            s.lines()
-                .filter(|l| !l.starts_with('#'))
-                .map(|l| l.trim().to_string())
-                .collect()
-        };
-        assert_eq!(
-            body(src),
-            body(&chain3d(n)),
-            "the fixture's scene is this file's chain"
-        );
         let l = Scene::parse_structured(src).unwrap().lagrange().unwrap();
         let acc = l.accelerations().unwrap();
         let tape = acc.intermediates().unwrap();
@@ -268,4 +228,133 @@ fn every_example_book_and_fixture_scene_expands_to_its_expanded_equations() {
         kept_with_names >= 20,
         "{kept_with_names} scenes with intermediates"
     );
+}
+
+/// `solve --format json` of the 4-rod chain starts with its intermediates;
+/// every expression after them uses only names they define (or the
+/// scene's); a small example has no such key; `--expand` of the chain
+/// stops at the budget with the usual error.
+#[test]
+fn the_cli_writes_a_large_chain_through_intermediates_and_a_small_scene_as_before() {
+    use crate::common::run::qdot;
+    let (code, out, _) = qdot(&["solve", "--format", "json", "examples/rod_chain.qd"]);
+    assert_eq!(code, 0);
+    let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let obj = j.as_object().unwrap();
+    assert_eq!(obj.keys().next().map(String::as_str), Some("intermediates"));
+    let list = j["intermediates"].as_array().unwrap();
+    assert!(list.len() > 50, "{} intermediates", list.len());
+    let names: Vec<&str> = list.iter().map(|e| e["name"].as_str().unwrap()).collect();
+    assert!(names.contains(&"M_11") && names.contains(&"D_4") && names.contains(&"B2_33"));
+    assert_eq!(j["mass_matrix"][0][1], "M_12");
+    assert_eq!(j["mass_matrix"][1][0], "M_12");
+    // each value re-parses in the scene's names and the names before it
+    // (bound as symbols: their expansion is what the names avoid)
+    let scene = Scene::parse(&std::fs::read_to_string("examples/rod_chain.qd").unwrap()).unwrap();
+    let mut bound: Vec<(String, qdot::Value)> = Vec::new();
+    for e in list {
+        let ast = qdot::parse::parse_expr(e["value"].as_str().unwrap()).unwrap();
+        let extra: Vec<(&str, qdot::Value)> =
+            bound.iter().map(|(n, v)| (n.as_str(), v.clone())).collect();
+        scene.evaluate(&ast, &extra).unwrap();
+        let name = e["name"].as_str().unwrap().to_string();
+        bound.push((name.clone(), qdot::Value::Scalar(Expr::unknown(&name))));
+    }
+    let (code, out, _) = qdot(&["solve", "--format", "json", "examples/heavy_top.qd"]);
+    assert_eq!(code, 0);
+    assert!(!out.contains("\"intermediates\""));
+    let (code, _, err) = qdot(&["solve", "--expand", "examples/rod_chain.qd"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("expression too large"), "{err}");
+}
+
+/// The size rule: the chain of three rods (118 terms of M and f) stays
+/// expanded, the chain of four (508) is kept; `--structured` keeps the
+/// three; a scene it cannot keep says why.
+#[test]
+fn the_size_rule_keeps_four_rods_and_expands_three() {
+    let ctx = qdot::Context::new();
+    let r3 = qdot::app::solve(&ctx, &chain3d(3)).unwrap();
+    assert!(r3
+        .result
+        .dynamics
+        .as_ref()
+        .unwrap()
+        .1
+        .intermediates()
+        .is_none());
+    let r4 = qdot::app::solve(&ctx, &chain3d(4)).unwrap();
+    assert!(r4
+        .result
+        .dynamics
+        .as_ref()
+        .unwrap()
+        .1
+        .intermediates()
+        .is_some());
+    let opts = qdot::CommandOptions {
+        structure: qdot::app::Structure::Kept,
+        ..Default::default()
+    };
+    let kept = qdot::app::run(&ctx, qdot::Command::Solve, &chain3d(3), &opts).unwrap();
+    let text = qdot::render(&kept, qdot::Format::Text).unwrap();
+    assert!(text.starts_with("Intermediates"), "{text}");
+    let src = std::fs::read_to_string("examples/seed_22_2_constraints.qd").unwrap();
+    let e = qdot::app::run(&ctx, qdot::Command::Solve, &src, &opts).unwrap_err();
+    assert!(
+        e.message
+            .contains("is derived expanded, not through intermediates"),
+        "{}",
+        e.message
+    );
+}
+
+/// A structured scene is refused where the expanded values are needed,
+/// never treated as if its names were constants.
+#[test]
+fn commands_that_need_expanded_values_refuse_a_structured_scene() {
+    let s = Scene::parse_structured(&chain3d(2)).unwrap();
+    let set = Default::default();
+    let e = qdot::equilibria(&s, &set).unwrap_err();
+    assert!(
+        e.message.contains("needs the scene expanded"),
+        "{}",
+        e.message
+    );
+    assert!(qdot::modes(&s, None, &set).is_err());
+    assert!(qdot::mechanics::Hamiltonian::derive(&s).is_err());
+    // the generalized forces go through the tape, expanded
+    let plain = Scene::parse(&chain3d(2)).unwrap();
+    let q1 = qdot::mechanics::generalized_forces(&s);
+    let q2 = qdot::mechanics::generalized_forces(&plain);
+    for (a, b) in q1.iter().zip(&q2) {
+        assert!(a.equals(b), "{a} vs {b}");
+    }
+}
+
+/// A singular mass matrix (a rod without inertia about the axis it
+/// spins on) is refused through the intermediates as it is expanded.
+#[test]
+fn a_singular_mass_matrix_is_refused_through_intermediates() {
+    let src = "coordinates phi, theta\nparameters m, A, l\n\
+        frame B = rot(z, phi)\n\
+        body rod: mass m, inertia [A, A, 0], frame B, at [0, 0, 0]\n\
+        frame C = rot(x, theta)\n\
+        body bob: mass m, inertia [A, A, A], frame C, at l*axis(C, 3)\n";
+    let s = Scene::parse_structured(src).unwrap();
+    let e = s.lagrange().unwrap().accelerations().unwrap_err();
+    assert!(
+        e.message.contains("the mass matrix is singular"),
+        "{}",
+        e.message
+    );
+}
+
+/// The work budget bounds the structured derivation: a budget far below
+/// the 20-rod chain's needs stops it with the usual error.
+#[test]
+fn the_budget_bounds_the_structured_derivation() {
+    let ctx = qdot::Context::new().with_max_terms(2_000);
+    let e = qdot::app::solve(&ctx, &chain3d(20)).unwrap_err();
+    assert!(e.message.contains("expression too large"), "{}", e.message);
 }
