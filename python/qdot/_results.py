@@ -26,7 +26,8 @@ class Expr:
         self.text = text
         self._latex = latex
         self._scene = scene
-        self._intermediates = intermediates or None
+        # none when empty (the Intermediates being built has its texts already)
+        self._intermediates = intermediates if intermediates is not None and intermediates._texts else None
 
     @property
     def latex(self) -> str:
