@@ -11,11 +11,13 @@
     Expr('-k*x/m')
 
 Results are exact (qdot's own arithmetic), printed in qdot's syntax, typeset
-in a notebook, and ``.to_sympy()`` gives SymPy objects.
+in a notebook, and ``.to_sympy()`` gives SymPy objects. Large scenes (a
+chain of bodies) are written through named intermediates
+(:class:`Intermediates`), which ``.to_sympy()`` substitutes.
 """
 
 from ._native import QdotError, version as _version
-from ._results import Equation, Equations, Expr, ExprMap, Matrix, Result
+from ._results import Equation, Equations, Expr, ExprMap, Intermediates, Matrix, Result
 from ._scene import QdotWarning, Scene
 from ._simulation import Simulation, Sweep
 
@@ -26,6 +28,7 @@ __all__ = [
     "Equations",
     "Expr",
     "ExprMap",
+    "Intermediates",
     "Matrix",
     "QdotError",
     "QdotWarning",

@@ -4,11 +4,18 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Literal, Mapping, Optional, Sequence, Tuple, Union
 
 from . import _native
-from ._results import Equation, Equations, Expr, ExprMap, Matrix, Result, markdown_of_latex
+from ._results import (Equation, Equations, Expr, ExprMap, Intermediates, Matrix, Result,
+                       markdown_of_latex)
 from ._simulation import Simulation, Sweep
+
+#: How ``derive`` and ``solve`` write their results: ``"auto"`` (through
+#: named intermediates when the expanded results would be large: a chain of
+#: bodies), ``"expanded"`` (the CLI's ``--expand``) or ``"structured"``
+#: (``--structured``: through intermediates wherever the scene allows).
+Structure = Literal["auto", "expanded", "structured"]
 
 #: Values given as ``{"m": 1, "g": 9.81}`` or as the CLI writes them, ``"m=1,g=9.81"``.
 Values = Union[Mapping[str, float], str, None]
@@ -61,14 +68,15 @@ class Scene:
 
     def _run(self, command: str, fmt: str, set: Values = None, at: Any = None,
              init: Any = None, steps: bool = False, standalone: bool = False,
-             title: Optional[str] = None) -> str:
-        key = (command, fmt, repr(_pairs(set, "set")), _exact(at), _exact(init), steps, standalone, title)
+             title: Optional[str] = None, structure: Structure = "auto") -> str:
+        key = (command, fmt, repr(_pairs(set, "set")), _exact(at), _exact(init), steps, standalone,
+               title, structure)
         if key not in self._cache:
             out, warnings = _native.run_command(
                 command, self.source, fmt, file=self.name, set=_pairs(set, "set"),
                 at=_exact(at), init=_exact(init), steps=steps, standalone=standalone,
                 title=title if title is not None else os.path.splitext(os.path.basename(self.name))[0],
-                max_terms=self.max_terms,
+                max_terms=self.max_terms, structure=structure,
             )
             if warnings:
                 import warnings as w
@@ -81,12 +89,20 @@ class Scene:
     def _json(self, command: str, **options: Any) -> Dict[str, Any]:
         return json.loads(self._run(command, "json", **options))
 
-    def _latex_of(self, texts: List[str]) -> List[str]:
-        return _native.latex_exprs(self.source, texts, file=self.name, max_terms=self.max_terms)
+    def _latex_of(self, texts: List[str], intermediates: Sequence[str] = ()) -> List[str]:
+        return _native.latex_exprs(self.source, texts, file=self.name, max_terms=self.max_terms,
+                                   intermediates=list(intermediates))
 
-    def _exprs(self, texts: Sequence[str]) -> List[Expr]:
-        latex = self._latex_of(list(texts))
-        return [Expr(t, l, self) for t, l in zip(texts, latex)]
+    def _exprs(self, texts: Sequence[str], intermediates: Optional[Intermediates] = None) -> List[Expr]:
+        names = intermediates.names if intermediates else []
+        latex = self._latex_of(list(texts), names)
+        return [Expr(t, l, self, intermediates) for t, l in zip(texts, latex)]
+
+    def _derived(self, command: str, structure: Structure) -> Tuple[Dict[str, Any], Intermediates]:
+        """The JSON of ``derive`` or ``solve`` and the intermediates it is
+        written through."""
+        data = self._json(command, structure=structure)
+        return data, Intermediates.of_json(data, self)
 
     # -- the derivation ----------------------------------------------------
 
@@ -95,30 +111,37 @@ class Scene:
         """The generalized coordinates, in the scene's order."""
         return list(self._json("derive")["coordinates"])
 
-    def equations(self) -> Equations:
-        """Lagrange's equations, d/dt ∂E/∂q̇ₖ − ∂E/∂qₖ = Qₖ, collected in q̈."""
-        eqs = self._json("derive")["equations"]
-        lhs = self._exprs([e["lhs"] for e in eqs])
-        rhs = self._exprs([e["rhs"] for e in eqs])
+    def equations(self, structure: Structure = "auto") -> Equations:
+        """Lagrange's equations, d/dt ∂E/∂q̇ₖ − ∂E/∂qₖ = Qₖ, collected in q̈
+        (``structure``: see :meth:`derive`)."""
+        data, inter = self._derived("derive", structure)
+        eqs = data["equations"]
+        lhs = self._exprs([e["lhs"] for e in eqs], inter)
+        rhs = self._exprs([e["rhs"] for e in eqs], inter)
         return Equations([Equation(e["coordinate"], l, r) for e, l, r in zip(eqs, lhs, rhs)])
 
-    def mass_matrix(self) -> Matrix:
-        """M of M(q, t)·q̈ = f(q, q̇, t)."""
-        rows = self._json("derive")["mass_matrix"]
+    def mass_matrix(self, structure: Structure = "auto") -> Matrix:
+        """M of M(q, t)·q̈ = f(q, q̇, t) (``structure``: see :meth:`derive`)."""
+        data, inter = self._derived("derive", structure)
+        rows = data["mass_matrix"]
         n = len(rows)
-        flat = self._exprs([x for r in rows for x in r])
+        flat = self._exprs([x for r in rows for x in r], inter)
         return Matrix([flat[i * n : (i + 1) * n] for i in range(n)], "M")
 
-    def forcing(self) -> Matrix:
-        """f of M(q, t)·q̈ = f(q, q̇, t), a column."""
-        return Matrix([[x] for x in self._exprs(self._json("derive")["forcing"])], "f")
+    def forcing(self, structure: Structure = "auto") -> Matrix:
+        """f of M(q, t)·q̈ = f(q, q̇, t), a column (``structure``: see :meth:`derive`)."""
+        data, inter = self._derived("derive", structure)
+        return Matrix([[x] for x in self._exprs(data["forcing"], inter)], "f")
 
-    def accelerations(self) -> ExprMap:
-        """The exact accelerations q̈ = M⁻¹f, in lowest terms."""
-        acc = self._json("solve")["accelerations"]
+    def accelerations(self, structure: Structure = "auto") -> ExprMap:
+        """The exact accelerations q̈ = M⁻¹f, in lowest terms (``structure``:
+        see :meth:`derive`; through intermediates, the solution of M·q̈ = f
+        by elimination, written in them)."""
+        data, inter = self._derived("solve", structure)
+        acc = data["accelerations"]
         names = list(acc)
         lhs = self._latex_of([f"{q}''" for q in names])
-        return ExprMap(dict(zip(names, self._exprs([acc[q] for q in names]))),
+        return ExprMap(dict(zip(names, self._exprs([acc[q] for q in names], inter))),
                        dict(zip(names, lhs)), "{}''")
 
     def forces(self) -> ExprMap:
@@ -129,9 +152,18 @@ class Scene:
         return ExprMap(dict(zip(names, self._exprs([q[n] for n in names]))),
                        dict(zip(names, lhs)), "Q_{}")
 
-    def solve(self) -> Result:
-        """``qdot solve``: the accelerations and the scene's ``solve`` blocks."""
-        return Result("solve", self, {})
+    def derive(self, structure: Structure = "auto") -> Result:
+        """``qdot derive``: the equations, M and f. ``structure`` is how they
+        are written: ``"auto"`` (through named intermediates when expanded
+        they would be large: a chain of bodies; expanded otherwise),
+        ``"expanded"`` or ``"structured"`` (through intermediates wherever
+        the scene allows). ``result.intermediates`` are the names."""
+        return Result("derive", self, {"structure": structure})
+
+    def solve(self, structure: Structure = "auto") -> Result:
+        """``qdot solve``: the accelerations and the scene's ``solve`` blocks
+        (``structure``: see :meth:`derive`)."""
+        return Result("solve", self, {"structure": structure})
 
     def equilibria(self, set: Values = None) -> Result:
         """The positions of equilibrium at rest and their stability

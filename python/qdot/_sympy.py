@@ -29,18 +29,25 @@ def _require_sympy() -> Any:
 def builders(
     dynamic: Iterable[str] = (),
     symbols: Optional[Mapping[str, Any]] = None,
+    bound: Optional[Mapping[str, Any]] = None,
 ) -> Dict[str, Any]:
     """The names the SymPy source is evaluated with.
 
     ``dynamic``: the names that become functions of time
     (``sympy.physics.mechanics.dynamicsymbols``), whose primes are time
     derivatives; every other name is a ``Symbol`` (or what ``symbols`` maps
-    it to, e.g. a positive Symbol of the user's own). A primed name that is
-    not dynamic is the Symbol ``x'``.
+    it to, e.g. a positive Symbol of the user's own, or a number; a primed
+    name such as ``"x'"`` may be mapped too). A primed name that is not
+    dynamic is the Symbol ``x'``.
+
+    ``bound``: names (a result's intermediates) that stand for the SymPy
+    objects it maps them to; read when a name is met, so the caller may
+    add to it between evaluations.
     """
     sp = _require_sympy()
     dynamic = set(dynamic)
     symbols = dict(symbols or {})
+    bound = bound if bound is not None else {}
     cache: Dict[str, Any] = {}
     t = symbols.get("t")
     if t is None:
@@ -52,8 +59,12 @@ def builders(
             t = sp.Symbol("t")
 
     def name(n: str, order: int) -> Any:
+        if order == 0 and n in bound:
+            return bound[n]
         if n == "t" and order == 0:
             return t
+        if order and n + "'" * order in symbols:
+            return symbols[n + "'" * order]
         if n == "pi" and n not in symbols:
             base: Any = sp.pi
         elif n in symbols:

@@ -63,9 +63,23 @@ fn command_by_name(name: &str) -> PyResult<output::Command> {
         .ok_or_else(|| pyo3::exceptions::PyValueError::new_err(format!("unknown command `{name}`")))
 }
 
+/// `structure` of `derive` and `solve`: "auto" (the default: through
+/// named intermediates when the expanded results would be large),
+/// "expanded" (`--expand`) or "structured" (`--structured`).
+fn structure_by_name(name: &str) -> PyResult<app::Structure> {
+    match name {
+        "auto" => Ok(app::Structure::Auto),
+        "expanded" => Ok(app::Structure::Expanded),
+        "structured" => Ok(app::Structure::Kept),
+        _ => Err(pyo3::exceptions::PyValueError::new_err(format!(
+            "unknown structure `{name}`: auto, expanded or structured"
+        ))),
+    }
+}
+
 /// Run a command of the CLI on a scene: (output, warnings rendered).
 #[pyfunction]
-#[pyo3(signature = (command, source, format, file="<scene>", set=Vec::new(), at=None, init=None, steps=false, standalone=false, title=String::new(), max_terms=0))]
+#[pyo3(signature = (command, source, format, file="<scene>", set=Vec::new(), at=None, init=None, steps=false, standalone=false, title=String::new(), max_terms=0, structure="auto"))]
 #[allow(clippy::too_many_arguments)]
 fn run_command(
     py: Python<'_>,
@@ -80,6 +94,7 @@ fn run_command(
     standalone: bool,
     title: String,
     max_terms: usize,
+    structure: &str,
 ) -> PyResult<(String, Vec<String>)> {
     let cmd = command_by_name(command)?;
     let fmt = match Format::from_name(format) {
@@ -98,6 +113,7 @@ fn run_command(
         standalone,
         title,
         max_terms,
+        structure: structure_by_name(structure)?,
     };
     let result = py.detach(|| output::run_with(cmd, source, fmt, &opts));
     match result {
@@ -320,14 +336,18 @@ fn sympy_source(expr: &str) -> PyResult<String> {
 }
 
 /// The LaTeX of each expression (qdot's syntax) in the scene's notation
-/// (`latex` names of the scene, dots for time derivatives).
+/// (`latex` names of the scene, dots for time derivatives). The
+/// expressions may mention the named intermediates `intermediates` (the
+/// names of a result's `"intermediates"`), written as qdot writes them
+/// (`B2_{13}`, `\omega_{B2,x}`, a prime per `_dot`).
 #[pyfunction]
-#[pyo3(signature = (source, exprs, file="<scene>", max_terms=0))]
+#[pyo3(signature = (source, exprs, file="<scene>", max_terms=0, intermediates=Vec::new()))]
 fn latex_exprs(
     source: &str,
     exprs: Vec<String>,
     file: &str,
     max_terms: usize,
+    intermediates: Vec<String>,
 ) -> PyResult<Vec<String>> {
     let ctx = context(max_terms);
     let scene = ctx
@@ -337,19 +357,62 @@ fn latex_exprs(
     for n in &scene.latex_names {
         names.set(&n.name, &n.tex);
     }
+    let bound: Vec<(&str, qdot::Value)> = intermediates
+        .iter()
+        .map(|n| (n.as_str(), qdot::Value::Scalar(intermediate(n))))
+        .collect();
     // in the scene's context: its budget, its coordinates' order
     let ctx = ctx.for_scene(&scene);
     exprs
         .iter()
         .map(|text| {
             ctx.run(|| {
-                scene
-                    .expr(text)
-                    .map(|e| qdot::expr::latex::latex_with(&e, &names))
+                let ast = qdot::parse::parse_expr(text)?;
+                match scene.evaluate(&ast, &bound)?.0 {
+                    qdot::Value::Scalar(e) => Ok(qdot::expr::latex::latex_with(&e, &names)),
+                    v => Err(Diagnostic::global(format!(
+                        "expected a number, found {}",
+                        v.describe()
+                    ))),
+                }
             })
             .map_err(|d| error(&d, "<expression>", text))
         })
         .collect()
+}
+
+/// A stand-in atom for the intermediate called `input` in a result's JSON
+/// (`P1_x`, its rate `P1_x_dot`, `_ddot`, `_d3`): printed as qdot prints
+/// the intermediate; outside every tape (tapes are numbered from 1).
+fn intermediate(input: &str) -> qdot::Expr {
+    use qdot::expr::atom::{self, NamedAtom};
+    let (name, order) = intermediate_order(input);
+    qdot::Expr::var(atom::named(NamedAtom {
+        name: name.into(),
+        order,
+        tape: 0,
+        highest: None,
+        moving: true,
+    }))
+}
+
+/// `input` as (name, order of time derivative): the inverse of
+/// `qdot::expr::tape::input_name`.
+fn intermediate_order(input: &str) -> (&str, u32) {
+    if let Some(base) = input.strip_suffix("_ddot") {
+        return (base, 2);
+    }
+    if let Some(base) = input.strip_suffix("_dot") {
+        return (base, 1);
+    }
+    if let Some((base, k)) = input.rsplit_once("_d") {
+        if let Ok(k) = k.parse::<u32>() {
+            if k >= 3 && !base.is_empty() {
+                return (base, k);
+            }
+        }
+    }
+    (input, 0)
 }
 
 /// The version of the qdot library inside.

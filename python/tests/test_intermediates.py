@@ -1,0 +1,149 @@
+"""Results written through named intermediates (a chain of bodies): the
+intermediates in order, to_sympy() substituting them (or keeping them,
+cse-like), and structure= choosing how derive and solve write."""
+
+import json
+import re
+
+import numpy as np
+import pytest
+import sympy as sp
+
+import qdot
+from conftest import ROOT
+
+# the chain's scenes leave the inertias' triangle inequality undecided (a warning)
+pytestmark = pytest.mark.filterwarnings("ignore::qdot.QdotWarning")
+
+FIXTURE = json.loads((ROOT / "tests" / "fixtures" / "pinocchio_chain3d.json").read_text())
+PARAMS = ["m", "A", "C", "l", "g"]
+
+
+def chain_text(n):
+    """The 3D chain of n rods (scripts/anchor_frames.py's scene_text)."""
+    lines = ["coordinates " + ", ".join(f"q{k}" for k in range(1, n + 1)),
+             "parameters m, A, C, l, g", "frame B1 = rot(x, q1)"]
+    for k in range(2, n + 1):
+        lines.append(f"frame B{k} = B{k - 1} * rot({'x' if k % 2 else 'y'}, q{k})")
+    for k in range(1, n + 1):
+        base = "" if k == 1 else f"P{k - 1} "
+        lead = "-" if k == 1 else "- "
+        lines.append(f"body b{k}: mass m, inertia [A, A, C], frame B{k}, at {base}{lead}l/2*axis(B{k}, 3)")
+        if k < n:
+            lines.append(f"P{k} = {base}{lead}l*axis(B{k}, 3)")
+    lines.append("gravity [0, 0, -g]")
+    return "\n".join(lines) + "\n"
+
+
+def identifiers(text):
+    return set(re.findall(r"[^\W\d]\w*", text))
+
+
+def test_chain_of_five_rods_is_solved_through_intermediates_in_order():
+    scene = qdot.Scene(chain_text(5))
+    result = scene.solve()
+    inter = result.intermediates
+    assert [i["name"] for i in result.data["intermediates"]] == inter.names
+    assert len(inter) == len(result.data["intermediates"]) > 100
+    assert inter.names[:2] == ["B2_21", "B2_23"]
+    assert str(inter["B2_21"]) == "sin(q1)*sin(q2)"
+    assert result.data["accelerations"]["q5"] == "z_5"
+    # each value uses only the names before it (and the scene's own names)
+    scene_names = {"q1", "q2", "q3", "q4", "q5", "t", *PARAMS, "sin", "cos"}
+    for k, name in enumerate(inter.names):
+        assert identifiers(inter[name].text) <= scene_names | set(inter.names[:k]), name
+    # the cse-like form: (Symbol, value) pairs in order, values in the Symbols before them
+    pairs = inter.to_sympy()
+    assert [str(s) for s, _ in pairs] == inter.names
+    q1, q2 = sp.symbols("q1 q2")
+    assert pairs[0] == (sp.Symbol("B2_21"), sp.sin(q1) * sp.sin(q2))
+    # the scene's accelerations are written through the same names, typeset as qdot does
+    acc = scene.accelerations()
+    assert acc["q5"] == "z_5" and acc["q5"].latex == "z_{5}"
+    assert acc.intermediates.names == inter.names
+    assert acc.to_sympy(keep_intermediates=True)["q5"] == sp.Symbol("z_5")
+    assert scene.mass_matrix()[0, 0] == "M_11"
+    assert scene.mass_matrix().intermediates.names[0] == "B2_21"
+
+
+@pytest.mark.parametrize("case", [c for c in FIXTURE["cases"] if c["n"] == 4],
+                         ids=lambda c: f"seed{c['seed']}")
+def test_chain_of_four_accelerations_equal_pinocchios(case):
+    scene = qdot.Scene(FIXTURE["scenes"]["4"])
+    acc = scene.accelerations()
+    assert len(acc.intermediates) > 100
+    qs = [f"q{k}" for k in range(1, 5)]
+    want = np.array(case["qdd"])
+    values = [case["params"][p] for p in PARAMS] + case["q"] + case["qd"]
+    names = PARAMS + qs + [q + "'" for q in qs]
+    # expanded through the intermediates, then evaluated by NumPy
+    expanded = acc.to_sympy()
+    assert not {str(s) for e in expanded.values() for s in e.free_symbols} & set(acc.intermediates)
+    f = sp.lambdify([sp.Symbol(n) for n in names], [expanded[q] for q in qs], "numpy", cse=True)
+    assert np.allclose(np.array(f(*values), dtype=float), want, rtol=0, atol=1e-9)
+    # numbers for the names: evaluated through the intermediates in order
+    at = acc.to_sympy(symbols={n: sp.Float(v) for n, v in zip(names, values)})
+    assert np.allclose([float(at[q]) for q in qs], want, rtol=0, atol=1e-9)
+    # the cse-like form: the pairs evaluated in order, then the reduced expressions
+    state = {sp.Symbol(n): v for n, v in zip(names, values)}
+    for symbol, value in acc.intermediates.to_sympy():
+        state[symbol] = value.xreplace(state).evalf()
+    reduced = acc.to_sympy(keep_intermediates=True)
+    assert np.allclose([float(reduced[q].xreplace(state)) for q in qs], want, rtol=0, atol=1e-9)
+
+
+def test_small_scene_has_no_intermediates():
+    scene = qdot.Scene.load(ROOT / "examples" / "pendulum.qd")
+    result = scene.solve()
+    assert "intermediates" not in result.data
+    assert len(result.intermediates) == 0 and result.intermediates.to_sympy() == []
+    acc = scene.accelerations()
+    assert len(acc.intermediates) == 0
+    assert acc.to_sympy() == acc.to_sympy(keep_intermediates=True)
+    assert acc.to_sympy()["theta"] == -sp.Symbol("g") * sp.sin(sp.Symbol("theta")) / sp.Symbol("l")
+    # asked for, even the pendulum is written through names; substituted, they are gone
+    structured = scene.solve(structure="structured")
+    assert structured.intermediates.names == ["M_11", "Q_theta", "z_1"]
+    assert structured.expr(structured["accelerations"]["theta"]).to_sympy() == acc.to_sympy()["theta"]
+
+
+def test_rod_on_shaft_structured_equals_expanded():
+    scene = qdot.Scene.load(ROOT / "examples" / "rod_on_shaft.qd")
+    assert "intermediates" not in scene.solve().data  # auto: small, expanded
+    structured = scene.solve(structure="structured")
+    inter = structured.intermediates
+    assert inter.names[:2] == ["omega_B_y", "omega_B_z"] and inter.names[-1] == "z_1"
+    assert structured.data["accelerations"] == {"theta": "z_1"}
+    assert "intermediates" not in scene.solve(structure="expanded").data
+    kept = scene.accelerations(structure="structured")
+    assert kept.to_sympy(keep_intermediates=True) == {"theta": sp.Symbol("z_1")}
+    for dynamic in (False, True):
+        a = kept.to_sympy(dynamic=dynamic)["theta"]
+        b = scene.accelerations(structure="expanded").to_sympy(dynamic=dynamic)["theta"]
+        assert sp.simplify(a - b) == 0
+    # the equations read M·q̈ + h = Q in the names; expanded, they are the expanded ones
+    eq = scene.equations(structure="structured")[0]
+    assert str(eq) == "M_11*theta'' + h_theta = Q_theta"
+    assert eq.to_sympy(keep_intermediates=True) == sp.Eq(
+        sp.Symbol("M_11") * sp.Symbol("theta''") + sp.Symbol("h_theta"), sp.Symbol("Q_theta"))
+    lhs = eq.to_sympy()
+    plain = scene.equations(structure="expanded")[0].to_sympy()
+    assert sp.simplify((lhs.lhs - lhs.rhs) - (plain.lhs - plain.rhs)) == 0
+
+
+def test_intermediates_are_typeset_as_qdot_writes_them():
+    scene = qdot.Scene.load(ROOT / "examples" / "rod_on_shaft.qd")
+    inter = scene.derive(structure="structured").intermediates
+    assert inter["B_13_dot"].latex == (
+        "\\dot{\\theta} \\cos\\theta \\sin(\\Omega t) + \\Omega \\cos(\\Omega t) \\sin\\theta")
+    assert inter._repr_latex_().startswith(
+        "$$\\begin{aligned} \\omega_{B,y} &= \\Omega \\sin\\theta \\\\ "
+        "\\omega_{B,z} &= \\Omega \\cos\\theta \\\\ {B_{13}}' &= ")
+    assert inter["M_11"].latex.endswith("\\frac{1}{4} l^{2} m \\sin^{2}\\theta + \\frac{1}{12} l^{2} m")
+    assert "d_{B,13,theta}^{2}" in inter["M_11"].latex
+
+
+def test_unknown_structure_is_refused():
+    scene = qdot.Scene.load(ROOT / "examples" / "pendulum.qd")
+    with pytest.raises(ValueError, match=r"unknown structure `kept`: auto, expanded or structured"):
+        scene.solve(structure="kept")  # type: ignore[arg-type]
