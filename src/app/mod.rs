@@ -158,22 +158,7 @@ pub struct CommandOptions {
     pub structure: Structure,
 }
 
-/// Whether results are written expanded or through named intermediates
-/// ([`crate::expr::tape`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum Structure {
-    /// Expanded where that stays small: unless the expanded M and f of the
-    /// structured derivation pass
-    /// [`crate::limits::STRUCTURE_ABOVE_TERMS`] terms.
-    #[default]
-    Auto,
-    /// Always expanded (`--expand`): the canonical form throughout.
-    Expanded,
-    /// Always through intermediates where the scene allows it
-    /// (`--structured`).
-    Kept,
-}
+pub use crate::scene::Structure;
 
 /// Run `cmd` on the scene source `src` in `ctx`: parse, resolve, compute,
 /// all within the context's budget.
@@ -210,7 +195,7 @@ fn on_scene_as<T>(
     f: impl FnOnce(&Context, &Arc<Scene>) -> Result<T, Diagnostic>,
 ) -> Result<T, Diagnostic> {
     ctx.run(|| {
-        let scene = Arc::new(structure::read(src, structure)?);
+        let scene = Arc::new(Scene::read(src, structure)?);
         let ctx = ctx.for_scene(&scene);
         ctx.run(|| f(&ctx, &scene))
     })
@@ -285,8 +270,6 @@ pub fn codegen(
 }
 
 mod commands;
-mod structure;
-pub(crate) use structure::read as read_scene;
 
 #[cfg(test)]
 mod tests {

@@ -358,7 +358,7 @@ impl Prepared {
     /// of its given functions of time, `--function s=…`).
     pub fn new(src: &str, functions: &[String]) -> Result<Prepared, Diagnostic> {
         // a large body scene is simulated from its intermediates
-        let scene = crate::app::read_scene(src, crate::app::Structure::Auto)?;
+        let scene = Scene::read(src, crate::scene::Structure::Auto)?;
         let lag = super::given::defined(&scene, scene.lagrange()?, functions)?;
         let drift = super::constrained::drift(&lag);
         let lag = super::constrained::stabilized(lag)?;

@@ -37,7 +37,7 @@ mod rust;
 
 use crate::algebra::sign::Values;
 use crate::compile::{
-    compile_with, estimated_cost_of, solve_spd, state_inputs, Evaluator, Program, BEST_MAX_N,
+    compile_through, estimated_cost_of, solve_spd, state_inputs, Evaluator, Program, BEST_MAX_N,
 };
 use crate::diag::Diagnostic;
 use crate::expr::{atom, Expr};
@@ -132,7 +132,8 @@ impl CodegenRequest {
 /// function the compiled code cannot evaluate, a given function without
 /// its definition, a `--set` of no parameter, no coordinates).
 pub fn codegen(src: &str, req: &CodegenRequest) -> Result<String, Diagnostic> {
-    let scene = Scene::parse(src)?;
+    // a large body scene is generated from its intermediates
+    let scene = Scene::read(src, crate::scene::Structure::Auto)?;
     let lag = given::defined(&scene, scene.lagrange()?, &req.functions)?;
     let constraints: Vec<String> = lag.constraints.multipliers.clone();
     let lag = constrained::stabilized(lag)?;
@@ -249,7 +250,8 @@ struct Generator<'a> {
 
 impl Generator<'_> {
     fn compile(&self, what: &str, exprs: &[Expr]) -> Result<Program, Diagnostic> {
-        compile_with(exprs, self.inputs, self.bound).map_err(|e| {
+        let tape = self.lag.intermediates.as_deref();
+        compile_through(exprs, self.inputs, self.bound, tape).map_err(|e| {
             Diagnostic::global(format!("cannot generate code for {what}: {e}"))
                 .with_hint("the generated code evaluates the functions `qdot simulate` evaluates")
         })
@@ -286,9 +288,12 @@ impl Generator<'_> {
     fn rhs(&self) -> Result<(Function, String), Diagnostic> {
         let n = self.n();
         let upper = self.upper();
-        let constant = upper
-            .iter()
-            .all(|e| self.inputs.iter().all(|&v| !e.depends_on(v)));
+        // an intermediate is taken to move (its tape knows, the atom not)
+        let tape = self.lag.intermediates.as_deref();
+        let constant = tape.is_none_or(|t| t.used_by(&upper).is_empty())
+            && upper
+                .iter()
+                .all(|e| self.inputs.iter().all(|&v| !e.depends_on(v)));
         let (program, evaluator, inverse) = if constant {
             let inverse = self.constant_inverse(&upper)?;
             let p = self.compile("f", &self.lag.forcing)?;
@@ -311,8 +316,9 @@ impl Generator<'_> {
             // budget M and f serve
             let exact = crate::budget::within(crate::budget::limit(), || self.lag.accelerations());
             if let Ok(Ok(acc)) = exact {
-                let exprs: Vec<Expr> = acc.into_iter().map(|(_, e)| e).collect();
-                if let Ok(p) = compile_with(&exprs, self.inputs, self.bound) {
+                let exprs: Vec<Expr> = acc.values().to_vec();
+                let tape = acc.intermediates();
+                if let Ok(p) = compile_through(&exprs, self.inputs, self.bound, tape) {
                     let cost = estimated_cost_of(&p, Evaluator::Accelerations, n);
                     if cost <= mass_cost {
                         how = format!(

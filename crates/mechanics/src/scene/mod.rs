@@ -12,6 +12,7 @@ mod eval;
 pub mod given;
 mod resolve;
 pub mod rotation;
+mod structure;
 
 pub use eval::{axis_name, is_taylor_form};
 
@@ -20,6 +21,7 @@ use crate::expr::Expr;
 use crate::parse::ast::{self, Role, Span, Stmt};
 pub use rotation::Rotation;
 use rustc_hash::FxHashMap;
+pub use structure::Structure;
 
 /// A generalized coordinate.
 #[derive(Clone, Debug)]

@@ -1,26 +1,44 @@
 //! Reading a scene expanded or with its kinematics kept (`--expand`,
-//! `--structured`, and the size rule between them).
+//! `--structured`, and the size rule between them), for every command
+//! that can write or compile its results through intermediates.
 
-use super::Structure;
+use super::Scene;
 use crate::diag::Diagnostic;
-use crate::scene::Scene;
 
-/// The scene of `src`, read as `structure` asks. `Auto` keeps the
-/// kinematics of a scene with bodies when it allows it and the expanded M
-/// and f of its
-/// structured derivation would pass
-/// [`crate::limits::STRUCTURE_ABOVE_TERMS`] terms; otherwise (and for every
-/// scene it cannot keep) it reads the scene expanded, so small scenes
-/// print exactly as they always have.
-pub(crate) fn read(src: &str, structure: Structure) -> Result<Scene, Diagnostic> {
-    match structure {
-        Structure::Expanded => Scene::parse(src),
-        Structure::Kept => Scene::parse_structured(src),
-        Structure::Auto if !has_bodies(src) => Scene::parse(src),
-        Structure::Auto => match Scene::parse_structured(src) {
-            Ok(kept) if worth_keeping(&kept) => Ok(kept),
-            _ => Scene::parse(src),
-        },
+/// Whether results are written expanded or through named intermediates
+/// ([`crate::expr::tape`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Structure {
+    /// Expanded where that stays small: a scene with bodies is kept when
+    /// the expanded M and f of its structured derivation pass
+    /// [`crate::limits::STRUCTURE_ABOVE_TERMS`] terms.
+    #[default]
+    Auto,
+    /// Always expanded (`--expand`): the canonical form throughout.
+    Expanded,
+    /// Always through intermediates where the scene allows it
+    /// (`--structured`).
+    Kept,
+}
+
+impl Scene {
+    /// The scene of `src`, read as `structure` asks. `Auto` keeps the
+    /// kinematics of a scene with bodies when it allows it and the
+    /// expanded M and f of its structured derivation would pass
+    /// [`crate::limits::STRUCTURE_ABOVE_TERMS`] terms; otherwise (and for
+    /// every scene it cannot keep) it reads the scene expanded, so small
+    /// scenes come out exactly as they always have.
+    pub fn read(src: &str, structure: Structure) -> Result<Scene, Diagnostic> {
+        match structure {
+            Structure::Expanded => Scene::parse(src),
+            Structure::Kept => Scene::parse_structured(src),
+            Structure::Auto if !has_bodies(src) => Scene::parse(src),
+            Structure::Auto => match Scene::parse_structured(src) {
+                Ok(kept) if worth_keeping(&kept) => Ok(kept),
+                _ => Scene::parse(src),
+            },
+        }
     }
 }
 
