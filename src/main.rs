@@ -266,7 +266,7 @@ fn emit(text: &str) {
 }
 
 /// `--expand` / `--structured`: how results are written.
-#[derive(clap::Args, Debug, Clone, Copy)]
+#[derive(clap::Args, Debug, Clone)]
 struct StructureArgs {
     /// Write the results fully expanded, however large.
     #[arg(long, conflicts_with = "structured")]
@@ -277,10 +277,15 @@ struct StructureArgs {
     /// f would pass 256 terms.
     #[arg(long)]
     structured: bool,
+    /// Keep these definitions as intermediates (`--keep alpha,beta`): the
+    /// results are written in them and their rates (alpha_dot,
+    /// alpha_ddot).
+    #[arg(long, value_delimiter = ',', value_name = "NAME,…")]
+    keep: Vec<String>,
 }
 
 impl StructureArgs {
-    fn choice(self) -> qdot::app::Structure {
+    fn choice(&self) -> qdot::app::Structure {
         match (self.expand, self.structured) {
             (true, _) => qdot::app::Structure::Expanded,
             (_, true) => qdot::app::Structure::Kept,
@@ -359,6 +364,7 @@ fn main() -> ExitCode {
             structure,
         } => {
             opts.structure = structure.choice();
+            opts.keep = structure.keep.clone();
             (output::Command::Derive, file, *format, None)
         }
         Command::Solve {
@@ -367,6 +373,7 @@ fn main() -> ExitCode {
             structure,
         } => {
             opts.structure = structure.choice();
+            opts.keep = structure.keep.clone();
             (output::Command::Solve, file, *format, None)
         }
         Command::Forces { file, format } => (output::Command::Forces, file, *format, None),

@@ -156,6 +156,9 @@ pub struct CommandOptions {
     /// `--expand` / `--structured`: whether `derive` and `solve` write their
     /// results through named intermediates.
     pub structure: Structure,
+    /// `--keep NAME,…`: definitions `derive` and `solve` keep as
+    /// intermediates (the scene is then read structured).
+    pub keep: Vec<String>,
 }
 
 pub use crate::scene::Structure;
@@ -168,12 +171,14 @@ pub fn run(
     src: &str,
     opts: &CommandOptions,
 ) -> Result<AnyReport, Diagnostic> {
-    let structure = match cmd {
-        Command::Derive | Command::Solve => opts.structure,
-        _ => Structure::Expanded,
+    let (structure, keep) = match cmd {
+        Command::Derive | Command::Solve => (opts.structure, opts.keep.as_slice()),
+        _ => (Structure::Expanded, &[][..]),
     };
-    on_scene_as(ctx, src, structure, |ctx, scene| {
-        commands::run_scene(ctx, cmd, scene, opts)
+    ctx.run(|| {
+        let scene = Arc::new(Scene::read_keeping(src, structure, keep)?);
+        let ctx = ctx.for_scene(&scene);
+        ctx.run(|| commands::run_scene(&ctx, cmd, &scene, opts))
     })
 }
 

@@ -192,9 +192,19 @@ fn solve_output(
                 None => String::new(),
             };
             if !blocks.is_empty() {
+                // a block's own intermediates (`--keep`), when the dynamics
+                // did not list them
+                let roots = blocks.iter().flat_map(|b| b.values.iter().map(|(_, v)| v));
+                let listed = lag.is_some() && out.starts_with("Intermediates");
+                let own = if listed {
+                    String::new()
+                } else {
+                    text::intermediates_text(scene.tape.as_ref(), roots)
+                };
                 if !out.is_empty() {
                     out.push('\n');
                 }
+                out.push_str(&own);
                 out.push_str(&solutions_text(scene, blocks));
             }
             out
@@ -206,6 +216,10 @@ fn solve_output(
                 }
                 w.equations(l);
                 w.accelerations(acc);
+            }
+            if lag.is_none() {
+                let roots = blocks.iter().flat_map(|b| b.values.iter().map(|(_, v)| v));
+                w.intermediates(scene.tape.as_ref(), roots);
             }
             w.blocks(scene, blocks);
         }),

@@ -294,7 +294,8 @@ pub(crate) fn structured_roots<'a>(
 ) -> Option<(&'a crate::expr::tape::Tape, Vec<&'a Expr>)> {
     let tape = acc
         .and_then(Accelerations::intermediates)
-        .or(l.intermediates.as_deref())?;
+        .or(l.intermediates.as_deref())
+        .or(scene.tape.as_ref())?;
     let energies = scene
         .definitions
         .iter()
@@ -366,9 +367,14 @@ impl DynamicsJson {
 }
 
 /// `qdot solve`: [`DynamicsJson`]'s keys when the scene has dynamics,
-/// `reactions`, then [`BlocksJson`]'s keys when it has `solve` blocks.
+/// `reactions`, then [`BlocksJson`]'s keys when it has `solve` blocks;
+/// `intermediates` first when any of them is written through some.
 #[derive(Serialize)]
 pub struct SolveJson {
+    /// The named intermediates of everything below, in evaluation order;
+    /// absent when the results are expanded.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub intermediates: Option<Vec<IntermediateJson>>,
     /// The equations and accelerations; absent without dynamics.
     #[serde(flatten)]
     pub dynamics: Option<DynamicsJson>,
@@ -388,8 +394,30 @@ impl SolveJson {
         reactions: &[Vec<Expr>],
         blocks: &[BlockSolution],
     ) -> SolveJson {
+        let mut dynamics = dynamics.map(|(l, acc)| DynamicsJson::new(scene, l, acc));
+        // one list for the whole output, first
+        let mut intermediates = dynamics
+            .as_mut()
+            .and_then(|d| d.derive.intermediates.take());
+        if !blocks.is_empty() {
+            if let Some(tape) = scene.tape.as_ref() {
+                let roots = blocks.iter().flat_map(|b| b.values.iter().map(|(_, v)| v));
+                if let Some(mut more) = intermediates_json(Some(tape), roots) {
+                    let have: Vec<String> = intermediates
+                        .iter()
+                        .flatten()
+                        .map(|i| i.name.clone())
+                        .collect();
+                    more.retain(|i| !have.contains(&i.name));
+                    let mut all = intermediates.unwrap_or_default();
+                    all.extend(more);
+                    intermediates = Some(all);
+                }
+            }
+        }
         SolveJson {
-            dynamics: dynamics.map(|(l, acc)| DynamicsJson::new(scene, l, acc)),
+            intermediates,
+            dynamics,
             reactions: (!reactions.is_empty()).then(|| ReactionJson::all(scene, reactions)),
             blocks: (!blocks.is_empty()).then(|| BlocksJson::new(scene, blocks)),
         }

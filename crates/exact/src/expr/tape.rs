@@ -171,6 +171,11 @@ impl Tape {
         if mentions_acceleration(&value) {
             return value;
         }
+        // the name is the definition's own (reserved against generated
+        // names, not against itself)
+        if !self.entries.iter().any(|e| e.name == hint) {
+            self.taken.remove(hint);
+        }
         self.name(hint, 0, value)
     }
 
@@ -228,22 +233,40 @@ impl Tape {
         Expr::var(var)
     }
 
-    /// The moving base symbols `e` depends on, through its intermediates.
+    /// The moving base symbols `e` depends on, through its intermediates
+    /// (those inside a function's argument too).
     fn leaves_of(&self, e: &Expr) -> Arc<[Var]> {
         let mut out: Vec<Var> = Vec::new();
         for v in e.vars() {
-            if let Some(&i) = self.index.get(&v) {
-                out.extend_from_slice(&self.entries[i].leaves);
-                continue;
+            for w in std::iter::once(v).chain(atom::inner_atoms(v).iter().copied()) {
+                if let Some(&i) = self.index.get(&w) {
+                    out.extend_from_slice(&self.entries[i].leaves);
+                } else if is_leaf(w) {
+                    out.push(w);
+                }
             }
-            if is_leaf(v) {
-                out.push(v);
-            }
-            out.extend(atom::inner_atoms(v).iter().copied().filter(|&w| is_leaf(w)));
         }
         out.sort_unstable();
         out.dedup();
         out.into()
+    }
+
+    /// The entries `e` mentions, as atoms or inside a function's argument
+    /// (`cos(alpha)` mentions `alpha`): every intermediate the chain rule
+    /// must go through. Differentiating `e` with respect to such an atom
+    /// goes through the function ([`Expr::diff`] treats it as a symbol).
+    fn named_in(&self, e: &Expr) -> Vec<usize> {
+        let mut out: Vec<usize> = Vec::new();
+        for v in e.vars() {
+            for w in std::iter::once(v).chain(atom::inner_atoms(v).iter().copied()) {
+                if let Some(&i) = self.index.get(&w) {
+                    out.push(i);
+                }
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
     }
 
     /// Whether entry `i` depends on the symbol `v`.
@@ -253,9 +276,8 @@ impl Tape {
 
     /// The intermediates of `e` (entry indices) that depend on `v`.
     fn dependent_entries(&self, e: &Expr, v: Var) -> Vec<usize> {
-        e.vars()
+        self.named_in(e)
             .into_iter()
-            .filter_map(|w| self.index.get(&w).copied())
             .filter(|&i| self.entry_depends_on(i, v))
             .collect()
     }
@@ -338,10 +360,9 @@ impl Tape {
     /// `NAME'`.
     pub fn dt(&mut self, e: &Expr) -> Expr {
         let mut out = e.dt();
-        let moving: Vec<usize> = e
-            .vars()
+        let moving: Vec<usize> = self
+            .named_in(e)
             .into_iter()
-            .filter_map(|w| self.index.get(&w).copied())
             .filter(|&i| !self.entries[i].leaves.is_empty())
             .collect();
         self.ensure_rates(&moving);
@@ -385,10 +406,9 @@ impl Tape {
                 continue;
             }
             let value = self.entries[top].value.clone();
-            let inner: Vec<usize> = value
-                .vars()
+            let inner: Vec<usize> = self
+                .named_in(&value)
                 .into_iter()
-                .filter_map(|w| self.index.get(&w).copied())
                 .filter(|&i| !self.entries[i].leaves.is_empty())
                 .collect();
             let missing: Vec<usize> = inner
@@ -448,21 +468,13 @@ impl Tape {
         let mut seen = vec![false; self.entries.len()];
         let mut stack: Vec<usize> = Vec::new();
         for e in roots {
-            for v in e.vars() {
-                if let Some(&i) = self.index.get(&v) {
-                    stack.push(i);
-                }
-            }
+            stack.extend(self.named_in(e));
         }
         while let Some(i) = stack.pop() {
             if std::mem::replace(&mut seen[i], true) {
                 continue;
             }
-            for v in self.entries[i].value.vars() {
-                if let Some(&j) = self.index.get(&v) {
-                    stack.push(j);
-                }
-            }
+            stack.extend(self.named_in(&self.entries[i].value));
         }
         (0..self.entries.len()).filter(|&i| seen[i]).collect()
     }
@@ -542,10 +554,11 @@ impl Calculus for Tape {
         Tape::dt(self, e)
     }
     fn depends(&self, e: &Expr, v: Var) -> bool {
-        e.vars().into_iter().any(|w| match self.index.get(&w) {
-            Some(&i) => self.entry_depends_on(i, v),
-            None => crate::expr::diff::atom_depends_on(w, v),
-        })
+        crate::expr::diff::vars_depend_on(&e.vars(), v)
+            || self
+                .named_in(e)
+                .into_iter()
+                .any(|i| self.entry_depends_on(i, v))
     }
 }
 
@@ -677,6 +690,25 @@ mod tests {
         for e in tape.entries() {
             assert!(e.value.highest_time_derivative().is_none_or(|(_, k)| k < 2));
         }
+    }
+
+    /// An intermediate inside a function's argument (`cos(x)` of a named
+    /// x) is differentiated through the function.
+    #[test]
+    fn intermediates_inside_functions_are_differentiated_through_them() {
+        let mut tape = Tape::new();
+        let x = tape.keep("x", crate::expr::func::sin(&q("a", 0)).add(&q("a", 0)));
+        let y = tape.define("y", crate::expr::func::cos(&x).mul(&q("b", 0)).add(&x));
+        let z = crate::expr::func::sqrt(&y.mul(&y).add(&Expr::one())).unwrap();
+        let z_value = tape.expand(&z).unwrap();
+        assert!(!z_value.vars().iter().any(|&v| tape.entry_of(v).is_some()));
+        for v in [atom::coord("a", 0), atom::coord("b", 0)] {
+            let d = tape.partial(&z, v);
+            assert!(tape.expand(&d).unwrap().equals(&z_value.diff(v)));
+        }
+        let dz = tape.dt(&z);
+        assert!(tape.expand(&dz).unwrap().equals(&z_value.dt()));
+        assert_eq!(tape.used_by([&z]).len(), 2);
     }
 
     #[test]

@@ -392,7 +392,7 @@ impl Scene {
 
     /// Resolve parsed statements (see [`Scene::parse`]).
     pub fn from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, Diagnostic> {
-        resolve::scene_from_statements(src, stmts, false)
+        resolve::scene_from_statements(src, stmts, false, &[])
     }
 
     /// Parse a scene keeping its kinematics structured: every moving vector
@@ -400,12 +400,22 @@ impl Scene {
     /// [`Scene::tape`] (`P1_x`, `B2_13`, `omega_B2_x`), and values that use
     /// them mention the names instead of their expansions. A chain of
     /// bodies stays the size of its links; [`crate::mechanics::Lagrange`]
-    /// then derives through the tape. Scenes with constraints, reactions,
-    /// `solve` blocks or given functions are refused (the error says so);
-    /// they are read by [`Scene::parse`].
+    /// then derives through the tape. Scenes with constraints, reactions
+    /// or given functions are refused (the error says so); they are read
+    /// by [`Scene::parse`].
     pub fn parse_structured(src: &str) -> Result<Scene, Diagnostic> {
+        Scene::parse_keeping(src, &[])
+    }
+
+    /// The scene with the definitions named in `keep` kept as intermediates,
+    /// and only them (scalars too: `alpha = asin(R*sin(phi)/L)` stays
+    /// `alpha`, with its rates `alpha_dot`, `alpha_ddot`); with `keep`
+    /// empty, [`Scene::parse_structured`]. An error for a name that is not
+    /// a definition of the scene, and for a kept name inside a rotation's
+    /// angle.
+    pub fn parse_keeping(src: &str, keep: &[String]) -> Result<Scene, Diagnostic> {
         let stmts = crate::parse::parse_scene(src)?;
-        resolve::scene_from_statements(src, &stmts, true)
+        resolve::scene_from_statements(src, &stmts, true, keep)
     }
 
     /// Evaluate an expression written in the scene's names (its parameters,

@@ -30,6 +30,20 @@ impl Scene {
     /// every scene it cannot keep) it reads the scene expanded, so small
     /// scenes come out exactly as they always have.
     pub fn read(src: &str, structure: Structure) -> Result<Scene, Diagnostic> {
+        Scene::read_keeping(src, structure, &[])
+    }
+
+    /// [`Scene::read`] with the definitions `keep` kept as intermediates
+    /// (`--keep`): a scene read so is always structured
+    /// ([`Scene::parse_keeping`]).
+    pub fn read_keeping(
+        src: &str,
+        structure: Structure,
+        keep: &[String],
+    ) -> Result<Scene, Diagnostic> {
+        if !keep.is_empty() {
+            return Scene::parse_keeping(src, keep);
+        }
         match structure {
             Structure::Expanded => Scene::parse(src),
             Structure::Kept => Scene::parse_structured(src),
@@ -59,7 +73,8 @@ fn worth_keeping(scene: &Scene) -> bool {
     let Some(tape) = scene.tape.as_ref().filter(|t| !t.is_empty()) else {
         return false;
     };
-    if !scene.has_dynamics() {
+    // `solve` blocks are kept only on request (`--keep`, `--structured`)
+    if !scene.has_dynamics() || !scene.systems.is_empty() {
         return false;
     }
     let limit = crate::limits::STRUCTURE_ABOVE_TERMS;

@@ -206,21 +206,113 @@ pub fn equation_label(sys: &SolveSystem, i: usize) -> String {
 /// Solve every `solve` block of a scene, in order; a block may use the
 /// unknowns of earlier blocks, whose solutions are put in.
 pub fn solve_scene(scene: &Scene) -> Result<Vec<BlockSolution>, Diagnostic> {
-    if !scene.systems.is_empty() {
-        scene.expanded_only("a `solve` block")?;
-    }
     let _context = crate::budget::enter(|| "solving the `solve` blocks".into(), None);
     let mut known: FxHashMap<Var, Expr> = FxHashMap::default();
     let mut acc: Option<FxHashMap<Var, Expr>> = None;
     let mut out = Vec::with_capacity(scene.systems.len());
     for sys in &scene.systems {
         let sol = solve_block(scene, sys, &known, &mut acc)?;
+        if let Some(tape) = scene.tape.as_ref().filter(|t| !t.is_empty()) {
+            verify_through(tape, sys, &sol, &known)?;
+        }
         for (name, v) in &sol.values {
             known.insert(atom::unknown(name), v.clone());
         }
         out.push(sol);
     }
     Ok(out)
+}
+
+/// For a block solved through intermediates: every solution finite and
+/// every equation satisfied at random states, evaluated through the tape.
+/// The canonical form cannot see every relation between intermediates
+/// (sin α = R·sin φ/L once α is a name), so an elimination could have
+/// divided by what is zero once expanded; this refuses such a solution
+/// instead of printing it.
+fn verify_through(
+    tape: &crate::expr::tape::Tape,
+    sys: &SolveSystem,
+    sol: &BlockSolution,
+    known: &FxHashMap<Var, Expr>,
+) -> Result<(), Diagnostic> {
+    use crate::expr::atom::Atom;
+    let mut values: FxHashMap<Var, Expr> = known.clone();
+    for (name, v) in &sol.values {
+        values.insert(atom::unknown(name), v.clone());
+    }
+    let refuse = || {
+        Diagnostic::error(
+            sys.span,
+            "this block's solution through the intermediates does not check out numerically: an elimination may have divided by a quantity that is zero once the intermediates are expanded",
+        )
+        .with_hint("solve it expanded: drop `--keep` and `--structured`")
+    };
+    let mut rng = crate::rng::SplitMix64::new(0x51_0e5);
+    let roots: Vec<&Expr> = sol.values.iter().map(|(_, v)| v).collect();
+    let used = tape.used_by(roots.iter().copied());
+    let (mut probes, mut tries) = (0, 0);
+    while probes < 3 {
+        tries += 1;
+        if tries > 64 {
+            // no state found where the intermediates are all defined
+            return Err(refuse());
+        }
+        let seed = rng.next_u64();
+        let probe = |a: &Atom| -> Option<f64> {
+            use std::hash::{Hash, Hasher};
+            let mut h = rustc_hash::FxHasher::default();
+            a.hash(&mut h);
+            let mut r = crate::rng::SplitMix64::new(seed ^ h.finish());
+            Some(r.uniform(0.3, 0.7))
+        };
+        // a state outside the intermediates' domain (asin of more than 1:
+        // the scene's assumptions are not drawn) is no evidence
+        let defined = used.iter().all(|&i| {
+            let e = tape.entries()[i].expr();
+            tape.eval_f64(&e, &probe).is_some_and(f64::is_finite)
+        });
+        if !defined {
+            continue;
+        }
+        probes += 1;
+        for (_, v) in &sol.values {
+            if !tape.eval_f64(v, &probe).is_some_and(f64::is_finite) {
+                return Err(refuse());
+            }
+        }
+        for eq in &sys.equations {
+            let r = eq
+                .residual
+                .subs_many(&values)
+                .map_err(|m| math(eq.span, m))?;
+            let size = scale_of(tape, &eq.residual, &values, &probe);
+            match tape.eval_f64(&r, &probe) {
+                Some(x) if x.abs() <= 1e-8 * (1.0 + size) => {}
+                _ => return Err(refuse()),
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A scale for a residual's rounding: the largest magnitude among its
+/// terms at the probe.
+fn scale_of(
+    tape: &crate::expr::tape::Tape,
+    residual: &Expr,
+    values: &FxHashMap<Var, Expr>,
+    probe: &dyn Fn(&crate::expr::atom::Atom) -> Option<f64>,
+) -> f64 {
+    residual
+        .num()
+        .terms()
+        .iter()
+        .filter_map(|(m, c)| {
+            let term = Expr::from_poly(crate::poly::Poly::monomial(m.clone(), c.clone()));
+            let term = term.subs_many(values).ok()?;
+            tape.eval_f64(&term, probe).map(f64::abs)
+        })
+        .fold(0.0, f64::max)
 }
 
 /// Whether `e` mentions any q̈ of the scene's coordinates.
@@ -255,6 +347,7 @@ fn solve_block(
             r = r.subs_many(known).map_err(|m| math(eq.span, m))?;
         }
         if dynamics && mentions_any(&r, &qdd) {
+            scene.expanded_only("a `solve` block that uses the accelerations")?;
             if acc.is_none() {
                 let l = scene.lagrange()?;
                 let a = l.accelerations()?;

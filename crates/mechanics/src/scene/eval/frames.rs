@@ -165,6 +165,11 @@ impl SyntaxEvaluator<'_> {
             }
         };
         let angle = self.expr(&args[1])?;
+        self.expanded_only(
+            &Value::Scalar(angle.clone()),
+            args[1].span,
+            "a rotation's angle",
+        )?;
         if let Some((name, _)) = angle.highest_time_derivative().filter(|(_, k)| *k > 0) {
             return Err(Diagnostic::error(
                 args[1].span,

@@ -42,6 +42,9 @@ pub(crate) struct SyntaxEvaluator<'a> {
     pub tape: Option<Tape>,
     /// Per definition: whether it may be kept (not an energy or other role).
     keepable: Vec<bool>,
+    /// Per definition: whether the user asked to keep it (`--keep`), a
+    /// scalar too.
+    pub kept_by_name: Vec<bool>,
 }
 
 /// How `series` and `parallel` combine springs.
@@ -120,6 +123,7 @@ impl<'a> SyntaxEvaluator<'a> {
             assumed: Default::default(),
             tape: None,
             keepable: defs.iter().map(|d| d.2.is_none()).collect(),
+            kept_by_name: vec![false; defs.len()],
         }
     }
 
@@ -161,6 +165,7 @@ impl<'a> SyntaxEvaluator<'a> {
             assumed: Default::default(),
             tape: None,
             keepable: Vec::new(),
+            kept_by_name: Vec::new(),
         }
     }
 
@@ -286,6 +291,14 @@ impl<'a> SyntaxEvaluator<'a> {
             return v;
         }
         let name = self.defs[i].0.name.as_str();
+        if self.kept_by_name.get(i).copied().unwrap_or(false) {
+            if let Value::Scalar(x) = v {
+                return Value::Scalar(tape.keep(name, x));
+            }
+        } else if self.kept_by_name.iter().any(|&k| k) {
+            // `--keep` names what to keep: nothing else is
+            return v;
+        }
         match v {
             Value::Vector(c) if c.iter().any(Expr::is_time_dependent) => {
                 let n = c.len();
@@ -327,7 +340,12 @@ impl<'a> SyntaxEvaluator<'a> {
     /// An error unless `v` is written without intermediates: `subs` and
     /// `taylor` need the expanded value (an intermediate hides the
     /// coordinates it depends on).
-    fn expanded_only(&self, v: &Value, span: Span, what: &str) -> Result<(), Diagnostic> {
+    pub(super) fn expanded_only(
+        &self,
+        v: &Value,
+        span: Span,
+        what: &str,
+    ) -> Result<(), Diagnostic> {
         if self.tape.is_none() {
             return Ok(());
         }

@@ -266,6 +266,7 @@ pub(super) fn scene_from_statements(
     src: &str,
     stmts: &[Stmt],
     structured: bool,
+    keep: &[String],
 ) -> Result<Scene, Diagnostic> {
     let decl = Declarations::collect(src, stmts)?;
     if structured {
@@ -307,6 +308,18 @@ pub(super) fn scene_from_statements(
             tape.reserve(name);
         }
         r.ev.tape = Some(tape);
+        for name in keep {
+            match decl.definitions.iter().position(|d| d.0.name == *name) {
+                Some(i) if decl.definitions[i].2.is_none() => r.ev.kept_by_name[i] = true,
+                _ => return Err(Diagnostic::global(format!(
+                    "`--keep {name}`: the scene has no definition `{name}` to keep"
+                ))
+                .with_hint(
+                    "keep names the scene defines with `NAME = …` (not energies or other roles)",
+                )
+                .with_kind(crate::diag::ErrorKind::bad_option("--keep"))),
+            }
+        }
     }
     let mut definitions = Vec::with_capacity(decl.definitions.len());
     for (i, &(name, body, role)) in decl.definitions.iter().enumerate() {
@@ -415,7 +428,6 @@ fn structure_allowed(stmts: &[Stmt]) -> Result<(), Diagnostic> {
         let what = match st {
             Stmt::Constraint { .. } => "constraints",
             Stmt::Reaction { .. } => "reactions",
-            Stmt::Solve(_) => "`solve` blocks",
             Stmt::Functions(..) => "given functions of time",
             _ => continue,
         };
