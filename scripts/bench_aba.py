@@ -83,8 +83,8 @@ expressions that grow with n, megabytes of code at n = 30), so ABA is faster
 from about n = 13 (3d) and n = 20 (planar).  qdot codegen itself took at
 most 2.3 s (3d, n = 30); gcc -O2 on the generated file is the long step
 (39.5 s for 3d, n = 30), and the Pinocchio driver with its templates
-instantiated takes about 70 s to compile.  q̈ of the
-two agreed to 2e-16 (n = 2) ... 9e-11 (planar, n = 30).
+instantiated takes about 70 s to compile.  q̈ of the two agreed to 2e-16
+(n = 2) ... 9e-11 (planar, n = 30).
 """
 import argparse
 import glob
