@@ -358,3 +358,55 @@ fn the_budget_bounds_the_structured_derivation() {
     let e = qdot::app::solve(&ctx, &chain3d(20)).unwrap_err();
     assert!(e.message.contains("expression too large"), "{}", e.message);
 }
+
+/// `--keep alpha` on the slider-crank: the reactions are written in α and
+/// its rates, each smaller than expanded, and equal to the expanded ones at
+/// random instants and parameters (where α is defined: L > R).
+#[test]
+fn kept_alpha_writes_the_slider_crank_reactions_in_alpha_and_its_rates() {
+    let src = std::fs::read_to_string("examples/slider_crank.qd").unwrap();
+    let plain = Scene::parse(&src).unwrap();
+    let plain = qdot::solve::system::solve_scene(&plain).unwrap();
+    let kept_scene = Scene::parse_keeping(&src, &["alpha".to_string()]).unwrap();
+    let kept = qdot::solve::system::solve_scene(&kept_scene).unwrap();
+    let tape = kept_scene.tape.as_ref().unwrap();
+    let names: Vec<String> = tape.entries().iter().map(|e| e.input_name()).collect();
+    assert_eq!(names, ["alpha", "alpha_dot", "alpha_ddot"]);
+    let mut rng = qdot_exact::rng::SplitMix64::new(3);
+    for _ in 0..5 {
+        let seed = rng.next_u64();
+        let value = |a: &Atom| -> Option<f64> {
+            let mut h = std::collections::hash_map::DefaultHasher::new();
+            std::hash::Hash::hash(a, &mut h);
+            let mut r = qdot_exact::rng::SplitMix64::new(seed ^ std::hash::Hasher::finish(&h));
+            Some(match a {
+                Atom::Param(p) if p.as_ref() == "L" => r.uniform(2.0, 3.0),
+                Atom::Param(p) if p.as_ref() == "R" => r.uniform(0.5, 1.0),
+                _ => r.uniform(0.5, 1.5),
+            })
+        };
+        for ((name, x), (_, y)) in kept[0].values.iter().zip(&plain[0].values) {
+            let (a, b) = (tape.eval_f64(x, &value).unwrap(), y.eval_f64(&value).unwrap());
+            assert!((a - b).abs() <= 1e-10 * (1.0 + b.abs()), "{name}: {a} vs {b}");
+            assert!(x.to_input().len() * 3 < y.to_input().len() * 2, "{name} is not smaller");
+        }
+    }
+    let e = Scene::parse_keeping(&src, &["beta".to_string()]).unwrap_err();
+    assert!(e.message.contains("no definition `beta`"), "{}", e.message);
+    let turned = "coordinates x\nparameters m\na = x/2\nframe B = rot(z, a)\n\
+        body b: mass m, inertia [m, m, m], frame B, at [x, 0, 0]\n";
+    let e = Scene::parse_keeping(turned, &["a".to_string()]).unwrap_err();
+    assert!(e.message.contains("a rotation's angle"), "{}", e.message);
+}
+
+/// Two particles on a spring: the spring's length is a square root of
+/// kept components (an intermediate inside a function), differentiated
+/// through it.
+#[test]
+fn a_spring_between_kept_points_is_differentiated_through_the_root() {
+    let src = "coordinates x1, y1, x2, y2\nparameters m, k, l0\n\
+        P1 = [x1, y1 + x1^2]\nP2 = [x2 + y1, y2*x2]\n\
+        particle a: mass m, at P1\nparticle b: mass 2*m, at P2\n\
+        potential V = 1/2*k*(norm(P2 - P1) - l0)^2\n";
+    assert_same_as_expanded(src, false);
+}
