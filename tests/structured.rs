@@ -386,9 +386,18 @@ fn kept_alpha_writes_the_slider_crank_reactions_in_alpha_and_its_rates() {
             })
         };
         for ((name, x), (_, y)) in kept[0].values.iter().zip(&plain[0].values) {
-            let (a, b) = (tape.eval_f64(x, &value).unwrap(), y.eval_f64(&value).unwrap());
-            assert!((a - b).abs() <= 1e-10 * (1.0 + b.abs()), "{name}: {a} vs {b}");
-            assert!(x.to_input().len() * 3 < y.to_input().len() * 2, "{name} is not smaller");
+            let (a, b) = (
+                tape.eval_f64(x, &value).unwrap(),
+                y.eval_f64(&value).unwrap(),
+            );
+            assert!(
+                (a - b).abs() <= 1e-10 * (1.0 + b.abs()),
+                "{name}: {a} vs {b}"
+            );
+            assert!(
+                x.to_input().len() * 3 < y.to_input().len() * 2,
+                "{name} is not smaller"
+            );
         }
     }
     let e = Scene::parse_keeping(&src, &["beta".to_string()]).unwrap_err();

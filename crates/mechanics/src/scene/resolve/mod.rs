@@ -303,23 +303,7 @@ pub(super) fn scene_from_statements(
     r.assumed = assumptions.clone();
     r.ev.assumed = assumptions.clone();
     if structured {
-        let mut tape = crate::expr::tape::Tape::new();
-        for name in decl.names.keys() {
-            tape.reserve(name);
-        }
-        r.ev.tape = Some(tape);
-        for name in keep {
-            match decl.definitions.iter().position(|d| d.0.name == *name) {
-                Some(i) if decl.definitions[i].2.is_none() => r.ev.kept_by_name[i] = true,
-                _ => return Err(Diagnostic::global(format!(
-                    "`--keep {name}`: the scene has no definition `{name}` to keep"
-                ))
-                .with_hint(
-                    "keep names the scene defines with `NAME = …` (not energies or other roles)",
-                )
-                .with_kind(crate::diag::ErrorKind::bad_option("--keep"))),
-            }
-        }
+        keep_structure(&mut r.ev, &decl, keep)?;
     }
     let mut definitions = Vec::with_capacity(decl.definitions.len());
     for (i, &(name, body, role)) in decl.definitions.iter().enumerate() {
@@ -419,6 +403,36 @@ pub(super) fn scene_from_statements(
         latex_names,
         tape,
     })
+}
+
+/// Give the evaluator a tape (the scene's names reserved on it) and mark
+/// the definitions `keep` names; an error for a name that is not a
+/// definition without a role.
+fn keep_structure(
+    ev: &mut SyntaxEvaluator,
+    decl: &Declarations,
+    keep: &[String],
+) -> Result<(), Diagnostic> {
+    let mut tape = crate::expr::tape::Tape::new();
+    for name in decl.names.keys() {
+        tape.reserve(name);
+    }
+    ev.tape = Some(tape);
+    for name in keep {
+        match decl.definitions.iter().position(|d| d.0.name == *name) {
+            Some(i) if decl.definitions[i].2.is_none() => ev.kept_by_name[i] = true,
+            _ => {
+                return Err(Diagnostic::global(format!(
+                    "`--keep {name}`: the scene has no definition `{name}` to keep"
+                ))
+                .with_hint(
+                    "keep names the scene defines with `NAME = …` (not energies or other roles)",
+                )
+                .with_kind(crate::diag::ErrorKind::bad_option("--keep")))
+            }
+        }
+    }
+    Ok(())
 }
 
 /// What a scene read with its kinematics kept may not have: the
