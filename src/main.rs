@@ -362,19 +362,19 @@ fn main() -> ExitCode {
             file,
             format,
             structure,
-        } => {
-            opts.structure = structure.choice();
-            opts.keep = structure.keep.clone();
-            (output::Command::Derive, file, *format, None)
         }
-        Command::Solve {
+        | Command::Solve {
             file,
             format,
             structure,
         } => {
             opts.structure = structure.choice();
             opts.keep = structure.keep.clone();
-            (output::Command::Solve, file, *format, None)
+            let cmd = match command {
+                Command::Derive { .. } => output::Command::Derive,
+                _ => output::Command::Solve,
+            };
+            (cmd, file, *format, None)
         }
         Command::Forces { file, format } => (output::Command::Forces, file, *format, None),
         Command::Hamilton { file, format } => (output::Command::Hamilton, file, *format, None),
