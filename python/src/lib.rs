@@ -114,6 +114,7 @@ fn run_command(
         title,
         max_terms,
         structure: structure_by_name(structure)?,
+        keep: Vec::new(),
     };
     let result = py.detach(|| output::run_with(cmd, source, fmt, &opts));
     match result {
