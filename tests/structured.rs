@@ -10,14 +10,6 @@ fn chain3d(n: usize) -> String {
     qdot::engine::gallery::rod_chain_3d(n)
 }
 
-/// A generator for atom `a` at the random state `seed`: each atom its own
-/// reproducible value.
-fn atom_rng(seed: u64, a: &Atom) -> qdot_exact::rng::SplitMix64 {
-    let mut h = std::collections::hash_map::DefaultHasher::new();
-    std::hash::Hash::hash(a, &mut h);
-    qdot_exact::rng::SplitMix64::new(seed ^ std::hash::Hasher::finish(&h))
-}
-
 /// Every structured M, f and q̈, expanded, equals the expanded derivation.
 fn assert_same_as_expanded(src: &str, exact_accelerations: bool) {
     let plain = Scene::parse(src).unwrap().lagrange().unwrap();
@@ -76,7 +68,8 @@ fn assert_same(plain: &qdot::Lagrange, kept: &qdot::Lagrange, exact_acceleration
     let mut rng = qdot_exact::rng::SplitMix64::new(7);
     for _ in 0..5 {
         let seed = rng.next_u64();
-        let value = |a: &Atom| Some(atom_rng(seed, a).uniform(0.25, 1.75));
+        let value =
+            |a: &Atom| Some(qdot_exact::rng::SplitMix64::keyed(seed, a).uniform(0.25, 1.75));
         for (x, y) in a_kept.values().iter().zip(a_plain.values()) {
             let s = tape.eval_f64(x, &value).unwrap();
             let c = y.eval_f64(&value).unwrap();
@@ -379,7 +372,7 @@ fn kept_alpha_writes_the_slider_crank_reactions_in_alpha_and_its_rates() {
     for _ in 0..5 {
         let seed = rng.next_u64();
         let value = |a: &Atom| -> Option<f64> {
-            let mut r = atom_rng(seed, a);
+            let mut r = qdot_exact::rng::SplitMix64::keyed(seed, a);
             Some(match a {
                 Atom::Param(p) if p.as_ref() == "L" => r.uniform(2.0, 3.0),
                 Atom::Param(p) if p.as_ref() == "R" => r.uniform(0.5, 1.0),

@@ -75,10 +75,11 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
             let lag = &r.result.lagrange;
             let scene = r.scene();
             Ok(match fmt {
-                Format::Text => text::dynamics_text(scene, lag, None),
+                Format::Text => text::dynamics_text(scene, lag, None, &[]),
                 Format::Json => scene_json(scene, DeriveJson::new(scene, lag))?,
                 Format::Latex => latex::write(scene, |w| {
-                    if let Some((tape, roots)) = wire::structured_roots(scene, lag, None) {
+                    if let Some((tape, roots)) = wire::structured_roots(scene, Some(lag), None, &[])
+                    {
                         w.intermediates(Some(tape), roots);
                     }
                     w.derive(lag)
@@ -186,40 +187,32 @@ fn solve_output(
         Format::Text => {
             let mut out = match lag {
                 Some((l, acc)) => {
-                    text::dynamics_text(scene, l, Some(acc))
-                        + &text::reactions_text(scene, reactions)
+                    let mut out = text::dynamics_text(scene, l, Some(acc), blocks)
+                        + &text::reactions_text(scene, reactions);
+                    if !blocks.is_empty() {
+                        out.push('\n');
+                    }
+                    out
                 }
-                None => String::new(),
+                // a block's own intermediates (`--keep`)
+                None => match wire::structured_roots(scene, None, None, blocks) {
+                    Some((tape, roots)) => text::intermediates_text(Some(tape), roots),
+                    None => String::new(),
+                },
             };
             if !blocks.is_empty() {
-                // a block's own intermediates (`--keep`), when the dynamics
-                // did not list them
-                let roots = blocks.iter().flat_map(|b| b.values.iter().map(|(_, v)| v));
-                let listed = lag.is_some() && out.starts_with("Intermediates");
-                let own = if listed {
-                    String::new()
-                } else {
-                    text::intermediates_text(scene.tape.as_ref(), roots)
-                };
-                if !out.is_empty() {
-                    out.push('\n');
-                }
-                out.push_str(&own);
                 out.push_str(&solutions_text(scene, blocks));
             }
             out
         }
         Format::Latex => latex::write(scene, |w| {
+            let (l, acc) = (lag.as_ref().map(|d| &d.0), lag.as_ref().map(|d| &d.1));
+            if let Some((tape, roots)) = wire::structured_roots(scene, l, acc, blocks) {
+                w.intermediates(Some(tape), roots);
+            }
             if let Some((l, acc)) = lag {
-                if let Some((tape, roots)) = wire::structured_roots(scene, l, Some(acc)) {
-                    w.intermediates(Some(tape), roots);
-                }
                 w.equations(l);
                 w.accelerations(acc);
-            }
-            if lag.is_none() {
-                let roots = blocks.iter().flat_map(|b| b.values.iter().map(|(_, v)| v));
-                w.intermediates(scene.tape.as_ref(), roots);
             }
             w.blocks(scene, blocks);
         }),

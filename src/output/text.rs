@@ -169,13 +169,15 @@ pub fn solve_text(l: &Lagrange, acc: &crate::mechanics::Accelerations) -> String
 
 /// `derive` (`acc` None) or `solve`'s dynamics on `scene`: the
 /// intermediates first when there are (they cover the bodies' energies
-/// too), the bodies' energies, the equations, the accelerations.
+/// and the `blocks`' solutions too), the bodies' energies, the equations,
+/// the accelerations.
 pub(crate) fn dynamics_text(
     scene: &Scene,
     l: &Lagrange,
     acc: Option<&crate::mechanics::Accelerations>,
+    blocks: &[crate::solve::system::BlockSolution],
 ) -> String {
-    let mut out = match super::wire::structured_roots(scene, l, acc) {
+    let mut out = match super::wire::structured_roots(scene, Some(l), acc, blocks) {
         Some((tape, roots)) => intermediates_text(Some(tape), roots),
         None => String::new(),
     };

@@ -285,37 +285,56 @@ pub(crate) fn lagrange_exprs(l: &Lagrange) -> impl Iterator<Item = &Expr> {
 }
 
 /// The tape a result is written through, and every expression that
-/// output prints with it: the scene's energies (its bodies'), the
-/// equations, and the accelerations when there are.
+/// output prints with it: with dynamics (`l`), the scene's energies (its
+/// bodies'), the equations and the accelerations when there are; and the
+/// `solve` blocks' solutions. `None` when nothing is written through one.
 pub(crate) fn structured_roots<'a>(
     scene: &'a Scene,
-    l: &'a Lagrange,
+    l: Option<&'a Lagrange>,
     acc: Option<&'a Accelerations>,
+    blocks: &'a [BlockSolution],
 ) -> Option<(&'a crate::expr::tape::Tape, Vec<&'a Expr>)> {
+    // the accelerations' tape extends the equations', which extends the scene's
     let tape = acc
         .and_then(Accelerations::intermediates)
-        .or(l.intermediates.as_deref())
+        .or(l.and_then(|l| l.intermediates.as_deref()))
         .or(scene.tape.as_ref())?;
-    let energies = scene
-        .definitions
-        .iter()
-        .filter(|d| d.role.is_some())
-        .flat_map(|d| d.value.components());
-    let roots = energies
-        .chain(lagrange_exprs(l))
-        .chain(acc.map_or(&[][..], |a| a.values()))
-        .collect();
+    let mut roots: Vec<&Expr> = Vec::new();
+    if let Some(l) = l {
+        let energies = scene.definitions.iter().filter(|d| d.role.is_some());
+        roots.extend(energies.flat_map(|d| d.value.components()));
+        roots.extend(lagrange_exprs(l));
+    }
+    roots.extend(acc.map_or(&[][..], |a| a.values()));
+    roots.extend(blocks.iter().flat_map(|b| b.values.iter().map(|(_, v)| v)));
     Some((tape, roots))
+}
+
+/// The intermediates of [`structured_roots`] as JSON.
+fn structured_json(
+    scene: &Scene,
+    l: Option<&Lagrange>,
+    acc: Option<&Accelerations>,
+    blocks: &[BlockSolution],
+) -> Option<Vec<IntermediateJson>> {
+    let (tape, roots) = structured_roots(scene, l, acc, blocks)?;
+    intermediates_json(Some(tape), roots)
 }
 
 impl DeriveJson {
     /// The JSON of `derive` for `l` (on `scene`, whose energies it may
     /// write through the same intermediates).
     pub fn new(scene: &Scene, l: &Lagrange) -> DeriveJson {
-        let intermediates = structured_roots(scene, l, None)
-            .and_then(|(tape, roots)| intermediates_json(Some(tape), roots));
         DeriveJson {
-            intermediates,
+            intermediates: structured_json(scene, Some(l), None, &[]),
+            ..DeriveJson::expressions(l)
+        }
+    }
+
+    /// The keys after `intermediates`.
+    fn expressions(l: &Lagrange) -> DeriveJson {
+        DeriveJson {
+            intermediates: None,
             coordinates: l.coordinates.clone(),
             equations: l
                 .equations
@@ -349,14 +368,20 @@ pub struct DynamicsJson {
 impl DynamicsJson {
     /// The JSON of `solve`'s dynamics: `l` and its accelerations `acc`.
     pub fn new(scene: &Scene, l: &Lagrange, acc: &Accelerations) -> DynamicsJson {
-        let multipliers = acc.multipliers();
-        let mut derive = DeriveJson::new(scene, l);
-        if let Some((tape, roots)) = structured_roots(scene, l, Some(acc)) {
-            // the accelerations' tape extends the equations'
-            derive.intermediates = intermediates_json(Some(tape), roots);
-        }
         DynamicsJson {
-            derive,
+            derive: DeriveJson {
+                intermediates: structured_json(scene, Some(l), Some(acc), &[]),
+                ..DeriveJson::expressions(l)
+            },
+            ..DynamicsJson::expressions(l, acc)
+        }
+    }
+
+    /// The keys without `intermediates` (`solve` lists them first).
+    fn expressions(l: &Lagrange, acc: &Accelerations) -> DynamicsJson {
+        let multipliers = acc.multipliers();
+        DynamicsJson {
+            derive: DeriveJson::expressions(l),
             accelerations: acc
                 .into_iter()
                 .map(|(q, e)| (q.to_string(), as_input(e)))
@@ -394,30 +419,11 @@ impl SolveJson {
         reactions: &[Vec<Expr>],
         blocks: &[BlockSolution],
     ) -> SolveJson {
-        let mut dynamics = dynamics.map(|(l, acc)| DynamicsJson::new(scene, l, acc));
         // one list for the whole output, first
-        let mut intermediates = dynamics
-            .as_mut()
-            .and_then(|d| d.derive.intermediates.take());
-        if !blocks.is_empty() {
-            if let Some(tape) = scene.tape.as_ref() {
-                let roots = blocks.iter().flat_map(|b| b.values.iter().map(|(_, v)| v));
-                if let Some(mut more) = intermediates_json(Some(tape), roots) {
-                    let have: Vec<String> = intermediates
-                        .iter()
-                        .flatten()
-                        .map(|i| i.name.clone())
-                        .collect();
-                    more.retain(|i| !have.contains(&i.name));
-                    let mut all = intermediates.unwrap_or_default();
-                    all.extend(more);
-                    intermediates = Some(all);
-                }
-            }
-        }
+        let (l, acc) = (dynamics.map(|d| &d.0), dynamics.map(|d| &d.1));
         SolveJson {
-            intermediates,
-            dynamics,
+            intermediates: structured_json(scene, l, acc, blocks),
+            dynamics: dynamics.map(|(l, acc)| DynamicsJson::expressions(l, acc)),
             reactions: (!reactions.is_empty()).then(|| ReactionJson::all(scene, reactions)),
             blocks: (!blocks.is_empty()).then(|| BlocksJson::new(scene, blocks)),
         }

@@ -21,6 +21,15 @@ impl SplitMix64 {
         SplitMix64 { state: seed }
     }
 
+    /// The stream of `seed` for `key`: each key its own reproducible
+    /// stream (a random state gives every atom its value this way).
+    pub fn keyed(seed: u64, key: &impl std::hash::Hash) -> Self {
+        use std::hash::Hasher;
+        let mut h = rustc_hash::FxHasher::default();
+        key.hash(&mut h);
+        SplitMix64::new(seed ^ h.finish())
+    }
+
     /// The next 64 bits.
     pub fn next_u64(&mut self) -> u64 {
         self.state = self.state.wrapping_add(0x9E37_79B9_7F4A_7C15);

@@ -105,6 +105,14 @@ fn is_rate_of_coordinate(v: Var) -> Option<Var> {
     }
 }
 
+/// The atoms of `e` and every atom inside their arguments, at any depth.
+fn atoms_within(e: &Expr) -> impl Iterator<Item = Var> {
+    e.vars().into_iter().flat_map(|v| {
+        let inner = atom::inner_atoms(v);
+        std::iter::once(v).chain((0..inner.len()).map(move |k| inner[k]))
+    })
+}
+
 /// Whether `v` is a base symbol that moves: a coordinate of any order, a
 /// given function of time or t itself.
 fn is_leaf(v: Var) -> bool {
@@ -237,13 +245,11 @@ impl Tape {
     /// (those inside a function's argument too).
     fn leaves_of(&self, e: &Expr) -> Arc<[Var]> {
         let mut out: Vec<Var> = Vec::new();
-        for v in e.vars() {
-            for w in std::iter::once(v).chain(atom::inner_atoms(v).iter().copied()) {
-                if let Some(&i) = self.index.get(&w) {
-                    out.extend_from_slice(&self.entries[i].leaves);
-                } else if is_leaf(w) {
-                    out.push(w);
-                }
+        for w in atoms_within(e) {
+            if let Some(&i) = self.index.get(&w) {
+                out.extend_from_slice(&self.entries[i].leaves);
+            } else if is_leaf(w) {
+                out.push(w);
             }
         }
         out.sort_unstable();
@@ -256,14 +262,9 @@ impl Tape {
     /// must go through. Differentiating `e` with respect to such an atom
     /// goes through the function ([`Expr::diff`] treats it as a symbol).
     fn named_in(&self, e: &Expr) -> Vec<usize> {
-        let mut out: Vec<usize> = Vec::new();
-        for v in e.vars() {
-            for w in std::iter::once(v).chain(atom::inner_atoms(v).iter().copied()) {
-                if let Some(&i) = self.index.get(&w) {
-                    out.push(i);
-                }
-            }
-        }
+        let mut out: Vec<usize> = atoms_within(e)
+            .filter_map(|w| self.index.get(&w).copied())
+            .collect();
         out.sort_unstable();
         out.dedup();
         out
@@ -483,21 +484,21 @@ impl Tape {
     /// coordinates and t, every intermediate it needs evaluated once in
     /// order. `None` where a value is undefined (a division by zero).
     pub fn eval_f64(&self, e: &Expr, f: &dyn Fn(&Atom) -> Option<f64>) -> Option<f64> {
-        let order = self.used_by(std::iter::once(e));
-        let mut values: FxHashMap<Var, f64> = FxHashMap::default();
-        for i in order {
-            let entry = &self.entries[i];
-            let lookup = |a: &Atom| match a {
-                Atom::Named(_) => values.get(&atom::intern(a.clone())).copied(),
+        let eval = |x: &Expr, values: &FxHashMap<Arc<NamedAtom>, f64>| {
+            x.eval_f64(&|a: &Atom| match a {
+                Atom::Named(n) => values.get(n).copied(),
                 other => f(other),
-            };
-            let v = entry.value.eval_f64(&lookup)?;
-            values.insert(entry.var, v);
+            })
+        };
+        let mut values: FxHashMap<Arc<NamedAtom>, f64> = FxHashMap::default();
+        for i in self.used_by(std::iter::once(e)) {
+            let entry = &self.entries[i];
+            let v = eval(&entry.value, &values)?;
+            if let Atom::Named(n) = atom::atom(entry.var) {
+                values.insert(n, v);
+            }
         }
-        e.eval_f64(&|a: &Atom| match a {
-            Atom::Named(_) => values.get(&atom::intern(a.clone())).copied(),
-            other => f(other),
-        })
+        eval(e, &values)
     }
 
     /// `e` with every intermediate replaced by its expanded value: the

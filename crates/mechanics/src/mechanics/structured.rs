@@ -84,7 +84,8 @@ fn dot(a: &[Expr], b: &[Expr]) -> Expr {
 /// How many random states a pivot is evaluated at.
 const PIVOT_PROBES: u64 = 3;
 
-/// q̈ = M⁻¹·f through `tape` (M symmetric, given in full).
+/// q̈ = M⁻¹·f through `tape` (M symmetric, given in full; M and f are
+/// already named by [`name_equations`]).
 pub(crate) fn solve_ldl(
     tape: &mut Tape,
     coordinates: &[String],
@@ -92,24 +93,17 @@ pub(crate) fn solve_ldl(
     f: &[Expr],
 ) -> Result<Vec<Expr>, Diagnostic> {
     let n = f.len();
-    let mut mn: Vec<Vec<Expr>> = vec![Vec::new(); n];
-    for (i, row) in m.iter().enumerate() {
-        for (j, e) in row.iter().enumerate().take(i + 1) {
-            let e = tape.define(&format!("M_{}{}", i + 1, j + 1), e.clone());
-            mn[i].push(e);
-        }
-    }
     let mut l: Vec<Vec<Expr>> = vec![Vec::new(); n];
     let mut d: Vec<Expr> = Vec::with_capacity(n);
     for j in 0..n {
-        let mut pivot = mn[j][j].clone();
+        let mut pivot = m[j][j].clone();
         for k in 0..j {
             pivot = pivot.sub(&l[j][k].mul(&l[j][k]).mul(&d[k]));
         }
         check_pivot(tape, &pivot, coordinates, j)?;
         let dj = tape.define(&format!("D_{}", j + 1), pivot);
         for i in (j + 1)..n {
-            let mut s = mn[i][j].clone();
+            let mut s = m[i][j].clone();
             for k in 0..j {
                 s = s.sub(&l[i][k].mul(&l[j][k]).mul(&d[k]));
             }
@@ -123,7 +117,7 @@ pub(crate) fn solve_ldl(
     let mut z: Vec<Expr> = Vec::with_capacity(n);
     let mut y: Vec<Expr> = Vec::with_capacity(n);
     for i in 0..n {
-        let mut yi = tape.define(&format!("f_{}", i + 1), f[i].clone());
+        let mut yi = f[i].clone();
         for k in 0..i {
             yi = yi.sub(&l[i][k].mul(&y[k]));
         }
@@ -174,7 +168,9 @@ fn check_pivot(
     let mut zero_at_every_probe = true;
     for _ in 0..PIVOT_PROBES {
         let seed = rng.next_u64();
-        let value = tape.eval_f64(pivot, &|a: &Atom| Some(probe_value(a, seed)));
+        let value = tape.eval_f64(pivot, &|a: &Atom| {
+            Some(crate::rng::SplitMix64::keyed(seed, a).uniform(0.5, 1.5))
+        });
         match value {
             Some(v) if v.abs() > 1e-9 => {
                 zero_at_every_probe = false;
@@ -187,13 +183,4 @@ fn check_pivot(
         return Err(singular());
     }
     Ok(())
-}
-
-/// A reproducible pseudo-random value in [0.5, 1.5] for an atom at a probe.
-fn probe_value(a: &Atom, seed: u64) -> f64 {
-    use std::hash::{Hash, Hasher};
-    let mut h = rustc_hash::FxHasher::default();
-    a.hash(&mut h);
-    let mut rng = crate::rng::SplitMix64::new(seed ^ h.finish());
-    rng.uniform(0.5, 1.5)
 }

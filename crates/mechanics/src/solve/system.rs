@@ -259,11 +259,7 @@ fn verify_through(
         }
         let seed = rng.next_u64();
         let probe = |a: &Atom| -> Option<f64> {
-            use std::hash::{Hash, Hasher};
-            let mut h = rustc_hash::FxHasher::default();
-            a.hash(&mut h);
-            let mut r = crate::rng::SplitMix64::new(seed ^ h.finish());
-            Some(r.uniform(0.3, 0.7))
+            Some(crate::rng::SplitMix64::keyed(seed, a).uniform(0.3, 0.7))
         };
         // a state outside the intermediates' domain (asin of more than 1:
         // the scene's assumptions are not drawn) is no evidence
