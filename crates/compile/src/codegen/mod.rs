@@ -37,7 +37,8 @@ mod rust;
 
 use crate::algebra::sign::Values;
 use crate::compile::{
-    compile_through, estimated_cost_of, solve_spd, state_inputs, Evaluator, Program, BEST_MAX_N,
+    compile_through, estimated_cost_of, is_constant, solve_spd, state_inputs, Evaluator, Program,
+    BEST_MAX_N,
 };
 use crate::diag::Diagnostic;
 use crate::expr::{atom, Expr};
@@ -288,13 +289,8 @@ impl Generator<'_> {
     fn rhs(&self) -> Result<(Function, String), Diagnostic> {
         let n = self.n();
         let upper = self.upper();
-        // an intermediate is taken to move (its tape knows, the atom not)
         let tape = self.lag.intermediates.as_deref();
-        let constant = tape.is_none_or(|t| t.used_by(&upper).is_empty())
-            && upper
-                .iter()
-                .all(|e| self.inputs.iter().all(|&v| !e.depends_on(v)));
-        let (program, evaluator, inverse) = if constant {
+        let (program, evaluator, inverse) = if is_constant(&upper, self.inputs, tape) {
             let inverse = self.constant_inverse(&upper)?;
             let p = self.compile("f", &self.lag.forcing)?;
             (p, Evaluator::ConstantMass, inverse)

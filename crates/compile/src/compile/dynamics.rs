@@ -102,6 +102,20 @@ pub struct CompiledDynamics {
     tier: Option<super::engine::Tier>,
 }
 
+/// Whether no entry of `entries` depends on an input (M evaluated once):
+/// an entry through `tape`'s intermediates is taken to move (the tape knows
+/// what they depend on, the atom not).
+pub fn is_constant(
+    entries: &[Expr],
+    inputs: &[Var],
+    tape: Option<&crate::expr::tape::Tape>,
+) -> bool {
+    tape.is_none_or(|t| t.used_by(entries).is_empty())
+        && entries
+            .iter()
+            .all(|e| inputs.iter().all(|&v| !e.depends_on(v)))
+}
+
 /// The input atoms `[t, q…, q̇…]` of a [`CompiledDynamics`] program.
 pub fn state_inputs(coordinates: &[String]) -> Vec<Var> {
     let mut v = vec![atom::time()];
@@ -154,12 +168,7 @@ impl CompiledDynamics {
             .flat_map(|i| (i..n).map(move |j| (i, j)))
             .map(|(i, j)| mass[i][j].clone())
             .collect();
-        // an intermediate is taken to move (its tape knows, the atom not)
-        let constant = tape.is_none_or(|t| t.used_by(&upper).is_empty())
-            && upper
-                .iter()
-                .all(|e| inputs.iter().all(|&v| !e.depends_on(v)));
-        if constant {
+        if is_constant(&upper, &inputs, tape) {
             let pm = compile_with(&upper, &inputs, params)?;
             let mut vals = vec![0.0; upper.len()];
             pm.eval(&vec![0.0; inputs.len()], &mut pm.registers(), &mut vals);

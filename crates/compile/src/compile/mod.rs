@@ -51,7 +51,7 @@ mod program;
 
 pub use builder::{compile, compile_through, compile_with, naive_op_count};
 pub use dynamics::{
-    estimated_cost_of, state_inputs, Choice, CompiledDynamics, Evaluator, BEST_MAX_N,
+    estimated_cost_of, is_constant, state_inputs, Choice, CompiledDynamics, Evaluator, BEST_MAX_N,
 };
 pub use engine::{Engine, EngineReport, AUTO_JIT_AFTER_CALLS};
 pub use error::CompileError;
