@@ -86,7 +86,7 @@ fn chain_of_two_and_three_rods_expands_to_the_expanded_equations() {
 
 /// The value of an atom at a fixture's state: parameters by name,
 /// coordinates and velocities by index.
-fn state_value(case: &serde_json::Value, a: &Atom) -> Option<f64> {
+pub(crate) fn state_value(case: &serde_json::Value, a: &Atom) -> Option<f64> {
     let at = |key: &str, name: &str| -> Option<f64> {
         let k: usize = name.strip_prefix('q')?.parse().ok()?;
         case[key][k - 1].as_f64()

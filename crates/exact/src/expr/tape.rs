@@ -484,6 +484,12 @@ impl Tape {
     /// coordinates and t, every intermediate it needs evaluated once in
     /// order. `None` where a value is undefined (a division by zero).
     pub fn eval_f64(&self, e: &Expr, f: &dyn Fn(&Atom) -> Option<f64>) -> Option<f64> {
+        self.eval_many_f64(std::slice::from_ref(e), f).map(|v| v[0])
+    }
+
+    /// [`Tape::eval_f64`] of several expressions, the intermediates they
+    /// share evaluated once.
+    pub fn eval_many_f64(&self, es: &[Expr], f: &dyn Fn(&Atom) -> Option<f64>) -> Option<Vec<f64>> {
         let eval = |x: &Expr, values: &FxHashMap<Arc<NamedAtom>, f64>| {
             x.eval_f64(&|a: &Atom| match a {
                 Atom::Named(n) => values.get(n).copied(),
@@ -491,14 +497,14 @@ impl Tape {
             })
         };
         let mut values: FxHashMap<Arc<NamedAtom>, f64> = FxHashMap::default();
-        for i in self.used_by(std::iter::once(e)) {
+        for i in self.used_by(es) {
             let entry = &self.entries[i];
             let v = eval(&entry.value, &values)?;
             if let Atom::Named(n) = atom::atom(entry.var) {
                 values.insert(n, v);
             }
         }
-        eval(e, &values)
+        es.iter().map(|e| eval(e, &values)).collect()
     }
 
     /// `e` with every intermediate replaced by its expanded value: the

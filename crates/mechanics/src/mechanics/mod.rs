@@ -20,6 +20,7 @@
 //! and their q̈ terms join M.
 
 mod accelerations;
+mod articulated;
 mod constraints;
 pub mod hamilton;
 pub mod integrals;
@@ -178,6 +179,24 @@ impl Lagrange {
             constraints,
             intermediates: None,
         })
+    }
+
+    /// The exact accelerations q̈ = M⁻¹·f of a tree of rigid bodies by the
+    /// articulated-body recursion: O(n) intermediates where
+    /// [`Lagrange::accelerations`] writes O(n³) through the tape, for a
+    /// scene read with its kinematics kept. Checked against M⁻¹·f at
+    /// random states; an error says why the recursion does not apply
+    /// (the equations are expanded, a kinetic energy besides the bodies',
+    /// bodies that do not form a tree of rigid joints, …).
+    pub fn articulated_accelerations(&self, scene: &Scene) -> Result<Accelerations, String> {
+        let _context = crate::budget::enter(
+            || "the articulated-body recursion for the accelerations".into(),
+            None,
+        );
+        let (values, tape) = articulated::articulated(scene, self)?;
+        let mut a = Accelerations::new(self.coordinates.clone(), values);
+        a.set_intermediates(tape);
+        Ok(a)
     }
 
     /// The exact accelerations q̈ = M⁻¹·f; with constraints, q̈ and the

@@ -191,6 +191,43 @@ pub struct Body {
     pub kinetic: String,
     /// The name of gravity's potential on it, when the scene has gravity.
     pub gravity: Option<String>,
+    /// What its kinetic energy is made of, for the recursive dynamics of
+    /// a tree of bodies (`mechanics::articulated`).
+    pub mass_properties: MassProperties,
+}
+
+/// A body's mass, centre and turning, as its statement gives them: the
+/// kinetic energy ½·m·|ċ|² + ½·ωᵀ·I·ω read as a rigid body's.
+#[derive(Clone, Debug)]
+pub struct MassProperties {
+    /// The mass, a positive constant.
+    pub mass: Expr,
+    /// The centre of mass: 2 (plane) or 3 (space) components.
+    pub centre: Vec<Expr>,
+    /// How it turns; `None` for a particle (or a body without inertia).
+    pub turning: Option<Turning>,
+    /// The acceleration of gravity on it (the `gravity` statement), if any.
+    pub gravity: Option<Vec<Expr>>,
+}
+
+/// How a rigid body turns, with its inertia about the centre of mass.
+#[derive(Clone, Debug)]
+pub enum Turning {
+    /// In space: its frame (body axes in ground coordinates) and its
+    /// inertia tensor along the body's axes.
+    Space {
+        /// The frame.
+        frame: Box<Rotation>,
+        /// The inertia tensor in the body's axes.
+        inertia: [[Expr; 3]; 3],
+    },
+    /// In the plane: its angle and moment of inertia.
+    Plane {
+        /// The angle from the ground's x axis.
+        angle: Expr,
+        /// The moment of inertia about the centre.
+        inertia: Expr,
+    },
 }
 
 /// A resolved scene (`Scene::default()` is the empty scene).

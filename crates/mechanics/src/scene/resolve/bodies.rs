@@ -10,6 +10,7 @@ use crate::parse::ast::{
     self, BodyKind, BodyProperty, BodyStmt, ExprKind, PropertyKey, Role, Span, Stmt,
 };
 use crate::scene::rotation::Rotation;
+use crate::scene::{MassProperties, Turning};
 
 /// The name of the kinetic energy of body `name`.
 pub(crate) fn kinetic_name(name: &str) -> String {
@@ -170,6 +171,7 @@ impl Resolver<'_> {
             speed2 = speed2.add(&v.mul(&v));
         }
         let mut energy = m.mul(&speed2);
+        let mut turning = None;
         if let Some(inertia) = props.get(PropertyKey::Inertia) {
             if let Some(frame) = props.get(PropertyKey::Frame) {
                 let r = self.frame_of(frame)?;
@@ -183,6 +185,10 @@ impl Resolver<'_> {
                 let i = self.inertia_tensor(inertia, &b.name.name)?;
                 let w = r.omega_frame();
                 energy = energy.add(&quadratic_form(&i, &w));
+                turning = Some(Turning::Space {
+                    frame: Box::new(r),
+                    inertia: i,
+                });
             } else if let Some(angle) = props.get(PropertyKey::Angle) {
                 if position.len() != 2 {
                     return Err(Diagnostic::error(
@@ -203,6 +209,10 @@ impl Resolver<'_> {
                 )?;
                 let w = self.ev.time_derivative(&theta);
                 energy = energy.add(&j.mul(&w).mul(&w));
+                turning = Some(Turning::Plane {
+                    angle: theta,
+                    inertia: j,
+                });
             }
         }
         let half = Expr::rational(crate::num::Q::new(1, 2).unwrap_or_else(crate::num::Q::one));
@@ -219,6 +229,12 @@ impl Resolver<'_> {
                 span: b.span,
                 kinetic: kinetic_name(&b.name.name),
                 gravity: None,
+                mass_properties: MassProperties {
+                    mass: m.clone(),
+                    centre: position.clone(),
+                    turning,
+                    gravity: None,
+                },
             },
             mass: m,
             position,
@@ -478,6 +494,7 @@ impl Resolver<'_> {
                     .zip(&b.position)
                     .fold(Expr::zero(), |s, (gc, p)| s.add(&gc.mul(p)));
                 b.info.gravity = Some(gravity_name(&b.info.name));
+                b.info.mass_properties.gravity = Some(g.clone());
                 self.body_energies.push(Definition {
                     name: gravity_name(&b.info.name),
                     value: Value::Scalar(b.mass.mul(&work).neg()),
