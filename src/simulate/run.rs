@@ -387,7 +387,14 @@ impl Prepared {
         }
         let names = &self.lag.coordinates;
         let start = Instant::now();
-        let (mut dynamics, evaluator) = CompiledDynamics::best(&self.lag, &params)
+        // a tree of rigid bodies read with its kinematics kept: q̈ in O(n)
+        let articulated = self
+            .scene
+            .tape
+            .as_ref()
+            .and_then(|_| self.lag.articulated_accelerations(&self.scene).ok());
+        let (mut dynamics, evaluator) =
+            CompiledDynamics::best_among(&self.lag, &params, articulated.as_ref())
             .map_err(|e| Diagnostic::global(format!("cannot compile the equations: {e}")))?;
         // timed apart (`EngineReport::compile_seconds`), so excluded below
         let engine = dynamics.use_engine(req.engine);

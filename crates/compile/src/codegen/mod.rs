@@ -188,8 +188,14 @@ pub fn codegen(src: &str, req: &CodegenRequest) -> Result<String, Diagnostic> {
     let mut vals = vec![Val::Time];
     vals.extend((0..2 * n).map(Val::State));
     vals.extend((0..free.len()).map(Val::Param));
+    // a tree of rigid bodies read with its kinematics kept: q̈ in O(n)
+    let articulated = scene
+        .tape
+        .as_ref()
+        .and_then(|_| lag.articulated_accelerations(&scene).ok());
     let g = Generator {
         lag: &lag,
+        articulated: articulated.as_ref(),
         inputs: &inputs,
         vals: &vals,
         bound: &bound,
@@ -243,6 +249,9 @@ fn bound_parameters(
 /// free parameters…]`.
 struct Generator<'a> {
     lag: &'a Lagrange,
+    /// The accelerations by the articulated-body recursion, when the
+    /// scene is a tree of rigid bodies read through intermediates.
+    articulated: Option<&'a crate::mechanics::Accelerations>,
     inputs: &'a [Var],
     vals: &'a [Val],
     bound: &'a FxHashMap<Var, f64>,
@@ -325,10 +334,23 @@ impl Generator<'_> {
                 }
             }
         }
+        if let Some(acc) = self.articulated {
+            let tape = acc.intermediates();
+            if let Ok(p) = compile_through(acc.values(), self.inputs, self.bound, tape) {
+                let cost = estimated_cost_of(&p, Evaluator::Articulated, n);
+                let other = estimated_cost_of(&chosen.0, chosen.1, n);
+                if cost < other {
+                    how = format!(
+                        "the articulated-body recursion (Featherstone), O(n) intermediates (≈ {cost:.0} flops per call against ≈ {other:.0})"
+                    );
+                    chosen = (p, Evaluator::Articulated);
+                }
+            }
+        }
         let mut low = Lowering::default();
         let outs = low.program(&chosen.0, self.vals);
         let qdd = match chosen.1 {
-            Evaluator::Accelerations => outs,
+            Evaluator::Accelerations | Evaluator::Articulated => outs,
             Evaluator::ConstantMass => low.constant_product(&inverse, &outs),
             Evaluator::MassMatrix => {
                 let (m, f) = outs.split_at(n * (n + 1) / 2);

@@ -2,7 +2,7 @@
 
 use crate::expr::atom;
 use crate::expr::Expr;
-use crate::mechanics::Lagrange;
+use crate::mechanics::{Accelerations, Lagrange};
 use crate::poly::Var;
 use qdot_ode::System;
 use rustc_hash::FxHashMap;
@@ -23,6 +23,8 @@ enum Mode {
     ConstantMass(Vec<f64>),
     /// Outputs: the exact accelerations.
     Accelerations,
+    /// Outputs: the accelerations by the articulated-body recursion.
+    Articulated,
 }
 
 /// How a [`CompiledDynamics`] evaluates q̈.
@@ -38,16 +40,21 @@ pub enum Evaluator {
     /// The exact accelerations q̈ = M⁻¹·f (`Lagrange::accelerations`)
     /// compiled: no solve.
     Accelerations,
+    /// The accelerations of a tree of rigid bodies by the articulated-body
+    /// recursion (`Lagrange::articulated_accelerations`) compiled: O(n)
+    /// operations, no solve.
+    Articulated,
 }
 
 impl Evaluator {
     /// The name in `--stats` and JSON: `mass_matrix`, `constant_mass`,
-    /// `accelerations`.
+    /// `accelerations`, `articulated`.
     pub fn name(self) -> &'static str {
         match self {
             Evaluator::MassMatrix => "mass_matrix",
             Evaluator::ConstantMass => "constant_mass",
             Evaluator::Accelerations => "accelerations",
+            Evaluator::Articulated => "articulated",
         }
     }
 }
@@ -218,6 +225,44 @@ impl CompiledDynamics {
         Ok(Self::with(n, program, Mode::Accelerations))
     }
 
+    /// Compile accelerations of `lagrange`'s coordinates derived by the
+    /// articulated-body recursion ([`Lagrange::articulated_accelerations`]).
+    pub fn from_articulated(
+        lagrange: &Lagrange,
+        acc: &Accelerations,
+        params: &FxHashMap<Var, f64>,
+    ) -> Result<Self, CompileError> {
+        let n = lagrange.coordinates.len();
+        let inputs = state_inputs(&lagrange.coordinates);
+        let program = compile_through(acc.values(), &inputs, params, acc.intermediates())?;
+        Ok(Self::with(n, program, Mode::Articulated))
+    }
+
+    /// [`CompiledDynamics::best`] with the articulated-body recursion's
+    /// accelerations as one more candidate, when the scene has them.
+    pub fn best_among(
+        lagrange: &Lagrange,
+        params: &FxHashMap<Var, f64>,
+        articulated: Option<&Accelerations>,
+    ) -> Result<(Self, Choice), CompileError> {
+        let (kept, mut choice) = Self::best(lagrange, params)?;
+        let Some(acc) = articulated else {
+            return Ok((kept, choice));
+        };
+        let rec = Self::from_articulated(lagrange, acc, params)?;
+        let cost = rec.estimated_cost();
+        let other = kept.estimated_cost();
+        if cost < other {
+            choice.reason = format!(
+                "≈ {cost:.0} flops per RHS by the articulated-body recursion against ≈ {other:.0} for {}",
+                choice.evaluator.name()
+            );
+            choice.evaluator = Evaluator::Articulated;
+            return Ok((rec, choice));
+        }
+        Ok((kept, choice))
+    }
+
     /// The cheaper evaluator of q̈ for `lagrange`: M and f with their solve
     /// ([`CompiledDynamics::new`]) and, for n ≤ `BEST_MAX_N` coordinates,
     /// the exact accelerations ([`CompiledDynamics::from_accelerations`]);
@@ -324,6 +369,7 @@ impl CompiledDynamics {
             Mode::MassMatrix => Evaluator::MassMatrix,
             Mode::ConstantMass(_) => Evaluator::ConstantMass,
             Mode::Accelerations => Evaluator::Accelerations,
+            Mode::Articulated => Evaluator::Articulated,
         }
     }
 
@@ -392,7 +438,7 @@ impl CompiledDynamics {
         let tail = match &self.mode {
             Mode::MassMatrix => super::jit::Tail::MassMatrix,
             Mode::ConstantMass(inv) => super::jit::Tail::ConstantMass(inv),
-            Mode::Accelerations => super::jit::Tail::Accelerations,
+            Mode::Accelerations | Mode::Articulated => super::jit::Tail::Accelerations,
         };
         // Cranelift reports its errors, but a panic inside it must not
         // end the run either: the interpreter takes over
@@ -529,7 +575,7 @@ impl CompiledDynamics {
             Mode::ConstantMass(_) => Err(CompileError::NoMassMatrix(
                 "the mass matrix is constant and factored",
             )),
-            Mode::Accelerations => Err(CompileError::NoMassMatrix(
+            Mode::Accelerations | Mode::Articulated => Err(CompileError::NoMassMatrix(
                 "compiled from the accelerations",
             )),
         }
@@ -570,7 +616,7 @@ impl CompiledDynamics {
         let n = self.n;
         let (regs, outs) = (&self.regs, self.program.output_registers());
         match &self.mode {
-            Mode::Accelerations => {
+            Mode::Accelerations | Mode::Articulated => {
                 for (a, &o) in qdd.iter_mut().zip(outs) {
                     *a = regs[o as usize];
                 }
@@ -623,7 +669,7 @@ pub fn estimated_cost_of(program: &Program, evaluator: Evaluator, n: usize) -> f
                 + n
         }
         Evaluator::ConstantMass => 2.0 * n * n - n,
-        Evaluator::Accelerations => 0.0,
+        Evaluator::Accelerations | Evaluator::Articulated => 0.0,
     };
     (add + mul) as f64 + DIVISION_COST * div as f64 + CALL_COST * call as f64 + solve
 }
