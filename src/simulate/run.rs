@@ -395,7 +395,7 @@ impl Prepared {
             .and_then(|_| self.lag.articulated_accelerations(&self.scene).ok());
         let (mut dynamics, evaluator) =
             CompiledDynamics::best_among(&self.lag, &params, articulated.as_ref())
-            .map_err(|e| Diagnostic::global(format!("cannot compile the equations: {e}")))?;
+                .map_err(|e| Diagnostic::global(format!("cannot compile the equations: {e}")))?;
         // timed apart (`EngineReport::compile_seconds`), so excluded below
         let engine = dynamics.use_engine(req.engine);
         let energy = conserved_quantity(&self.scene, names, &params)?;

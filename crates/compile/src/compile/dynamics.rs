@@ -260,6 +260,10 @@ impl CompiledDynamics {
             choice.evaluator = Evaluator::Articulated;
             return Ok((rec, choice));
         }
+        choice.reason = format!(
+            "{}; ≈ {cost:.0} flops by the articulated-body recursion",
+            choice.reason
+        );
         Ok((kept, choice))
     }
 

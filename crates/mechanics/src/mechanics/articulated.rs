@@ -176,7 +176,7 @@ fn tree(scene: &Scene, tape: &mut Tape) -> Result<Vec<Link>, String> {
     for l in &links {
         for &k in &l.joint {
             if std::mem::replace(&mut owned[k], true) {
-                return Err("two links share a joint coordinate".into());
+                return Err("the bodies' coordinates do not form a tree".into());
             }
         }
     }
