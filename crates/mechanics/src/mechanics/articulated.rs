@@ -501,13 +501,12 @@ impl Recursion<'_> {
                 }
             }
         }
-        let mut out = inv;
-        for i in 0..k {
-            for j in 0..k {
-                out[i][j] = self.name(format!("Dinv{tag}_{}{}", i + 1, j + 1), out[i][j].clone());
+        for (i, row) in inv.iter_mut().enumerate() {
+            for (j, e) in row.iter_mut().enumerate() {
+                *e = self.name(format!("Dinv{tag}_{}{}", i + 1, j + 1), e.clone());
             }
         }
-        Ok(out)
+        Ok(inv)
     }
 }
 
@@ -643,17 +642,16 @@ fn verify(tape: &Tape, lagrange: &Lagrange, acc: &[Expr]) -> Result<(), String> 
                 Some(crate::rng::SplitMix64::keyed(seed, a).uniform(0.5, 1.5))
             })
             .ok_or("undefined at a random state")?;
-        let mut m: Vec<Vec<f64>> = (0..n)
-            .map(|i| values[i * n..(i + 1) * n].to_vec())
-            .collect();
-        let mut f: Vec<f64> = values[n * n..n * n + n].to_vec();
+        let m = nalgebra::DMatrix::from_row_slice(n, n, &values[..n * n]);
+        let f = nalgebra::DVector::from_column_slice(&values[n * n..n * n + n]);
+        let want = m.lu().solve(&f).ok_or("M is singular at a random state")?;
         let got = &values[n * n + n..];
-        solve_dense(&mut m, &mut f).ok_or("M is singular at a random state")?;
-        let scale = f.iter().fold(1.0f64, |s, x| s.max(x.abs()));
-        if f.iter()
+        let scale = want.iter().fold(1.0f64, |s, x| s.max(x.abs()));
+        let agree = want
+            .iter()
             .zip(got)
-            .any(|(a, b)| !((a - b).abs() <= 1e-8 * scale))
-        {
+            .all(|(a, b)| (a - b).abs() <= 1e-8 * scale);
+        if !agree {
             return Err(
                 "the recursion does not reproduce M⁻¹·f: the bodies are not a tree of rigid joints"
                     .into(),
@@ -661,29 +659,4 @@ fn verify(tape: &Tape, lagrange: &Lagrange, acc: &[Expr]) -> Result<(), String> 
         }
     }
     Ok(())
-}
-
-/// Solve m·x = f in place (x in f) by elimination with partial pivoting.
-fn solve_dense(m: &mut [Vec<f64>], f: &mut [f64]) -> Option<()> {
-    let n = f.len();
-    for c in 0..n {
-        let p = (c..n).max_by(|&a, &b| m[a][c].abs().total_cmp(&m[b][c].abs()))?;
-        if m[p][c] == 0.0 || !m[p][c].is_finite() {
-            return None;
-        }
-        m.swap(c, p);
-        f.swap(c, p);
-        for r in c + 1..n {
-            let k = m[r][c] / m[c][c];
-            for j in c..n {
-                m[r][j] -= k * m[c][j];
-            }
-            f[r] -= k * f[c];
-        }
-    }
-    for c in (0..n).rev() {
-        let s: f64 = (c + 1..n).map(|j| m[c][j] * f[j]).sum();
-        f[c] = (f[c] - s) / m[c][c];
-    }
-    Some(())
 }
