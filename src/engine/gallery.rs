@@ -45,6 +45,27 @@ pub fn pendulum_chain(n: usize) -> String {
     s
 }
 
+/// The n-link planar pendulum chain of [`pendulum_chain`] written with
+/// `particle` statements and `gravity`: the same equations, read by qdot
+/// as a tree of bodies (the articulated-body recursion applies).
+pub fn particle_chain(n: usize) -> String {
+    let qs: Vec<String> = (1..=n).map(|i| format!("q{i}")).collect();
+    let mut s = format!("# {n}-link planar pendulum chain of particles\n");
+    s.push_str(&format!("coordinates {}\n", qs.join(", ")));
+    s.push_str("parameters m, l, g\n");
+    for i in 1..=n {
+        let link = format!("l*[sin(q{i}), -cos(q{i})]");
+        if i == 1 {
+            s.push_str(&format!("P1 = {link}\n"));
+        } else {
+            s.push_str(&format!("P{i} = P{} + {link}\n", i - 1));
+        }
+        s.push_str(&format!("particle p{i}: mass m, at P{i}\n"));
+    }
+    s.push_str("gravity [0, -g]\n");
+    s
+}
+
 /// A chain of `n` rods in space, each hinged to the end of the one above
 /// about an axis turned with it (x, y, x, y, …): n rigid bodies with
 /// principal moments [A, A, C], the benchmark of frames and bodies

@@ -191,7 +191,7 @@ impl Problem {
             name: "chain10",
             title: "10-link pendulum chain (tight reference)",
             kind: Kind::Chain10,
-            scene: crate::gallery::pendulum_chain(10),
+            scene: crate::gallery::particle_chain(10),
             params: vec![("m", 1.0), ("l", 1.0), ("g", 9.81)],
             y0,
             t_end: 10.0,
@@ -235,15 +235,15 @@ impl Problem {
         map
     }
 
-    /// The scene parsed and its equations compiled by
-    /// [`CompiledDynamics::best`] (the path of `qdot simulate`: M and f, or
-    /// the exact accelerations when they are estimated cheaper); a scene
+    /// The scene read and its equations compiled as `qdot simulate` does
+    /// (M and f, the exact accelerations, or the articulated-body
+    /// recursion, whichever is estimated cheapest); a scene
     /// with constraints as the stabilized augmented system
     /// ([`constrained::stabilized`], α from [`Problem::baumgarte`]).
     pub fn dynamics(&self) -> Result<CompiledDynamics, Diagnostic> {
-        let scene = Scene::parse(&self.scene)?;
+        let scene = Scene::read(&self.scene, crate::scene::Structure::Auto)?;
         let lag = constrained::stabilized(scene.lagrange()?)?;
-        CompiledDynamics::best(&lag, &self.param_map())
+        super::run::best_dynamics(&scene, &lag, &self.param_map())
             .map(|(d, _)| d)
             .map_err(|e| Diagnostic::global(format!("cannot compile {}: {e}", self.name)))
     }

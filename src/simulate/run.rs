@@ -387,14 +387,7 @@ impl Prepared {
         }
         let names = &self.lag.coordinates;
         let start = Instant::now();
-        // a tree of rigid bodies read with its kinematics kept: q̈ in O(n)
-        let articulated = self
-            .scene
-            .tape
-            .as_ref()
-            .and_then(|_| self.lag.articulated_accelerations(&self.scene).ok());
-        let (mut dynamics, evaluator) =
-            CompiledDynamics::best_among(&self.lag, &params, articulated.as_ref())
+        let (mut dynamics, evaluator) = best_dynamics(&self.scene, &self.lag, &params)
                 .map_err(|e| Diagnostic::global(format!("cannot compile the equations: {e}")))?;
         // timed apart (`EngineReport::compile_seconds`), so excluded below
         let engine = dynamics.use_engine(req.engine);
@@ -881,4 +874,19 @@ fn engine_line(run: &Run) -> String {
                 .unwrap_or("the register program interpreted")
         ),
     }
+}
+
+/// The cheapest compiled evaluator of q̈ for `lag` ([`CompiledDynamics::best`]),
+/// with the articulated-body recursion a candidate for a tree of rigid
+/// bodies read with its kinematics kept.
+pub(crate) fn best_dynamics(
+    scene: &Scene,
+    lag: &crate::mechanics::Lagrange,
+    params: &FxHashMap<Var, f64>,
+) -> Result<(CompiledDynamics, Choice), crate::simulate::compile::CompileError> {
+    let articulated = scene
+        .tape
+        .as_ref()
+        .and_then(|_| lag.articulated_accelerations(scene).ok());
+    CompiledDynamics::best_among(lag, params, articulated.as_ref())
 }
