@@ -388,7 +388,7 @@ impl Prepared {
         let names = &self.lag.coordinates;
         let start = Instant::now();
         let (mut dynamics, evaluator) = best_dynamics(&self.scene, &self.lag, &params)
-                .map_err(|e| Diagnostic::global(format!("cannot compile the equations: {e}")))?;
+            .map_err(|e| Diagnostic::global(format!("cannot compile the equations: {e}")))?;
         // timed apart (`EngineReport::compile_seconds`), so excluded below
         let engine = dynamics.use_engine(req.engine);
         let energy = conserved_quantity(&self.scene, names, &params)?;

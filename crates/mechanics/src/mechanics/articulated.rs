@@ -225,6 +225,26 @@ struct Recursion<'a> {
 /// A symmetric matrix, in full.
 type Sym = Vec<Vec<Expr>>;
 
+/// What the passes know of one link.
+struct LinkState {
+    /// V, its spatial velocity.
+    velocity: Vec<Expr>,
+    /// S, a column per joint coordinate.
+    axes: Vec<Vec<Expr>>,
+    /// c, its bias acceleration relative to its parent.
+    bias: Vec<Expr>,
+    /// 𝕀, then Iᴬ as its children add to it.
+    inertia: Sym,
+    /// V ×* 𝕀·V, then pᴬ as its children add to it.
+    bias_force: Vec<Expr>,
+    /// U = Iᴬ·S, a column per joint coordinate.
+    u: Vec<Vec<Expr>>,
+    /// D⁻¹ = (Sᵀ·U)⁻¹.
+    d_inverse: Sym,
+    /// u = τ − Sᵀ·pᴬ.
+    rest: Vec<Expr>,
+}
+
 impl Recursion<'_> {
     fn name(&mut self, hint: String, e: Expr) -> Expr {
         self.tape.define(&hint, e)
@@ -302,154 +322,170 @@ impl Recursion<'_> {
 
     /// q̈ by the three passes.
     fn accelerations(&mut self, links: &[Link], tau: &[Expr]) -> Result<Vec<Expr>, String> {
-        let s = self.s;
-        let nl = links.len();
-        let qd: Vec<Var> = self.coordinates.iter().map(|c| atom::coord(c, 1)).collect();
+        let mut state: Vec<LinkState> = Vec::with_capacity(links.len());
+        for (l, link) in links.iter().enumerate() {
+            let parent = link.parent.map(|p| state[p].velocity.clone());
+            let st = self.outward(l + 1, link, parent.as_ref())?;
+            state.push(st);
+        }
+        for l in (0..links.len()).rev() {
+            self.inward(l, &links[l], tau, &mut state)?;
+        }
+        Ok(self.accelerations_outward(links, &state))
+    }
+
+    /// Pass 1 for one link: its velocity, joint axes, bias acceleration,
+    /// inertia and bias force.
+    fn outward(
+        &mut self,
+        tag: usize,
+        link: &Link,
+        parent: Option<&Vec<Expr>>,
+    ) -> Result<LinkState, String> {
         let qdd: FxHashMap<Var, Expr> = self
             .coordinates
             .iter()
             .map(|c| (atom::coord(c, 2), Expr::zero()))
             .collect();
-        // pass 1: velocities, joint axes, bias accelerations and forces
-        let mut vel: Vec<Vec<Expr>> = Vec::with_capacity(nl);
-        let mut axes: Vec<Vec<Vec<Expr>>> = Vec::with_capacity(nl);
-        let mut bias: Vec<Vec<Expr>> = Vec::with_capacity(nl);
-        let mut ia: Vec<Sym> = Vec::with_capacity(nl);
-        let mut pa: Vec<Vec<Expr>> = Vec::with_capacity(nl);
-        for (l, link) in links.iter().enumerate() {
-            let tag = l + 1;
-            let parent = link.parent.map(|p| vel[p].clone());
-            let v = self.velocity(link, parent.as_ref());
-            let v = self.name_vec(&format!("V{tag}"), v);
-            let rel: Vec<Expr> = match &parent {
-                Some(p) => v.iter().zip(p).map(|(a, b)| a.sub(b)).collect(),
-                None => v.clone(),
-            };
-            let mut s_cols = Vec::with_capacity(link.joint.len());
-            for (j, &k) in link.joint.iter().enumerate() {
-                let col: Vec<Expr> = rel.iter().map(|e| self.tape.partial(e, qd[k])).collect();
-                s_cols.push(self.name_vec(&format!("S{tag}{}", j + 1), col));
-            }
-            let mut c = Vec::with_capacity(s);
-            for e in &rel {
-                let rate = self.tape.dt(e);
-                c.push(rate.subs_many(&qdd).map_err(|e| e.message)?);
-            }
-            bias.push(self.name_vec(&format!("c{tag}"), c));
-            let i = self.inertia(link);
-            let i = self.name_sym(&format!("I{tag}"), i);
-            let h = mat_vec(&i, &v);
-            let h = self.name_vec(&format!("h{tag}"), h);
-            pa.push(force_cross(&v, &h));
-            ia.push(i);
-            axes.push(s_cols);
-            vel.push(v);
+        let v = self.velocity(link, parent);
+        let v = self.name_vec(&format!("V{tag}"), v);
+        let rel: Vec<Expr> = match parent {
+            Some(p) => v.iter().zip(p).map(|(a, b)| a.sub(b)).collect(),
+            None => v.clone(),
+        };
+        let mut axes = Vec::with_capacity(link.joint.len());
+        for (j, &k) in link.joint.iter().enumerate() {
+            let qd = atom::coord(&self.coordinates[k], 1);
+            let col: Vec<Expr> = rel.iter().map(|e| self.tape.partial(e, qd)).collect();
+            axes.push(self.name_vec(&format!("S{tag}{}", j + 1), col));
         }
-        // pass 2: articulated inertias and bias forces, leaves first
-        let mut joint_u: Vec<Vec<Vec<Expr>>> = vec![Vec::new(); nl];
-        let mut joint_dinv: Vec<Sym> = vec![Vec::new(); nl];
-        let mut joint_rest: Vec<Vec<Expr>> = vec![Vec::new(); nl];
-        for l in (0..nl).rev() {
-            let tag = l + 1;
-            let i = self.name_sym(&format!("IA{tag}"), std::mem::take(&mut ia[l]));
-            let p = self.name_vec(&format!("pA{tag}"), std::mem::take(&mut pa[l]));
-            let k = links[l].joint.len();
-            let mut u_cols = Vec::with_capacity(k);
-            for (j, col) in axes[l].iter().enumerate() {
-                let u = mat_vec(&i, col);
-                u_cols.push(self.name_vec(&format!("U{tag}{}", j + 1), u));
-            }
-            let mut d = vec![vec![Expr::zero(); k]; k];
-            for a in 0..k {
-                for b in 0..k {
-                    d[a][b] = dot(&axes[l][a], &u_cols[b]);
-                }
-            }
-            let d = self.name_sym(&format!("Dj{tag}"), d);
-            let dinv = self.inverse(&d, tag)?;
-            let mut rest = Vec::with_capacity(k);
-            for (a, &q) in links[l].joint.iter().enumerate() {
-                let e = tau[q].sub(&dot(&axes[l][a], &p));
-                rest.push(self.name(format!("u{tag}_{}", a + 1), e));
-            }
-            if let Some(parent) = links[l].parent {
-                // Iᵃ = Iᴬ − U·D⁻¹·Uᵀ, pᵃ = pᴬ + Iᵃ·c + U·D⁻¹·u
-                let ud: Vec<Vec<Expr>> = (0..k)
-                    .map(|a| {
-                        (0..s)
-                            .map(|r| {
-                                (0..k).fold(Expr::zero(), |acc, b| {
-                                    acc.add(&u_cols[b][r].mul(&dinv[b][a]))
-                                })
-                            })
-                            .collect()
+        // c = Ṡ·q̇ + β̇: the rate of the joint's velocity at q̈ = 0
+        let mut c = Vec::with_capacity(self.s);
+        for e in &rel {
+            let rate = self.tape.dt(e);
+            c.push(rate.subs_many(&qdd).map_err(|e| e.message)?);
+        }
+        let bias = self.name_vec(&format!("c{tag}"), c);
+        let inertia = self.inertia(link);
+        let inertia = self.name_sym(&format!("I{tag}"), inertia);
+        let h = mat_vec(&inertia, &v);
+        let h = self.name_vec(&format!("h{tag}"), h);
+        Ok(LinkState {
+            bias_force: force_cross(&v, &h),
+            velocity: v,
+            axes,
+            bias,
+            inertia,
+            u: Vec::new(),
+            d_inverse: Vec::new(),
+            rest: Vec::new(),
+        })
+    }
+
+    /// Pass 2 for link `l` (its children done): its articulated inertia
+    /// and bias force, its joint's U, D⁻¹ and u, and what it passes to its
+    /// parent: Iᵃ = Iᴬ − U·D⁻¹·Uᵀ, pᵃ = pᴬ + Iᵃ·c + U·D⁻¹·u.
+    fn inward(
+        &mut self,
+        l: usize,
+        link: &Link,
+        tau: &[Expr],
+        state: &mut [LinkState],
+    ) -> Result<(), String> {
+        let (s, tag, k) = (self.s, l + 1, link.joint.len());
+        let i = self.name_sym(&format!("IA{tag}"), std::mem::take(&mut state[l].inertia));
+        let p = self.name_vec(
+            &format!("pA{tag}"),
+            std::mem::take(&mut state[l].bias_force),
+        );
+        let axes = &state[l].axes;
+        let mut u_cols = Vec::with_capacity(k);
+        for (j, col) in axes.iter().enumerate() {
+            let u = mat_vec(&i, col);
+            u_cols.push(self.name_vec(&format!("U{tag}{}", j + 1), u));
+        }
+        let d: Sym = (0..k)
+            .map(|a| (0..k).map(|b| dot(&axes[a], &u_cols[b])).collect())
+            .collect();
+        let d = self.name_sym(&format!("Dj{tag}"), d);
+        let dinv = self.inverse(&d, tag)?;
+        let mut rest = Vec::with_capacity(k);
+        for (a, &q) in link.joint.iter().enumerate() {
+            let e = tau[q].sub(&dot(&axes[a], &p));
+            rest.push(self.name(format!("u{tag}_{}", a + 1), e));
+        }
+        if let Some(parent) = link.parent {
+            // W = U·D⁻¹, column by column (D⁻¹ is symmetric)
+            let mut w = Vec::with_capacity(k);
+            for (a, drow) in dinv.iter().enumerate() {
+                let col: Vec<Expr> = (0..s)
+                    .map(|r| {
+                        u_cols
+                            .iter()
+                            .zip(drow)
+                            .fold(Expr::zero(), |acc, (u, d)| acc.add(&u[r].mul(d)))
                     })
                     .collect();
-                let ud: Vec<Vec<Expr>> = ud
-                    .into_iter()
-                    .enumerate()
-                    .map(|(a, col)| self.name_vec(&format!("W{tag}{}", a + 1), col))
-                    .collect();
-                let mut art = i.clone();
-                for r in 0..s {
-                    for c in r..s {
-                        let mut e = art[r][c].clone();
-                        for a in 0..k {
-                            e = e.sub(&ud[a][r].mul(&u_cols[a][c]));
-                        }
-                        art[r][c] = e.clone();
-                        art[c][r] = e;
-                    }
-                }
-                let art = self.name_sym(&format!("Ia{tag}"), art);
-                let ic = mat_vec(&art, &bias[l]);
-                for r in 0..s {
-                    let mut e = p[r].add(&ic[r]);
-                    for a in 0..k {
-                        e = e.add(&ud[a][r].mul(&rest[a]));
-                    }
-                    pa[parent][r] = pa[parent][r].add(&e);
-                    for c in 0..s {
-                        ia[parent][r][c] = ia[parent][r][c].add(&art[r][c]);
-                    }
+                w.push(self.name_vec(&format!("W{tag}{}", a + 1), col));
+            }
+            let mut art = i;
+            for r in 0..s {
+                for c in r..s {
+                    let e =
+                        (0..k).fold(art[r][c].clone(), |e, a| e.sub(&w[a][r].mul(&u_cols[a][c])));
+                    art[r][c] = e.clone();
+                    art[c][r] = e;
                 }
             }
-            joint_u[l] = u_cols;
-            joint_dinv[l] = dinv;
-            joint_rest[l] = rest;
+            let art = self.name_sym(&format!("Ia{tag}"), art);
+            let ic = mat_vec(&art, &state[l].bias);
+            let up = &mut state[parent];
+            for r in 0..s {
+                let e = (0..k).fold(p[r].add(&ic[r]), |e, a| e.add(&w[a][r].mul(&rest[a])));
+                up.bias_force[r] = up.bias_force[r].add(&e);
+                for (dst, x) in up.inertia[r].iter_mut().zip(&art[r]) {
+                    *dst = dst.add(x);
+                }
+            }
         }
-        // pass 3: accelerations, root first
+        let st = &mut state[l];
+        st.u = u_cols;
+        st.d_inverse = dinv;
+        st.rest = rest;
+        Ok(())
+    }
+
+    /// Pass 3: the links' accelerations from the ground's, and q̈ of each
+    /// joint: q̈ = D⁻¹·(u − Uᵀ·(A_parent + c)).
+    fn accelerations_outward(&mut self, links: &[Link], state: &[LinkState]) -> Vec<Expr> {
         let ground = self.ground_acceleration();
-        let mut acc_links: Vec<Vec<Expr>> = Vec::with_capacity(nl);
+        let mut acc_links: Vec<Vec<Expr>> = Vec::with_capacity(links.len());
         let mut out = vec![Expr::zero(); self.coordinates.len()];
-        for (l, link) in links.iter().enumerate() {
+        for (l, (link, st)) in links.iter().zip(state).enumerate() {
             let tag = l + 1;
-            let from = match link.parent {
-                Some(p) => acc_links[p].clone(),
-                None => ground.clone(),
-            };
-            let a: Vec<Expr> = from.iter().zip(&bias[l]).map(|(x, y)| x.add(y)).collect();
-            let a = self.name_vec(&format!("Ap{tag}"), a);
+            let from = link.parent.map_or(&ground, |p| &acc_links[p]);
+            let a: Vec<Expr> = from.iter().zip(&st.bias).map(|(x, y)| x.add(y)).collect();
+            let mut a = self.name_vec(&format!("Ap{tag}"), a);
             let k = link.joint.len();
-            let r: Vec<Expr> = (0..k)
-                .map(|j| joint_rest[l][j].sub(&dot(&joint_u[l][j], &a)))
-                .collect();
-            let mut a_full = a;
+            let r: Vec<Expr> = (0..k).map(|j| st.rest[j].sub(&dot(&st.u[j], &a))).collect();
+            let mut qdd = Vec::with_capacity(k);
             for (j, &q) in link.joint.iter().enumerate() {
                 let e = (0..k).fold(Expr::zero(), |acc, b| {
-                    acc.add(&joint_dinv[l][j][b].mul(&r[b]))
+                    acc.add(&st.d_inverse[j][b].mul(&r[b]))
                 });
-                let hint = format!("{}_dd", self.coordinates[q]);
-                let e = self.name(hint, e);
-                for row in 0..s {
-                    a_full[row] = a_full[row].add(&axes[l][j][row].mul(&e));
-                }
-                out[q] = e;
+                let e = self.name(format!("{}_dd", self.coordinates[q]), e);
+                out[q] = e.clone();
+                qdd.push(e);
             }
-            let a_full = self.name_vec(&format!("A{tag}"), a_full);
-            acc_links.push(a_full);
+            for (axis, e) in st.axes.iter().zip(&qdd) {
+                for (row, x) in a.iter_mut().zip(axis) {
+                    *row = row.add(&x.mul(e));
+                }
+            }
+            let a = self.name_vec(&format!("A{tag}"), a);
+            acc_links.push(a);
         }
-        Ok(out)
+        out
     }
 
     /// The ground's spatial acceleration: −g, so that weights need no force.
