@@ -176,6 +176,11 @@ pub struct BlockSolution {
     /// Whether the exact accelerations of Lagrange's equations were put in
     /// for q̈ in the equations.
     pub used_accelerations: bool,
+    /// Whether `values` are in the order they are solved, each written
+    /// through the unknowns before it (a block solved through
+    /// intermediates, see [`solve_in_order`]); else in the block's order,
+    /// each in the scene's names alone.
+    pub in_order: bool,
 }
 
 /// The 1-based number of the source equation that scalar equation `i` of
@@ -212,11 +217,20 @@ pub fn solve_scene(scene: &Scene) -> Result<Vec<BlockSolution>, Diagnostic> {
     let mut out = Vec::with_capacity(scene.systems.len());
     for sys in &scene.systems {
         let sol = solve_block(scene, sys, &known, &mut acc)?;
-        if let Some(tape) = scene.tape.as_ref().filter(|t| !t.is_empty()) {
-            verify_through(tape, sys, &sol, &known)?;
-        }
+        // each value may use the unknowns before it (see `in_order`):
+        // later blocks and the check see them resolved
+        let mut resolved = Vec::with_capacity(sol.values.len());
         for (name, v) in &sol.values {
+            let v = if sol.in_order {
+                v.subs_many(&known).map_err(|m| math(sys.span, m))?
+            } else {
+                v.clone()
+            };
             known.insert(atom::unknown(name), v.clone());
+            resolved.push((name.clone(), v));
+        }
+        if let Some(tape) = scene.tape.as_ref().filter(|t| !t.is_empty()) {
+            verify_through(tape, sys, &resolved, &known)?;
         }
         out.push(sol);
     }
@@ -232,14 +246,10 @@ pub fn solve_scene(scene: &Scene) -> Result<Vec<BlockSolution>, Diagnostic> {
 fn verify_through(
     tape: &crate::expr::tape::Tape,
     sys: &SolveSystem,
-    sol: &BlockSolution,
-    known: &FxHashMap<Var, Expr>,
+    solution: &[(String, Expr)],
+    values: &FxHashMap<Var, Expr>,
 ) -> Result<(), Diagnostic> {
     use crate::expr::atom::Atom;
-    let mut values: FxHashMap<Var, Expr> = known.clone();
-    for (name, v) in &sol.values {
-        values.insert(atom::unknown(name), v.clone());
-    }
     let refuse = || {
         Diagnostic::error(
             sys.span,
@@ -248,7 +258,7 @@ fn verify_through(
         .with_hint("solve it expanded: drop `--keep` and `--structured`")
     };
     let mut rng = crate::rng::SplitMix64::new(0x51_0e5);
-    let roots: Vec<&Expr> = sol.values.iter().map(|(_, v)| v).collect();
+    let roots: Vec<&Expr> = solution.iter().map(|(_, v)| v).collect();
     let used = tape.used_by(roots.iter().copied());
     let (mut probes, mut tries) = (0, 0);
     while probes < 3 {
@@ -271,7 +281,7 @@ fn verify_through(
             continue;
         }
         probes += 1;
-        for (_, v) in &sol.values {
+        for (_, v) in solution {
             if !tape.eval_f64(v, &probe).is_some_and(f64::is_finite) {
                 return Err(refuse());
             }
@@ -279,9 +289,9 @@ fn verify_through(
         for eq in &sys.equations {
             let r = eq
                 .residual
-                .subs_many(&values)
+                .subs_many(values)
                 .map_err(|m| math(eq.span, m))?;
-            let size = scale_of(tape, &eq.residual, &values, &probe);
+            let size = scale_of(tape, &eq.residual, values, &probe);
             match tape.eval_f64(&r, &probe) {
                 Some(x) if x.abs() <= 1e-8 * (1.0 + size) => {}
                 _ => return Err(refuse()),
@@ -416,12 +426,27 @@ fn solve_block(
         checks.push(*i);
     }
     checks.sort_unstable();
-    let values = sys
-        .unknowns
-        .iter()
-        .map(|u| u.name.clone())
-        .zip(sol.values)
-        .collect();
+    let ordered = if scene.tape.as_ref().is_some_and(|t| !t.is_empty())
+        && sol.shape.free.is_empty()
+        && sol.residuals.is_empty()
+    {
+        solve_in_order(&a, &b, &unknowns).map_err(|m| math(sys.span, m))?
+    } else {
+        None
+    };
+    let in_order = ordered.is_some();
+    let values = match ordered {
+        Some(order) => order
+            .into_iter()
+            .map(|(j, v)| (sys.unknowns[j].name.clone(), v))
+            .collect(),
+        None => sys
+            .unknowns
+            .iter()
+            .map(|u| u.name.clone())
+            .zip(sol.values)
+            .collect(),
+    };
     let free = sol
         .shape
         .free
@@ -433,7 +458,102 @@ fn solve_block(
         free,
         checks,
         used_accelerations,
+        in_order,
     })
+}
+
+/// The largest set of equations [`solve_in_order`] looks for among the
+/// unsolved ones before it solves the rest together.
+const MAX_ORDERED_BLOCK: usize = 3;
+
+/// A square nonsingular `a·x = b` solved the way one solves a mechanism
+/// body by body: repeatedly the smallest set of k equations (k ≤
+/// `MAX_ORDERED_BLOCK`) in exactly k unknowns not yet solved, those
+/// solved with the earlier unknowns kept as names (the block lower
+/// triangular form, found greedily). Each value, in solving order, may
+/// use the unknowns before it. `None` when no equation has a single
+/// unknown left (nothing to gain over solving all at once).
+pub fn solve_in_order(
+    a: &[Vec<Expr>],
+    b: &[Expr],
+    unknowns: &[Var],
+) -> Result<Option<Vec<(usize, Expr)>>, MathError> {
+    let (m, n) = (a.len(), unknowns.len());
+    let mut solved: Vec<bool> = vec![false; n];
+    let mut used: Vec<bool> = vec![false; m];
+    let mut out: Vec<(usize, Expr)> = Vec::with_capacity(n);
+    while out.len() < n {
+        let free_eqs: Vec<usize> = (0..m).filter(|&i| !used[i]).collect();
+        let open = |i: usize| -> Vec<usize> {
+            (0..n)
+                .filter(|&j| !solved[j] && !a[i][j].is_zero())
+                .collect()
+        };
+        let mut found: Option<(Vec<usize>, Vec<usize>)> = None;
+        'sizes: for k in 1..=MAX_ORDERED_BLOCK.min(free_eqs.len()) {
+            for eqs in combinations(&free_eqs, k) {
+                let mut cols: Vec<usize> = eqs.iter().flat_map(|&i| open(i)).collect();
+                cols.sort_unstable();
+                cols.dedup();
+                if cols.len() == k {
+                    found = Some((eqs, cols));
+                    break 'sizes;
+                }
+            }
+        }
+        if found.is_none() && out.is_empty() {
+            return Ok(None);
+        }
+        let (eqs, cols) = found.unwrap_or_else(|| {
+            let cols = (0..n).filter(|&j| !solved[j]).collect();
+            (free_eqs, cols)
+        });
+        let sub_a: Vec<Vec<Expr>> = eqs
+            .iter()
+            .map(|&i| cols.iter().map(|&j| a[i][j].clone()).collect())
+            .collect();
+        let sub_b: Vec<Expr> = eqs
+            .iter()
+            .map(|&i| {
+                (0..n).filter(|&j| solved[j]).fold(b[i].clone(), |r, j| {
+                    r.sub(&a[i][j].mul(&Expr::var(unknowns[j])))
+                })
+            })
+            .collect();
+        let symbols: Vec<Expr> = cols.iter().map(|&j| Expr::var(unknowns[j])).collect();
+        let sol = match solve_rect(&sub_a, &sub_b, &symbols) {
+            Ok(s) if s.shape.free.is_empty() && s.residuals.is_empty() => s,
+            Ok(_) | Err(SolveError::Singular { .. }) => return Ok(None),
+            Err(SolveError::Math(e)) => return Err(e),
+        };
+        for (&j, v) in cols.iter().zip(sol.values) {
+            solved[j] = true;
+            out.push((j, v));
+        }
+        for &i in &eqs {
+            used[i] = true;
+        }
+    }
+    Ok(Some(out))
+}
+
+/// The k-element subsets of `items`, in lexicographic order.
+fn combinations(items: &[usize], k: usize) -> Vec<Vec<usize>> {
+    let mut out = Vec::new();
+    let mut pick: Vec<usize> = (0..k).collect();
+    if k == 0 || k > items.len() {
+        return out;
+    }
+    loop {
+        out.push(pick.iter().map(|&p| items[p]).collect());
+        let Some(i) = (0..k).rev().find(|&i| pick[i] < items.len() - k + i) else {
+            return out;
+        };
+        pick[i] += 1;
+        for j in i + 1..k {
+            pick[j] = pick[j - 1] + 1;
+        }
+    }
 }
 
 fn math(span: crate::parse::ast::Span, m: MathError) -> Diagnostic {
