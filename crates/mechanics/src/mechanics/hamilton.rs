@@ -16,8 +16,9 @@ use super::{generalized_force_terms, ConstraintRows, Source};
 use crate::algebra::linear::{self, split_linear, SolveError};
 use crate::diag::Diagnostic;
 use crate::expr::{atom, Expr};
+use crate::num::Q;
 use crate::parse::ast::Role;
-use crate::poly::Var;
+use crate::poly::{Mono, Poly, Var};
 use crate::scene::Scene;
 use rustc_hash::FxHashMap;
 
@@ -91,23 +92,18 @@ impl Hamiltonian {
             }
             SolveError::Math(m) => Diagnostic::global(m.message),
         })?;
-        let to_p: FxHashMap<Var, Expr> =
-            qd.iter().copied().zip(velocities.iter().cloned()).collect();
-        let in_p = |e: &Expr| {
-            e.subs_many(&to_p)
-                .map_err(|m| Diagnostic::global(m.message))
-        };
-        let mut h = in_p(&l)?.neg();
-        for (pk, vk) in p.iter().zip(&velocities) {
-            h = h.add(&pk.mul(vk));
-        }
+        let in_p = AtVelocities::new(&qd, &velocities);
+        let h = in_p.legendre(&l, &rhs)?;
         let other = other_forces(scene, &qd, &qdd)?;
         let mut other_forces = Vec::with_capacity(names.len());
         let mut momentum_rates = Vec::with_capacity(names.len());
         for (k, &qk) in q.iter().enumerate() {
-            let extra = in_p(&other[k])?;
-            momentum_rates.push(h.diff(qk).neg().add(&extra));
-            other_forces.push(extra);
+            // ṗ_k = −∂H/∂q_k + Q̃_k = ∂L/∂q_k + Q̃_k at q̇(q, p), as one
+            // substitution (differentiating H, or adding two substituted
+            // terms, combines denominators the canonical form cannot see
+            // are equal)
+            momentum_rates.push(in_p.apply(&l.diff(qk).add(&other[k]))?);
+            other_forces.push(in_p.apply(&other[k])?);
         }
         debug_assert!(p.iter().zip(&velocities).all(|(pk, v)| match pk.as_var() {
             Some(var) => h.diff(var).equals(v),
@@ -123,6 +119,143 @@ impl Hamiltonian {
             other_forces,
         })
     }
+}
+
+/// The substitution q̇ → q̇(q, p, t), every velocity over one denominator:
+/// q̇_k = N_k / D with N_k and D polynomials.
+///
+/// The canonical form reduces sin² + cos² = 1 and then takes gcds in the
+/// free polynomial ring, where the reduced D² is no longer a multiple of
+/// D: adding N/D to N'/D² term by term multiplies the denominators (a 1 KB
+/// result becomes megabytes). So an expression polynomial in q̇ is
+/// substituted over the single denominator D^degree, each term's numerator
+/// N^e·D^(degree − |e|) a polynomial, and divided once.
+struct AtVelocities<'a> {
+    qd: &'a [Var],
+    /// q̇ in q, p and t, canonical.
+    velocities: &'a [Expr],
+    /// `Some((N, D))` when the velocities have a common polynomial
+    /// denominator.
+    common: Option<(Vec<Expr>, Expr)>,
+}
+
+impl<'a> AtVelocities<'a> {
+    fn new(qd: &'a [Var], velocities: &'a [Expr]) -> AtVelocities<'a> {
+        AtVelocities {
+            qd,
+            velocities,
+            common: common_denominator(velocities),
+        }
+    }
+
+    /// H = Σ p_k·q̇_k − L. With L = ½·q̇ᵀ·M·q̇ + bᵀ·q̇ + L₀ and
+    /// p − b = M·q̇, H = ½·Σ (p_k − b_k)·q̇_k − L₀: the kinetic part over
+    /// the velocities' own denominator (q̇ substituted into L squares it).
+    fn legendre(&self, l: &Expr, p_minus_b: &[Expr]) -> Result<Expr, Diagnostic> {
+        let math = |m: crate::expr::MathError| Diagnostic::global(m.message);
+        let at_rest: FxHashMap<Var, Expr> = self.qd.iter().map(|&v| (v, Expr::zero())).collect();
+        let l0 = l.subs_many(&at_rest).map_err(math)?;
+        let twice_kinetic = match &self.common {
+            Some((numerators, den)) => dot(p_minus_b, numerators).div(den).map_err(math)?,
+            None => dot(p_minus_b, self.velocities),
+        };
+        Ok(twice_kinetic.div(&Expr::int(2)).map_err(math)?.sub(&l0))
+    }
+
+    /// `e` (in q, q̇ and t) at q̇ = q̇(q, p, t).
+    fn apply(&self, e: &Expr) -> Result<Expr, Diagnostic> {
+        let math = |m: crate::expr::MathError| Diagnostic::global(m.message);
+        match &self.common {
+            Some((numerators, den)) if self.polynomial_in_velocities(e) => {
+                self.over_common(e, numerators, den).map_err(math)
+            }
+            _ => {
+                let to_p: FxHashMap<Var, Expr> = self
+                    .qd
+                    .iter()
+                    .copied()
+                    .zip(self.velocities.iter().cloned())
+                    .collect();
+                e.subs_many(&to_p).map_err(math)
+            }
+        }
+    }
+
+    /// Whether `e` is a polynomial in the velocities: its denominator and
+    /// its atoms other than q̇ (sin(q̇), …) free of them.
+    fn polynomial_in_velocities(&self, e: &Expr) -> bool {
+        !moves(&Expr::from_poly(e.den().clone()), self.qd)
+            && e.vars()
+                .into_iter()
+                .all(|v| self.qd.contains(&v) || !moves(&Expr::var(v), self.qd))
+    }
+
+    /// `e` = Σ c_e(q, t)·q̇^e over F(q, t) as Σ c_e·N^e·D^(d − |e|) over
+    /// F·D^d, d the degree in q̇.
+    fn over_common(
+        &self,
+        e: &Expr,
+        numerators: &[Expr],
+        den: &Expr,
+    ) -> Result<Expr, crate::expr::MathError> {
+        let mut by_powers: std::collections::BTreeMap<Vec<u32>, Vec<(Mono, Q)>> =
+            Default::default();
+        for (m, c) in e.num().terms() {
+            let mut powers = vec![0; self.qd.len()];
+            let mut rest = Vec::new();
+            for &(v, k) in m.pairs() {
+                match self.qd.iter().position(|&w| w == v) {
+                    Some(i) => powers[i] = k,
+                    None => rest.push((v, k)),
+                }
+            }
+            by_powers
+                .entry(powers)
+                .or_default()
+                .push((Mono::from_pairs(rest), c.clone()));
+        }
+        let degree = by_powers
+            .keys()
+            .map(|e| e.iter().sum::<u32>())
+            .max()
+            .unwrap_or(0);
+        let mut num = Expr::zero();
+        for (powers, terms) in by_powers {
+            let mut term = Expr::from_poly(Poly::from_terms(terms));
+            for (n, &k) in numerators.iter().zip(&powers) {
+                if k > 0 {
+                    term = term.mul(&n.powi(i64::from(k))?);
+                }
+            }
+            let missing = degree - powers.iter().sum::<u32>();
+            num = num.add(&term.mul(&den.powi(i64::from(missing))?));
+        }
+        let whole = Expr::from_poly(e.den().clone()).mul(&den.powi(i64::from(degree))?);
+        num.div(&whole)
+    }
+}
+
+/// N and D with velocities[k] = N_k / D, D the lcm of their denominators
+/// in the polynomial ring; `None` if the division leaves a denominator.
+fn common_denominator(velocities: &[Expr]) -> Option<(Vec<Expr>, Expr)> {
+    let mut den = Expr::one();
+    for v in velocities {
+        let dk = Expr::from_poly(v.den().clone());
+        let ratio = den.div(&dk).ok()?;
+        den = den.mul(&Expr::from_poly(ratio.den().clone()));
+    }
+    let numerators: Vec<Expr> = velocities.iter().map(|v| v.mul(&den)).collect();
+    numerators
+        .iter()
+        .all(Expr::is_poly)
+        .then_some((numerators, den))
+}
+
+/// Σ a_k·b_k.
+fn dot(a: &[Expr], b: &[Expr]) -> Expr {
+    a.iter()
+        .zip(b)
+        .fold(Expr::zero(), |s, (x, y)| s.add(&x.mul(y)))
 }
 
 /// Does `e` depend on a velocity?
