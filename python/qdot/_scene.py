@@ -21,6 +21,13 @@ Structure = Literal["auto", "expanded", "structured"]
 Values = Union[Mapping[str, float], str, None]
 
 
+def _names(names: Sequence[str]) -> List[str]:
+    """``keep=``'s names as a list (a single name may be given as a string)."""
+    if isinstance(names, str):
+        return [names]
+    return [str(n) for n in names]
+
+
 def _pairs(values: Values, kind: str) -> List[Tuple[str, float]]:
     if values is None:
         return []
@@ -68,15 +75,17 @@ class Scene:
 
     def _run(self, command: str, fmt: str, set: Values = None, at: Any = None,
              init: Any = None, steps: bool = False, standalone: bool = False,
-             title: Optional[str] = None, structure: Structure = "auto") -> str:
+             title: Optional[str] = None, structure: Structure = "auto",
+             keep: Sequence[str] = ()) -> str:
+        keep = _names(keep)
         key = (command, fmt, repr(_pairs(set, "set")), _exact(at), _exact(init), steps, standalone,
-               title, structure)
+               title, structure, tuple(keep))
         if key not in self._cache:
             out, warnings = _native.run_command(
                 command, self.source, fmt, file=self.name, set=_pairs(set, "set"),
                 at=_exact(at), init=_exact(init), steps=steps, standalone=standalone,
                 title=title if title is not None else os.path.splitext(os.path.basename(self.name))[0],
-                max_terms=self.max_terms, structure=structure,
+                max_terms=self.max_terms, structure=structure, keep=keep,
             )
             if warnings:
                 import warnings as w
@@ -98,10 +107,11 @@ class Scene:
         latex = self._latex_of(list(texts), names)
         return [Expr(t, l, self, intermediates) for t, l in zip(texts, latex)]
 
-    def _derived(self, command: str, structure: Structure) -> Tuple[Dict[str, Any], Intermediates]:
+    def _derived(self, command: str, structure: Structure,
+                 keep: Sequence[str] = ()) -> Tuple[Dict[str, Any], Intermediates]:
         """The JSON of ``derive`` or ``solve`` and the intermediates it is
         written through."""
-        data = self._json(command, structure=structure)
+        data = self._json(command, structure=structure, keep=keep)
         return data, Intermediates.of_json(data, self)
 
     # -- the derivation ----------------------------------------------------
@@ -111,33 +121,33 @@ class Scene:
         """The generalized coordinates, in the scene's order."""
         return list(self._json("derive")["coordinates"])
 
-    def equations(self, structure: Structure = "auto") -> Equations:
+    def equations(self, structure: Structure = "auto", keep: Sequence[str] = ()) -> Equations:
         """Lagrange's equations, d/dt ∂E/∂q̇ₖ − ∂E/∂qₖ = Qₖ, collected in q̈
         (``structure``: see :meth:`derive`)."""
-        data, inter = self._derived("derive", structure)
+        data, inter = self._derived("derive", structure, keep)
         eqs = data["equations"]
         lhs = self._exprs([e["lhs"] for e in eqs], inter)
         rhs = self._exprs([e["rhs"] for e in eqs], inter)
         return Equations([Equation(e["coordinate"], l, r) for e, l, r in zip(eqs, lhs, rhs)])
 
-    def mass_matrix(self, structure: Structure = "auto") -> Matrix:
+    def mass_matrix(self, structure: Structure = "auto", keep: Sequence[str] = ()) -> Matrix:
         """M of M(q, t)·q̈ = f(q, q̇, t) (``structure``: see :meth:`derive`)."""
-        data, inter = self._derived("derive", structure)
+        data, inter = self._derived("derive", structure, keep)
         rows = data["mass_matrix"]
         n = len(rows)
         flat = self._exprs([x for r in rows for x in r], inter)
         return Matrix([flat[i * n : (i + 1) * n] for i in range(n)], "M")
 
-    def forcing(self, structure: Structure = "auto") -> Matrix:
+    def forcing(self, structure: Structure = "auto", keep: Sequence[str] = ()) -> Matrix:
         """f of M(q, t)·q̈ = f(q, q̇, t), a column (``structure``: see :meth:`derive`)."""
-        data, inter = self._derived("derive", structure)
+        data, inter = self._derived("derive", structure, keep)
         return Matrix([[x] for x in self._exprs(data["forcing"], inter)], "f")
 
-    def accelerations(self, structure: Structure = "auto") -> ExprMap:
+    def accelerations(self, structure: Structure = "auto", keep: Sequence[str] = ()) -> ExprMap:
         """The exact accelerations q̈ = M⁻¹f, in lowest terms (``structure``:
         see :meth:`derive`; through intermediates, the solution of M·q̈ = f
         by elimination, written in them)."""
-        data, inter = self._derived("solve", structure)
+        data, inter = self._derived("solve", structure, keep)
         acc = data["accelerations"]
         names = list(acc)
         lhs = self._latex_of([f"{q}''" for q in names])
@@ -152,18 +162,20 @@ class Scene:
         return ExprMap(dict(zip(names, self._exprs([q[n] for n in names]))),
                        dict(zip(names, lhs)), "Q_{}")
 
-    def derive(self, structure: Structure = "auto") -> Result:
+    def derive(self, structure: Structure = "auto", keep: Sequence[str] = ()) -> Result:
         """``qdot derive``: the equations, M and f. ``structure`` is how they
         are written: ``"auto"`` (through named intermediates when expanded
         they would be large: a chain of bodies; expanded otherwise),
         ``"expanded"`` or ``"structured"`` (through intermediates wherever
-        the scene allows). ``result.intermediates`` are the names."""
-        return Result("derive", self, {"structure": structure})
+        the scene allows). ``keep`` names definitions of the scene to keep
+        as intermediates (the CLI's ``--keep``; the results are then
+        structured). ``result.intermediates`` are the names."""
+        return Result("derive", self, {"structure": structure, "keep": _names(keep)})
 
-    def solve(self, structure: Structure = "auto") -> Result:
+    def solve(self, structure: Structure = "auto", keep: Sequence[str] = ()) -> Result:
         """``qdot solve``: the accelerations and the scene's ``solve`` blocks
-        (``structure``: see :meth:`derive`)."""
-        return Result("solve", self, {"structure": structure})
+        (``structure`` and ``keep``: see :meth:`derive`)."""
+        return Result("solve", self, {"structure": structure, "keep": _names(keep)})
 
     def equilibria(self, set: Values = None) -> Result:
         """The positions of equilibrium at rest and their stability

@@ -79,7 +79,7 @@ fn structure_by_name(name: &str) -> PyResult<app::Structure> {
 
 /// Run a command of the CLI on a scene: (output, warnings rendered).
 #[pyfunction]
-#[pyo3(signature = (command, source, format, file="<scene>", set=Vec::new(), at=None, init=None, steps=false, standalone=false, title=String::new(), max_terms=0, structure="auto"))]
+#[pyo3(signature = (command, source, format, file="<scene>", set=Vec::new(), at=None, init=None, steps=false, standalone=false, title=String::new(), max_terms=0, structure="auto", keep=Vec::new()))]
 #[allow(clippy::too_many_arguments)]
 fn run_command(
     py: Python<'_>,
@@ -95,6 +95,7 @@ fn run_command(
     title: String,
     max_terms: usize,
     structure: &str,
+    keep: Vec<String>,
 ) -> PyResult<(String, Vec<String>)> {
     let cmd = command_by_name(command)?;
     let fmt = match Format::from_name(format) {
@@ -114,7 +115,7 @@ fn run_command(
         title,
         max_terms,
         structure: structure_by_name(structure)?,
-        keep: Vec::new(),
+        keep,
     };
     let result = py.detach(|| output::run_with(cmd, source, fmt, &opts));
     match result {

@@ -147,3 +147,31 @@ def test_unknown_structure_is_refused():
     scene = qdot.Scene.load(ROOT / "examples" / "pendulum.qd")
     with pytest.raises(ValueError, match=r"unknown structure `kept`: auto, expanded or structured"):
         scene.solve(structure="kept")  # type: ignore[arg-type]
+
+
+def test_slider_crank_keeps_alpha_as_the_cli_keep_does():
+    scene = qdot.Scene.load(ROOT / "examples" / "slider_crank.qd")
+    expanded = scene.solve()
+    assert "intermediates" not in expanded.data
+    kept = scene.solve(keep=["alpha"])
+    assert kept.intermediates.names == ["alpha", "alpha_dot", "alpha_ddot"]
+    assert kept.intermediates["alpha"].text == "asin(R*sin(omega*t)/L)"
+    ax = kept.data["solutions"]["Ax"]
+    assert ax == ("-L*(m + 2*mB)*alpha_dot^2*cos(alpha)/2 - L*(m + 2*mB)*alpha_ddot*sin(alpha)/2"
+                  " - omega^2*R*(m + mB)*cos(omega*t) + F")
+    # a single name reads as a list of one; the JSON is the CLI's `--keep alpha`
+    assert scene.solve(keep="alpha").data == kept.data
+    cli, _ = qdot._native.run_command("solve", scene.source, "json", keep=["alpha"])
+    assert json.loads(cli) == kept.data
+    # every reaction, its intermediates substituted, is the expanded one (at a state)
+    values = {sp.Symbol(k): v for k, v in
+              {"R": 0.3, "L": 1.1, "m": 2.0, "J": 0.2, "mB": 0.7, "F": 1.3, "omega": 1.7,
+               "g": 9.81, "t": 0.4}.items()}
+    for name, text in kept.data["solutions"].items():
+        got = float(kept.expr(text).to_sympy().xreplace(values).evalf())
+        want = float(expanded.expr(expanded.data["solutions"][name]).to_sympy().xreplace(values).evalf())
+        assert got == pytest.approx(want, rel=1e-12), name
+    assert 4 * len(ax) < len(expanded.data["solutions"]["Ax"])
+    # a name that is no definition is refused as the CLI refuses it
+    with pytest.raises(qdot.QdotError, match="nope"):
+        scene.solve(keep=["nope"])

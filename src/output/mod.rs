@@ -127,7 +127,10 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
             Ok(match fmt {
                 Format::Text => text::hamilton_text(h),
                 Format::Json => scene_json(r.scene(), HamiltonJson::new(h))?,
-                Format::Latex => latex::write(r.scene(), |w| w.hamilton(h)),
+                Format::Latex => latex::write(r.scene(), |w| {
+                    w.intermediates(h.intermediates.as_deref(), h.exprs());
+                    w.hamilton(h)
+                }),
             })
         }),
         AnyReport::Integrals(r) => in_context(r, |r| {

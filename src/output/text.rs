@@ -390,7 +390,8 @@ pub fn hamilton_text(h: &crate::mechanics::Hamiltonian) -> String {
     let pd = |k: usize| format!("ṗ{}", p[k].strip_prefix('p').unwrap_or(&p[k]));
     let wp = p.iter().map(|s| display_width(s)).max().unwrap_or(1);
     let wq = qd.iter().map(|s| display_width(s)).max().unwrap_or(1);
-    let mut out = String::from("Momenta  p = ∂L/∂q̇\n");
+    let mut out = intermediates_text(h.intermediates.as_deref(), h.exprs());
+    out.push_str("Momenta  p = ∂L/∂q̇\n");
     for (k, m) in h.momenta.iter().enumerate() {
         out.push_str(&format!("  {} = {}\n", padded(&p[k], wp), as_unicode(m)));
     }

@@ -831,6 +831,11 @@ fn forced(md: &Modes, sf: Option<&StandardForm>) -> Option<ForcedJson> {
 /// `qdot hamilton`.
 #[derive(Serialize)]
 pub struct HamiltonJson {
+    /// The named intermediates the expressions below are written through
+    /// (the velocities `v_q`), in evaluation order; absent when the
+    /// results are expanded.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub intermediates: Option<Vec<IntermediateJson>>,
     /// The coordinates.
     pub coordinates: Vec<String>,
     /// coordinate → p in q, q̇.
@@ -862,6 +867,7 @@ impl HamiltonJson {
     /// The JSON of `hamilton` for `h`.
     pub fn new(h: &Hamiltonian) -> HamiltonJson {
         HamiltonJson {
+            intermediates: intermediates_json(h.intermediates.as_deref(), h.exprs()),
             coordinates: h.coordinates.clone(),
             momenta: named(&h.coordinates, &h.momenta),
             velocities: named(&h.coordinates, &h.velocities),
