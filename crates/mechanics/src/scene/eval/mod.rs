@@ -870,6 +870,11 @@ impl<'a> SyntaxEvaluator<'a> {
                 .with_hint(format!("its derivatives are `{0}'`, `{0}''`; a function of anything but t is not supported", f.name))),
             };
         }
+        Err(self.unknown_function(f))
+    }
+
+    /// The error of calling `f`, a name that is no function.
+    fn unknown_function(&self, f: &ast::Ident) -> Diagnostic {
         let hint = if self.names.contains_key(&f.name) {
             format!(
                 "`{}` is not a function; write `{}*(…)` to multiply",
@@ -879,13 +884,11 @@ impl<'a> SyntaxEvaluator<'a> {
             let list: Vec<&str> = functions::names().collect();
             format!("the functions are {}", list.join(", "))
         };
-        Err(
-            Diagnostic::error(f.span, format!("unknown function `{}`", f.name))
-                .with_hint(hint)
-                .with_kind(crate::diag::ErrorKind::UnknownName {
-                    name: f.name.clone(),
-                }),
-        )
+        Diagnostic::error(f.span, format!("unknown function `{}`", f.name))
+            .with_hint(hint)
+            .with_kind(crate::diag::ErrorKind::UnknownName {
+                name: f.name.clone(),
+            })
     }
 
     /// A call of the built-in `b` when the scene declares a given function

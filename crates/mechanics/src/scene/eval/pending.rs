@@ -60,6 +60,31 @@ pub(crate) fn names_in<'e>(
     out
 }
 
+/// The names called as functions in `e` that are no built-in function
+/// (`s(t)` of a given function, or a name that is no function).
+fn named_callees(e: &ast::Expr) -> Vec<&ast::Ident> {
+    let mut out = Vec::new();
+    let mut stack = vec![e];
+    while let Some(e) = stack.pop() {
+        match &e.kind {
+            ExprKind::Neg(x) | ExprKind::Prime(x, _) => stack.push(x),
+            ExprKind::Bin(_, a, b) | ExprKind::Index(a, b) | ExprKind::Assign(a, b) => {
+                stack.push(b);
+                stack.push(a);
+            }
+            ExprKind::Call(callee, args) => {
+                if let ast::Callee::Named(f) = callee {
+                    out.push(f);
+                }
+                stack.extend(args.iter().rev());
+            }
+            ExprKind::Vector(args) => stack.extend(args.iter().rev()),
+            ExprKind::Num(_) | ExprKind::Degrees(_) | ExprKind::Name(_) => {}
+        }
+    }
+    out
+}
+
 impl<'a> SyntaxEvaluator<'a> {
     /// An evaluator whose definitions are `entries`, in the order of the
     /// names' [`Binding::Def`] indices: values, or bodies evaluated when a
@@ -112,10 +137,16 @@ impl<'a> SyntaxEvaluator<'a> {
         order: &mut Vec<usize>,
     ) -> Result<(), Diagnostic> {
         if let Some((_, Some(body))) = self.defs.get(i).copied() {
-            for (n, span) in names_in(self.names, body) {
-                if let Some(d) = self.not_a_value(n, span) {
-                    return Err(d);
-                }
+            let names = names_in(self.names, body).into_iter();
+            let names = names.filter_map(|(n, span)| self.not_a_value(n, span));
+            let calls = named_callees(body).into_iter().filter_map(|f| {
+                let given = matches!(self.names.get(&f.name), Some((Binding::Given, _)));
+                (!given).then(|| self.unknown_function(f))
+            });
+            // the first in the text, as evaluation (left to right) meets it
+            let first = names.chain(calls).min_by_key(|d| d.span.map(|s| s.start));
+            if let Some(d) = first {
+                return Err(d);
             }
         }
         walked.resize(self.state.len(), false);
@@ -211,6 +242,8 @@ impl SyntaxEvaluator<'_> {
                 _ => 1,
             },
             ExprKind::Neg(x) | ExprKind::Index(x, _) => size(x),
+            // a derivative of a coordinate is one variable
+            ExprKind::Prime(x, _) if self.is_variable(x) => 1,
             ExprKind::Prime(x, k) => size(x).saturating_mul(DERIVATIVE_GROWTH.saturating_pow(*k)),
             ExprKind::Bin(op, a, b) => {
                 let (x, y) = (size(a), size(b));
@@ -239,6 +272,19 @@ impl SyntaxEvaluator<'_> {
                 .iter()
                 .fold(0u64, |acc, a| acc.saturating_add(size(a))),
         }
+    }
+}
+
+impl SyntaxEvaluator<'_> {
+    /// Whether `e` is the name of a coordinate, a given function or t.
+    fn is_variable(&self, e: &ast::Expr) -> bool {
+        let ExprKind::Name(n) = &e.kind else {
+            return false;
+        };
+        matches!(
+            self.names.get(n.as_str()),
+            Some((Binding::Coord | Binding::Given | Binding::Time, _))
+        )
     }
 }
 

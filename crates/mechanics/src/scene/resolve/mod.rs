@@ -305,25 +305,7 @@ pub(super) fn scene_from_statements(
     if structured {
         keep_structure(&mut r.ev, &decl, keep)?;
     }
-    // what the statements use is evaluated; the rest is checked, and
-    // evaluated after the statements if it is small (`super::lazy`)
-    let roles = (decl.definitions.iter().enumerate()).filter_map(|(i, d)| d.2.map(|_| i));
-    let roots = roles.chain(decl.frames.iter().copied());
-    let used = super::lazy::used_definitions(&r.ev, &decl.names, stmts, roots);
-    let (mut walked, mut unused) = (Vec::new(), Vec::new());
-    let mut values: Vec<Option<Value>> = Vec::with_capacity(decl.definitions.len());
-    for (i, &(name, body, role)) in decl.definitions.iter().enumerate() {
-        if !used[i] {
-            r.ev.check_unevaluated(i, &mut walked, &mut unused)?;
-            values.push(None);
-            continue;
-        }
-        let value = r.ev.definition(i)?;
-        if let Some(role) = role {
-            role_value_allowed(role, name, body, &value)?;
-        }
-        values.push(Some(value));
-    }
+    let (values, unused) = evaluate_used(&mut r, &decl, stmts)?;
     for &i in &decl.frames {
         if let Some(v) = &values[i] {
             bodies::frame_value(decl.definitions[i].1, v)?;
@@ -418,6 +400,35 @@ pub(super) fn scene_from_statements(
         latex_names,
         tape,
     })
+}
+
+/// The definitions the statements use, evaluated in source order (a
+/// role's value checked), `None` for the others; and the others, each
+/// checked without evaluating it (names, cycles) and listed after those
+/// it uses.
+fn evaluate_used(
+    r: &mut Resolver,
+    decl: &Declarations,
+    stmts: &[Stmt],
+) -> Result<(Vec<Option<Value>>, Vec<usize>), Diagnostic> {
+    let roles = (decl.definitions.iter().enumerate()).filter_map(|(i, d)| d.2.map(|_| i));
+    let roots = roles.chain(decl.frames.iter().copied());
+    let used = super::lazy::used_definitions(&r.ev, &decl.names, stmts, roots);
+    let (mut walked, mut unused) = (Vec::new(), Vec::new());
+    let mut values: Vec<Option<Value>> = Vec::with_capacity(decl.definitions.len());
+    for (i, &(name, body, role)) in decl.definitions.iter().enumerate() {
+        if !used[i] {
+            r.ev.check_unevaluated(i, &mut walked, &mut unused)?;
+            values.push(None);
+            continue;
+        }
+        let value = r.ev.definition(i)?;
+        if let Some(role) = role {
+            role_value_allowed(role, name, body, &value)?;
+        }
+        values.push(Some(value));
+    }
+    Ok((values, unused))
 }
 
 /// The definitions with their values, in source order: those the
