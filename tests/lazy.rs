@@ -96,6 +96,19 @@ fn an_unused_division_by_zero_is_a_warning_with_its_position() {
 }
 
 #[test]
+fn an_error_is_reported_once_at_the_definition_it_is_in() {
+    let src = format!("{OSCILLATOR}z2 = z + 1\nz = m/(k - k)\nz3 = 2*z2\n");
+    let s = Scene::parse(&src).unwrap();
+    let spans: Vec<String> = s.warnings.iter().map(|w| format!("{:?}", w.span)).collect();
+    assert_eq!(s.warnings.len(), 1, "{spans:?}");
+    assert!(s.warnings[0]
+        .message
+        .ends_with("(in `z`, which nothing in the scene uses)"));
+    let deferred: Vec<&str> = s.deferred.iter().map(|d| d.name.name.as_str()).collect();
+    assert_eq!(deferred, ["z2", "z", "z3"]);
+}
+
+#[test]
 fn an_unused_vector_plus_number_is_a_warning() {
     let src = format!("{OSCILLATOR}v = [1, 2] + a\n");
     assert_eq!(

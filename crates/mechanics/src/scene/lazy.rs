@@ -13,16 +13,10 @@ use super::eval::{names_in, Entry, SyntaxEvaluator};
 use super::{momentum_name, Binding, Scene, Value};
 use crate::diag::{Diagnostic, Severity};
 use crate::parse::ast::{self, Span, Stmt};
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 use std::sync::OnceLock;
 
-/// The largest estimated size (terms) of an unused definition that is
-/// evaluated to check it; a larger one waits until something asks.
-const CHEAP_SIZE: u64 = 256;
-
-/// The work budget (terms) of evaluating one unused definition: past it
-/// the definition is left unevaluated, without a warning.
-const CHECK_BUDGET: usize = 4096;
+use crate::limits::{LAZY_CHECK_BUDGET as CHECK_BUDGET, LAZY_CHECK_SIZE as CHEAP_SIZE};
 
 /// A definition that nothing in the scene uses and that was too large to
 /// evaluate when the scene was read (or whose evaluation fails, which
@@ -114,10 +108,14 @@ pub(super) fn check_unused(
     let mut sizes: FxHashMap<usize, u64> = FxHashMap::default();
     // a budget already smaller than the check's stays in force
     let budget = crate::budget::limit().min(CHECK_BUDGET);
+    // those left unevaluated: what uses one is left too (its error, if
+    // any, is reported once, at the definition it is in)
+    let mut left: FxHashSet<usize> = FxHashSet::default();
     for &i in order {
         let size = ev.estimated_size(i, &sizes);
         sizes.insert(i, size);
-        if size > CHEAP_SIZE {
+        if size > CHEAP_SIZE || ev.uses(i).any(|k| left.contains(&k)) {
+            left.insert(i);
             continue;
         }
         match crate::budget::within(budget, || ev.definition(i)) {
@@ -126,9 +124,13 @@ pub(super) fn check_unused(
             }
             Ok(Err(d)) => {
                 ev.abandon();
+                left.insert(i);
                 warnings.push(unused_warning(names[i], d));
             }
-            Err(_) => ev.abandon(),
+            Err(_) => {
+                ev.abandon();
+                left.insert(i);
+            }
         }
     }
     (values, warnings)

@@ -139,6 +139,7 @@ impl<'a> SyntaxEvaluator<'a> {
         if let Some((_, Some(body))) = self.defs.get(i).copied() {
             let names = names_in(self.names, body).into_iter();
             let names = names.filter_map(|(n, span)| self.not_a_value(n, span));
+            // (most bodies call nothing but built-in functions)
             let calls = named_callees(body).into_iter().filter_map(|f| {
                 let given = matches!(self.names.get(&f.name), Some((Binding::Given, _)));
                 (!given).then(|| self.unknown_function(f))
@@ -215,6 +216,11 @@ impl SyntaxEvaluator<'_> {
             stack.extend(self.dependencies(i).into_iter().map(|(k, _)| k));
         }
         reached
+    }
+
+    /// The definitions definition `i`'s body names.
+    pub fn uses(&self, i: usize) -> impl Iterator<Item = usize> {
+        self.dependencies(i).into_iter().map(|(k, _)| k)
     }
 
     /// A rough size (terms) of definition `i`'s value, read from its body
