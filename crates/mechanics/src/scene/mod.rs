@@ -1,10 +1,11 @@
 //! Scenes: the parsed statements resolved into exact expressions.
 //!
 //! [`Scene::parse`] runs the parser, checks the declarations (no name
-//! declared twice, `t` and `pi` reserved), evaluates every definition lazily
-//! in dependency order (forward references allowed, cycles reported with
-//! the whole cycle), and collects the role statements, loads, torques and
-//! `solve` blocks. Values are scalars or vectors ([`Value`]). Every error is
+//! declared twice, `t` and `pi` reserved), evaluates the definitions the
+//! statements use in dependency order (forward references allowed, cycles
+//! reported with the whole cycle; the others are checked and evaluated when
+//! small or asked for, see `lazy`), and collects the role statements,
+//! loads, torques and `solve` blocks. Values are scalars or vectors ([`Value`]). Every error is
 //! a [`Diagnostic`] pointing into the source.
 
 pub mod dimension;
@@ -216,9 +217,10 @@ pub struct Scene {
     /// order: those the scene's statements use, and unused ones small
     /// enough to check.
     pub definitions: Vec<Definition>,
-    /// The definitions nothing uses, left unevaluated (too large to check
-    /// when the scene was read), in source order: [`Scene::value`]
-    /// evaluates one when asked.
+    /// The definitions nothing uses, left unevaluated (too large to
+    /// evaluate when the scene was read, or failing, which a warning
+    /// reports), in source order: [`Scene::value`] evaluates one when
+    /// asked.
     pub deferred: Vec<DeferredDefinition>,
     /// The `force q: Q` statements, in source order.
     pub forces: Vec<Force>,

@@ -6,7 +6,6 @@
 
 use super::{cycle_message, frames, PathStep, State, SyntaxEvaluator};
 use crate::diag::Diagnostic;
-use crate::num::Q;
 use crate::parse::ast::{self, ExprKind, Span};
 use crate::parse::functions::Builtin;
 use crate::scene::{Binding, Value};
@@ -136,22 +135,35 @@ impl<'a> SyntaxEvaluator<'a> {
         walked: &mut Vec<bool>,
         order: &mut Vec<usize>,
     ) -> Result<(), Diagnostic> {
-        if let Some((_, Some(body))) = self.defs.get(i).copied() {
-            let names = names_in(self.names, body).into_iter();
-            let names = names.filter_map(|(n, span)| self.not_a_value(n, span));
-            // (most bodies call nothing but built-in functions)
-            let calls = named_callees(body).into_iter().filter_map(|f| {
-                let given = matches!(self.names.get(&f.name), Some((Binding::Given, _)));
-                (!given).then(|| self.unknown_function(f))
-            });
-            // the first in the text, as evaluation (left to right) meets it
-            let first = names.chain(calls).min_by_key(|d| d.span.map(|s| s.start));
-            if let Some(d) = first {
-                return Err(d);
-            }
-        }
         walked.resize(self.state.len(), false);
-        self.acyclic_from(i, walked, order)
+        let Some((_, Some(body))) = self.defs.get(i).copied() else {
+            return Ok(());
+        };
+        let names = names_in(self.names, body);
+        let bad = names
+            .iter()
+            .filter_map(|&(n, span)| self.not_a_value(n, span));
+        let calls = named_callees(body).into_iter().filter_map(|f| {
+            let given = matches!(self.names.get(&f.name), Some((Binding::Given, _)));
+            (!given).then(|| self.unknown_function(f))
+        });
+        // the first in the text, as evaluation (left to right) meets it
+        let first = bad.chain(calls).min_by_key(|d| d.span.map(|s| s.start));
+        if let Some(d) = first {
+            return Err(d);
+        }
+        let uses_definitions = names
+            .iter()
+            .any(|(n, _)| matches!(self.names.get(*n), Some((Binding::Def(_), _))));
+        if uses_definitions {
+            return self.acyclic_from(i, walked, order);
+        }
+        // nothing to walk: the common case of a body of parameters and
+        // coordinates
+        if !std::mem::replace(&mut walked[i], true) {
+            order.push(i);
+        }
+        Ok(())
     }
 
     /// [`SyntaxEvaluator::evaluate_dependencies`]'s walk without the
@@ -259,13 +271,11 @@ impl SyntaxEvaluator<'_> {
                     ast::BinOp::Pow => match &b.kind {
                         ExprKind::Num(r) => {
                             // integers and halves (a root counts as a power)
-                            let twice = &Q::from_big(r.clone()) * &Q::from_i64(2);
-                            match twice.as_i64() {
-                                Some(n) => {
-                                    let n = u32::try_from(n.unsigned_abs().div_ceil(2));
-                                    x.saturating_pow(n.unwrap_or(u32::MAX))
-                                }
-                                None => u64::MAX,
+                            let n = u32::try_from(r.numer().magnitude()).ok();
+                            match (n, u32::try_from(r.denom().magnitude()).ok()) {
+                                (Some(n), Some(1)) => x.saturating_pow(n),
+                                (Some(n), Some(2)) => x.saturating_pow(n.div_ceil(2)),
+                                _ => u64::MAX,
                             }
                         }
                         _ => u64::MAX,
