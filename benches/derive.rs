@@ -21,6 +21,10 @@
 //!   compact form (the search of `qdot::expr::compact`; target: the double
 //!   pendulum under 10 ms) — beside SymPy's `simplify` on the same
 //!   expressions (`scripts/compact_panel.py time`).
+//! * `lazy/{solve,derive}/<n>`: `qdot solve` and `qdot derive` (parse,
+//!   derive, print) of the 1-dof oscillator with n unused definitions
+//!   `u_i = (a+b+x)^30`, which are checked but not evaluated (issue 35);
+//!   `lazy/parse/<n>`: reading that text alone, the floor of the others.
 
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
@@ -206,5 +210,36 @@ fn compact(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, seeds, equilibria, modes, npendulum, frames, compact);
+/// The oscillator with `n` definitions nothing uses.
+fn oscillator_with_unused(n: usize) -> String {
+    let mut src = "coordinates x\nparameters m, k, a, b\nkinetic E = 1/2*m*x'^2\n\
+                   potential V = 1/2*k*x^2\n"
+        .to_string();
+    for i in 1..=n {
+        src.push_str(&format!("u{i} = (a+b+x)^30\n"));
+    }
+    src
+}
+
+fn lazy(c: &mut Criterion) {
+    use qdot::output::{run, Command, Format};
+    let mut g = c.benchmark_group("lazy");
+    for n in [0, 300] {
+        let src = oscillator_with_unused(n);
+        // the floor: reading the text, which every definition costs
+        g.bench_with_input(BenchmarkId::new("parse", n), &src, |b, src| {
+            b.iter(|| black_box(qdot::parse::parse_scene(src).expect("parses")))
+        });
+        for (name, cmd) in [("solve", Command::Solve), ("derive", Command::Derive)] {
+            g.bench_with_input(BenchmarkId::new(name, n), &src, |b, src| {
+                b.iter(|| {
+                    black_box(run(cmd, src, Format::Text, &Default::default()).expect("runs"))
+                })
+            });
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(benches, seeds, equilibria, modes, npendulum, frames, compact, lazy);
 criterion_main!(benches);

@@ -270,7 +270,8 @@ fn errors_point_at_the_source() {
             "d/dt",
         ),
         (
-            "coordinates x\nparameters m\nz = m/(m - m)\n",
+            // `z` is used: an unused definition's error is a warning (tests/lazy.rs)
+            "coordinates x\nparameters m\nz = m/(m - m)\nkinetic E = 1/2*z*x'^2\n",
             "error: division by zero: this divisor is exactly 0\n --> bad.qd:3:8\n  |\n3 | z = m/(m - m)\n  |        ^^^^^\n",
             "hint:",
         ),
@@ -355,13 +356,14 @@ fn run_on(src: &str, cmd: &str, args: &[&str]) -> (i32, String, String) {
 fn vector_load_and_block_errors_render_with_line_and_column() {
     let cases: &[(&str, &str, &str)] = &[
         (
-            "coordinates x\nparameters m\nv = [1, 2] + 3\n",
+            // `v` is used: an unused definition's error is a warning (tests/lazy.rs)
+            "coordinates x\nparameters m\nv = [1, 2] + 3\nkinetic E = 1/2*m*x'^2\nforce x: 0*v\n",
             "error: can't add a vector and a number\n --> bad.qd:3:5\n  |\n\
              3 | v = [1, 2] + 3\n  |     ^^^^^^^^^^\n",
             "the left side is a vector and the right side a number",
         ),
         (
-            "coordinates x\nparameters m\nv = [x, 1] + [1, 2, 3]\n",
+            "coordinates x\nparameters m\nv = [x, 1] + [1, 2, 3]\nkinetic E = 1/2*m*x'^2\nforce x: 0*v\n",
             "error: vectors of different sizes: 2 and 3 components\n --> bad.qd:3:5\n",
             "write plane vectors as [x, y, 0]",
         ),

@@ -34,6 +34,7 @@ mod integrators_alloc;
 mod jit;
 mod latex;
 mod latex_pdf;
+mod lazy;
 mod limits_doc;
 mod modes;
 mod no_panic;

@@ -212,6 +212,7 @@ impl Session {
         let mut out: Vec<String> = s.coordinates.iter().map(|c| c.name.clone()).collect();
         out.extend(s.parameters.iter().map(|p| p.name.clone()));
         out.extend(s.definitions.iter().map(|d| d.name.clone()));
+        out.extend(s.deferred.iter().map(|d| d.name.name.clone()));
         out.extend(
             s.systems
                 .iter()
@@ -334,6 +335,15 @@ impl Session {
             Ok(s) => s,
             Err(d) => return Response::error(self.locate(&d, &src, &offsets, &placed, entry)),
         };
+        // a definition entered here is shown, so evaluated: its error
+        // refuses it, though nothing in the scene uses it
+        for st in stmts {
+            if let Stmt::Def { name, .. } | Stmt::Role { name, .. } = st {
+                if let Some(Err(d)) = scene.try_value(&name.name) {
+                    return Response::error(self.locate(d, &src, &offsets, &placed, entry));
+                }
+            }
+        }
         // show the warnings about the new statements only
         let mut err = String::new();
         for w in &scene.warnings {
@@ -744,9 +754,12 @@ impl Session {
                 None => Response::error("error: there is no result yet"),
             };
         }
-        if let Some(d) = s.definitions.iter().find(|d| d.name == name) {
-            let role = d
-                .role
+        let definition = s.definitions.iter().find(|d| d.name == name);
+        let found = definition
+            .map(|d| (d.role, &d.value))
+            .or_else(|| s.value(name).map(|v| (None, v)));
+        if let Some((role, value)) = found {
+            let role = role
                 .map(|r| format!("{} ", r.keyword()))
                 .unwrap_or_default();
             let text = self
@@ -757,7 +770,7 @@ impl Session {
                 .unwrap_or_default();
             return Response::out(format!(
                 "{role}{}{text}",
-                self.show_value(Some(name), &d.value, Layout::Plain)
+                self.show_value(Some(name), value, Layout::Plain)
             ));
         }
         if s.coordinates.iter().any(|c| c.name == name) {

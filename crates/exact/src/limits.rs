@@ -133,3 +133,14 @@ pub const DEFAULT_MAX_TERMS: usize = 2_000_000;
 /// the last place of f64 (RADAU5's own floor); below it no method can
 /// meet the tolerance, and the step shrinks without end.
 pub const MIN_RTOL: f64 = 10.0 * f64::EPSILON;
+
+/// The largest size (terms, estimated from the text) of a definition that
+/// nothing in its scene uses and that is evaluated when the scene is read,
+/// to report its errors as warnings; a larger one is evaluated only when
+/// something asks for it (`(a+b+x)^30` is estimated at 3³⁰).
+pub const LAZY_CHECK_SIZE: u64 = 256;
+
+/// The work budget (terms) of evaluating one such unused definition when
+/// the scene is read: past it the definition is left for later, without a
+/// warning.
+pub const LAZY_CHECK_BUDGET: usize = 4_096;

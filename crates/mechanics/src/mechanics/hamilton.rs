@@ -438,7 +438,8 @@ fn check_scene(scene: &Scene, names: &[String]) -> Result<(), Diagnostic> {
         let p = momentum_name(n);
         let taken = scene.parameters.iter().any(|x| x.name == p)
             || scene.coordinates.iter().any(|x| x.name == p)
-            || scene.definitions.iter().any(|x| x.name == p);
+            || scene.definitions.iter().any(|x| x.name == p)
+            || scene.deferred.iter().any(|x| x.name.name == p);
         if taken {
             return Err(Diagnostic::global(format!(
                 "the momentum of `{n}` is named `{p}`, which the scene already uses"

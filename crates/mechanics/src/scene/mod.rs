@@ -1,26 +1,28 @@
 //! Scenes: the parsed statements resolved into exact expressions.
 //!
 //! [`Scene::parse`] runs the parser, checks the declarations (no name
-//! declared twice, `t` and `pi` reserved), evaluates every definition lazily
-//! in dependency order (forward references allowed, cycles reported with
-//! the whole cycle), and collects the role statements, loads, torques and
-//! `solve` blocks. Values are scalars or vectors ([`Value`]). Every error is
+//! declared twice, `t` and `pi` reserved), evaluates the definitions the
+//! statements use in dependency order (forward references allowed, cycles
+//! reported with the whole cycle; the others are checked and evaluated when
+//! small or asked for, see `lazy`), and collects the role statements,
+//! loads, torques and `solve` blocks. Values are scalars or vectors ([`Value`]). Every error is
 //! a [`Diagnostic`] pointing into the source.
 
 pub mod dimension;
 mod eval;
 pub mod given;
+mod lazy;
 mod resolve;
 pub mod rotation;
 mod structure;
 
 pub use eval::{axis_name, is_taylor_form};
+pub use lazy::DeferredDefinition;
 
 use crate::diag::Diagnostic;
 use crate::expr::Expr;
 use crate::parse::ast::{self, Role, Span, Stmt};
 pub use rotation::Rotation;
-use rustc_hash::FxHashMap;
 pub use structure::Structure;
 
 /// A generalized coordinate.
@@ -248,8 +250,15 @@ pub struct Scene {
     pub parameters: Vec<Parameter>,
     /// The given functions of time, in declaration order.
     pub functions: Vec<GivenFunction>,
-    /// Definitions (including role statements) in source order.
+    /// The evaluated definitions (including role statements), in source
+    /// order: those the scene's statements use, and unused ones small
+    /// enough to check.
     pub definitions: Vec<Definition>,
+    /// The definitions nothing uses, left unevaluated (too large to
+    /// evaluate when the scene was read, or failing, which a warning
+    /// reports), in source order: [`Scene::value`] evaluates one when
+    /// asked.
+    pub deferred: Vec<DeferredDefinition>,
     /// The `force q: Q` statements, in source order.
     pub forces: Vec<Force>,
     /// The `load F at P` statements, in source order.
@@ -355,7 +364,7 @@ fn latex_names(
     stmts: &[Stmt],
     coordinates: &[Coordinate],
     parameters: &[Parameter],
-    definitions: &[Definition],
+    defined: &dyn Fn(&str) -> bool,
     systems: &[SolveSystem],
     warnings: &mut Vec<Diagnostic>,
 ) -> Vec<LatexName> {
@@ -367,7 +376,7 @@ fn latex_names(
         let n = name.name.as_str();
         let declared = coordinates.iter().any(|c| c.name == n)
             || parameters.iter().any(|p| p.name == n)
-            || definitions.iter().any(|d| d.name == n)
+            || defined(n)
             || systems
                 .iter()
                 .flat_map(|s| &s.unknowns)
@@ -481,47 +490,7 @@ impl Scene {
         e: &ast::Expr,
         extra: &[(&str, Value)],
     ) -> Result<(Value, Vec<Diagnostic>), Diagnostic> {
-        let mut names: FxHashMap<String, (Binding, Span)> = FxHashMap::default();
-        for c in &self.coordinates {
-            names.insert(c.name.clone(), (Binding::Coord, c.span));
-        }
-        for p in &self.parameters {
-            names.insert(p.name.clone(), (Binding::Param, p.span));
-        }
-        for f in &self.functions {
-            names.insert(f.name.clone(), (Binding::Given, f.span));
-        }
-        for (i, d) in self.definitions.iter().enumerate() {
-            names.insert(d.name.clone(), (Binding::Def(i), d.span));
-        }
-        names.insert("t".into(), (Binding::Time, Span::default()));
-        names.insert("pi".into(), (Binding::Pi, Span::default()));
-        for sys in &self.systems {
-            for u in &sys.unknowns {
-                names.insert(u.name.clone(), (Binding::Unknown, u.span));
-            }
-        }
-        // a multiplier is an unknown outside the scene (the REPL, `--at`),
-        // and so is a momentum `p_q` the scene leaves free (`qdot hamilton`)
-        for c in &self.constraints {
-            names.insert(c.multiplier.clone(), (Binding::Unknown, c.span));
-        }
-        for c in &self.coordinates {
-            let p = momentum_name(&c.name);
-            names.entry(p).or_insert((Binding::Unknown, c.span));
-        }
-        let mut values: Vec<Value> = self.definitions.iter().map(|d| d.value.clone()).collect();
-        for (name, v) in extra {
-            names.insert(
-                (*name).to_string(),
-                (Binding::Def(values.len()), Span::default()),
-            );
-            values.push(v.clone());
-        }
-        let mut ev = eval::SyntaxEvaluator::with_values(&names, values);
-        ev.assumed = self.assumptions.clone();
-        let v = ev.value(e)?;
-        Ok((v, std::mem::take(&mut ev.warnings)))
+        self.evaluate_in_scene(e, extra)
     }
 
     /// The dimensions of the scene's names, declared or found (for a scene
@@ -572,12 +541,10 @@ impl Scene {
         self.value(name).and_then(Value::as_scalar)
     }
 
-    /// The value of a definition (scalar or vector) by name.
+    /// The value of a definition (scalar or vector) by name, a deferred
+    /// one evaluated on first ask ([`Scene::try_value`] has its error).
     pub fn value(&self, name: &str) -> Option<&Value> {
-        self.definitions
-            .iter()
-            .find(|d| d.name == name)
-            .map(|d| &d.value)
+        self.try_value(name).and_then(Result::ok)
     }
 
     /// Whether the scene has equations of motion: coordinates, and a kinetic

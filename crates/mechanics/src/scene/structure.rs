@@ -59,6 +59,11 @@ impl Scene {
 /// Whether the scene has `body` or `particle` statements, the scenes whose
 /// kinematics can grow past the rule (the others are read once, expanded).
 fn has_bodies(src: &str) -> bool {
+    // without either keyword in the text there is no such statement, and
+    // the source is parsed once, not twice
+    if !src.contains("body") && !src.contains("particle") {
+        return false;
+    }
     crate::parse::parse_scene(src).is_ok_and(|stmts| {
         stmts
             .iter()

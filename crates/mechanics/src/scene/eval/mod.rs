@@ -1,7 +1,9 @@
 //! Evaluation of syntax trees into canonical expressions.
 
 mod frames;
+mod pending;
 pub use frames::axis_name;
+pub(crate) use pending::{names_in, Entry};
 
 use super::{Binding, Value};
 use crate::diag::Diagnostic;
@@ -222,33 +224,13 @@ impl<'a> SyntaxEvaluator<'a> {
         let Some((_, Some(body))) = self.defs.get(i).copied() else {
             return Vec::new();
         };
-        let mut out = Vec::new();
-        let mut stack = vec![body];
-        while let Some(e) = stack.pop() {
-            match &e.kind {
-                ExprKind::Name(n) => {
-                    if let Some((Binding::Def(k), _)) = self.names.get(n.as_str()) {
-                        out.push((*k, e.span));
-                    }
-                }
-                ExprKind::Neg(x) | ExprKind::Prime(x, _) => stack.push(x),
-                ExprKind::Bin(_, a, b) | ExprKind::Index(a, b) => {
-                    stack.push(b);
-                    stack.push(a);
-                }
-                // `rot(x, a)`: the axis names x, y, z are no definitions
-                ExprKind::Call(ast::Callee::Builtin(Builtin::Rot, _), args)
-                    if frames::axis_name(args).is_some() =>
-                {
-                    stack.extend(args[1..].iter().rev())
-                }
-                // `x = a` in a call: the name on the left is not evaluated
-                ExprKind::Assign(_, b) => stack.push(b),
-                ExprKind::Call(_, args) | ExprKind::Vector(args) => stack.extend(args.iter().rev()),
-                ExprKind::Num(_) | ExprKind::Degrees(_) => {}
-            }
-        }
-        out
+        names_in(self.names, body)
+            .into_iter()
+            .filter_map(|(n, span)| match self.names.get(n) {
+                Some((Binding::Def(k), _)) => Some((*k, span)),
+                _ => None,
+            })
+            .collect()
     }
 
     /// [`SyntaxEvaluator::definition`] once its dependencies are evaluated (or
@@ -637,16 +619,9 @@ impl<'a> SyntaxEvaluator<'a> {
                 self.atoms.insert(key.as_str(), e.clone());
                 Ok(Value::Scalar(e))
             }
-            Some((_, (Binding::Body, _))) => Err(Diagnostic::error(
-                span,
-                format!("`{n}` is a body, not a value"),
-            )
-            .with_hint(format!("use its position or its frame; its kinetic energy is `E_{n}`, outside the scene (the REPL, `--at`)"))),
-            Some((_, (Binding::Multiplier, _))) => Err(Diagnostic::error(
-                span,
-                format!("`{n}` is the Lagrange multiplier of a constraint, not a value in the scene"),
-            )
-            .with_hint("`qdot solve` finds it with the accelerations; in the REPL and in `--at` expressions it is an unknown")),
+            Some((_, (Binding::Body | Binding::Multiplier, _))) | None => Err(self
+                .not_a_value(n, span)
+                .unwrap_or_else(|| Diagnostic::global(format!("internal: `{n}` has a value")))),
             Some((_, (Binding::Time, _))) => Ok(Value::Scalar(Expr::time())),
             Some((_, (Binding::Pi, _))) => Ok(Value::Scalar(Expr::pi())),
             Some((_, (Binding::Def(i), _))) => {
@@ -663,18 +638,34 @@ impl<'a> SyntaxEvaluator<'a> {
                 }
                 self.definition(i)
             }
+        }
+    }
+
+    /// The error of `n` used as a value when it is none: a body, a
+    /// multiplier or an unknown name; `None` for a name with a value.
+    fn not_a_value(&self, n: &str, span: Span) -> Option<Diagnostic> {
+        match self.names.get(n) {
+            Some((Binding::Body, _)) => Some(Diagnostic::error(
+                span,
+                format!("`{n}` is a body, not a value"),
+            )
+            .with_hint(format!("use its position or its frame; its kinetic energy is `E_{n}`, outside the scene (the REPL, `--at`)"))),
+            Some((Binding::Multiplier, _)) => Some(Diagnostic::error(
+                span,
+                format!("`{n}` is the Lagrange multiplier of a constraint, not a value in the scene"),
+            )
+            .with_hint("`qdot solve` finds it with the accelerations; in the REPL and in `--at` expressions it is an unknown")),
+            Some(_) => None,
             None => {
-                let mut d = Diagnostic::error(span, format!("unknown name `{n}`")).with_kind(
+                let d = Diagnostic::error(span, format!("unknown name `{n}`")).with_kind(
                     crate::diag::ErrorKind::UnknownName {
                         name: n.to_string(),
                     },
                 );
-                let near = self.nearest(n);
-                d = d.with_hint(match near {
+                Some(d.with_hint(match self.nearest(n) {
                     Some(m) => format!("did you mean `{m}`? Otherwise declare it with `parameters {n}` or define it with `{n} = …`"),
                     None => format!("declare it with `parameters {n}` (a constant) or `coordinates {n}` (a function of time), or define it with `{n} = …`"),
-                });
-                Err(d)
+                }))
             }
         }
     }
@@ -879,6 +870,11 @@ impl<'a> SyntaxEvaluator<'a> {
                 .with_hint(format!("its derivatives are `{0}'`, `{0}''`; a function of anything but t is not supported", f.name))),
             };
         }
+        Err(self.unknown_function(f))
+    }
+
+    /// The error of calling `f`, a name that is no function.
+    fn unknown_function(&self, f: &ast::Ident) -> Diagnostic {
         let hint = if self.names.contains_key(&f.name) {
             format!(
                 "`{}` is not a function; write `{}*(…)` to multiply",
@@ -888,13 +884,11 @@ impl<'a> SyntaxEvaluator<'a> {
             let list: Vec<&str> = functions::names().collect();
             format!("the functions are {}", list.join(", "))
         };
-        Err(
-            Diagnostic::error(f.span, format!("unknown function `{}`", f.name))
-                .with_hint(hint)
-                .with_kind(crate::diag::ErrorKind::UnknownName {
-                    name: f.name.clone(),
-                }),
-        )
+        Diagnostic::error(f.span, format!("unknown function `{}`", f.name))
+            .with_hint(hint)
+            .with_kind(crate::diag::ErrorKind::UnknownName {
+                name: f.name.clone(),
+            })
     }
 
     /// A call of the built-in `b` when the scene declares a given function

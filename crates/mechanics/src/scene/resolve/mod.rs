@@ -305,21 +305,11 @@ pub(super) fn scene_from_statements(
     if structured {
         keep_structure(&mut r.ev, &decl, keep)?;
     }
-    let mut definitions = Vec::with_capacity(decl.definitions.len());
-    for (i, &(name, body, role)) in decl.definitions.iter().enumerate() {
-        let value = r.ev.definition(i)?;
-        if let Some(role) = role {
-            role_value_allowed(role, name, body, &value)?;
-        }
-        definitions.push(Definition {
-            name: name.name.clone(),
-            value,
-            span: name.span,
-            role,
-        });
-    }
+    let (values, unused) = evaluate_used(&mut r, &decl, stmts)?;
     for &i in &decl.frames {
-        bodies::frame_value(decl.definitions[i].1, &definitions[i].value)?;
+        if let Some(v) = &values[i] {
+            bodies::frame_value(decl.definitions[i].1, v)?;
+        }
     }
     let forces = r.forces(&decl.forces)?;
     let mut blocks = decl.unknowns.iter().cloned();
@@ -339,6 +329,7 @@ pub(super) fn scene_from_statements(
     r.gravity(stmts)?;
     let constraints = r.constraints(&decl.constraints)?;
     let reactions = r.reactions(&decl.reactions, &constraints)?;
+    let (mut definitions, deferred) = split_definitions(&mut r, &decl, values, &unused);
     definitions.append(&mut r.body_energies);
     let Resolver {
         mut ev,
@@ -359,11 +350,16 @@ pub(super) fn scene_from_statements(
         functions,
         ..
     } = decl;
+    let defined = |n: &str| {
+        decl.names
+            .get(n)
+            .is_some_and(|b| matches!(b.0, Binding::Def(_)))
+    };
     let latex_names = latex_names(
         stmts,
         &coordinates,
         &parameters,
-        &definitions,
+        &defined,
         &systems,
         &mut warnings,
     );
@@ -390,6 +386,7 @@ pub(super) fn scene_from_statements(
         parameters,
         functions,
         definitions,
+        deferred,
         forces,
         loads,
         torques,
@@ -403,6 +400,66 @@ pub(super) fn scene_from_statements(
         latex_names,
         tape,
     })
+}
+
+/// The definitions the statements use, evaluated in source order (a
+/// role's value checked), `None` for the others; and the others, each
+/// checked without evaluating it (names, cycles) and listed after those
+/// it uses.
+fn evaluate_used(
+    r: &mut Resolver,
+    decl: &Declarations,
+    stmts: &[Stmt],
+) -> Result<(Vec<Option<Value>>, Vec<usize>), Diagnostic> {
+    let roles = (decl.definitions.iter().enumerate()).filter_map(|(i, d)| d.2.map(|_| i));
+    let roots = roles.chain(decl.frames.iter().copied());
+    let used = super::lazy::used_definitions(&r.ev, &decl.names, stmts, roots);
+    let (mut walked, mut unused) = (Vec::new(), Vec::new());
+    let mut values: Vec<Option<Value>> = Vec::with_capacity(decl.definitions.len());
+    for (i, &(name, body, role)) in decl.definitions.iter().enumerate() {
+        if !used[i] {
+            r.ev.check_unevaluated(i, &mut walked, &mut unused)?;
+            values.push(None);
+            continue;
+        }
+        let value = r.ev.definition(i)?;
+        if let Some(role) = role {
+            role_value_allowed(role, name, body, &value)?;
+        }
+        values.push(Some(value));
+    }
+    Ok((values, unused))
+}
+
+/// The definitions with their values, in source order: those the
+/// statements used (`values`), the unused ones (`unused`, each after those
+/// it uses) small enough to evaluate now, and the rest deferred; an unused
+/// definition's evaluation error is a warning.
+fn split_definitions(
+    r: &mut Resolver,
+    decl: &Declarations,
+    mut values: Vec<Option<Value>>,
+    unused: &[usize],
+) -> (Vec<Definition>, Vec<super::DeferredDefinition>) {
+    let idents: Vec<&ast::Ident> = decl.definitions.iter().map(|d| d.0).collect();
+    let (checked, warnings) = super::lazy::check_unused(&mut r.ev, unused, &idents);
+    r.warnings.extend(warnings);
+    let mut definitions = Vec::with_capacity(values.len());
+    let mut deferred = Vec::new();
+    for (i, &(name, body, role)) in decl.definitions.iter().enumerate() {
+        let found = values[i].take().or_else(|| checked.get(&i).cloned());
+        // a definition a statement reached in a way the walk did not see
+        match found.or_else(|| r.ev.evaluated(i).cloned()) {
+            Some(value) => definitions.push(Definition {
+                name: name.name.clone(),
+                value,
+                span: name.span,
+                role,
+            }),
+            None => deferred.push(super::DeferredDefinition::new(name, body)),
+        }
+    }
+    (definitions, deferred)
 }
 
 /// Give the evaluator a tape (the scene's names reserved on it) and mark
