@@ -128,8 +128,14 @@ class Intermediates(Mapping[str, Expr]):
 
     @classmethod
     def of_json(cls, data: Mapping[str, Any], scene: Any) -> "Intermediates":
-        """The ``"intermediates"`` of a command's JSON (none when absent)."""
-        return cls([(i["name"], i["value"]) for i in data.get("intermediates", [])], scene)
+        """The ``"intermediates"`` of a command's JSON (none when absent).
+        A ``solve`` written through intermediates lists its solutions in
+        solving order, each may use the ones before it: they join the
+        intermediates, so a solution's ``to_sympy()`` substitutes them."""
+        pairs = [(i["name"], i["value"]) for i in data.get("intermediates", [])]
+        if pairs:
+            pairs += list(data.get("solutions", {}).items())
+        return cls(pairs, scene)
 
     @property
     def names(self) -> List[str]:

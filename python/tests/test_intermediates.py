@@ -156,9 +156,12 @@ def test_slider_crank_keeps_alpha_as_the_cli_keep_does():
     kept = scene.solve(keep=["alpha"])
     assert kept.intermediates.names == ["alpha", "alpha_dot", "alpha_ddot"]
     assert kept.intermediates["alpha"].text == "asin(R*sin(omega*t)/L)"
+    # solved body by body: each solution may use the ones before it
+    assert list(kept.data["solutions"]) == ["Bx", "Ax", "Ay", "By", "N", "M"]
     ax = kept.data["solutions"]["Ax"]
-    assert ax == ("-L*(m + 2*mB)*alpha_dot^2*cos(alpha)/2 - L*(m + 2*mB)*alpha_ddot*sin(alpha)/2"
-                  " - omega^2*R*(m + mB)*cos(omega*t) + F")
+    assert ax == ("-L*m*alpha_dot^2*cos(alpha)/2 - L*m*alpha_ddot*sin(alpha)/2"
+                  " - m*omega^2*R*cos(omega*t) - Bx")
+    assert kept.data["solutions"]["M"] == "Ax*R*sin(omega*t) - Ay*R*cos(omega*t)"
     # a single name reads as a list of one; the JSON is the CLI's `--keep alpha`
     assert scene.solve(keep="alpha").data == kept.data
     cli, _ = qdot._native.run_command("solve", scene.source, "json", keep=["alpha"])
