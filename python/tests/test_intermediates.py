@@ -154,7 +154,9 @@ def test_slider_crank_keeps_alpha_as_the_cli_keep_does():
     expanded = scene.solve()
     assert "intermediates" not in expanded.data
     kept = scene.solve(keep=["alpha"])
-    assert kept.intermediates.names == ["alpha", "alpha_dot", "alpha_ddot"]
+    # the kept definition's names, then the solutions in solving order
+    assert kept.intermediates.names == ["alpha", "alpha_dot", "alpha_ddot",
+                                        "Bx", "Ax", "Ay", "By", "N", "M"]
     assert kept.intermediates["alpha"].text == "asin(R*sin(omega*t)/L)"
     # solved body by body: each solution may use the ones before it
     assert list(kept.data["solutions"]) == ["Bx", "Ax", "Ay", "By", "N", "M"]
