@@ -66,25 +66,26 @@ release build, pin 4.1.0 wheels, gcc 12.2, one run; for orientation only:
 always compare within one run; ratio = Pinocchio aba / qdot, "aba via lib"
 the call through libpinocchio_default, sizes those of the generated C):
     | family | n  | qdot C rhs | Pinocchio aba | ratio | aba via lib | gcc -O2 of qdot's C |
-    | 3d     |  2 |    19.9 ns |        438 ns | 21.98 |      386 ns |  0.0 s (2.5 kB)     |
-    | 3d     |  5 |     238 ns |       1233 ns |  5.19 |     1062 ns |  0.2 s (33 kB)      |
-    | 3d     | 10 |    1840 ns |       2706 ns |  1.47 |     2306 ns |  1.2 s (155 kB)     |
-    | 3d     | 20 |   10677 ns |       5220 ns |  0.49 |     4972 ns | 17.2 s (762 kB)     |
-    | 3d     | 30 |   57889 ns |       7684 ns |  0.13 |     6593 ns | 39.5 s (2.07 MB)    |
-    | planar |  2 |    20.8 ns |        422 ns | 20.29 |      372 ns |  0.1 s (2.8 kB)     |
-    | planar |  5 |     168 ns |       1203 ns |  7.18 |     1028 ns |  0.1 s (19 kB)      |
-    | planar | 10 |     938 ns |       2501 ns |  2.67 |     2128 ns |  0.5 s (74 kB)      |
-    | planar | 20 |    5463 ns |       5165 ns |  0.95 |     4292 ns |  4.7 s (321 kB)     |
-    | planar | 30 |   23244 ns |       7767 ns |  0.33 |     6490 ns | 19.4 s (810 kB)     |
-Pinocchio's ABA costs about 260 ns per joint (linear in n); qdot's
-closed-form function is 20x faster at n = 2 and 1.5 (3d) to 2.7x (planar) at
-n = 10, but its cost grows like n^2.5 to n^4 (dense M, unrolled Cholesky,
-expressions that grow with n, megabytes of code at n = 30), so ABA is faster
-from about n = 13 (3d) and n = 20 (planar).  qdot codegen itself took at
-most 2.3 s (3d, n = 30); gcc -O2 on the generated file is the long step
-(39.5 s for 3d, n = 30), and the Pinocchio driver with its templates
-instantiated takes about 70 s to compile.  q̈ of the two agreed to 2e-16
-(n = 2) ... 9e-11 (planar, n = 30).
+    | 3d     |  2 |    19.4 ns |        424 ns | 21.84 |      369 ns |  0.0 s (2.5 kB)     |
+    | 3d     |  5 |     227 ns |       1203 ns |  5.31 |     1024 ns |  0.2 s (33 kB)      |
+    | 3d     | 10 |    1441 ns |       2449 ns |  1.70 |     2125 ns |  1.6 s (157 kB)     |
+    | 3d     | 20 |    3262 ns |       5166 ns |  1.58 |     4320 ns |  5.6 s (346 kB)     |
+    | 3d     | 30 |    4983 ns |       7651 ns |  1.54 |     6557 ns | 12.9 s (541 kB)     |
+    | planar |  2 |    19.8 ns |        411 ns | 20.80 |      361 ns |  0.0 s (2.8 kB)     |
+    | planar |  5 |     140 ns |       1154 ns |  8.26 |      991 ns |  0.1 s (22 kB)      |
+    | planar | 10 |     339 ns |       2445 ns |  7.21 |     2062 ns |  0.2 s (53 kB)      |
+    | planar | 20 |    1045 ns |       4990 ns |  4.78 |     4133 ns |  0.6 s (118 kB)     |
+    | planar | 30 |    1484 ns |       7528 ns |  5.07 |     6262 ns |  1.2 s (183 kB)     |
+From n = 4 (where the scene is read through intermediates) qdot's function
+is the articulated-body recursion generated from the scene
+(`Lagrange::articulated_accelerations`), linear in n like Pinocchio's ABA:
+about 165 ns per link in space and 50 ns in the plane, against
+Pinocchio's 250 ns.  Below, the closed form (exact accelerations or M, f
+and an unrolled Cholesky) is cheaper still.  qdot codegen took at most 2.0 s
+(3d, n = 30); gcc -O2 on the generated file is the long step (12.9 s for
+3d, n = 30), and the Pinocchio driver with its templates instantiated takes
+about 70 s to compile.  q̈ of the two agreed to 2e-16 (n = 2) ... 1e-13
+(planar, n = 30).
 """
 import argparse
 import glob
