@@ -86,7 +86,7 @@ fn chain_of_two_and_three_rods_expands_to_the_expanded_equations() {
 
 /// The value of an atom at a fixture's state: parameters by name,
 /// coordinates and velocities by index.
-pub(crate) fn state_value(case: &serde_json::Value, a: &Atom) -> Option<f64> {
+fn state_value(case: &serde_json::Value, a: &Atom) -> Option<f64> {
     let at = |key: &str, name: &str| -> Option<f64> {
         let k: usize = name.strip_prefix('q')?.parse().ok()?;
         case[key][k - 1].as_f64()
@@ -112,7 +112,8 @@ fn chain_accelerations_equal_pinocchio_aba() {
         let n = case["n"].as_u64().unwrap() as usize;
         // the scene Pinocchio's model was checked against (through SymPy)
         let src = fixture["scenes"][n.to_string()].as_str().unwrap();
-        let l = Scene::parse_structured(src).unwrap().lagrange().unwrap();
+        let scene = Scene::parse_structured(src).unwrap();
+        let l = scene.lagrange().unwrap();
         let acc = l.accelerations().unwrap();
         let tape = acc.intermediates().unwrap();
         let value = |a: &Atom| state_value(case, a);
@@ -123,19 +124,19 @@ fn chain_accelerations_equal_pinocchio_aba() {
             .iter()
             .map(|x| x.as_f64().unwrap())
             .collect();
-        let got: Vec<f64> = acc
-            .values()
-            .iter()
-            .map(|e| tape.eval_f64(e, &value).unwrap())
-            .collect();
-        let err = got
-            .iter()
-            .zip(&want)
-            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-        assert!(
-            err <= 1e-12 * scale(&want),
-            "n = {n}: q̈ {got:?} vs aba {want:?}"
-        );
+        // through L·D·Lᵀ, and by the articulated-body recursion
+        let rec = l.articulated_accelerations(&scene).unwrap();
+        for (acc, tape) in [(&acc, tape), (&rec, rec.intermediates().unwrap())] {
+            let got = tape.eval_many_f64(acc.values(), &value).unwrap();
+            let err = got
+                .iter()
+                .zip(&want)
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+            assert!(
+                err <= 1e-12 * scale(&want),
+                "n = {n}: q̈ {got:?} vs aba {want:?}"
+            );
+        }
         let lt = l.intermediates.as_deref().unwrap();
         for i in 0..n {
             let nle = case["nle"][i].as_f64().unwrap();

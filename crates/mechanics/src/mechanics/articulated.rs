@@ -60,6 +60,11 @@ pub(crate) fn articulated(scene: &Scene, lagrange: &Lagrange) -> Result<(Vec<Exp
     let Some(tape) = lagrange.intermediates.as_deref() else {
         return Err("the equations are expanded".into());
     };
+    // the scene's intermediates come first on its equations' tape
+    let scene_first = scene.tape.as_ref().and_then(|t| t.entries().first());
+    if scene_first.is_some_and(|a| tape.entries().first().is_none_or(|b| a.var != b.var)) {
+        return Err("the equations were not derived from this scene".into());
+    }
     eligible(scene)?;
     let mut tape = tape.clone();
     let links = tree(scene, &mut tape)?;
