@@ -43,6 +43,8 @@
 
 mod cost;
 pub(crate) mod fourier;
+#[cfg(test)]
+mod work_tests;
 
 use super::atom::{self, Atom};
 use super::print::{self, Style};
