@@ -473,16 +473,9 @@ pub fn leads_negative(p: &Poly) -> bool {
 /// Terms in display order.
 pub(crate) fn sorted_terms(p: &Poly) -> Vec<(Mono, Q)> {
     // each term's key computed once ([`display_key`], then the text)
-    let mut t: Vec<(std::cmp::Reverse<(i64, i64, i64)>, String, &(Mono, Q))> = p
-        .terms()
-        .iter()
-        .map(|t| {
-            let key = std::cmp::Reverse(display_key(&t.0));
-            (key, mono_str(&t.0, Style::Input), t)
-        })
-        .collect();
-    t.sort_by(|a, b| a.0.cmp(&b.0).then_with(|| a.1.cmp(&b.1)));
-    t.into_iter().map(|(_, _, t)| t.clone()).collect()
+    let mut t: Vec<&(Mono, Q)> = p.terms().iter().collect();
+    t.sort_by_cached_key(|(m, _)| (std::cmp::Reverse(display_key(m)), mono_str(m, Style::Input)));
+    t.into_iter().cloned().collect()
 }
 
 /// A polynomial as a sum, terms in display order.
