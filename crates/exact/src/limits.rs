@@ -86,6 +86,23 @@ pub const MAX_RATIONALIZE_STEPS: u32 = 64;
 /// canonical form with the addition theorems folded.
 pub const MAX_COMPACT_TERMS: usize = 400;
 
+/// The work the compact search of one expression may always take: the
+/// terms of the rewritings it builds (each reduction choice, the Fourier
+/// form, estimated before any is made), as many as one rewriting may
+/// expand into ([`MAX_TRIG_EXPANSION`]). Beyond it the search takes at most
+/// [`COMPACT_WORK_PER_TERM`] per term of the expression; an expression
+/// whose rewritings would take more prints in the canonical form with its
+/// addition theorems folded. Without it a sum of two terms could build
+/// 32,400 (eight rewritings of 4,000 terms).
+pub const COMPACT_WORK_BASE: usize = 4_000;
+
+/// The work the compact search of one expression may take per term of the
+/// expression, beyond [`COMPACT_WORK_BASE`]: so a result's searches, like
+/// its printing, take time proportional to its size. The examples' and
+/// the book's searches take at most 1,300 beyond 16 per term; the 3D rod
+/// chains' about 2 per term in all.
+pub const COMPACT_WORK_PER_TERM: usize = 16;
+
 /// The most terms a rewriting of the compact forms may expand a result
 /// into (estimated before it is made: sinᵃθ as a Fourier series has a + 1
 /// terms, sin²ᵏθ as a polynomial in cos θ has k + 1); a rewriting past it

@@ -11,7 +11,6 @@ use super::atom::{self, Atom};
 use super::Expr;
 use crate::num::Q;
 use crate::poly::{Mono, Poly, Var};
-use std::cmp::Ordering;
 
 /// Which notation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -114,8 +113,11 @@ pub(crate) fn collect(num: &Poly, den: &Poly) -> Option<Vec<(Mono, Expr)>> {
     if den_has_coord || !num_has_coord {
         return None;
     }
-    // Split num into Σ key·coef with key a monomial in dynamic atoms.
-    let mut groups: Vec<(Mono, Poly)> = Vec::new();
+    // Split num into Σ key·coef with key a monomial in dynamic atoms (each
+    // key's place found by a hash, each coefficient built once: a scan and
+    // a sum per term would make printing quadratic in the terms).
+    let mut groups: Vec<(Mono, Vec<(Mono, Q)>)> = Vec::new();
+    let mut index: rustc_hash::FxHashMap<Mono, usize> = rustc_hash::FxHashMap::default();
     for (m, c) in num.terms() {
         let mut key = Mono::default();
         let mut rest = Mono::default();
@@ -126,12 +128,18 @@ pub(crate) fn collect(num: &Poly, den: &Poly) -> Option<Vec<(Mono, Expr)>> {
                 rest.0.push((v, x));
             }
         }
-        let t = Poly::monomial(rest, c.clone());
-        match groups.iter_mut().find(|(k, _)| *k == key) {
-            Some((_, p)) => *p = &*p + &t,
-            None => groups.push((key, t)),
+        match index.get(&key) {
+            Some(&i) => groups[i].1.push((rest, c.clone())),
+            None => {
+                index.insert(key.clone(), groups.len());
+                groups.push((key, vec![(rest, c.clone())]));
+            }
         }
     }
+    let groups: Vec<(Mono, Poly)> = groups
+        .into_iter()
+        .map(|(key, terms)| (key, Poly::from_terms(terms)))
+        .collect();
     if groups.len() == 1 && groups[0].0 .0.is_empty() {
         return None;
     }
@@ -160,13 +168,9 @@ fn is_dynamic(v: Var) -> bool {
     }
 }
 
-/// Sort key: highest derivative order first, then higher degree, then
-/// coordinates before functions of them.
-pub(crate) fn display_order(a: &Mono, b: &Mono) -> Ordering {
-    display_key(b).cmp(&display_key(a))
-}
-
-/// The key of [`display_order`], greatest first: (the highest derivative
+/// The display order of a term's monomial, greatest first (highest
+/// derivative order first, then higher degree, then coordinates before
+/// functions of them): (the highest derivative
 /// order of a coordinate, the degree in coordinates, the total degree).
 fn display_key(m: &Mono) -> (i64, i64, i64) {
     let mut order = -1i64;
@@ -188,7 +192,7 @@ thread_local! {
 }
 
 /// Run `f` with the coordinates ranked in the order of `names` (a scene's
-/// declaration order): terms that `display_order` ties are written in
+/// declaration order): terms that [`display_key`] ties are written in
 /// that order, ÿ₃ before θ̈₃ when y3 is declared first. Outside it, and for
 /// other names, by name. Never by interning order, so a scene prints the
 /// same whatever the process parsed before it (the REPL, Python).
@@ -206,7 +210,7 @@ pub fn with_coordinate_order<R>(names: &[String], f: impl FnOnce() -> R) -> R {
 
 /// Where a term of a printed sum goes, computed once per term (the keys
 /// name atoms, and sorting with a comparator that named them would print
-/// each atom O(n log n) times): [`display_order`] first, then the
+/// each atom O(n log n) times): [`display_key`] first, then the
 /// coordinates' declaration order ([`with_coordinate_order`]), then the
 /// positive terms of what is still tied, then by name ([`name_key`]).
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -453,20 +457,25 @@ pub(crate) fn coefficient_negative(c: &Expr) -> bool {
 /// factor gives up: k − 6·m rather than −k + 6·m, whatever the order the
 /// atoms were interned in).
 pub fn leads_negative(p: &Poly) -> bool {
-    sorted_terms(p)
-        .first()
+    // the first term of `sorted_terms` without sorting: the greatest
+    // display key, then the first least text among those
+    let Some(top) = p.terms().iter().map(|(m, _)| display_key(m)).max() else {
+        return false;
+    };
+    p.terms()
+        .iter()
+        .filter(|(m, _)| display_key(m) == top)
+        .map(|(m, c)| (mono_str(m, Style::Input), c))
+        .min_by(|a, b| a.0.cmp(&b.0))
         .is_some_and(|(_, c)| c.is_negative())
 }
 
 /// Terms in display order.
 pub(crate) fn sorted_terms(p: &Poly) -> Vec<(Mono, Q)> {
-    let mut t: Vec<(Mono, Q, String)> = p
-        .terms()
-        .iter()
-        .map(|(m, c)| (m.clone(), c.clone(), mono_str(m, Style::Input)))
-        .collect();
-    t.sort_by(|a, b| display_order(&a.0, &b.0).then_with(|| a.2.cmp(&b.2)));
-    t.into_iter().map(|(m, c, _)| (m, c)).collect()
+    // each term's key computed once ([`display_key`], then the text)
+    let mut t: Vec<&(Mono, Q)> = p.terms().iter().collect();
+    t.sort_by_cached_key(|(m, _)| (std::cmp::Reverse(display_key(m)), mono_str(m, Style::Input)));
+    t.into_iter().cloned().collect()
 }
 
 /// A polynomial as a sum, terms in display order.
@@ -651,7 +660,8 @@ pub fn mono_str(m: &Mono, st: Style) -> String {
         return "1".into();
     }
     let mut fs: Vec<(Var, u32)> = m.0.iter().copied().collect();
-    fs.sort_by_key(|&(v, _)| factor_rank(v));
+    // a rank names its atom: made once per factor, not per comparison
+    fs.sort_by_cached_key(|&(v, _)| factor_rank(v));
     let parts: Vec<String> = fs.into_iter().map(|(v, e)| power_str(v, e, st)).collect();
     parts.join(mul_sign(st))
 }

@@ -34,11 +34,17 @@
 //! [`MAX_COMPACT_TERMS`] terms are searched, at most 2³ reduction choices
 //! (then all-sine and all-cosine only), a rewriting only when its size,
 //! estimated before it is made, is at most [`MAX_TRIG_EXPANSION`] terms,
-//! and factorization only of sums of at most [`MAX_FACTORED_TERMS`] terms; beyond, the canonical form is
-//! printed with its addition theorems folded, as before.
+//! all the rewritings of one expression together at most
+//! [`work_allowance`] of its size ([`COMPACT_WORK_BASE`] +
+//! [`COMPACT_WORK_PER_TERM`] per term, so that printing a result takes
+//! time proportional to its size), and factorization only of sums of at
+//! most [`MAX_FACTORED_TERMS`] terms; beyond, the canonical form is
+//! printed with its addition theorems folded.
 
 mod cost;
 pub(crate) mod fourier;
+#[cfg(test)]
+mod work_tests;
 
 use super::atom::{self, Atom};
 use super::print::{self, Style};
@@ -47,7 +53,8 @@ use crate::poly::{Mono, Poly, Var};
 use std::sync::Arc;
 
 pub use crate::limits::{
-    MAX_COMPACT_TERMS, MAX_FACTORED_TERMS, MAX_PRINTED_FACTOR_SUBSETS, MAX_TRIG_EXPANSION,
+    COMPACT_WORK_BASE, COMPACT_WORK_PER_TERM, MAX_COMPACT_TERMS, MAX_FACTORED_TERMS,
+    MAX_PRINTED_FACTOR_SUBSETS, MAX_TRIG_EXPANSION,
 };
 
 /// The display polynomials of num/den: the shortest representation found
@@ -58,17 +65,26 @@ pub fn display_parts(num: &Poly, den: &Poly) -> (Poly, Poly) {
     // order; the printers' must not (a scene prints the same whatever was
     // parsed before it): the denominator's first term by name is positive.
     let (num, den) = &print::name_signed(num, den);
-    let folded = (
-        print::fold_trig(num).unwrap_or_else(|| num.clone()),
-        print::fold_trig(den).unwrap_or_else(|| den.clone()),
-    );
+    let folded = || {
+        (
+            print::fold_trig(num).unwrap_or_else(|| num.clone()),
+            print::fold_trig(den).unwrap_or_else(|| den.clone()),
+        )
+    };
+    let terms = num.len() + den.len();
     // a monomial over a monomial has no sum to rewrite
     if CANONICAL_ONLY.with(|c| c.get())
-        || num.len() + den.len() > MAX_COMPACT_TERMS
+        || terms > MAX_COMPACT_TERMS
         || (num.len() < 2 && den.len() < 2)
     {
-        return folded;
+        return folded();
     }
+    let angles = fourier::angles(&[num, den]);
+    let plan = Plan::new(num, den, &angles);
+    if plan.work > work_allowance(terms) {
+        return folded();
+    }
+    SEARCH_WORK.with(|w| w.set(w.get().saturating_add(plan.work as u64)));
     // where the printers split the numerator by coordinate monomials and
     // cancel each coefficient against the denominator, sums stay sums
     // (each coefficient is compacted when it is printed)
@@ -79,23 +95,45 @@ pub fn display_parts(num: &Poly, den: &Poly) -> (Poly, Poly) {
     };
     // the canonical form is offered first (folded, then as it is), so it
     // stays on a tie
-    let angles = fourier::angles(&[num, den]);
     if angles.is_empty() {
         search.offer_cancelled(num, den);
     } else {
-        for (n, d) in representations(num, den, &angles) {
+        for (n, d) in plan.representations(num, den, &angles) {
             search.offer_cancelled(&n, &d);
         }
         search.offer_independent();
     }
     // factored last, the winner only: factoring is the search's dearest step
-    let (n, d) = search.best.map(|(_, n, d)| (n, d)).unwrap_or(folded);
+    let (n, d) = match search.best {
+        Some((_, n, d)) => (n, d),
+        None => folded(),
+    };
     if collects {
         // a factored denominator would hide the per-coefficient
         // cancellation (g·m·(R − r)³/(R − r)²)
         return (n, d);
     }
     (factored_if_shorter(&n), factored_if_shorter(&d))
+}
+
+/// The most work (terms of candidates built, [`Plan::work`]) the search
+/// of an expression of `terms` terms may take: a fixed allowance and a
+/// share proportional to its size, so that printing a result costs time
+/// proportional to what it prints.
+pub fn work_allowance(terms: usize) -> usize {
+    COMPACT_WORK_BASE.saturating_add(COMPACT_WORK_PER_TERM.saturating_mul(terms))
+}
+
+thread_local! {
+    /// The search work done in this thread ([`search_work`]).
+    static SEARCH_WORK: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
+/// The work the compact search has done in this thread so far: the terms
+/// of every candidate it built ([`Plan::work`] of each search made). Only
+/// differences mean anything (tests and benches count a rendering's work).
+pub fn search_work() -> u64 {
+    SEARCH_WORK.with(|w| w.get())
 }
 
 /// Whether the printers write num/den term by term, each coefficient a
@@ -129,51 +167,85 @@ pub fn canonical_only<T>(f: impl FnOnce() -> T) -> T {
     out
 }
 
-/// num/den in every representation to try: as they are, each reduction
-/// choice, the Fourier form.
-fn representations(
-    num: &Poly,
-    den: &Poly,
-    angles: &[(Var, Var, super::Expr)],
-) -> Vec<(Poly, Poly)> {
-    let mut out = vec![(num.clone(), den.clone())];
-    let n = angles.len();
-    let masks: Vec<u32> = if n <= 3 {
-        (1..(1u32 << n)).collect()
-    } else {
-        vec![(1u32 << n.min(31)) - 1]
-    };
-    for mask in masks {
-        let size = fourier::cos_reduced_size(num, angles, mask)
-            .saturating_add(fourier::cos_reduced_size(den, angles, mask));
-        if size > MAX_TRIG_EXPANSION {
-            continue;
+/// The representations of num/den to try, chosen from their sizes
+/// estimated before any is made: each reduction choice (`masks`) and the
+/// Fourier form, each within [`MAX_TRIG_EXPANSION`] terms.
+struct Plan {
+    masks: Vec<u32>,
+    fourier: bool,
+    /// The terms of every candidate together, num/den as they are
+    /// included (estimated: an upper bound of what is built).
+    work: usize,
+}
+
+impl Plan {
+    fn new(num: &Poly, den: &Poly, angles: &[(Var, Var, super::Expr)]) -> Plan {
+        let mut plan = Plan {
+            masks: Vec::new(),
+            fourier: false,
+            work: num.len() + den.len(),
+        };
+        if angles.is_empty() {
+            return plan;
         }
-        out.push((
-            fourier::cos_reduced(num, angles, mask),
-            fourier::cos_reduced(den, angles, mask),
-        ));
+        let n = angles.len();
+        let masks: Vec<u32> = if n <= 3 {
+            (1..(1u32 << n)).collect()
+        } else {
+            vec![(1u32 << n.min(31)) - 1]
+        };
+        for mask in masks {
+            let size = fourier::cos_reduced_size(num, angles, mask)
+                .saturating_add(fourier::cos_reduced_size(den, angles, mask));
+            if size <= MAX_TRIG_EXPANSION {
+                plan.masks.push(mask);
+                plan.work = plan.work.saturating_add(size);
+            }
+        }
+        let (max_multiple, _) = super::func::MULTIPLE_ANGLE_BOUNDS;
+        let max_degree = max_multiple as u32;
+        let size = fourier::fourier_size(num, angles, max_degree)
+            .zip(fourier::fourier_size(den, angles, max_degree))
+            .map(|(a, b)| a.saturating_add(b))
+            .filter(|&s| s <= MAX_TRIG_EXPANSION);
+        if let Some(size) = size {
+            if angles
+                .iter()
+                .all(|(_, _, u)| super::func::is_multiple_angle_base(u))
+            {
+                plan.fourier = true;
+                plan.work = plan.work.saturating_add(size);
+            }
+        }
+        plan
     }
-    let (max_multiple, _) = super::func::MULTIPLE_ANGLE_BOUNDS;
-    let max_degree = max_multiple as u32;
-    let size = fourier::fourier_size(num, angles, max_degree)
-        .zip(fourier::fourier_size(den, angles, max_degree))
-        .map(|(a, b)| a.saturating_add(b));
-    let small = size.is_some_and(|s| s <= MAX_TRIG_EXPANSION);
-    if small
-        && angles
-            .iter()
-            .all(|(_, _, u)| super::func::is_multiple_angle_base(u))
-    {
-        let (sn, sd) = (fourier::fourier(num, angles), fourier::fourier(den, angles));
-        if fourier::within_bounds(&sn, angles) && fourier::within_bounds(&sd, angles) {
+
+    /// num/den in every representation planned: as they are, each
+    /// reduction choice, the Fourier form.
+    fn representations(
+        &self,
+        num: &Poly,
+        den: &Poly,
+        angles: &[(Var, Var, super::Expr)],
+    ) -> Vec<(Poly, Poly)> {
+        let mut out = vec![(num.clone(), den.clone())];
+        for &mask in &self.masks {
             out.push((
-                fourier::to_display(&sn, angles),
-                fourier::to_display(&sd, angles),
+                fourier::cos_reduced(num, angles, mask),
+                fourier::cos_reduced(den, angles, mask),
             ));
         }
+        if self.fourier {
+            let (sn, sd) = (fourier::fourier(num, angles), fourier::fourier(den, angles));
+            if fourier::within_bounds(&sn, angles) && fourier::within_bounds(&sd, angles) {
+                out.push((
+                    fourier::to_display(&sn, angles),
+                    fourier::to_display(&sd, angles),
+                ));
+            }
+        }
+        out
     }
-    out
 }
 
 /// The best candidate so far, and the numerators and denominators that
@@ -181,8 +253,10 @@ fn representations(
 #[derive(Default)]
 struct Search {
     best: Option<(usize, Poly, Poly)>,
-    nums: Vec<Poly>,
-    dens: Vec<Poly>,
+    /// Each free numerator as it is and with its addition theorems
+    /// folded, both grouped, with their operations.
+    nums: Vec<[(Poly, usize); 2]>,
+    dens: Vec<[(Poly, usize); 2]>,
     /// Whether sums may be grouped into display atoms.
     group: bool,
 }
@@ -198,9 +272,8 @@ impl Search {
     /// num/den with their gcd cancelled, folded or not.
     fn offer_cancelled(&mut self, num: &Poly, den: &Poly) {
         let g = num.gcd(den);
-        let (n, d) = if g.is_constant() {
-            self.nums.push(num.clone());
-            self.dens.push(den.clone());
+        let free = g.is_constant();
+        let (n, d) = if free {
             (num.clone(), den.clone())
         } else {
             let n = num.div_exact(&g).unwrap_or_else(|| num.clone());
@@ -212,29 +285,37 @@ impl Search {
             (n, d)
         };
         let (fnum, fden) = (print::fold_trig(&n), print::fold_trig(&d));
-        if fnum.is_some() || fden.is_some() {
-            let fnum = fnum.unwrap_or_else(|| n.clone());
-            let fden = fden.unwrap_or_else(|| d.clone());
-            let pair = self.grouped_pair(&fnum, &fden);
-            self.offer(pair);
+        let (gn, gd) = self.grouped_pair(&n, &d);
+        let gfnum = fnum.as_ref().map(|f| grouped(f, self.group));
+        let gfden = fden.as_ref().map(|f| grouped(f, self.group));
+        // the folded pair and the pair as it is, each side grouped
+        let folded_n = gfnum.unwrap_or_else(|| gn.clone());
+        let folded_d = gfden.unwrap_or_else(|| gd.clone());
+        if free {
+            // each side's two forms, kept for [`Search::offer_independent`]
+            let sides = |p: &Poly, f: &Poly| [(p.clone(), ops_of(p)), (f.clone(), ops_of(f))];
+            self.nums.push(sides(&gn, &folded_n));
+            self.dens.push(sides(&gd, &folded_d));
         }
-        let pair = self.grouped_pair(&n, &d);
-        self.offer(pair);
+        if fnum.is_some() || fden.is_some() {
+            self.offer((folded_n, folded_d));
+        }
+        self.offer((gn, gd));
     }
 
     /// The shortest numerator over the shortest denominator, each chosen
     /// alone among the representations of the same value.
     fn offer_independent(&mut self) {
-        let shortest = |ps: &[Poly]| -> Option<Poly> {
+        let shortest = |ps: &[[(Poly, usize); 2]]| -> Option<Poly> {
             ps.iter()
-                .flat_map(|p| [p.clone(), print::fold_trig(p).unwrap_or_else(|| p.clone())])
-                .min_by_key(|p| ops_of(&grouped(p, self.group)))
+                .flatten()
+                .min_by_key(|(_, ops)| *ops)
+                .map(|(p, _)| p.clone())
         };
         let (Some(n), Some(d)) = (shortest(&self.nums), shortest(&self.dens)) else {
             return;
         };
-        let pair = self.grouped_pair(&n, &d);
-        self.offer(pair);
+        self.offer((n, d));
     }
 
     /// Both sides with their terms collected (the printers collect a
@@ -294,15 +375,21 @@ fn factored(p: &Poly) -> Option<Poly> {
 /// Σ key·(coefficient sum); `None` when no two terms share one.
 fn collected(p: &Poly) -> Option<Poly> {
     let mut groups: Vec<(Mono, Vec<(Mono, Q)>)> = Vec::new();
+    // each key's place in `groups`: finding it by a scan would make
+    // collecting quadratic in the terms
+    let mut index: rustc_hash::FxHashMap<Mono, usize> = rustc_hash::FxHashMap::default();
     for (m, c) in p.terms() {
         type Factors = Vec<(Var, u32)>;
         let (key, rest): (Factors, Factors) =
             m.pairs().iter().partition(|&&(v, _)| atom::is_moving(v));
         let key = Mono::from_pairs(key);
         let t = (Mono::from_pairs(rest), c.clone());
-        match groups.iter_mut().find(|(k, _)| *k == key) {
-            Some((_, ts)) => ts.push(t),
-            None => groups.push((key, vec![t])),
+        match index.get(&key) {
+            Some(&i) => groups[i].1.push(t),
+            None => {
+                index.insert(key.clone(), groups.len());
+                groups.push((key, vec![t]));
+            }
         }
     }
     if groups.iter().all(|(_, ts)| ts.len() < 2) {
