@@ -106,7 +106,10 @@ fn scenes_the_recursion_does_not_read_are_refused_with_a_reason() {
         "the recursion does not reproduce M⁻¹·f: the bodies are not a tree of rigid joints"
     );
     let other = Scene::parse_structured(&chain3d(2)).unwrap();
-    let l = Scene::parse_structured(&chain3d(2)).unwrap().lagrange().unwrap();
+    let l = Scene::parse_structured(&chain3d(2))
+        .unwrap()
+        .lagrange()
+        .unwrap();
     assert_eq!(
         l.articulated_accelerations(&other).unwrap_err(),
         "the equations were not derived from this scene"
