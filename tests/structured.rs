@@ -428,3 +428,50 @@ fn a_spring_between_kept_points_is_differentiated_through_the_root() {
         potential V = 1/2*k*(norm(P2 - P1) - l0)^2\n";
     assert_same_as_expanded(src, false);
 }
+
+/// `forces` reads a body scene with its kinematics kept: the bodies'
+/// kinetic energies stay in names (not expanded), and the generalized
+/// forces, expanded from the intermediates, equal the expanded reading's.
+#[test]
+fn forces_do_not_expand_the_kinetic_energy_of_a_body_chain() {
+    let src = chain3d(8);
+    let kept = Scene::read(&src, qdot::scene::Structure::Auto).unwrap();
+    assert!(kept.tape.as_ref().is_some_and(|t| !t.is_empty()));
+    for d in kept.role(qdot::parse::ast::Role::Kinetic) {
+        let e = d.value.as_scalar().unwrap();
+        assert!(e.num().len() < 40, "{} has {} terms", d.name, e.num().len());
+    }
+    let plain = Scene::parse(&src).unwrap();
+    let want = qdot::mechanics::generalized_forces(&plain);
+    let got = qdot::mechanics::expanded_generalized_forces(&kept).unwrap();
+    assert_eq!(got.len(), 8);
+    for (a, b) in got.iter().zip(&want) {
+        assert!(a.equals(b), "{a} vs {b}");
+    }
+    // the expanded reading's kinetic energy is what `forces` no longer forms
+    let expanded: usize = plain
+        .role(qdot::parse::ast::Role::Kinetic)
+        .map(|d| d.value.as_scalar().unwrap().num().len())
+        .sum();
+    assert!(expanded > 1000, "{expanded}");
+    // the JSON names the energies' intermediates; the forces are expanded
+    let (out, _) = qdot::run(
+        qdot::Command::Forces,
+        &src,
+        qdot::Format::Json,
+        &Default::default(),
+    )
+    .unwrap();
+    let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let names: Vec<&str> = json["intermediates"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|i| i["name"].as_str().unwrap())
+        .collect();
+    assert!(names.contains(&"omega_B8_x"), "{names:?}");
+    assert_eq!(
+        json["generalized_forces"]["q8"].as_str().unwrap(),
+        qdot::expr::print::input(&want[7])
+    );
+}

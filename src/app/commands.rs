@@ -93,7 +93,7 @@ pub(super) fn solve(ctx: &Context, scene: &Arc<Scene>) -> Result<Report<Solved>,
 }
 
 fn forces(ctx: &Context, scene: &Arc<Scene>) -> Result<Report<Forces>, Diagnostic> {
-    let forces = crate::mechanics::generalized_forces(scene);
+    let forces = crate::mechanics::expanded_generalized_forces(scene)?;
     if scene.coordinates.is_empty() {
         return Err(Diagnostic::global(
             "the scene declares no coordinates, so there are no generalized forces",

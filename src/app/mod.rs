@@ -173,6 +173,8 @@ pub fn run(
 ) -> Result<AnyReport, Diagnostic> {
     let (structure, keep) = match cmd {
         Command::Derive | Command::Solve => (opts.structure, opts.keep.as_slice()),
+        // the generalized forces are expanded, the kinetic energy need not be
+        Command::Forces => (Structure::Auto, &[][..]),
         _ => (Structure::Expanded, &[][..]),
     };
     ctx.run(|| {

@@ -93,7 +93,7 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
             Ok(match fmt {
                 Format::Text => forces_text(names, q),
                 Format::Latex => latex::write(scene, |w| w.forces(names, q)),
-                Format::Json => scene_json(scene, ForcesJson::new(names, q))?,
+                Format::Json => scene_json(scene, ForcesJson::new(scene, names, q))?,
             })
         }),
         AnyReport::Equilibrium(r) => in_context(r, |r| {

@@ -511,6 +511,11 @@ impl BlocksJson {
 /// `qdot forces`.
 #[derive(Serialize)]
 pub struct ForcesJson {
+    /// The named intermediates the bodies' energies (under `bodies`) are
+    /// written through, for a scene read with its kinematics kept; absent
+    /// otherwise. The generalized forces are always expanded.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub intermediates: Option<Vec<IntermediateJson>>,
     /// The coordinates.
     pub coordinates: Vec<String>,
     /// coordinate → Q.
@@ -518,9 +523,14 @@ pub struct ForcesJson {
 }
 
 impl ForcesJson {
-    /// The JSON of `forces`: `q` parallel to `coordinates`.
-    pub fn new(coordinates: &[String], q: &[Expr]) -> ForcesJson {
+    /// The JSON of `forces` on `scene`: `q` parallel to `coordinates`.
+    pub fn new(scene: &Scene, coordinates: &[String], q: &[Expr]) -> ForcesJson {
+        let energies = scene.definitions.iter().filter(|d| d.role.is_some());
         ForcesJson {
+            intermediates: intermediates_json(
+                scene.tape.as_ref(),
+                energies.flat_map(|d| d.value.components()),
+            ),
             coordinates: coordinates.to_vec(),
             generalized_forces: named(coordinates, q),
         }
@@ -1034,6 +1044,7 @@ mod tests {
     fn scene_keys_follow_the_command_keys() {
         let wire = WithScene {
             command: ForcesJson {
+                intermediates: None,
                 coordinates: vec!["x".into()],
                 generalized_forces: Named(vec![("x".into(), "-k*x".into())]),
             },

@@ -192,7 +192,7 @@ thread_local! {
 }
 
 /// Run `f` with the coordinates ranked in the order of `names` (a scene's
-/// declaration order): terms that [`display_key`] ties are written in
+/// declaration order): terms that `display_key` ties are written in
 /// that order, ÿ₃ before θ̈₃ when y3 is declared first. Outside it, and for
 /// other names, by name. Never by interning order, so a scene prints the
 /// same whatever the process parsed before it (the REPL, Python).

@@ -267,6 +267,24 @@ pub fn generalized_forces(scene: &Scene) -> Vec<Expr> {
         .collect()
 }
 
+/// [`generalized_forces`], each expanded from the scene's intermediates
+/// when it was read with its kinematics kept: an error, not a name left
+/// in a result, when an expansion fails (a division by what is zero once
+/// the intermediates are expanded).
+pub fn expanded_generalized_forces(scene: &Scene) -> Result<Vec<Expr>, Diagnostic> {
+    let Some(tape) = &scene.tape else {
+        return Ok(generalized_forces(scene));
+    };
+    let mut tape = tape.clone();
+    force_terms_with(scene, &mut tape)
+        .iter()
+        .map(|terms| {
+            tape.expand(&sum_terms(terms))
+                .map_err(|e| Diagnostic::global(e.message))
+        })
+        .collect()
+}
+
 /// The Lagrangian L = E + (lagrangian) − V + U of a scene's roles.
 pub fn lagrangian(scene: &Scene) -> Expr {
     scene

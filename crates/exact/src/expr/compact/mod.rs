@@ -116,7 +116,7 @@ pub fn display_parts(num: &Poly, den: &Poly) -> (Poly, Poly) {
     (factored_if_shorter(&n), factored_if_shorter(&d))
 }
 
-/// The most work (terms of candidates built, [`Plan::work`]) the search
+/// The most work (terms of candidates built, `Plan::work`) the search
 /// of an expression of `terms` terms may take: a fixed allowance and a
 /// share proportional to its size, so that printing a result costs time
 /// proportional to what it prints.
@@ -130,7 +130,7 @@ thread_local! {
 }
 
 /// The work the compact search has done in this thread so far: the terms
-/// of every candidate it built ([`Plan::work`] of each search made). Only
+/// of every candidate it built (`Plan::work` of each search made). Only
 /// differences mean anything (tests and benches count a rendering's work).
 pub fn search_work() -> u64 {
     SEARCH_WORK.with(|w| w.get())
