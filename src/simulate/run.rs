@@ -884,9 +884,6 @@ pub(crate) fn best_dynamics(
     lag: &crate::mechanics::Lagrange,
     params: &FxHashMap<Var, f64>,
 ) -> Result<(CompiledDynamics, Choice), crate::simulate::compile::CompileError> {
-    let articulated = scene
-        .tape
-        .as_ref()
-        .and_then(|_| lag.articulated_accelerations(scene).ok());
+    let articulated = lag.articulated_accelerations(scene).ok();
     CompiledDynamics::best_among(lag, params, articulated.as_ref())
 }

@@ -189,10 +189,7 @@ pub fn codegen(src: &str, req: &CodegenRequest) -> Result<String, Diagnostic> {
     vals.extend((0..2 * n).map(Val::State));
     vals.extend((0..free.len()).map(Val::Param));
     // a tree of rigid bodies read with its kinematics kept: q̈ in O(n)
-    let articulated = scene
-        .tape
-        .as_ref()
-        .and_then(|_| lag.articulated_accelerations(&scene).ok());
+    let articulated = lag.articulated_accelerations(&scene).ok();
     let g = Generator {
         lag: &lag,
         articulated: articulated.as_ref(),

@@ -75,6 +75,11 @@ pub(crate) fn articulated(scene: &Scene, lagrange: &Lagrange) -> Result<(Vec<Exp
         scene,
         s: if planar { 3 } else { 6 },
         coordinates: &lagrange.coordinates,
+        at_rest: lagrange
+            .coordinates
+            .iter()
+            .map(|c| (atom::coord(c, 2), Expr::zero()))
+            .collect(),
     };
     let acc = abc.accelerations(&links, &tau)?;
     verify(&tape, lagrange, &acc)?;
@@ -225,6 +230,8 @@ struct Recursion<'a> {
     /// 6 in space, 3 in the plane.
     s: usize,
     coordinates: &'a [String],
+    /// Every q̈ at 0: a rate read at q̈ = 0 is a bias term.
+    at_rest: FxHashMap<Var, Expr>,
 }
 
 /// A symmetric matrix, in full.
@@ -347,11 +354,6 @@ impl Recursion<'_> {
         link: &Link,
         parent: Option<&Vec<Expr>>,
     ) -> Result<LinkState, String> {
-        let qdd: FxHashMap<Var, Expr> = self
-            .coordinates
-            .iter()
-            .map(|c| (atom::coord(c, 2), Expr::zero()))
-            .collect();
         let v = self.velocity(link, parent);
         let v = self.name_vec(&format!("V{tag}"), v);
         let rel: Vec<Expr> = match parent {
@@ -368,7 +370,7 @@ impl Recursion<'_> {
         let mut c = Vec::with_capacity(self.s);
         for e in &rel {
             let rate = self.tape.dt(e);
-            c.push(rate.subs_many(&qdd).map_err(|e| e.message)?);
+            c.push(rate.subs_many(&self.at_rest).map_err(|e| e.message)?);
         }
         let bias = self.name_vec(&format!("c{tag}"), c);
         let inertia = self.inertia(link);

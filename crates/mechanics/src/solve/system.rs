@@ -258,8 +258,8 @@ fn verify_through(
         .with_hint("solve it expanded: drop `--keep` and `--structured`")
     };
     let mut rng = crate::rng::SplitMix64::new(0x51_0e5);
-    let roots: Vec<&Expr> = solution.iter().map(|(_, v)| v).collect();
-    let used = tape.used_by(roots.iter().copied());
+    let roots: Vec<Expr> = solution.iter().map(|(_, v)| v.clone()).collect();
+    let used = tape.used_by(&roots);
     let (mut probes, mut tries) = (0, 0);
     while probes < 3 {
         tries += 1;
@@ -273,18 +273,17 @@ fn verify_through(
         };
         // a state outside the intermediates' domain (asin of more than 1:
         // the scene's assumptions are not drawn) is no evidence
-        let defined = used.iter().all(|&i| {
-            let e = tape.entries()[i].expr();
-            tape.eval_f64(&e, &probe).is_some_and(f64::is_finite)
-        });
+        let entries: Vec<Expr> = used.iter().map(|&i| tape.entries()[i].expr()).collect();
+        let defined = tape
+            .eval_many_f64(&entries, &probe)
+            .is_some_and(|v| v.iter().all(|x| x.is_finite()));
         if !defined {
             continue;
         }
         probes += 1;
-        for (_, v) in solution {
-            if !tape.eval_f64(v, &probe).is_some_and(f64::is_finite) {
-                return Err(refuse());
-            }
+        let values_at = tape.eval_many_f64(&roots, &probe);
+        if !values_at.is_some_and(|v| v.iter().all(|x| x.is_finite())) {
+            return Err(refuse());
         }
         for eq in &sys.equations {
             let r = eq
