@@ -465,6 +465,11 @@ fn solve_block(
 /// unsolved ones before it solves the rest together.
 const MAX_ORDERED_BLOCK: usize = 3;
 
+/// The most sets of equations [`solve_in_order`] tries for one size in one
+/// step: a large block is searched for single equations and pairs only,
+/// so the search stays polynomial and small (C(100, 2) = 4,950).
+const MAX_ORDERED_SUBSETS: usize = 10_000;
+
 /// A square nonsingular `a·x = b` solved the way one solves a mechanism
 /// body by body: repeatedly the smallest set of k equations (k ≤
 /// `MAX_ORDERED_BLOCK`) in exactly k unknowns not yet solved, those
@@ -490,6 +495,9 @@ pub fn solve_in_order(
         };
         let mut found: Option<(Vec<usize>, Vec<usize>)> = None;
         'sizes: for k in 1..=MAX_ORDERED_BLOCK.min(free_eqs.len()) {
+            if binomial(free_eqs.len(), k) > MAX_ORDERED_SUBSETS {
+                break;
+            }
             for eqs in combinations(&free_eqs, k) {
                 let mut cols: Vec<usize> = eqs.iter().flat_map(|&i| open(i)).collect();
                 cols.sort_unstable();
@@ -534,6 +542,11 @@ pub fn solve_in_order(
         }
     }
     Ok(Some(out))
+}
+
+/// C(n, k), saturating.
+fn binomial(n: usize, k: usize) -> usize {
+    (0..k).fold(1usize, |c, i| c.saturating_mul(n - i) / (i + 1))
 }
 
 /// The k-element subsets of `items`, in lexicographic order.
@@ -611,6 +624,35 @@ mod tests {
 
     fn syms(n: usize) -> Vec<Expr> {
         (0..n).map(|i| Expr::unknown(&format!("x{i}"))).collect()
+    }
+
+    #[test]
+    fn ordered_solving_takes_one_equation_at_a_time_and_bounds_its_search() {
+        assert_eq!(
+            (binomial(10, 3), binomial(100, 2), binomial(100, 3)),
+            (120, 4_950, 161_700)
+        );
+        // x1 = b, then x0 + x1 = a: x1 first, x0 through it
+        let a = vec![vec![e("1"), e("1")], vec![e("0"), e("1")]];
+        let xs: Vec<Var> = (0..2).map(|i| atom::unknown(&format!("x{i}"))).collect();
+        let order = solve_in_order(&a, &[e("a"), e("b")], &xs).unwrap().unwrap();
+        assert_eq!(order[0].0, 1);
+        assert!(order[0].1.equals(&e("b")));
+        assert_eq!(order[1].0, 0);
+        assert!(order[1].1.equals(&e("a").sub(&Expr::unknown("x1"))));
+        // a dense block of 100: no equation alone or pair closes, the
+        // triples are not tried (161,700 > MAX_ORDERED_SUBSETS), no order
+        let n = 100;
+        let dense: Vec<Vec<Expr>> = (0..n)
+            .map(|i| {
+                (0..n)
+                    .map(|j| Expr::int(((i * 7 + j * 3) % 11 + 1) as i64))
+                    .collect()
+            })
+            .collect();
+        let xs: Vec<Var> = (0..n).map(|i| atom::unknown(&format!("y{i}"))).collect();
+        let rhs = vec![Expr::one(); n];
+        assert!(solve_in_order(&dense, &rhs, &xs).unwrap().is_none());
     }
 
     #[test]
