@@ -28,9 +28,11 @@
 // layer, and the names a user needs at the root. The engine's internals
 // are behind one hidden module, `engine`.
 pub use qdot_exact::{budget, expr, limits, num};
-pub use qdot_mechanics::{mechanics, scene, solve};
+pub use qdot_mechanics::{cycle, mechanics, scene, solve};
 pub use qdot_syntax::{diag, parse};
 pub mod app;
+#[cfg(feature = "cli")]
+pub mod drawing;
 pub mod output;
 pub mod repl;
 pub mod simulate;
