@@ -206,6 +206,11 @@ enum Command {
     /// and initial values (--vary NAME=FROM:TO:COUNT, repeated), or random
     /// points in that box (--samples N). One summary row per run.
     Sweep(SweepArgs),
+    /// A planar mechanism over its cycle: positions (Newton's method,
+    /// continued on one assembly branch), velocities, accelerations, then
+    /// every joint's reaction and every drive's force, with Coulomb
+    /// friction by iteration. One row per position.
+    Cycle(CycleArgs),
     /// Source code for the equations of motion (C, Rust, Python or Julia):
     /// the right-hand side of y' = F(t, y), or M and f, and the energy when
     /// conserved; shared subexpressions computed once, the parameters as
@@ -341,6 +346,10 @@ fn main() -> ExitCode {
         Command::Sweep(args) => {
             let report = Reporter::new(&args.file, args.output == "json");
             return on_scene(report, cli.max_terms, |src| sweep(report, src, args));
+        }
+        Command::Cycle(args) => {
+            let report = Reporter::new(&args.file, args.output == "json");
+            return on_scene(report, cli.max_terms, |src| cycle(report, src, args));
         }
         Command::Codegen {
             file,
@@ -629,6 +638,65 @@ fn simulate(
     .with_kind(ErrorKind::Integration);
     report.print(&d, "");
     ExitCode::from(3)
+}
+
+/// The options of `qdot cycle`.
+#[derive(clap::Args)]
+struct CycleArgs {
+    /// The scene file (.qd).
+    file: String,
+    /// The varied quantity, `t` or a driven coordinate, from FROM to TO in
+    /// COUNT positions: phi=0:360deg:73 (deg and pi allowed)
+    #[arg(long)]
+    over: String,
+    /// Every parameter's value: R=0.1,L=0.4
+    #[arg(long)]
+    set: Option<String>,
+    /// Coordinates of an assembly near the first position (the others
+    /// start from 0): th=-0.3,xb=0.5
+    #[arg(long)]
+    guess: Option<String>,
+    /// csv, json or text (aligned, 6 digits)
+    #[arg(long, default_value = "csv")]
+    output: String,
+}
+
+fn cycle(report: Reporter, src: &str, o: &CycleArgs) -> ExitCode {
+    use qdot::cycle::{parse_guess, CycleRequest, Over};
+    use qdot::simulate::cycle as render;
+    let req = (|| -> Result<CycleRequest, qdot::Diagnostic> {
+        if !["csv", "json", "text"].contains(&o.output.as_str()) {
+            return Err(qdot::Diagnostic::global(format!("unknown output `{}`", o.output))
+                .with_hint("--output csv, --output json or --output text")
+                .with_kind(ErrorKind::bad_option("--output")));
+        }
+        Ok(CycleRequest {
+            over: Over::parse(&o.over)?,
+            set: o
+                .set
+                .as_deref()
+                .map(output::parse_set_any_sign)
+                .transpose()?
+                .unwrap_or_default()
+                .into_iter()
+                .collect(),
+            guess: o.guess.as_deref().map(parse_guess).transpose()?.unwrap_or_default(),
+        })
+    })();
+    let req = match req {
+        Ok(r) => r,
+        Err(d) => return report.fail(&d, ""),
+    };
+    let table = match render::run(src, &req) {
+        Ok(t) => t,
+        Err(d) => return report.fail(&d, src),
+    };
+    emit(&match o.output.as_str() {
+        "json" => render::json(&table),
+        "text" => render::text(&table),
+        _ => render::csv(&table),
+    });
+    ExitCode::SUCCESS
 }
 
 /// A file's name without its folders and extension: the default title of

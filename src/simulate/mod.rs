@@ -20,5 +20,6 @@ pub mod plot;
 pub mod problems;
 #[cfg(feature = "cli")]
 pub mod progress;
+pub mod cycle;
 pub mod run;
 pub mod sweep;

@@ -7,6 +7,7 @@
 #![warn(missing_docs)]
 
 pub mod codegen;
+pub mod cycle;
 pub mod compile;
 pub mod constrained;
 pub mod given;
@@ -15,4 +16,4 @@ pub mod given;
 use qdot_exact::{algebra, budget, expr, poly};
 use qdot_mechanics::{mechanics, scene};
 use qdot_ode::dense;
-use qdot_syntax::diag;
+use qdot_syntax::{diag, parse};

@@ -6,7 +6,6 @@
 
 #![warn(missing_docs)]
 
-pub mod cycle;
 pub mod mechanics;
 pub mod scene;
 pub mod solve;

@@ -57,6 +57,12 @@ fn statement_exprs(st: &Stmt) -> Vec<&ast::Expr> {
         Stmt::Body(b) => b.properties.iter().map(|p| &p.value).collect(),
         Stmt::Constraint { equation, .. } => vec![&equation.lhs, &equation.rhs],
         Stmt::Reaction { point, .. } => vec![point],
+        Stmt::Joint(j) => [&j.first.point, &j.second.point]
+            .into_iter()
+            .chain(j.along.as_ref())
+            .collect(),
+        Stmt::Drive { value, .. } => vec![value],
+        Stmt::Friction { coefficient, .. } => vec![coefficient],
         Stmt::Assume(facts, _) => facts
             .iter()
             .flat_map(|f| match f {

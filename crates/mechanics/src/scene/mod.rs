@@ -12,6 +12,7 @@ pub mod dimension;
 mod eval;
 pub mod given;
 mod lazy;
+pub mod mechanism;
 mod resolve;
 pub mod rotation;
 mod structure;
@@ -275,6 +276,11 @@ pub struct Scene {
     pub constraints: Vec<Constraint>,
     /// The `reaction` statements, in source order.
     pub reactions: Vec<Reaction>,
+    /// The `joint` statements, in source order (their constraints are
+    /// among [`Scene::constraints`]).
+    pub joints: Vec<mechanism::Joint>,
+    /// The `drive` statements, in source order (each one constraint).
+    pub drives: Vec<mechanism::Drive>,
     /// What the scene assumes beyond positive parameters (`assume`).
     pub assumptions: crate::algebra::assume::Assumptions,
     /// Things worth a look that do not stop the computation.
@@ -419,6 +425,9 @@ pub(crate) enum Binding {
     /// The Lagrange multiplier of a `constraint` (`lambda_rod`): found by
     /// solving, not a value in the scene.
     Multiplier,
+    /// A joint's reaction component (`O_x`), a drive's force (`M`) or a
+    /// friction (`G_f`): found by solving, not a value in the scene.
+    Reaction,
     Time,
     Pi,
 }

@@ -173,6 +173,30 @@ pub enum Stmt {
         /// The whole statement.
         span: Span,
     },
+    /// `joint A: pin crank at P, rod at Q` or `joint G: slider ground at
+    /// P, block at Q along U` — two bodies joined, with the joint's reaction.
+    Joint(JointStmt),
+    /// `drive M: phi = omega*t` — a coordinate prescribed as a function of
+    /// time; the drive's force `M` is the one that holds it so.
+    Drive {
+        /// The drive's name: the name of the force it applies.
+        name: Ident,
+        /// The driven coordinate.
+        coordinate: Ident,
+        /// Its prescribed value, a function of t.
+        value: Expr,
+        /// The whole statement.
+        span: Span,
+    },
+    /// `friction B: mu` — Coulomb friction in the joint `B`.
+    Friction {
+        /// The joint's name.
+        joint: Ident,
+        /// The coefficient: μ for a slider, μ₀·r₀ for a pin.
+        coefficient: Expr,
+        /// The whole statement.
+        span: Span,
+    },
     /// `assume e real, R > r` — what the scene assumes beyond "every
     /// parameter is positive".
     Assume(Vec<Fact>, Span),
@@ -293,6 +317,53 @@ impl PropertyKey {
     }
 }
 
+/// Which kind of joint.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum JointKind {
+    /// `pin`: a point of one body kept on a point of the other.
+    Pin,
+    /// `slider`: a point of one body kept on a line of the other.
+    Slider,
+}
+
+impl JointKind {
+    /// The word after the joint's name: `pin` or `slider`.
+    pub fn keyword(self) -> &'static str {
+        match self {
+            JointKind::Pin => "pin",
+            JointKind::Slider => "slider",
+        }
+    }
+}
+
+/// `joint NAME: pin A at P, B at Q` / `… slider A at P, B at Q along U`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointStmt {
+    /// The joint's name; its reaction's components are named after it.
+    pub name: Ident,
+    /// Pin or slider.
+    pub kind: JointKind,
+    /// The first body (or `ground`) and its point P.
+    pub first: JointEnd,
+    /// The second body (or `ground`) and its point Q: the reaction is the
+    /// force on this body from the first.
+    pub second: JointEnd,
+    /// A slider's direction U, in ground components.
+    pub along: Option<Expr>,
+    /// The whole statement.
+    pub span: Span,
+}
+
+/// One side of a joint: a body (or `ground`) and its point, written
+/// through that body's coordinates.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointEnd {
+    /// The body's, particle's name, or `ground`.
+    pub body: Ident,
+    /// The joint's point.
+    pub point: Expr,
+}
+
 /// `solve a3, T1 { … }`: unknowns and the equations that determine them.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SolveBlock {
@@ -332,6 +403,8 @@ impl Stmt {
             | Stmt::Reaction { span, .. } => *span,
             Stmt::Solve(b) => b.span,
             Stmt::Body(b) => b.span,
+            Stmt::Joint(j) => j.span,
+            Stmt::Drive { span, .. } | Stmt::Friction { span, .. } => *span,
             Stmt::Assume(_, s) => *s,
         }
     }

@@ -50,10 +50,14 @@ pub const STATEMENT: &[&str] = &[
     "assume",
     "constraint",
     "reaction",
+    "joint",
+    "drive",
+    "friction",
 ];
 
-/// The stop words inside `load … at …` and `torque … on …`.
-pub const STOP: &[&str] = &["at", "on"];
+/// The stop words inside `load … at …`, `torque … on …` and `joint … at
+/// … along …`.
+pub const STOP: &[&str] = &["at", "on", "along"];
 
 /// The property words of `body` and `particle` (`mass m, at P`).
 pub fn body_properties() -> impl Iterator<Item = &'static str> {

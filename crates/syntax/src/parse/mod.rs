@@ -33,6 +33,7 @@ mod bodies;
 mod chars;
 mod constraint;
 mod expressions;
+mod joints;
 mod failure;
 pub mod functions;
 pub mod keywords;

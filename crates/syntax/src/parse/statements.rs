@@ -196,6 +196,9 @@ impl<'s> Parser<'s> {
             "assume" if !next_is_eq => self.assume_stmt(i),
             "constraint" if !next_is_eq => self.constraint_stmt(i),
             "reaction" if next_is_ident => self.reaction_stmt(i),
+            "joint" if next_is_ident => self.joint_stmt(i),
+            "drive" if next_is_ident => self.drive_stmt(i),
+            "friction" if next_is_ident => self.friction_stmt(i),
             "torque" if !next_is_eq => self.torque_stmt(i),
             "solve" if !next_is_eq => self.solve_block(i),
             "latex" if !next_is_eq => {

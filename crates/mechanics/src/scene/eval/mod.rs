@@ -619,7 +619,7 @@ impl<'a> SyntaxEvaluator<'a> {
                 self.atoms.insert(key.as_str(), e.clone());
                 Ok(Value::Scalar(e))
             }
-            Some((_, (Binding::Body | Binding::Multiplier, _))) | None => Err(self
+            Some((_, (Binding::Body | Binding::Multiplier | Binding::Reaction, _))) | None => Err(self
                 .not_a_value(n, span)
                 .unwrap_or_else(|| Diagnostic::global(format!("internal: `{n}` has a value")))),
             Some((_, (Binding::Time, _))) => Ok(Value::Scalar(Expr::time())),
@@ -655,6 +655,11 @@ impl<'a> SyntaxEvaluator<'a> {
                 format!("`{n}` is the Lagrange multiplier of a constraint, not a value in the scene"),
             )
             .with_hint("`qdot solve` finds it with the accelerations; in the REPL and in `--at` expressions it is an unknown")),
+            Some((Binding::Reaction, _)) => Some(Diagnostic::error(
+                span,
+                format!("`{n}` is a joint's reaction, a drive's force or a friction, not a value in the scene"),
+            )
+            .with_hint("`qdot solve` and `qdot cycle` find it from the kinetostatic equations")),
             Some(_) => None,
             None => {
                 let d = Diagnostic::error(span, format!("unknown name `{n}`")).with_kind(

@@ -93,10 +93,26 @@ impl Resolver<'_> {
             Some(n) => format!("constraint `{}`", n.name),
             None => "this constraint".to_string(),
         };
-        no_unknowns(std::slice::from_ref(&g), equation.span, &label)?;
+        let mut c = self.constraint_of(g, &multiplier_name(name, index), &label, equation.span, span)?;
+        c.name = name.map(|n| n.name.clone());
+        Ok(c)
+    }
+
+    /// The constraint g = 0 (holonomic, or linear in the velocities),
+    /// checked, with its multiplier `multiplier`; `label` names it in
+    /// messages and `equation` is where its expression is written.
+    pub(super) fn constraint_of(
+        &mut self,
+        g: Expr,
+        multiplier: &str,
+        label: &str,
+        equation: ast::Span,
+        span: ast::Span,
+    ) -> Result<Constraint, Diagnostic> {
+        no_unknowns(std::slice::from_ref(&g), equation, label)?;
         if let Some((d, _)) = derivative_past(std::slice::from_ref(&g), 1) {
             return Err(Diagnostic::error(
-                equation.span,
+                equation,
                 format!("{label} depends on the acceleration {d}"),
             )
             .with_hint(FORMS));
@@ -114,16 +130,16 @@ impl Resolver<'_> {
             } else {
                 "involves no coordinate".to_string()
             };
-            return Err(Diagnostic::error(equation.span, format!("{label} {what}"))
+            return Err(Diagnostic::error(equation, format!("{label} {what}"))
                 .with_hint(NO_COORDINATE_HINT));
         }
         let velocity_level = if holonomic { g.dt() } else { g.clone() };
         let (coefficients, rest) = crate::algebra::linear::split_linear(&velocity_level, &qd)
-            .map_err(|m| Diagnostic::error(equation.span, m.message))?;
+            .map_err(|m| Diagnostic::error(equation, m.message))?;
         let moving = |e: &Expr| qd.iter().any(|&v| e.depends_on(v));
         if coefficients.iter().any(moving) || moving(&rest) {
             return Err(Diagnostic::error(
-                equation.span,
+                equation,
                 format!("{label} is not linear in the velocities"),
             )
             .with_hint(FORMS));
@@ -142,7 +158,7 @@ impl Resolver<'_> {
                 .map(crate::expr::print::unicode)
                 .collect();
             return Err(Diagnostic::error(
-                equation.span,
+                equation,
                 format!(
                     "{label} involves no coordinate: its coefficient {} is 0",
                     zeros.join(", ")
@@ -151,8 +167,8 @@ impl Resolver<'_> {
             .with_hint(NO_COORDINATE_HINT));
         }
         Ok(Constraint {
-            name: name.map(|n| n.name.clone()),
-            multiplier: multiplier_name(name, index),
+            name: Some(multiplier.to_string()),
+            multiplier: multiplier.to_string(),
             holonomic,
             expression: g,
             coefficients,

@@ -18,6 +18,7 @@ mod assume;
 mod bodies;
 mod constraints;
 mod inertia;
+mod joints;
 
 /// A definition as written: its name, its body and its role, if any.
 type DefinitionAst<'a> = (&'a ast::Ident, &'a ast::Expr, Option<Role>);
@@ -39,6 +40,8 @@ struct Declarations<'a> {
     constraints: Vec<&'a Stmt>,
     /// The `reaction` statements, in order.
     reactions: Vec<&'a Stmt>,
+    /// The bodies that turn in the plane (`body` with an `angle`).
+    turning: Vec<&'a str>,
 }
 
 impl<'a> Declarations<'a> {
@@ -55,9 +58,13 @@ impl<'a> Declarations<'a> {
             frames: Vec::new(),
             constraints: Vec::new(),
             reactions: Vec::new(),
+            turning: Vec::new(),
         };
         for st in stmts {
             d.statement(st)?;
+        }
+        for st in stmts {
+            d.reaction_names(st)?;
         }
         d.reserve_body_energies(stmts)?;
         d.names.insert("t".into(), (Binding::Time, Span::default()));
@@ -120,7 +127,13 @@ impl<'a> Declarations<'a> {
                 self.declare(name, Binding::Def(self.definitions.len()))?;
                 self.definitions.push((name, value, None));
             }
-            Stmt::Body(b) => self.declare(&b.name, Binding::Body)?,
+            Stmt::Body(b) => {
+                self.declare(&b.name, Binding::Body)?;
+                if b.properties.iter().any(|p| p.key == ast::PropertyKey::Angle) {
+                    self.turning.push(&b.name.name);
+                }
+            }
+            Stmt::Joint(_) | Stmt::Drive { .. } | Stmt::Friction { .. } => {}
             Stmt::Load { .. }
             | Stmt::Torque { .. }
             | Stmt::Latex { .. }
@@ -153,6 +166,27 @@ impl<'a> Declarations<'a> {
                 }
                 self.unknowns.push(us);
             }
+        }
+        Ok(())
+    }
+
+    /// The names a joint's reaction, a drive's force and a friction take.
+    fn reaction_names(&mut self, st: &'a Stmt) -> Result<(), Diagnostic> {
+        let named = |name: String, span: Span| ast::Ident { name, span };
+        match st {
+            Stmt::Joint(j) => {
+                let turns = |e: &ast::JointEnd| self.turning.contains(&e.body.name.as_str());
+                let locked = turns(&j.first) && turns(&j.second);
+                for n in super::mechanism::reaction_names(&j.name.name, j.kind, locked) {
+                    self.declare(&named(n, j.name.span), Binding::Reaction)?;
+                }
+            }
+            Stmt::Drive { name, .. } => self.declare(name, Binding::Reaction)?,
+            Stmt::Friction { joint, .. } => self.declare(
+                &named(super::mechanism::friction_name(&joint.name), joint.span),
+                Binding::Reaction,
+            )?,
+            _ => {}
         }
         Ok(())
     }
@@ -194,6 +228,7 @@ impl<'a> Declarations<'a> {
             Binding::Coord => "a coordinate",
             Binding::Unknown => "an unknown of a `solve` block",
             Binding::Multiplier => "the multiplier of a constraint",
+            Binding::Reaction => "a joint's reaction, a drive's force or a friction",
             _ => "defined",
         };
         let (line, _) = Diagnostic::line_col(self.src, prev_span.start);
@@ -215,6 +250,13 @@ impl<'a> Declarations<'a> {
                 format!("the unknown `{}` is already {what}", name.name)
             };
             return first(Diagnostic::error(name.span, message).with_hint(hint));
+        }
+        if matches!(b, Binding::Reaction) {
+            return first(Diagnostic::error(
+                name.span,
+                format!("`{}`, which this statement names, is already {what}", name.name),
+            )
+            .with_hint("a joint NAME names its reaction NAME_x, NAME_y (a pin) or NAME_n, NAME_m (a slider), a drive its force, a friction NAME_f: rename the joint, drive or other name"));
         }
         if matches!(b, Binding::Multiplier) {
             return first(Diagnostic::error(
@@ -327,7 +369,8 @@ pub(super) fn scene_from_statements(
         }
     }
     r.gravity(stmts)?;
-    let constraints = r.constraints(&decl.constraints)?;
+    let mut constraints = r.constraints(&decl.constraints)?;
+    let (joints, drives) = r.mechanism(stmts, &mut constraints)?;
     let reactions = r.reactions(&decl.reactions, &constraints)?;
     let (mut definitions, deferred) = split_definitions(&mut r, &decl, values, &unused);
     definitions.append(&mut r.body_energies);
@@ -395,6 +438,8 @@ pub(super) fn scene_from_statements(
         gravity,
         constraints,
         reactions,
+        joints,
+        drives,
         assumptions,
         warnings,
         latex_names,
@@ -499,6 +544,7 @@ fn structure_allowed(stmts: &[Stmt]) -> Result<(), Diagnostic> {
         let what = match st {
             Stmt::Constraint { .. } => "constraints",
             Stmt::Reaction { .. } => "reactions",
+            Stmt::Joint(_) | Stmt::Drive { .. } => "joints and drives",
             Stmt::Functions(..) => "given functions of time",
             _ => continue,
         };

@@ -42,14 +42,7 @@ pub struct CycleRow {
     pub points: Vec<[f64; 2]>,
 }
 
-/// Which kind of joint.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum JointKind {
-    /// A pin: two points of two bodies kept together.
-    Pin,
-    /// A slider: a point of one body kept on a line of the other.
-    Slider,
-}
+pub use crate::parse::ast::JointKind;
 
 /// A joint and the columns of its reaction.
 #[derive(Clone, Debug, PartialEq)]
@@ -115,4 +108,78 @@ pub struct DrawnJoint {
     /// from the guide's point on the first body (the line is drawn
     /// through both); `None` for a pin.
     pub guide: Option<[usize; 2]>,
+}
+
+/// Where each quantity goes in a row.
+pub(super) struct Layout {
+    /// Every column's name.
+    pub columns: Vec<String>,
+    /// The column of each constraint's multiplier, by constraint index.
+    pub multiplier: Vec<usize>,
+    /// The column of each friction, in the order of the joints that have one.
+    pub friction: Vec<usize>,
+    /// The joints' columns.
+    pub joints: Vec<JointColumns>,
+    /// The drives' columns.
+    pub drives: Vec<DriveColumn>,
+}
+
+impl Layout {
+    /// The columns of `scene` varied over `varied`: the varied name; q,
+    /// q̇, q̈; the joints' reactions; the drives; the multipliers of the
+    /// `constraint` statements; the frictions.
+    pub fn of(scene: &crate::scene::Scene, varied: &str) -> Layout {
+        let mut columns = vec![varied.to_string()];
+        for order in ["", "'", "''"] {
+            columns.extend(scene.coordinates.iter().map(|c| format!("{}{order}", c.name)));
+        }
+        let mut multiplier = vec![usize::MAX; scene.constraints.len()];
+        let body = |b: Option<usize>| b.map(|b| scene.bodies[b].name.clone());
+        let mut joints = Vec::new();
+        for jt in &scene.joints {
+            let mut cols = Vec::new();
+            for (&j, name) in jt.constraints.iter().zip(jt.reaction_names()) {
+                multiplier[j] = columns.len();
+                cols.push(columns.len());
+                columns.push(name);
+            }
+            joints.push(JointColumns {
+                name: jt.name.clone(),
+                kind: jt.kind,
+                bodies: [body(jt.bodies[0]), body(jt.bodies[1])],
+                columns: cols,
+                friction: jt.friction.is_some(),
+            });
+        }
+        let mut drives = Vec::new();
+        for d in &scene.drives {
+            multiplier[d.constraint] = columns.len();
+            drives.push(DriveColumn {
+                name: d.name.clone(),
+                coordinate: scene.coordinates[d.coordinate].name.clone(),
+                column: columns.len(),
+            });
+            columns.push(d.name.clone());
+        }
+        for (j, c) in scene.constraints.iter().enumerate() {
+            if multiplier[j] == usize::MAX {
+                multiplier[j] = columns.len();
+                columns.push(c.multiplier.clone());
+            }
+        }
+        let mut friction = Vec::new();
+        for jt in &scene.joints {
+            if let Some(f) = &jt.friction {
+                friction.push(columns.len());
+                columns.push(f.unknown.clone());
+            }
+        }
+        Layout {
+            columns,
+            multiplier,
+            friction,
+            joints,
+            drives,
+        }
+    }
 }
