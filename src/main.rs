@@ -666,9 +666,11 @@ fn cycle(report: Reporter, src: &str, o: &CycleArgs) -> ExitCode {
     use qdot::simulate::cycle as render;
     let req = (|| -> Result<CycleRequest, qdot::Diagnostic> {
         if !["csv", "json", "text"].contains(&o.output.as_str()) {
-            return Err(qdot::Diagnostic::global(format!("unknown output `{}`", o.output))
-                .with_hint("--output csv, --output json or --output text")
-                .with_kind(ErrorKind::bad_option("--output")));
+            return Err(
+                qdot::Diagnostic::global(format!("unknown output `{}`", o.output))
+                    .with_hint("--output csv, --output json or --output text")
+                    .with_kind(ErrorKind::bad_option("--output")),
+            );
         }
         Ok(CycleRequest {
             over: Over::parse(&o.over)?,
@@ -680,7 +682,12 @@ fn cycle(report: Reporter, src: &str, o: &CycleArgs) -> ExitCode {
                 .unwrap_or_default()
                 .into_iter()
                 .collect(),
-            guess: o.guess.as_deref().map(parse_guess).transpose()?.unwrap_or_default(),
+            guess: o
+                .guess
+                .as_deref()
+                .map(parse_guess)
+                .transpose()?
+                .unwrap_or_default(),
         })
     })();
     let req = match req {

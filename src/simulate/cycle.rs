@@ -23,7 +23,11 @@ pub fn csv(table: &CycleTable) -> String {
     let mut out = table.columns.join(",");
     out.push_str(",note\n");
     for row in &table.rows {
-        let cells: Vec<String> = row.values.iter().map(|v| v.map(full).unwrap_or_default()).collect();
+        let cells: Vec<String> = row
+            .values
+            .iter()
+            .map(|v| v.map(full).unwrap_or_default())
+            .collect();
         out.push_str(&cells.join(","));
         out.push(',');
         if let Some(note) = &row.note {
@@ -80,7 +84,10 @@ pub fn text(table: &CycleTable) -> String {
             .iter()
             .enumerate()
             .map(|(k, v)| match v {
-                Some(x) if k == 0 && degrees => format!("{:.6}", x.to_degrees()).trim_end_matches('0').trim_end_matches('.').to_string(),
+                Some(x) if k == 0 && degrees => format!("{:.6}", x.to_degrees())
+                    .trim_end_matches('0')
+                    .trim_end_matches('.')
+                    .to_string(),
                 Some(x) => short(*x),
                 None => "—".to_string(),
             })
@@ -92,11 +99,21 @@ pub fn text(table: &CycleTable) -> String {
         cells.push(line);
     }
     let widths: Vec<usize> = (0..cells[0].len())
-        .map(|k| cells.iter().map(|r| r[k].chars().count()).max().unwrap_or(0))
+        .map(|k| {
+            cells
+                .iter()
+                .map(|r| r[k].chars().count())
+                .max()
+                .unwrap_or(0)
+        })
         .collect();
     let mut out = String::new();
     for r in &cells {
-        let padded: Vec<String> = r.iter().zip(&widths).map(|(c, &w)| format!("{c:>w$}")).collect();
+        let padded: Vec<String> = r
+            .iter()
+            .zip(&widths)
+            .map(|(c, &w)| format!("{c:>w$}"))
+            .collect();
         out.push_str(padded.join("  ").trim_end());
         out.push('\n');
     }

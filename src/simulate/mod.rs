@@ -14,12 +14,12 @@
 pub use qdot_compile::{codegen, compile, constrained, given};
 pub use qdot_ode::*;
 
+pub mod cycle;
 #[cfg(feature = "cli")]
 pub mod plot;
 #[doc(hidden)]
 pub mod problems;
 #[cfg(feature = "cli")]
 pub mod progress;
-pub mod cycle;
 pub mod run;
 pub mod sweep;

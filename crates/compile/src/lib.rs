@@ -7,9 +7,9 @@
 #![warn(missing_docs)]
 
 pub mod codegen;
-pub mod cycle;
 pub mod compile;
 pub mod constrained;
+pub mod cycle;
 pub mod given;
 
 // the lower layers, by the paths this crate's modules use

@@ -29,7 +29,13 @@ pub(super) enum Kinetostatics {
 
 /// Solve the kinetostatics with `motion` the motion program's outputs at
 /// (q, q̇, t), `a` the constraint Jacobian.
-pub(super) fn kinetostatics(model: &Model, a: &DMatrix<f64>, motion: &[f64], qd: &[f64], qdd: &[f64]) -> Kinetostatics {
+pub(super) fn kinetostatics(
+    model: &Model,
+    a: &DMatrix<f64>,
+    motion: &[f64],
+    qd: &[f64],
+    qdd: &[f64],
+) -> Kinetostatics {
     let n = model.n;
     let lay = model.layout();
     let mass = DMatrix::from_row_slice(n, n, &motion[lay.mass..lay.mass + n * n]);

@@ -61,11 +61,19 @@ impl Over {
         let (name, range) = s.split_once('=').ok_or_else(|| bad("no `=`".into()))?;
         let parts: Vec<&str> = range.split(':').collect();
         let [from, to, count] = parts[..] else {
-            return Err(bad(format!("{} parts after `=`, and it takes 3 (FROM:TO:COUNT)", parts.len())));
+            return Err(bad(format!(
+                "{} parts after `=`, and it takes 3 (FROM:TO:COUNT)",
+                parts.len()
+            )));
         };
-        let count: usize = count.trim().parse().map_err(|_| bad(format!("`{count}` is not a number of positions")))?;
+        let count: usize = count
+            .trim()
+            .parse()
+            .map_err(|_| bad(format!("`{count}` is not a number of positions")))?;
         if count == 0 || count > MAX_CYCLE_POSITIONS {
-            return Err(bad(format!("{count} positions: give 1 to {MAX_CYCLE_POSITIONS}")));
+            return Err(bad(format!(
+                "{count} positions: give 1 to {MAX_CYCLE_POSITIONS}"
+            )));
         }
         Ok(Over {
             name: name.trim().to_string(),
@@ -113,7 +121,11 @@ pub fn cycle(scene: &Scene, req: &CycleRequest) -> Result<CycleTable, Diagnostic
     let n = scene.coordinates.len();
     let m = scene.constraints.len();
     if m < n {
-        let driven: Vec<&str> = scene.drives.iter().map(|d| scene.coordinates[d.coordinate].name.as_str()).collect();
+        let driven: Vec<&str> = scene
+            .drives
+            .iter()
+            .map(|d| scene.coordinates[d.coordinate].name.as_str())
+            .collect();
         return Err(Diagnostic::global(format!(
             "the mechanism has {} degree{} of freedom that no drive prescribes ({m} conditions on {n} coordinates)",
             n - m,
@@ -145,32 +157,66 @@ fn varied(scene: &Scene, over: &Over, params: &FxHashMap<Var, f64>) -> Result<Va
     if over.name == "t" {
         return Ok(Varied::Time);
     }
-    let drive = scene.drives.iter().find(|d| scene.coordinates[d.coordinate].name == over.name);
+    let drive = scene
+        .drives
+        .iter()
+        .find(|d| scene.coordinates[d.coordinate].name == over.name);
     let Some(d) = drive else {
-        let driven: Vec<String> = scene.drives.iter().map(|d| scene.coordinates[d.coordinate].name.clone()).collect();
-        return Err(Diagnostic::global(format!("`--over {}`: `{}` is not a driven coordinate", over.name, over.name))
-            .with_hint(format!("vary `t`{}", if driven.is_empty() { String::new() } else { format!(" or a driven coordinate: {}", driven.join(", ")) }))
-            .with_kind(ErrorKind::bad_option("--over")));
+        let driven: Vec<String> = scene
+            .drives
+            .iter()
+            .map(|d| scene.coordinates[d.coordinate].name.clone())
+            .collect();
+        return Err(Diagnostic::global(format!(
+            "`--over {}`: `{}` is not a driven coordinate",
+            over.name, over.name
+        ))
+        .with_hint(format!(
+            "vary `t`{}",
+            if driven.is_empty() {
+                String::new()
+            } else {
+                format!(" or a driven coordinate: {}", driven.join(", "))
+            }
+        ))
+        .with_kind(ErrorKind::bad_option("--over")));
     };
     model::law(&d.value, params).map(Varied::Drive)
 }
 
 /// Every parameter's value, and no other name.
-fn parameter_values(scene: &Scene, set: &FxHashMap<String, f64>) -> Result<FxHashMap<Var, f64>, Diagnostic> {
-    let missing: Vec<&str> = scene.parameters.iter().filter(|p| !set.contains_key(&p.name)).map(|p| p.name.as_str()).collect();
+fn parameter_values(
+    scene: &Scene,
+    set: &FxHashMap<String, f64>,
+) -> Result<FxHashMap<Var, f64>, Diagnostic> {
+    let missing: Vec<&str> = scene
+        .parameters
+        .iter()
+        .filter(|p| !set.contains_key(&p.name))
+        .map(|p| p.name.as_str())
+        .collect();
     if !missing.is_empty() {
         let example: Vec<String> = missing.iter().map(|m| format!("{m}=1")).collect();
-        return Err(Diagnostic::global(format!("no value for the parameter{} {}", if missing.len() > 1 { "s" } else { "" }, missing.join(", ")))
-            .with_hint(format!("give every parameter a value: --set {}", example.join(",")))
-            .with_kind(ErrorKind::bad_option("--set")));
+        return Err(Diagnostic::global(format!(
+            "no value for the parameter{} {}",
+            if missing.len() > 1 { "s" } else { "" },
+            missing.join(", ")
+        ))
+        .with_hint(format!(
+            "give every parameter a value: --set {}",
+            example.join(",")
+        ))
+        .with_kind(ErrorKind::bad_option("--set")));
     }
     let mut out = FxHashMap::default();
     for (k, &v) in set {
         if !scene.parameters.iter().any(|p| &p.name == k) {
             let names: Vec<&str> = scene.parameters.iter().map(|p| p.name.as_str()).collect();
-            return Err(Diagnostic::global(format!("`--set {k}=…`: `{k}` is not a parameter of the scene"))
-                .with_hint(format!("the parameters are {}", names.join(", ")))
-                .with_kind(ErrorKind::bad_option("--set")));
+            return Err(Diagnostic::global(format!(
+                "`--set {k}=…`: `{k}` is not a parameter of the scene"
+            ))
+            .with_hint(format!("the parameters are {}", names.join(", ")))
+            .with_kind(ErrorKind::bad_option("--set")));
         }
         out.insert(atom::param(k), v);
     }
@@ -184,9 +230,14 @@ fn guess(scene: &Scene, given: &[(String, f64)]) -> Result<Vec<f64>, Diagnostic>
     for (name, v) in given {
         let Some(k) = scene.coordinates.iter().position(|c| &c.name == name) else {
             let names: Vec<&str> = scene.coordinates.iter().map(|c| c.name.as_str()).collect();
-            return Err(Diagnostic::global(format!("`--guess {name}=…`: `{name}` is not a coordinate"))
-                .with_hint(format!("guess coordinates of an assembly near the first position: {}", names.join(", ")))
-                .with_kind(ErrorKind::bad_option("--guess")));
+            return Err(Diagnostic::global(format!(
+                "`--guess {name}=…`: `{name}` is not a coordinate"
+            ))
+            .with_hint(format!(
+                "guess coordinates of an assembly near the first position: {}",
+                names.join(", ")
+            ))
+            .with_kind(ErrorKind::bad_option("--guess")));
         };
         q[k] = *v;
     }
@@ -197,14 +248,18 @@ fn guess(scene: &Scene, given: &[(String, f64)]) -> Result<Vec<f64>, Diagnostic>
 pub fn parse_guess(s: &str) -> Result<Vec<(String, f64)>, Diagnostic> {
     let mut out = Vec::new();
     for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
-        let parsed = part.split_once('=').and_then(|(k, v)| Some((k.trim().to_string(), angle_value(v)?)));
+        let parsed = part
+            .split_once('=')
+            .and_then(|(k, v)| Some((k.trim().to_string(), angle_value(v)?)));
         match parsed {
             Some(kv) => out.push(kv),
-            None => {
-                return Err(Diagnostic::global(format!("`--guess {part}`: expected NAME=NUMBER"))
-                    .with_hint("give coordinates of an assembly near the first position: --guess th=-0.3,xb=0.5")
-                    .with_kind(ErrorKind::bad_option("--guess")))
-            }
+            None => return Err(Diagnostic::global(format!(
+                "`--guess {part}`: expected NAME=NUMBER"
+            ))
+            .with_hint(
+                "give coordinates of an assembly near the first position: --guess th=-0.3,xb=0.5",
+            )
+            .with_kind(ErrorKind::bad_option("--guess"))),
         }
     }
     Ok(out)

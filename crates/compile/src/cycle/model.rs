@@ -3,7 +3,7 @@
 //! acceleration equations, M and f for the kinetostatics, the frictions'
 //! relative velocities and directions, and the points of the drawing.
 
-use super::table::{DrawnBody, DrawnJoint, Drawing, JointKind};
+use super::table::{Drawing, DrawnBody, DrawnJoint, JointKind};
 use crate::compile::{compile_with, CompileError, Program};
 use crate::diag::Diagnostic;
 use crate::expr::{atom, Expr};
@@ -102,10 +102,22 @@ impl Model {
 
     /// Compile the mechanism of `scene` (whose equations are `lag`) with
     /// the parameters' values.
-    pub fn new(scene: &Scene, lag: &Lagrange, params: &FxHashMap<Var, f64>) -> Result<Model, Diagnostic> {
+    pub fn new(
+        scene: &Scene,
+        lag: &Lagrange,
+        params: &FxHashMap<Var, f64>,
+    ) -> Result<Model, Diagnostic> {
         let n = scene.coordinates.len();
-        let q: Vec<Var> = scene.coordinates.iter().map(|c| atom::coord(&c.name, 0)).collect();
-        let qd: Vec<Var> = scene.coordinates.iter().map(|c| atom::coord(&c.name, 1)).collect();
+        let q: Vec<Var> = scene
+            .coordinates
+            .iter()
+            .map(|c| atom::coord(&c.name, 0))
+            .collect();
+        let qd: Vec<Var> = scene
+            .coordinates
+            .iter()
+            .map(|c| atom::coord(&c.name, 1))
+            .collect();
         let t = atom::time();
         let mut g = Vec::with_capacity(n + n * n);
         let mut locked = Vec::new();
@@ -195,7 +207,9 @@ fn constant(e: &Expr, params: &FxHashMap<Var, f64>) -> Option<f64> {
 }
 
 fn compile_error(e: CompileError) -> Diagnostic {
-    Diagnostic::global(format!("the mechanism's equations cannot be evaluated: {e}"))
+    Diagnostic::global(format!(
+        "the mechanism's equations cannot be evaluated: {e}"
+    ))
 }
 
 /// The drawing's points (x, y pairs, flattened) and its bodies and joints:

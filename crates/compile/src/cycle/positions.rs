@@ -89,17 +89,29 @@ pub(super) fn run(
         if let Some(ratio) = singular(&lu) {
             row.note = Some(format!("dead point: the constraint Jacobian is singular here (pivot ratio {ratio:.1e}), so the velocities, accelerations and reactions are not determined"));
             points_at(&mut model, &q, &vec![0.0; n], t, &mut motion, &mut row);
-            carried = Some(Carried { t, q, qd: carried.map(|c| c.qd).unwrap_or(vec![0.0; n]), qdd: vec![0.0; n], det_positive: previous });
+            carried = Some(Carried {
+                t,
+                q,
+                qd: carried.map(|c| c.qd).unwrap_or(vec![0.0; n]),
+                qdd: vec![0.0; n],
+                det_positive: previous,
+            });
             rows.push(row);
             continue;
         }
         let minus_b = DVector::from_iterator(n, out[n + n * n..].iter().map(|b| -b));
-        let qd: Vec<f64> = lu.solve(&minus_b).map(|x| x.iter().copied().collect()).unwrap_or(vec![f64::NAN; n]);
+        let qd: Vec<f64> = lu
+            .solve(&minus_b)
+            .map(|x| x.iter().copied().collect())
+            .unwrap_or(vec![f64::NAN; n]);
         let ins: Vec<f64> = q.iter().chain(&qd).copied().chain([t]).collect();
         model.motion.eval(&ins, &mut motion);
         let lay = model.layout();
         let gamma = DVector::from_column_slice(&motion[lay.gamma..lay.gamma + n]);
-        let qdd: Vec<f64> = lu.solve(&gamma).map(|x| x.iter().copied().collect()).unwrap_or(vec![f64::NAN; n]);
+        let qdd: Vec<f64> = lu
+            .solve(&gamma)
+            .map(|x| x.iter().copied().collect())
+            .unwrap_or(vec![f64::NAN; n]);
         for i in 0..n {
             row.values[1 + n + i] = Some(qd[i]);
             row.values[1 + 2 * n + i] = Some(qdd[i]);
@@ -108,7 +120,11 @@ pub(super) fn run(
             row.note = Some("the constraint Jacobian's determinant changed sign since the previous position: a dead point lies between them, and the assembly branch may have changed there".into());
         }
         match kinetostatics(&model, &a, &motion, &qd, &qdd) {
-            Kinetostatics::Solved { lambda, friction, iterations } => {
+            Kinetostatics::Solved {
+                lambda,
+                friction,
+                iterations,
+            } => {
                 for (j, &col) in layout.multiplier.iter().enumerate() {
                     row.values[col] = Some(lambda[j]);
                 }
@@ -120,7 +136,13 @@ pub(super) fn run(
             Kinetostatics::Refused(why) => row.note = Some(why),
         }
         row.points = points(&motion[lay.points..], model.points);
-        carried = Some(Carried { t, q, qd, qdd, det_positive: Some(det_positive) });
+        carried = Some(Carried {
+            t,
+            q,
+            qd,
+            qdd,
+            det_positive: Some(det_positive),
+        });
         rows.push(row);
     }
     Ok(CycleTable {
@@ -166,14 +188,22 @@ fn predict(c: Option<&Carried>, guess: &[f64], t: f64) -> Vec<f64> {
         None => guess.to_vec(),
         Some(c) => {
             let dt = t - c.t;
-            (0..c.q.len()).map(|i| c.q[i] + c.qd[i] * dt + 0.5 * c.qdd[i] * dt * dt).collect()
+            (0..c.q.len())
+                .map(|i| c.q[i] + c.qd[i] * dt + 0.5 * c.qdd[i] * dt * dt)
+                .collect()
         }
     }
 }
 
 /// Newton's method on g(q, t) = 0 from `q`; `out` holds (g, A, b) at the
 /// result. The residual g where it fails.
-fn newton(model: &mut Model, q: &mut [f64], t: f64, offsets: &[f64], out: &mut [f64]) -> Result<(), Vec<f64>> {
+fn newton(
+    model: &mut Model,
+    q: &mut [f64],
+    t: f64,
+    offsets: &[f64],
+    out: &mut [f64],
+) -> Result<(), Vec<f64>> {
     let n = model.n;
     let mut inputs = vec![0.0; n + 1];
     let mut converged = false;
@@ -186,7 +216,10 @@ fn newton(model: &mut Model, q: &mut [f64], t: f64, offsets: &[f64], out: &mut [
             return Ok(());
         }
         let a = DMatrix::from_row_slice(n, n, &out[n..n + n * n]);
-        let Some(dq) = a.lu().solve(&DVector::from_iterator(n, g.iter().map(|x| -x))) else {
+        let Some(dq) = a
+            .lu()
+            .solve(&DVector::from_iterator(n, g.iter().map(|x| -x)))
+        else {
             return Err(g);
         };
         if dq.iter().any(|x| !x.is_finite()) {
@@ -210,7 +243,9 @@ fn newton(model: &mut Model, q: &mut [f64], t: f64, offsets: &[f64], out: &mut [
 fn singular(lu: &nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>) -> Option<f64> {
     let u = lu.u();
     let d = u.diagonal();
-    let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), x| (lo.min(x.abs()), hi.max(x.abs())));
+    let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), x| {
+        (lo.min(x.abs()), hi.max(x.abs()))
+    });
     let ratio = if hi > 0.0 { lo / hi } else { 0.0 };
     (ratio < SINGULAR_PIVOT_RATIO || !ratio.is_finite()).then_some(ratio)
 }
@@ -222,7 +257,14 @@ fn points(tail: &[f64], count: usize) -> Vec<[f64; 2]> {
 
 /// The points of a row whose velocities are unknown (they do not depend
 /// on them).
-fn points_at(model: &mut Model, q: &[f64], qd: &[f64], t: f64, motion: &mut [f64], row: &mut CycleRow) {
+fn points_at(
+    model: &mut Model,
+    q: &[f64],
+    qd: &[f64],
+    t: f64,
+    motion: &mut [f64],
+    row: &mut CycleRow,
+) {
     let ins: Vec<f64> = q.iter().chain(qd).copied().chain([t]).collect();
     model.motion.eval(&ins, motion);
     let lay = model.layout();
@@ -232,10 +274,22 @@ fn points_at(model: &mut Model, q: &[f64], qd: &[f64], t: f64, motion: &mut [f64
 /// The constraint that stays open: the joint (or drive) with the largest
 /// residual, for messages.
 fn worst(scene: &Scene, residual: &[f64]) -> String {
-    let (j, r) = residual.iter().enumerate().fold((0, 0.0f64), |(bj, br), (j, r)| if r.abs() > br { (j, r.abs()) } else { (bj, br) });
+    let (j, r) = residual
+        .iter()
+        .enumerate()
+        .fold((0, 0.0f64), |(bj, br), (j, r)| {
+            if r.abs() > br {
+                (j, r.abs())
+            } else {
+                (bj, br)
+            }
+        });
     match owner(scene, j) {
         Some(what) => format!("{what} (its residual is {r:.3e})"),
-        None => format!("the constraint {} (its residual is {r:.3e})", scene.constraints[j].label(j)),
+        None => format!(
+            "the constraint {} (its residual is {r:.3e})",
+            scene.constraints[j].label(j)
+        ),
     }
 }
 
@@ -244,13 +298,20 @@ fn owner(scene: &Scene, j: usize) -> Option<String> {
     if let Some(jt) = scene.joints.iter().find(|jt| jt.constraints.contains(&j)) {
         return Some(format!("the joint `{}`", jt.name));
     }
-    scene.drives.iter().find(|d| d.constraint == j).map(|d| format!("the drive `{}`", d.name))
+    scene
+        .drives
+        .iter()
+        .find(|d| d.constraint == j)
+        .map(|d| format!("the drive `{}`", d.name))
 }
 
 /// The error when the first position cannot be assembled, at the
 /// statement of the constraint that stays open.
 fn unassembled(scene: &Scene, residual: &[f64], over: &Over, v: f64) -> Diagnostic {
-    let j = residual.iter().enumerate().fold(0, |bj, (j, r)| if r.abs() > residual[bj].abs() { j } else { bj });
+    let j = residual.iter().enumerate().fold(
+        0,
+        |bj, (j, r)| if r.abs() > residual[bj].abs() { j } else { bj },
+    );
     let span = scene.constraints[j].span;
     Diagnostic::error(
         span,

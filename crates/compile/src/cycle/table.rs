@@ -131,7 +131,12 @@ impl Layout {
     pub fn of(scene: &crate::scene::Scene, varied: &str) -> Layout {
         let mut columns = vec![varied.to_string()];
         for order in ["", "'", "''"] {
-            columns.extend(scene.coordinates.iter().map(|c| format!("{}{order}", c.name)));
+            columns.extend(
+                scene
+                    .coordinates
+                    .iter()
+                    .map(|c| format!("{}{order}", c.name)),
+            );
         }
         let mut multiplier = vec![usize::MAX; scene.constraints.len()];
         let body = |b: Option<usize>| b.map(|b| scene.bodies[b].name.clone());

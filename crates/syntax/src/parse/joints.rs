@@ -142,7 +142,13 @@ impl<'s> Parser<'s> {
         let (rest, coordinate) = self.ident(j)?;
         let rest = match self.equals(rest) {
             Ok(k) => k,
-            Err(j) => return Err(self.equals_error(j, &format!("drive {}: {}", name.name, coordinate.name), &forms)),
+            Err(j) => {
+                return Err(self.equals_error(
+                    j,
+                    &format!("drive {}: {}", name.name, coordinate.name),
+                    &forms,
+                ))
+            }
         };
         let (rest, (value, outer)) = self.rhs(rest, "=")?;
         Ok((
@@ -182,11 +188,21 @@ impl<'s> Parser<'s> {
     }
 
     /// The rest after the `:` that follows `head`, else the error.
-    fn colon_after(&self, i: &'s str, head: &str, forms: &str) -> Result<&'s str, nom::Err<RuleError>> {
+    fn colon_after(
+        &self,
+        i: &'s str,
+        head: &str,
+        forms: &str,
+    ) -> Result<&'s str, nom::Err<RuleError>> {
         let j = self.ws(i);
         match j.strip_prefix(':') {
             Some(k) => Ok(k),
-            None => Err(failure(self.expected(j, &format!("`:` after `{head}`"), forms, None))),
+            None => Err(failure(self.expected(
+                j,
+                &format!("`:` after `{head}`"),
+                forms,
+                None,
+            ))),
         }
     }
 }

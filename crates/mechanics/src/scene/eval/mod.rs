@@ -619,9 +619,11 @@ impl<'a> SyntaxEvaluator<'a> {
                 self.atoms.insert(key.as_str(), e.clone());
                 Ok(Value::Scalar(e))
             }
-            Some((_, (Binding::Body | Binding::Multiplier | Binding::Reaction, _))) | None => Err(self
-                .not_a_value(n, span)
-                .unwrap_or_else(|| Diagnostic::global(format!("internal: `{n}` has a value")))),
+            Some((_, (Binding::Body | Binding::Multiplier | Binding::Reaction, _))) | None => {
+                Err(self
+                    .not_a_value(n, span)
+                    .unwrap_or_else(|| Diagnostic::global(format!("internal: `{n}` has a value"))))
+            }
             Some((_, (Binding::Time, _))) => Ok(Value::Scalar(Expr::time())),
             Some((_, (Binding::Pi, _))) => Ok(Value::Scalar(Expr::pi())),
             Some((_, (Binding::Def(i), _))) => {

@@ -93,7 +93,13 @@ impl Resolver<'_> {
             Some(n) => format!("constraint `{}`", n.name),
             None => "this constraint".to_string(),
         };
-        let mut c = self.constraint_of(g, &multiplier_name(name, index), &label, equation.span, span)?;
+        let mut c = self.constraint_of(
+            g,
+            &multiplier_name(name, index),
+            &label,
+            equation.span,
+            span,
+        )?;
         c.name = name.map(|n| n.name.clone());
         Ok(c)
     }

@@ -27,7 +27,10 @@ impl Resolver<'_> {
                     let line = Diagnostic::line_col(self.src, prev.span.start).0;
                     return Err(Diagnostic::error(
                         j.name.span,
-                        format!("the joint `{}` is already defined (line {line})", j.name.name),
+                        format!(
+                            "the joint `{}` is already defined (line {line})",
+                            j.name.name
+                        ),
                     )
                     .with_hint("give each joint its own name"));
                 }
@@ -49,7 +52,10 @@ impl Resolver<'_> {
                     let line = Diagnostic::line_col(self.src, prev.span.start).0;
                     return Err(Diagnostic::error(
                         coordinate.span,
-                        format!("`{}` is already driven by `{}` (line {line})", coordinate.name, prev.name),
+                        format!(
+                            "`{}` is already driven by `{}` (line {line})",
+                            coordinate.name, prev.name
+                        ),
                     )
                     .with_hint("a coordinate has one law of motion: keep one drive"));
                 }
@@ -70,15 +76,25 @@ impl Resolver<'_> {
     }
 
     /// One joint: its bodies, points, direction and constraints.
-    fn joint(&mut self, j: &JointStmt, constraints: &mut Vec<Constraint>) -> Result<Joint, Diagnostic> {
-        let bodies = [self.joint_body(&j.first.body)?, self.joint_body(&j.second.body)?];
+    fn joint(
+        &mut self,
+        j: &JointStmt,
+        constraints: &mut Vec<Constraint>,
+    ) -> Result<Joint, Diagnostic> {
+        let bodies = [
+            self.joint_body(&j.first.body)?,
+            self.joint_body(&j.second.body)?,
+        ];
         if bodies[0] == bodies[1] {
             let what = match bodies[0] {
                 None => "the ground to itself".to_string(),
                 Some(b) => format!("`{}` to itself", self.bodies[b].info.name),
             };
-            return Err(Diagnostic::error(j.second.body.span, format!("the joint `{}` joins {what}", j.name.name))
-                .with_hint("a joint joins two different bodies (or a body and `ground`)"));
+            return Err(Diagnostic::error(
+                j.second.body.span,
+                format!("the joint `{}` joins {what}", j.name.name),
+            )
+            .with_hint("a joint joins two different bodies (or a body and `ground`)"));
         }
         let p = self.joint_point(&j.first, bodies[0])?;
         let q = self.joint_point(&j.second, bodies[1])?;
@@ -103,7 +119,11 @@ impl Resolver<'_> {
                 // the force on B along n̂
                 let gap = [q[0].sub(&p[0]), q[1].sub(&p[1])];
                 let across = u[0].mul(&gap[1]).sub(&u[1].mul(&gap[0]));
-                gs.push(across.div(&length(u, j.span)?).map_err(|m| Diagnostic::error(j.span, m.message))?);
+                gs.push(
+                    across
+                        .div(&length(u, j.span)?)
+                        .map_err(|m| Diagnostic::error(j.span, m.message))?,
+                );
                 if names.len() == 2 {
                     let angle = self.angle(bodies[1]).sub(&self.angle(bodies[0]));
                     gs.push(angle.dt());
@@ -164,15 +184,34 @@ impl Resolver<'_> {
     }
 
     /// A joint's point, checked to be a plane position on its own body.
-    fn joint_point(&mut self, end: &ast::JointEnd, body: Option<usize>) -> Result<Vec<Expr>, Diagnostic> {
+    fn joint_point(
+        &mut self,
+        end: &ast::JointEnd,
+        body: Option<usize>,
+    ) -> Result<Vec<Expr>, Diagnostic> {
         let span = end.point.span;
         let p = match self.ev.value(&end.point)? {
             Value::Vector(v) if v.len() == 2 => v,
             Value::Vector(v) => {
-                return Err(Diagnostic::error(span, format!("a joint's point has 2 components (joints are planar), and this has {}", v.len()))
-                    .with_hint(POINT_HINT))
+                return Err(Diagnostic::error(
+                    span,
+                    format!(
+                        "a joint's point has 2 components (joints are planar), and this has {}",
+                        v.len()
+                    ),
+                )
+                .with_hint(POINT_HINT))
             }
-            other => return Err(Diagnostic::error(span, format!("a joint's point is a position, and this is {}", other.describe())).with_hint(POINT_HINT)),
+            other => {
+                return Err(Diagnostic::error(
+                    span,
+                    format!(
+                        "a joint's point is a position, and this is {}",
+                        other.describe()
+                    ),
+                )
+                .with_hint(POINT_HINT))
+            }
         };
         no_unknowns(&p, span, "a joint's point")?;
         positions_only(&p, span, "a joint's point")?;
@@ -182,7 +221,12 @@ impl Resolver<'_> {
 
     /// A slider's direction: a nonzero plane vector that turns with the
     /// first body at most.
-    fn slider_direction(&mut self, u: &ast::Expr, body: Option<usize>, who: &ast::Ident) -> Result<Vec<Expr>, Diagnostic> {
+    fn slider_direction(
+        &mut self,
+        u: &ast::Expr,
+        body: Option<usize>,
+        who: &ast::Ident,
+    ) -> Result<Vec<Expr>, Diagnostic> {
         let v = match self.ev.value(u)? {
             Value::Vector(v) if v.len() == 2 => v,
             other => {
@@ -193,15 +237,24 @@ impl Resolver<'_> {
         no_unknowns(&v, u.span, "a slider's direction")?;
         positions_only(&v, u.span, "a slider's direction")?;
         if v.iter().all(Expr::is_zero) {
-            return Err(Diagnostic::error(u.span, "a slider's direction is the zero vector")
-                .with_hint("give the guide's direction: `along [1, 0]`"));
+            return Err(
+                Diagnostic::error(u.span, "a slider's direction is the zero vector")
+                    .with_hint("give the guide's direction: `along [1, 0]`"),
+            );
         }
         self.on_body(&v, body, u.span, &who.name, "direction")?;
         Ok(v)
     }
 
     /// An error when `es` move with a coordinate that is not `body`'s.
-    fn on_body(&self, es: &[Expr], body: Option<usize>, span: ast::Span, who: &str, what: &str) -> Result<(), Diagnostic> {
+    fn on_body(
+        &self,
+        es: &[Expr],
+        body: Option<usize>,
+        span: ast::Span,
+        who: &str,
+        what: &str,
+    ) -> Result<(), Diagnostic> {
         let own = self.body_coordinates(body);
         let foreign = self
             .coordinate_vars
@@ -268,22 +321,41 @@ impl Resolver<'_> {
         span: ast::Span,
         constraints: &mut Vec<Constraint>,
     ) -> Result<Drive, Diagnostic> {
-        let Some(k) = self.coordinates.iter().position(|c| c.name == coordinate.name) else {
+        let Some(k) = self
+            .coordinates
+            .iter()
+            .position(|c| c.name == coordinate.name)
+        else {
             return Err(Diagnostic::error(coordinate.span, format!("`{}` is not a coordinate", coordinate.name))
                 .with_hint("a drive prescribes one of the scene's `coordinates` as a function of time: `drive M: phi = omega*t`"));
         };
         let f = match self.ev.value(value)? {
             Value::Scalar(e) => e,
-            other => return Err(Diagnostic::error(value.span, format!("a drive's law is a number, and this is {}", other.describe()))
-                .with_hint("`drive M: phi = omega*t`")),
+            other => {
+                return Err(Diagnostic::error(
+                    value.span,
+                    format!(
+                        "a drive's law is a number, and this is {}",
+                        other.describe()
+                    ),
+                )
+                .with_hint("`drive M: phi = omega*t`"))
+            }
         };
         no_unknowns(std::slice::from_ref(&f), value.span, "a drive's law")?;
-        let moving = self.coordinates.iter().find(|c| {
-            (0..=2).any(|k| f.depends_on(atom::coord(&c.name, k)))
-        });
+        let moving = self
+            .coordinates
+            .iter()
+            .find(|c| (0..=2).any(|k| f.depends_on(atom::coord(&c.name, k))));
         if let Some(c) = moving {
-            return Err(Diagnostic::error(value.span, format!("a drive's law depends on time only, and this moves with `{}`", c.name))
-                .with_hint("a relation between coordinates is a `constraint`; a drive is q = f(t)"));
+            return Err(Diagnostic::error(
+                value.span,
+                format!(
+                    "a drive's law depends on time only, and this moves with `{}`",
+                    c.name
+                ),
+            )
+            .with_hint("a relation between coordinates is a `constraint`; a drive is q = f(t)"));
         }
         self.check_room(constraints.len(), span)?;
         let g = Expr::coord(&coordinate.name, 0).sub(&f);
@@ -309,35 +381,65 @@ impl Resolver<'_> {
     ) -> Result<(), Diagnostic> {
         let Some(j) = joints.iter().position(|j| j.name == joint.name) else {
             let names: Vec<&str> = joints.iter().map(|j| j.name.as_str()).collect();
-            return Err(Diagnostic::error(joint.span, format!("there is no joint `{}`", joint.name)).with_hint(
-                if names.is_empty() {
-                    "friction acts in a joint: declare it first, `joint B: pin rod at P, block at Q`".to_string()
-                } else {
-                    format!("the scene's joints: {}", names.join(", "))
-                },
-            ));
+            return Err(Diagnostic::error(
+                joint.span,
+                format!("there is no joint `{}`", joint.name),
+            )
+            .with_hint(if names.is_empty() {
+                "friction acts in a joint: declare it first, `joint B: pin rod at P, block at Q`"
+                    .to_string()
+            } else {
+                format!("the scene's joints: {}", names.join(", "))
+            }));
         };
         if let Some(prev) = &joints[j].friction {
             let line = Diagnostic::line_col(self.src, prev.span.start).0;
-            return Err(Diagnostic::error(joint.span, format!("the joint `{}` already has friction (line {line})", joint.name))
-                .with_hint("one `friction` statement per joint"));
+            return Err(Diagnostic::error(
+                joint.span,
+                format!(
+                    "the joint `{}` already has friction (line {line})",
+                    joint.name
+                ),
+            )
+            .with_hint("one `friction` statement per joint"));
         }
         let c = match self.ev.value(coefficient)? {
             Value::Scalar(e) => e,
-            other => return Err(Diagnostic::error(coefficient.span, format!("a friction coefficient is a number, and this is {}", other.describe()))
-                .with_hint("`friction G: mu` (a slider), `friction A: mu0*r0` (a pin)")),
+            other => {
+                return Err(Diagnostic::error(
+                    coefficient.span,
+                    format!(
+                        "a friction coefficient is a number, and this is {}",
+                        other.describe()
+                    ),
+                )
+                .with_hint("`friction G: mu` (a slider), `friction A: mu0*r0` (a pin)"))
+            }
         };
-        no_unknowns(std::slice::from_ref(&c), coefficient.span, "a friction coefficient")?;
+        no_unknowns(
+            std::slice::from_ref(&c),
+            coefficient.span,
+            "a friction coefficient",
+        )?;
         if self.moves(&c) || c.depends_on_time() || c.vars().into_iter().any(atom::is_moving) {
-            return Err(Diagnostic::error(coefficient.span, "a friction coefficient is a constant")
-                .with_hint("write it with parameters and numbers: `friction G: mu`"));
+            return Err(Diagnostic::error(
+                coefficient.span,
+                "a friction coefficient is a constant",
+            )
+            .with_hint("write it with parameters and numbers: `friction G: mu`"));
         }
         let jt = &joints[j];
         let relative = match &jt.along {
             Some(u) => {
                 let len = length(u, jt.span)?;
-                let gap = [jt.points[1][0].sub(&jt.points[0][0]), jt.points[1][1].sub(&jt.points[0][1])];
-                u[0].mul(&gap[0]).add(&u[1].mul(&gap[1])).div(&len).map_err(|m| Diagnostic::error(span, m.message))?
+                let gap = [
+                    jt.points[1][0].sub(&jt.points[0][0]),
+                    jt.points[1][1].sub(&jt.points[0][1]),
+                ];
+                u[0].mul(&gap[0])
+                    .add(&u[1].mul(&gap[1]))
+                    .div(&len)
+                    .map_err(|m| Diagnostic::error(span, m.message))?
             }
             None => {
                 if !self.turns(jt.bodies[0]) && !self.turns(jt.bodies[1]) {
@@ -347,7 +449,11 @@ impl Resolver<'_> {
                 self.angle(jt.bodies[1]).sub(&self.angle(jt.bodies[0]))
             }
         };
-        let direction = self.coordinate_vars.iter().map(|&v| relative.diff(v)).collect();
+        let direction = self
+            .coordinate_vars
+            .iter()
+            .map(|&v| relative.diff(v))
+            .collect();
         joints[j].friction = Some(JointFriction {
             coefficient: c,
             unknown: friction_name(&joint.name),

@@ -129,7 +129,10 @@ impl<'a> Declarations<'a> {
             }
             Stmt::Body(b) => {
                 self.declare(&b.name, Binding::Body)?;
-                if b.properties.iter().any(|p| p.key == ast::PropertyKey::Angle) {
+                if b.properties
+                    .iter()
+                    .any(|p| p.key == ast::PropertyKey::Angle)
+                {
                     self.turning.push(&b.name.name);
                 }
             }
