@@ -69,6 +69,21 @@ pub(super) fn solve(ctx: &Context, scene: &Arc<Scene>) -> Result<Report<Solved>,
         // the usual error for a scene with nothing to solve
         scene.lagrange()?;
     }
+    if has_dynamics && crate::solve::kinetostatic::is_driven_mechanism(scene) {
+        let l = scene.lagrange()?;
+        let reactions = crate::solve::kinetostatic::mechanism_reactions(scene, &l)?;
+        let blocks = crate::solve::system::solve_scene(scene)?;
+        return Ok(report(
+            ctx,
+            scene,
+            Solved {
+                dynamics: None,
+                reactions: Vec::new(),
+                blocks,
+                mechanism: Some((l, reactions)),
+            },
+        ));
+    }
     let dynamics = if has_dynamics {
         let l = scene.lagrange()?;
         let acc = l.accelerations()?;
@@ -88,6 +103,7 @@ pub(super) fn solve(ctx: &Context, scene: &Arc<Scene>) -> Result<Report<Solved>,
             dynamics,
             reactions,
             blocks,
+            mechanism: None,
         },
     ))
 }

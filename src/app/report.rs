@@ -89,6 +89,10 @@ pub struct Solved {
     pub reactions: Vec<Vec<Expr>>,
     /// The solutions of the `solve` blocks.
     pub blocks: Vec<BlockSolution>,
+    /// For a driven mechanism (as many joint and drive conditions as
+    /// coordinates): its equations and its reactions from the
+    /// kinetostatics, in place of `dynamics`.
+    pub mechanism: Option<(Lagrange, crate::solve::kinetostatic::MechanismReactions)>,
 }
 
 impl Solved {

@@ -188,8 +188,16 @@ fn solve_output(
     let (lag, reactions, blocks) = (&solved.dynamics, &solved.reactions, &solved.blocks);
     Ok(match fmt {
         Format::Text => {
-            let mut out = match lag {
-                Some((l, acc)) => {
+            let mut out = match (lag, &solved.mechanism) {
+                (None, Some((l, r))) => {
+                    let mut out = text::dynamics_text(scene, l, None, blocks);
+                    out.push_str(&text::mechanism_text(r));
+                    if !blocks.is_empty() {
+                        out.push('\n');
+                    }
+                    out
+                }
+                (Some((l, acc)), _) => {
                     let mut out = text::dynamics_text(scene, l, Some(acc), blocks)
                         + &text::reactions_text(scene, reactions);
                     if !blocks.is_empty() {
@@ -198,7 +206,7 @@ fn solve_output(
                     out
                 }
                 // a block's own intermediates (`--keep`)
-                None => match wire::structured_roots(scene, None, None, blocks) {
+                (None, None) => match wire::structured_roots(scene, None, None, blocks) {
                     Some((tape, roots)) => text::intermediates_text(Some(tape), roots),
                     None => String::new(),
                 },

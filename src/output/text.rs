@@ -203,6 +203,59 @@ fn accelerations_text(out: &mut String, acc: &crate::mechanics::Accelerations) {
     }
 }
 
+/// A driven mechanism's reactions and its frictions' laws.
+pub fn mechanism_text(r: &crate::solve::kinetostatic::MechanismReactions) -> String {
+    let mut out = String::from(if r.in_order {
+        "\nReactions  (kinetostatics: Aᵀ·λ = M·q̈ − f, the accelerations known from the kinematics; in solving order)\n"
+    } else {
+        "\nReactions  (kinetostatics: Aᵀ·λ = M·q̈ − f, the accelerations known from the kinematics)\n"
+    });
+    for (name, e) in &r.values {
+        out.push_str(&format!("  {} = {}\n", pretty_name(name, 0), as_unicode(e)));
+    }
+    if !r.friction.is_empty() {
+        out.push_str(
+            "\nFriction  (Coulomb, the seed's (21.74)–(21.75): opposing the relative motion)\n",
+        );
+        for f in &r.friction {
+            out.push_str(&format!(
+                "  {}\n",
+                friction_law(f, &|n| pretty_name(n, 0), &as_unicode)
+            ));
+        }
+    }
+    out
+}
+
+/// `G_f = −μ·|G_n|·sgn(xb′)` in the notation `name` and `expr` give.
+pub(crate) fn friction_law(
+    f: &crate::solve::kinetostatic::FrictionLaw,
+    name: &dyn Fn(&str) -> String,
+    expr: &dyn Fn(&Expr) -> String,
+) -> String {
+    let normal = match &f.normal[..] {
+        [one] => format!("|{}|", name(one)),
+        many => format!(
+            "√({})",
+            many.iter()
+                .map(|n| format!("{}²", name(n)))
+                .collect::<Vec<_>>()
+                .join(" + ")
+        ),
+    };
+    let c = expr(&f.coefficient);
+    let c = if f.coefficient.as_rational().is_some() || !c.contains([' ', '+', '−']) {
+        c
+    } else {
+        format!("({c})")
+    };
+    format!(
+        "{} = −{c}·{normal}·sgn({})",
+        name(&f.name),
+        expr(&f.relative_velocity)
+    )
+}
+
 /// The text of `qdot forces`.
 pub fn forces_text(names: &[String], q: &[Expr]) -> String {
     let mut out = String::from("Generalized forces  δL = Σ Q_k·δq_k\n");

@@ -7,6 +7,7 @@ pub mod constrained;
 mod definite;
 pub mod eigen;
 pub mod equilibrium;
+pub mod kinetostatic;
 mod linear_stability;
 pub mod numeric;
 pub mod oscillations;
