@@ -12,6 +12,8 @@
 //! and dissipation; for every coordinate ∂E/∂q̇_k, its time derivative,
 //! ∂E/∂q_k and Q_k term by term; the equation; then the solution.
 
+mod mechanism;
+
 use super::position_strings;
 use crate::diag::Diagnostic;
 use crate::expr::latex::{join, latex_expanded, latex_with, Names};
@@ -36,7 +38,15 @@ const LINE: f64 = 56.0;
 pub fn document(scene: &Scene, opts: &super::CommandOptions) -> Result<String, Diagnostic> {
     let mut w = Writer::new(scene);
     let dynamics = scene.has_dynamics();
-    if dynamics {
+    if dynamics && crate::solve::kinetostatic::is_driven_mechanism(scene) {
+        let lag = scene.lagrange()?;
+        let r = crate::solve::kinetostatic::mechanism_reactions(scene, &lag)?;
+        if opts.steps {
+            w.steps_energies(scene, &lag);
+            w.forces_steps(scene);
+        }
+        w.mechanism(scene, &lag, &r, opts.steps);
+    } else if dynamics {
         let lag = scene.lagrange()?;
         let acc = lag.accelerations()?;
         if opts.steps {
@@ -595,6 +605,15 @@ impl Writer {
 
     /// The derivation, line by line (§23.5 of the seed).
     pub fn steps(&mut self, scene: &Scene, lag: &Lagrange) {
+        let (e_name, has_bodies) = self.steps_energies(scene, lag);
+        self.forces_steps(scene);
+        self.constraints_steps(scene);
+        self.steps_equations(scene, lag, &e_name, has_bodies);
+    }
+
+    /// The kinetic energy, body by body: its name in the derivation, and
+    /// whether the scene has kinetic energies.
+    fn steps_energies(&mut self, scene: &Scene, lag: &Lagrange) -> (String, bool) {
         let coords: Vec<String> = lag.coordinates.iter().map(|c| self.sym(c, 0)).collect();
         let bodies: Vec<(String, Expr)> = scene
             .role(Role::Kinetic)
@@ -638,8 +657,11 @@ impl Writer {
             }
             self.align(false, &rows);
         }
-        self.forces_steps(scene);
-        self.constraints_steps(scene);
+        (e_name, !bodies.is_empty())
+    }
+
+    /// Each coordinate's Lagrange equation, term by term.
+    fn steps_equations(&mut self, scene: &Scene, lag: &Lagrange, e_name: &str, has_bodies: bool) {
         for eq in &lag.equations {
             let c = &eq.coordinate;
             let q = self.sym(c, 0);
@@ -649,7 +671,7 @@ impl Writer {
             let e = &lag.kinetic;
             let p = e.diff(e_var(1));
             let mut rows = Vec::new();
-            if !bodies.is_empty() {
+            if has_bodies {
                 let dq = format!("\\frac{{\\partial {e_name}}}{{\\partial {qd}}}");
                 rows.push(vec![self.one(dq.clone()), self.terms(&p)]);
                 rows.push(vec![
@@ -908,6 +930,21 @@ impl Writer {
                     format!("a_{{{k},{q}}}")
                 };
                 vec![(false, format!("{lambda} {factor}"))]
+            }
+            Source::Friction(i) => {
+                // F·∂s/∂q_k, s the slide (or the relative angle) it opposes
+                let Some(f) = scene.joints.get(i).and_then(|j| j.friction.as_ref()) else {
+                    return Vec::new();
+                };
+                let k = i + 1;
+                vec![(
+                    false,
+                    format!(
+                        "{} {}",
+                        self.sym(&f.unknown, 0),
+                        d(&format!("s_{{{k}}}"), &q)
+                    ),
+                )]
             }
         }
     }

@@ -135,9 +135,17 @@ fn forced_coordinates(scene: &Scene, rows: &ConstraintRows) -> Vec<Option<String
                         Source::Force => "a `force`".to_string(),
                         Source::Load(_) => "a load".to_string(),
                         Source::Torque(_) => "a torque".to_string(),
-                        Source::Potential | Source::Constraint(_) => "a force".to_string(),
+                        Source::Potential | Source::Constraint(_) | Source::Friction(_) => {
+                            "a force".to_string()
+                        }
                     });
-            source.or_else(|| {
+            let friction = || {
+                scene.joints.iter().find_map(|jt| {
+                    let f = jt.friction.as_ref()?;
+                    (!f.direction[k].is_zero()).then(|| format!("the friction in `{}`", jt.name))
+                })
+            };
+            source.or_else(friction).or_else(|| {
                 rows.matrix
                     .iter()
                     .position(|r| !r[k].is_zero())

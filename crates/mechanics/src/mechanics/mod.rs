@@ -157,6 +157,17 @@ impl Lagrange {
                     value,
                 });
             }
+            for (i, jt) in scene.joints.iter().enumerate() {
+                let Some(f) = jt.friction.as_ref().filter(|f| !f.direction[k].is_zero()) else {
+                    continue;
+                };
+                let value = Expr::unknown(&f.unknown).mul(&f.direction[k]);
+                rhs = rhs.add(&value);
+                rhs_terms.push(ForceTerm {
+                    source: Source::Friction(i),
+                    value,
+                });
+            }
             equations.push(Equation {
                 coordinate: names[k].clone(),
                 lhs,
@@ -317,6 +328,9 @@ pub enum Source {
     Torque(usize),
     /// λ_j·a_jk: the generalized force of the j-th constraint.
     Constraint(usize),
+    /// F·∂s/∂q_k: the friction of the i-th joint (0-based), an unknown
+    /// like the reactions.
+    Friction(usize),
 }
 
 /// One nonzero contribution to a generalized force.
