@@ -217,6 +217,9 @@ fn solve_output(
             out
         }
         Format::Latex => latex::write(scene, |w| {
+            if let Some((l, r)) = &solved.mechanism {
+                w.mechanism(scene, l, r, false);
+            }
             let (l, acc) = (lag.as_ref().map(|d| &d.0), lag.as_ref().map(|d| &d.1));
             if let Some((tape, roots)) = wire::structured_roots(scene, l, acc, blocks) {
                 w.intermediates(Some(tape), roots);
@@ -229,7 +232,13 @@ fn solve_output(
         }),
         Format::Json => scene_json(
             scene,
-            SolveJson::new(scene, lag.as_ref(), reactions, blocks),
+            SolveJson {
+                mechanism: solved
+                    .mechanism
+                    .as_ref()
+                    .map(|(l, r)| wire::MechanismJson::new(l, r)),
+                ..SolveJson::new(scene, lag.as_ref(), reactions, blocks)
+            },
         )?,
     })
 }

@@ -409,6 +409,64 @@ pub struct SolveJson {
     /// The `solve` blocks' solutions; absent without blocks.
     #[serde(flatten)]
     pub blocks: Option<BlocksJson>,
+    /// A driven mechanism's equations and reactions; absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mechanism: Option<MechanismJson>,
+}
+
+/// A driven mechanism in `solve`'s JSON.
+#[derive(Serialize)]
+pub struct MechanismJson {
+    /// `derive`'s keys: the equations, M and f.
+    #[serde(flatten)]
+    pub derive: DeriveJson,
+    /// Every reaction component and drive force → its value, in solving
+    /// order when `in_order` (each may use those before it, the
+    /// accelerations and the frictions).
+    pub reactions: Named<String>,
+    /// Whether `reactions` are in solving order.
+    pub in_order: bool,
+    /// The frictions' laws.
+    pub friction: Vec<FrictionJson>,
+}
+
+/// `NAME_f = −c·N·sgn(v)`: one friction's law.
+#[derive(Serialize)]
+pub struct FrictionJson {
+    /// The friction's name (`G_f`).
+    pub name: String,
+    /// The coefficient c.
+    pub coefficient: String,
+    /// The reaction components whose magnitude N is: one (|N|) or two
+    /// (√(x² + y²)).
+    pub normal: Vec<String>,
+    /// The relative velocity whose sense it opposes.
+    pub relative_velocity: String,
+}
+
+impl MechanismJson {
+    /// The JSON of a driven mechanism's `solve`.
+    pub fn new(l: &Lagrange, r: &crate::solve::kinetostatic::MechanismReactions) -> MechanismJson {
+        let mut reactions = Named::default();
+        for (n, v) in &r.values {
+            reactions.insert(n.clone(), as_input(v));
+        }
+        MechanismJson {
+            derive: DeriveJson::expressions(l),
+            reactions,
+            in_order: r.in_order,
+            friction: r
+                .friction
+                .iter()
+                .map(|f| FrictionJson {
+                    name: f.name.clone(),
+                    coefficient: as_input(&f.coefficient),
+                    normal: f.normal.clone(),
+                    relative_velocity: as_input(&f.relative_velocity),
+                })
+                .collect(),
+        }
+    }
 }
 
 impl SolveJson {
@@ -426,6 +484,7 @@ impl SolveJson {
             dynamics: dynamics.map(|(l, acc)| DynamicsJson::expressions(l, acc)),
             reactions: (!reactions.is_empty()).then(|| ReactionJson::all(scene, reactions)),
             blocks: (!blocks.is_empty()).then(|| BlocksJson::new(scene, blocks)),
+            mechanism: None,
         }
     }
 }

@@ -213,6 +213,17 @@ impl Lagrange {
     /// The exact accelerations q̈ = M⁻¹·f; with constraints, q̈ and the
     /// multipliers λ of the augmented system (see [`ConstraintRows`]).
     pub fn accelerations(&self) -> Result<Accelerations, Diagnostic> {
+        let friction = self
+            .equations
+            .iter()
+            .flat_map(|e| &e.rhs_terms)
+            .any(|t| matches!(t.source, Source::Friction(_)));
+        if friction {
+            return Err(Diagnostic::global(
+                "the equations have Coulomb friction in a joint (−c·|N|·sgn v), which is not linear in the reactions, so the accelerations have no closed form",
+            )
+            .with_hint("`qdot cycle` solves a driven mechanism with friction position by position; without a drive, remove the `friction` statements"));
+        }
         if !self.constraints.is_empty() {
             let _context = crate::budget::enter(
                 || {
