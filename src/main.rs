@@ -659,6 +659,9 @@ struct CycleArgs {
     /// csv, json or text (aligned, 6 digits)
     #[arg(long, default_value = "csv")]
     output: String,
+    /// Print only these columns after the varied one: O_x,O_y,M
+    #[arg(long)]
+    columns: Option<String>,
 }
 
 fn cycle(report: Reporter, src: &str, o: &CycleArgs) -> ExitCode {
@@ -698,10 +701,20 @@ fn cycle(report: Reporter, src: &str, o: &CycleArgs) -> ExitCode {
         Ok(t) => t,
         Err(d) => return report.fail(&d, src),
     };
+    let shown = match o
+        .columns
+        .as_deref()
+        .map(|c| render::select(&table, c))
+        .transpose()
+    {
+        Ok(t) => t,
+        Err(d) => return report.fail(&d, ""),
+    };
+    let table = shown.as_ref().unwrap_or(&table);
     emit(&match o.output.as_str() {
-        "json" => render::json(&table),
-        "text" => render::text(&table),
-        _ => render::csv(&table),
+        "json" => render::json(table),
+        "text" => render::text(table),
+        _ => render::csv(table),
     });
     ExitCode::SUCCESS
 }

@@ -87,6 +87,6 @@ fn every_seed_example_compiles_with_pdflatex() {
         );
         compiled += 1;
     }
-    assert_eq!(compiled, 16, "every seed example was compiled");
+    assert_eq!(compiled, 17, "every seed example was compiled");
     let _ = std::fs::remove_dir_all(&dir);
 }

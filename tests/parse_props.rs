@@ -77,7 +77,19 @@ fn check_scene(src: &str) -> Result<Option<Vec<Stmt>>, TestCaseError> {
                     | Stmt::Role { value, .. }
                     | Stmt::Force { value, .. }
                     | Stmt::Frame { value, .. }
-                    | Stmt::Gravity { value, .. } => check_expr_spans(src, value)?,
+                    | Stmt::Gravity { value, .. }
+                    | Stmt::Drive { value, .. }
+                    | Stmt::Friction {
+                        coefficient: value, ..
+                    } => check_expr_spans(src, value)?,
+                    Stmt::Joint(j) => {
+                        prop_assert!(src[j.span.start..].starts_with("joint"));
+                        check_expr_spans(src, &j.first.point)?;
+                        check_expr_spans(src, &j.second.point)?;
+                        if let Some(u) = &j.along {
+                            check_expr_spans(src, u)?;
+                        }
+                    }
                     Stmt::Assume(facts, span) => {
                         prop_assert!(src[span.start..].starts_with("assume"));
                         for f in facts {

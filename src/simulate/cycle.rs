@@ -12,6 +12,28 @@ pub fn run(src: &str, req: &CycleRequest) -> Result<CycleTable, Diagnostic> {
     crate::cycle::cycle(&scene, req)
 }
 
+/// The table with only the columns `names` (comma-separated) after the
+/// varied one, in the order given (`--columns O_x,O_y,M`).
+pub fn select(table: &CycleTable, names: &str) -> Result<CycleTable, Diagnostic> {
+    let mut keep = vec![0];
+    for name in names.split(',').map(str::trim).filter(|n| !n.is_empty()) {
+        let Some(k) = table.columns.iter().skip(1).position(|c| c == name) else {
+            return Err(Diagnostic::global(format!(
+                "`--columns {name}`: the table has no column `{name}`"
+            ))
+            .with_hint(format!("the columns are {}", table.columns[1..].join(", ")))
+            .with_kind(crate::diag::ErrorKind::bad_option("--columns")));
+        };
+        keep.push(k + 1);
+    }
+    let mut out = table.clone();
+    out.columns = keep.iter().map(|&k| table.columns[k].clone()).collect();
+    for row in &mut out.rows {
+        row.values = keep.iter().map(|&k| row.values[k]).collect();
+    }
+    Ok(out)
+}
+
 /// A value as CSV and JSON print it: every digit of the double.
 fn full(x: f64) -> String {
     format!("{x:.17e}")

@@ -104,6 +104,27 @@ pub fn stmt_sexpr(s: &Stmt) -> String {
         Stmt::Reaction {
             constraint, point, ..
         } => format!("(reaction {} {})", constraint.name, sexpr(point)),
+        Stmt::Joint(j) => format!(
+            "(joint {} {} ({} {}) ({} {}){})",
+            j.name.name,
+            j.kind.keyword(),
+            j.first.body.name,
+            sexpr(&j.first.point),
+            j.second.body.name,
+            sexpr(&j.second.point),
+            j.along
+                .as_ref()
+                .map_or(String::new(), |u| format!(" (along {})", sexpr(u)))
+        ),
+        Stmt::Drive {
+            name,
+            coordinate,
+            value,
+            ..
+        } => format!("(drive {} {} {})", name.name, coordinate.name, sexpr(value)),
+        Stmt::Friction {
+            joint, coefficient, ..
+        } => format!("(friction {} {})", joint.name, sexpr(coefficient)),
         Stmt::Constraint { name, equation, .. } => format!(
             "(constraint {}(= {} {}))",
             name.as_ref()
@@ -326,6 +347,32 @@ pub fn print_stmt(s: &Stmt) -> String {
         Stmt::Reaction {
             constraint, point, ..
         } => format!("reaction {} at {}", constraint.name, print_full(point)),
+        Stmt::Joint(j) => format!(
+            "joint {}: {} {} at {}, {} at {}{}",
+            j.name.name,
+            j.kind.keyword(),
+            j.first.body.name,
+            print_full(&j.first.point),
+            j.second.body.name,
+            print_full(&j.second.point),
+            j.along
+                .as_ref()
+                .map_or(String::new(), |u| format!(" along {}", print_full(u)))
+        ),
+        Stmt::Drive {
+            name,
+            coordinate,
+            value,
+            ..
+        } => format!(
+            "drive {}: {} = {}",
+            name.name,
+            coordinate.name,
+            print_full(value)
+        ),
+        Stmt::Friction {
+            joint, coefficient, ..
+        } => format!("friction {}: {}", joint.name, print_full(coefficient)),
         Stmt::Constraint { name, equation, .. } => format!(
             "constraint {}{} = {}",
             name.as_ref()

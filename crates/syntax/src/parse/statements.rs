@@ -143,7 +143,7 @@ impl<'s> Parser<'s> {
         }
     }
 
-    /// `statement ::= declaration | role_stmt | force_stmt | load_stmt | torque_stmt | solve_block | latex_stmt | frame_stmt | body_stmt | gravity_stmt | assume_stmt | constraint_stmt | reaction_stmt | definition`
+    /// `statement ::= declaration | role_stmt | force_stmt | load_stmt | torque_stmt | solve_block | latex_stmt | frame_stmt | body_stmt | gravity_stmt | assume_stmt | constraint_stmt | reaction_stmt | joint_stmt | drive_stmt | friction_stmt | definition`
     ///
     /// Keywords do not reserve names: the tokens after the first identifier
     /// decide (see the grammar).
