@@ -162,6 +162,60 @@ impl Points<'_> {
             .collect()
     }
 
+    /// How far along guide `g` point `i` goes at the least and at the
+    /// most over the rows, from the guide's point, on the view.
+    fn stroke(&self, g: [usize; 2], i: usize) -> (f64, f64) {
+        (0..self.source.len())
+            .map(|k| {
+                let (p, q, x) = (self.at(k, g[0]), self.at(k, g[1]), self.at(k, i));
+                let (ux, uy) = (q.0 - p.0, q.1 - p.1);
+                ((x.0 - p.0) * ux + (x.1 - p.1) * uy) / ux.hypot(uy).max(1e-300)
+            })
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), s| {
+                (lo.min(s), hi.max(s))
+            })
+    }
+
+    /// Where a pin's name goes at row `k`: the unit direction away from
+    /// the links meeting at its point `i` (a grounded pin's: to the side,
+    /// its support is below), and how far (past a block on the pin).
+    fn label_side(&self, k: usize, i: usize, grounded: bool) -> (f64, f64, f64) {
+        let p = self.at(k, i);
+        let near = |q: (f64, f64)| (q.0 - p.0).hypot(q.1 - p.1) < 1.0;
+        let (mut sx, mut sy, mut block) = (0.0, 0.0, false);
+        for body in &self.table.drawing.bodies {
+            let at: Vec<(f64, f64)> = body.points.iter().map(|&j| self.at(k, j)).collect();
+            if !at.iter().any(|&q| near(q)) {
+                continue;
+            }
+            let others: Vec<&(f64, f64)> = at.iter().filter(|&&q| !near(q)).collect();
+            block |= body.particle || others.is_empty();
+            for q in others {
+                let (dx, dy) = (q.0 - p.0, q.1 - p.1);
+                let d = dx.hypot(dy);
+                sx += dx / d;
+                sy += dy / d;
+            }
+        }
+        let far = if block {
+            BLOCK.0 / 2.0 + 16.0
+        } else {
+            PIN + 20.0
+        };
+        let (ux, uy) = if block {
+            // above the block's corner: a block sits on its rail
+            (1.0, -0.8)
+        } else if grounded {
+            (if sx > 0.0 { -1.0 } else { 1.0 }, -0.5)
+        } else if sx.hypot(sy) < 0.3 {
+            (1.0, -1.0)
+        } else {
+            (-sx, -sy)
+        };
+        let d = ux.hypot(uy);
+        (ux / d, uy / d, far)
+    }
+
     /// A guide's direction at every row, as the SVG rotation in degrees
     /// (clockwise: the view's y points down).
     fn rotate(&self, g: [usize; 2]) -> Vec<String> {
@@ -304,16 +358,18 @@ fn grounds(points: &Points, moving: &mut Moving, out: &mut String) {
                 "<g id=\"{id}\" transform=\"translate({t})\"><g id=\"{rid}\" transform=\"rotate({r})\">"
             );
             if joint.grounded {
-                // the rail under the block, on the side the guide's
-                // direction turned −90° points to
+                // the rail under the block (on the side of the guide's
+                // direction turned −90°), as long as the block's stroke
+                let (from, to) = points.stroke(g, joint.point);
+                let (from, to) = (from - BLOCK.0, to + BLOCK.0);
                 let y = BLOCK.1 / 2.0;
                 let _ = write!(
                     out,
-                    "<rect x=\"{}\" y=\"{y}\" width=\"{}\" height=\"14\" fill=\"url(#hatch)\"/>\
-                     <line x1=\"{}\" y1=\"{y}\" x2=\"{REACH}\" y2=\"{y}\" class=\"rail\"/>",
-                    -REACH,
-                    2.0 * REACH,
-                    -REACH
+                    "<rect x=\"{x}\" y=\"{y}\" width=\"{w}\" height=\"14\" fill=\"url(#hatch)\"/>\
+                     <line x1=\"{x}\" y1=\"{y}\" x2=\"{x2}\" y2=\"{y}\" class=\"rail\"/>",
+                    x = num(from),
+                    w = num(to - from),
+                    x2 = num(to),
                 );
             }
             let _ = write!(
@@ -415,18 +471,31 @@ fn joints(points: &Points, moving: &mut Moving, out: &mut String) {
                 "<circle id=\"{id}\" cx=\"{cx}\" cy=\"{cy}\" r=\"{PIN}\" class=\"pin\"/>"
             );
         }
-        // a pin's name up and right of it; a slider's above its block's
-        // left corner, clear of a pin on the block
-        let (dx, dy, anchor) = match joint.kind {
-            JointKind::Pin => (PIN + 5.0, -PIN - 5.0, "start"),
-            JointKind::Slider => (-BLOCK.0 / 2.0 - 4.0, -BLOCK.1 / 2.0 - 6.0, "end"),
-        };
+        // a pin's name away from the links meeting there; a slider's
+        // above its block's left corner, clear of a pin on the block
         let id = format!("j{j}t");
-        let x = moving.add(&id, "x", xs.iter().map(|x| num(x + dx)).collect());
-        let y = moving.add(&id, "y", ys.iter().map(|y| num(y + dy)).collect());
+        let (lx, ly, anchor): (Vec<String>, Vec<String>, &str) = match joint.kind {
+            JointKind::Pin => {
+                let (lx, ly) = (0..points.source.len())
+                    .map(|k| {
+                        let (ux, uy, far) = points.label_side(k, joint.point, joint.grounded);
+                        (num(xs[k] + far * ux), num(ys[k] + far * uy))
+                    })
+                    .unzip();
+                (lx, ly, "middle")
+            }
+            JointKind::Slider => {
+                let (dx, dy) = (-BLOCK.0 / 2.0 - 4.0, -BLOCK.1 / 2.0 - 18.0);
+                let lx = xs.iter().map(|x| num(x + dx)).collect();
+                let ly = ys.iter().map(|y| num(y + dy)).collect();
+                (lx, ly, "end")
+            }
+        };
+        let x = moving.add(&id, "x", lx);
+        let y = moving.add(&id, "y", ly);
         let _ = write!(
             out,
-            "<text id=\"{id}\" x=\"{x}\" y=\"{y}\" text-anchor=\"{anchor}\" class=\"label\">{}</text>",
+            "<text id=\"{id}\" x=\"{x}\" y=\"{y}\" text-anchor=\"{anchor}\" dominant-baseline=\"central\" class=\"label\">{}</text>",
             escape(&pretty(&joint.name))
         );
     }
@@ -440,7 +509,7 @@ fn defs() -> String {
          patternTransform=\"rotate(45)\"><line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"10\" stroke=\"#555\" \
          stroke-width=\"2.5\"/></pattern></defs><style>\
          .link{{stroke-width:{BAR};stroke-linejoin:round;stroke-linecap:round;fill-opacity:0.3}}\
-         .block{{stroke:#222;stroke-width:3;fill-opacity:0.85}}\
+         .block{{stroke:#222;stroke-width:3}}\
          .pin{{fill:#fff;stroke:#222;stroke-width:3.5}}\
          .centre{{fill:#222}}\
          .support{{fill:#fff;stroke:#222;stroke-width:3;stroke-linejoin:round}}\
