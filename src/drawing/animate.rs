@@ -336,6 +336,7 @@ fn figure(table: &CycleTable) -> Figure {
         // guides and supports first: the links move over them
         grounds(&points, &mut moving, &mut elements);
         bodies(&points, &mut moving, &mut elements);
+        forces(&points, &mut moving, &mut elements);
         joints(&points, &mut moving, &mut elements);
     }
     Figure {
@@ -458,6 +459,73 @@ fn bodies(points: &Points, moving: &mut Moving, out: &mut String) {
     }
 }
 
+/// Each joint's reaction at each row (the force on its second body, in
+/// the view's directions: y down), where the row has it.
+fn reaction(table: &CycleTable, points: &Points, joint: usize, k: usize) -> Option<(f64, f64)> {
+    let drawn = &table.drawing.joints[joint];
+    let columns = &table.joints.iter().find(|j| j.name == drawn.name)?.columns;
+    let value = |c: usize| table.rows[k].values.get(c).copied().flatten();
+    let (fx, fy) = match (drawn.kind, drawn.guide) {
+        (JointKind::Pin, _) => (value(*columns.first()?)?, -value(*columns.get(1)?)?),
+        (JointKind::Slider, Some(g)) => {
+            // across the guide: its direction turned +90° (−90° on the view)
+            let n = value(*columns.first()?)?;
+            let (p, q) = (points.at(k, g[0]), points.at(k, g[1]));
+            let (a, b) = (q.0 - p.0, q.1 - p.1);
+            let d = a.hypot(b);
+            (n * b / d, -n * a / d)
+        }
+        (JointKind::Slider, None) => return None,
+    };
+    (fx.is_finite() && fy.is_finite()).then_some((fx, fy))
+}
+
+/// Every joint's reaction as an arrow from its point, all to one scale
+/// (the largest over the cycle a fifth of the view); hidden where a row
+/// has none.
+fn forces(points: &Points, moving: &mut Moving, out: &mut String) {
+    let table = points.table;
+    let rows = points.source.len();
+    let all: Vec<Vec<Option<(f64, f64)>>> = (0..table.drawing.joints.len())
+        .map(|j| (0..rows).map(|k| reaction(table, points, j, k)).collect())
+        .collect();
+    let largest = all
+        .iter()
+        .flatten()
+        .flatten()
+        .map(|f| f.0.hypot(f.1))
+        .fold(0.0, f64::max);
+    if largest <= 0.0 {
+        return;
+    }
+    let scale = 0.2 * VIEW / largest;
+    let _ = write!(out, "<g class=\"forces\">");
+    for (j, joint) in table.drawing.joints.iter().enumerate() {
+        if all[j].iter().all(Option::is_none) {
+            continue;
+        }
+        let (arrows, shown): (Vec<String>, Vec<String>) = (0..rows)
+            .map(|k| {
+                let (x, y) = points.at(k, joint.point);
+                let (fx, fy) = all[j][k].unwrap_or((0.0, 0.0));
+                let (dx, dy) = (fx * scale, fy * scale);
+                // too short for its head: hidden
+                let visible = all[j][k].is_some() && dx.hypot(dy) >= 4.0;
+                let line = format!("{},{} {},{}", num(x), num(y), num(x + dx), num(y + dy));
+                (line, if visible { "1" } else { "0" }.to_string())
+            })
+            .unzip();
+        let id = format!("j{j}f");
+        let p = moving.add(&id, "points", arrows);
+        let o = moving.add(&id, "opacity", shown);
+        let _ = write!(
+            out,
+            "<polyline id=\"{id}\" points=\"{p}\" opacity=\"{o}\" class=\"force\" marker-end=\"url(#arrow)\"/>"
+        );
+    }
+    out.push_str("</g>");
+}
+
 /// Every pin as a circle, and every joint's name beside it.
 fn joints(points: &Points, moving: &mut Moving, out: &mut String) {
     for (j, joint) in points.table.drawing.joints.iter().enumerate() {
@@ -507,13 +575,16 @@ fn defs() -> String {
     format!(
         "<defs><pattern id=\"hatch\" width=\"10\" height=\"10\" patternUnits=\"userSpaceOnUse\" \
          patternTransform=\"rotate(45)\"><line x1=\"0\" y1=\"0\" x2=\"0\" y2=\"10\" stroke=\"#555\" \
-         stroke-width=\"2.5\"/></pattern></defs><style>\
+         stroke-width=\"2.5\"/></pattern><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" \
+         markerUnits=\"userSpaceOnUse\" markerWidth=\"22\" markerHeight=\"22\" orient=\"auto\">\
+         <path d=\"M0 1 L10 5 L0 9 Z\" fill=\"#6a1b9a\"/></marker></defs><style>\
          .link{{stroke-width:{BAR};stroke-linejoin:round;stroke-linecap:round;fill-opacity:0.3}}\
          .block{{stroke:#222;stroke-width:3}}\
          .pin{{fill:#fff;stroke:#222;stroke-width:3.5}}\
          .centre{{fill:#222}}\
          .support{{fill:#fff;stroke:#222;stroke-width:3;stroke-linejoin:round}}\
          .rail{{stroke:#222;stroke-width:3}}\
+         .force{{stroke:#6a1b9a;stroke-width:4;fill:none}}\
          .guide{{stroke:#777;stroke-width:2;stroke-dasharray:26 8 4 8}}\
          .label{{font:bold {FONT}px sans-serif;fill:#111;stroke:#fff;stroke-width:6;\
          paint-order:stroke;stroke-linejoin:round}}</style>"
@@ -582,6 +653,8 @@ h1{font-size:22px;margin:0 0 12px}
 .layout{display:flex;gap:28px;align-items:flex-start;flex-wrap:wrap}
 .stage{flex:1 1 560px;max-width:980px}
 #mechanism{display:block;width:100%;height:auto;max-height:74vh;border:1px solid #ccc;border-radius:6px;background:#fcfcfc}
+#mechanism.noted{border-color:#d4a200;box-shadow:0 0 0 2px #f3d36b}
+label{white-space:nowrap;color:#333}
 .controls{display:flex;gap:14px;align-items:center;margin-top:10px}
 .controls input{flex:1}
 button{font:inherit;padding:4px 16px;min-width:92px;cursor:pointer}
@@ -609,6 +682,9 @@ const $ = (id) => document.getElementById(id);
 const play = $("play"), scrub = $("scrub"), position = $("position");
 const varied = $("varied"), note = $("note"), tbody = $("reactions").tBodies[0];
 const targets = data.targets.map(([id, attr]) => [$(id), attr]);
+const svg = $("mechanism"), arrows = svg.querySelector(".forces"), showForces = $("forces");
+if (arrows) showForces.addEventListener("change", () => arrows.setAttribute("display", showForces.checked ? "inline" : "none"));
+else showForces.parentElement.hidden = true;
 const cells = [];
 function line(label, column, cls) {
   const tr = tbody.insertRow();
@@ -650,6 +726,7 @@ function show(k) {
   for (const [td, c] of cells) td.textContent = fmt(r.values[c]);
   note.hidden = r.note === null;
   note.textContent = r.note ?? "";
+  svg.classList.toggle("noted", r.note !== null);
 }
 if (n === 0) { varied.textContent = "no positions"; play.disabled = scrub.disabled = true; return; }
 const period = (data.seconds * 1000) / n;
@@ -708,11 +785,12 @@ pub fn animation_html(table: &CycleTable, title: &str, degrees: bool) -> String 
          <svg id=\"mechanism\" viewBox=\"0 0 {w} {h}\" role=\"img\" aria-label=\"the mechanism\">{elements}</svg>\n\
          <div class=\"controls\"><button id=\"play\" type=\"button\">Pause</button>\
          <input id=\"scrub\" type=\"range\" min=\"0\" max=\"{last}\" step=\"1\" value=\"0\" aria-label=\"position\">\
-         <span id=\"position\"></span></div>\n</div>\n\
+         <span id=\"position\"></span>\
+         <label><input id=\"forces\" type=\"checkbox\" checked> reactions</label></div>\n</div>\n\
          <aside>\n<div id=\"varied\"></div>\n<div id=\"note\" hidden></div>\n\
          <table id=\"reactions\"><tbody></tbody></table>\n\
          <p class=\"hint\">Each joint's reaction is the force on its second body from its first, \
-         in ground components; a slider's across its guide.</p>\n\
+         in ground components; a slider's across its guide. The arrows draw them to one scale.</p>\n\
          <p class=\"legend\">{legend}</p>\n</aside>\n</div>\n\
          <script type=\"application/json\" id=\"cycle-data\">{json}</script>\n\
          <script>\n{PLAYER}\n</script>\n</body>\n</html>\n",
@@ -800,7 +878,7 @@ mod tests {
         }
         assert_eq!(
             html.matches("url(").count(),
-            html.matches("url(#hatch)").count()
+            html.matches("url(#hatch)").count() + html.matches("url(#arrow)").count()
         );
         let data = embedded(&html);
         let rows = data["rows"].as_array().unwrap();
@@ -929,6 +1007,64 @@ mod tests {
         }
         assert!(svg.contains("xlink:href=\"#j1p\" attributeName=\"cx\""));
         assert_eq!(svg.matches("<svg").count(), 2);
+    }
+
+    #[test]
+    fn the_reactions_are_arrows_to_one_scale_hidden_where_unknown() {
+        let table = with_dead_point(4);
+        let fig = figure(&table);
+        let find = |id: &str, attr: &str| {
+            let i = fig
+                .moving
+                .targets
+                .iter()
+                .position(|t| t.0 == id && t.1 == attr)
+                .unwrap();
+            &fig.moving.values[i]
+        };
+        // the largest force over the cycle, at φ = 0: the spring's
+        // k (xb − l0) = 10 (4 − 3) along x, drawn a fifth of the view long
+        let largest = table
+            .rows
+            .iter()
+            .flat_map(|r| [(25, 26), (27, 28), (29, 30)].map(|(x, y)| (r.values[x], r.values[y])))
+            .filter_map(|(x, y)| Some(x?.hypot(y?)))
+            .fold(0.0, f64::max);
+        assert_eq!(largest, 10.0);
+        let scale = 0.2 * VIEW / largest;
+        // pin A (joint 1) at φ = 90°: from A, along (A_x, −A_y) on the view
+        let (ax, ay) = fig.view.map([0.0, 1.0]);
+        let (fx, fy) = (
+            table.rows[3].values[27].unwrap(),
+            table.rows[3].values[28].unwrap(),
+        );
+        assert_eq!(
+            find("j1f", "points")[3],
+            format!(
+                "{},{} {},{}",
+                num(ax),
+                num(ay),
+                num(ax + fx * scale),
+                num(ay - fy * scale)
+            )
+        );
+        assert_eq!(find("j1f", "opacity")[3], "1");
+        // the dead point: every arrow hidden; the slider's across its guide
+        for j in 0..4 {
+            assert_eq!(find(&format!("j{j}f"), "opacity")[4], "0");
+        }
+        let gn = table.rows[3].values[31].unwrap();
+        let (bx, by) = fig.view.map(table.rows[3].points[8]);
+        assert_eq!(
+            find("j3f", "points")[3],
+            format!(
+                "{},{} {},{}",
+                num(bx),
+                num(by),
+                num(bx),
+                num(by - gn * scale)
+            )
+        );
     }
 
     #[test]
