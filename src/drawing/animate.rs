@@ -9,8 +9,8 @@
 //! the SVG gives each attribute an SMIL `<animate>` through the same
 //! values. Both are self-contained: no font, script or style is fetched.
 
+use super::plot::{acting, pretty};
 use crate::cycle::{CycleRow, CycleTable, JointKind};
-use crate::expr::print::pretty_name;
 use crate::simulate::plot::PALETTE;
 use serde_json::{json, Value};
 use std::fmt::Write;
@@ -88,12 +88,6 @@ fn num(v: f64) -> String {
     }
 }
 
-/// A name as the text prints it (`phi` → φ).
-fn pretty(name: &str) -> String {
-    let base = name.trim_end_matches('\'');
-    pretty_name(base, (name.len() - base.len()) as u32)
-}
-
 /// Text for HTML or XML: `&`, `<`, `>` and quotes escaped.
 fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
@@ -102,6 +96,7 @@ fn escape(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
+/// A palette colour as CSS.
 fn hex(c: plotters::style::RGBColor) -> String {
     format!("#{:02x}{:02x}{:02x}", c.0, c.1, c.2)
 }
@@ -119,7 +114,8 @@ struct Figure {
 #[derive(Default)]
 struct Moving {
     /// Each one: an element's id and `points`, `cx`, `cy`, `x`, `y`,
-    /// `translate` or `rotate` (the last two: the group's `transform`).
+    /// `opacity`, `translate` or `rotate` (the last two: the group's
+    /// `transform`).
     targets: Vec<(String, &'static str)>,
     /// Per target, its value at every row.
     values: Vec<Vec<String>>,
@@ -612,7 +608,7 @@ fn data(table: &CycleTable, title: &str, degrees: bool, moving: &Moving) -> Valu
         .joints
         .iter()
         .map(|j| {
-            let (on, from) = super::plot::acting(&j.bodies);
+            let (on, from) = acting(&j.bodies);
             json!({ "name": pretty(&j.name), "on": on, "from": from, "columns": j.columns })
         })
         .collect();

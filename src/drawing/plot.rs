@@ -50,9 +50,17 @@ fn failed(e: impl std::fmt::Display) -> PlotError {
 }
 
 /// A column's name as the text prints it: `phi` → φ, `th'` → θ̇.
-fn pretty(name: &str) -> String {
+pub(super) fn pretty(name: &str) -> String {
     let base = name.trim_end_matches('\'');
     pretty_name(base, (name.len() - base.len()) as u32)
+}
+
+/// Column `c`'s name as the text prints it (`?` past the last column).
+fn column_name(table: &CycleTable, c: usize) -> String {
+    table
+        .columns
+        .get(c)
+        .map_or_else(|| "?".into(), |n| pretty(n))
 }
 
 /// Who a joint's reaction acts on, and from whom.
@@ -335,7 +343,7 @@ fn curve_panel(
     let names: Vec<String> = panel
         .columns
         .iter()
-        .map(|&c| pretty(&table.columns[c]))
+        .map(|&c| column_name(table, c))
         .collect();
     chart
         .configure_mesh()
@@ -426,10 +434,7 @@ fn polar_panel(
     let mut chart: ChartContext<_, Cartesian2d<RangedCoordf64, RangedCoordf64>> = builder()
         .build_cartesian_2d(x0..x1, y0..y1)
         .map_err(failed)?;
-    let (xn, yn) = (
-        pretty(&table.columns[panel.x]),
-        pretty(&table.columns[panel.y]),
-    );
+    let (xn, yn) = (column_name(table, panel.x), column_name(table, panel.y));
     chart
         .configure_mesh()
         .x_desc(xn.as_str())
@@ -600,6 +605,18 @@ mod tests {
             (pixel_ratio / data_ratio - 1.0).abs() < 0.02,
             "{pixel_ratio} {data_ratio}"
         );
+    }
+
+    #[test]
+    fn a_table_without_rows_draws_empty_panels() {
+        let mut t = slider_crank();
+        t.rows.clear();
+        let svg = reaction_diagrams(&t, "nothing yet", true).unwrap();
+        assert_eq!(curves(&svg).len(), 0);
+        assert!(texts(&svg).contains(&"pin O: polar diagram of its force on crank"));
+        let html = crate::drawing::animation_html(&t, "nothing yet", true);
+        assert!(html.contains("max=\"0\""));
+        assert!(html.contains("\"rows\":[],\"targets\":[],\"frames\":[]"));
     }
 
     #[test]
