@@ -9,9 +9,9 @@
 //! the SVG gives each attribute an SMIL `<animate>` through the same
 //! values. Both are self-contained: no font, script or style is fetched.
 
-use super::plot::{acting, pretty};
+use super::plot::acting;
 use crate::cycle::{CycleRow, CycleTable, JointKind};
-use crate::simulate::plot::PALETTE;
+use crate::simulate::plot::{pretty_column as pretty, PALETTE};
 use serde_json::{json, Value};
 use std::fmt::Write;
 

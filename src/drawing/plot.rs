@@ -10,8 +10,7 @@
 //! single row is a dot.
 
 use crate::cycle::{CycleTable, JointKind};
-use crate::expr::print::pretty_name;
-use crate::simulate::plot::{tick_label, PlotError, PALETTE};
+use crate::simulate::plot::{pretty_column, tick_label, PlotError, PALETTE};
 use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint};
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -42,25 +41,12 @@ struct PolarPanel {
     y: usize,
 }
 
-/// The backend's failure as a [`PlotError`].
-fn failed(e: impl std::fmt::Display) -> PlotError {
-    PlotError {
-        message: e.to_string(),
-    }
-}
-
-/// A column's name as the text prints it: `phi` → φ, `th'` → θ̇.
-pub(super) fn pretty(name: &str) -> String {
-    let base = name.trim_end_matches('\'');
-    pretty_name(base, (name.len() - base.len()) as u32)
-}
-
 /// Column `c`'s name as the text prints it (`?` past the last column).
 fn column_name(table: &CycleTable, c: usize) -> String {
     table
         .columns
         .get(c)
-        .map_or_else(|| "?".into(), |n| pretty(n))
+        .map_or_else(|| "?".into(), |n| pretty_column(n))
 }
 
 /// Who a joint's reaction acts on, and from whom.
@@ -76,7 +62,7 @@ fn panels(table: &CycleTable) -> (Vec<CurvePanel>, Vec<PolarPanel>) {
     let mut polars = Vec::new();
     for joint in &table.joints {
         let (on, from) = acting(&joint.bodies);
-        let name = pretty(&joint.name);
+        let name = pretty_column(&joint.name);
         match joint.kind {
             JointKind::Pin => {
                 curves.push(CurvePanel {
@@ -111,7 +97,13 @@ fn panels(table: &CycleTable) -> (Vec<CurvePanel>, Vec<PolarPanel>) {
         let names: Vec<String> = table
             .drives
             .iter()
-            .map(|d| format!("{} (along {})", pretty(&d.name), pretty(&d.coordinate)))
+            .map(|d| {
+                format!(
+                    "{} (along {})",
+                    pretty_column(&d.name),
+                    pretty_column(&d.coordinate)
+                )
+            })
             .collect();
         curves.push(CurvePanel {
             caption: format!("driving force: {}", names.join(", ")),
@@ -264,9 +256,10 @@ pub fn reaction_diagrams(
     let mut out = String::new();
     {
         let root = SVGBackend::with_string(&mut out, (WIDTH, height)).into_drawing_area();
-        root.fill(&WHITE).map_err(failed)?;
+        root.fill(&WHITE).map_err(PlotError::drawing)?;
         let (head, body) = root.split_vertically(TITLE_HEIGHT);
-        head.titled(title, ("sans-serif", 22)).map_err(failed)?;
+        head.titled(title, ("sans-serif", 22))
+            .map_err(PlotError::drawing)?;
         let (top, bottom) = body.split_vertically(PANEL_HEIGHT * curves.len() as u32);
         let varied: Vec<Option<f64>> = table
             .rows
@@ -281,9 +274,9 @@ pub fn reaction_diagrams(
             })
             .collect();
         let x_desc = if degrees {
-            format!("{} (°)", pretty(&table.varied))
+            format!("{} (°)", pretty_column(&table.varied))
         } else {
-            pretty(&table.varied)
+            pretty_column(&table.varied)
         };
         if !curves.is_empty() {
             for (panel, area) in curves.iter().zip(top.split_evenly((curves.len(), 1))) {
@@ -296,7 +289,7 @@ pub fn reaction_diagrams(
                 polar_panel(table, panel, &area, degrees)?;
             }
         }
-        root.present().map_err(failed)?;
+        root.present().map_err(PlotError::drawing)?;
     }
     Ok(out)
 }
@@ -339,7 +332,7 @@ fn curve_panel(
         .x_label_area_size(X_LABELS)
         .y_label_area_size(Y_LABELS)
         .build_cartesian_2d(Ticked::new(x0, x1, degrees), lo..hi)
-        .map_err(failed)?;
+        .map_err(PlotError::drawing)?;
     let names: Vec<String> = panel
         .columns
         .iter()
@@ -352,7 +345,7 @@ fn curve_panel(
         .x_label_formatter(&|v| tick_label(*v, x1 - x0))
         .y_label_formatter(&|v| tick_label(*v, hi - lo))
         .draw()
-        .map_err(failed)?;
+        .map_err(PlotError::drawing)?;
     for (i, (&col, name)) in panel.columns.iter().zip(&names).enumerate() {
         let colour = PALETTE[i % PALETTE.len()];
         let style = colour.stroke_width(2);
@@ -364,7 +357,7 @@ fn curve_panel(
             } else {
                 chart.draw_series(LineSeries::new(run, style))
             }
-            .map_err(failed)?;
+            .map_err(PlotError::drawing)?;
             if !labelled {
                 series.label(name.as_str()).legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
@@ -379,7 +372,7 @@ fn curve_panel(
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .draw()
-        .map_err(failed)?;
+        .map_err(PlotError::drawing)?;
     Ok(())
 }
 
@@ -415,7 +408,7 @@ fn polar_panel(
     let y = padded_range(pairs.iter().filter_map(|p| p.1).chain(origin));
     let inner = area
         .titled(&panel.caption, ("sans-serif", 16))
-        .map_err(failed)?;
+        .map_err(PlotError::drawing)?;
     let builder = || {
         let mut b = ChartBuilder::on(&inner);
         b.margin(MARGIN)
@@ -427,13 +420,13 @@ fn polar_panel(
     // plotting area first, then build it with equal scales
     let pixels = builder()
         .build_cartesian_2d(0.0..1.0, 0.0..1.0)
-        .map_err(failed)?
+        .map_err(PlotError::drawing)?
         .plotting_area()
         .dim_in_pixel();
     let ((x0, x1), (y0, y1)) = equal_scale(x, y, pixels);
     let mut chart: ChartContext<_, Cartesian2d<RangedCoordf64, RangedCoordf64>> = builder()
         .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(failed)?;
+        .map_err(PlotError::drawing)?;
     let (xn, yn) = (column_name(table, panel.x), column_name(table, panel.y));
     chart
         .configure_mesh()
@@ -442,14 +435,14 @@ fn polar_panel(
         .x_label_formatter(&|v| tick_label(*v, x1 - x0))
         .y_label_formatter(&|v| tick_label(*v, y1 - y0))
         .draw()
-        .map_err(failed)?;
+        .map_err(PlotError::drawing)?;
     chart
         .draw_series(std::iter::once(Cross::new(
             (0.0, 0.0),
             7,
             BLACK.stroke_width(2),
         )))
-        .map_err(failed)?;
+        .map_err(PlotError::drawing)?;
     let colour = PALETTE[0];
     for run in runs(pairs.iter().copied()) {
         if run.len() == 1 {
@@ -457,7 +450,7 @@ fn polar_panel(
         } else {
             chart.draw_series(LineSeries::new(run, colour.stroke_width(2)))
         }
-        .map_err(failed)?;
+        .map_err(PlotError::drawing)?;
     }
     // where the cycle starts, so the diagram's sense can be read
     let start = table.rows.iter().zip(&pairs).find_map(|(r, p)| match p {
@@ -467,13 +460,17 @@ fn polar_panel(
     if let Some((row, at)) = start {
         let v = row.values.first().copied().flatten().unwrap_or(f64::NAN);
         let label = if degrees {
-            format!("{} = {}°", pretty(&table.varied), round(v.to_degrees()))
+            format!(
+                "{} = {}°",
+                pretty_column(&table.varied),
+                round(v.to_degrees())
+            )
         } else {
-            format!("{} = {}", pretty(&table.varied), round(v))
+            format!("{} = {}", pretty_column(&table.varied), round(v))
         };
         chart
             .draw_series(std::iter::once(Circle::new(at, 5, PALETTE[1].filled())))
-            .map_err(failed)?
+            .map_err(PlotError::drawing)?
             .label(label)
             .legend(|(x, y)| Circle::new((x + 10, y), 5, PALETTE[1].filled()));
         chart
@@ -482,7 +479,7 @@ fn polar_panel(
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .draw()
-            .map_err(failed)?;
+            .map_err(PlotError::drawing)?;
     }
     Ok(())
 }
