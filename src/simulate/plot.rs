@@ -27,7 +27,7 @@ pub struct PlotError {
 }
 
 impl PlotError {
-    fn drawing(e: impl std::fmt::Display) -> PlotError {
+    pub(crate) fn drawing(e: impl std::fmt::Display) -> PlotError {
         PlotError {
             message: e.to_string(),
         }
@@ -72,7 +72,7 @@ pub fn tick_label(v: f64, span: f64) -> String {
 }
 
 /// A column's name as the text prints it: `theta` → θ, `x1'` → ẋ₁.
-fn pretty_column(name: &str) -> String {
+pub(crate) fn pretty_column(name: &str) -> String {
     let base = name.trim_end_matches('\'');
     let dots = (name.len() - base.len()) as u32;
     crate::expr::print::pretty_name(base, dots)
