@@ -662,6 +662,15 @@ struct CycleArgs {
     /// Print only these columns after the varied one: O_x,O_y,M
     #[arg(long)]
     columns: Option<String>,
+    /// Also draw the reaction diagrams to this SVG file: each joint's
+    /// components and each drive against the varied quantity, and the
+    /// polar diagram of each pin force.
+    #[arg(long)]
+    plot: Option<String>,
+    /// Also write the mechanism moving through its cycle: a
+    /// self-contained HTML page (FILE.html) or an animated SVG (FILE.svg).
+    #[arg(long)]
+    animate: Option<String>,
 }
 
 fn cycle(report: Reporter, src: &str, o: &CycleArgs) -> ExitCode {
@@ -697,26 +706,57 @@ fn cycle(report: Reporter, src: &str, o: &CycleArgs) -> ExitCode {
         Ok(r) => r,
         Err(d) => return report.fail(&d, ""),
     };
-    let table = match render::run(src, &req) {
+    let run = match render::run(src, &req) {
         Ok(t) => t,
         Err(d) => return report.fail(&d, src),
     };
+    if let Err(d) = cycle_pictures(&run, &base_name(&o.file), o) {
+        return report.fail(&d, "");
+    }
+    let table = &run.table;
     let shown = match o
         .columns
         .as_deref()
-        .map(|c| render::select(&table, c))
+        .map(|c| render::select(table, c))
         .transpose()
     {
         Ok(t) => t,
         Err(d) => return report.fail(&d, ""),
     };
-    let table = shown.as_ref().unwrap_or(&table);
+    let table = shown.as_ref().unwrap_or(table);
     emit(&match o.output.as_str() {
         "json" => render::json(table),
-        "text" => render::text(table),
+        "text" => render::text(table, run.degrees),
         _ => render::csv(table),
     });
     ExitCode::SUCCESS
+}
+
+/// `cycle --plot` and `--animate`: the pictures written to their files.
+fn cycle_pictures(
+    run: &qdot::simulate::cycle::CycleRun,
+    title: &str,
+    o: &CycleArgs,
+) -> Result<(), qdot::Diagnostic> {
+    let write = |path: &str, text: &str| {
+        std::fs::write(path, text)
+            .map_err(|e| qdot::Diagnostic::global(format!("cannot write `{path}`: {e}")))
+    };
+    if let Some(path) = &o.plot {
+        let svg = qdot::drawing::reaction_diagrams(&run.table, title, run.degrees).map_err(|e| {
+            qdot::Diagnostic::global(format!("cannot draw the reaction diagrams: {e}"))
+        })?;
+        write(path, &svg)?;
+    }
+    if let Some(path) = &o.animate {
+        let page = if path.ends_with(".svg") {
+            qdot::drawing::animation_svg(&run.table, title)
+        } else {
+            qdot::drawing::animation_html(&run.table, title, run.degrees)
+        };
+        write(path, &page)?;
+    }
+    Ok(())
 }
 
 /// A file's name without its folders and extension: the default title of

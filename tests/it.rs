@@ -32,6 +32,7 @@ mod integrators;
 mod integrators_alloc;
 #[cfg(feature = "jit")]
 mod jit;
+mod joints;
 mod latex;
 mod latex_pdf;
 mod lazy;

@@ -6,10 +6,39 @@ use crate::cycle::{CycleRequest, CycleTable};
 use crate::diag::Diagnostic;
 use crate::scene::Scene;
 
+/// A mechanism's cycle, with how to show its varied quantity.
+pub struct CycleRun {
+    /// The table.
+    pub table: CycleTable,
+    /// Whether the varied quantity is an angle (shown in degrees; its
+    /// column holds radians).
+    pub degrees: bool,
+}
+
 /// Read the scene `src` and analyse its mechanism as `req` asks.
-pub fn run(src: &str, req: &CycleRequest) -> Result<CycleTable, Diagnostic> {
+pub fn run(src: &str, req: &CycleRequest) -> Result<CycleRun, Diagnostic> {
     let scene = Scene::parse(src)?;
-    crate::cycle::cycle(&scene, req)
+    let table = crate::cycle::cycle(&scene, req)?;
+    Ok(CycleRun {
+        degrees: is_angle(&scene, &req.over.name),
+        table,
+    })
+}
+
+/// Whether the coordinate `name` is an angle: annotated `angle`, or a
+/// body's angle in the plane.
+fn is_angle(scene: &Scene, name: &str) -> bool {
+    let Some(c) = scene.coordinates.iter().find(|c| c.name == name) else {
+        return false;
+    };
+    if let Some(d) = &c.dimension {
+        return d.trim() == "angle" || d.trim() == "rad";
+    }
+    let q = crate::expr::Expr::coord(name, 0);
+    scene.bodies.iter().any(|b| {
+        matches!(&b.mass_properties.turning,
+            Some(crate::scene::Turning::Plane { angle, .. }) if angle.equals(&q))
+    })
 }
 
 /// The table with only the columns `names` (comma-separated) after the
@@ -91,9 +120,8 @@ pub fn json(table: &CycleTable) -> String {
 }
 
 /// The table for reading: 6 significant digits in aligned columns, the
-/// varied angle in degrees, notes below the table.
-pub fn text(table: &CycleTable) -> String {
-    let degrees = table.varied != "t";
+/// varied angle in degrees (when `degrees`), notes below the table.
+pub fn text(table: &CycleTable, degrees: bool) -> String {
     let mut header: Vec<String> = table.columns.clone();
     if degrees {
         header[0] = format!("{} (deg)", header[0]);

@@ -357,7 +357,19 @@ impl Resolver<'_> {
             )
             .with_hint("a relation between coordinates is a `constraint`; a drive is q = f(t)"));
         }
-        self.check_room(constraints.len(), span)?;
+        let n = self.coordinates.len();
+        if constraints.len() >= n {
+            return Err(Diagnostic::error(
+                span,
+                format!(
+                    "the drive `{}` prescribes `{}`, which the joints and drives before it already determine ({} conditions on {n} coordinates)",
+                    name.name,
+                    coordinate.name,
+                    constraints.len() + 1
+                ),
+            )
+            .with_hint("a driven mechanism has as many joint and drive conditions as coordinates: drive only the input, or give the bodies their own coordinates"));
+        }
         let g = Expr::coord(&coordinate.name, 0).sub(&f);
         let label = format!("drive `{}`", name.name);
         let c = self.constraint_of(g, &name.name, &label, span, span)?;
