@@ -743,9 +743,10 @@ fn cycle_pictures(
             .map_err(|e| qdot::Diagnostic::global(format!("cannot write `{path}`: {e}")))
     };
     if let Some(path) = &o.plot {
-        let svg = qdot::drawing::reaction_diagrams(&run.table, title, run.degrees).map_err(|e| {
-            qdot::Diagnostic::global(format!("cannot draw the reaction diagrams: {e}"))
-        })?;
+        let svg =
+            qdot::drawing::reaction_diagrams(&run.table, title, run.degrees).map_err(|e| {
+                qdot::Diagnostic::global(format!("cannot draw the reaction diagrams: {e}"))
+            })?;
         write(path, &svg)?;
     }
     if let Some(path) = &o.animate {

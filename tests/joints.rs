@@ -98,10 +98,7 @@ fn a_sliders_direction_need_not_be_a_unit_vector() {
             .collect::<Vec<_>>()
     };
     assert_eq!(with("[3, 4]"), with("[3/5, 4/5]"));
-    assert_eq!(
-        with("[1, 0]"),
-        ["D = m*x''", "G_n = m*y'' + g*m"]
-    );
+    assert_eq!(with("[1, 0]"), ["D = m*x''", "G_n = m*y'' + g*m"]);
 }
 
 #[test]
@@ -126,8 +123,18 @@ fn seed_21_3_reactions_exactly_in_solving_order() {
     );
     let f = &r.friction[0];
     assert_eq!(
-        (f.name.as_str(), f.coefficient.to_string(), f.normal.clone(), f.relative_velocity.to_string()),
-        ("S_f", "mu".to_string(), vec!["S_n".to_string()], "xB'".to_string())
+        (
+            f.name.as_str(),
+            f.coefficient.to_string(),
+            f.normal.clone(),
+            f.relative_velocity.to_string()
+        ),
+        (
+            "S_f",
+            "mu".to_string(),
+            vec!["S_n".to_string()],
+            "xB'".to_string()
+        )
     );
 }
 
@@ -155,7 +162,11 @@ fn seed_21_3_cycle_balances_power_at_every_position() {
     let mut checked = 0;
     for row in &table.rows {
         let (Some(m), Some(sf)) = (row.values[col("M")], row.values[col("S_f")]) else {
-            assert!(row.note.as_deref().unwrap().starts_with("stick"), "{:?}", row.note);
+            assert!(
+                row.note.as_deref().unwrap().starts_with("stick"),
+                "{:?}",
+                row.note
+            );
             continue;
         };
         let value = |a: &qdot::expr::atom::Atom| -> Option<f64> {
@@ -180,7 +191,10 @@ fn seed_21_3_cycle_balances_power_at_every_position() {
         }
         let xb_dot = row.values[col("xB'")].unwrap();
         let expected = (power - sf * xb_dot) / 20.0;
-        assert!((m - expected).abs() <= 1e-10 * (1.0 + m.abs()), "{m} vs {expected}");
+        assert!(
+            (m - expected).abs() <= 1e-10 * (1.0 + m.abs()),
+            "{m} vs {expected}"
+        );
         // friction only takes power out
         assert!(sf * xb_dot <= 0.0);
         checked += 1;
@@ -206,7 +220,10 @@ fn solve_json_has_the_mechanism() {
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     let m = &v["mechanism"];
     assert_eq!(m["reactions"]["B_x"], "m3*xb'' + k*xb - k*l0");
-    assert_eq!(m["reactions"]["M"], "J1*phi'' + A_y*R*cos(phi) - A_x*R*sin(phi)");
+    assert_eq!(
+        m["reactions"]["M"],
+        "J1*phi'' + A_y*R*cos(phi) - A_x*R*sin(phi)"
+    );
     assert_eq!(m["in_order"], true);
     assert_eq!(m["equations"][7]["rhs"], "B_y + G_n - g*m3");
 }
@@ -225,14 +242,25 @@ fn the_books_figures_are_current() {
     let (svg, html) = (dir.join("r.svg"), dir.join("a.html"));
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_qdot"))
         .current_dir(ROOT)
-        .args(["cycle", "examples/seed_21_3.qd", "--over", "phi=0:360deg:181", "--set", SEED_21_3_SET])
+        .args([
+            "cycle",
+            "examples/seed_21_3.qd",
+            "--over",
+            "phi=0:360deg:181",
+            "--set",
+            SEED_21_3_SET,
+        ])
         .args(["--guess", "x2=0.25,xB=0.5", "--plot"])
         .arg(&svg)
         .arg("--animate")
         .arg(&html)
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     for (made, name) in [(&svg, "seed_21_3_reactions.svg"), (&html, "seed_21_3.html")] {
         let book = format!("{ROOT}/book/src/mechanisms/{name}");
         let now = std::fs::read_to_string(made).unwrap();
