@@ -35,6 +35,7 @@ mod jit;
 mod latex;
 mod latex_pdf;
 mod lazy;
+mod mechanisms;
 mod limits_doc;
 mod modes;
 mod no_panic;

@@ -78,6 +78,15 @@ fn check_scene(src: &str) -> Result<Option<Vec<Stmt>>, TestCaseError> {
                     | Stmt::Force { value, .. }
                     | Stmt::Frame { value, .. }
                     | Stmt::Gravity { value, .. } => check_expr_spans(src, value)?,
+                    Stmt::Drive { value, .. } => check_expr_spans(src, value)?,
+                    Stmt::Friction { coefficient, .. } => check_expr_spans(src, coefficient)?,
+                    Stmt::Joint(j) => {
+                        check_expr_spans(src, &j.first.point)?;
+                        check_expr_spans(src, &j.second.point)?;
+                        if let Some(u) = &j.along {
+                            check_expr_spans(src, u)?;
+                        }
+                    }
                     Stmt::Assume(facts, span) => {
                         prop_assert!(src[span.start..].starts_with("assume"));
                         for f in facts {

@@ -95,6 +95,25 @@ pub fn stmt_sexpr(s: &Stmt) -> String {
             coordinate, value, ..
         } => format!("(force {} {})", coordinate.name, sexpr(value)),
         Stmt::Load { force, point, .. } => format!("(load {} {})", sexpr(force), sexpr(point)),
+        Stmt::Joint(j) => format!(
+            "(joint {} {} {} {} {} {}{})",
+            j.name.name,
+            j.kind.keyword(),
+            j.first.body.name,
+            sexpr(&j.first.point),
+            j.second.body.name,
+            sexpr(&j.second.point),
+            j.along.as_ref().map(|u| format!(" {}", sexpr(u))).unwrap_or_default()
+        ),
+        Stmt::Drive {
+            name,
+            coordinate,
+            value,
+            ..
+        } => format!("(drive {} {} {})", name.name, coordinate.name, sexpr(value)),
+        Stmt::Friction {
+            joint, coefficient, ..
+        } => format!("(friction {} {})", joint.name, sexpr(coefficient)),
         Stmt::Torque { moment, angle, .. } => {
             format!("(torque {} {})", sexpr(moment), sexpr(angle))
         }
@@ -317,6 +336,28 @@ pub fn print_stmt(s: &Stmt) -> String {
         Stmt::Load { force, point, .. } => {
             format!("load {} at {}", print_full(force), print_full(point))
         }
+        Stmt::Joint(j) => format!(
+            "joint {}: {} {} at {}, {} at {}{}",
+            j.name.name,
+            j.kind.keyword(),
+            j.first.body.name,
+            print_full(&j.first.point),
+            j.second.body.name,
+            print_full(&j.second.point),
+            j.along
+                .as_ref()
+                .map(|u| format!(" along {}", print_full(u)))
+                .unwrap_or_default()
+        ),
+        Stmt::Drive {
+            name,
+            coordinate,
+            value,
+            ..
+        } => format!("drive {}: {} = {}", name.name, coordinate.name, print_full(value)),
+        Stmt::Friction {
+            joint, coefficient, ..
+        } => format!("friction {}: {}", joint.name, print_full(coefficient)),
         Stmt::Torque { moment, angle, .. } => {
             format!("torque {} on {}", print_full(moment), print_full(angle))
         }
