@@ -510,3 +510,484 @@ fn without_friction_the_drives_mean_over_a_cycle_is_zero() {
 fn rendered(d: &Diagnostic, src: &str) -> String {
     d.render("scene.qd", src)
 }
+
+// ---------------------------------------------------------------------
+// Bad input
+// ---------------------------------------------------------------------
+
+/// A slider-crank: crank R about the origin, rod L, block on the x axis.
+const SLIDER_CRANK: &str = "\
+coordinates x1, y1, phi, x2, y2, th, xb, yb
+parameters R: length, L: length, omega, m1, J1, m2, J2, m3, g
+body crank: mass m1, inertia J1, angle phi, at [x1, y1]
+body rod: mass m2, inertia J2, angle th, at [x2, y2]
+particle block: mass m3, at [xb, yb]
+gravity [0, -g]
+joint O: pin ground at [0, 0], crank at [x1, y1] - R/2*[cos(phi), sin(phi)]
+joint A: pin crank at [x1, y1] + R/2*[cos(phi), sin(phi)], rod at [x2, y2] - L/2*[cos(th), sin(th)]
+joint B: pin rod at [x2, y2] + L/2*[cos(th), sin(th)], block at [xb, yb]
+joint G: slider ground at [0, 0], block at [xb, yb] along [1, 0]
+drive M: phi = omega*t
+";
+const SLIDER_CRANK_SET: &str = "R=0.1,L=0.3,omega=1,m1=1,J1=0.01,m2=1,J2=0.01,m3=1,g=9.81";
+const SLIDER_CRANK_GUESS: &str = "x1=0.05,x2=0.25,xb=0.4";
+
+/// `src` with the line starting `from` replaced by `to` (or `to`
+/// appended when `from` is empty).
+fn edit(src: &str, from: &str, to: &str) -> String {
+    if from.is_empty() {
+        return format!("{src}{to}\n");
+    }
+    let lines: Vec<String> = src
+        .lines()
+        .map(|l| {
+            if l.starts_with(from) {
+                to.to_string()
+            } else {
+                l.to_string()
+            }
+        })
+        .collect();
+    assert_ne!(lines.join("\n") + "\n", src, "`{from}` is in the scene");
+    lines.join("\n") + "\n"
+}
+
+/// The error of `qdot cycle` on `src`: its message, and its place as
+/// line:column when it has one; the rendered text shows the place with
+/// a caret under the statement.
+fn cycle_error(src: &str, over: &str, set: &str, guess: &str) -> (String, Option<(usize, usize)>) {
+    let d: Diagnostic = match Scene::parse(src) {
+        Err(d) => d,
+        Ok(scene) => match cycle(&scene, &request(over, set, guess)) {
+            Err(d) => d,
+            Ok(t) => panic!("no error: {:?}", t.rows[0]),
+        },
+    };
+    let place = d.span.map(|s| Diagnostic::line_col(src, s.start));
+    let text = d.render("scene.qd", src);
+    if let Some((line, column)) = place {
+        assert!(
+            text.contains(&format!("--> scene.qd:{line}:{column}\n")),
+            "{text}"
+        );
+        let statement = src.lines().nth(line - 1).unwrap();
+        assert!(text.contains(&format!("{line} | {statement}\n")), "{text}");
+        assert!(text.contains(" | ") && text.contains('^'), "{text}");
+    }
+    assert!(d.hint.is_some(), "every error has a hint: {text}");
+    (d.message, place)
+}
+
+fn slider_crank_error(src: &str) -> (String, Option<(usize, usize)>) {
+    cycle_error(
+        src,
+        "phi=0:360deg:5",
+        SLIDER_CRANK_SET,
+        SLIDER_CRANK_GUESS,
+    )
+}
+
+#[test]
+fn the_bad_input_scene_runs_as_written() {
+    let t = run_cycle(
+        SLIDER_CRANK,
+        &request("phi=0:360deg:5", SLIDER_CRANK_SET, SLIDER_CRANK_GUESS),
+    );
+    assert!(t.rows.iter().all(|r| r.note.is_none()));
+    assert!(close(value(&t, 2, "xb"), 0.2));
+}
+
+#[test]
+fn a_four_bar_whose_links_cannot_close_names_the_open_joints() {
+    let src = "\
+coordinates x2, y2, th2, x3, y3, th3, x4, y4, th4
+parameters a: length, b: length, c: length, d: length, omega, m, J
+body crank: mass m, inertia J, angle th2, at [x2, y2]
+body coupler: mass m, inertia J, angle th3, at [x3, y3]
+body rocker: mass m, inertia J, angle th4, at [x4, y4]
+joint O2: pin ground at [0, 0], crank at [x2, y2] - a/2*[cos(th2), sin(th2)]
+joint A: pin crank at [x2, y2] + a/2*[cos(th2), sin(th2)], coupler at [x3, y3] - b/2*[cos(th3), sin(th3)]
+joint B: pin coupler at [x3, y3] + b/2*[cos(th3), sin(th3)], rocker at [x4, y4] + c/2*[cos(th4), sin(th4)]
+joint O4: pin ground at [d, 0], rocker at [x4, y4] - c/2*[cos(th4), sin(th4)]
+drive M: th2 = omega*t
+";
+    let (message, place) = cycle_error(
+        src,
+        "th2=0:360deg:5",
+        "a=0.05,b=0.02,c=0.02,d=0.18,omega=1,m=1,J=0.01",
+        "x2=0.025,x3=0.06,th3=0.1,x4=0.17,th4=0.1",
+    );
+    assert_eq!(
+        message,
+        "the mechanism cannot be assembled at the first position (th2 = 0): the joint `O2`, the joint `A`, the joint `B` and the joint `O4` cannot all hold (the nearest assembly leaves them open by up to 2.250e-2)"
+    );
+    assert_eq!(place, Some((6, 1)));
+}
+
+#[test]
+fn a_slider_crank_whose_rod_is_too_short_says_where_in_the_rows() {
+    let t = run_cycle(
+        SLIDER_CRANK,
+        &request(
+            "phi=0:90deg:3",
+            "R=0.3,L=0.1,omega=1,m1=1,J1=0.01,m2=1,J2=0.01,m3=1,g=9.81",
+            "x1=0.15,x2=0.35,xb=0.4",
+        ),
+    );
+    assert_eq!(t.rows[0].note, None);
+    for row in &t.rows[1..] {
+        assert!(row.values[1..].iter().all(Option::is_none));
+        let note = row.note.as_deref().unwrap();
+        assert!(
+            note.starts_with("the mechanism cannot be assembled here: the joint `O`, the joint `A`, the joint `B`")
+                && note.contains(" cannot all hold (the nearest assembly leaves them open by up to "),
+            "{note}"
+        );
+    }
+}
+
+#[test]
+fn a_second_drive_on_a_coordinate_the_joints_fix_is_refused_at_it() {
+    let src = edit(SLIDER_CRANK, "", "drive N: th = omega*t");
+    let (message, place) = slider_crank_error(&src);
+    assert_eq!(
+        message,
+        "more constraints than coordinates: the joints, drives and constraints hold 9 conditions on 8 coordinates"
+    );
+    assert_eq!(place, Some((12, 1)));
+}
+
+#[test]
+fn a_drive_on_a_coordinate_a_constraint_fixes_names_both() {
+    // the slider G already keeps yb at 0: driving yb repeats it and
+    // leaves the crank free
+    let src = edit(SLIDER_CRANK, "drive M:", "drive D: yb = 0*t");
+    let (message, place) = cycle_error(&src, "t=0:1:3", SLIDER_CRANK_SET, SLIDER_CRANK_GUESS);
+    assert_eq!(
+        message,
+        "the joint `G` and the drive `D` impose one condition twice (their rows of the constraint Jacobian are dependent at and near the first position, t = 0), so they leave a motion of x1, y1, phi, x2, y2, th, xb free"
+    );
+    assert_eq!(place, Some((11, 1)));
+    // the same with a `constraint` in place of the slider
+    let src = edit(&src, "joint G:", "constraint c: yb = 0");
+    let (message, place) = cycle_error(&src, "t=0:1:3", SLIDER_CRANK_SET, SLIDER_CRANK_GUESS);
+    assert_eq!(
+        message,
+        "the constraint `c` and the drive `D` impose one condition twice (their rows of the constraint Jacobian are dependent at and near the first position, t = 0), so they leave a motion of x1, y1, phi, x2, y2, th, xb free"
+    );
+    assert_eq!(place, Some((11, 1)));
+}
+
+#[test]
+fn a_friction_on_a_joint_that_does_not_exist() {
+    let src = edit(SLIDER_CRANK, "", "friction Z: 0.1");
+    let (message, place) = slider_crank_error(&src);
+    assert_eq!(message, "there is no joint `Z`");
+    assert_eq!(place, Some((12, 10)));
+}
+
+#[test]
+fn a_joint_naming_an_unknown_body() {
+    let src = edit(
+        SLIDER_CRANK,
+        "joint A:",
+        "joint A: pin crunk at [x1, y1] + R/2*[cos(phi), sin(phi)], rod at [x2, y2] - L/2*[cos(th), sin(th)]",
+    );
+    let (message, place) = slider_crank_error(&src);
+    assert_eq!(message, "`crunk` is not a body or a particle");
+    assert_eq!(place, Some((8, 14)));
+}
+
+#[test]
+fn a_pin_with_a_direction() {
+    let src = edit(
+        SLIDER_CRANK,
+        "joint O:",
+        "joint O: pin ground at [0, 0], crank at [x1, y1] - R/2*[cos(phi), sin(phi)] along [1, 0]",
+    );
+    let (message, place) = slider_crank_error(&src);
+    assert_eq!(message, "a pin has no direction");
+    assert_eq!(place, Some((7, 77)));
+}
+
+#[test]
+fn a_slider_without_a_direction() {
+    let src = edit(
+        SLIDER_CRANK,
+        "joint G:",
+        "joint G: slider ground at [0, 0], block at [xb, yb]",
+    );
+    let (message, place) = slider_crank_error(&src);
+    assert_eq!(
+        message,
+        "expected `along` and the slider's direction after the second body's point, but the line ends"
+    );
+    assert_eq!(place, Some((10, 52)));
+}
+
+#[test]
+fn a_point_written_through_another_bodys_coordinates() {
+    let src = edit(
+        SLIDER_CRANK,
+        "joint B:",
+        "joint B: pin rod at [x1, y2] + L/2*[cos(th), sin(th)], block at [xb, yb]",
+    );
+    let (message, place) = slider_crank_error(&src);
+    assert_eq!(
+        message,
+        "this point moves with `x1`, a coordinate that is not of `rod`, which moves with x2, y2, th"
+    );
+    assert_eq!(place, Some((9, 21)));
+}
+
+#[test]
+fn a_drive_whose_law_moves_with_a_coordinate() {
+    let src = edit(SLIDER_CRANK, "drive M:", "drive M: phi = omega*t + th");
+    let (message, place) = slider_crank_error(&src);
+    assert_eq!(
+        message,
+        "a drive's law depends on time only, and this moves with `th`"
+    );
+    assert_eq!(place, Some((11, 16)));
+}
+
+#[test]
+fn bad_options_are_refused_with_the_names_to_use() {
+    let (message, place) = cycle_error(SLIDER_CRANK, "th=0:1:3", SLIDER_CRANK_SET, SLIDER_CRANK_GUESS);
+    assert_eq!(message, "`--over th`: `th` is not a driven coordinate");
+    assert_eq!(place, None);
+    let (message, _) = cycle_error(SLIDER_CRANK, "phi=0:1:3", SLIDER_CRANK_SET, "zz=1");
+    assert_eq!(message, "`--guess zz=…`: `zz` is not a coordinate");
+    let (message, _) = cycle_error(SLIDER_CRANK, "phi=0:1:3", "R=0.1,L=0.3", SLIDER_CRANK_GUESS);
+    assert_eq!(
+        message,
+        "no value for the parameters omega, m1, J1, m2, J2, m3, g"
+    );
+    let over = Over::parse("phi=0:360deg").unwrap_err();
+    assert_eq!(
+        over.message,
+        "`--over phi=0:360deg`: 2 parts after `=`, and it takes 3 (FROM:TO:COUNT)"
+    );
+    let guess = parse_guess("th").unwrap_err();
+    assert_eq!(guess.message, "`--guess th`: expected NAME=NUMBER");
+}
+
+// ---------------------------------------------------------------------
+// Dead points and branches
+// ---------------------------------------------------------------------
+
+const BRANCH_CHANGED: &str = "the constraint Jacobian's determinant changed sign since the previous regular position: a dead point lies between them, and the assembly branch changed there";
+
+/// The branch (assembly mode) of every regular row, by `branch`, never
+/// changes without the row saying so; the list of the rows that say so.
+fn assert_no_silent_branch_change(t: &CycleTable, branch: impl Fn(&CycleTable, usize) -> f64) -> Vec<usize> {
+    let mut previous: Option<f64> = None;
+    let mut changed = Vec::new();
+    for r in 0..t.rows.len() {
+        if t.rows[r].values[1 + t.coordinates].is_none() {
+            continue;
+        }
+        let side = branch(t, r).signum();
+        let said = t.rows[r].note.as_deref() == Some(BRANCH_CHANGED);
+        if let Some(p) = previous {
+            assert_eq!(p != side, said, "row {r}: branch {p} → {side}, note {:?}", t.rows[r].note);
+        }
+        if said {
+            changed.push(r);
+        }
+        previous = Some(side);
+    }
+    changed
+}
+
+/// The slider-crank driven by its slider: xb = L + R·cos(t) passes the
+/// toggle positions xb = L ∓ R, where the crank and the rod are in line.
+fn slider_driven() -> String {
+    let src = edit(SLIDER_CRANK, "drive M:", "drive D: xb = L + R*cos(omega*t)");
+    edit(&src, "gravity", "")
+}
+
+/// The crank's side of the line of the slider: its branch.
+fn crank_side(t: &CycleTable, r: usize) -> f64 {
+    value(t, r, "phi").sin()
+}
+
+/// |φ| from the block's position (the cosine rule in the triangle O A B).
+fn crank_angle(xb: f64) -> f64 {
+    let (r, l) = (0.1f64, 0.3f64);
+    ((xb * xb + r * r - l * l) / (2.0 * r * xb)).clamp(-1.0, 1.0).acos()
+}
+
+#[test]
+fn a_slider_driven_crank_at_its_toggle_positions_has_dead_points() {
+    // t = π and 2π are on the grid: xb = L − R and L + R exactly
+    let t = run_cycle(
+        &slider_driven(),
+        &request(
+            "t=0.5pi:2.5pi:9",
+            SLIDER_CRANK_SET,
+            "phi=1.2,x1=0.02,y1=0.04,x2=0.2,y2=0.04,xb=0.3,th=-0.3",
+        ),
+    );
+    let n = t.coordinates;
+    for r in [2, 6] {
+        let row = &t.rows[r];
+        let note = row.note.as_deref().unwrap();
+        assert!(
+            note.starts_with("dead point: the constraint Jacobian is singular here (pivot ratio ")
+                && note.ends_with("), so the velocities, accelerations and reactions are not determined; the assembly branch after it is compared with the one before"),
+            "{note}"
+        );
+        // the position is known, nothing after it
+        assert!(row.values[1..=n].iter().all(Option::is_some));
+        assert!(row.values[n + 1..].iter().all(Option::is_none), "{:?}", row.values);
+        let phi = value(&t, r, "phi");
+        assert!((phi.cos() - if r == 2 { -1.0 } else { 1.0 }).abs() < 1e-12, "{phi}");
+    }
+    // every regular row is an assembly of the slider's position, on the
+    // side the row's branch says
+    for r in [0, 1, 3, 4, 5, 7, 8] {
+        assert_eq!(t.rows[r].note.is_some(), r == 3 || r == 7, "row {r}");
+        let xb = value(&t, r, "xb");
+        let phi = value(&t, r, "phi");
+        let want = crank_angle(xb) * crank_side(&t, r).signum();
+        let wrapped = (phi - want + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+            - std::f64::consts::PI;
+        assert!(wrapped.abs() < 1e-9, "row {r}: φ {phi}, by hand {want}");
+    }
+    // the crank turns on through each toggle: its side changes, and the
+    // row after says so
+    assert_eq!(assert_no_silent_branch_change(&t, crank_side), [3, 7]);
+}
+
+#[test]
+fn a_toggle_between_two_rows_is_said_on_the_row_after_it() {
+    let t = run_cycle(
+        &slider_driven(),
+        &request(
+            "t=0.2:6:30",
+            SLIDER_CRANK_SET,
+            "phi=0.2,x1=0.05,x2=0.25,xb=0.39",
+        ),
+    );
+    assert!(t.rows.iter().all(|r| r.values.iter().all(Option::is_some)));
+    assert_eq!(assert_no_silent_branch_change(&t, crank_side), [15]);
+}
+
+/// A four-bar of links a (crank O2A), b (coupler AB), c (rocker O4B) on
+/// the ground d, without loads.
+const FOUR_BAR: &str = "\
+coordinates x2, y2, th2, x3, y3, th3, x4, y4, th4
+parameters a: length, b: length, c: length, d: length, omega, m, J
+body crank: mass m, inertia J, angle th2, at [x2, y2]
+body coupler: mass m, inertia J, angle th3, at [x3, y3]
+body rocker: mass m, inertia J, angle th4, at [x4, y4]
+joint O2: pin ground at [0, 0], crank at [x2, y2] - a/2*[cos(th2), sin(th2)]
+joint A: pin crank at [x2, y2] + a/2*[cos(th2), sin(th2)], coupler at [x3, y3] - b/2*[cos(th3), sin(th3)]
+joint B: pin coupler at [x3, y3] + b/2*[cos(th3), sin(th3)], rocker at [x4, y4] + c/2*[cos(th4), sin(th4)]
+joint O4: pin ground at [d, 0], rocker at [x4, y4] - c/2*[cos(th4), sin(th4)]
+drive M: th2 = omega*t
+";
+
+/// The pins A and B of a row.
+fn pins(t: &CycleTable, r: usize, a: f64, b: f64) -> ([f64; 2], [f64; 2]) {
+    let (th2, th3) = (value(t, r, "th2"), value(t, r, "th3"));
+    let pa = [
+        value(t, r, "x2") + a / 2.0 * th2.cos(),
+        value(t, r, "y2") + a / 2.0 * th2.sin(),
+    ];
+    let pb = [pa[0] + b * th3.cos(), pa[1] + b * th3.sin()];
+    (pa, pb)
+}
+
+fn cross(o: [f64; 2], p: [f64; 2], q: [f64; 2]) -> f64 {
+    (p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0])
+}
+
+/// A Grashof crank-rocker (a = 0.05, b = 0.2, c = 0.12, d = 0.18) driven
+/// by its rocker: the rocker reaches only 68.7°–124.2°, where crank and
+/// coupler fall in line; past it no assembly; and back inside the range
+/// the crank stays on its side of the line O2B (the branch), or the row
+/// says it changed.
+#[test]
+fn a_crank_rocker_driven_by_its_rocker_past_its_limit() {
+    let (a, b) = (0.05, 0.2);
+    let set = "a=0.05,b=0.2,c=0.12,d=0.18,omega=1,m=1,J=0.01";
+    let guess = "th2=0.5,x2=0.02,y2=0.01,x3=0.1,y3=0.08,th3=0.6,x4=0.2,y4=0.05,th4=1.4";
+    let rocker = edit(FOUR_BAR, "drive M:", "drive M: th4 = omega*t");
+    let t = run_cycle(&rocker, &request("th4=80deg:130deg:11", set, guess));
+    for r in 0..9 {
+        assert_eq!(t.rows[r].note, None, "row {r}");
+        let (pa, pb) = pins(&t, r, a, b);
+        assert!((pa[0].hypot(pa[1]) - a).abs() < 1e-12);
+        let rocker_tip = [0.18 + 0.12 * value(&t, r, "th4").cos(), 0.12 * value(&t, r, "th4").sin()];
+        assert!((pb[0] - rocker_tip[0]).hypot(pb[1] - rocker_tip[1]) < 1e-12);
+    }
+    for r in 9..11 {
+        let note = t.rows[r].note.as_deref().unwrap();
+        assert!(
+            note.starts_with("the mechanism cannot be assembled here: the joint `O2`, the joint `A`, the joint `B`")
+                && note.contains(" cannot all hold (the nearest assembly leaves them open by up to "),
+            "{note}"
+        );
+        assert!(t.rows[r].values[1..].iter().all(Option::is_none));
+    }
+    // swung past the limit and back
+    let swinging = edit(FOUR_BAR, "drive M:", "drive M: th4 = 1.7 + 0.5*sin(omega*t)");
+    let t = run_cycle(&swinging, &request("t=0:2pi:25", set, guess));
+    let missing: Vec<usize> = (0..25).filter(|&r| t.rows[r].values[1].is_none()).collect();
+    assert_eq!(missing, [5, 6, 7]);
+    let side = |t: &CycleTable, r: usize| {
+        let (pa, pb) = pins(t, r, a, b);
+        cross([0.0, 0.0], pb, pa)
+    };
+    let changed = assert_no_silent_branch_change(&t, side);
+    assert_eq!(changed, Vec::<usize>::new());
+    // the angles stay near the guess's turn (no jump by whole turns)
+    assert!((value(&t, 0, "th2") - -0.759714).abs() < 1e-5);
+}
+
+/// A non-Grashof four-bar (a = 0.15, b = 0.1, c = 0.12, d = 0.18) driven
+/// by its crank: the crank reaches only |θ2| < 83.1°; the rows beyond say
+/// the mechanism cannot be assembled, and the rows after come back on a
+/// branch compared with the one before, by hand.
+#[test]
+fn a_non_grashof_crank_driven_past_its_limit() {
+    let (a, b, c, d) = (0.15, 0.1, 0.12, 0.18);
+    let t = run_cycle(
+        FOUR_BAR,
+        &request(
+            "th2=0:360deg:25",
+            "a=0.15,b=0.1,c=0.12,d=0.18,omega=1,m=1,J=0.01",
+            "th2=0,x2=0.075,x3=0.19,y3=0.05,th3=1.2,x4=0.2,y4=0.05,th4=1.8",
+        ),
+    );
+    let missing: Vec<usize> = (0..25).filter(|&r| t.rows[r].values[1].is_none()).collect();
+    assert_eq!(missing, (6..19).collect::<Vec<_>>());
+    // the branch: B's side of the line from A to O4, and the coupler's
+    // angle on it by hand (the two circles about A and O4)
+    let side = |t: &CycleTable, r: usize| {
+        let (pa, pb) = pins(t, r, a, b);
+        cross(pa, [d, 0.0], pb)
+    };
+    for r in (0..25).filter(|r| !missing.contains(r)) {
+        let th2 = value(&t, r, "th2");
+        let pa = [a * th2.cos(), a * th2.sin()];
+        let v = [d - pa[0], -pa[1]];
+        let dist = v[0].hypot(v[1]);
+        let u = [v[0] / dist, v[1] / dist];
+        let along = (b * b - c * c + dist * dist) / (2.0 * dist);
+        let h = (b * b - along * along).sqrt() * side(&t, r).signum();
+        let want = (along * u[1] + h * u[0]).atan2(along * u[0] - h * u[1]);
+        let th3 = value(&t, r, "th3");
+        let wrapped = (th3 - want + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+            - std::f64::consts::PI;
+        assert!(wrapped.abs() < 1e-9, "row {r}: θ3 {th3}, by hand {want}");
+    }
+    assert_eq!(assert_no_silent_branch_change(&t, side), Vec::<usize>::new());
+    assert!(side(&t, 0) > 0.0 && side(&t, 19) > 0.0);
+    // the cycle closes where it started
+    for name in ["th3", "th4"] {
+        assert!(close(value(&t, 0, name), value(&t, 24, name)), "{name}");
+    }
+}

@@ -6,6 +6,7 @@
 //! equations Aᵀ·λ = M·q̈ − f, with Coulomb friction by iteration
 //! ([`friction`]).
 
+mod diagnose;
 mod friction;
 mod model;
 mod positions;

@@ -2,6 +2,7 @@
 //! by Newton's method continued from the previous position, the
 //! velocities and accelerations, and the kinetostatics.
 
+use super::diagnose::{self, dependency, nearest, open, owner, owners};
 use super::friction::{kinetostatics, Kinetostatics};
 use super::model::Model;
 use super::table::{CycleRow, CycleTable, Layout};
@@ -13,8 +14,16 @@ use nalgebra::{DMatrix, DVector};
 /// Newton's method gives up after this many steps at one position.
 const MAX_NEWTON_STEPS: usize = 50;
 /// A Jacobian whose smallest pivot is below this fraction of its largest
-/// is singular: a dead point.
-const SINGULAR_PIVOT_RATIO: f64 = 1e-10;
+/// is singular: a dead point. Not near the rounding error: at a dead
+/// point g has a double root, which Newton's method finds only to about
+/// √ε, so the pivot there is ~1e-9 of the largest rather than 0.
+const SINGULAR_PIVOT_RATIO: f64 = 1e-6;
+/// Newton's steps are at most this fraction of the coordinates' scale.
+const MAX_STEP: f64 = 0.5;
+/// A position whose residuals are below this (relative to the
+/// coordinates' scale) is assembled even when Newton's method, slowed by
+/// a singular Jacobian, did not converge.
+const ASSEMBLED_RESIDUAL: f64 = 1e-9;
 
 /// The state carried from one position to the next.
 struct Carried {
@@ -23,6 +32,10 @@ struct Carried {
     qd: Vec<f64>,
     qdd: Vec<f64>,
     det_positive: Option<bool>,
+    /// False once a position after it could not be assembled: the next
+    /// one then starts from `q` itself, not from an extrapolation over
+    /// the gap.
+    adjacent: bool,
 }
 
 /// Every position of `over`, in order.
@@ -39,7 +52,7 @@ pub(super) fn run(
     let mut out = vec![0.0; n + n * n + n];
     // a locked angle is held at its value in the guess
     let t0 = time_of(&mut varied, over.value(0), None).map_err(Diagnostic::global)?;
-    let mut inputs: Vec<f64> = guess.iter().copied().chain([t0]).collect();
+    let inputs: Vec<f64> = guess.iter().copied().chain([t0]).collect();
     model.position.eval(&inputs, &mut out);
     for &j in &model.locked {
         offsets[j] = out[j];
@@ -66,18 +79,27 @@ pub(super) fn run(
             }
         };
         let mut q = predict(carried.as_ref(), &guess, t);
-        inputs.truncate(0);
         let assembled = newton(&mut model, &mut q, t, &offsets, &mut out);
         if let Err(residual) = assembled {
-            if carried.is_none() {
-                return Err(unassembled(scene, &residual, over, v));
+            // a dead point slows Newton's method down; the position is
+            // assembled all the same when its residuals vanish
+            let scale = 1.0 + q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            let closed = residual.iter().all(|r| r.abs() <= ASSEMBLED_RESIDUAL * scale);
+            if !closed {
+                let start = predict(carried.as_ref(), &guess, t);
+                if carried.is_none() {
+                    return Err(unassembled(scene, &mut model, &start, t, &offsets, &mut out, over, v));
+                }
+                row.note = Some(format!(
+                    "the mechanism cannot be assembled here: {}",
+                    cannot_hold(scene, &mut model, &start, t, &offsets, &mut out)
+                ));
+                if let Some(c) = carried.as_mut() {
+                    c.adjacent = false;
+                }
+                rows.push(row);
+                continue;
             }
-            row.note = Some(format!(
-                "the mechanism cannot be assembled here: Newton's method did not close {}",
-                worst(scene, &residual)
-            ));
-            rows.push(row);
-            continue;
         }
         for (i, &x) in q.iter().enumerate() {
             row.values[1 + i] = Some(x);
@@ -87,7 +109,12 @@ pub(super) fn run(
         let det_positive = lu.determinant() > 0.0;
         let previous = carried.as_ref().and_then(|c| c.det_positive);
         if let Some(ratio) = singular(&lu) {
-            row.note = Some(format!("dead point: the constraint Jacobian is singular here (pivot ratio {ratio:.1e}), so the velocities, accelerations and reactions are not determined"));
+            if carried.is_none() {
+                if let Some(d) = dependency(&mut model, &q, t, &mut out) {
+                    return Err(dependent(scene, &d, over, v));
+                }
+            }
+            row.note = Some(format!("dead point: the constraint Jacobian is singular here (pivot ratio {ratio:.1e}), so the velocities, accelerations and reactions are not determined; the assembly branch after it is compared with the one before"));
             points_at(&mut model, &q, &vec![0.0; n], t, &mut motion, &mut row);
             carried = Some(Carried {
                 t,
@@ -95,6 +122,7 @@ pub(super) fn run(
                 qd: carried.map(|c| c.qd).unwrap_or(vec![0.0; n]),
                 qdd: vec![0.0; n],
                 det_positive: previous,
+                adjacent: true,
             });
             rows.push(row);
             continue;
@@ -117,7 +145,7 @@ pub(super) fn run(
             row.values[1 + 2 * n + i] = Some(qdd[i]);
         }
         if previous.is_some_and(|p| p != det_positive) {
-            row.note = Some("the constraint Jacobian's determinant changed sign since the previous position: a dead point lies between them, and the assembly branch may have changed there".into());
+            row.note = Some("the constraint Jacobian's determinant changed sign since the previous regular position: a dead point lies between them, and the assembly branch changed there".into());
         }
         match kinetostatics(&model, &a, &motion, &qd, &qdd) {
             Kinetostatics::Solved {
@@ -142,6 +170,7 @@ pub(super) fn run(
             qd,
             qdd,
             det_positive: Some(det_positive),
+            adjacent: true,
         });
         rows.push(row);
     }
@@ -182,10 +211,12 @@ fn time_of(varied: &mut Varied, v: f64, previous: Option<f64>) -> Result<f64, St
 
 /// The starting point of Newton's method: the guess, or the previous
 /// position moved on by its velocity and acceleration (which keeps the
-/// branch).
+/// branch), or after positions that could not be assembled the last
+/// assembled one itself.
 fn predict(c: Option<&Carried>, guess: &[f64], t: f64) -> Vec<f64> {
     match c {
         None => guess.to_vec(),
+        Some(c) if !c.adjacent => c.q.clone(),
         Some(c) => {
             let dt = t - c.t;
             (0..c.q.len())
@@ -226,8 +257,12 @@ fn newton(
             return Err(g);
         }
         let scale = 1.0 + q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        // a step longer than half the scale (from a poor guess, or near a
+        // singular Jacobian) is shortened: an angle then does not jump by
+        // whole turns, nor the assembly to a far branch
+        let shorten = (MAX_STEP * scale / dq.amax()).min(1.0);
         for (x, d) in q.iter_mut().zip(dq.iter()) {
-            *x += d;
+            *x += shorten * d;
         }
         // one more evaluation after the step that converged: `out` then
         // holds the Jacobian at the final position
@@ -271,55 +306,111 @@ fn points_at(
     row.points = points(&motion[lay.points..], model.points);
 }
 
-/// The constraint that stays open: the joint (or drive) with the largest
-/// residual, for messages.
-fn worst(scene: &Scene, residual: &[f64]) -> String {
-    let (j, r) = residual
-        .iter()
-        .enumerate()
-        .fold((0, 0.0f64), |(bj, br), (j, r)| {
-            if r.abs() > br {
-                (j, r.abs())
-            } else {
-                (bj, br)
-            }
-        });
-    match owner(scene, j) {
-        Some(what) => format!("{what} (its residual is {r:.3e})"),
-        None => format!(
-            "the constraint {} (its residual is {r:.3e})",
-            scene.constraints[j].label(j)
-        ),
+/// Which conditions cannot all hold at time `t`, from the least-squares
+/// assembly nearest `start`: "the joint `A` and the drive `M` cannot all
+/// hold (…)".
+fn cannot_hold(
+    scene: &Scene,
+    model: &mut Model,
+    start: &[f64],
+    t: f64,
+    offsets: &[f64],
+    out: &mut [f64],
+) -> String {
+    let residual = nearest(model, start, t, offsets, out);
+    let (rows, worst) = open(&residual);
+    let gap = residual[worst].abs();
+    if rows.len() <= 1 {
+        return format!(
+            "{} cannot hold (the nearest assembly leaves it open by {gap:.3e})",
+            owner(scene, worst)
+        );
     }
-}
-
-/// "the joint `A`" / "the drive `M`" for constraint `j`.
-fn owner(scene: &Scene, j: usize) -> Option<String> {
-    if let Some(jt) = scene.joints.iter().find(|jt| jt.constraints.contains(&j)) {
-        return Some(format!("the joint `{}`", jt.name));
-    }
-    scene
-        .drives
-        .iter()
-        .find(|d| d.constraint == j)
-        .map(|d| format!("the drive `{}`", d.name))
+    format!(
+        "{} cannot all hold (the nearest assembly leaves them open by up to {gap:.3e})",
+        owners(scene, &rows),
+    )
 }
 
 /// The error when the first position cannot be assembled, at the
-/// statement of the constraint that stays open.
-fn unassembled(scene: &Scene, residual: &[f64], over: &Over, v: f64) -> Diagnostic {
-    let j = residual.iter().enumerate().fold(
-        0,
-        |bj, (j, r)| if r.abs() > residual[bj].abs() { j } else { bj },
-    );
-    let span = scene.constraints[j].span;
-    Diagnostic::error(
-        span,
+/// statement of the condition left most open.
+#[allow(clippy::too_many_arguments)]
+fn unassembled(
+    scene: &Scene,
+    model: &mut Model,
+    start: &[f64],
+    t: f64,
+    offsets: &[f64],
+    out: &mut [f64],
+    over: &Over,
+    v: f64,
+) -> Diagnostic {
+    if let Some(d) = dependency(model, start, t, out) {
+        return dependent(scene, &d, over, v);
+    }
+    let why = cannot_hold(scene, model, start, t, offsets, out);
+    let residual = nearest(model, start, t, offsets, out);
+    // the gap spreads evenly over a loop: the error is at its first
+    // condition, the others labelled
+    let (rows, _) = open(&residual);
+    let spans = statements(scene, &rows);
+    let mut diag = Diagnostic::error(
+        spans[0],
         format!(
-            "the mechanism cannot be assembled at the first position ({} = {v}): from the guess, Newton's method does not close {}",
+            "the mechanism cannot be assembled at the first position ({} = {v}): {why}",
             over.name,
-            worst(scene, residual)
         ),
     )
-    .with_hint("check the lengths (a loop closes only when its links can reach), or give `--guess` values of an assembly near the first position")
+    .with_hint("check the lengths (a loop closes only when its links can reach), or give `--guess` values of an assembly near the first position");
+    for &span in &spans[1..] {
+        diag = diag.with_label(span, "open too");
+    }
+    diag
+}
+
+/// The statements of the constraints `rows`, each once, in order.
+fn statements(scene: &Scene, rows: &[usize]) -> Vec<crate::parse::ast::Span> {
+    let mut spans = Vec::new();
+    for &j in rows {
+        let span = scene.constraints[j].span;
+        if !spans.contains(&span) {
+            spans.push(span);
+        }
+    }
+    spans
+}
+
+/// The error when the conditions repeat one another: at the drive among
+/// them (the likeliest extra), the others labelled.
+fn dependent(scene: &Scene, d: &diagnose::Dependency, over: &Over, v: f64) -> Diagnostic {
+    let at = d
+        .constraints
+        .iter()
+        .copied()
+        .find(|&j| scene.drives.iter().any(|dr| dr.constraint == j))
+        .unwrap_or(d.constraints[d.constraints.len() - 1]);
+    let free: Vec<&str> = d
+        .free
+        .iter()
+        .map(|&k| scene.coordinates[k].name.as_str())
+        .collect();
+    let mut diag = Diagnostic::error(
+        scene.constraints[at].span,
+        format!(
+            "{} impose one condition twice (their rows of the constraint Jacobian are dependent at and near the first position, {} = {v}), so they leave a motion of {} free",
+            owners(scene, &d.constraints),
+            over.name,
+            free.join(", ")
+        ),
+    )
+    .with_hint("a drive prescribes a coordinate the joints and constraints leave free: drive another coordinate, or remove the condition that repeats another");
+    let mut labelled = vec![scene.constraints[at].span];
+    for &j in &d.constraints {
+        let span = scene.constraints[j].span;
+        if !labelled.contains(&span) {
+            labelled.push(span);
+            diag = diag.with_label(span, "dependent with it");
+        }
+    }
+    diag
 }
