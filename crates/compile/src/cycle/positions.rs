@@ -41,17 +41,17 @@ struct Carried {
 /// Every position of `over`, in order.
 pub(super) fn run(
     scene: &Scene,
-    mut model: Model,
-    mut varied: Varied,
+    model: &mut Model,
+    varied: &mut Varied,
     guess: Vec<f64>,
     over: &Over,
-    layout: Layout,
+    layout: &Layout,
 ) -> Result<CycleTable, Diagnostic> {
     let n = model.n;
     let mut offsets = vec![0.0; n];
     let mut out = vec![0.0; n + n * n + n];
     // a locked angle is held at its value in the guess
-    let t0 = time_of(&mut varied, over.value(0), None).map_err(Diagnostic::global)?;
+    let t0 = time_of(varied, over.value(0), None).map_err(Diagnostic::global)?;
     let inputs: Vec<f64> = guess.iter().copied().chain([t0]).collect();
     model.position.eval(&inputs, &mut out);
     for &j in &model.locked {
@@ -70,7 +70,7 @@ pub(super) fn run(
             points: Vec::new(),
         };
         row.values[0] = Some(v);
-        let t = match time_of(&mut varied, v, carried.as_ref().map(|c| c.t)) {
+        let t = match time_of(varied, v, carried.as_ref().map(|c| c.t)) {
             Ok(t) => t,
             Err(why) => {
                 row.note = Some(why);
@@ -79,7 +79,7 @@ pub(super) fn run(
             }
         };
         let mut q = predict(carried.as_ref(), &guess, t);
-        let assembled = newton(&mut model, &mut q, t, &offsets, &mut out);
+        let assembled = newton(model, &mut q, t, &offsets, &mut out);
         if let Err(residual) = assembled {
             // a dead point slows Newton's method down; the position is
             // assembled all the same when its residuals vanish
@@ -88,11 +88,11 @@ pub(super) fn run(
             if !closed {
                 let start = predict(carried.as_ref(), &guess, t);
                 if carried.is_none() {
-                    return Err(unassembled(scene, &mut model, &start, t, &offsets, &mut out, over, v));
+                    return Err(unassembled(scene, model, &start, t, &offsets, &mut out, over, v));
                 }
                 row.note = Some(format!(
                     "the mechanism cannot be assembled here: {}",
-                    cannot_hold(scene, &mut model, &start, t, &offsets, &mut out)
+                    cannot_hold(scene, model, &start, t, &offsets, &mut out)
                 ));
                 if let Some(c) = carried.as_mut() {
                     c.adjacent = false;
@@ -110,12 +110,12 @@ pub(super) fn run(
         let previous = carried.as_ref().and_then(|c| c.det_positive);
         if let Some(ratio) = singular(&lu) {
             if carried.is_none() {
-                if let Some(d) = dependency(&mut model, &q, t, &mut out) {
+                if let Some(d) = dependency(model, &q, t, &mut out) {
                     return Err(dependent(scene, &d, over, v));
                 }
             }
             row.note = Some(format!("dead point: the constraint Jacobian is singular here (pivot ratio {ratio:.1e}), so the velocities, accelerations and reactions are not determined; the assembly branch after it is compared with the one before"));
-            points_at(&mut model, &q, &vec![0.0; n], t, &mut motion, &mut row);
+            points_at(model, &q, &vec![0.0; n], t, &mut motion, &mut row);
             carried = Some(Carried {
                 t,
                 q,
@@ -176,12 +176,12 @@ pub(super) fn run(
     }
     Ok(CycleTable {
         varied: over.name.clone(),
-        columns: layout.columns,
+        columns: layout.columns.clone(),
         coordinates: n,
-        joints: layout.joints,
-        drives: layout.drives,
+        joints: layout.joints.clone(),
+        drives: layout.drives.clone(),
         rows,
-        drawing: model.drawing,
+        drawing: model.drawing.clone(),
     })
 }
 
