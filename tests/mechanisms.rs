@@ -991,3 +991,43 @@ fn a_non_grashof_crank_driven_past_its_limit() {
         assert!(close(value(&t, 0, name), value(&t, 24, name)), "{name}");
     }
 }
+
+// ---------------------------------------------------------------------
+// Stick
+// ---------------------------------------------------------------------
+
+/// The engine with friction in its wrist pin B too, whose relative
+/// rotation −θ' vanishes at φ = 90° and 270° (rows 18 and 54): there the
+/// friction's sense is undefined and the row says so; with a coefficient
+/// of 0 there is no friction to refuse.
+#[test]
+fn a_friction_at_rest_refuses_its_row_unless_its_coefficient_is_zero() {
+    let f = fixture("slider_crank_engine");
+    let src = edit(&source(&f.scene), "", "friction B: mu0*r0");
+    let t = run_cycle(&src, &request(&f.over, &f.set, &f.guess));
+    for (r, row) in t.rows.iter().enumerate() {
+        if r == 18 || r == 54 {
+            let note = row.note.as_deref().unwrap();
+            assert!(
+                note.starts_with("stick: the relative velocity in the joint `B` vanishes here (")
+                    && note.ends_with("), so its friction's sense is undefined"),
+                "{note}"
+            );
+            // the motion is known, the forces are not
+            let first_force = col(&t, "O_x");
+            assert!(row.values[..first_force].iter().all(Option::is_some));
+            assert!(row.values[first_force..].iter().all(Option::is_none));
+        } else {
+            assert_eq!(row.note, None, "row {r}");
+        }
+    }
+    let free = fixture("slider_crank_engine_frictionless");
+    let t = run_cycle(&src, &request(&free.over, &free.set, &free.guess));
+    for (want, got) in free.rows.iter().zip(&t.rows) {
+        assert_eq!(got.note, None);
+        for (k, w) in want.iter().enumerate() {
+            assert!(close(*w, got.values[k].unwrap()), "`{}`", free.columns[k]);
+        }
+        assert_eq!(got.values[col(&t, "B_f")], Some(0.0));
+    }
+}
