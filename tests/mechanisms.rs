@@ -118,7 +118,11 @@ fn value(t: &CycleTable, row: usize, name: &str) -> f64 {
 fn assert_fixture(name: &str) {
     let f = fixture(name);
     let t = run_fixture(&f);
-    assert_eq!(t.columns[..f.columns.len()], f.columns[..], "{name}: columns");
+    assert_eq!(
+        t.columns[..f.columns.len()],
+        f.columns[..],
+        "{name}: columns"
+    );
     for extra in &t.columns[f.columns.len()..] {
         assert!(extra.ends_with("_f"), "{name}: unexpected column `{extra}`");
     }
@@ -202,7 +206,10 @@ fn marghitus_printed_forces_are_reproduced() {
     let f = fixture("marghitu_slider_crank");
     let t = run_fixture(&f);
     let row = f.json["printed_row"].as_u64().expect("printed_row") as usize;
-    assert!(close(t.rows[row].values[0].unwrap(), std::f64::consts::FRAC_PI_4));
+    assert!(close(
+        t.rows[row].values[0].unwrap(),
+        std::f64::consts::FRAC_PI_4
+    ));
     let r2 = std::f64::consts::SQRT_2;
     // F12, printed: −¼(400 + 7√2) ı + 5/4(84 + √2) ȷ N
     let printed = [
@@ -289,7 +296,10 @@ fn the_cli_prints_the_reference_rows_as_json_and_csv() {
     assert_eq!(rows.len(), f.rows.len());
     for (i, (want, got)) in f.rows.iter().zip(rows).enumerate() {
         assert!(v["notes"][i].is_null());
-        assert!(v["iterations"][i].as_u64().unwrap() > 1, "friction iterates");
+        assert!(
+            v["iterations"][i].as_u64().unwrap() > 1,
+            "friction iterates"
+        );
         for (k, w) in want.iter().enumerate() {
             let g = got[k].as_f64().unwrap();
             assert!(close(*w, g), "json row {i} `{}`: {g} vs {w}", f.columns[k]);
@@ -417,10 +427,7 @@ fn friction_only_adds_to_the_drives_work() {
         let c4 = 0.3;
         let u = [th4.cos(), th4.sin()];
         let n = [-u[1], u[0]];
-        let p = [
-            value(t, r, "x4") - c4 * u[0],
-            value(t, r, "y4") - c4 * u[1],
-        ];
+        let p = [value(t, r, "x4") - c4 * u[0], value(t, r, "y4") - c4 * u[1]];
         let pd = [
             value(t, r, "x4'") + c4 * w4 * u[1],
             value(t, r, "y4'") - c4 * w4 * u[0],
@@ -446,7 +453,15 @@ fn friction_only_adds_to_the_drives_work() {
         let scene = Scene::parse(&src).unwrap();
         let t = run_fixture(&f);
         let free = run_fixture(&fixture(free));
-        let rate = value(&t, 0, if name == "quick_return" { "th2'" } else { "phi'" });
+        let rate = value(
+            &t,
+            0,
+            if name == "quick_return" {
+                "th2'"
+            } else {
+                "phi'"
+            },
+        );
         let rows = t.rows.len() - 1; // the periodic grid
         let (mut mean, mut mean_free, mut mean_dissipated) = (0.0, 0.0, 0.0);
         for r in 0..rows {
@@ -461,7 +476,8 @@ fn friction_only_adds_to_the_drives_work() {
                 .sum();
             let ideal = ideal_power(&scene, &f.set, &t, r);
             assert!(
-                (drive * rate - (ideal + dissipated)).abs() <= 1e-10 * (drive * rate).abs().max(1.0),
+                (drive * rate - (ideal + dissipated)).abs()
+                    <= 1e-10 * (drive * rate).abs().max(1.0),
                 "{name} row {r}: drive power {}, ideal {ideal} + friction {dissipated}",
                 drive * rate
             );
@@ -470,7 +486,10 @@ fn friction_only_adds_to_the_drives_work() {
             mean_free += value(&free, r, "M") / rows as f64;
             mean_dissipated += dissipated / rate / rows as f64;
         }
-        assert!(mean_free.abs() < 1e-9, "{name}: frictionless mean {mean_free}");
+        assert!(
+            mean_free.abs() < 1e-9,
+            "{name}: frictionless mean {mean_free}"
+        );
         assert!(
             (mean - mean_dissipated).abs() < 1e-9,
             "{name}: mean drive {mean}, friction's work per radian {mean_dissipated}"
@@ -502,7 +521,10 @@ fn without_friction_the_drives_mean_over_a_cycle_is_zero() {
             mean.abs() <= 1e-9 * largest,
             "{name}: mean {mean:e}, largest {largest}"
         );
-        assert!(close(values[0], values[values.len() - 1]), "{name}: periodic");
+        assert!(
+            close(values[0], values[values.len() - 1]),
+            "{name}: periodic"
+        );
     }
 }
 
@@ -579,12 +601,7 @@ fn cycle_error(src: &str, over: &str, set: &str, guess: &str) -> (String, Option
 }
 
 fn slider_crank_error(src: &str) -> (String, Option<(usize, usize)>) {
-    cycle_error(
-        src,
-        "phi=0:360deg:5",
-        SLIDER_CRANK_SET,
-        SLIDER_CRANK_GUESS,
-    )
+    cycle_error(src, "phi=0:360deg:5", SLIDER_CRANK_SET, SLIDER_CRANK_GUESS)
 }
 
 #[test]
@@ -753,7 +770,12 @@ fn a_drive_whose_law_moves_with_a_coordinate() {
 
 #[test]
 fn bad_options_are_refused_with_the_names_to_use() {
-    let (message, place) = cycle_error(SLIDER_CRANK, "th=0:1:3", SLIDER_CRANK_SET, SLIDER_CRANK_GUESS);
+    let (message, place) = cycle_error(
+        SLIDER_CRANK,
+        "th=0:1:3",
+        SLIDER_CRANK_SET,
+        SLIDER_CRANK_GUESS,
+    );
     assert_eq!(message, "`--over th`: `th` is not a driven coordinate");
     assert_eq!(place, None);
     let (message, _) = cycle_error(SLIDER_CRANK, "phi=0:1:3", SLIDER_CRANK_SET, "zz=1");
@@ -780,7 +802,10 @@ const BRANCH_CHANGED: &str = "the constraint Jacobian's determinant changed sign
 
 /// The branch (assembly mode) of every regular row, by `branch`, never
 /// changes without the row saying so; the list of the rows that say so.
-fn assert_no_silent_branch_change(t: &CycleTable, branch: impl Fn(&CycleTable, usize) -> f64) -> Vec<usize> {
+fn assert_no_silent_branch_change(
+    t: &CycleTable,
+    branch: impl Fn(&CycleTable, usize) -> f64,
+) -> Vec<usize> {
     let mut previous: Option<f64> = None;
     let mut changed = Vec::new();
     for r in 0..t.rows.len() {
@@ -790,7 +815,12 @@ fn assert_no_silent_branch_change(t: &CycleTable, branch: impl Fn(&CycleTable, u
         let side = branch(t, r).signum();
         let said = t.rows[r].note.as_deref() == Some(BRANCH_CHANGED);
         if let Some(p) = previous {
-            assert_eq!(p != side, said, "row {r}: branch {p} → {side}, note {:?}", t.rows[r].note);
+            assert_eq!(
+                p != side,
+                said,
+                "row {r}: branch {p} → {side}, note {:?}",
+                t.rows[r].note
+            );
         }
         if said {
             changed.push(r);
@@ -815,7 +845,9 @@ fn crank_side(t: &CycleTable, r: usize) -> f64 {
 /// |φ| from the block's position (the cosine rule in the triangle O A B).
 fn crank_angle(xb: f64) -> f64 {
     let (r, l) = (0.1f64, 0.3f64);
-    ((xb * xb + r * r - l * l) / (2.0 * r * xb)).clamp(-1.0, 1.0).acos()
+    ((xb * xb + r * r - l * l) / (2.0 * r * xb))
+        .clamp(-1.0, 1.0)
+        .acos()
 }
 
 #[test]
@@ -840,9 +872,16 @@ fn a_slider_driven_crank_at_its_toggle_positions_has_dead_points() {
         );
         // the position is known, nothing after it
         assert!(row.values[1..=n].iter().all(Option::is_some));
-        assert!(row.values[n + 1..].iter().all(Option::is_none), "{:?}", row.values);
+        assert!(
+            row.values[n + 1..].iter().all(Option::is_none),
+            "{:?}",
+            row.values
+        );
         let phi = value(&t, r, "phi");
-        assert!((phi.cos() - if r == 2 { -1.0 } else { 1.0 }).abs() < 1e-12, "{phi}");
+        assert!(
+            (phi.cos() - if r == 2 { -1.0 } else { 1.0 }).abs() < 1e-12,
+            "{phi}"
+        );
     }
     // every regular row is an assembly of the slider's position, on the
     // side the row's branch says
@@ -920,7 +959,10 @@ fn a_crank_rocker_driven_by_its_rocker_past_its_limit() {
         assert_eq!(t.rows[r].note, None, "row {r}");
         let (pa, pb) = pins(&t, r, a, b);
         assert!((pa[0].hypot(pa[1]) - a).abs() < 1e-12);
-        let rocker_tip = [0.18 + 0.12 * value(&t, r, "th4").cos(), 0.12 * value(&t, r, "th4").sin()];
+        let rocker_tip = [
+            0.18 + 0.12 * value(&t, r, "th4").cos(),
+            0.12 * value(&t, r, "th4").sin(),
+        ];
         assert!((pb[0] - rocker_tip[0]).hypot(pb[1] - rocker_tip[1]) < 1e-12);
     }
     for r in 9..11 {
@@ -933,7 +975,11 @@ fn a_crank_rocker_driven_by_its_rocker_past_its_limit() {
         assert!(t.rows[r].values[1..].iter().all(Option::is_none));
     }
     // swung past the limit and back
-    let swinging = edit(FOUR_BAR, "drive M:", "drive M: th4 = 1.7 + 0.5*sin(omega*t)");
+    let swinging = edit(
+        FOUR_BAR,
+        "drive M:",
+        "drive M: th4 = 1.7 + 0.5*sin(omega*t)",
+    );
     let t = run_cycle(&swinging, &request("t=0:2pi:25", set, guess));
     let missing: Vec<usize> = (0..25).filter(|&r| t.rows[r].values[1].is_none()).collect();
     assert_eq!(missing, [5, 6, 7]);
@@ -984,7 +1030,10 @@ fn a_non_grashof_crank_driven_past_its_limit() {
             - std::f64::consts::PI;
         assert!(wrapped.abs() < 1e-9, "row {r}: θ3 {th3}, by hand {want}");
     }
-    assert_eq!(assert_no_silent_branch_change(&t, side), Vec::<usize>::new());
+    assert_eq!(
+        assert_no_silent_branch_change(&t, side),
+        Vec::<usize>::new()
+    );
     assert!(side(&t, 0) > 0.0 && side(&t, 19) > 0.0);
     // the cycle closes where it started
     for name in ["th3", "th4"] {

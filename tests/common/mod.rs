@@ -103,7 +103,10 @@ pub fn stmt_sexpr(s: &Stmt) -> String {
             sexpr(&j.first.point),
             j.second.body.name,
             sexpr(&j.second.point),
-            j.along.as_ref().map(|u| format!(" {}", sexpr(u))).unwrap_or_default()
+            j.along
+                .as_ref()
+                .map(|u| format!(" {}", sexpr(u)))
+                .unwrap_or_default()
         ),
         Stmt::Drive {
             name,
@@ -354,7 +357,12 @@ pub fn print_stmt(s: &Stmt) -> String {
             coordinate,
             value,
             ..
-        } => format!("drive {}: {} = {}", name.name, coordinate.name, print_full(value)),
+        } => format!(
+            "drive {}: {} = {}",
+            name.name,
+            coordinate.name,
+            print_full(value)
+        ),
         Stmt::Friction {
             joint, coefficient, ..
         } => format!("friction {}: {}", joint.name, print_full(coefficient)),

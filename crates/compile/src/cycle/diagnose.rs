@@ -52,13 +52,17 @@ pub(super) fn dependency(
     for point in [q, &near[..]] {
         let svd = jacobian(model, point, t, out).svd(true, true);
         let s = &svd.singular_values;
-        let (k, lo) = s.iter().enumerate().fold((0, f64::INFINITY), |b, (i, &x)| {
-            if x < b.1 {
-                (i, x)
-            } else {
-                b
-            }
-        });
+        let (k, lo) =
+            s.iter().enumerate().fold(
+                (0, f64::INFINITY),
+                |b, (i, &x)| {
+                    if x < b.1 {
+                        (i, x)
+                    } else {
+                        b
+                    }
+                },
+            );
         let hi = s.max();
         if !(hi > 0.0 && lo <= DEPENDENT_RATIO * hi) {
             return None;

@@ -84,11 +84,15 @@ pub(super) fn run(
             // a dead point slows Newton's method down; the position is
             // assembled all the same when its residuals vanish
             let scale = 1.0 + q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            let closed = residual.iter().all(|r| r.abs() <= ASSEMBLED_RESIDUAL * scale);
+            let closed = residual
+                .iter()
+                .all(|r| r.abs() <= ASSEMBLED_RESIDUAL * scale);
             if !closed {
                 let start = predict(carried.as_ref(), &guess, t);
                 if carried.is_none() {
-                    return Err(unassembled(scene, model, &start, t, &offsets, &mut out, over, v));
+                    return Err(unassembled(
+                        scene, model, &start, t, &offsets, &mut out, over, v,
+                    ));
                 }
                 row.note = Some(format!(
                     "the mechanism cannot be assembled here: {}",
@@ -147,7 +151,7 @@ pub(super) fn run(
         if previous.is_some_and(|p| p != det_positive) {
             row.note = Some("the constraint Jacobian's determinant changed sign since the previous regular position: a dead point lies between them, and the assembly branch changed there".into());
         }
-        match kinetostatics(&model, &a, &motion, &qd, &qdd) {
+        match kinetostatics(model, &a, &motion, &qd, &qdd) {
             Kinetostatics::Solved {
                 lambda,
                 friction,
