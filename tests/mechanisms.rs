@@ -1080,3 +1080,32 @@ fn a_friction_at_rest_refuses_its_row_unless_its_coefficient_is_zero() {
         assert_eq!(got.values[col(&t, "B_f")], Some(0.0));
     }
 }
+
+/// Started exactly at a toggle (the guess too: every y and angle 0, so
+/// the Jacobian is exactly singular at Newton's start), the first row is
+/// a dead point and the next ones are assembled all the same.
+#[test]
+fn a_cycle_started_at_a_toggle_position() {
+    let t = run_cycle(
+        &slider_driven(),
+        &request("t=0:2pi:5", SLIDER_CRANK_SET, SLIDER_CRANK_GUESS),
+    );
+    let dead: Vec<usize> = (0..5)
+        .filter(|&r| {
+            t.rows[r]
+                .note
+                .as_deref()
+                .is_some_and(|n| n.starts_with("dead point: "))
+        })
+        .collect();
+    assert_eq!(dead, [0, 2, 4]);
+    for r in [1, 3] {
+        assert!(close(value(&t, r, "xb"), 0.3), "row {r}");
+        let want = crank_angle(0.3) * crank_side(&t, r).signum();
+        let phi = value(&t, r, "phi");
+        let wrapped = (phi - want + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+            - std::f64::consts::PI;
+        assert!(wrapped.abs() < 1e-9, "row {r}: φ {phi}, by hand {want}");
+    }
+    assert_eq!(assert_no_silent_branch_change(&t, crank_side), [3]);
+}

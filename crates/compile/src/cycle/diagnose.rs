@@ -3,6 +3,8 @@
 //! fix), or they cannot all hold at once (a loop whose links cannot reach).
 
 use super::model::Model;
+use super::Over;
+use crate::diag::Diagnostic;
 use crate::scene::Scene;
 use nalgebra::{DMatrix, DVector};
 
@@ -36,6 +38,15 @@ pub(super) struct Dependency {
     pub free: Vec<usize>,
 }
 
+/// A point near `q`, the same for every call: off a singular Jacobian,
+/// by a thousandth of the coordinates' scale.
+pub(super) fn nudged(q: &[f64]) -> Vec<f64> {
+    q.iter()
+        .enumerate()
+        .map(|(i, x)| x + 1e-3 * (1.0 + x.abs()) * (1.7 * i as f64 + 0.3).sin())
+        .collect()
+}
+
 /// The dependency among the rows of the Jacobian near `q`, if any.
 pub(super) fn dependency(
     model: &mut Model,
@@ -43,11 +54,7 @@ pub(super) fn dependency(
     t: f64,
     out: &mut [f64],
 ) -> Option<Dependency> {
-    let near: Vec<f64> = q
-        .iter()
-        .enumerate()
-        .map(|(i, x)| x + 1e-3 * (1.0 + x.abs()) * (1.7 * i as f64 + 0.3).sin())
-        .collect();
+    let near = nudged(q);
     let mut last = None;
     for point in [q, &near[..]] {
         let svd = jacobian(model, point, t, out).svd(true, true);
@@ -91,7 +98,7 @@ pub(super) fn nearest(
     t: f64,
     offsets: &[f64],
     out: &mut [f64],
-) -> Vec<f64> {
+) -> (Vec<f64>, Vec<f64>) {
     let n = model.n;
     let mut q = q.to_vec();
     let mut g = residual(model, &q, t, offsets, out);
@@ -125,12 +132,12 @@ pub(super) fn nearest(
             }
         }
     }
-    g
+    (q, g)
 }
 
 /// The conditions a least-squares residual leaves open (above 1e-6 of
 /// the largest), and the one most open.
-pub(super) fn open(residual: &[f64]) -> (Vec<usize>, usize) {
+fn open(residual: &[f64]) -> (Vec<usize>, usize) {
     let top = residual.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let worst = residual
         .iter()
@@ -144,7 +151,7 @@ pub(super) fn open(residual: &[f64]) -> (Vec<usize>, usize) {
 
 /// "the joint `A`" / "the drive `M`" / "the constraint `c`" for
 /// constraint `j`.
-pub(super) fn owner(scene: &Scene, j: usize) -> String {
+fn owner(scene: &Scene, j: usize) -> String {
     if let Some(jt) = scene.joints.iter().find(|jt| jt.constraints.contains(&j)) {
         return format!("the joint `{}`", jt.name);
     }
@@ -156,7 +163,7 @@ pub(super) fn owner(scene: &Scene, j: usize) -> String {
 
 /// The owners of `rows`, each once, in order: "the joint `O`, the joint
 /// `A` and the drive `M`".
-pub(super) fn owners(scene: &Scene, rows: &[usize]) -> String {
+fn owners(scene: &Scene, rows: &[usize]) -> String {
     let mut names: Vec<String> = Vec::new();
     for &j in rows {
         let o = owner(scene, j);
@@ -169,4 +176,104 @@ pub(super) fn owners(scene: &Scene, rows: &[usize]) -> String {
         1 => names.remove(0),
         k => format!("{} and {}", names[..k - 1].join(", "), names[k - 1]),
     }
+}
+
+/// Which conditions cannot all hold, from the residuals of the
+/// least-squares assembly nearest the start: "the joint `A` and the drive `M` cannot all
+/// hold (…)".
+pub(super) fn cannot_hold(scene: &Scene, residual: &[f64]) -> String {
+    let (rows, worst) = open(residual);
+    let gap = residual[worst].abs();
+    if rows.len() <= 1 {
+        return format!(
+            "{} cannot hold (the nearest assembly leaves it open by {gap:.3e})",
+            owner(scene, worst)
+        );
+    }
+    format!(
+        "{} cannot all hold (the nearest assembly leaves them open by up to {gap:.3e})",
+        owners(scene, &rows),
+    )
+}
+
+/// The error when the first position cannot be assembled, at the
+/// statement of the condition left most open.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn unassembled(
+    scene: &Scene,
+    model: &mut Model,
+    start: &[f64],
+    t: f64,
+    residual: &[f64],
+    out: &mut [f64],
+    over: &Over,
+    v: f64,
+) -> Diagnostic {
+    if let Some(d) = dependency(model, start, t, out) {
+        return dependent(scene, &d, over, v);
+    }
+    let why = cannot_hold(scene, residual);
+    // the gap spreads evenly over a loop: the error is at its first
+    // condition, the others labelled
+    let (rows, _) = open(residual);
+    let spans = statements(scene, &rows);
+    let mut diag = Diagnostic::error(
+        spans[0],
+        format!(
+            "the mechanism cannot be assembled at the first position ({} = {v}): {why}",
+            over.name,
+        ),
+    )
+    .with_hint("check the lengths (a loop closes only when its links can reach), or give `--guess` values of an assembly near the first position");
+    for &span in &spans[1..] {
+        diag = diag.with_label(span, "open too");
+    }
+    diag
+}
+
+/// The statements of the constraints `rows`, each once, in order.
+fn statements(scene: &Scene, rows: &[usize]) -> Vec<crate::parse::ast::Span> {
+    let mut spans = Vec::new();
+    for &j in rows {
+        let span = scene.constraints[j].span;
+        if !spans.contains(&span) {
+            spans.push(span);
+        }
+    }
+    spans
+}
+
+/// The error when the conditions repeat one another: at the drive among
+/// them (the likeliest extra), the others labelled.
+pub(super) fn dependent(scene: &Scene, d: &Dependency, over: &Over, v: f64) -> Diagnostic {
+    let at = d
+        .constraints
+        .iter()
+        .copied()
+        .find(|&j| scene.drives.iter().any(|dr| dr.constraint == j))
+        .unwrap_or(d.constraints[d.constraints.len() - 1]);
+    let free: Vec<&str> = d
+        .free
+        .iter()
+        .map(|&k| scene.coordinates[k].name.as_str())
+        .collect();
+    let mut diag = Diagnostic::error(
+        scene.constraints[at].span,
+        format!(
+            "{} impose one condition twice (their rows of the constraint Jacobian are dependent at and near the first position, {} = {v}), so they leave a motion of {} free",
+            owners(scene, &d.constraints),
+            over.name,
+            free.join(", ")
+        ),
+    )
+    .with_hint("a drive prescribes a coordinate the joints and constraints leave free: drive another coordinate, or remove the condition that repeats another");
+    let mut labelled = vec![scene.constraints[at].span];
+    for &j in &d.constraints {
+        let span = scene.constraints[j].span;
+        if !labelled.contains(&span) {
+            labelled.push(span);
+            diag = diag.with_label(span, "dependent with it");
+        }
+    }
+    diag
 }

@@ -2,7 +2,7 @@
 //! by Newton's method continued from the previous position, the
 //! velocities and accelerations, and the kinetostatics.
 
-use super::diagnose::{self, dependency, nearest, open, owner, owners};
+use super::diagnose::{self, dependency, nearest, nudged};
 use super::friction::{kinetostatics, Kinetostatics};
 use super::model::Model;
 use super::table::{CycleRow, CycleTable, Layout};
@@ -78,25 +78,18 @@ pub(super) fn run(
                 continue;
             }
         };
-        let mut q = predict(carried.as_ref(), &guess, t);
-        let assembled = newton(model, &mut q, t, &offsets, &mut out);
-        if let Err(residual) = assembled {
-            // a dead point slows Newton's method down; the position is
-            // assembled all the same when its residuals vanish
-            let scale = 1.0 + q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            let closed = residual
-                .iter()
-                .all(|r| r.abs() <= ASSEMBLED_RESIDUAL * scale);
-            if !closed {
-                let start = predict(carried.as_ref(), &guess, t);
+        let start = predict(carried.as_ref(), &guess, t);
+        let q = match assemble(model, &start, t, &offsets, &mut out) {
+            Ok(q) => q,
+            Err(residual) => {
                 if carried.is_none() {
-                    return Err(unassembled(
-                        scene, model, &start, t, &offsets, &mut out, over, v,
+                    return Err(diagnose::unassembled(
+                        scene, model, &start, t, &residual, &mut out, over, v,
                     ));
                 }
                 row.note = Some(format!(
                     "the mechanism cannot be assembled here: {}",
-                    cannot_hold(scene, model, &start, t, &offsets, &mut out)
+                    diagnose::cannot_hold(scene, &residual)
                 ));
                 if let Some(c) = carried.as_mut() {
                     c.adjacent = false;
@@ -104,7 +97,7 @@ pub(super) fn run(
                 rows.push(row);
                 continue;
             }
-        }
+        };
         for (i, &x) in q.iter().enumerate() {
             row.values[1 + i] = Some(x);
         }
@@ -115,7 +108,7 @@ pub(super) fn run(
         if let Some(ratio) = singular(&lu) {
             if carried.is_none() {
                 if let Some(d) = dependency(model, &q, t, &mut out) {
-                    return Err(dependent(scene, &d, over, v));
+                    return Err(diagnose::dependent(scene, &d, over, v));
                 }
             }
             row.note = Some(format!("dead point: the constraint Jacobian is singular here (pivot ratio {ratio:.1e}), so the velocities, accelerations and reactions are not determined; the assembly branch after it is compared with the one before"));
@@ -278,6 +271,48 @@ fn newton(
     Err((0..n).map(|j| out[j] - offsets[j]).collect())
 }
 
+/// The position at time `t`: Newton's method from `start`; when it
+/// fails, from a point near `start` (off a singular Jacobian, such as a
+/// start exactly at a dead point), then from the least-squares assembly
+/// nearest `start`. Where none closes, the residuals of that nearest
+/// assembly.
+fn assemble(
+    model: &mut Model,
+    start: &[f64],
+    t: f64,
+    offsets: &[f64],
+    out: &mut [f64],
+) -> Result<Vec<f64>, Vec<f64>> {
+    let mut q = start.to_vec();
+    if closes(model, &mut q, t, offsets, out) {
+        return Ok(q);
+    }
+    let mut q = nudged(start);
+    if closes(model, &mut q, t, offsets, out) {
+        return Ok(q);
+    }
+    let (mut q, residual) = nearest(model, start, t, offsets, out);
+    if closes(model, &mut q, t, offsets, out) {
+        return Ok(q);
+    }
+    Err(residual)
+}
+
+/// Whether Newton's method from `q` assembles the mechanism (`q` then
+/// holds the position, `out` its g, A and b): converged, or slowed down
+/// by a dead point with its residuals vanishing all the same.
+fn closes(model: &mut Model, q: &mut [f64], t: f64, offsets: &[f64], out: &mut [f64]) -> bool {
+    match newton(model, q, t, offsets, out) {
+        Ok(()) => true,
+        Err(residual) => {
+            let scale = 1.0 + q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            residual
+                .iter()
+                .all(|r| r.abs() <= ASSEMBLED_RESIDUAL * scale)
+        }
+    }
+}
+
 /// The pivot ratio of a singular LU factorization, `None` when regular.
 fn singular(lu: &nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>) -> Option<f64> {
     let u = lu.u();
@@ -308,113 +343,4 @@ fn points_at(
     model.motion.eval(&ins, motion);
     let lay = model.layout();
     row.points = points(&motion[lay.points..], model.points);
-}
-
-/// Which conditions cannot all hold at time `t`, from the least-squares
-/// assembly nearest `start`: "the joint `A` and the drive `M` cannot all
-/// hold (…)".
-fn cannot_hold(
-    scene: &Scene,
-    model: &mut Model,
-    start: &[f64],
-    t: f64,
-    offsets: &[f64],
-    out: &mut [f64],
-) -> String {
-    let residual = nearest(model, start, t, offsets, out);
-    let (rows, worst) = open(&residual);
-    let gap = residual[worst].abs();
-    if rows.len() <= 1 {
-        return format!(
-            "{} cannot hold (the nearest assembly leaves it open by {gap:.3e})",
-            owner(scene, worst)
-        );
-    }
-    format!(
-        "{} cannot all hold (the nearest assembly leaves them open by up to {gap:.3e})",
-        owners(scene, &rows),
-    )
-}
-
-/// The error when the first position cannot be assembled, at the
-/// statement of the condition left most open.
-#[allow(clippy::too_many_arguments)]
-fn unassembled(
-    scene: &Scene,
-    model: &mut Model,
-    start: &[f64],
-    t: f64,
-    offsets: &[f64],
-    out: &mut [f64],
-    over: &Over,
-    v: f64,
-) -> Diagnostic {
-    if let Some(d) = dependency(model, start, t, out) {
-        return dependent(scene, &d, over, v);
-    }
-    let why = cannot_hold(scene, model, start, t, offsets, out);
-    let residual = nearest(model, start, t, offsets, out);
-    // the gap spreads evenly over a loop: the error is at its first
-    // condition, the others labelled
-    let (rows, _) = open(&residual);
-    let spans = statements(scene, &rows);
-    let mut diag = Diagnostic::error(
-        spans[0],
-        format!(
-            "the mechanism cannot be assembled at the first position ({} = {v}): {why}",
-            over.name,
-        ),
-    )
-    .with_hint("check the lengths (a loop closes only when its links can reach), or give `--guess` values of an assembly near the first position");
-    for &span in &spans[1..] {
-        diag = diag.with_label(span, "open too");
-    }
-    diag
-}
-
-/// The statements of the constraints `rows`, each once, in order.
-fn statements(scene: &Scene, rows: &[usize]) -> Vec<crate::parse::ast::Span> {
-    let mut spans = Vec::new();
-    for &j in rows {
-        let span = scene.constraints[j].span;
-        if !spans.contains(&span) {
-            spans.push(span);
-        }
-    }
-    spans
-}
-
-/// The error when the conditions repeat one another: at the drive among
-/// them (the likeliest extra), the others labelled.
-fn dependent(scene: &Scene, d: &diagnose::Dependency, over: &Over, v: f64) -> Diagnostic {
-    let at = d
-        .constraints
-        .iter()
-        .copied()
-        .find(|&j| scene.drives.iter().any(|dr| dr.constraint == j))
-        .unwrap_or(d.constraints[d.constraints.len() - 1]);
-    let free: Vec<&str> = d
-        .free
-        .iter()
-        .map(|&k| scene.coordinates[k].name.as_str())
-        .collect();
-    let mut diag = Diagnostic::error(
-        scene.constraints[at].span,
-        format!(
-            "{} impose one condition twice (their rows of the constraint Jacobian are dependent at and near the first position, {} = {v}), so they leave a motion of {} free",
-            owners(scene, &d.constraints),
-            over.name,
-            free.join(", ")
-        ),
-    )
-    .with_hint("a drive prescribes a coordinate the joints and constraints leave free: drive another coordinate, or remove the condition that repeats another");
-    let mut labelled = vec![scene.constraints[at].span];
-    for &j in &d.constraints {
-        let span = scene.constraints[j].span;
-        if !labelled.contains(&span) {
-            labelled.push(span);
-            diag = diag.with_label(span, "dependent with it");
-        }
-    }
-    diag
 }
