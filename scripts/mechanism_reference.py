@@ -32,6 +32,9 @@ friction's dissipated power, >= 0), to 1e-10 relative.
 
 Usage:  python3 scripts/mechanism_reference.py [OUTDIR]
         (NumPy only; OUTDIR defaults to tests/fixtures/mechanisms)
+        python3 scripts/mechanism_reference.py --time CASE N [REPEATS]
+        (prints the seconds one cycle of CASE over N positions takes, the
+        best of REPEATS runs, 5 by default; for benches/cycle.rs)
 """
 
 import json
@@ -555,9 +558,10 @@ def parse_assignments(text):
     return out
 
 
-def sweep(mech, over, guess, time_of):
+def sweep(mech, over, guess, time_of, check=True):
     """Rows of the cycle: `time_of(value)` is the time at which the driven
-    coordinate has the varied value (the drive solved for t)."""
+    coordinate has the varied value (the drive solved for t).  `check`
+    runs check_row on every row (off only for timing)."""
     name, values = parse_over(over)
     q = np.zeros(len(mech.coordinates))
     for k, val in parse_assignments(guess).items():
@@ -578,7 +582,8 @@ def sweep(mech, over, guess, time_of):
         q = mech.assemble(q, t)
         v, a = mech.kinematics(q, t)
         x, its = mech.forces(q, v, a, t)
-        check_row(mech, q, v, a, x, t)
+        if check:
+            check_row(mech, q, v, a, x, t)
         rows.append([float(value)] + list(q) + list(v) + list(a) + list(x))
         iterations.append(its)
         prev = (q, v, a, t)
@@ -904,13 +909,34 @@ CASES = [
 ]
 
 
-def run_case(case):
+def run_case(case, over=None, check=True):
     params = parse_assignments(case["set"])
     mech = case["build"](params)
     omega = params["omega"]
     # every drive here is q = omega*t: the varied value v is reached at t = v/omega
-    columns, rows, iterations = sweep(mech, case["over"], case["guess"], lambda val: val / omega)
+    columns, rows, iterations = sweep(mech, over or case["over"], case["guess"],
+                                      lambda val: val / omega, check)
     return mech, columns, rows, iterations
+
+
+def time_case(name, count, repeats=5):
+    """The seconds one cycle of the case `name` takes over `count` positions
+    of its varied angle from 0 to 360 degrees (building the mechanism,
+    positions, velocities, accelerations, forces and friction; the
+    per-row checks off), the best of `repeats` runs."""
+    import time
+    case = next((c for c in CASES if c["name"] == name), None)
+    if case is None:
+        raise SystemExit("no case %r: %s" % (name, ", ".join(c["name"] for c in CASES)))
+    varied = case["over"].split("=")[0]
+    over = "%s=0:360deg:%d" % (varied, count)
+    best = float("inf")
+    for _ in range(repeats):
+        start = time.perf_counter()
+        _, _, rows, _ = run_case(case, over=over, check=False)
+        best = min(best, time.perf_counter() - start)
+    assert len(rows) == count
+    return best
 
 
 def check_cycle_mean(mech, columns, rows):
@@ -926,6 +952,10 @@ def check_cycle_mean(mech, columns, rows):
 
 
 def main():
+    if len(sys.argv) >= 4 and sys.argv[1] == "--time":
+        repeats = int(sys.argv[4]) if len(sys.argv) > 4 else 5
+        print(repr(time_case(sys.argv[2], int(sys.argv[3]), repeats)))
+        return
     here = os.path.dirname(os.path.abspath(__file__))
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "tests", "fixtures", "mechanisms")
     os.makedirs(out, exist_ok=True)

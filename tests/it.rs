@@ -37,6 +37,7 @@ mod latex;
 mod latex_pdf;
 mod lazy;
 mod limits_doc;
+mod mechanisms;
 mod modes;
 mod no_panic;
 mod parse_ast;

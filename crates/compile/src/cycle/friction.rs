@@ -57,6 +57,11 @@ pub(super) fn kinetostatics(
     let mut signs = Vec::with_capacity(nf);
     for (i, fr) in model.frictions.iter().enumerate() {
         let v = motion[lay.relative + i];
+        // a coefficient of 0 is no friction: no sense to find, even at rest
+        if fr.coefficient == 0.0 {
+            signs.push(0.0);
+            continue;
+        }
         if v.abs() <= STICK_FRACTION * scale || scale == 0.0 {
             return Kinetostatics::Refused(format!(
                 "stick: the relative velocity in the joint `{}` vanishes here ({v:.1e}), so its friction's sense is undefined",

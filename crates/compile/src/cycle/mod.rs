@@ -6,6 +6,7 @@
 //! equations Aᵀ·λ = M·q̈ − f, with Coulomb friction by iteration
 //! ([`friction`]).
 
+mod diagnose;
 mod friction;
 mod model;
 mod positions;
@@ -113,6 +114,12 @@ fn angle_value(s: &str) -> Option<f64> {
 
 /// Analyse the mechanism of `scene` over `req.over`.
 pub fn cycle(scene: &Scene, req: &CycleRequest) -> Result<CycleTable, Diagnostic> {
+    CompiledCycle::new(scene, req)?.run()
+}
+
+/// An error unless the scene is a mechanism with as many conditions as
+/// coordinates.
+fn counted(scene: &Scene) -> Result<(), Diagnostic> {
     if scene.joints.is_empty() && scene.drives.is_empty() {
         return Err(Diagnostic::global("the scene has no joints and no drives: `qdot cycle` analyses a mechanism")
             .with_hint("tie the bodies with `joint NAME: pin A at P, B at Q` and prescribe the input with `drive M: phi = omega*t`")
@@ -137,13 +144,48 @@ pub fn cycle(scene: &Scene, req: &CycleRequest) -> Result<CycleTable, Diagnostic
             format!("drive one more coordinate besides {}, or check that every joint is declared", driven.join(", "))
         }));
     }
-    let lag = scene.lagrange()?;
-    let params = parameter_values(scene, &req.set)?;
-    let model = Model::new(scene, &lag, &params)?;
-    let varied = varied(scene, &req.over, &params)?;
-    let guess = guess(scene, &req.guess)?;
-    let layout = table::Layout::of(scene, &req.over.name);
-    positions::run(scene, model, varied, guess, &req.over, layout)
+    Ok(())
+}
+
+/// A mechanism's equations derived and compiled for one request: the
+/// positions of [`CompiledCycle::run`] are the whole work left (for
+/// timing them apart, or running them again).
+pub struct CompiledCycle<'a> {
+    scene: &'a Scene,
+    model: Model,
+    varied: Varied,
+    guess: Vec<f64>,
+    over: Over,
+    layout: table::Layout,
+}
+
+impl<'a> CompiledCycle<'a> {
+    /// Derive and compile the mechanism of `scene` for `req`.
+    pub fn new(scene: &'a Scene, req: &CycleRequest) -> Result<CompiledCycle<'a>, Diagnostic> {
+        counted(scene)?;
+        let lag = scene.lagrange()?;
+        let params = parameter_values(scene, &req.set)?;
+        Ok(CompiledCycle {
+            scene,
+            model: Model::new(scene, &lag, &params)?,
+            varied: varied(scene, &req.over, &params)?,
+            guess: guess(scene, &req.guess)?,
+            over: req.over.clone(),
+            layout: table::Layout::of(scene, &req.over.name),
+        })
+    }
+
+    /// Every position of the request.
+    pub fn run(&mut self) -> Result<CycleTable, Diagnostic> {
+        positions::run(
+            self.scene,
+            &mut self.model,
+            &mut self.varied,
+            self.guess.clone(),
+            &self.over,
+            &self.layout,
+        )
+    }
 }
 
 /// How the varied quantity gives the time: `t` itself, or the drive law

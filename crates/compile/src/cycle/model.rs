@@ -244,9 +244,9 @@ fn drawing(scene: &Scene) -> (Vec<Expr>, Drawing) {
             let len2 = u[0].mul(&u[0]).add(&u[1].mul(&u[1]));
             let len = crate::expr::func::sqrt(&len2).unwrap_or_else(|_| Expr::int(1));
             let k = pts.len() / 2;
-            for i in 0..2 {
-                let unit = u[i].div(&len).unwrap_or_else(|_| u[i].clone());
-                pts.push(jt.points[0][i].add(&unit));
+            for (ui, pi) in u.iter().zip(&jt.points[0]).take(2) {
+                let unit = ui.div(&len).unwrap_or_else(|_| ui.clone());
+                pts.push(pi.add(&unit));
             }
             [p, k]
         });

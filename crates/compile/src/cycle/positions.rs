@@ -2,6 +2,7 @@
 //! by Newton's method continued from the previous position, the
 //! velocities and accelerations, and the kinetostatics.
 
+use super::diagnose::{self, dependency, nearest, nudged};
 use super::friction::{kinetostatics, Kinetostatics};
 use super::model::Model;
 use super::table::{CycleRow, CycleTable, Layout};
@@ -13,8 +14,16 @@ use nalgebra::{DMatrix, DVector};
 /// Newton's method gives up after this many steps at one position.
 const MAX_NEWTON_STEPS: usize = 50;
 /// A Jacobian whose smallest pivot is below this fraction of its largest
-/// is singular: a dead point.
-const SINGULAR_PIVOT_RATIO: f64 = 1e-10;
+/// is singular: a dead point. Not near the rounding error: at a dead
+/// point g has a double root, which Newton's method finds only to about
+/// √ε, so the pivot there is ~1e-9 of the largest rather than 0.
+const SINGULAR_PIVOT_RATIO: f64 = 1e-6;
+/// Newton's steps are at most this fraction of the coordinates' scale.
+const MAX_STEP: f64 = 0.5;
+/// A position whose residuals are below this (relative to the
+/// coordinates' scale) is assembled even when Newton's method, slowed by
+/// a singular Jacobian, did not converge.
+const ASSEMBLED_RESIDUAL: f64 = 1e-9;
 
 /// The state carried from one position to the next.
 struct Carried {
@@ -23,23 +32,27 @@ struct Carried {
     qd: Vec<f64>,
     qdd: Vec<f64>,
     det_positive: Option<bool>,
+    /// False once a position after it could not be assembled: the next
+    /// one then starts from `q` itself, not from an extrapolation over
+    /// the gap.
+    adjacent: bool,
 }
 
 /// Every position of `over`, in order.
 pub(super) fn run(
     scene: &Scene,
-    mut model: Model,
-    mut varied: Varied,
+    model: &mut Model,
+    varied: &mut Varied,
     guess: Vec<f64>,
     over: &Over,
-    layout: Layout,
+    layout: &Layout,
 ) -> Result<CycleTable, Diagnostic> {
     let n = model.n;
     let mut offsets = vec![0.0; n];
     let mut out = vec![0.0; n + n * n + n];
     // a locked angle is held at its value in the guess
-    let t0 = time_of(&mut varied, over.value(0), None).map_err(Diagnostic::global)?;
-    let mut inputs: Vec<f64> = guess.iter().copied().chain([t0]).collect();
+    let t0 = time_of(varied, over.value(0), None).map_err(Diagnostic::global)?;
+    let inputs: Vec<f64> = guess.iter().copied().chain([t0]).collect();
     model.position.eval(&inputs, &mut out);
     for &j in &model.locked {
         offsets[j] = out[j];
@@ -57,7 +70,7 @@ pub(super) fn run(
             points: Vec::new(),
         };
         row.values[0] = Some(v);
-        let t = match time_of(&mut varied, v, carried.as_ref().map(|c| c.t)) {
+        let t = match time_of(varied, v, carried.as_ref().map(|c| c.t)) {
             Ok(t) => t,
             Err(why) => {
                 row.note = Some(why);
@@ -65,20 +78,26 @@ pub(super) fn run(
                 continue;
             }
         };
-        let mut q = predict(carried.as_ref(), &guess, t);
-        inputs.truncate(0);
-        let assembled = newton(&mut model, &mut q, t, &offsets, &mut out);
-        if let Err(residual) = assembled {
-            if carried.is_none() {
-                return Err(unassembled(scene, &residual, over, v));
+        let start = predict(carried.as_ref(), &guess, t);
+        let q = match assemble(model, &start, t, &offsets, &mut out) {
+            Ok(q) => q,
+            Err(residual) => {
+                if carried.is_none() {
+                    return Err(diagnose::unassembled(
+                        scene, model, &start, t, &residual, &mut out, over, v,
+                    ));
+                }
+                row.note = Some(format!(
+                    "the mechanism cannot be assembled here: {}",
+                    diagnose::cannot_hold(scene, &residual)
+                ));
+                if let Some(c) = carried.as_mut() {
+                    c.adjacent = false;
+                }
+                rows.push(row);
+                continue;
             }
-            row.note = Some(format!(
-                "the mechanism cannot be assembled here: Newton's method did not close {}",
-                worst(scene, &residual)
-            ));
-            rows.push(row);
-            continue;
-        }
+        };
         for (i, &x) in q.iter().enumerate() {
             row.values[1 + i] = Some(x);
         }
@@ -87,14 +106,20 @@ pub(super) fn run(
         let det_positive = lu.determinant() > 0.0;
         let previous = carried.as_ref().and_then(|c| c.det_positive);
         if let Some(ratio) = singular(&lu) {
-            row.note = Some(format!("dead point: the constraint Jacobian is singular here (pivot ratio {ratio:.1e}), so the velocities, accelerations and reactions are not determined"));
-            points_at(&mut model, &q, &vec![0.0; n], t, &mut motion, &mut row);
+            if carried.is_none() {
+                if let Some(d) = dependency(model, &q, t, &mut out) {
+                    return Err(diagnose::dependent(scene, &d, over, v));
+                }
+            }
+            row.note = Some(format!("dead point: the constraint Jacobian is singular here (pivot ratio {ratio:.1e}), so the velocities, accelerations and reactions are not determined; the assembly branch after it is compared with the one before"));
+            points_at(model, &q, &vec![0.0; n], t, &mut motion, &mut row);
             carried = Some(Carried {
                 t,
                 q,
                 qd: carried.map(|c| c.qd).unwrap_or(vec![0.0; n]),
                 qdd: vec![0.0; n],
                 det_positive: previous,
+                adjacent: true,
             });
             rows.push(row);
             continue;
@@ -117,9 +142,9 @@ pub(super) fn run(
             row.values[1 + 2 * n + i] = Some(qdd[i]);
         }
         if previous.is_some_and(|p| p != det_positive) {
-            row.note = Some("the constraint Jacobian's determinant changed sign since the previous position: a dead point lies between them, and the assembly branch may have changed there".into());
+            row.note = Some("the constraint Jacobian's determinant changed sign since the previous regular position: a dead point lies between them, and the assembly branch changed there".into());
         }
-        match kinetostatics(&model, &a, &motion, &qd, &qdd) {
+        match kinetostatics(model, &a, &motion, &qd, &qdd) {
             Kinetostatics::Solved {
                 lambda,
                 friction,
@@ -142,17 +167,18 @@ pub(super) fn run(
             qd,
             qdd,
             det_positive: Some(det_positive),
+            adjacent: true,
         });
         rows.push(row);
     }
     Ok(CycleTable {
         varied: over.name.clone(),
-        columns: layout.columns,
+        columns: layout.columns.clone(),
         coordinates: n,
-        joints: layout.joints,
-        drives: layout.drives,
+        joints: layout.joints.clone(),
+        drives: layout.drives.clone(),
         rows,
-        drawing: model.drawing,
+        drawing: model.drawing.clone(),
     })
 }
 
@@ -182,10 +208,12 @@ fn time_of(varied: &mut Varied, v: f64, previous: Option<f64>) -> Result<f64, St
 
 /// The starting point of Newton's method: the guess, or the previous
 /// position moved on by its velocity and acceleration (which keeps the
-/// branch).
+/// branch), or after positions that could not be assembled the last
+/// assembled one itself.
 fn predict(c: Option<&Carried>, guess: &[f64], t: f64) -> Vec<f64> {
     match c {
         None => guess.to_vec(),
+        Some(c) if !c.adjacent => c.q.clone(),
         Some(c) => {
             let dt = t - c.t;
             (0..c.q.len())
@@ -226,8 +254,12 @@ fn newton(
             return Err(g);
         }
         let scale = 1.0 + q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        // a step longer than half the scale (from a poor guess, or near a
+        // singular Jacobian) is shortened: an angle then does not jump by
+        // whole turns, nor the assembly to a far branch
+        let shorten = (MAX_STEP * scale / dq.amax()).min(1.0);
         for (x, d) in q.iter_mut().zip(dq.iter()) {
-            *x += d;
+            *x += shorten * d;
         }
         // one more evaluation after the step that converged: `out` then
         // holds the Jacobian at the final position
@@ -237,6 +269,48 @@ fn newton(
     inputs[n] = t;
     model.position.eval(&inputs, out);
     Err((0..n).map(|j| out[j] - offsets[j]).collect())
+}
+
+/// The position at time `t`: Newton's method from `start`; when it
+/// fails, from a point near `start` (off a singular Jacobian, such as a
+/// start exactly at a dead point), then from the least-squares assembly
+/// nearest `start`. Where none closes, the residuals of that nearest
+/// assembly.
+fn assemble(
+    model: &mut Model,
+    start: &[f64],
+    t: f64,
+    offsets: &[f64],
+    out: &mut [f64],
+) -> Result<Vec<f64>, Vec<f64>> {
+    let mut q = start.to_vec();
+    if closes(model, &mut q, t, offsets, out) {
+        return Ok(q);
+    }
+    let mut q = nudged(start);
+    if closes(model, &mut q, t, offsets, out) {
+        return Ok(q);
+    }
+    let (mut q, residual) = nearest(model, start, t, offsets, out);
+    if closes(model, &mut q, t, offsets, out) {
+        return Ok(q);
+    }
+    Err(residual)
+}
+
+/// Whether Newton's method from `q` assembles the mechanism (`q` then
+/// holds the position, `out` its g, A and b): converged, or slowed down
+/// by a dead point with its residuals vanishing all the same.
+fn closes(model: &mut Model, q: &mut [f64], t: f64, offsets: &[f64], out: &mut [f64]) -> bool {
+    match newton(model, q, t, offsets, out) {
+        Ok(()) => true,
+        Err(residual) => {
+            let scale = 1.0 + q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            residual
+                .iter()
+                .all(|r| r.abs() <= ASSEMBLED_RESIDUAL * scale)
+        }
+    }
 }
 
 /// The pivot ratio of a singular LU factorization, `None` when regular.
@@ -269,57 +343,4 @@ fn points_at(
     model.motion.eval(&ins, motion);
     let lay = model.layout();
     row.points = points(&motion[lay.points..], model.points);
-}
-
-/// The constraint that stays open: the joint (or drive) with the largest
-/// residual, for messages.
-fn worst(scene: &Scene, residual: &[f64]) -> String {
-    let (j, r) = residual
-        .iter()
-        .enumerate()
-        .fold((0, 0.0f64), |(bj, br), (j, r)| {
-            if r.abs() > br {
-                (j, r.abs())
-            } else {
-                (bj, br)
-            }
-        });
-    match owner(scene, j) {
-        Some(what) => format!("{what} (its residual is {r:.3e})"),
-        None => format!(
-            "the constraint {} (its residual is {r:.3e})",
-            scene.constraints[j].label(j)
-        ),
-    }
-}
-
-/// "the joint `A`" / "the drive `M`" for constraint `j`.
-fn owner(scene: &Scene, j: usize) -> Option<String> {
-    if let Some(jt) = scene.joints.iter().find(|jt| jt.constraints.contains(&j)) {
-        return Some(format!("the joint `{}`", jt.name));
-    }
-    scene
-        .drives
-        .iter()
-        .find(|d| d.constraint == j)
-        .map(|d| format!("the drive `{}`", d.name))
-}
-
-/// The error when the first position cannot be assembled, at the
-/// statement of the constraint that stays open.
-fn unassembled(scene: &Scene, residual: &[f64], over: &Over, v: f64) -> Diagnostic {
-    let j = residual.iter().enumerate().fold(
-        0,
-        |bj, (j, r)| if r.abs() > residual[bj].abs() { j } else { bj },
-    );
-    let span = scene.constraints[j].span;
-    Diagnostic::error(
-        span,
-        format!(
-            "the mechanism cannot be assembled at the first position ({} = {v}): from the guess, Newton's method does not close {}",
-            over.name,
-            worst(scene, residual)
-        ),
-    )
-    .with_hint("check the lengths (a loop closes only when its links can reach), or give `--guess` values of an assembly near the first position")
 }
