@@ -691,9 +691,7 @@ fn cycle(report: Reporter, src: &str, o: &CycleArgs) -> ExitCode {
                 .as_deref()
                 .map(output::parse_set_any_sign)
                 .transpose()?
-                .unwrap_or_default()
-                .into_iter()
-                .collect(),
+                .unwrap_or_default(),
             guess: o
                 .guess
                 .as_deref()

@@ -183,11 +183,11 @@ fn seed_21_3_cycle_balances_power_at_every_position() {
         let qd: Vec<f64> = (0..n).map(|k| row.values[1 + n + k].unwrap()).collect();
         let qdd: Vec<f64> = (0..n).map(|k| row.values[1 + 2 * n + k].unwrap()).collect();
         let mut power = 0.0;
-        for k in 0..n {
+        for (k, v) in qd.iter().enumerate() {
             let mq: f64 = (0..n)
                 .map(|j| l.mass_matrix[k][j].eval_f64(&value).unwrap() * qdd[j])
                 .sum();
-            power += (mq - l.forcing[k].eval_f64(&value).unwrap()) * qd[k];
+            power += (mq - l.forcing[k].eval_f64(&value).unwrap()) * v;
         }
         let xb_dot = row.values[col("xB'")].unwrap();
         let expected = (power - sf * xb_dot) / 20.0;

@@ -80,7 +80,7 @@ pub(super) fn solve(ctx: &Context, scene: &Arc<Scene>) -> Result<Report<Solved>,
                 dynamics: None,
                 reactions: Vec::new(),
                 blocks,
-                mechanism: Some((l, reactions)),
+                mechanism: Some(Box::new((l, reactions))),
             },
         ));
     }

@@ -92,7 +92,7 @@ pub struct Solved {
     /// For a driven mechanism (as many joint and drive conditions as
     /// coordinates): its equations and its reactions from the
     /// kinetostatics, in place of `dynamics`.
-    pub mechanism: Option<(Lagrange, crate::solve::kinetostatic::MechanismReactions)>,
+    pub mechanism: Option<Box<(Lagrange, crate::solve::kinetostatic::MechanismReactions)>>,
 }
 
 impl Solved {

@@ -189,7 +189,8 @@ fn solve_output(
     Ok(match fmt {
         Format::Text => {
             let mut out = match (lag, &solved.mechanism) {
-                (None, Some((l, r))) => {
+                (None, Some(m)) => {
+                    let (l, r) = &**m;
                     let mut out = text::dynamics_text(scene, l, None, blocks);
                     out.push_str(&text::mechanism_text(r));
                     if !blocks.is_empty() {
@@ -217,8 +218,8 @@ fn solve_output(
             out
         }
         Format::Latex => latex::write(scene, |w| {
-            if let Some((l, r)) = &solved.mechanism {
-                w.mechanism(scene, l, r, false);
+            if let Some(m) = &solved.mechanism {
+                w.mechanism(scene, &m.0, &m.1, false);
             }
             let (l, acc) = (lag.as_ref().map(|d| &d.0), lag.as_ref().map(|d| &d.1));
             if let Some((tape, roots)) = wire::structured_roots(scene, l, acc, blocks) {
@@ -236,7 +237,7 @@ fn solve_output(
                 mechanism: solved
                     .mechanism
                     .as_ref()
-                    .map(|(l, r)| wire::MechanismJson::new(l, r)),
+                    .map(|m| wire::MechanismJson::new(&m.0, &m.1)),
                 ..SolveJson::new(scene, lag.as_ref(), reactions, blocks)
             },
         )?,

@@ -18,7 +18,7 @@ use super::{
 };
 use crate::algebra::sign::Values;
 use crate::diag::{Diagnostic, ErrorKind};
-use crate::expr::{atom, Expr};
+use crate::expr::Expr;
 use crate::poly::Var;
 use crate::scene::Scene;
 use rustc_hash::FxHashMap;
@@ -141,53 +141,6 @@ impl Run {
             }
         }
     }
-}
-
-/// The value of every parameter of the scene from `--set`, and nothing
-/// else.
-fn parameter_values(scene: &Scene, req: &Request) -> Result<FxHashMap<Var, f64>, Diagnostic> {
-    crate::scene::given::parameter_signs(scene, &req.set)?;
-    let mut params: FxHashMap<Var, f64> = FxHashMap::default();
-    let mut missing: Vec<String> = Vec::new();
-    for p in &scene.parameters {
-        match req.set.get(&p.name) {
-            Some(&v) => {
-                params.insert(atom::param(&p.name), v);
-            }
-            None => missing.push(p.name.clone()),
-        }
-    }
-    if !missing.is_empty() {
-        let example: Vec<String> = missing.iter().map(|m| format!("{m}=1")).collect();
-        return Err(Diagnostic::global(format!(
-            "no value for the parameter{} {}",
-            if missing.len() > 1 { "s" } else { "" },
-            missing.join(", ")
-        ))
-        .with_hint(format!(
-            "give every parameter a value: --set {}",
-            example.join(",")
-        ))
-        .with_kind(ErrorKind::bad_option("--set")));
-    }
-    for k in req.set.keys() {
-        if !scene.parameters.iter().any(|p| &p.name == k) {
-            return Err(Diagnostic::global(format!(
-                "`--set {k}=…`: `{k}` is not a parameter of the scene"
-            ))
-            .with_hint(format!(
-                "the parameters are {}",
-                scene
-                    .parameters
-                    .iter()
-                    .map(|p| p.name.as_str())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ))
-            .with_kind(ErrorKind::bad_option("--set")));
-        }
-    }
-    Ok(params)
 }
 
 /// The initial state y0 = (q, q̇) from `--init`: every coordinate and
@@ -381,7 +334,7 @@ impl Prepared {
 
     /// Compile for `req.set` (and `req.stop_when`, `req.baumgarte`).
     pub fn compile(&self, req: &Request) -> Result<Compiled, Diagnostic> {
-        let mut params = parameter_values(&self.scene, req)?;
+        let mut params = crate::scene::given::parameter_map(&self.scene, &req.set)?;
         if !self.drift.is_empty() {
             params.insert(super::constrained::alpha_var(), req.baumgarte);
         }
@@ -421,7 +374,7 @@ impl Prepared {
     /// unknown parameter or initial value, a bad option, a `--stop-when`
     /// that names no quantity of the scene.
     pub fn check(&self, req: &Request) -> Result<(), Diagnostic> {
-        let params = parameter_values(&self.scene, req)?;
+        let params = crate::scene::given::parameter_map(&self.scene, &req.set)?;
         initial_values(&self.lag.coordinates, req)?;
         check_numbers(req)?;
         if let Some(text) = &req.stop_when {

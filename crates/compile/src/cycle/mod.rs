@@ -15,7 +15,6 @@ mod table;
 pub use table::*;
 
 use crate::diag::{Diagnostic, ErrorKind};
-use crate::expr::atom;
 use crate::poly::Var;
 use crate::scene::Scene;
 use model::Model;
@@ -27,7 +26,7 @@ pub struct CycleRequest {
     /// The varied quantity and its values.
     pub over: Over,
     /// Every parameter's value.
-    pub set: FxHashMap<String, f64>,
+    pub set: crate::algebra::sign::Values,
     /// Coordinates of an assembly near the first position; the others
     /// start from 0.
     pub guess: Vec<(String, f64)>,
@@ -164,7 +163,7 @@ impl<'a> CompiledCycle<'a> {
     pub fn new(scene: &'a Scene, req: &CycleRequest) -> Result<CompiledCycle<'a>, Diagnostic> {
         counted(scene)?;
         let lag = scene.lagrange()?;
-        let params = parameter_values(scene, &req.set)?;
+        let params = crate::scene::given::parameter_map(scene, &req.set)?;
         Ok(CompiledCycle {
             scene,
             model: Model::new(scene, &lag, &params)?,
@@ -224,45 +223,6 @@ fn varied(scene: &Scene, over: &Over, params: &FxHashMap<Var, f64>) -> Result<Va
         .with_kind(ErrorKind::bad_option("--over")));
     };
     model::law(&d.value, params).map(Varied::Drive)
-}
-
-/// Every parameter's value, and no other name.
-fn parameter_values(
-    scene: &Scene,
-    set: &FxHashMap<String, f64>,
-) -> Result<FxHashMap<Var, f64>, Diagnostic> {
-    let missing: Vec<&str> = scene
-        .parameters
-        .iter()
-        .filter(|p| !set.contains_key(&p.name))
-        .map(|p| p.name.as_str())
-        .collect();
-    if !missing.is_empty() {
-        let example: Vec<String> = missing.iter().map(|m| format!("{m}=1")).collect();
-        return Err(Diagnostic::global(format!(
-            "no value for the parameter{} {}",
-            if missing.len() > 1 { "s" } else { "" },
-            missing.join(", ")
-        ))
-        .with_hint(format!(
-            "give every parameter a value: --set {}",
-            example.join(",")
-        ))
-        .with_kind(ErrorKind::bad_option("--set")));
-    }
-    let mut out = FxHashMap::default();
-    for (k, &v) in set {
-        if !scene.parameters.iter().any(|p| &p.name == k) {
-            let names: Vec<&str> = scene.parameters.iter().map(|p| p.name.as_str()).collect();
-            return Err(Diagnostic::global(format!(
-                "`--set {k}=…`: `{k}` is not a parameter of the scene"
-            ))
-            .with_hint(format!("the parameters are {}", names.join(", ")))
-            .with_kind(ErrorKind::bad_option("--set")));
-        }
-        out.insert(atom::param(k), v);
-    }
-    Ok(out)
 }
 
 /// The first position's starting point: the guessed coordinates, 0 for

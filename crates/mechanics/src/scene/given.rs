@@ -127,6 +127,48 @@ pub fn set_names_are_parameters(scene: &Scene, set: &Values) -> Result<(), Diagn
 }
 
 /// An error unless every value of `set` for a parameter of `scene` is
+/// Every parameter's value from `--set` as the numeric commands take
+/// them (`simulate`, `cycle`): signs checked ([`parameter_signs`]), every
+/// parameter given, and no other name.
+pub fn parameter_map(
+    scene: &Scene,
+    set: &Values,
+) -> Result<rustc_hash::FxHashMap<crate::poly::Var, f64>, Diagnostic> {
+    parameter_signs(scene, set)?;
+    let missing: Vec<&str> = scene
+        .parameters
+        .iter()
+        .filter(|p| !set.contains_key(&p.name))
+        .map(|p| p.name.as_str())
+        .collect();
+    if !missing.is_empty() {
+        let example: Vec<String> = missing.iter().map(|m| format!("{m}=1")).collect();
+        return Err(Diagnostic::global(format!(
+            "no value for the parameter{} {}",
+            if missing.len() > 1 { "s" } else { "" },
+            missing.join(", ")
+        ))
+        .with_hint(format!(
+            "give every parameter a value: --set {}",
+            example.join(",")
+        ))
+        .with_kind(ErrorKind::bad_option(SET.option)));
+    }
+    let mut out = rustc_hash::FxHashMap::default();
+    for (k, &v) in set {
+        if !scene.parameters.iter().any(|p| &p.name == k) {
+            let names: Vec<&str> = scene.parameters.iter().map(|p| p.name.as_str()).collect();
+            return Err(Diagnostic::global(format!(
+                "`--set {k}=…`: `{k}` is not a parameter of the scene"
+            ))
+            .with_hint(format!("the parameters are {}", names.join(", ")))
+            .with_kind(ErrorKind::bad_option(SET.option)));
+        }
+        out.insert(crate::expr::atom::param(k), v);
+    }
+    Ok(out)
+}
+
 /// positive, but for the parameters the scene assumes `real`, and unless
 /// the values keep every order fact (`assume R > r`) whose parameters they
 /// all give.
