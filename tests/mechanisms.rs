@@ -670,7 +670,7 @@ fn a_second_drive_on_a_coordinate_the_joints_fix_is_refused_at_it() {
     let (message, place) = slider_crank_error(&src);
     assert_eq!(
         message,
-        "more constraints than coordinates: the joints, drives and constraints hold 9 conditions on 8 coordinates"
+        "the drive `N` prescribes `th`, which the joints and drives before it already determine (9 conditions on 8 coordinates)"
     );
     assert_eq!(place, Some((12, 1)));
 }

@@ -13,7 +13,7 @@ pub mod cycle;
 pub mod given;
 
 // the lower layers, by the paths this crate's modules use
-use qdot_exact::{algebra, budget, expr, poly};
+use qdot_exact::{algebra, budget, expr, limits, poly};
 use qdot_mechanics::{mechanics, scene};
 use qdot_ode::dense;
 use qdot_syntax::{diag, parse};

@@ -136,6 +136,15 @@ pub const MAX_POINTS: usize = 1_000_000;
 /// keeps its summary (final state, max |q|, energy drift) in memory.
 pub const MAX_SWEEP_RUNS: usize = 1_000_000;
 
+/// The most positions of one `qdot cycle` (`--over NAME=FROM:TO:COUNT`):
+/// each row keeps its values and the drawing's points until printed.
+pub const MAX_CYCLE_POSITIONS: usize = 1_000_000;
+
+/// The most steps of the fixed-point iteration that finds a mechanism's
+/// Coulomb frictions at one position (each step one solve of the
+/// kinetostatics); past it the row says the iteration did not converge.
+pub const MAX_FRICTION_ITERATIONS: u32 = 200;
+
 /// The default of `qdot simulate --max-steps`: steps (accepted and
 /// rejected) before a run gives up with "too many steps". A second or two
 /// of integration for small systems; raise it for long runs.

@@ -8,8 +8,7 @@ use super::model::Model;
 use super::table::JointKind;
 use nalgebra::{DMatrix, DVector};
 
-/// The friction iteration gives up after this many steps.
-const MAX_FRICTION_ITERATIONS: u32 = 200;
+use crate::limits::MAX_FRICTION_ITERATIONS;
 /// A relative velocity below this fraction of the largest velocity is
 /// rest: friction's sense is undefined there.
 const STICK_FRACTION: f64 = 1e-9;

@@ -46,8 +46,7 @@ pub struct Over {
     pub count: usize,
 }
 
-/// The most positions one `cycle` computes.
-pub const MAX_CYCLE_POSITIONS: usize = 1_000_000;
+pub use crate::limits::MAX_CYCLE_POSITIONS;
 
 impl Over {
     /// Parse `phi=0:360deg:73`: `deg` (or `°`) and `pi` are allowed after

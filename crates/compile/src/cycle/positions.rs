@@ -143,6 +143,8 @@ pub(super) fn run(
         }
         if previous.is_some_and(|p| p != det_positive) {
             row.note = Some("the constraint Jacobian's determinant changed sign since the previous regular position: a dead point lies between them, and the assembly branch changed there".into());
+        } else if carried.as_ref().is_some_and(|c| turned_back(c, &start, &q)) {
+            row.note = Some("the position is far from the continuation of the previous one (Newton's method corrected more than half the step): a dead point may lie between them, where the mechanism turned back; take more positions there".into());
         }
         match kinetostatics(model, &a, &motion, &qd, &qdd) {
             Kinetostatics::Solved {
@@ -313,6 +315,19 @@ fn closes(model: &mut Model, q: &mut [f64], t: f64, offsets: &[f64], out: &mut [
     }
 }
 
+/// Whether the assembled `q` is far from the continuation `start` of
+/// the regular position `c`: a correction of more than half the step,
+/// where a smooth motion's is of the order of the step cubed.
+fn turned_back(c: &Carried, start: &[f64], q: &[f64]) -> bool {
+    let dist = |a: &[f64], b: &[f64]| {
+        a.iter()
+            .zip(b)
+            .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+    };
+    let step = dist(start, &c.q);
+    c.adjacent && c.det_positive.is_some() && step > 0.0 && dist(q, start) > 0.5 * step
+}
+
 /// The pivot ratio of a singular LU factorization, `None` when regular.
 fn singular(lu: &nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>) -> Option<f64> {
     let u = lu.u();
@@ -343,4 +358,40 @@ fn points_at(
     model.motion.eval(&ins, motion);
     let lay = model.layout();
     row.points = points(&motion[lay.points..], model.points);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{turned_back, Carried};
+
+    fn carried(q: f64) -> Carried {
+        Carried {
+            t: 0.0,
+            q: vec![q],
+            qd: vec![1.0],
+            qdd: vec![0.0],
+            det_positive: Some(true),
+            adjacent: true,
+        }
+    }
+
+    #[test]
+    fn a_motion_that_turns_back_is_told_from_a_smooth_one() {
+        let c = carried(1.0);
+        // the continuation predicted 1.1; a smooth motion lands near it
+        assert!(!turned_back(&c, &[1.1], &[1.1001]));
+        // the mechanism went back to 0.95: it turned back at a dead point
+        assert!(turned_back(&c, &[1.1], &[0.95]));
+        // after a gap, or from an irregular position, nothing is said
+        let gap = Carried {
+            adjacent: false,
+            ..carried(1.0)
+        };
+        assert!(!turned_back(&gap, &[1.1], &[0.95]));
+        let dead = Carried {
+            det_positive: None,
+            ..carried(1.0)
+        };
+        assert!(!turned_back(&dead, &[1.1], &[0.95]));
+    }
 }
