@@ -868,7 +868,7 @@ fn a_slider_driven_crank_at_its_toggle_positions_has_dead_points() {
         let note = row.note.as_deref().unwrap();
         assert!(
             note.starts_with("dead point: the constraint Jacobian is singular here (pivot ratio ")
-                && note.ends_with("), so the velocities, accelerations and reactions are not determined; the assembly branch after it is compared with the one before"),
+                && note.ends_with("), so the velocities, accelerations and reactions are not determined, and the position only to about 1e-8 of its scale (Newton's method at a double root); the assembly branch after it is compared with the one before"),
             "{note}"
         );
         // the position is known, nothing after it

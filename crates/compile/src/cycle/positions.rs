@@ -111,7 +111,7 @@ pub(super) fn run(
                     return Err(diagnose::dependent(scene, &d, over, v));
                 }
             }
-            row.note = Some(format!("dead point: the constraint Jacobian is singular here (pivot ratio {ratio:.1e}), so the velocities, accelerations and reactions are not determined; the assembly branch after it is compared with the one before"));
+            row.note = Some(format!("dead point: the constraint Jacobian is singular here (pivot ratio {ratio:.1e}), so the velocities, accelerations and reactions are not determined, and the position only to about 1e-8 of its scale (Newton's method at a double root); the assembly branch after it is compared with the one before"));
             points_at(model, &q, &vec![0.0; n], t, &mut motion, &mut row);
             carried = Some(Carried {
                 t,
