@@ -13,20 +13,12 @@
 //
 // Needs playwright-core (scripts/book_assets.sh --test) and Chromium at
 // $CHROMIUM or /usr/bin/chromium.
-import { createRequire } from "node:module";
 import { existsSync } from "node:fs";
-import { join, resolve } from "node:path";
+import { resolve } from "node:path";
 import { pathToFileURL } from "node:url";
 
-const root = resolve(new URL("..", import.meta.url).pathname);
-const require = createRequire(join(root, "book", "package.json"));
-let chromium;
-try {
-    ({ chromium } = require("playwright-core"));
-} catch {
-    console.error("playwright-core is missing: run scripts/book_assets.sh --test");
-    process.exit(1);
-}
+import { offlineBrowser } from "./offline_browser.mjs";
+
 const [pageArg, shotArg] = process.argv.slice(2);
 if (!pageArg || !shotArg) {
     console.error("usage: node scripts/animation_check.mjs PAGE.html SCREENSHOT.png");
@@ -37,7 +29,6 @@ if (!existsSync(file)) {
     console.error(`no page at ${file}`);
     process.exit(1);
 }
-const executablePath = process.env.CHROMIUM ?? "/usr/bin/chromium";
 
 const failures = [];
 const check = (ok, what) => {
@@ -45,28 +36,8 @@ const check = (ok, what) => {
 };
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
-const browser = await chromium.launch({
-    executablePath,
-    headless: true,
-    args: [
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-quic",
-        "--no-first-run",
-        "--disable-background-networking",
-        "--disable-component-update",
-        "--disable-sync",
-    ],
-});
+const { browser, context, offline } = await offlineBrowser({ viewport: { width: 1360, height: 760 } });
 try {
-    const context = await browser.newContext({ viewport: { width: 1360, height: 760 } });
-    const offline = [];
-    await context.route("**/*", (route) => {
-        const url = route.request().url();
-        if (url.startsWith("file:") || url.startsWith("data:")) return route.continue();
-        offline.push(url);
-        return route.abort("internetdisconnected");
-    });
     const page = await context.newPage();
     const errors = [];
     page.on("pageerror", (e) => errors.push(String(e)));

@@ -13,23 +13,15 @@
 //
 // Needs `scripts/book_assets.sh --test` (KaTeX + playwright-core) and
 // `mdbook build book` first; Chromium at $CHROMIUM or /usr/bin/chromium.
-import { createRequire } from "node:module";
 import { readFileSync, readdirSync, statSync } from "node:fs";
 import { join, relative, resolve } from "node:path";
 import { pathToFileURL } from "node:url";
 
+import { offlineBrowser } from "./offline_browser.mjs";
+
 const root = resolve(new URL("..", import.meta.url).pathname);
-const require = createRequire(join(root, "book", "package.json"));
-let chromium;
-try {
-    ({ chromium } = require("playwright-core"));
-} catch {
-    console.error("playwright-core is missing: run scripts/book_assets.sh --test");
-    process.exit(1);
-}
 
 const bookDir = resolve(process.argv[2] ?? join(root, "book", "book"));
-const executablePath = process.env.CHROMIUM ?? "/usr/bin/chromium";
 
 function htmlFiles(dir) {
     return readdirSync(dir).flatMap((name) => {
@@ -84,31 +76,10 @@ for (const page of pages) {
 if (withMath.length === 0) failures.push("no built page has a formula: is this the book?");
 
 // playwright-core starts Chromium with a fresh, empty profile of its own
-const browser = await chromium.launch({
-    executablePath,
-    headless: true,
-    args: [
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-quic",
-        "--no-first-run",
-        "--disable-background-networking",
-        "--disable-component-update",
-        "--disable-sync",
-    ],
-});
+const { browser, context, offline } = await offlineBrowser();
 let passed = 0;
 let failed = 0;
 try {
-    const context = await browser.newContext();
-    // the pages must need nothing but their files: refuse the rest
-    const offline = [];
-    await context.route("**/*", (route) => {
-        const url = route.request().url();
-        if (url.startsWith("file:") || url.startsWith("data:")) return route.continue();
-        offline.push(url);
-        return route.abort("internetdisconnected");
-    });
     for (const { page: file, expected } of withMath) {
         const name = relative(bookDir, file);
         const page = await context.newPage();

@@ -28,14 +28,8 @@ impl Writer {
             for (b, body) in scene.bodies.iter().enumerate() {
                 let rows = self.balance_rows(lag, |k| owner[k] == Some(b));
                 if !rows.is_empty() {
-                    self.para(
-                        &format!(
-                            "The {} \\texttt{{{}}}.",
-                            kind(body),
-                            super::escape_text(&body.name)
-                        ),
-                        "",
-                    );
+                    let name = format!("\\mathrm{{{}}}", body.name.replace('_', "\\_"));
+                    self.para(&format!("The {} ${name}$.", kind(body)), "");
                     self.align(true, &rows);
                 }
             }
