@@ -4,7 +4,7 @@
 //! from the exact linear equations A·q̇ = −b and A·q̈ = γ; then every
 //! joint's reaction and every drive's force from the kinetostatic
 //! equations Aᵀ·λ = M·q̈ − f, with Coulomb friction by iteration
-//! ([`friction`]).
+//! (`friction.rs`).
 
 mod diagnose;
 mod friction;
