@@ -187,6 +187,10 @@ impl Scene {
         for c in &self.constraints {
             names.insert(c.multiplier.clone(), (Binding::Unknown, c.span));
         }
+        // so is a joint's friction (`G_f`)
+        for f in self.joints.iter().filter_map(|j| j.friction.as_ref()) {
+            names.insert(f.unknown.clone(), (Binding::Unknown, f.span));
+        }
         for c in &self.coordinates {
             let p = momentum_name(&c.name);
             names.entry(p).or_insert((Binding::Unknown, c.span));
