@@ -32,7 +32,7 @@ pub use qdot_exact::{budget, expr, limits, num};
 pub use qdot_mechanics::{mechanics, scene, solve};
 pub use qdot_syntax::{diag, parse};
 pub mod app;
-#[cfg(feature = "cli")]
+#[cfg(feature = "drawing")]
 pub mod drawing;
 pub mod output;
 pub mod repl;

@@ -17,6 +17,7 @@ chain of bodies) are written through named intermediates
 """
 
 from ._native import QdotError, version as _version
+from ._cycle import Cycle
 from ._results import Equation, Equations, Expr, ExprMap, Intermediates, Matrix, Result
 from ._scene import QdotWarning, Scene
 from ._simulation import Simulation, Sweep
@@ -24,6 +25,7 @@ from ._simulation import Simulation, Sweep
 __version__ = _version()
 
 __all__ = [
+    "Cycle",
     "Equation",
     "Equations",
     "Expr",

@@ -62,6 +62,23 @@ def sweep(
     file: str = ...,
     max_terms: int = ...,
 ) -> Dict[str, Any]: ...
+def cycle(
+    source: str,
+    over: str,
+    set: Sequence[Tuple[str, float]],
+    guess: Sequence[Tuple[str, float]] = ...,
+    file: str = ...,
+    max_terms: int = ...,
+) -> Dict[str, Any]: ...
+
+class CycleTable:
+    """A mechanism's cycle, kept for its pictures (``Scene.cycle``)."""
+
+    def reaction_diagrams(self, title: str) -> str: ...
+    def animation(self, title: str, svg: bool) -> str: ...
+    def csv(self) -> str: ...
+    def json(self) -> str: ...
+
 def latex_exprs(
     source: str,
     exprs: Sequence[str],

@@ -9,6 +9,7 @@ from typing import Any, Dict, List, Literal, Mapping, Optional, Sequence, Tuple,
 from . import _native
 from ._results import (Equation, Equations, Expr, ExprMap, Intermediates, Matrix, Result,
                        markdown_of_latex)
+from ._cycle import Cycle
 from ._simulation import Simulation, Sweep
 
 #: How ``derive`` and ``solve`` write their results: ``"auto"`` (through
@@ -19,6 +20,11 @@ Structure = Literal["auto", "expanded", "structured"]
 
 #: Values given as ``{"m": 1, "g": 9.81}`` or as the CLI writes them, ``"m=1,g=9.81"``.
 Values = Union[Mapping[str, float], str, None]
+
+#: The varied quantity of ``cycle``: as the CLI's ``--over``,
+#: ``"phi=0:360deg:73"``, or ``{"phi": (0, "360deg", 73)}`` (from, to: numbers
+#: in the scene's units, or text with ``deg`` or ``pi``).
+Over = Union[str, Mapping[str, Sequence[Union[float, str]]]]
 
 
 def _names(names: Sequence[str]) -> List[str]:
@@ -34,6 +40,21 @@ def _pairs(values: Values, kind: str) -> List[Tuple[str, float]]:
     if isinstance(values, str):
         return _native.parse_values(values, kind)
     return [(str(k), float(v)) for k, v in values.items()]
+
+
+def _over(over: Over) -> str:
+    """``cycle``'s ``over`` as the CLI's ``--over`` text (floats by ``repr``,
+    which reads back as the same double)."""
+    if isinstance(over, str):
+        return over
+    if len(over) != 1:
+        raise ValueError("over: one varied quantity, {name: (from, to, count)}")
+    ((name, r),) = over.items()
+    r = tuple(r)
+    if len(r) != 3:
+        raise ValueError(f"over[{name!r}]: (from, to, count)")
+    ends = [x if isinstance(x, str) else repr(float(x)) for x in r[:2]]
+    return f"{name}={ends[0]}:{ends[1]}:{int(r[2])}"
 
 
 def _exact(values: Union[Mapping[str, Any], str, None]) -> Optional[str]:
@@ -227,6 +248,19 @@ class Scene:
         )
         return Simulation(raw)
 
+    def cycle(self, over: Over, set: Values, guess: Values = None) -> Cycle:
+        """A planar mechanism over its cycle (``qdot cycle``): at each value
+        of ``over`` (``"phi=0:360deg:73"``: ``t`` or a driven coordinate,
+        from, to, and the number of positions), the positions, velocities
+        and accelerations, every joint's reaction and every drive's force.
+        ``set`` every parameter; ``guess`` coordinates of an assembly near
+        the first position (the others start from 0; as text, angles may be
+        written ``30deg``)."""
+        raw = _native.cycle(
+            self.source, _over(over), _pairs(set, "set"), _pairs(guess, "guess"),
+            file=self.name, max_terms=self.max_terms,
+        )
+        return Cycle(raw, os.path.splitext(os.path.basename(self.name))[0])
 
     def sweep(self, set: Values, init: Values, vary: Mapping[str, Sequence[float]], t_end: float,
               samples: Optional[int] = None, seed: int = 0, threads: int = 0,

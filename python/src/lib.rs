@@ -136,16 +136,16 @@ fn check_scene(py: Python<'_>, source: &str, file: &str, max_terms: usize) -> Py
 }
 
 /// `name=value,…` as (name, value) pairs: `kind` "set" (parameters, any
-/// sign) or "init" (coordinates and velocities, `q'`).
+/// sign), "guess" (coordinates, `30deg` and `pi` allowed, as `cycle
+/// --guess`) or "init" (coordinates and velocities, `q'`).
 #[pyfunction]
 fn parse_values(text: &str, kind: &str) -> PyResult<Vec<(String, f64)>> {
     let parsed = match kind {
-        "set" => output::parse_set_any_sign(text),
-        _ => run::parse_init(text),
+        "set" => output::parse_set_any_sign(text).map(|v| v.into_iter().collect()),
+        "guess" => qdot::cycle::parse_guess(text),
+        _ => run::parse_init(text).map(|v| v.into_iter().collect()),
     };
-    parsed
-        .map(|v| v.into_iter().collect())
-        .map_err(|d| error(&d, kind, text))
+    parsed.map_err(|d| error(&d, kind, text))
 }
 
 /// A simulation: a dict with `columns` (list of names), `data` (bytes of
@@ -329,6 +329,90 @@ fn sweep<'py>(
     Ok(d)
 }
 
+/// A mechanism's cycle (`qdot cycle`), kept for its pictures.
+#[pyclass(frozen)]
+struct CycleTable {
+    run: qdot::simulate::cycle::CycleRun,
+}
+
+#[pymethods]
+impl CycleTable {
+    /// The reaction diagrams as SVG text (`cycle --plot`).
+    fn reaction_diagrams(&self, title: &str) -> PyResult<String> {
+        qdot::drawing::reaction_diagrams(&self.run.table, title, self.run.degrees).map_err(|e| {
+            let d = Diagnostic::global(format!("cannot draw the reaction diagrams: {e}"));
+            error(&d, "<plot>", "")
+        })
+    }
+
+    /// The mechanism moving through its cycle (`cycle --animate`): a
+    /// self-contained HTML page, or an animated SVG when `svg`.
+    fn animation(&self, title: &str, svg: bool) -> String {
+        if svg {
+            qdot::drawing::animation_svg(&self.run.table, title)
+        } else {
+            qdot::drawing::animation_html(&self.run.table, title, self.run.degrees)
+        }
+    }
+
+    /// The table as `cycle --output csv` prints it.
+    fn csv(&self) -> String {
+        qdot::simulate::cycle::csv(&self.run.table)
+    }
+
+    /// The table as `cycle --output json` prints it.
+    fn json(&self) -> String {
+        qdot::simulate::cycle::json(&self.run.table)
+    }
+}
+
+/// A mechanism over its cycle (`qdot cycle`): `over` as `--over`
+/// (`phi=0:360deg:73`). A dict with `varied`, `degrees` (the varied
+/// quantity is an angle, its column in radians), `columns`, `rows`,
+/// `data` (bytes of little-endian f64, row-major, NaN where a value is not
+/// determined), `notes` (a str or None per row), `iterations` and `table`
+/// (a [`CycleTable`], for the pictures).
+#[pyfunction]
+#[pyo3(signature = (source, over, set, guess=Vec::new(), file="<scene>", max_terms=0))]
+fn cycle<'py>(
+    py: Python<'py>,
+    source: &str,
+    over: &str,
+    set: Vec<(String, f64)>,
+    guess: Vec<(String, f64)>,
+    file: &str,
+    max_terms: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let req = qdot::cycle::CycleRequest {
+        over: qdot::cycle::Over::parse(over).map_err(|d| error(&d, file, ""))?,
+        set: values(set),
+        guess,
+    };
+    let ctx = context(max_terms);
+    let r = py
+        .detach(|| ctx.run(|| qdot::simulate::cycle::run(source, &req)))
+        .map_err(|d| error(&d, file, source))?;
+    let t = &r.table;
+    let mut bytes = Vec::with_capacity(t.rows.len() * t.columns.len() * 8);
+    for row in &t.rows {
+        for x in &row.values {
+            bytes.extend_from_slice(&x.unwrap_or(f64::NAN).to_le_bytes());
+        }
+    }
+    let d = PyDict::new(py);
+    d.set_item("varied", &t.varied)?;
+    d.set_item("degrees", r.degrees)?;
+    d.set_item("columns", &t.columns)?;
+    d.set_item("rows", t.rows.len())?;
+    d.set_item("data", PyBytes::new(py, &bytes))?;
+    let notes: Vec<Option<&str>> = t.rows.iter().map(|r| r.note.as_deref()).collect();
+    d.set_item("notes", notes)?;
+    let iterations: Vec<u32> = t.rows.iter().map(|r| r.iterations).collect();
+    d.set_item("iterations", iterations)?;
+    d.set_item("table", CycleTable { run: r })?;
+    Ok(d)
+}
+
 /// SymPy source text of an expression written in qdot's syntax (as the
 /// JSON output writes it), for `qdot/_sympy.py` to evaluate.
 #[pyfunction]
@@ -433,6 +517,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sympy_source, m)?)?;
     m.add_function(wrap_pyfunction!(latex_exprs, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(cycle, m)?)?;
+    m.add_class::<CycleTable>()?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())
 }

@@ -15,7 +15,7 @@ pub use qdot_compile::{codegen, compile, constrained, given};
 pub use qdot_ode::*;
 
 pub mod cycle;
-#[cfg(feature = "cli")]
+#[cfg(feature = "drawing")]
 pub mod plot;
 #[doc(hidden)]
 pub mod problems;
