@@ -274,3 +274,49 @@ fn the_books_figures_are_current() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A drive law that cannot be evaluated (1/t at t = 0) is an error at the
+/// drive for the first position and a row that says so later, never a
+/// panic; values that overflow are left out with a note.
+#[test]
+fn non_finite_conditions_and_values_are_said_not_printed() {
+    let src =
+        example("slider_crank_joints.qd").replace("drive M: phi = omega*t", "drive M: phi = 1/t");
+    let s = scene(&src);
+    let set = "R=0.1,L=0.4,omega=10,m1=1,J1=0.01,m2=2,J2=0.03,m3=1.5,g=9.81,k=100,l0=0.4";
+    let req = |over: &str, guess: &str| CycleRequest {
+        over: Over::parse(over).unwrap(),
+        set: output::parse_set_any_sign(set).unwrap(),
+        guess: parse_guess(guess).unwrap(),
+    };
+    let err = cycle(&s, &req("t=0:1:3", "xb=0.5")).unwrap_err();
+    assert_eq!(
+        err.message,
+        "the mechanism cannot be assembled at the first position (t = 0): the drive `M` cannot be evaluated there (not finite: a division by zero or an overflow in its condition)"
+    );
+    assert_eq!(
+        qdot::Diagnostic::line_col(&src, err.span.unwrap().start),
+        (14, 1)
+    );
+    let t = cycle(&s, &req("t=-1:1:3", "xb=0.5,x2=0.3")).unwrap();
+    assert!(t.rows[1].values[1..].iter().all(Option::is_none));
+    assert_eq!(
+        t.rows[1].note.as_deref(),
+        Some("the mechanism cannot be assembled here: the drive `M` cannot be evaluated there (not finite: a division by zero or an overflow in its condition)")
+    );
+    // ω = 1e200 overflows the velocities: no inf or NaN is printed
+    let fast = example("slider_crank_joints.qd");
+    let set = set.replace("omega=10", "omega=1e200");
+    let r = CycleRequest {
+        over: Over::parse("phi=0:0:1").unwrap(),
+        set: output::parse_set_any_sign(&set).unwrap(),
+        guess: parse_guess("xb=0.5").unwrap(),
+    };
+    let t = cycle(&scene(&fast), &r).unwrap();
+    assert!(t.rows[0].values.iter().flatten().all(|x| x.is_finite()));
+    assert!(t.rows[0]
+        .note
+        .as_deref()
+        .unwrap()
+        .starts_with("some values are not finite here"));
+}

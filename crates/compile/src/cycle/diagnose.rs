@@ -138,6 +138,13 @@ pub(super) fn nearest(
 /// The conditions a least-squares residual leaves open (above 1e-6 of
 /// the largest), and the one most open.
 fn open(residual: &[f64]) -> (Vec<usize>, usize) {
+    // a condition that cannot be evaluated (not finite) is the one to name
+    let bad: Vec<usize> = (0..residual.len())
+        .filter(|&j| !residual[j].is_finite())
+        .collect();
+    if let Some(&first) = bad.first() {
+        return (bad, first);
+    }
     let top = residual.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let worst = residual
         .iter()
@@ -145,7 +152,10 @@ fn open(residual: &[f64]) -> (Vec<usize>, usize) {
         .unwrap_or_default();
     let open = (0..residual.len())
         .filter(|&j| residual[j].abs() > 1e-6 * top)
-        .collect();
+        .collect::<Vec<_>>();
+    if open.is_empty() {
+        return (vec![worst], worst);
+    }
     (open, worst)
 }
 
@@ -184,6 +194,14 @@ fn owners(scene: &Scene, rows: &[usize]) -> String {
 pub(super) fn cannot_hold(scene: &Scene, residual: &[f64]) -> String {
     let (rows, worst) = open(residual);
     let gap = residual[worst].abs();
+    if !gap.is_finite() {
+        let who = if rows.len() <= 1 {
+            owner(scene, worst)
+        } else {
+            owners(scene, &rows)
+        };
+        return format!("{who} cannot be evaluated there (not finite: a division by zero or an overflow in its condition)");
+    }
     if rows.len() <= 1 {
         return format!(
             "{} cannot hold (the nearest assembly leaves it open by {gap:.3e})",

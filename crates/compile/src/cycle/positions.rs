@@ -173,6 +173,9 @@ pub(super) fn run(
         });
         rows.push(row);
     }
+    for row in &mut rows {
+        leave_out_non_finite(row);
+    }
     Ok(CycleTable {
         varied: over.name.clone(),
         columns: layout.columns.clone(),
@@ -315,6 +318,25 @@ fn closes(model: &mut Model, q: &mut [f64], t: f64, offsets: &[f64], out: &mut [
     }
 }
 
+/// A value that overflowed (inf, NaN) is no answer: it is left out, and
+/// the row says so.
+fn leave_out_non_finite(row: &mut CycleRow) {
+    let mut bad = false;
+    for v in &mut row.values {
+        if v.is_some_and(|x| !x.is_finite()) {
+            *v = None;
+            bad = true;
+        }
+    }
+    if bad {
+        let said = "some values are not finite here (an overflow in the velocities, accelerations or reactions): they are left out";
+        row.note = Some(match row.note.take() {
+            Some(n) => format!("{n}; {said}"),
+            None => said.to_string(),
+        });
+    }
+}
+
 /// Whether the assembled `q` is far from the continuation `start` of
 /// the regular position `c`: a correction of more than half the step,
 /// where a smooth motion's is of the order of the step cubed.
@@ -373,6 +395,22 @@ mod tests {
             det_positive: Some(true),
             adjacent: true,
         }
+    }
+
+    #[test]
+    fn a_value_that_overflowed_is_left_out_and_said() {
+        let mut row = super::CycleRow {
+            values: vec![Some(1.0), Some(f64::INFINITY), Some(f64::NAN), None],
+            note: None,
+            iterations: 0,
+            points: Vec::new(),
+        };
+        super::leave_out_non_finite(&mut row);
+        assert_eq!(row.values, vec![Some(1.0), None, None, None]);
+        assert!(row
+            .note
+            .unwrap()
+            .starts_with("some values are not finite here"));
     }
 
     #[test]
