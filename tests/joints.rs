@@ -320,3 +320,28 @@ fn non_finite_conditions_and_values_are_said_not_printed() {
         .unwrap()
         .starts_with("some values are not finite here"));
 }
+
+/// The LaTeX of a friction whose relative velocity is long names it and
+/// writes it on a row of its own (the quick-return's slide on its lever);
+/// a short one stays inside sgn (problem 21.3's ẋ_B).
+#[test]
+fn a_long_relative_velocity_gets_its_own_row_in_latex() {
+    let opts = output::CommandOptions {
+        steps: true,
+        ..Default::default()
+    };
+    let tex = |name: &str| {
+        let src = example(name);
+        output::run_with(Command::Latex, &src, Format::Latex, &opts)
+            .unwrap()
+            .0
+    };
+    let quick = tex("mechanisms/quick_return.qd");
+    assert!(quick.contains(
+        "S_{f} &= -\\mu \\, \\left|S_{n}\\right| \\operatorname{sgn}\\left(v_{\\mathrm{S}}\\right) \\\\\n  v_{\\mathrm{S}} &= "
+    ));
+    let seed = tex("seed_21_3.qd");
+    assert!(seed.contains(
+        "S_{f} &= -\\mu \\, \\left|S_{n}\\right| \\operatorname{sgn}\\left(\\dot{\\mathit{xB}}\\right)"
+    ));
+}

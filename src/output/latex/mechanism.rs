@@ -46,11 +46,20 @@ impl Writer {
                 "Friction.",
                 "Coulomb's law in every joint that has it, opposing the relative motion (the seed's (21.74)--(21.75)):",
             );
-            let rows: Vec<_> = r
-                .friction
-                .iter()
-                .map(|f| vec![self.one(self.sym(&f.name, 0)), self.one(self.law(f))])
-                .collect();
+            let mut rows = Vec::new();
+            for f in &r.friction {
+                // a long relative velocity gets a name and a row of its own
+                let v = self.tex(&f.relative_velocity);
+                let named = super::width(&v) > super::LINE / 3.0;
+                let shown = if named { velocity_name(f) } else { v };
+                rows.push(vec![
+                    self.one(self.sym(&f.name, 0)),
+                    self.one(self.law(f, &shown)),
+                ]);
+                if named {
+                    rows.push(vec![self.one(shown), self.terms(&f.relative_velocity)]);
+                }
+            }
             self.align(false, &rows);
         }
         let how = if r.in_order {
@@ -122,7 +131,7 @@ impl Writer {
     }
 
     /// `-\mu \left|G_{n}\right| \operatorname{sgn}(\dot{x}_{b})`.
-    fn law(&self, f: &FrictionLaw) -> String {
+    fn law(&self, f: &FrictionLaw, velocity: &str) -> String {
         let normal = match &f.normal[..] {
             [one] => format!("\\left|{}\\right|", self.sym(one, 0)),
             many => {
@@ -139,11 +148,20 @@ impl Writer {
         } else {
             c
         };
-        format!(
-            "-{c} \\, {normal} \\operatorname{{sgn}}\\left({}\\right)",
-            self.tex(&f.relative_velocity)
-        )
+        format!("-{c} \\, {normal} \\operatorname{{sgn}}\\left({velocity}\\right)")
     }
+}
+
+/// `v_{G}` (a slider's slide) or `\omega_{B}` (a pin's relative turn):
+/// the name of a friction's relative velocity.
+fn velocity_name(f: &FrictionLaw) -> String {
+    let joint = f
+        .name
+        .strip_suffix("_f")
+        .unwrap_or(&f.name)
+        .replace('_', "\\_");
+    let head = if f.normal.len() == 1 { "v" } else { "\\omega" };
+    format!("{head}_{{\\mathrm{{{joint}}}}}")
 }
 
 /// "body" or "particle".
