@@ -118,6 +118,7 @@ fn panels(table: &CycleTable) -> (Vec<CurvePanel>, Vec<PolarPanel>) {
 fn runs(points: impl Iterator<Item = (Option<f64>, Option<f64>)>) -> Vec<Vec<(f64, f64)>> {
     let mut out: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
     for p in points {
+        // ok (both expects): `out` starts with one run and only grows
         match p {
             (Some(x), Some(y)) if x.is_finite() && y.is_finite() => {
                 out.last_mut().expect("never empty").push((x, y))

@@ -214,7 +214,7 @@ fn compile_error(e: CompileError) -> Diagnostic {
 
 /// The drawing's points (x, y pairs, flattened) and its bodies and joints:
 /// every body's centre, then each joint's P and Q, then a slider's guide
-/// point P + U/|U|.
+/// point P + Û.
 fn drawing(scene: &Scene) -> (Vec<Expr>, Drawing) {
     let mut pts: Vec<Expr> = Vec::new();
     let mut bodies: Vec<DrawnBody> = Vec::new();
@@ -240,14 +240,9 @@ fn drawing(scene: &Scene) -> (Vec<Expr>, Drawing) {
                 bodies[b].points.push(k);
             }
         }
-        let guide = jt.along.as_ref().map(|u| {
-            let len2 = u[0].mul(&u[0]).add(&u[1].mul(&u[1]));
-            let len = crate::expr::func::sqrt(&len2).unwrap_or_else(|_| Expr::int(1));
+        let guide = jt.along.as_ref().map(|unit| {
             let k = pts.len() / 2;
-            for (ui, pi) in u.iter().zip(&jt.points[0]).take(2) {
-                let unit = ui.div(&len).unwrap_or_else(|_| ui.clone());
-                pts.push(pi.add(&unit));
-            }
+            pts.extend(jt.points[0].iter().zip(unit).map(|(pi, ui)| pi.add(ui)));
             [p, k]
         });
         joints.push(DrawnJoint {

@@ -26,7 +26,7 @@ pub struct Joint {
     pub bodies: [Option<usize>; 2],
     /// P on the first body and Q on the second, in ground components.
     pub points: [Vec<Expr>; 2],
-    /// A slider's direction U, in ground components.
+    /// A slider's unit direction Û = U/|U|, in ground components.
     pub along: Option<Vec<Expr>>,
     /// The constraints that hold it, in the order of its reaction's
     /// components: x, y for a pin; n (and m, the locked angle) for a slider.

@@ -99,7 +99,10 @@ impl Resolver<'_> {
         let p = self.joint_point(&j.first, bodies[0])?;
         let q = self.joint_point(&j.second, bodies[1])?;
         let along = match &j.along {
-            Some(u) => Some(self.slider_direction(u, bodies[0], &j.first.body)?),
+            Some(u) => Some(unit(
+                self.slider_direction(u, bodies[0], &j.first.body)?,
+                j.span,
+            )?),
             None => None,
         };
         let names = super::super::mechanism::reaction_names(
@@ -115,15 +118,10 @@ impl Resolver<'_> {
                 gs.push(q[1].sub(&p[1]));
             }
             (Some(u), _) => {
-                // n·(Q − P)/|U| with n = U turned +90°: its multiplier is
-                // the force on B along n̂
+                // n̂·(Q − P) with n̂ = Û turned +90°: its multiplier is the
+                // force on B along n̂
                 let gap = [q[0].sub(&p[0]), q[1].sub(&p[1])];
-                let across = u[0].mul(&gap[1]).sub(&u[1].mul(&gap[0]));
-                gs.push(
-                    across
-                        .div(&length(u, j.span)?)
-                        .map_err(|m| Diagnostic::error(j.span, m.message))?,
-                );
+                gs.push(u[0].mul(&gap[1]).sub(&u[1].mul(&gap[0])));
                 if names.len() == 2 {
                     let angle = self.angle(bodies[1]).sub(&self.angle(bodies[0]));
                     gs.push(angle.dt());
@@ -443,15 +441,11 @@ impl Resolver<'_> {
         let jt = &joints[j];
         let relative = match &jt.along {
             Some(u) => {
-                let len = length(u, jt.span)?;
                 let gap = [
                     jt.points[1][0].sub(&jt.points[0][0]),
                     jt.points[1][1].sub(&jt.points[0][1]),
                 ];
-                u[0].mul(&gap[0])
-                    .add(&u[1].mul(&gap[1]))
-                    .div(&len)
-                    .map_err(|m| Diagnostic::error(span, m.message))?
+                u[0].mul(&gap[0]).add(&u[1].mul(&gap[1]))
             }
             None => {
                 if !self.turns(jt.bodies[0]) && !self.turns(jt.bodies[1]) {
@@ -477,11 +471,14 @@ impl Resolver<'_> {
     }
 }
 
-/// |U| = √(U·U), exactly (1 for a unit direction such as [cos θ, sin θ]).
-fn length(u: &[Expr], span: ast::Span) -> Result<Expr, Diagnostic> {
+/// Û = U/|U|, exactly (U itself for a unit direction such as
+/// [cos θ, sin θ]).
+fn unit(u: Vec<Expr>, span: ast::Span) -> Result<Vec<Expr>, Diagnostic> {
     let uu = u[0].mul(&u[0]).add(&u[1].mul(&u[1]));
     if uu.is_one() {
-        return Ok(uu);
+        return Ok(u);
     }
-    crate::expr::func::sqrt(&uu).map_err(|m| Diagnostic::error(span, m.message))
+    let math = |m: crate::expr::MathError| Diagnostic::error(span, m.message);
+    let len = crate::expr::func::sqrt(&uu).map_err(math)?;
+    u.iter().map(|c| c.div(&len).map_err(math)).collect()
 }
