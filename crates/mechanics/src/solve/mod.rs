@@ -9,6 +9,7 @@ pub mod eigen;
 pub mod equilibrium;
 pub mod kinetostatic;
 mod linear_stability;
+pub mod linearize;
 pub mod numeric;
 pub mod oscillations;
 pub mod system;

@@ -27,7 +27,7 @@ use crate::diag::Diagnostic;
 use crate::expr::atom::{self, Atom};
 use crate::expr::{func, Expr};
 use crate::num::Q;
-use crate::poly::{Poly, Var};
+use crate::poly::Var;
 use crate::scene::Scene;
 use rustc_hash::FxHashMap;
 
@@ -117,91 +117,16 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
         || "linearizing about the equilibrium for the small oscillations".into(),
         None,
     );
-    let l = scene.lagrange()?;
-    let names = l.coordinates.clone();
-    let n = names.len();
-    let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();
-    let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
-    let qdd: Vec<Var> = names.iter().map(|c| atom::coord(c, 2)).collect();
-    let q0: Vec<Expr> = match at {
-        Some(v) => v.to_vec(),
-        None => vec![Expr::zero(); n],
-    };
-    let mut point: FxHashMap<Var, Expr> = FxHashMap::default();
-    for k in 0..n {
-        point.insert(q[k], q0[k].clone());
-        point.insert(qd[k], Expr::zero());
-        point.insert(qdd[k], Expr::zero());
-    }
-    let residuals: Vec<Expr> = l.equations.iter().map(|e| e.lhs.sub(&e.rhs)).collect();
-    if !scene.constraints.is_empty() {
-        // the multipliers that hold the equilibrium
-        let rest: Vec<Expr> = residuals
-            .iter()
-            .map(|r| {
-                let mut p = point.clone();
-                for c in &scene.constraints {
-                    p.insert(atom::unknown(&c.multiplier), Expr::zero());
-                }
-                r.subs_many(&p).map_err(math)
-            })
-            .collect::<Result<_, _>>()?;
-        point.extend(super::constrained::multipliers_at(scene, &rest, &q, &q0)?);
-    }
-    let at_point = |e: &Expr| e.subs_many(&point).map_err(math);
-    let mut mass = vec![vec![Expr::zero(); n]; n];
-    let mut damping = vec![vec![Expr::zero(); n]; n];
-    let mut stiffness = vec![vec![Expr::zero(); n]; n];
-    let mut forcing = Vec::with_capacity(n);
-    let t = atom::time();
-    for (k, r) in residuals.iter().enumerate() {
-        for j in 0..n {
-            mass[k][j] = at_point(&r.diff(qdd[j]))?;
-            damping[k][j] = at_point(&r.diff(qd[j]))?;
-            stiffness[k][j] = at_point(&r.diff(q[j]))?;
-            let changes = |e: &Expr| e.depends_on(t) || super::equilibrium::has_given_function(e);
-            if changes(&stiffness[k][j]) || changes(&mass[k][j]) || changes(&damping[k][j]) {
-                return Err(Diagnostic::global(format!(
-                    "the linearized coefficients of `{}` depend on time (parametric excitation)",
-                    names[k]
-                ))
-                .with_hint("small oscillations need constant M, C and K"));
-            }
-        }
-        let f = at_point(r)?.neg();
-        let (static_part, _) = split_time(&f, t);
-        if !static_part.is_zero() {
-            let q0s: Vec<String> = names
-                .iter()
-                .zip(&q0)
-                .map(|(c, v)| format!("{c} = {}", crate::expr::print::input(v)))
-                .collect();
-            return Err(Diagnostic::global(format!(
-                "{} is not an equilibrium: the force on `{}` there is {} ≠ 0",
-                q0s.join(", "),
-                names[k],
-                crate::expr::print::unicode(&static_part)
-            ))
-            .with_hint(
-                "`qdot equilibrium` finds the equilibria; linearize about one with --at q=value",
-            ));
-        }
-        forcing.push(f);
-    }
-    let mut dependent = Vec::new();
-    let (names, q0, mass, damping, stiffness, forcing) = if scene.constraints.is_empty() {
-        (names, q0, mass, damping, stiffness, forcing)
-    } else {
-        let ([m, c, k], f, kept) =
-            super::constrained::reduce(scene, &q, &q0, [&mass, &damping, &stiffness], &forcing)?;
-        dependent = (0..n)
-            .filter(|i| !kept.contains(i))
-            .map(|i| (names[i].clone(), q0[i].clone()))
-            .collect();
-        let names = kept.iter().map(|&i| names[i].clone()).collect();
-        let q0 = kept.iter().map(|&i| q0[i].clone()).collect();
-        (names, q0, m, c, k, f)
-    };
+    let lin = super::linearize::linearize(scene, &super::linearize::Reference::at(at))?;
+    let super::linearize::Linearization {
+        coordinates: names,
+        at: q0,
+        mass,
+        damping,
+        stiffness,
+        forcing,
+        dependent,
+    } = lin;
     let n = names.len();
     let lv = atom::unknown(LAMBDA);
     let gyro = gyroscopic_part(&damping);
@@ -300,25 +225,6 @@ fn gyroscopic_part(c: &[Vec<Expr>]) -> Option<Vec<Vec<Expr>>> {
         }
     }
     any.then(|| c.to_vec())
-}
-
-/// Split e into (terms free of t, terms with t) over its denominator.
-fn split_time(e: &Expr, t: Var) -> (Expr, Expr) {
-    let mut fixed = Poly::zero();
-    let mut moving = Poly::zero();
-    for (m, c) in e.num().terms() {
-        let term = Poly::monomial(m.clone(), c.clone());
-        if m.0.iter().any(|&(v, _)| Expr::var(v).depends_on(t)) {
-            moving = &moving + &term;
-        } else {
-            fixed = &fixed + &term;
-        }
-    }
-    let den = e.den().clone();
-    (
-        Expr::from_parts(fixed, den.clone()).unwrap_or_else(|_| Expr::zero()),
-        Expr::from_parts(moving, den).unwrap_or_else(|_| Expr::zero()),
-    )
 }
 
 /// Sort ω² ascending where differences have a decided sign.

@@ -1,0 +1,229 @@
+//! Lagrange's equations linearized about a reference motion.
+//!
+//! The residuals R_k(q, q̇, q̈, t) = lhs_k − Q_k are expanded to first order
+//! about the reference (q = q0, q̇ = 0, q̈ = 0):
+//!
+//! ```text
+//! M·q̈ + C·q̇ + K·q = f(t),   M = ∂R/∂q̈, C = ∂R/∂q̇, K = ∂R/∂q there,
+//!                           f(t) = −R at the reference
+//! ```
+//!
+//! f must have no constant part (the reference must be a motion). With
+//! constraints the multipliers that hold the reference are found first,
+//! and the system is reduced to the independent coordinates
+//! ([`super::constrained::reduce`]). Small oscillations (`oscillations.rs`)
+//! ask for constant M, C and K; parametric excitation allows them to
+//! change with time.
+
+use crate::diag::Diagnostic;
+use crate::expr::atom;
+use crate::expr::Expr;
+use crate::poly::{Poly, Var};
+use crate::scene::Scene;
+use rustc_hash::FxHashMap;
+
+/// What to linearize about.
+#[derive(Clone, Debug, Default)]
+#[non_exhaustive]
+pub struct Reference {
+    /// q0, one value per coordinate in declaration order (`None`: every
+    /// q = 0).
+    pub at: Option<Vec<Expr>>,
+    /// Whether M, C and K may depend on time (parametric excitation);
+    /// without it such a dependence is refused.
+    pub time_varying: bool,
+}
+
+impl Reference {
+    /// About `at` (every q = 0 when `None`), with constant coefficients.
+    pub fn at(at: Option<&[Expr]>) -> Reference {
+        Reference {
+            at: at.map(<[Expr]>::to_vec),
+            time_varying: false,
+        }
+    }
+
+    /// This reference, allowing coefficients that change with time.
+    pub fn time_varying(mut self) -> Reference {
+        self.time_varying = true;
+        self
+    }
+}
+
+/// M·q̈ + C·q̇ + K·q = f(t) about a reference.
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct Linearization {
+    /// The (independent) coordinate names, in declaration order.
+    pub coordinates: Vec<String>,
+    /// The reference position of those coordinates.
+    pub at: Vec<Expr>,
+    /// M = ∂R/∂q̈ at the reference.
+    pub mass: Vec<Vec<Expr>>,
+    /// C = ∂R/∂q̇ at the reference.
+    pub damping: Vec<Vec<Expr>>,
+    /// K = ∂R/∂q at the reference.
+    pub stiffness: Vec<Vec<Expr>>,
+    /// f(t) = −R at the reference (no constant part).
+    pub forcing: Vec<Expr>,
+    /// With constraints: the coordinates they make dependent, with their
+    /// values at the reference.
+    pub dependent: Vec<(String, Expr)>,
+}
+
+fn math(m: crate::expr::MathError) -> Diagnostic {
+    let d = Diagnostic::global(m.message);
+    match m.hint {
+        Some(h) => d.with_hint(h),
+        None => d,
+    }
+}
+
+/// Linearize the scene's equations about `reference` (the scene's
+/// assumptions must be in force).
+pub fn linearize(scene: &Scene, reference: &Reference) -> Result<Linearization, Diagnostic> {
+    let l = scene.lagrange()?;
+    let names = l.coordinates.clone();
+    let n = names.len();
+    let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();
+    let q0: Vec<Expr> = match &reference.at {
+        Some(v) => v.clone(),
+        None => vec![Expr::zero(); n],
+    };
+    let mut point: FxHashMap<Var, Expr> = FxHashMap::default();
+    for (k, c) in names.iter().enumerate() {
+        point.insert(q[k], q0[k].clone());
+        point.insert(atom::coord(c, 1), Expr::zero());
+        point.insert(atom::coord(c, 2), Expr::zero());
+    }
+    let residuals: Vec<Expr> = l.equations.iter().map(|e| e.lhs.sub(&e.rhs)).collect();
+    if !scene.constraints.is_empty() {
+        // the multipliers that hold the reference
+        let rest: Vec<Expr> = residuals
+            .iter()
+            .map(|r| {
+                let mut p = point.clone();
+                for c in &scene.constraints {
+                    p.insert(atom::unknown(&c.multiplier), Expr::zero());
+                }
+                r.subs_many(&p).map_err(math)
+            })
+            .collect::<Result<_, _>>()?;
+        point.extend(super::constrained::multipliers_at(scene, &rest, &q, &q0)?);
+    }
+    let [mass, damping, stiffness] = jacobians(&names, &residuals, &point, reference)?;
+    let forcing = forcing_at(&names, &q0, &residuals, &point)?;
+    if scene.constraints.is_empty() {
+        return Ok(Linearization {
+            coordinates: names,
+            at: q0,
+            mass,
+            damping,
+            stiffness,
+            forcing,
+            dependent: Vec::new(),
+        });
+    }
+    let ([m, c, k], f, kept) =
+        super::constrained::reduce(scene, &q, &q0, [&mass, &damping, &stiffness], &forcing)?;
+    let dependent = (0..n)
+        .filter(|i| !kept.contains(i))
+        .map(|i| (names[i].clone(), q0[i].clone()))
+        .collect();
+    Ok(Linearization {
+        coordinates: kept.iter().map(|&i| names[i].clone()).collect(),
+        at: kept.iter().map(|&i| q0[i].clone()).collect(),
+        mass: m,
+        damping: c,
+        stiffness: k,
+        forcing: f,
+        dependent,
+    })
+}
+
+/// M = ∂R/∂q̈, C = ∂R/∂q̇ and K = ∂R/∂q at `point`; refused when they
+/// change with time and the reference does not allow it.
+fn jacobians(
+    names: &[String],
+    residuals: &[Expr],
+    point: &FxHashMap<Var, Expr>,
+    reference: &Reference,
+) -> Result<[Vec<Vec<Expr>>; 3], Diagnostic> {
+    let n = names.len();
+    let at_point = |e: &Expr| e.subs_many(point).map_err(math);
+    let mut mass = vec![vec![Expr::zero(); n]; n];
+    let mut damping = vec![vec![Expr::zero(); n]; n];
+    let mut stiffness = vec![vec![Expr::zero(); n]; n];
+    let t = atom::time();
+    let changes = |e: &Expr| e.depends_on(t) || super::equilibrium::has_given_function(e);
+    for (k, r) in residuals.iter().enumerate() {
+        for (j, c) in names.iter().enumerate() {
+            mass[k][j] = at_point(&r.diff(atom::coord(c, 2)))?;
+            damping[k][j] = at_point(&r.diff(atom::coord(c, 1)))?;
+            stiffness[k][j] = at_point(&r.diff(atom::coord(c, 0)))?;
+            let moving =
+                changes(&stiffness[k][j]) || changes(&mass[k][j]) || changes(&damping[k][j]);
+            if moving && !reference.time_varying {
+                return Err(Diagnostic::global(format!(
+                    "the linearized coefficients of `{}` depend on time (parametric excitation)",
+                    names[k]
+                ))
+                .with_hint("small oscillations need constant M, C and K"));
+            }
+        }
+    }
+    Ok([mass, damping, stiffness])
+}
+
+/// f(t) = −R at the reference, refused when it has a constant part (the
+/// reference is then not a motion of the scene).
+fn forcing_at(
+    names: &[String],
+    q0: &[Expr],
+    residuals: &[Expr],
+    point: &FxHashMap<Var, Expr>,
+) -> Result<Vec<Expr>, Diagnostic> {
+    let t = atom::time();
+    let mut forcing = Vec::with_capacity(names.len());
+    for (k, r) in residuals.iter().enumerate() {
+        let f = r.subs_many(point).map_err(math)?.neg();
+        let (static_part, _) = split_time(&f, t);
+        if !static_part.is_zero() {
+            let q0s: Vec<String> = names
+                .iter()
+                .zip(q0)
+                .map(|(c, v)| format!("{c} = {}", crate::expr::print::input(v)))
+                .collect();
+            return Err(Diagnostic::global(format!(
+                "{} is not an equilibrium: the force on `{}` there is {} ≠ 0",
+                q0s.join(", "),
+                names[k],
+                crate::expr::print::unicode(&static_part)
+            ))
+            .with_hint(
+                "`qdot equilibrium` finds the equilibria; linearize about one with --at q=value",
+            ));
+        }
+        forcing.push(f);
+    }
+    Ok(forcing)
+}
+
+/// Split e into (terms free of t, terms with t) over its denominator.
+pub(super) fn split_time(e: &Expr, t: Var) -> (Expr, Expr) {
+    let mut fixed = Poly::zero();
+    let mut moving = Poly::zero();
+    for (m, c) in e.num().terms() {
+        let term = Poly::monomial(m.clone(), c.clone());
+        if m.0.iter().any(|&(v, _)| Expr::var(v).depends_on(t)) {
+            moving = &moving + &term;
+        } else {
+            fixed = &fixed + &term;
+        }
+    }
+    let den = e.den().clone();
+    (
+        Expr::from_parts(fixed, den.clone()).unwrap_or_else(|_| Expr::zero()),
+        Expr::from_parts(moving, den).unwrap_or_else(|_| Expr::zero()),
+    )
+}
