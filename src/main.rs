@@ -128,9 +128,15 @@ enum Command {
         file: String,
         #[arg(long, value_parser = format_arg(output::Command::Modes), default_value = "text")]
         format: Format,
-        /// The equilibrium to linearize about (default: every q = 0), e.g. th=pi
+        /// The equilibrium to linearize about (default: every q = 0), e.g.
+        /// th=pi; about a steady motion, also the steady rates: th=pi/3,phi'=w
         #[arg(long)]
         at: Option<String>,
+        /// Linearize about a steady motion: these cyclic coordinates turn
+        /// at constant rates (their symbols q̇, or the rates --at gives),
+        /// the others rest at --at; the rates are reduced away Routh's way
+        #[arg(long, value_name = "Q,…")]
+        steady: Option<String>,
         /// Initial conditions for the free response: y1=1/10,y1'=0
         #[arg(long)]
         init: Option<String>,
@@ -408,12 +414,14 @@ fn main() -> ExitCode {
             file,
             format,
             at,
+            steady,
             init,
             set,
             standalone,
             title,
         } => {
             opts.at = at.clone();
+            opts.steady = steady.clone();
             opts.init = init.clone();
             if *standalone && *format != Format::Latex {
                 let d = qdot::Diagnostic::global("--standalone makes a LaTeX document")

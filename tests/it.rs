@@ -53,6 +53,7 @@ mod seed;
 mod simulate_cli;
 mod simulate_pty;
 mod solve_blocks;
+mod steady;
 mod stress;
 mod structured;
 mod sweep;

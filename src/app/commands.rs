@@ -150,12 +150,9 @@ pub(super) fn modes(
     let set = &opts.set;
     crate::scene::given::parameter_signs(scene, set)?;
     crate::scene::given::set_names_are_parameters(scene, set)?;
-    let at = match &opts.at {
-        Some(a) => Some(scene.coordinate_values(a)?),
-        None => None,
-    };
+    let reference = reference(scene, opts)?;
     // an equilibrium is a constant position
-    if let Some(vals) = &at {
+    if let Some(vals) = &reference.at {
         for (c, v) in scene.coordinates.iter().zip(vals) {
             if v.is_time_dependent() {
                 return Err(Diagnostic::global(format!(
@@ -168,7 +165,7 @@ pub(super) fn modes(
             }
         }
     }
-    let md = osc::modes(scene, at.as_deref(), set)?;
+    let md = osc::modes_about(scene, &reference, set)?;
     let (free, numeric) = match &opts.init {
         Some(i) => {
             let (q0, v0) = scene.initial_conditions(i)?;
@@ -195,6 +192,39 @@ pub(super) fn modes(
     );
     r.add_warnings(matrix_name_clashes(scene));
     Ok(r)
+}
+
+/// What `modes` linearizes about: `--at` (positions, and the rates of a
+/// steady motion) and `--steady`.
+fn reference(scene: &Scene, opts: &CommandOptions) -> Result<osc::Reference, Diagnostic> {
+    let (at, rates) = match &opts.at {
+        Some(a) => {
+            let (at, rates) = scene.motion_values(a)?;
+            (Some(at), rates)
+        }
+        None => (None, Vec::new()),
+    };
+    let mut steady: Vec<(usize, crate::expr::Expr)> = match &opts.steady {
+        Some(s) => scene
+            .steady_coordinates(s)?
+            .into_iter()
+            .map(|k| {
+                (
+                    k,
+                    crate::solve::steady::rate_symbol(&scene.coordinates[k].name),
+                )
+            })
+            .collect(),
+        None => Vec::new(),
+    };
+    for (k, rate) in rates {
+        match steady.iter_mut().find(|(i, _)| *i == k) {
+            Some(s) => s.1 = rate,
+            None => steady.push((k, rate)),
+        }
+    }
+    steady.sort_by_key(|(k, _)| *k);
+    Ok(osc::Reference::at(at.as_deref()).steady(steady))
 }
 
 pub(super) fn hamilton(

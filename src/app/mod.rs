@@ -142,6 +142,9 @@ pub struct CommandOptions {
     pub set: Values,
     /// `modes --at q=value,…`: the equilibrium (expressions in the scene).
     pub at: Option<String>,
+    /// `modes --steady q,…` / `equilibrium --steady q,…`: the coordinates
+    /// turning at constant rates (a steady motion).
+    pub steady: Option<String>,
     /// `modes --init q=…,q'=…`: initial conditions.
     pub init: Option<String>,
     /// `latex --steps`: the derivation line by line.

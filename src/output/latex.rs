@@ -489,9 +489,37 @@ impl Writer {
         self.out.push_str("\\end{enumerate}\n");
     }
 
+    /// A steady motion: its conditions and solved rates, and the momenta
+    /// Routh's reduction holds.
+    fn steady_motion(&mut self, sm: &crate::solve::oscillations::SteadyMotion) {
+        let cyclic: Vec<String> = sm.rates.iter().map(|(c, _)| self.sym(c, 0)).collect();
+        self.line(&format!(
+            "A steady motion: ${}$ turning at constant rates, the other coordinates at rest.",
+            cyclic.join(", ")
+        ));
+        let mut rows = Vec::new();
+        for (_, f) in &sm.conditions {
+            rows.push(vec![self.terms(f), self.one("0".into())]);
+        }
+        for s in &sm.solved {
+            let power = if s.squared { "^{2}" } else { "" };
+            let rate = format!("{}{power}", self.sym(&s.coordinate, 1));
+            rows.push(vec![self.one(rate), self.terms(&s.value)]);
+        }
+        self.align(false, &rows);
+        let held: Vec<String> = cyclic.iter().map(|c| format!("p_{{{c}}}")).collect();
+        self.line(&format!(
+            "Linearized about it with the momenta ${}$ held (Routh's reduction).",
+            held.join(", ")
+        ));
+    }
+
     /// `qdot modes`: M, C, K, the characteristic equation, ω², the modes.
     pub fn modes(&mut self, md: &Modes) {
         let q: Vec<String> = md.coordinates.iter().map(|c| self.sym(c, 0)).collect();
+        if let Some(sm) = &md.steady {
+            self.steady_motion(sm);
+        }
         self.line(&format!(
             "Small oscillations in ${}$, $M \\ddot{{q}} + C \\dot{{q}} + K q = f(t)$:",
             q.join(", ")

@@ -47,10 +47,13 @@ fn linearized_text(md: &Modes, names: &[String]) -> String {
         .zip(&md.at)
         .map(|(c, v)| format!("{c} = {}", as_unicode(v)))
         .collect();
-    let mut out = format!(
-        "Linearized about {}   M·q̈ + C·q̇ + K·q = f(t)\n",
-        at.join(", ")
-    );
+    let mut out = match &md.steady {
+        Some(sm) => steady_motion_text(sm, &at),
+        None => format!(
+            "Linearized about {}   M·q̈ + C·q̇ + K·q = f(t)\n",
+            at.join(", ")
+        ),
+    };
     if !md.dependent.is_empty() {
         let held: Vec<String> = md
             .dependent
@@ -74,6 +77,46 @@ fn linearized_text(md: &Modes, names: &[String]) -> String {
             out.push_str(&format!("  {c}  {}\n", as_unicode(f)));
         }
     }
+    out
+}
+
+/// The steady motion: its rates, the conditions that hold it, the rates
+/// solved from them, and the Routh reduction the matrices come from.
+fn steady_motion_text(sm: &osc::SteadyMotion, at: &[String]) -> String {
+    let rates: Vec<String> = sm
+        .rates
+        .iter()
+        .map(|(c, r)| {
+            let rate = pretty_name(c, 1);
+            if *r == crate::solve::steady::rate_symbol(c) {
+                format!("{rate} = const")
+            } else {
+                format!("{rate} = {}", as_unicode(r))
+            }
+        })
+        .collect();
+    let mut out = format!("Steady motion  {}, {}\n", rates.join(", "), at.join(", "));
+    for (c, f) in &sm.conditions {
+        out.push_str(&format!(
+            "  the equation of {} there: {} = 0\n",
+            pretty_name(c, 0),
+            as_unicode(f)
+        ));
+    }
+    for s in &sm.solved {
+        let rate = pretty_name(&s.coordinate, 1);
+        let power = if s.squared { "²" } else { "" };
+        out.push_str(&format!("  so {rate}{power} = {}\n", as_unicode(&s.value)));
+    }
+    let held: Vec<String> = sm
+        .rates
+        .iter()
+        .map(|(c, _)| format!("p_{}", pretty_name(c, 0)))
+        .collect();
+    out.push_str(&format!(
+        "Linearized about it, {} held (Routh's reduction)   M·q̈ + C·q̇ + K·q = f(t)\n",
+        held.join(", ")
+    ));
     out
 }
 
@@ -267,7 +310,12 @@ fn general_solution_text(md: &Modes, names: &[String]) -> String {
 }
 
 fn stability_text(md: &Modes) -> String {
-    let mut out = format!("\nStability of the equilibrium: {}", md.stability.word());
+    let about = if md.steady.is_some() {
+        "the steady motion"
+    } else {
+        "the equilibrium"
+    };
+    let mut out = format!("\nStability of {about}: {}", md.stability.word());
     if let osc::Stability::Undecided(why) = &md.stability {
         out.push_str(&format!(" ({why})"));
     }

@@ -783,6 +783,34 @@ pub struct ModesJson {
     pub numeric_free_response: Option<Named<String>>,
     /// The steady response to f = F·cos(p·t), or null.
     pub forced_response: Option<ForcedJson>,
+    /// About a steady motion (`--steady`): [`SteadyMotionJson`]; absent
+    /// about an equilibrium.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub steady_motion: Option<SteadyMotionJson>,
+}
+
+/// The steady motion `modes --steady` linearizes about.
+#[derive(Serialize)]
+pub struct SteadyMotionJson {
+    /// steady coordinate → its rate (`phi'` itself where it was found
+    /// from the conditions).
+    pub rates: Named<String>,
+    /// coordinate → its equation at the steady motion, which must vanish
+    /// (only those that do not vanish by themselves).
+    pub conditions: Named<String>,
+    /// The rates solved from the conditions, in order.
+    pub solved: Vec<SolvedRateJson>,
+}
+
+/// A rate solved from a steady motion's condition.
+#[derive(Serialize)]
+pub struct SolvedRateJson {
+    /// The steady coordinate.
+    pub coordinate: String,
+    /// Whether `value` is the rate's square.
+    pub squared: bool,
+    /// The rate, or its square.
+    pub value: String,
 }
 
 /// One coordinate's equation ÿ + 2αẏ + ω²y = f.
@@ -877,6 +905,19 @@ impl ModesJson {
                     .collect()
             }),
             forced_response: forced(md, standard.as_ref()),
+            steady_motion: md.steady.as_ref().map(|sm| SteadyMotionJson {
+                rates: named_pairs(&sm.rates),
+                conditions: named_pairs(&sm.conditions),
+                solved: sm
+                    .solved
+                    .iter()
+                    .map(|s| SolvedRateJson {
+                        coordinate: s.coordinate.clone(),
+                        squared: s.squared,
+                        value: as_input(&s.value),
+                    })
+                    .collect(),
+            }),
         }
     }
 }

@@ -324,16 +324,24 @@ impl Scene {
             value,
         } in name_value_pairs(syntax, s)?
         {
-            let e = self.expr(value).map_err(|d| {
-                Diagnostic::global(format!("`{} {written}`: {}", syntax.option, d.message))
-                    .with_hint(
-                        "values are exact expressions in the scene's parameters: 1/10, pi, 2*r",
-                    )
-                    .with_kind(ErrorKind::bad_option(syntax.option))
-            })?;
-            out.push((name.to_string(), e));
+            out.push((name.to_string(), self.exact_value(syntax, written, value)?));
         }
         Ok(out)
+    }
+
+    /// One item `written` (`name=value`) of an exact option: `value` read
+    /// in the scene.
+    fn exact_value(
+        &self,
+        syntax: OptionSyntax,
+        written: &str,
+        value: &str,
+    ) -> Result<Expr, Diagnostic> {
+        self.expr(value).map_err(|d| {
+            Diagnostic::global(format!("`{} {written}`: {}", syntax.option, d.message))
+                .with_hint("values are exact expressions in the scene's parameters: 1/10, pi, 2*r")
+                .with_kind(ErrorKind::bad_option(syntax.option))
+        })
     }
 
     fn coordinate_index(&self, option: &str, name: &str) -> Result<usize, Diagnostic> {
@@ -352,11 +360,62 @@ impl Scene {
 
     /// `--at q=value,…`: one exact value per coordinate (0 where not given).
     pub fn coordinate_values(&self, s: &str) -> Result<Vec<Expr>, Diagnostic> {
-        let mut vals = vec![Expr::zero(); self.coordinates.len()];
-        for (k, e) in self.exact_values(AT, s)? {
-            vals[self.coordinate_index(AT.option, &k)?] = e;
+        let (vals, rates) = self.motion_values(s)?;
+        if let Some((k, _)) = rates.first() {
+            return Err(Diagnostic::global(format!(
+                "`--at {}'=…`: a rate belongs to a steady motion, and this command linearizes about an equilibrium",
+                self.coordinates[*k].name
+            ))
+            .with_hint("`qdot modes --steady q` linearizes about a steady motion")
+            .with_kind(ErrorKind::bad_option(AT.option)));
         }
         Ok(vals)
+    }
+
+    /// `--at q=value,…,c'=rate,…`: one exact value per coordinate (0 where
+    /// not given) and the rates given (coordinate index, rate). A value
+    /// written as the coordinate's name followed by 0 (`theta=theta0`),
+    /// when no such name is declared, is a symbol of its own: the reference
+    /// position left general.
+    pub fn motion_values(&self, s: &str) -> Result<(Vec<Expr>, Vec<(usize, Expr)>), Diagnostic> {
+        let mut vals = vec![Expr::zero(); self.coordinates.len()];
+        let mut rates = Vec::new();
+        for NameValue {
+            written,
+            name,
+            value,
+        } in name_value_pairs(AT, s)?
+        {
+            if let Some(c) = name.strip_suffix('\'') {
+                let k = self.coordinate_index(AT.option, c)?;
+                rates.push((k, self.exact_value(AT, written, value)?));
+                continue;
+            }
+            let k = self.coordinate_index(AT.option, name)?;
+            let symbol = format!("{name}0");
+            vals[k] = if value.trim() == symbol && self.expr(&symbol).is_err() {
+                Expr::unknown(&symbol)
+            } else {
+                self.exact_value(AT, written, value)?
+            };
+        }
+        Ok((vals, rates))
+    }
+
+    /// `--steady q,…`: the steady coordinates' indices.
+    pub fn steady_coordinates(&self, s: &str) -> Result<Vec<usize>, Diagnostic> {
+        let mut out = Vec::new();
+        for name in s.split(',').map(str::trim) {
+            let k = self.coordinate_index("--steady", name)?;
+            if out.contains(&k) {
+                return Err(
+                    Diagnostic::global(format!("`--steady`: `{name}` is named twice"))
+                        .with_kind(ErrorKind::bad_option("--steady")),
+                );
+            }
+            out.push(k);
+        }
+        Ok(out)
     }
 
     /// `--init q=…,q'=…`: exact positions and velocities (0 where not given).

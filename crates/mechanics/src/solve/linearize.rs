@@ -15,6 +15,7 @@
 //! ask for constant M, C and K; parametric excitation allows them to
 //! change with time.
 
+use super::steady::{self, SteadyMotion};
 use crate::diag::Diagnostic;
 use crate::expr::atom;
 use crate::expr::Expr;
@@ -29,6 +30,10 @@ pub struct Reference {
     /// q0, one value per coordinate in declaration order (`None`: every
     /// q = 0).
     pub at: Option<Vec<Expr>>,
+    /// The steady coordinates (a steady motion, `steady.rs`): index and
+    /// rate, the rate the symbol q̇ where it is to be found. Empty: an
+    /// equilibrium.
+    pub steady: Vec<(usize, Expr)>,
     /// Whether M, C and K may depend on time (parametric excitation);
     /// without it such a dependence is refused.
     pub time_varying: bool,
@@ -39,8 +44,16 @@ impl Reference {
     pub fn at(at: Option<&[Expr]>) -> Reference {
         Reference {
             at: at.map(<[Expr]>::to_vec),
+            steady: Vec::new(),
             time_varying: false,
         }
+    }
+
+    /// This reference with the coordinates of `steady` (index, rate)
+    /// turning at constant rates.
+    pub fn steady(mut self, steady: Vec<(usize, Expr)>) -> Reference {
+        self.steady = steady;
+        self
     }
 
     /// This reference, allowing coefficients that change with time.
@@ -69,6 +82,9 @@ pub struct Linearization {
     /// With constraints: the coordinates they make dependent, with their
     /// values at the reference.
     pub dependent: Vec<(String, Expr)>,
+    /// About a steady motion: its rates and conditions (the steady
+    /// coordinates are reduced away, Routh's way).
+    pub steady: Option<SteadyMotion>,
 }
 
 fn math(m: crate::expr::MathError) -> Diagnostic {
@@ -97,6 +113,15 @@ pub fn linearize(scene: &Scene, reference: &Reference) -> Result<Linearization, 
         point.insert(atom::coord(c, 2), Expr::zero());
     }
     let residuals: Vec<Expr> = l.equations.iter().map(|e| e.lhs.sub(&e.rhs)).collect();
+    if !reference.steady.is_empty() {
+        if !scene.constraints.is_empty() {
+            return Err(Diagnostic::global(
+                "steady motions of a scene with constraints are not supported",
+            )
+            .with_hint("write the scene in independent coordinates"));
+        }
+        return linearize_steady(&names, &q0, &residuals, point, reference);
+    }
     if !scene.constraints.is_empty() {
         // the multipliers that hold the reference
         let rest: Vec<Expr> = residuals
@@ -122,6 +147,7 @@ pub fn linearize(scene: &Scene, reference: &Reference) -> Result<Linearization, 
             stiffness,
             forcing,
             dependent: Vec::new(),
+            steady: None,
         });
     }
     let ([m, c, k], f, kept) =
@@ -138,6 +164,76 @@ pub fn linearize(scene: &Scene, reference: &Reference) -> Result<Linearization, 
         stiffness: k,
         forcing: f,
         dependent,
+        steady: None,
+    })
+}
+
+/// [`linearize`] about a steady motion: the steady coordinates turn at
+/// their rates (unknown rates solved from the other equations), then are
+/// reduced away with their momenta held.
+fn linearize_steady(
+    names: &[String],
+    q0: &[Expr],
+    residuals: &[Expr],
+    mut point: FxHashMap<Var, Expr>,
+    reference: &Reference,
+) -> Result<Linearization, Diagnostic> {
+    let idx: Vec<usize> = reference.steady.iter().map(|(i, _)| *i).collect();
+    steady::check_cyclic(names, residuals, &idx)?;
+    let mut rates = Vec::with_capacity(idx.len());
+    for (i, rate) in &reference.steady {
+        point.insert(atom::coord(&names[*i], 0), Expr::zero());
+        point.insert(atom::coord(&names[*i], 1), rate.clone());
+        rates.push((names[*i].clone(), rate.clone()));
+    }
+    let t = atom::time();
+    let mut conditions = Vec::new();
+    for (k, r) in residuals.iter().enumerate() {
+        let (fixed, _) = split_time(&r.subs_many(&point).map_err(math)?.neg(), t);
+        if !fixed.is_zero() && !idx.contains(&k) {
+            conditions.push((names[k].clone(), fixed));
+        }
+    }
+    let solved = steady::solve_rates(&conditions, &steady::open_rates(&rates))?;
+    let put = |e: &Expr| -> Result<Expr, Diagnostic> {
+        solved
+            .iter()
+            .try_fold(e.clone(), |e, s| steady::substitute_rate(&e, s))
+    };
+    let [mass, damping, stiffness] = jacobians(names, residuals, &point, reference)?;
+    let mut forcing = Vec::with_capacity(names.len());
+    for (k, r) in residuals.iter().enumerate() {
+        let f = put(&r.subs_many(&point).map_err(math)?.neg())?;
+        let (fixed, _) = split_time(&f, t);
+        if !fixed.is_zero() {
+            return Err(Diagnostic::global(format!(
+                "no steady motion here: the equation of `{}` leaves {} ≠ 0",
+                names[k],
+                crate::expr::print::unicode(&fixed)
+            ))
+            .with_hint("a steady motion needs one unknown rate per condition; give the rates with --at q'=value"));
+        }
+        forcing.push(f);
+    }
+    let ([m, c, k], f) =
+        steady::routh_reduce(names, [&mass, &damping, &stiffness], &forcing, &idx)?;
+    let put_all = |a: Vec<Vec<Expr>>| -> Result<Vec<Vec<Expr>>, Diagnostic> {
+        a.iter().map(|row| row.iter().map(put).collect()).collect()
+    };
+    let rest: Vec<usize> = (0..names.len()).filter(|i| !idx.contains(i)).collect();
+    Ok(Linearization {
+        coordinates: rest.iter().map(|&i| names[i].clone()).collect(),
+        at: rest.iter().map(|&i| q0[i].clone()).collect(),
+        mass: put_all(m)?,
+        damping: put_all(c)?,
+        stiffness: put_all(k)?,
+        forcing: f,
+        dependent: Vec::new(),
+        steady: Some(SteadyMotion {
+            rates,
+            conditions,
+            solved,
+        }),
     })
 }
 

@@ -12,6 +12,7 @@ mod linear_stability;
 pub mod linearize;
 pub mod numeric;
 pub mod oscillations;
+pub mod steady;
 pub mod system;
 
 pub use crate::algebra::linear;

@@ -22,6 +22,8 @@
 
 /// The verdict on the linearized system (the same as for equilibria).
 pub use super::equilibrium::Stability;
+pub use super::linearize::Reference;
+pub use super::steady::{SolvedRate, SteadyMotion};
 use crate::algebra::sign::{sign_exact, sign_of, Sign, Values};
 use crate::diag::Diagnostic;
 use crate::expr::atom::{self, Atom};
@@ -74,6 +76,10 @@ pub struct Modes {
     /// A repeated ω² has fewer modes than its multiplicity (possible only
     /// when M is not definite): `modes` is empty.
     pub defective: bool,
+    /// About a steady motion: its rates and conditions; `coordinates` are
+    /// then the ones at rest (the steady ones reduced away with their
+    /// momenta held).
+    pub steady: Option<SteadyMotion>,
 }
 
 /// One degree of freedom in the standard form ÿ + 2α·ẏ + ω²·y = f(t)/M.
@@ -107,17 +113,27 @@ fn math(m: crate::expr::MathError) -> Diagnostic {
 
 /// Linearize about `at` (default q = 0) and find the modes.
 pub fn modes(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Modes, Diagnostic> {
-    scene.expanded_only("small oscillations")?;
-    crate::algebra::assume::assuming(&scene.assumptions, || modes_assumed(scene, at, set))
+    modes_about(scene, &Reference::at(at), set)
 }
 
-/// [`modes`] with the scene's assumptions in force.
-fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Modes, Diagnostic> {
+/// Linearize about `reference` (an equilibrium or a steady motion) and
+/// find the modes.
+pub fn modes_about(
+    scene: &Scene,
+    reference: &Reference,
+    set: &Values,
+) -> Result<Modes, Diagnostic> {
+    scene.expanded_only("small oscillations")?;
+    crate::algebra::assume::assuming(&scene.assumptions, || modes_assumed(scene, reference, set))
+}
+
+/// [`modes_about`] with the scene's assumptions in force.
+fn modes_assumed(scene: &Scene, reference: &Reference, set: &Values) -> Result<Modes, Diagnostic> {
     let _context = crate::budget::enter(
         || "linearizing about the equilibrium for the small oscillations".into(),
         None,
     );
-    let lin = super::linearize::linearize(scene, &super::linearize::Reference::at(at))?;
+    let lin = super::linearize::linearize(scene, reference)?;
     let super::linearize::Linearization {
         coordinates: names,
         at: q0,
@@ -126,6 +142,7 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
         stiffness,
         forcing,
         dependent,
+        steady,
     } = lin;
     let n = names.len();
     let lv = atom::unknown(LAMBDA);
@@ -172,6 +189,7 @@ fn modes_assumed(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Mod
         no_closed_form: found.why,
         dependent,
         defective,
+        steady,
     })
 }
 
