@@ -32,7 +32,8 @@ fn expected(s: &Scene, text: &str) -> Expr {
 
 /// `modes --steady … --at …` through the library, as the command does it.
 fn steady_modes(s: &Scene, steady: &[&str], at: &str) -> Modes {
-    let (q0, rates) = s.motion_values(at).expect("--at reads");
+    let v = s.motion_values(at).expect("--at reads");
+    let (q0, rates) = (v.positions, v.rates);
     let mut reference: Vec<(usize, Expr)> = steady
         .iter()
         .map(|c| {

@@ -199,8 +199,8 @@ pub(super) fn modes(
 fn reference(scene: &Scene, opts: &CommandOptions) -> Result<osc::Reference, Diagnostic> {
     let (at, rates) = match &opts.at {
         Some(a) => {
-            let (at, rates) = scene.motion_values(a)?;
-            (Some(at), rates)
+            let v = scene.motion_values(a)?;
+            (Some(v.positions), v.rates)
         }
         None => (None, Vec::new()),
     };

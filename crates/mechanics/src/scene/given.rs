@@ -310,6 +310,15 @@ fn has_nonzero_digit(t: &str) -> bool {
         .is_some_and(|m| m.chars().any(|c| c.is_ascii_digit() && c != '0'))
 }
 
+/// `--at` about a steady motion: the positions, and the rates given.
+#[derive(Clone, Debug)]
+pub struct MotionValues {
+    /// One exact value per coordinate (0 where not given).
+    pub positions: Vec<Expr>,
+    /// The rates given (`phi'=w`): coordinate index and rate.
+    pub rates: Vec<(usize, Expr)>,
+}
+
 impl Scene {
     /// `name=expr,…`: each value an exact expression in the scene's names.
     fn exact_values(
@@ -360,7 +369,7 @@ impl Scene {
 
     /// `--at q=value,…`: one exact value per coordinate (0 where not given).
     pub fn coordinate_values(&self, s: &str) -> Result<Vec<Expr>, Diagnostic> {
-        let (vals, rates) = self.motion_values(s)?;
+        let MotionValues { positions, rates } = self.motion_values(s)?;
         if let Some((k, _)) = rates.first() {
             return Err(Diagnostic::global(format!(
                 "`--at {}'=…`: a rate belongs to a steady motion, and this command linearizes about an equilibrium",
@@ -369,7 +378,7 @@ impl Scene {
             .with_hint("`qdot modes --steady q` linearizes about a steady motion")
             .with_kind(ErrorKind::bad_option(AT.option)));
         }
-        Ok(vals)
+        Ok(positions)
     }
 
     /// `--at q=value,…,c'=rate,…`: one exact value per coordinate (0 where
@@ -377,7 +386,7 @@ impl Scene {
     /// written as the coordinate's name followed by 0 (`theta=theta0`),
     /// when no such name is declared, is a symbol of its own: the reference
     /// position left general.
-    pub fn motion_values(&self, s: &str) -> Result<(Vec<Expr>, Vec<(usize, Expr)>), Diagnostic> {
+    pub fn motion_values(&self, s: &str) -> Result<MotionValues, Diagnostic> {
         let mut vals = vec![Expr::zero(); self.coordinates.len()];
         let mut rates = Vec::new();
         for NameValue {
@@ -399,7 +408,10 @@ impl Scene {
                 self.exact_value(AT, written, value)?
             };
         }
-        Ok((vals, rates))
+        Ok(MotionValues {
+            positions: vals,
+            rates,
+        })
     }
 
     /// `--steady q,…`: the steady coordinates' indices.

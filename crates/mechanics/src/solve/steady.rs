@@ -189,6 +189,9 @@ pub fn substitute_rate(e: &Expr, s: &SolvedRate) -> Result<Expr, Diagnostic> {
     reduce(e.num())?.div(&reduce(e.den())?).map_err(math)
 }
 
+/// M, C and K.
+type Matrices = [Vec<Vec<Expr>>; 3];
+
 /// Routh's reduction of the linearized system about a steady motion: the
 /// rows and columns of `steady` removed, the momenta held (see the module
 /// documentation). Returns the reduced [M, C, K] and forcing over `rest`.
@@ -197,7 +200,7 @@ pub(super) fn routh_reduce(
     [m, c, k]: [&[Vec<Expr>]; 3],
     forcing: &[Expr],
     steady: &[usize],
-) -> Result<([Vec<Vec<Expr>>; 3], Vec<Expr>), Diagnostic> {
+) -> Result<(Matrices, Vec<Expr>), Diagnostic> {
     let n = names.len();
     let rest: Vec<usize> = (0..n).filter(|i| !steady.contains(i)).collect();
     for &i in steady {
@@ -245,6 +248,7 @@ pub(super) fn routh_reduce(
         block(c, &rest, &rest),
         block(k, &rest, &rest),
     ];
+    #[allow(clippy::needless_range_loop)] // three matrices at (i, j)
     for i in 0..r {
         for j in 0..r {
             out[0][i][j] = out[0][i][j].sub(&times(&m_rc, &am, i, j));
