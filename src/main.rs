@@ -121,37 +121,10 @@ enum Command {
         #[arg(long, value_parser = format_arg(output::Command::Integrals), default_value = "text")]
         format: Format,
     },
-    /// Small oscillations about an equilibrium: M, C, K, det(K − ω²M),
-    /// the natural frequencies, the modes, and the responses.
-    Modes {
-        /// The scene file (.qd).
-        file: String,
-        #[arg(long, value_parser = format_arg(output::Command::Modes), default_value = "text")]
-        format: Format,
-        /// The equilibrium to linearize about (default: every q = 0), e.g.
-        /// th=pi; about a steady motion, also the steady rates: th=pi/3,phi'=w
-        #[arg(long)]
-        at: Option<String>,
-        /// Linearize about a steady motion: these cyclic coordinates turn
-        /// at constant rates (their symbols q̇, or the rates --at gives),
-        /// the others rest at --at; the rates are reduced away Routh's way
-        #[arg(long, value_name = "Q,…")]
-        steady: Option<String>,
-        /// Initial conditions for the free response: y1=1/10,y1'=0
-        #[arg(long)]
-        init: Option<String>,
-        /// Parameter values for numeric frequencies and sign decisions
-        #[arg(long)]
-        set: Option<String>,
-        /// With --format latex: a whole `article` document that compiles
-        /// with pdflatex (without it, a fragment to \input)
-        #[arg(long)]
-        standalone: bool,
-        /// The title of the --standalone document (default: the file's
-        /// base name)
-        #[arg(long, requires = "standalone")]
-        title: Option<String>,
-    },
+    /// Small oscillations about an equilibrium (or a steady motion): M, C,
+    /// K, det(K − ω²M), the natural frequencies, the modes, and the
+    /// responses.
+    Modes(ModesArgs),
     /// LaTeX for lecture notes: the equations and the solution (amsmath).
     Latex {
         /// The scene file (.qd).
@@ -251,7 +224,8 @@ enum Command {
         #[arg(long, value_parser = format_arg(output::Command::Check), default_value = "text")]
         format: Format,
     },
-    /// Equilibrium positions (Q_k = 0) and their stability.
+    /// Equilibrium positions (Q_k = 0) and their stability; with
+    /// --steady, the steady motions.
     Equilibrium {
         /// The scene file (.qd).
         file: String,
@@ -260,6 +234,11 @@ enum Command {
         /// Parameter values for numeric roots and sign decisions: m=1,g=9.81
         #[arg(long)]
         set: Option<String>,
+        /// Find steady motions instead: these cyclic coordinates turn at
+        /// constant rates (their symbols q̇), the others rest where their
+        /// equations hold
+        #[arg(long, value_name = "Q,…")]
+        steady: Option<String>,
     },
 }
 
@@ -273,6 +252,58 @@ fn emit(text: &str) {
         if e.kind() != std::io::ErrorKind::BrokenPipe {
             eprintln!("error: cannot write the result: {e}");
         }
+    }
+}
+
+/// `qdot modes`' arguments.
+#[derive(clap::Args)]
+struct ModesArgs {
+    /// The scene file (.qd).
+    file: String,
+    #[arg(long, value_parser = format_arg(output::Command::Modes), default_value = "text")]
+    format: Format,
+    /// The equilibrium to linearize about (default: every q = 0), e.g.
+    /// th=pi; about a steady motion, also the steady rates: th=pi/3,phi'=w
+    #[arg(long)]
+    at: Option<String>,
+    /// Linearize about a steady motion: these cyclic coordinates turn
+    /// at constant rates (their symbols q̇, or the rates --at gives),
+    /// the others rest at --at; the rates are reduced away Routh's way
+    #[arg(long, value_name = "Q,…")]
+    steady: Option<String>,
+    /// Initial conditions for the free response: y1=1/10,y1'=0
+    #[arg(long)]
+    init: Option<String>,
+    /// Parameter values for numeric frequencies and sign decisions
+    #[arg(long)]
+    set: Option<String>,
+    /// With --format latex: a whole `article` document that compiles
+    /// with pdflatex (without it, a fragment to \input)
+    #[arg(long)]
+    standalone: bool,
+    /// The title of the --standalone document (default: the file's
+    /// base name)
+    #[arg(long, requires = "standalone")]
+    title: Option<String>,
+}
+
+impl ModesArgs {
+    /// Put these options into `opts`; an error when `--standalone` is
+    /// asked for without LaTeX.
+    fn apply(&self, opts: &mut output::CommandOptions) -> Result<(), qdot::Diagnostic> {
+        opts.at = self.at.clone();
+        opts.steady = self.steady.clone();
+        opts.init = self.init.clone();
+        if self.standalone && self.format != Format::Latex {
+            return Err(
+                qdot::Diagnostic::global("--standalone makes a LaTeX document")
+                    .with_hint("add --format latex")
+                    .with_kind(ErrorKind::bad_option("--standalone")),
+            );
+        }
+        opts.standalone = self.standalone;
+        opts.title = self.title.clone().unwrap_or_else(|| base_name(&self.file));
+        Ok(())
     }
 }
 
@@ -395,7 +426,13 @@ fn main() -> ExitCode {
         Command::Hamilton { file, format } => (output::Command::Hamilton, file, *format, None),
         Command::Integrals { file, format } => (output::Command::Integrals, file, *format, None),
         Command::Check { file, format } => (output::Command::Check, file, *format, None),
-        Command::Equilibrium { file, format, set } => {
+        Command::Equilibrium {
+            file,
+            format,
+            set,
+            steady,
+        } => {
+            opts.steady = steady.clone();
             (output::Command::Equilibrium, file, *format, set.as_deref())
         }
         Command::Latex {
@@ -410,29 +447,17 @@ fn main() -> ExitCode {
             opts.title = title.clone().unwrap_or_else(|| base_name(file));
             (output::Command::Latex, file, Format::Latex, set.as_deref())
         }
-        Command::Modes {
-            file,
-            format,
-            at,
-            steady,
-            init,
-            set,
-            standalone,
-            title,
-        } => {
-            opts.at = at.clone();
-            opts.steady = steady.clone();
-            opts.init = init.clone();
-            if *standalone && *format != Format::Latex {
-                let d = qdot::Diagnostic::global("--standalone makes a LaTeX document")
-                    .with_hint("add --format latex")
-                    .with_kind(ErrorKind::bad_option("--standalone"));
-                Reporter::new(file, *format == Format::Json).print(&d, "");
+        Command::Modes(args) => {
+            if let Err(d) = args.apply(&mut opts) {
+                Reporter::new(&args.file, args.format == Format::Json).print(&d, "");
                 return ExitCode::from(2);
             }
-            opts.standalone = *standalone;
-            opts.title = title.clone().unwrap_or_else(|| base_name(file));
-            (output::Command::Modes, file, *format, set.as_deref())
+            (
+                output::Command::Modes,
+                &args.file,
+                args.format,
+                args.set.as_deref(),
+            )
         }
     };
     let report = Reporter::new(file, fmt == Format::Json);

@@ -266,3 +266,48 @@ fn steady_motions_are_refused_with_reasons() {
         "{err}"
     );
 }
+
+/// `equilibrium --steady`: the conical pendulum's steady motions, cos θ =
+/// g/(l·φ̇²) and its mirror stable, the poles undecided with the reason;
+/// the JSON names the steady rates.
+#[test]
+fn equilibrium_finds_the_steady_motions() {
+    let (ok, out, err) = qdot(&[
+        "equilibrium",
+        "examples/spherical_pendulum.qd",
+        "--steady",
+        "phi",
+    ]);
+    assert!(ok, "{err}");
+    let pole = "undecided (the steady coordinates' mass matrix is singular there (a coordinate singularity, like an azimuth at the pole), so their momenta do not fix their rates)";
+    assert_eq!(
+        out,
+        format!(
+            "Steady motions  φ̇ = const, the other coordinates at rest
+Conditions (each coordinate's equation there)
+  θ:  l²·m·cos(θ)·sin(θ)·φ̇² − g·l·m·sin(θ) = 0
+
+Steady motions (stability about each: `qdot modes --steady`)
+  1. θ = 0  — {pole}
+  2. θ = π  — {pole}
+  3. θ = acos(g/(l·φ̇²))  — stable
+     exists when |g/(l·φ̇²)| ≤ 1
+  4. θ = −acos(g/(l·φ̇²))  — stable
+     exists when |g/(l·φ̇²)| ≤ 1
+"
+        )
+    );
+    let (ok, out, _) = qdot(&[
+        "equilibrium",
+        "examples/spherical_pendulum.qd",
+        "--steady",
+        "phi",
+        "--format",
+        "json",
+    ]);
+    assert!(ok);
+    let v: Value = serde_json::from_str(&out).expect("JSON");
+    assert_eq!(v["steady"]["phi"], "phi'");
+    assert_eq!(v["equilibria"][2]["theta"], "acos(g/(l*phi'^2))");
+    assert_eq!(v["stability"][2], "stable");
+}

@@ -25,7 +25,10 @@ pub(super) fn run_scene(
         Command::Derive => AnyReport::Derive(derive(ctx, scene)?),
         Command::Solve => AnyReport::Solve(solve(ctx, scene)?),
         Command::Forces => AnyReport::Forces(forces(ctx, scene)?),
-        Command::Equilibrium => AnyReport::Equilibrium(equilibria(ctx, scene, &opts.set)?),
+        Command::Equilibrium => AnyReport::Equilibrium(match &opts.steady {
+            Some(list) => steady_motions(ctx, scene, list, &opts.set)?,
+            None => equilibria(ctx, scene, &opts.set)?,
+        }),
         Command::Modes => AnyReport::Modes(modes(ctx, scene, opts)?),
         Command::Hamilton => AnyReport::Hamilton(hamilton(ctx, scene)?),
         Command::Integrals => AnyReport::Integrals(integrals(ctx, scene)?),
@@ -136,6 +139,21 @@ pub(super) fn equilibria(
     crate::scene::given::parameter_signs(scene, set)?;
     crate::scene::given::set_names_are_parameters(scene, set)?;
     let eq = crate::solve::equilibrium::equilibria(scene, set)?;
+    Ok(report(ctx, scene, eq))
+}
+
+/// `equilibrium --steady q,…`: the steady motions with those coordinates
+/// turning.
+fn steady_motions(
+    ctx: &Context,
+    scene: &Arc<Scene>,
+    steady: &str,
+    set: &Values,
+) -> Result<Report<crate::solve::equilibrium::Equilibria>, Diagnostic> {
+    crate::scene::given::parameter_signs(scene, set)?;
+    crate::scene::given::set_names_are_parameters(scene, set)?;
+    let steady = scene.steady_coordinates(steady)?;
+    let eq = crate::solve::steady::steady_motions(scene, &steady, set)?;
     Ok(report(ctx, scene, eq))
 }
 

@@ -440,8 +440,16 @@ impl Writer {
 
     /// `qdot equilibrium`: the conditions and the positions.
     pub fn equilibrium(&mut self, eq: &Equilibria) {
-        self.forces(&eq.coordinates, &eq.forces);
-        self.line("The equilibrium conditions:");
+        if eq.steady.is_empty() {
+            self.forces(&eq.coordinates, &eq.forces);
+            self.line("The equilibrium conditions:");
+        } else {
+            let turning: Vec<String> = eq.steady.iter().map(|(c, _)| self.sym(c, 0)).collect();
+            self.line(&format!(
+                "Steady motions: ${}$ turning at constant rates, the other coordinates at rest where",
+                turning.join(", ")
+            ));
+        }
         let rows: Vec<_> = eq
             .conditions
             .iter()
@@ -452,7 +460,9 @@ impl Writer {
             self.line("There is no equilibrium.");
             return;
         }
-        self.line(if eq.exact {
+        self.line(if !eq.steady.is_empty() {
+            "The steady motions:"
+        } else if eq.exact {
             "The equilibria:"
         } else {
             "The equilibria (numeric, at the given parameter values):"

@@ -323,6 +323,9 @@ pub fn solutions_text(scene: &Scene, blocks: &[BlockSolution]) -> String {
 
 /// The text of `qdot equilibrium`.
 pub fn equilibrium_text(eq: &Equilibria) -> String {
+    if !eq.steady.is_empty() {
+        return steady_motions_text(eq);
+    }
     let mut out = forces_text(&eq.coordinates, &eq.forces);
     if eq.kinetic_terms {
         out.push_str("\nEquilibrium conditions at rest (Q_k plus the kinetic energy's terms ∂E/∂q_k at q̇ = 0)\n");
@@ -339,6 +342,37 @@ pub fn equilibrium_text(eq: &Equilibria) -> String {
     } else {
         "\nEquilibria (numeric: no closed form)\n"
     });
+    out.push_str(&positions_text(eq));
+    out
+}
+
+/// `equilibrium --steady`: the conditions of a steady motion and the ones
+/// found.
+fn steady_motions_text(eq: &Equilibria) -> String {
+    let rates: Vec<String> = eq
+        .steady
+        .iter()
+        .map(|(c, _)| format!("{} = const", pretty_name(c, 1)))
+        .collect();
+    let mut out = format!(
+        "Steady motions  {}, the other coordinates at rest\nConditions (each coordinate's equation there)\n",
+        rates.join(", ")
+    );
+    for (c, f) in eq.coordinates.iter().zip(&eq.conditions) {
+        out.push_str(&format!(
+            "  {}:  {} = 0\n",
+            pretty_name(c, 0),
+            as_unicode(f)
+        ));
+    }
+    out.push_str("\nSteady motions (stability about each: `qdot modes --steady`)\n");
+    out.push_str(&positions_text(eq));
+    out
+}
+
+/// The list of equilibria (or steady motions), each with its verdict.
+fn positions_text(eq: &Equilibria) -> String {
+    let mut out = String::new();
     if eq.equilibria.is_empty() {
         out.push_str("  none\n");
     }

@@ -646,6 +646,11 @@ pub struct EquilibriumJson {
     /// With constraints: multiplier → λ per equilibrium; absent otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub multipliers: Option<Vec<Named<String>>>,
+    /// `--steady`: steady coordinate → its rate (the symbol `phi'`); the
+    /// positions are steady motions of the other coordinates. Absent for
+    /// equilibria.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub steady: Option<Named<String>>,
 }
 
 impl EquilibriumJson {
@@ -682,6 +687,7 @@ impl EquilibriumJson {
                 .iter()
                 .any(|e| !e.multipliers.is_empty())
                 .then(|| list.iter().map(|e| named_pairs(&e.multipliers)).collect()),
+            steady: (!eq.steady.is_empty()).then(|| named_pairs(&eq.steady)),
         }
     }
 }

@@ -133,12 +133,12 @@ pub const COMMANDS: &[(&str, &str, &str)] = &[
     ),
     (
         ":equilibrium",
-        "[--set m=1,g=9.81]",
-        "the equilibria and their stability",
+        "[--set m=1,g=9.81] [--steady q,…]",
+        "the equilibria (or steady motions) and their stability",
     ),
     (
         ":modes",
-        "[--at q=…] [--init q=…,q'=…] [--set …]",
+        "[--at q=…] [--steady q,…] [--init q=…,q'=…] [--set …]",
         "small oscillations: frequencies and modes",
     ),
     (
@@ -927,13 +927,14 @@ fn parse_options(args: &str, cmd: Command, opts: &mut CommandOptions) -> Result<
             }
         };
         let allowed = match cmd {
-            Command::Modes => ["set", "at", "init"].contains(&key.as_str()),
-            Command::Equilibrium | Command::Latex => key == "set",
+            Command::Modes => ["set", "at", "init", "steady"].contains(&key.as_str()),
+            Command::Equilibrium => ["set", "steady"].contains(&key.as_str()),
+            Command::Latex => key == "set",
             _ => false,
         };
         if !allowed {
             return Err(format!(
-                "error: this command takes no option `--{key}`\n  = hint: :equilibrium takes --set; :modes takes --at, --init and --set\n"
+                "error: this command takes no option `--{key}`\n  = hint: :equilibrium takes --set and --steady; :modes takes --at, --steady, --init and --set\n"
             ));
         }
         let Some(value) = value else {
@@ -945,6 +946,7 @@ fn parse_options(args: &str, cmd: Command, opts: &mut CommandOptions) -> Result<
                     output::parse_set_any_sign(&value).map_err(|d| d.render("--set", &value))?;
             }
             "at" => opts.at = Some(value),
+            "steady" => opts.steady = Some(value),
             _ => opts.init = Some(value),
         }
     }

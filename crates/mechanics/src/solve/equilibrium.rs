@@ -144,6 +144,31 @@ pub struct Equilibria {
     pub equilibria: Vec<Equilibrium>,
     /// True when the positions were found in closed form.
     pub exact: bool,
+    /// Steady motions (`--steady`): the steady coordinates and their rates
+    /// (the symbols q̇); `coordinates` are then the others. Empty for
+    /// equilibria.
+    pub steady: Vec<(String, Expr)>,
+}
+
+impl Equilibria {
+    /// The steady motions found by [`super::steady::steady_motions`].
+    pub(super) fn steady(
+        coordinates: Vec<String>,
+        forces: Vec<Expr>,
+        conditions: Vec<Expr>,
+        motions: Vec<Equilibrium>,
+        steady: Vec<(String, Expr)>,
+    ) -> Equilibria {
+        Equilibria {
+            coordinates,
+            forces,
+            conditions,
+            kinetic_terms: true,
+            equilibria: motions,
+            exact: true,
+            steady,
+        }
+    }
 }
 
 /// Find and classify the equilibria of a scene.
@@ -217,6 +242,7 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
             kinetic_terms,
             equilibria: found,
             exact,
+            steady: Vec::new(),
         });
     }
     let mut found = Vec::new();
@@ -298,6 +324,7 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
         kinetic_terms,
         equilibria: found,
         exact,
+        steady: Vec::new(),
     })
 }
 

@@ -228,7 +228,7 @@ pub(super) fn routh_reduce(
             let col: Vec<Expr> = b.iter().map(|row| row[j].clone()).collect();
             cols.push(crate::algebra::linear::solve(&m_cc, &col).map_err(|_| {
                 Diagnostic::global(
-                    "the steady coordinates' mass matrix is singular there, so their momenta do not fix their rates",
+                    "the steady coordinates' mass matrix is singular there (a coordinate singularity, like an azimuth at the pole), so their momenta do not fix their rates",
                 )
             })?);
         }
@@ -269,4 +269,118 @@ pub(super) fn open_rates(rates: &[(String, Expr)]) -> Vec<String> {
         .filter(|(c, r)| r == &rate_symbol(c))
         .map(|(c, _)| c.clone())
         .collect()
+}
+
+/// The steady motions of a scene in which the coordinates `steady` turn at
+/// constant rates (their symbols q̇): the other coordinates' equations at
+/// (q̇_r = 0, q̇_c = q̇_c, q̈ = 0) solved for those coordinates in closed
+/// form, each solution classified by the linearization about it
+/// ([`super::oscillations::modes_about`]).
+pub fn steady_motions(
+    scene: &crate::scene::Scene,
+    steady: &[usize],
+    set: &crate::algebra::sign::Values,
+) -> Result<super::equilibrium::Equilibria, Diagnostic> {
+    scene.expanded_only("the search for steady motions")?;
+    if !scene.constraints.is_empty() {
+        return Err(Diagnostic::global(
+            "steady motions of a scene with constraints are not supported",
+        )
+        .with_hint("write the scene in independent coordinates"));
+    }
+    crate::algebra::assume::assuming(&scene.assumptions, || {
+        let _context = crate::budget::enter(|| "finding the steady motions".into(), None);
+        let l = scene.lagrange()?;
+        let names = l.coordinates.clone();
+        let residuals: Vec<Expr> = l.equations.iter().map(|e| e.lhs.sub(&e.rhs)).collect();
+        check_cyclic(&names, &residuals, steady)?;
+        let rest: Vec<usize> = (0..names.len()).filter(|i| !steady.contains(i)).collect();
+        let mut point = rustc_hash::FxHashMap::default();
+        for (k, c) in names.iter().enumerate() {
+            let rate = if steady.contains(&k) {
+                rate_symbol(c)
+            } else {
+                Expr::zero()
+            };
+            point.insert(atom::coord(c, 1), rate);
+            point.insert(atom::coord(c, 2), Expr::zero());
+        }
+        let forces = crate::mechanics::generalized_forces(scene);
+        let mut conditions = Vec::with_capacity(rest.len());
+        let mut at_rest = Vec::with_capacity(rest.len());
+        for &k in &rest {
+            let f = residuals[k].subs_many(&point).map_err(math)?.neg();
+            if f.depends_on_time() {
+                return Err(Diagnostic::global(format!(
+                    "the force on `{}` depends on time, so there is no steady motion",
+                    names[k]
+                ))
+                .with_hint("steady motions need time-independent forces"));
+            }
+            conditions.push(f);
+            at_rest.push(forces[k].subs_many(&point).map_err(math)?);
+        }
+        let q: Vec<crate::poly::Var> = rest.iter().map(|&k| atom::coord(&names[k], 0)).collect();
+        let Some(found) =
+            super::equilibrium::solve_exact(&conditions, &q).map_err(|e| e.diagnostic())?
+        else {
+            return Err(
+                Diagnostic::global("no closed form for these steady-motion conditions").with_hint(
+                    "give the position and find the rate: qdot modes --steady q --at r=…",
+                ),
+            );
+        };
+        let rates: Vec<(String, Expr)> = steady
+            .iter()
+            .map(|&k| (names[k].clone(), rate_symbol(&names[k])))
+            .collect();
+        let motions = found
+            .into_iter()
+            .map(|sol| classified(scene, &rest, steady, &rates, sol, set))
+            .collect::<Result<_, _>>()?;
+        Ok(super::equilibrium::Equilibria::steady(
+            rest.iter().map(|&k| names[k].clone()).collect(),
+            at_rest,
+            conditions,
+            motions,
+            rates,
+        ))
+    })
+}
+
+/// One steady motion of the search, with the verdict of the linearization
+/// about it (undecided, with the reason, where that fails: the azimuth of
+/// a pendulum hanging straight down is not defined).
+fn classified(
+    scene: &crate::scene::Scene,
+    rest: &[usize],
+    steady: &[usize],
+    rates: &[(String, Expr)],
+    sol: super::equilibrium::ExactSolution,
+    set: &crate::algebra::sign::Values,
+) -> Result<super::equilibrium::Equilibrium, Diagnostic> {
+    use super::equilibrium::{Equilibrium, Position, Stability};
+    let stability = if sol.free.is_empty() {
+        let mut at = vec![Expr::zero(); rest.len() + steady.len()];
+        for (&k, v) in rest.iter().zip(&sol.values) {
+            at[k] = v.clone();
+        }
+        let reference = super::linearize::Reference::at(Some(&at)).steady(
+            steady
+                .iter()
+                .zip(rates)
+                .map(|(&k, (_, r))| (k, r.clone()))
+                .collect(),
+        );
+        match super::oscillations::modes_about(scene, &reference, set) {
+            Ok(md) => md.stability,
+            Err(d) => Stability::Undecided(d.message),
+        }
+    } else {
+        Stability::Undecided("neutral: a coordinate is free".into())
+    };
+    let mut e = Equilibrium::new(Position::Exact(sol.values), stability);
+    e.free = sol.free;
+    e.conditions = sol.conditions;
+    Ok(e)
 }
