@@ -11,7 +11,7 @@
 //! f must have no constant part (the reference must be a motion). With
 //! constraints the multipliers that hold the reference are found first,
 //! and the system is reduced to the independent coordinates
-//! ([`super::constrained::reduce`]). Small oscillations (`oscillations.rs`)
+//! (`constrained::reduce`). Small oscillations (`oscillations.rs`)
 //! ask for constant M, C and K; parametric excitation allows them to
 //! change with time.
 
