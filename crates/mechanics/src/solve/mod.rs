@@ -12,6 +12,7 @@ mod linear_stability;
 pub mod linearize;
 pub mod numeric;
 pub mod oscillations;
+pub mod response;
 pub mod system;
 
 pub use crate::algebra::linear;
