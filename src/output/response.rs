@@ -130,7 +130,7 @@ fn single_text(s: &SingleDof) -> String {
         as_unicode(&s.zeta_squared)
     ));
     if let Some(x) = &s.static_deflection {
-        out.push_str(&format!("  static deflection |F|/K = {}\n", as_unicode(x)));
+        out.push_str(&format!("  static deflection F/K = {}\n", as_unicode(x)));
     }
     out.push_str(&format!(
         "  magnification factor D = 1/√((1 − r²)² + (2ζr)²),  D² = {}\n",
@@ -228,7 +228,7 @@ pub struct SingleDofJson {
     pub alpha: String,
     /// ζ².
     pub zeta_squared: String,
-    /// |F|/K, or null when F depends on Ω.
+    /// F/K, or null when F depends on Ω.
     pub static_deflection: Option<String>,
     /// D² in Ω.
     pub magnification_squared: String,

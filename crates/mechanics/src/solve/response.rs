@@ -286,7 +286,8 @@ pub struct SingleDof {
     pub alpha: Expr,
     /// ζ² = α²/ω₀² = c²/(4km).
     pub zeta_squared: Expr,
-    /// The static deflection |F|/k (`None` when F depends on Ω).
+    /// The static deflection F/k (|F|/k for a load with both a cosine and
+    /// a sine part; `None` when F depends on Ω).
     pub static_deflection: Option<Expr>,
     /// The magnification factor squared, D² = 1/((1 − r²)² + (2ζr)²) in Ω.
     pub magnification_squared: Expr,
@@ -310,7 +311,7 @@ pub enum Peak {
         omega_squared: Expr,
         /// D at the peak squared, 1/(4ζ²(1 − ζ²)).
         magnification_squared: Expr,
-        /// The peak amplitude, (|F|/k)/(2ζ·√(1 − ζ²)) (`None` when F
+        /// The peak amplitude, (F/k)/(2ζ·√(1 − ζ²)) (`None` when F
         /// depends on Ω).
         amplitude: Option<Expr>,
         /// The half-power frequencies Ω₁,₂² = ω₀² − 2α² ∓ 2α·√(ω₀² − α²)
@@ -465,13 +466,15 @@ fn single_dof(sys: &ForcedSystem, set: &Values) -> Result<Option<SingleDof>, Dia
     let magnification_squared = k2.div(&den).map_err(math)?;
     let tan_phase = c.mul(&omega).div(&d).map_err(math)?;
     let transmissibility_squared = k2.add(&c.mul(c).mul(&w2)).div(&den).map_err(math)?;
-    let load_squared = sys.load_cos[0]
-        .mul(&sys.load_cos[0])
-        .add(&sys.load_sin[0].mul(&sys.load_sin[0]));
-    let static_deflection = if load_squared.depends_on(w) {
+    let (fc, fs) = (&sys.load_cos[0], &sys.load_sin[0]);
+    // F/k itself where the load is a cosine or a sine, the modulus otherwise
+    let static_deflection = if fc.depends_on(w) || fs.depends_on(w) {
         None
+    } else if fs.is_zero() || fc.is_zero() {
+        Some(fc.add(fs).div(k).map_err(math)?)
     } else {
-        Some(func::sqrt(&load_squared.div(&k2).map_err(math)?).map_err(math)?)
+        let f2 = fc.mul(fc).add(&fs.mul(fs));
+        Some(func::sqrt(&f2.div(&k2).map_err(math)?).map_err(math)?)
     };
     let peak = peak(&w0sq, &alpha, static_deflection.as_ref(), set)?;
     Ok(Some(SingleDof {
@@ -487,7 +490,7 @@ fn single_dof(sys: &ForcedSystem, set: &Values) -> Result<Option<SingleDof>, Dia
 }
 
 /// The resonance peak, the half-power points and the bandwidth from ω₀²
-/// and α (`x_static` = |F|/k).
+/// and α (`x_static` = F/k).
 fn peak(w0sq: &Expr, alpha: &Expr, x_static: Option<&Expr>, set: &Values) -> Result<Peak, Diagnostic> {
     if alpha.is_zero() {
         return Ok(Peak::Undamped);
