@@ -47,6 +47,7 @@ mod parse_props;
 mod print_stability;
 mod properties;
 mod repl;
+mod response;
 mod repl_pty;
 mod scenes;
 mod seed;

@@ -55,13 +55,14 @@ pub struct CompiledResponse {
 
 /// `--over` of `qdot response`: the varied quantity must be Ω.
 pub fn parse_over(s: &str) -> Result<Over, Diagnostic> {
-    let over = Over::parse(s)?;
+    const HINT: &str = "--over Omega=0:3:600: the first and last frequencies, and how many";
+    let over = Over::parse(s).map_err(|d| d.with_hint(HINT))?;
     if over.name != OMEGA && over.name != "Ω" {
         return Err(Diagnostic::global(format!(
             "`--over {s}`: `qdot response` varies the forcing frequency, `Omega`, not `{}`",
             over.name
         ))
-        .with_hint("--over Omega=0:3:600 (FROM:TO:COUNT)")
+        .with_hint(HINT)
         .with_kind(ErrorKind::bad_option("--over")));
     }
     Ok(over)
