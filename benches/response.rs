@@ -70,7 +70,10 @@ fn reference(args: &[&str]) -> Result<String, String> {
         .status()
         .map_err(|e| format!("{}: {e}", python()))?;
     if !has_numpy.success() {
-        return Err(format!("{} has no numpy (set PYTHON to one that has)", python()));
+        return Err(format!(
+            "{} has no numpy (set PYTHON to one that has)",
+            python()
+        ));
     }
     let script = Path::new(ROOT).join("scripts/response_reference.py");
     let out = Command::new(python())
@@ -140,7 +143,9 @@ fn main() {
         sweep_s * 1e3
     );
     match numpy_difference(&src) {
-        Ok(d) => println!("amplitudes against NumPy's at 101 frequencies: largest relative difference {d:.1e}"),
+        Ok(d) => println!(
+            "amplitudes against NumPy's at 101 frequencies: largest relative difference {d:.1e}"
+        ),
         Err(why) => println!("NumPy reference not compared: {why}"),
     }
     match reference(&["--time", &FREQUENCIES.to_string(), "3"])

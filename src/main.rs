@@ -780,7 +780,11 @@ fn response(report: Reporter, src: &str, o: &ResponseArgs, max_terms: usize) -> 
                     .with_hint(format!(
                         "--output {}{}",
                         outputs.join(", --output "),
-                        if o.over.is_some() { "" } else { " (csv with --over)" }
+                        if o.over.is_some() {
+                            ""
+                        } else {
+                            " (csv with --over)"
+                        }
                     ))
                     .with_kind(ErrorKind::bad_option("--output")),
             );

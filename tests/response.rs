@@ -4,11 +4,11 @@
 //! numeric sweep against the exact values, and the errors.
 
 use crate::common::run::qdot;
-use qdot::solve::equilibrium::Values;
 use qdot::cycle::Over;
 use qdot::expr::atom::Atom;
 use qdot::expr::func;
 use qdot::simulate::response::{parse_over, CompiledResponse};
+use qdot::solve::equilibrium::Values;
 use qdot::solve::oscillations as osc;
 use qdot::solve::response::{response, ForcedSystem, Peak, Response, OMEGA};
 use qdot::{Expr, Scene};
@@ -121,7 +121,11 @@ fn one_dof_peak_half_power_points_and_bandwidth_are_the_textbook_closed_forms() 
     let zeta2 = div(&c.mul(&c), &q(4).mul(&k).mul(&m));
     let peak2 = w0sq.mul(&q(1).sub(&zeta2.scale(&qdot::Q::from_i64(2))));
     assert_eq!(omega_squared, &peak2);
-    assert_eq!(condition.as_ref(), Some(&peak2), "ζ² < 1/2 is undecided without values");
+    assert_eq!(
+        condition.as_ref(),
+        Some(&peak2),
+        "ζ² < 1/2 is undecided without values"
+    );
     // D_peak² = 1/(4ζ²(1 − ζ²))
     let d_peak2 = div(&q(1), &q(4).mul(&zeta2).mul(&q(1).sub(&zeta2)));
     assert_eq!(magnification_squared, &d_peak2);
@@ -187,7 +191,11 @@ fn den_hartog_absorber_holds_the_machine_still_at_k2_over_m2() {
     let top = p("k2").sub(&p("m2").mul(&w).mul(&w));
     let top = top.mul(&top).add(&p("c").mul(&p("c")).mul(&w).mul(&w));
     let ratio = r.amplitude_squared[0].div(&top).unwrap();
-    assert!(ratio.num().vars().iter().all(|&v| v != qdot::expr::atom::param("k2")));
+    assert!(ratio
+        .num()
+        .vars()
+        .iter()
+        .all(|&v| v != qdot::expr::atom::param("k2")));
     // undamped and tuned, the machine stands still; the absorber moves
     // against the force: X₂ = −F0/k2
     let set = values("m1=1,m2=0.2,k1=1,k2=0.3,c=0,F0=1");
@@ -209,8 +217,9 @@ fn seed_24_1_response_is_the_steady_state_modes_prints() {
     let sf = osc::standard_form(&md, &Values::new()).unwrap();
     let (pf, x, tan_psi) = osc::damped_steady_state(&md, &sf).unwrap();
     assert_eq!(pf, p("p"));
-    let to_omega: rustc_hash::FxHashMap<_, _> =
-        [(qdot::expr::atom::param("p"), p(OMEGA))].into_iter().collect();
+    let to_omega: rustc_hash::FxHashMap<_, _> = [(qdot::expr::atom::param("p"), p(OMEGA))]
+        .into_iter()
+        .collect();
     let x = x.subs_many(&to_omega).unwrap();
     let tan_psi = tan_psi.subs_many(&to_omega).unwrap();
     assert_eq!(r.amplitude_squared[0], x.mul(&x));
@@ -344,4 +353,42 @@ fn a_sine_load_and_a_rotating_unbalance_read_their_amplitudes() {
         r.amplitude_squared[0].to_string(),
         "e^2*m^2*Omega^4/(m^2*Omega^4 + c^2*Omega^2 - 2*k*m*Omega^2 + k^2)"
     );
+}
+
+/// The book's figure is what `--plot` draws (`QDOT_BLESS=1` rewrites it).
+#[test]
+fn book_figure_is_the_commands_plot() {
+    let dir = std::env::temp_dir().join(format!("qdot-response-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let svg = dir.join("vibration_absorber_response.svg");
+    let (code, _, err) = qdot(&[
+        "response",
+        "examples/vibration_absorber.qd",
+        "--set",
+        "m1=1,m2=0.2,k1=1,k2=0.2,c=0.02,F0=1",
+        "--over",
+        "Omega=0.3:3:1500",
+        "--plot",
+        svg.to_str().unwrap(),
+        "--output",
+        "csv",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let now = std::fs::read_to_string(&svg).unwrap();
+    let book = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/book/src/oscillations/vibration_absorber_response.svg"
+    );
+    if std::env::var_os("QDOT_BLESS").is_some() {
+        std::fs::write(book, &now).unwrap();
+    }
+    assert!(
+        std::fs::read_to_string(book).unwrap() == now,
+        "{book} drifted: QDOT_BLESS=1 cargo test --release --test it response::"
+    );
+    assert!(
+        now.matches("<polyline").count() >= 4,
+        "two amplitudes and two phases"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }

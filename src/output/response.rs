@@ -122,7 +122,8 @@ fn antiresonance_text(r: &Response) -> String {
 }
 
 fn single_text(s: &SingleDof) -> String {
-    let mut out = String::from("\nOne degree of freedom  (ω₀² = K/M, α = C/(2M), ζ = α/ω₀, r = Ω/ω₀)\n");
+    let mut out =
+        String::from("\nOne degree of freedom  (ω₀² = K/M, α = C/(2M), ζ = α/ω₀, r = Ω/ω₀)\n");
     out.push_str(&format!(
         "  ω₀² = {}   α = {}   ζ² = {}\n",
         as_unicode(&s.omega0_squared),
@@ -146,9 +147,7 @@ fn single_text(s: &SingleDof) -> String {
     ));
     match &s.peak {
         Peak::Undamped => out.push_str("  resonance: undamped, D is infinite at Ω = ω₀\n"),
-        Peak::None => out.push_str(
-            "  resonance: no peak (ζ² ≥ 1/2): D falls from 1 at Ω = 0\n",
-        ),
+        Peak::None => out.push_str("  resonance: no peak (ζ² ≥ 1/2): D falls from 1 at Ω = 0\n"),
         Peak::At {
             omega_squared,
             magnification_squared,
@@ -172,7 +171,9 @@ fn single_text(s: &SingleDof) -> String {
             if let Some(a) = amplitude {
                 out.push_str(&format!("  peak amplitude X_peak = {}\n", as_unicode(a)));
             }
-            out.push_str("  half-power frequencies (D = D_peak/√2) Ω₁,₂² = ω₀²·(1 − 2ζ² ∓ 2ζ·√(1 − ζ²))\n");
+            out.push_str(
+                "  half-power frequencies (D = D_peak/√2) Ω₁,₂² = ω₀²·(1 − 2ζ² ∓ 2ζ·√(1 − ζ²))\n",
+            );
             match &half_power.0 {
                 Some(l) => out.push_str(&format!("    Ω₁² = {}\n", as_unicode(l))),
                 None => out.push_str("    Ω₁: none (Ω₁² ≤ 0)\n"),
@@ -267,7 +268,11 @@ impl ResponseJson {
             real: all(&r.real),
             imag: all(&r.imag),
             amplitude_squared: all(&r.amplitude_squared),
-            tan_phase: r.tan_phase.iter().map(|t| t.as_ref().map(as_input)).collect(),
+            tan_phase: r
+                .tan_phase
+                .iter()
+                .map(|t| t.as_ref().map(as_input))
+                .collect(),
             antiresonances: r.antiresonances.iter().map(|a| all(a)).collect(),
             antiresonance_note: r.antiresonance_note.clone(),
             single: r.single.as_ref().map(SingleDofJson::new),

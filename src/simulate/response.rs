@@ -10,6 +10,7 @@
 //! of every coordinate, the undamped natural frequencies and the sweep's
 //! resonance peaks (local maxima of |X_j| on the grid).
 
+use super::cycle::short;
 use crate::algebra::sign::Values;
 use crate::cycle::Over;
 use crate::diag::{Diagnostic, ErrorKind};
@@ -19,7 +20,6 @@ use crate::poly::Var;
 use crate::solve::response::{natural_frequencies, ForcedSystem, OMEGA};
 use qdot_compile::compile::{compile_with, Program};
 use rustc_hash::FxHashMap;
-use super::cycle::short;
 
 /// The swept frequency response.
 #[derive(Clone, Debug)]
@@ -106,7 +106,14 @@ impl CompiledResponse {
                 missing.join(", "),
                 if missing.len() == 1 { "has" } else { "have" }
             ))
-            .with_hint(format!("give them with --set {}", missing.iter().map(|m| format!("{m}=…")).collect::<Vec<_>>().join(",")))
+            .with_hint(format!(
+                "give them with --set {}",
+                missing
+                    .iter()
+                    .map(|m| format!("{m}=…"))
+                    .collect::<Vec<_>>()
+                    .join(",")
+            ))
             .with_kind(ErrorKind::bad_option("--set")));
         }
         let program = compile_with(&outputs, &[omega], &params).map_err(|e| {
@@ -167,7 +174,8 @@ impl CompiledResponse {
         }
         let peaks = (0..n)
             .map(|j| {
-                let col: Vec<Option<f64>> = amplitude.iter().map(|r: &Vec<Option<f64>>| r[j]).collect();
+                let col: Vec<Option<f64>> =
+                    amplitude.iter().map(|r: &Vec<Option<f64>>| r[j]).collect();
                 local_maxima(&omega, &col)
             })
             .collect();
@@ -345,7 +353,10 @@ pub fn json(t: &ResponseTable) -> String {
         .collect();
     let mut peaks = serde_json::Map::new();
     for (q, p) in t.coordinates.iter().zip(&t.peaks) {
-        peaks.insert(q.clone(), serde_json::json!(p.iter().map(|(w, a)| [*w, *a]).collect::<Vec<_>>()));
+        peaks.insert(
+            q.clone(),
+            serde_json::json!(p.iter().map(|(w, a)| [*w, *a]).collect::<Vec<_>>()),
+        );
     }
     let wire = ResponseSweepJson {
         coordinates: &t.coordinates,
@@ -395,8 +406,8 @@ pub fn text(t: &ResponseTable) -> String {
     }
     let mut header = vec!["Ω".to_string()];
     for q in &t.coordinates {
-        header.push(format!("|X_{}|", pretty(q)));
-        header.push(format!("φ_{} (deg)", pretty(q)));
+        header.push(format!("|{}|", pretty(q)));
+        header.push(format!("φ({}) deg", pretty(q)));
     }
     let mut cells = vec![header];
     for (k, w) in t.omega.iter().enumerate() {
@@ -408,7 +419,13 @@ pub fn text(t: &ResponseTable) -> String {
         cells.push(line);
     }
     let widths: Vec<usize> = (0..cells[0].len())
-        .map(|k| cells.iter().map(|r| r[k].chars().count()).max().unwrap_or(0))
+        .map(|k| {
+            cells
+                .iter()
+                .map(|r| r[k].chars().count())
+                .max()
+                .unwrap_or(0)
+        })
         .collect();
     for r in &cells {
         let padded: Vec<String> = r

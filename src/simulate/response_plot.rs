@@ -2,7 +2,9 @@
 //! SVG figure (plotters).
 //!
 //! Two panels against Ω on a logarithmic axis: every coordinate's
-//! amplitude |X_j| (logarithmic too) and its phase φ_j in degrees; each
+//! amplitude |X_j| (logarithmic too) and its phase φ_j in degrees (made
+//! continuous along each curve: no jumps of 360° where the principal value
+//! wraps); each
 //! undamped natural frequency is a dashed grey vertical line in both. Rows
 //! with Ω ≤ 0, a zero amplitude or a singular matrix break the curves.
 
@@ -12,11 +14,7 @@ use plotters::prelude::*;
 
 /// The runs of consecutive finite points with positive x (and positive y
 /// when `log_y`).
-fn runs(
-    x: &[f64],
-    y: impl Iterator<Item = Option<f64>>,
-    log_y: bool,
-) -> Vec<Vec<(f64, f64)>> {
+fn runs(x: &[f64], y: impl Iterator<Item = Option<f64>>, log_y: bool) -> Vec<Vec<(f64, f64)>> {
     let mut out: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
     for (&x, y) in x.iter().zip(y) {
         match y {
@@ -30,6 +28,28 @@ fn runs(
     }
     out.retain(|r| !r.is_empty());
     out
+}
+
+/// A run of phases made continuous: a jump of more than 180° between
+/// neighbours is the principal value wrapping, and is taken out.
+fn unwrap_degrees(run: &mut [(f64, f64)]) {
+    let mut shift = 0.0;
+    for k in 1..run.len() {
+        let step = run[k].1 + shift - run[k - 1].1;
+        if step > 180.0 {
+            shift -= 360.0;
+        } else if step < -180.0 {
+            shift += 360.0;
+        }
+        run[k].1 += shift;
+    }
+}
+
+/// A frequency on the logarithmic axis: three decimals at most, no
+/// trailing zeros (`0.5`, `1`, `2.5`).
+fn frequency_label(v: f64) -> String {
+    let s = format!("{v:.3}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
 /// The least and largest of `v`, or `None` when it is empty.
@@ -48,11 +68,13 @@ pub fn svg(t: &ResponseTable, title: &str) -> Result<String, PlotError> {
         .collect();
     let phase: Vec<Vec<Vec<(f64, f64)>>> = (0..n)
         .map(|j| {
-            runs(
+            let mut rs = runs(
                 &t.omega,
                 t.phase.iter().map(|r| r[j].map(f64::to_degrees)),
                 false,
-            )
+            );
+            rs.iter_mut().for_each(|r| unwrap_degrees(r));
+            rs
         })
         .collect();
     let none = || PlotError {
@@ -74,7 +96,10 @@ pub fn svg(t: &ResponseTable, title: &str) -> Result<String, PlotError> {
         root.fill(&WHITE).map_err(PlotError::drawing)?;
         let areas = root.split_evenly((2, 1));
         let mut chart = ChartBuilder::on(&areas[0])
-            .caption(format!("{title} — amplitude |X| against Ω"), ("sans-serif", 18))
+            .caption(
+                format!("{title} — amplitude |X| against Ω"),
+                ("sans-serif", 18),
+            )
             .margin(12)
             .x_label_area_size(30)
             .y_label_area_size(70)
@@ -83,7 +108,7 @@ pub fn svg(t: &ResponseTable, title: &str) -> Result<String, PlotError> {
         chart
             .configure_mesh()
             .x_desc("Ω")
-            .x_label_formatter(&|v| format!("{v:.3}"))
+            .x_label_formatter(&|v| frequency_label(*v))
             .y_label_formatter(&|v| format!("{v:.1e}"))
             .draw()
             .map_err(PlotError::drawing)?;
@@ -117,7 +142,8 @@ pub fn svg(t: &ResponseTable, title: &str) -> Result<String, PlotError> {
             .draw()
             .map_err(PlotError::drawing)?;
 
-        let (p0, p1) = (-185.0, 185.0);
+        let (p0, p1) = span(phase.iter().flatten().flatten().map(|p| p.1)).unwrap_or((0.0, 180.0));
+        let (p0, p1) = (p0 - 10.0, p1 + 10.0);
         let mut chart = ChartBuilder::on(&areas[1])
             .caption("phase φ (degrees) against Ω", ("sans-serif", 18))
             .margin(12)
@@ -128,7 +154,7 @@ pub fn svg(t: &ResponseTable, title: &str) -> Result<String, PlotError> {
         chart
             .configure_mesh()
             .x_desc("Ω")
-            .x_label_formatter(&|v| format!("{v:.3}"))
+            .x_label_formatter(&|v| frequency_label(*v))
             .y_label_formatter(&|v| tick_label(*v, p1 - p0))
             .draw()
             .map_err(PlotError::drawing)?;

@@ -398,7 +398,9 @@ fn antiresonances(
     let n = sys.coordinates.len();
     let none = |why: &str| Ok((vec![Vec::new(); n], Some(why.to_string())));
     if sys.gyroscopic() {
-        return none("C has gyroscopic terms, which the undamped system keeps: no antiresonances computed");
+        return none(
+            "C has gyroscopic terms, which the undamped system keeps: no antiresonances computed",
+        );
     }
     if sys.depends_on_omega() {
         return none("the system depends on Ω beyond K − Ω²·M: no antiresonances computed");
@@ -409,9 +411,9 @@ fn antiresonances(
     ) {
         (_, true) => &sys.load_cos,
         (true, false) => &sys.load_sin,
-        (false, false) => {
-            return none("the load has both cos(Ω·t) and sin(Ω·t) parts out of step: no antiresonances computed")
-        }
+        (false, false) => return none(
+            "the load has both cos(Ω·t) and sin(Ω·t) parts out of step: no antiresonances computed",
+        ),
     };
     let lv = atom::unknown(super::oscillations::LAMBDA);
     let lambda = Expr::var(lv);
@@ -491,7 +493,12 @@ fn single_dof(sys: &ForcedSystem, set: &Values) -> Result<Option<SingleDof>, Dia
 
 /// The resonance peak, the half-power points and the bandwidth from ω₀²
 /// and α (`x_static` = F/k).
-fn peak(w0sq: &Expr, alpha: &Expr, x_static: Option<&Expr>, set: &Values) -> Result<Peak, Diagnostic> {
+fn peak(
+    w0sq: &Expr,
+    alpha: &Expr,
+    x_static: Option<&Expr>,
+    set: &Values,
+) -> Result<Peak, Diagnostic> {
     if alpha.is_zero() {
         return Ok(Peak::Undamped);
     }
