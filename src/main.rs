@@ -357,12 +357,7 @@ fn main() -> ExitCode {
             let report = Reporter::new(&args.file, args.output == "json");
             return on_scene(report, cli.max_terms, |src| cycle(report, src, args));
         }
-        Command::Response(args) => {
-            let report = Reporter::new(&args.file, args.output == "json");
-            return on_scene(report, cli.max_terms, |src| {
-                response(report, src, args, cli.max_terms)
-            });
-        }
+        Command::Response(args) => return response(args, cli.max_terms),
         Command::Codegen {
             file,
             lang,
@@ -766,7 +761,15 @@ struct ResponseArgs {
     plot: Option<String>,
 }
 
-fn response(report: Reporter, src: &str, o: &ResponseArgs, max_terms: usize) -> ExitCode {
+fn response(o: &ResponseArgs, max_terms: usize) -> ExitCode {
+    let report = Reporter::new(&o.file, o.output == "json");
+    on_scene(report, max_terms, |src| {
+        response_of(report, src, o, max_terms)
+    })
+}
+
+/// `qdot response` on the scene text `src`.
+fn response_of(report: Reporter, src: &str, o: &ResponseArgs, max_terms: usize) -> ExitCode {
     use qdot::simulate::response as sweep;
     let outputs: &[&str] = if o.over.is_some() {
         &["csv", "json", "text"]
