@@ -392,3 +392,38 @@ fn book_figure_is_the_commands_plot() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A particle on a spring in a frame turning at W: C = 2mW·[[0, −1], [1, 0]]
+/// is gyroscopic, and the receptance takes it as it is; the frame's
+/// natural frequencies are √(k/m) ± W.
+#[test]
+fn a_gyroscopic_system_is_solved_with_its_skew_c() {
+    let src = "coordinates x, y\nparameters m, k, W, F0, p\nkinetic E = 1/2*m*((x' - W*y)^2 + (y' + W*x)^2)\npotential V = 1/2*k*(x^2 + y^2)\nwork L = F0*cos(p*t)*x\n";
+    let scene = Scene::parse(src).unwrap();
+    let sys = ForcedSystem::of_scene(&scene, None).unwrap();
+    assert!(sys.gyroscopic());
+    let r = response(sys.clone(), &Values::new()).unwrap();
+    assert_eq!(
+        r.antiresonance_note.as_deref(),
+        Some("C has gyroscopic terms, which the undamped system keeps: no antiresonances computed")
+    );
+    let set = values("m=1,k=4,W=0.5,F0=1");
+    let t = CompiledResponse::new(&sys, &set).unwrap().run(&Over {
+        name: OMEGA.into(),
+        from: 0.7,
+        to: 3.1,
+        count: 3,
+    });
+    let w = &t.natural_frequencies;
+    assert!(
+        (w[0] - 1.5).abs() < 1e-12 && (w[1] - 2.5).abs() < 1e-12,
+        "{w:?}"
+    );
+    for (k, omega) in [0.7, 1.9, 3.1].into_iter().enumerate() {
+        for j in 0..2 {
+            let exact = at(&r.amplitude_squared[j], &set, omega).sqrt();
+            let swept = t.amplitude[k][j].unwrap();
+            assert!((swept - exact).abs() <= 1e-13 * exact, "Ω = {omega}, {j}");
+        }
+    }
+}
