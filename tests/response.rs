@@ -313,6 +313,16 @@ fn bad_input_is_refused_with_a_reason() {
         assert_eq!(err, expected, "{args:?}");
     }
     assert!(parse_over("Omega=0:3:0").is_err());
+    // as JSON, a scene without a load has nothing to solve
+    let (code, _, err) = qdot(&[
+        "response",
+        "examples/four_mass_chain.qd",
+        "--output",
+        "json",
+    ]);
+    assert_eq!(code, 1);
+    let v: serde_json::Value = serde_json::from_str(&err).unwrap();
+    assert_eq!(v["error"]["kind"], "nothing_to_solve");
 }
 
 #[test]

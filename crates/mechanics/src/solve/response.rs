@@ -200,7 +200,8 @@ fn harmonic(forcing: &[Expr]) -> Result<(Expr, Vec<Expr>, Vec<Expr>), Diagnostic
             return Err(Diagnostic::global(
                 "the scene has no harmonic load: the frequency response needs a force F·cos(p·t) (or sin) on the system",
             )
-            .with_hint(LOAD_HINT))
+            .with_hint(LOAD_HINT)
+            .with_kind(crate::diag::ErrorKind::NothingToSolve))
         }
         [a, b, ..] => {
             return Err(Diagnostic::global(format!(
