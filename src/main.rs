@@ -190,6 +190,12 @@ enum Command {
     /// every joint's reaction and every drive's force, with Coulomb
     /// friction by iteration. One row per position.
     Cycle(CycleArgs),
+    /// The frequency response to the scene's harmonic load at a free
+    /// frequency Omega: the exact receptance (K − Ω²M + iΩC)⁻¹·F, amplitude
+    /// and phase, antiresonances, and for one degree of freedom the
+    /// resonance peak, half-power bandwidth and transmissibility; with
+    /// --over, amplitude and phase swept numerically.
+    Response(ResponseArgs),
     /// Source code for the equations of motion (C, Rust, Python or Julia):
     /// the right-hand side of y' = F(t, y), or M and f, and the energy when
     /// conserved; shared subexpressions computed once, the parameters as
@@ -388,6 +394,7 @@ fn main() -> ExitCode {
             let report = Reporter::new(&args.file, args.output == "json");
             return on_scene(report, cli.max_terms, |src| cycle(report, src, args));
         }
+        Command::Response(args) => return response(args, cli.max_terms),
         Command::Codegen {
             file,
             lang,
@@ -759,6 +766,110 @@ fn cycle(report: Reporter, src: &str, o: &CycleArgs) -> ExitCode {
         "json" => render::json(table),
         "text" => render::text(table, run.degrees),
         _ => render::csv(table),
+    });
+    ExitCode::SUCCESS
+}
+
+/// The options of `qdot response`.
+#[derive(clap::Args)]
+struct ResponseArgs {
+    /// The scene file (.qd).
+    file: String,
+    /// The equilibrium to linearize about (default: every q = 0), e.g. th=pi
+    #[arg(long)]
+    at: Option<String>,
+    /// Parameter values: for sign decisions, and every parameter's value
+    /// with --over: m=1,k=4,c=0.2,F0=1
+    #[arg(long)]
+    set: Option<String>,
+    /// Sweep the forcing frequency numerically: Omega=FROM:TO:COUNT
+    #[arg(long)]
+    over: Option<String>,
+    /// text or json; with --over also csv (every digit)
+    #[arg(long, default_value = "text")]
+    output: String,
+    /// With --over: draw amplitude and phase against Ω (log-log) to this
+    /// SVG file, the natural frequencies marked.
+    #[arg(long, requires = "over")]
+    plot: Option<String>,
+}
+
+fn response(o: &ResponseArgs, max_terms: usize) -> ExitCode {
+    let report = Reporter::new(&o.file, o.output == "json");
+    on_scene(report, max_terms, |src| {
+        response_of(report, src, o, max_terms)
+    })
+}
+
+/// `qdot response` on the scene text `src`.
+fn response_of(report: Reporter, src: &str, o: &ResponseArgs, max_terms: usize) -> ExitCode {
+    use qdot::simulate::response as sweep;
+    let outputs: &[&str] = if o.over.is_some() {
+        &["csv", "json", "text"]
+    } else {
+        &["json", "text"]
+    };
+    let options = (|| -> Result<_, qdot::Diagnostic> {
+        if !outputs.contains(&o.output.as_str()) {
+            return Err(
+                qdot::Diagnostic::global(format!("unknown output `{}`", o.output))
+                    .with_hint(format!(
+                        "--output {}{}",
+                        outputs.join(", --output "),
+                        if o.over.is_some() {
+                            ""
+                        } else {
+                            " (csv with --over)"
+                        }
+                    ))
+                    .with_kind(ErrorKind::bad_option("--output")),
+            );
+        }
+        let set = o
+            .set
+            .as_deref()
+            .map(output::parse_set_any_sign)
+            .transpose()?
+            .unwrap_or_default();
+        let over = o.over.as_deref().map(sweep::parse_over).transpose()?;
+        Ok((set, over))
+    })();
+    let (set, over) = match options {
+        Ok(x) => x,
+        Err(d) => return report.fail(&d, ""),
+    };
+    let Some(over) = over else {
+        return match output::response::response_output(
+            src,
+            o.at.as_deref(),
+            &set,
+            max_terms,
+            o.output == "json",
+        ) {
+            Ok(text) => {
+                emit(&text);
+                ExitCode::SUCCESS
+            }
+            Err(d) => report.fail(&d, src),
+        };
+    };
+    let table = match sweep::sweep(src, o.at.as_deref(), &set, &over) {
+        Ok(t) => t,
+        Err(d) => return report.fail(&d, src),
+    };
+    if let Some(path) = &o.plot {
+        let written = qdot::simulate::response_plot::svg(&table, &base_name(&o.file))
+            .map_err(|e| e.to_string())
+            .and_then(|svg| std::fs::write(path, svg).map_err(|e| e.to_string()));
+        if let Err(e) = written {
+            let d = qdot::Diagnostic::global(format!("cannot write the plot `{path}`: {e}"));
+            return report.fail(&d, "");
+        }
+    }
+    emit(&match o.output.as_str() {
+        "json" => sweep::json(&table),
+        "csv" => sweep::csv(&table),
+        _ => sweep::text(&table),
     });
     ExitCode::SUCCESS
 }

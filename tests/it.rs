@@ -48,6 +48,7 @@ mod print_stability;
 mod properties;
 mod repl;
 mod repl_pty;
+mod response;
 mod scenes;
 mod seed;
 mod simulate_cli;

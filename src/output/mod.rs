@@ -22,6 +22,7 @@ use crate::solve::equilibrium::{self, Equilibria, Position, Values};
 mod dimensions;
 pub mod latex;
 mod modes;
+pub mod response;
 mod text;
 pub mod wire;
 

@@ -176,7 +176,7 @@ pub fn text(table: &CycleTable, degrees: bool) -> String {
 
 /// 6 significant digits, without trailing zeros; 0 for what rounds to 0
 /// at 1e-12 of the unit.
-fn short(x: f64) -> String {
+pub(crate) fn short(x: f64) -> String {
     if x.abs() < 1e-12 {
         return "0".into();
     }

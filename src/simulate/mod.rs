@@ -21,5 +21,8 @@ pub mod plot;
 pub mod problems;
 #[cfg(feature = "cli")]
 pub mod progress;
+pub mod response;
+#[cfg(feature = "drawing")]
+pub mod response_plot;
 pub mod run;
 pub mod sweep;

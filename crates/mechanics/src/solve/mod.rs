@@ -12,6 +12,7 @@ mod linear_stability;
 pub mod linearize;
 pub mod numeric;
 pub mod oscillations;
+pub mod response;
 pub mod steady;
 pub mod system;
 
