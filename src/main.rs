@@ -211,6 +211,11 @@ enum Command {
     /// every joint's reaction and every drive's force, with Coulomb
     /// friction by iteration. One row per position.
     Cycle(CycleArgs),
+    /// Parametric excitation: the scene linearized about a motion
+    /// (--at), its periodic coefficients' monodromy matrix over one
+    /// period, the Floquet multipliers and the stability verdict; over one
+    /// or two parameters (--over), a table or the stability chart.
+    Floquet(FloquetArgs),
     /// Source code for the equations of motion (C, Rust, Python or Julia):
     /// the right-hand side of y' = F(t, y), or M and f, and the energy when
     /// conserved; shared subexpressions computed once, the parameters as
@@ -350,6 +355,10 @@ fn main() -> ExitCode {
         Command::Cycle(args) => {
             let report = Reporter::new(&args.file, args.output == "json");
             return on_scene(report, cli.max_terms, |src| cycle(report, src, args));
+        }
+        Command::Floquet(args) => {
+            let report = Reporter::new(&args.file, args.output == "json");
+            return on_scene(report, cli.max_terms, |src| floquet(report, src, args));
         }
         Command::Codegen {
             file,
@@ -726,6 +735,94 @@ fn cycle(report: Reporter, src: &str, o: &CycleArgs) -> ExitCode {
         "json" => render::json(table),
         "text" => render::text(table, run.degrees),
         _ => render::csv(table),
+    });
+    ExitCode::SUCCESS
+}
+
+/// The options of `qdot floquet`.
+#[derive(clap::Args)]
+struct FloquetArgs {
+    /// The scene file (.qd).
+    file: String,
+    /// The reference position, a motion for all t (default: every q = 0),
+    /// e.g. theta=pi
+    #[arg(long)]
+    at: Option<String>,
+    /// Every parameter's value (the --over ones may be left out): g=9.81,l=1
+    #[arg(long)]
+    set: Option<String>,
+    /// The definition of a given function of time, once per function:
+    /// --function "s=a*cos(w*t)"
+    #[arg(long = "function")]
+    function: Vec<String>,
+    /// The period of the coefficients, when it is not found from their
+    /// time dependence.
+    #[arg(long)]
+    period: Option<f64>,
+    /// One or two parameters varied over a grid: delta=-1:3:81,eps=0:2:41
+    #[arg(long)]
+    over: Option<String>,
+    /// text, csv or json
+    #[arg(long, default_value = "text")]
+    output: String,
+    /// With --over: also draw to this SVG file the largest |μ| (one
+    /// parameter) or the stability chart (two).
+    #[arg(long)]
+    plot: Option<String>,
+}
+
+fn floquet(report: Reporter, src: &str, o: &FloquetArgs) -> ExitCode {
+    use qdot::simulate::floquet as render;
+    let req = (|| -> Result<render::Request, qdot::Diagnostic> {
+        if !["csv", "json", "text"].contains(&o.output.as_str()) {
+            return Err(
+                qdot::Diagnostic::global(format!("unknown output `{}`", o.output))
+                    .with_hint("--output text, --output csv or --output json")
+                    .with_kind(ErrorKind::bad_option("--output")),
+            );
+        }
+        Ok(render::Request {
+            floquet: qdot::floquet::FloquetRequest {
+                at: o.at.clone(),
+                functions: o.function.clone(),
+                period: o.period,
+            },
+            set: o
+                .set
+                .as_deref()
+                .map(output::parse_set_any_sign)
+                .transpose()?
+                .unwrap_or_default(),
+            over: o
+                .over
+                .as_deref()
+                .map(render::parse_over)
+                .transpose()?
+                .unwrap_or_default(),
+        })
+    })();
+    let req = match req {
+        Ok(r) => r,
+        Err(d) => return report.fail(&d, ""),
+    };
+    let run = match render::run(src, &req) {
+        Ok(r) => r,
+        Err(d) => return report.fail(&d, src),
+    };
+    if let Some(path) = &o.plot {
+        let drawn = qdot::drawing::floquet::svg(&run, &base_name(&o.file))
+            .map_err(|e| format!("cannot draw the chart: {e}"))
+            .and_then(|svg| {
+                std::fs::write(path, svg).map_err(|e| format!("cannot write `{path}`: {e}"))
+            });
+        if let Err(e) = drawn {
+            return report.fail(&qdot::Diagnostic::global(e), "");
+        }
+    }
+    emit(&match o.output.as_str() {
+        "json" => render::json(&run),
+        "csv" => render::csv(&run),
+        _ => render::text(&run),
     });
     ExitCode::SUCCESS
 }
