@@ -781,6 +781,13 @@ fn floquet(report: Reporter, src: &str, o: &FloquetArgs) -> ExitCode {
                     .with_kind(ErrorKind::bad_option("--output")),
             );
         }
+        if o.plot.is_some() && o.over.is_none() {
+            return Err(qdot::Diagnostic::global(
+                "--plot draws the stability over the --over parameters",
+            )
+            .with_hint("add --over NAME=FROM:TO:COUNT: one parameter draws the largest |μ|, two the stability chart")
+            .with_kind(ErrorKind::bad_option("--plot")));
+        }
         Ok(render::Request {
             floquet: qdot::floquet::FloquetRequest {
                 at: o.at.clone(),

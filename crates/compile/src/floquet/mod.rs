@@ -92,6 +92,7 @@ pub fn prepare(scene: &Scene, req: &FloquetRequest) -> Result<Prepared, Diagnost
     }
     let defs = crate::given::definitions(scene, &req.functions, "for its Floquet multipliers")?;
     let lin = crate::algebra::assume::assuming(&scene.assumptions, || {
+        check_motion(scene, at.as_deref(), &defs)?;
         linearize(scene, &Reference::at(at.as_deref()).time_varying())
     })?;
     let define = |rows: &[Vec<Expr>]| -> Result<Vec<Vec<Expr>>, Diagnostic> {
@@ -159,13 +160,49 @@ pub fn prepare(scene: &Scene, req: &FloquetRequest) -> Result<Prepared, Diagnost
     })
 }
 
+/// An error unless the reference `at` (every q = 0 when `None`) is a
+/// motion of the scene for all t, its given functions defined by `defs`:
+/// the forces left there must vanish. (With constraints the multipliers
+/// that hold the reference come first: [`linearize`] checks their constant
+/// part, [`prepare`] the rest.)
+fn check_motion(
+    scene: &Scene,
+    at: Option<&[Expr]>,
+    defs: &FxHashMap<&str, Expr>,
+) -> Result<(), Diagnostic> {
+    if !scene.constraints.is_empty() {
+        return Ok(());
+    }
+    let l = scene.lagrange()?;
+    let zero = vec![Expr::zero(); l.coordinates.len()];
+    let q0 = at.unwrap_or(&zero);
+    let mut point: FxHashMap<Var, Expr> = FxHashMap::default();
+    for (c, v) in l.coordinates.iter().zip(q0) {
+        point.insert(atom::coord(c, 0), v.clone());
+        point.insert(atom::coord(c, 1), Expr::zero());
+        point.insert(atom::coord(c, 2), Expr::zero());
+    }
+    for (k, eq) in l.equations.iter().enumerate() {
+        let f = eq
+            .rhs
+            .sub(&eq.lhs)
+            .subs_many(&point)
+            .map_err(|m| Diagnostic::global(m.message))?;
+        let f = crate::given::substitute(&f, defs)?;
+        if !f.is_zero() {
+            return Err(not_a_motion(&l.coordinates, q0, k, &f));
+        }
+    }
+    Ok(())
+}
+
 /// The error for a reference that is not a motion: the force left on
 /// coordinate `k` changes with time.
 fn not_a_motion(names: &[String], at: &[Expr], k: usize, f: &Expr) -> Diagnostic {
     let q0: Vec<String> = names
         .iter()
         .zip(at)
-        .map(|(c, v)| format!("{c} = {}", crate::expr::print::input(v)))
+        .map(|(c, v)| format!("{c} = {}", crate::expr::print::unicode(v)))
         .collect();
     Diagnostic::global(format!(
         "{} is not a motion of the scene: the force on `{}` there is {} ≠ 0",

@@ -159,7 +159,7 @@ fn verdict(mu: &[Multiplier], max_abs: f64, e: f64, lagrangian: bool) -> (Verdic
     if lagrangian && on_circle && closest > 2.0 * e {
         return (
             Verdict::Stable,
-            "every multiplier on the unit circle, and no two alike: a Lagrangian system's stay there"
+            "every multiplier simple and on the unit circle, where a Lagrangian system keeps them"
                 .to_string(),
         );
     }
