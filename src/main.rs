@@ -356,10 +356,7 @@ fn main() -> ExitCode {
             let report = Reporter::new(&args.file, args.output == "json");
             return on_scene(report, cli.max_terms, |src| cycle(report, src, args));
         }
-        Command::Floquet(args) => {
-            let report = Reporter::new(&args.file, args.output == "json");
-            return on_scene(report, cli.max_terms, |src| floquet(report, src, args));
-        }
+        Command::Floquet(args) => return floquet(args, cli.max_terms),
         Command::Codegen {
             file,
             lang,
@@ -771,7 +768,13 @@ struct FloquetArgs {
     plot: Option<String>,
 }
 
-fn floquet(report: Reporter, src: &str, o: &FloquetArgs) -> ExitCode {
+/// `qdot floquet`, under the work budget `--max-terms`.
+fn floquet(o: &FloquetArgs, max_terms: usize) -> ExitCode {
+    let report = Reporter::new(&o.file, o.output == "json");
+    on_scene(report, max_terms, |src| floquet_on(report, src, o))
+}
+
+fn floquet_on(report: Reporter, src: &str, o: &FloquetArgs) -> ExitCode {
     use qdot::simulate::floquet as render;
     let req = (|| -> Result<render::Request, qdot::Diagnostic> {
         if !["csv", "json", "text"].contains(&o.output.as_str()) {

@@ -37,16 +37,18 @@ fn half_step(from: f64, to: f64, count: usize) -> f64 {
 /// Two parameters: a cell per point, coloured by the verdict.
 fn chart(run: &FloquetRun, title: &str) -> Result<String, PlotError> {
     let (a, b) = (&run.axes[0], &run.axes[1]);
-    let (ha, hb) = (half_step(a.from, a.to, a.count), half_step(b.from, b.to, b.count));
+    let (ha, hb) = (
+        half_step(a.from, a.to, a.count),
+        half_step(b.from, b.to, b.count),
+    );
     let (x0, x1) = (a.from.min(a.to) - ha, a.from.max(a.to) + ha);
     let (y0, y1) = (b.from.min(b.to) - hb, b.from.max(b.to) + hb);
     let mut out = String::new();
     {
         let root = SVGBackend::with_string(&mut out, (800, 640)).into_drawing_area();
         root.fill(&WHITE).map_err(PlotError::drawing)?;
-        let caption = format!(
-            "{title}: stability chart (red: unstable, pale: stable, grey: undecided)"
-        );
+        let caption =
+            format!("{title}: stability chart (red: unstable, pale: stable, grey: undecided)");
         let mut c = ChartBuilder::on(&root)
             .caption(caption, ("sans-serif", 18))
             .margin(14)
@@ -101,7 +103,10 @@ fn curve(run: &FloquetRun, title: &str) -> Result<String, PlotError> {
         .filter_map(|(v, f)| f.as_ref().ok().map(|f| (v[0], f.max_abs)))
         .filter(|(_, y)| y.is_finite())
         .collect();
-    let (x0, x1) = (a.from.min(a.to), a.from.max(a.to).max(a.from.min(a.to) + 1e-12));
+    let (x0, x1) = (
+        a.from.min(a.to),
+        a.from.max(a.to).max(a.from.min(a.to) + 1e-12),
+    );
     let hi = points.iter().fold(1.0f64, |m, p| m.max(p.1)) * 1.05;
     let lo = points.iter().fold(1.0f64, |m, p| m.min(p.1)).min(0.95);
     let mut out = String::new();

@@ -3,10 +3,10 @@
 //! set of parameter values or over a grid of one or two (`--over`, on
 //! every core), rendered as text, CSV or JSON.
 
-use crate::floquet::{monodromy::certified, prepare, Floquet, FloquetRequest, Prepared};
 use crate::algebra::sign::Values;
 use crate::diag::{Diagnostic, ErrorKind};
 use crate::expr::Expr;
+use crate::floquet::{monodromy::certified, prepare, Floquet, FloquetRequest, Prepared};
 use crate::poly::Var;
 use crate::scene::Scene;
 use rayon::prelude::*;
@@ -200,10 +200,7 @@ fn reference(p: &Prepared) -> String {
 /// The report of one point, or the chart or table of a grid.
 pub fn text(r: &FloquetRun) -> String {
     let p = &r.prepared;
-    let mut out = format!(
-        "Linearized about {}  (M·q̈ + C·q̇ + K·q = 0)\n",
-        reference(p)
-    );
+    let mut out = format!("Linearized about {}  (M·q̈ + C·q̇ + K·q = 0)\n", reference(p));
     for (c, e) in p.coordinates.iter().zip(equations(p)) {
         out.push_str(&format!(
             "  {}  {} = 0\n",
@@ -264,10 +261,7 @@ fn point_text(f: &Floquet, n: usize) -> String {
             certified(m.abs(), e)
         ));
     }
-    out.push_str(&format!(
-        "  tr Φ(T) = {}\n",
-        signed(f.trace, d as f64 * e)
-    ));
+    out.push_str(&format!("  tr Φ(T) = {}\n", signed(f.trace, d as f64 * e)));
     out.push_str(&format!("Verdict: {} ({})\n", f.verdict.name(), f.note));
     out
 }
@@ -362,7 +356,15 @@ fn full(x: f64) -> String {
 pub fn csv(r: &FloquetRun) -> String {
     let mut header: Vec<String> = r.axes.iter().map(|a| a.name.clone()).collect();
     header.extend(
-        ["period", "max_abs_multiplier", "trace", "error", "verdict", "note"].map(String::from),
+        [
+            "period",
+            "max_abs_multiplier",
+            "trace",
+            "error",
+            "verdict",
+            "note",
+        ]
+        .map(String::from),
     );
     let mut out = header.join(",");
     out.push('\n');

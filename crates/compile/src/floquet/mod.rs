@@ -2,7 +2,7 @@
 //! equations have periodic coefficients, by Floquet theory.
 //!
 //! About a reference q0 that is a motion for all t, the scene's equations
-//! linearize to M(t)·q̈ + C(t)·q̇ + K(t)·q = 0 ([`crate::solve::linearize`],
+//! linearize to M(t)·q̈ + C(t)·q̇ + K(t)·q = 0 ([`qdot_mechanics::solve::linearize`],
 //! exact). With x = (q, q̇) that is x' = A(t)·x, A = [[0, I], [−M⁻¹K,
 //! −M⁻¹C]], of period T. The monodromy matrix Φ(T) (the solution matrix
 //! after one period, Φ(0) = I) decides the stability: its eigenvalues, the
@@ -97,7 +97,11 @@ pub fn prepare(scene: &Scene, req: &FloquetRequest) -> Result<Prepared, Diagnost
     })?;
     let define = |rows: &[Vec<Expr>]| -> Result<Vec<Vec<Expr>>, Diagnostic> {
         rows.iter()
-            .map(|r| r.iter().map(|e| crate::given::substitute(e, &defs)).collect())
+            .map(|r| {
+                r.iter()
+                    .map(|e| crate::given::substitute(e, &defs))
+                    .collect()
+            })
             .collect()
     };
     let mass = define(&lin.mass)?;
@@ -110,7 +114,12 @@ pub fn prepare(scene: &Scene, req: &FloquetRequest) -> Result<Prepared, Diagnost
         }
     }
     let t = atom::time();
-    let all: Vec<&Expr> = mass.iter().chain(&damping).chain(&stiffness).flatten().collect();
+    let all: Vec<&Expr> = mass
+        .iter()
+        .chain(&damping)
+        .chain(&stiffness)
+        .flatten()
+        .collect();
     if !all.iter().any(|e| e.depends_on(t)) {
         return Err(Diagnostic::global(
             "the linearized coefficients do not change with time: there is no parametric excitation",
@@ -230,9 +239,7 @@ pub fn is_lagrangian(m: &[Vec<Expr>], c: &[Vec<Expr>], k: &[Vec<Expr>]) -> bool 
     };
     (0..n).all(|i| {
         (0..n).all(|j| {
-            m[i][j].equals(&m[j][i])
-                && g(i, j).add(&g(j, i)).is_zero()
-                && p(i, j).equals(&p(j, i))
+            m[i][j].equals(&m[j][i]) && g(i, j).add(&g(j, i)).is_zero() && p(i, j).equals(&p(j, i))
         })
     })
 }
@@ -317,10 +324,13 @@ impl Prepared {
         let k = self.program.n_outputs();
         let (mut a, mut b) = (vec![0.0; k], vec![0.0; k]);
         for i in 0..7 {
-            let t = (i as f64 + 0.3183) * period / 7.0;
+            let t = (i as f64 + 0.37) * period / 7.0;
             self.eval(t, params, &mut a);
             self.eval(t + period, params, &mut b);
-            if a.iter().zip(&b).any(|(x, y)| (x - y).abs() > 1e-9 * (1.0 + x.abs())) {
+            if a.iter()
+                .zip(&b)
+                .any(|(x, y)| (x - y).abs() > 1e-9 * (1.0 + x.abs()))
+            {
                 return Err(Diagnostic::global(format!(
                     "the linearized coefficients do not repeat after --period {period}: they differ at t = {t:.6} and t + T"
                 ))

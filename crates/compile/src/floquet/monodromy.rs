@@ -181,7 +181,10 @@ pub fn certified(x: f64, e: f64) -> String {
         15
     };
     let s = format!("{x:.decimals$}");
-    if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
+    if s.trim_start_matches('-')
+        .chars()
+        .all(|c| c == '0' || c == '.')
+    {
         s.trim_start_matches('-').to_string()
     } else {
         s
@@ -197,11 +200,7 @@ fn multipliers(phi: &[f64], d: usize) -> Vec<Multiplier> {
         .iter()
         .map(|z| Multiplier { re: z.re, im: z.im })
         .collect();
-    mu.sort_by(|a, b| {
-        b.abs()
-            .total_cmp(&a.abs())
-            .then(b.im.total_cmp(&a.im))
-    });
+    mu.sort_by(|a, b| b.abs().total_cmp(&a.abs()).then(b.im.total_cmp(&a.im)));
     mu
 }
 

@@ -6,8 +6,8 @@
 use crate::diag::{Diagnostic, ErrorKind};
 use crate::expr::atom::{self, Atom};
 use crate::expr::Expr;
-use qdot_exact::num::Q;
 use crate::poly::Var;
+use qdot_exact::num::Q;
 
 const HINT: &str = "give the period: --period T";
 
@@ -19,7 +19,9 @@ pub fn fundamental(coefficients: &[&Expr]) -> Result<Expr, Diagnostic> {
         frequencies(e, t, &mut omegas)?;
     }
     let Some(first) = omegas.first().cloned() else {
-        return Err(not_periodic("the coefficients depend on t, but not through sin or cos"));
+        return Err(not_periodic(
+            "the coefficients depend on t, but not through sin or cos",
+        ));
     };
     // Ω = first·gcd(ratios to first)
     let mut g = Q::from_i64(1);
@@ -71,12 +73,20 @@ fn frequencies(e: &Expr, t: Var, out: &mut Vec<Expr>) -> Result<(), Diagnostic> 
                     crate::expr::print::unicode(arg)
                 )));
             }
-            let omega = if omega.num().terms().first().is_some_and(|(_, c)| c.is_negative()) {
+            let omega = if omega
+                .num()
+                .terms()
+                .first()
+                .is_some_and(|(_, c)| c.is_negative())
+            {
                 omega.neg()
             } else {
                 omega
             };
-            if !out.iter().any(|w| w.equals(&omega) || w.equals(&omega.neg())) {
+            if !out
+                .iter()
+                .any(|w| w.equals(&omega) || w.equals(&omega.neg()))
+            {
                 out.push(omega);
             }
         } else {
