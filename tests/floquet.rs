@@ -451,3 +451,69 @@ fn refusals_say_why() {
         "error: --plot draws the stability over the --over parameters\n  = hint: add --over NAME=FROM:TO:COUNT: one parameter draws the largest |μ|, two the stability chart\n",
     );
 }
+
+#[test]
+fn the_period_is_the_frequencies_common_period() {
+    let dir = std::env::temp_dir().join(format!("qdot-floquet-period-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temporary directory");
+    let file = dir.join("two.qd");
+    std::fs::write(
+        &file,
+        "coordinates x\nparameters k, w\nkinetic E = 1/2*x'^2\n\
+         potential V = 1/2*k*(3 + cos(w*t) + sin(3/2*w*t))*x^2\n",
+    )
+    .expect("written");
+    let (code, out, err) = qdot(&[
+        "floquet",
+        file.to_str().expect("UTF-8"),
+        "--set",
+        "k=1,w=2",
+        "--output",
+        "json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).expect("JSON");
+    // gcd(w, 3w/2) = w/2: T = 4π/w
+    assert_eq!(v["frequency"], "w/2");
+    assert!((number(&v["points"][0], "period") - 2.0 * PI).abs() < 1e-15);
+    // over two periods Φ(2T) = Φ(T)²: tr Φ(2T) = (tr Φ(T))² − 2·det Φ(T), det = 1
+    let once = point(&[MATHIEU, "--set", "delta=0.4,eps=0.3"]);
+    let twice = point(&[
+        MATHIEU,
+        "--set",
+        "delta=0.4,eps=0.3",
+        "--period",
+        "12.566370614359172",
+    ]);
+    let (t1, t2) = (number(&once, "trace"), number(&twice, "trace"));
+    assert!((t2 - (t1 * t1 - 2.0)).abs() < 1e-8, "{t1} {t2}");
+}
+
+#[test]
+fn two_coordinates_a_double_inverted_pendulum_on_a_driven_support() {
+    let dir = std::env::temp_dir().join(format!("qdot-floquet-double-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temporary directory");
+    let file = dir.join("double.qd");
+    std::fs::write(
+        &file,
+        "coordinates th1, th2\nparameters m, l, g, a, w\n\
+         particle p1: mass m, at [l*sin(th1), a*cos(w*t) - l*cos(th1)]\n\
+         particle p2: mass m, at [l*sin(th1) + l*sin(th2), a*cos(w*t) - l*cos(th1) - l*cos(th2)]\n\
+         gravity [0, -g]\n",
+    )
+    .expect("written");
+    let file = file.to_str().expect("UTF-8");
+    let at = |w: &str| {
+        let set = format!("m=1,l=1,g=9.81,a=0.05,w={w}");
+        point(&[file, "--at", "th1=pi,th2=pi", "--set", &set])
+    };
+    let fast = at("200");
+    assert_eq!(fast["verdict"], "stable");
+    let mu = fast["multipliers"].as_array().expect("multipliers");
+    assert_eq!(mu.len(), 4);
+    for m in mu {
+        assert!((number(m, "abs") - 1.0).abs() < 1e-9, "{m}");
+    }
+    // Kapitza's one-pendulum threshold (88.6) does not hold the double one
+    assert_eq!(at("100")["verdict"], "unstable");
+}
