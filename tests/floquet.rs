@@ -49,7 +49,7 @@ fn mathieu_first_tongue_is_scipys_to_1e_6_and_follows_its_series() {
     let p = prepared(MATHIEU, None);
     assert!(p.lagrangian);
     for (eps, a0, b1, a1) in fixture() {
-        let v = values(&[("delta", 0.0), ("eps", eps)]);
+        let v = values(&[("delta", 0.0), ("eps", eps), ("m", 1.0), ("w", 1.0)]);
         let lower = p
             .boundary(&v, "delta", 0.25 - eps, 0.25)
             .expect("lower edge");
@@ -132,7 +132,7 @@ fn number(v: &serde_json::Value, key: &str) -> f64 {
 #[test]
 fn constant_coefficients_give_the_exact_multipliers() {
     // ε = 0: x'' + δ·x = 0 turns by 2π·√δ in one period
-    let p = point(&[MATHIEU, "--set", "delta=0.5,eps=0"]);
+    let p = point(&[MATHIEU, "--set", "delta=0.5,eps=0,m=1,w=1"]);
     let trace = number(&p, "trace");
     assert!(
         (trace - 2.0 * (2.0 * PI * 0.5f64.sqrt()).cos()).abs() < 1e-9,
@@ -141,7 +141,7 @@ fn constant_coefficients_give_the_exact_multipliers() {
     assert!((number(&p, "max_abs_multiplier") - 1.0).abs() < 1e-9);
     assert_eq!(p["verdict"], "stable");
     // δ = −1: x grows like e^t, by e^(2π) in one period
-    let p = point(&[MATHIEU, "--set", "delta=-1,eps=0"]);
+    let p = point(&[MATHIEU, "--set", "delta=-1,eps=0,m=1,w=1"]);
     let mu = number(&p, "max_abs_multiplier");
     assert!((mu / (2.0 * PI).exp() - 1.0).abs() < 1e-9, "{mu}");
     assert_eq!(p["verdict"], "unstable");
@@ -155,15 +155,21 @@ fn plainly_stable_and_unstable_points() {
         all.extend(args);
         point(&all)["verdict"].as_str().unwrap_or("").to_string()
     };
-    assert_eq!(verdict(MATHIEU, &["--set", "delta=0.5,eps=0.2"]), "stable");
     assert_eq!(
-        verdict(MATHIEU, &["--set", "delta=0.25,eps=0.2"]),
+        verdict(MATHIEU, &["--set", "delta=0.5,eps=0.2,m=1,w=1"]),
+        "stable"
+    );
+    assert_eq!(
+        verdict(MATHIEU, &["--set", "delta=0.25,eps=0.2,m=1,w=1"]),
         "unstable"
     );
-    assert_eq!(verdict(MATHIEU, &["--set", "delta=1,eps=0.5"]), "unstable");
+    assert_eq!(
+        verdict(MATHIEU, &["--set", "delta=1,eps=0.5,m=1,w=1"]),
+        "unstable"
+    );
     // on the boundary itself: δ = 1/4, ε = 0 (a double multiplier −1)
     assert_eq!(
-        verdict(MATHIEU, &["--set", "delta=0.25,eps=0"]),
+        verdict(MATHIEU, &["--set", "delta=0.25,eps=0,m=1,w=1"]),
         "undecided"
     );
     let kapitza = |w: &str| {
@@ -249,6 +255,8 @@ fn the_chart_marks_the_tongues_and_is_drawn() {
     let (code, out, err) = qdot(&[
         "floquet",
         MATHIEU,
+        "--set",
+        "m=1,w=1",
         "--over",
         "delta=-0.5:2.5:13,eps=0:0.5:3",
         "--plot",
@@ -281,6 +289,8 @@ fn the_chart_marks_the_tongues_and_is_drawn() {
     let (code, csv, _) = qdot(&[
         "floquet",
         MATHIEU,
+        "--set",
+        "m=1,w=1",
         "--over",
         "delta=0:1:3,eps=0.1:0.1:1",
         "--output",
@@ -301,6 +311,8 @@ fn the_books_chart_is_what_floquet_draws() {
     let (code, _, err) = qdot(&[
         "floquet",
         MATHIEU,
+        "--set",
+        "m=1,w=1",
         "--over",
         "delta=-0.5:2.5:151,eps=0:2:81",
         "--plot",
@@ -447,6 +459,10 @@ fn refusals_say_why() {
         "error: `--over delta=0:1:3,eps=0:1`: `eps=0:1`: the range is FROM:TO:COUNT\n  = hint: --over NAME=FROM:TO:COUNT, or two of them for a chart: --over \"delta=-1:3:81,eps=0:2:41\"\n",
     );
     refused(
+        &[MATHIEU, "--over", "delta=0:1:1001,eps=0:1:1000"],
+        "error: `--over delta=0:1:1001,eps=0:1:1000`: 1,001,000 points, more than 1,000,000\n  = hint: --over NAME=FROM:TO:COUNT, or two of them for a chart: --over \"delta=-1:3:81,eps=0:2:41\"\n",
+    );
+    refused(
         &[MATHIEU, "--set", "delta=1", "--plot", "x.svg"],
         "error: --plot draws the stability over the --over parameters\n  = hint: add --over NAME=FROM:TO:COUNT: one parameter draws the largest |μ|, two the stability chart\n",
     );
@@ -477,11 +493,11 @@ fn the_period_is_the_frequencies_common_period() {
     assert_eq!(v["frequency"], "w/2");
     assert!((number(&v["points"][0], "period") - 2.0 * PI).abs() < 1e-15);
     // over two periods Φ(2T) = Φ(T)²: tr Φ(2T) = (tr Φ(T))² − 2·det Φ(T), det = 1
-    let once = point(&[MATHIEU, "--set", "delta=0.4,eps=0.3"]);
+    let once = point(&[MATHIEU, "--set", "delta=0.4,eps=0.3,m=1,w=1"]);
     let twice = point(&[
         MATHIEU,
         "--set",
-        "delta=0.4,eps=0.3",
+        "delta=0.4,eps=0.3,m=1,w=1",
         "--period",
         "12.566370614359172",
     ]);

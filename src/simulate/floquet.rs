@@ -56,11 +56,17 @@ pub fn parse_over(text: &str) -> Result<Vec<Axis>, Diagnostic> {
             Ok(v) if v.is_finite() => Ok(v),
             _ => Err(bad(format!("`{s}` is not a number"))),
         };
+        let limit = crate::limits::MAX_FLOQUET_POINTS;
         let count = count
             .parse::<usize>()
             .ok()
-            .filter(|&c| c >= 1)
-            .ok_or_else(|| bad(format!("COUNT `{count}` must be a whole number ≥ 1")))?;
+            .filter(|c| (1..=limit).contains(c))
+            .ok_or_else(|| {
+                bad(format!(
+                    "COUNT `{count}` must be a whole number from 1 to {}",
+                    crate::budget::grouped(limit)
+                ))
+            })?;
         axes.push(Axis {
             name: name.to_string(),
             from: number(from)?,
@@ -75,11 +81,11 @@ pub fn parse_over(text: &str) -> Result<Vec<Axis>, Diagnostic> {
         return Err(bad(format!("`{}` varies twice", axes[0].name)));
     }
     let total = axes.iter().map(|a| a.count).product::<usize>();
-    if total > crate::limits::MAX_SWEEP_RUNS {
+    if total > crate::limits::MAX_FLOQUET_POINTS {
         return Err(bad(format!(
             "{} points, more than {}",
             crate::budget::grouped(total),
-            crate::budget::grouped(crate::limits::MAX_SWEEP_RUNS)
+            crate::budget::grouped(crate::limits::MAX_FLOQUET_POINTS)
         )));
     }
     Ok(axes)
