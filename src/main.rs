@@ -196,6 +196,11 @@ enum Command {
     /// resonance peak, half-power bandwidth and transmissibility; with
     /// --over, amplitude and phase swept numerically.
     Response(ResponseArgs),
+    /// Parametric excitation: the scene linearized about a motion
+    /// (--at), its periodic coefficients' monodromy matrix over one
+    /// period, the Floquet multipliers and the stability verdict; over one
+    /// or two parameters (--over), a table or the stability chart.
+    Floquet(FloquetArgs),
     /// Source code for the equations of motion (C, Rust, Python or Julia):
     /// the right-hand side of y' = F(t, y), or M and f, and the energy when
     /// conserved; shared subexpressions computed once, the parameters as
@@ -395,6 +400,7 @@ fn main() -> ExitCode {
             return on_scene(report, cli.max_terms, |src| cycle(report, src, args));
         }
         Command::Response(args) => return response(args, cli.max_terms),
+        Command::Floquet(args) => return floquet(args, cli.max_terms),
         Command::Codegen {
             file,
             lang,
@@ -870,6 +876,103 @@ fn response_of(report: Reporter, src: &str, o: &ResponseArgs, max_terms: usize) 
         "json" => sweep::json(&table),
         "csv" => sweep::csv(&table),
         _ => sweep::text(&table),
+/// The options of `qdot floquet`.
+#[derive(clap::Args)]
+struct FloquetArgs {
+    /// The scene file (.qd).
+    file: String,
+    /// The reference position, a motion for all t (default: every q = 0),
+    /// e.g. theta=pi
+    #[arg(long)]
+    at: Option<String>,
+    /// Every parameter's value (the --over ones may be left out): g=9.81,l=1
+    #[arg(long)]
+    set: Option<String>,
+    /// The definition of a given function of time, once per function:
+    /// --function "s=a*cos(w*t)"
+    #[arg(long = "function")]
+    function: Vec<String>,
+    /// The period of the coefficients, when it is not found from their
+    /// time dependence.
+    #[arg(long)]
+    period: Option<f64>,
+    /// One or two parameters varied over a grid: delta=-1:3:81,eps=0:2:41
+    #[arg(long)]
+    over: Option<String>,
+    /// text, csv or json
+    #[arg(long, default_value = "text")]
+    output: String,
+    /// With --over: also draw to this SVG file the largest |μ| (one
+    /// parameter) or the stability chart (two).
+    #[arg(long)]
+    plot: Option<String>,
+}
+
+/// `qdot floquet`, under the work budget `--max-terms`.
+fn floquet(o: &FloquetArgs, max_terms: usize) -> ExitCode {
+    let report = Reporter::new(&o.file, o.output == "json");
+    on_scene(report, max_terms, |src| floquet_on(report, src, o))
+}
+
+fn floquet_on(report: Reporter, src: &str, o: &FloquetArgs) -> ExitCode {
+    use qdot::simulate::floquet as render;
+    let req = (|| -> Result<render::Request, qdot::Diagnostic> {
+        if !["csv", "json", "text"].contains(&o.output.as_str()) {
+            return Err(
+                qdot::Diagnostic::global(format!("unknown output `{}`", o.output))
+                    .with_hint("--output text, --output csv or --output json")
+                    .with_kind(ErrorKind::bad_option("--output")),
+            );
+        }
+        if o.plot.is_some() && o.over.is_none() {
+            return Err(qdot::Diagnostic::global(
+                "--plot draws the stability over the --over parameters",
+            )
+            .with_hint("add --over NAME=FROM:TO:COUNT: one parameter draws the largest |μ|, two the stability chart")
+            .with_kind(ErrorKind::bad_option("--plot")));
+        }
+        Ok(render::Request {
+            floquet: qdot::floquet::FloquetRequest {
+                at: o.at.clone(),
+                functions: o.function.clone(),
+                period: o.period,
+            },
+            set: o
+                .set
+                .as_deref()
+                .map(output::parse_set_any_sign)
+                .transpose()?
+                .unwrap_or_default(),
+            over: o
+                .over
+                .as_deref()
+                .map(render::parse_over)
+                .transpose()?
+                .unwrap_or_default(),
+        })
+    })();
+    let req = match req {
+        Ok(r) => r,
+        Err(d) => return report.fail(&d, ""),
+    };
+    let run = match render::run(src, &req) {
+        Ok(r) => r,
+        Err(d) => return report.fail(&d, src),
+    };
+    if let Some(path) = &o.plot {
+        let drawn = qdot::drawing::floquet::svg(&run, &base_name(&o.file))
+            .map_err(|e| format!("cannot draw the chart: {e}"))
+            .and_then(|svg| {
+                std::fs::write(path, svg).map_err(|e| format!("cannot write `{path}`: {e}"))
+            });
+        if let Err(e) = drawn {
+            return report.fail(&qdot::Diagnostic::global(e), "");
+        }
+    }
+    emit(&match o.output.as_str() {
+        "json" => render::json(&run),
+        "csv" => render::csv(&run),
+        _ => render::text(&run),
     });
     ExitCode::SUCCESS
 }

@@ -20,6 +20,7 @@ mod dimensions;
 mod equilibrium;
 mod errors_json;
 mod factor;
+mod floquet;
 mod frames;
 mod fuzz_regressions;
 mod hamilton;

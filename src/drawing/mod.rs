@@ -3,6 +3,7 @@
 //! cycle as a self-contained HTML page (or an animated SVG).
 
 pub mod animate;
+pub mod floquet;
 pub mod plot;
 
 pub use animate::{animation_html, animation_svg};

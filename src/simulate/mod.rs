@@ -15,6 +15,7 @@ pub use qdot_compile::{codegen, compile, constrained, given};
 pub use qdot_ode::*;
 
 pub mod cycle;
+pub mod floquet;
 #[cfg(feature = "drawing")]
 pub mod plot;
 #[doc(hidden)]

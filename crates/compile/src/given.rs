@@ -18,11 +18,15 @@ fn function_option() -> crate::diag::ErrorKind {
     crate::diag::ErrorKind::bad_option("--function")
 }
 
-/// `lag` with the scene's given functions replaced by their definitions
-/// `defs` (`s=EXPR` each); an error names a function without a definition,
-/// a definition of no given function, or one that is not a function of t
-/// and the parameters.
-pub fn defined(scene: &Scene, lag: Lagrange, defs: &[String]) -> Result<Lagrange, Diagnostic> {
+/// The definitions `defs` (`s=EXPR` each) of the scene's given functions,
+/// by name: an error names a function without a definition (needed
+/// `purpose`, e.g. "to simulate"), a definition of no given function, or
+/// one that is not a function of t and the parameters.
+pub fn definitions<'a>(
+    scene: &Scene,
+    defs: &'a [String],
+    purpose: &str,
+) -> Result<FxHashMap<&'a str, Expr>, Diagnostic> {
     let mut values: FxHashMap<&str, Expr> = FxHashMap::default();
     for d in defs {
         let Some((name, text)) = d.split_once('=') else {
@@ -72,12 +76,19 @@ pub fn defined(scene: &Scene, lag: Lagrange, defs: &[String]) -> Result<Lagrange
         .find(|f| !values.contains_key(f.name.as_str()))
     {
         return Err(Diagnostic::global(format!(
-            "the given function `{}` needs a definition to simulate",
+            "the given function `{}` needs a definition {purpose}",
             f.name
         ))
         .with_hint(HINT)
         .with_kind(function_option()));
     }
+    Ok(values)
+}
+
+/// `lag` with the scene's given functions replaced by their definitions
+/// `defs` ([`definitions`]).
+pub fn defined(scene: &Scene, lag: Lagrange, defs: &[String]) -> Result<Lagrange, Diagnostic> {
+    let values = definitions(scene, defs, "to simulate")?;
     if values.is_empty() {
         return Ok(lag);
     }
@@ -149,4 +160,30 @@ fn derivatives(lag: &Lagrange, values: &FxHashMap<&str, Expr>) -> FxHashMap<Var,
         }
     }
     map
+}
+
+/// `e` with every derivative of a given function replaced by the
+/// derivative of its definition in `values` ([`definitions`]).
+pub fn substitute(e: &Expr, values: &FxHashMap<&str, Expr>) -> Result<Expr, Diagnostic> {
+    let mut highest: FxHashMap<String, u32> = FxHashMap::default();
+    for v in e.vars() {
+        for w in std::iter::once(v).chain(atom::inner_atoms(v).iter().copied()) {
+            if let Atom::Given(n, k) = atom::atom(w) {
+                let h = highest.entry(n.to_string()).or_insert(0);
+                *h = (*h).max(k);
+            }
+        }
+    }
+    let mut map = FxHashMap::default();
+    for (name, k) in highest {
+        let Some(def) = values.get(name.as_str()) else {
+            continue;
+        };
+        let mut d = def.clone();
+        for order in 0..=k {
+            map.insert(atom::given(&name, order), d.clone());
+            d = d.dt();
+        }
+    }
+    e.subs_many(&map).map_err(|m| Diagnostic::global(m.message))
 }

@@ -2,7 +2,8 @@
 //! scene's given functions and constraints prepared for integration
 //! ([`given`], [`constrained`]), register programs and machine code
 //! ([`compile`]), and source code in C, Rust, Python and Julia
-//! ([`codegen`]).
+//! ([`codegen`]); the Floquet stability of periodic coefficients
+//! ([`floquet`]).
 
 #![warn(missing_docs)]
 
@@ -10,6 +11,7 @@ pub mod codegen;
 pub mod compile;
 pub mod constrained;
 pub mod cycle;
+pub mod floquet;
 pub mod given;
 
 // the lower layers, by the paths this crate's modules use

@@ -136,6 +136,10 @@ pub const MAX_POINTS: usize = 1_000_000;
 /// keeps its summary (final state, max |q|, energy drift) in memory.
 pub const MAX_SWEEP_RUNS: usize = 1_000_000;
 
+/// The most grid points of one `qdot floquet --over`: each keeps its
+/// monodromy matrix and multipliers in memory until printed.
+pub const MAX_FLOQUET_POINTS: usize = 1_000_000;
+
 /// The most positions of one `qdot cycle` (`--over NAME=FROM:TO:COUNT`):
 /// each row keeps its values and the drawing's points until printed.
 pub const MAX_CYCLE_POSITIONS: usize = 1_000_000;

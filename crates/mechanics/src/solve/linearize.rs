@@ -264,7 +264,7 @@ fn jacobians(
                     "the linearized coefficients of `{}` depend on time (parametric excitation)",
                     names[k]
                 ))
-                .with_hint("small oscillations need constant M, C and K"));
+                .with_hint("small oscillations need constant M, C and K; for periodic ones `qdot floquet` gives the Floquet multipliers and the stability"));
             }
         }
     }
