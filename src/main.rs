@@ -876,6 +876,10 @@ fn response_of(report: Reporter, src: &str, o: &ResponseArgs, max_terms: usize) 
         "json" => sweep::json(&table),
         "csv" => sweep::csv(&table),
         _ => sweep::text(&table),
+    });
+    ExitCode::SUCCESS
+}
+
 /// The options of `qdot floquet`.
 #[derive(clap::Args)]
 struct FloquetArgs {
