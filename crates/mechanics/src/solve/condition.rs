@@ -20,6 +20,7 @@
 
 use crate::algebra::sign::{sign_exact, Sign};
 use crate::expr::compact::parameters::{trig_representations, unicode_collected};
+use crate::expr::print::leads_negative;
 use crate::expr::Expr;
 use crate::num::Q;
 use crate::poly::factor::factor;
@@ -72,9 +73,18 @@ pub(super) fn positive(x: &Expr) -> Positivity {
         match sum_of_squares(&g, MAX_SQUARES_DEPTH) {
             Some(zeros) if zeros.is_empty() => {}
             Some(zeros) => unless.push(zeros),
-            None => kept.push(g),
+            None => {
+                // each factor as it prints with a positive first term, and
+                // in the order of their texts: the canonical signs and the
+                // factors' order follow the atoms' interning order, the
+                // printed condition must not
+                let flip = leads_negative(&g);
+                negative ^= flip;
+                kept.push(if flip { -&g } else { g });
+            }
         }
     }
+    kept.sort_by_cached_key(unicode_collected);
     if kept.is_empty() && negative {
         return if unless.is_empty() {
             Positivity::Fails
@@ -92,7 +102,9 @@ pub(super) fn positive(x: &Expr) -> Positivity {
     let mut out = Vec::new();
     if !kept.is_empty() {
         if negative {
-            kept[0] = -&kept[0];
+            // a sum takes the sign (C·s − A·Ω·cos(lat) rather than −cos(lat))
+            let i = kept.iter().position(|g| g.len() > 1).unwrap_or(0);
+            kept[i] = -&kept[i];
         }
         let factors: Vec<String> = kept.iter().map(unicode_collected).collect();
         let product: Vec<String> = factors
@@ -167,7 +179,10 @@ fn sum_of_squares(p: &Poly, depth: usize) -> Option<Vec<Poly>> {
         return None;
     }
     let four = Poly::constant(Q::from_i64(4));
-    for v in p.vars() {
+    // by name: the interning order must not choose the squares
+    let mut vars = p.vars();
+    vars.sort_by_cached_key(|&v| crate::expr::print::input(&Expr::var(v)));
+    for v in vars {
         let cs = p.coeffs_in(v);
         let [c, b, a] = cs.as_slice() else {
             continue;
@@ -200,8 +215,11 @@ fn sum_of_squares(p: &Poly, depth: usize) -> Option<Vec<Poly>> {
 
 /// p = 0 as an equation, the negative terms on the right: g = l·W².
 fn equation(p: &Poly) -> String {
+    let p = p.primitive();
+    // the side of the term printed first on the left, whatever the
+    // canonical sign (which follows the interning order)
+    let p = if leads_negative(&p) { -&p } else { p };
     let (plus, minus): (Vec<_>, Vec<_>) = p
-        .primitive()
         .terms()
         .iter()
         .map(|(m, c)| (m.clone(), c.clone()))
