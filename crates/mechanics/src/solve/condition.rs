@@ -261,8 +261,8 @@ mod tests {
         let d = p("g").sub(&p("l").mul(&p("W").mul(&p("W"))));
         let x = d.mul(&d).div(&p("l").mul(&p("l"))).unwrap();
         let c = when(&x);
-        assert_eq!(c, vec![Condition::Unless("g = l·W²".into())]);
-        assert_eq!(describe(&c), "stable unless g = l·W²");
+        assert_eq!(c, vec![Condition::Unless("l·W² = g".into())]);
+        assert_eq!(describe(&c), "stable unless l·W² = g");
     }
 
     #[test]

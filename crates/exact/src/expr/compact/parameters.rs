@@ -85,7 +85,7 @@ mod tests {
         );
         let cos = func::cos(&Expr::param("lat"));
         let e = c.mul(&s).add(&c.sub(&a).mul(&w).mul(&cos));
-        assert_eq!(unicode_collected(e.num()), "C·s + (C − A)·W·cos(lat)");
+        assert_eq!(unicode_collected(e.num()), "W·(C − A)·cos(lat) + C·s");
     }
 
     #[test]
