@@ -24,6 +24,9 @@ kinetic T = 1/2*m*x'^2
 rayleigh R = 1/2*c*x'^2
 ";
 
+/// `qdot modes` on `src` in a file named by `tag` (one tag per test: the
+/// tests run at once, and a file rewritten while another test reads it
+/// would be a race).
 fn modes_on(tag: &str, src: &str, rest: &[&str]) -> (String, String) {
     let (code, out, err) = qdot_on("oscillation_details", tag, src, "modes", rest);
     assert_eq!(code, 0, "{err}");
@@ -40,7 +43,7 @@ fn stability_line(out: &str) -> &str {
 
 #[test]
 fn a_zero_mode_drifts_in_the_general_solution() {
-    let (out, _) = modes_on("pair", FREE_PAIR, &[]);
+    let (out, _) = modes_on("pair_drift", FREE_PAIR, &[]);
     assert!(
         out.contains(
             "General solution (undamped)  q(t) = Σ Cᵢ·uᵢ·cos(ωᵢ·t + φᵢ), and (Aᵢ + Bᵢ·t)·uᵢ where ωᵢ = 0\n  x₁ = A₁ + B₁·t + C₂·cos(ω₂·t + φ₂)\n  x₂ = A₁ + B₁·t − m₁/m₂·C₂·cos(ω₂·t + φ₂)\n"
@@ -61,7 +64,7 @@ fn a_zero_frequency_of_one_coordinate_is_no_oscillation() {
         "{out}"
     );
     assert!(!out.contains("√(0)"), "{out}");
-    let (out, _) = modes_on("damped", DAMPED_FREE, &[]);
+    let (out, _) = modes_on("damped_drift", DAMPED_FREE, &[]);
     assert!(
         out.contains(
             "  x\u{308} + c/m·x\u{307} = 0\n  ω² = 0\n  ω = 0: no restoring force, the free motion does not oscillate: y = a + b·e^(−2α·t)\n  α = c/(2·m)\n"
@@ -120,6 +123,28 @@ fn a_zero_frequency_has_one_verdict_with_and_without_values() {
         let rest: &[&str] = if set.is_empty() { &[] } else { &["--set", set] };
         let (out, _) = modes_on("damped", DAMPED_FREE, rest);
         assert_eq!(stability_line(&out), undecided, "--set {set}");
+    }
+}
+
+/// `qdot equilibrium` on the same pair: a line of equilibria x₁ = x₂,
+/// neutral, with or without values (with values it was once dropped as
+/// "not existing there", its position being symbolic in the free x₂).
+#[test]
+fn a_free_coordinate_is_the_same_equilibrium_with_values() {
+    let line = "  1. x₁ = x₂, x₂ = any  — undecided (neutral: a coordinate is free)\n";
+    for rest in [&[][..], &["--set", "m1=3,m2=7,k=11"][..]] {
+        let (code, out, err) = qdot_on(
+            "oscillation_details",
+            "pair_eq",
+            FREE_PAIR,
+            "equilibrium",
+            rest,
+        );
+        assert_eq!(code, 0, "{err}");
+        assert!(
+            out.ends_with(&format!("Equilibria\n{line}")),
+            "{rest:?}: {out}"
+        );
     }
 }
 
