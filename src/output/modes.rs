@@ -145,7 +145,10 @@ fn characteristic_text(md: &Modes) -> String {
     });
     let lv = crate::expr::atom::unknown(osc::LAMBDA);
     // the equation is "= 0": constant factors are left out
-    let shown: Vec<&Expr> = md.factors.iter().filter(|f| f.depends_on(lv)).collect();
+    let mut shown: Vec<&Expr> = md.factors.iter().filter(|f| f.depends_on(lv)).collect();
+    // the factorization's order follows the atoms' interning order; the
+    // printed one must not: by degree, monomials first, then by text
+    shown.sort_by_cached_key(|f| (f.num().degree(lv), f.num().len() > 1, lambda_poly(f)));
     let factors: Vec<String> = shown
         .iter()
         .map(|f| {
