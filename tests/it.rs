@@ -41,6 +41,7 @@ mod limits_doc;
 mod mechanisms;
 mod modes;
 mod no_panic;
+mod oscillation_details;
 mod parse_ast;
 mod parse_errors;
 mod parse_grammar;

@@ -208,7 +208,8 @@ pub(super) fn modes(
             standalone: opts.standalone.then(|| opts.title.clone()),
         },
     );
-    r.add_warnings(matrix_name_clashes(scene));
+    let clashes = matrix_name_clashes(scene, &r.result.modes);
+    r.add_warnings(clashes);
     Ok(r)
 }
 
@@ -265,18 +266,33 @@ pub(super) fn integrals(
 /// would read as the matrix in M·q̈ + C·q̇ + K·q = f(t).
 const MODES_MATRIX_NAMES: [(&str, &str); 3] = [("M", "mass"), ("C", "damping"), ("K", "stiffness")];
 
-/// A warning for each parameter named like one of `modes`' matrices.
-fn matrix_name_clashes(scene: &Scene) -> Vec<Diagnostic> {
+/// A warning for each parameter named like one of `modes`' matrices and
+/// written in that matrix's entries: then the output reads as a matrix
+/// defined by itself (the sleeping top's C = [[0, C·Ω], [−C·Ω, 0]], a
+/// mass M whose M = [M]). Elsewhere the name is told apart by where it
+/// stands (a top's mass M in K's entries, its axial moment C in a scene
+/// whose C matrix is zero), and a warning on every gyroscope scene would
+/// teach users to ignore it.
+fn matrix_name_clashes(scene: &Scene, md: &osc::Modes) -> Vec<Diagnostic> {
     scene
         .parameters
         .iter()
         .filter_map(|p| {
             let (_, what) = MODES_MATRIX_NAMES.iter().find(|(n, _)| *n == p.name)?;
+            let matrix = match p.name.as_str() {
+                "M" => &md.mass,
+                "C" => &md.damping,
+                _ => &md.stiffness,
+            };
+            let v = crate::expr::atom::param(&p.name);
+            if !matrix.iter().flatten().any(|e| e.depends_on(v)) {
+                return None;
+            }
             Some(
                 Diagnostic::warning(
                     p.span,
                     format!(
-                        "the parameter `{}` has the name of the {what} matrix {} of `modes`' output",
+                        "the parameter `{}` has the name of the {what} matrix {} of `modes`' output, and is in its entries",
                         p.name, p.name
                     ),
                 )

@@ -550,6 +550,16 @@ impl Writer {
             .factors
             .iter()
             .filter_map(&subst)
+            .filter(|f| {
+                // a unit ±1 is a sign, not a factor to write ("1 ω²")
+                let unit = f.as_rational().filter(|q| q.abs() == crate::num::Q::one());
+                if unit.as_ref().is_some_and(|q| q.is_negative()) {
+                    negative = !negative;
+                }
+                unit.is_none()
+            })
+            .collect::<Vec<Expr>>()
+            .into_iter()
             .map(|f| {
                 let mut t = self.terms(&f);
                 if t.first().is_some_and(|x| x.0) {

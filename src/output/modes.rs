@@ -19,11 +19,11 @@ pub fn modes_text(
     let standard = osc::standard_form(md, set);
     let mut out = linearized_text(md, &names);
     if let Some(sf) = &standard {
-        out.push_str(&standard_form_text(&md.coordinates[0], sf));
+        out.push_str(&standard_form_text(&md.coordinates[0], sf, set));
     }
     out.push_str(&characteristic_text(md));
     out.push_str(&frequencies_text(md, set));
-    out.push_str(&general_solution_text(md, &names));
+    out.push_str(&general_solution_text(md, &names, set));
     out.push_str(&stability_text(md));
     if let Some(free) = free {
         out.push_str(&free_response_text(md, &names, free));
@@ -125,7 +125,7 @@ fn is_damped(md: &Modes) -> bool {
 }
 
 /// One coordinate: ÿ + 2α·ẏ + ω²·y = f(t)/M, ω, α, ζ and the regime.
-fn standard_form_text(q: &str, sf: &StandardForm) -> String {
+fn standard_form_text(q: &str, sf: &StandardForm, set: &Values) -> String {
     let mut out = String::from("\nStandard form  ÿ + 2α·ẏ + ω²·y = f(t)/M\n");
     let mut lhs = pretty_name(q, 2);
     if !sf.alpha.is_zero() {
@@ -135,13 +135,33 @@ fn standard_form_text(q: &str, sf: &StandardForm) -> String {
             pretty_name(q, 1)
         ));
     }
-    lhs.push_str(&format!(
-        " + {}·{}",
-        paren_str(&expanded(&sf.omega_squared)),
-        pretty_name(q, 0)
-    ));
+    if !sf.omega_squared.is_zero() {
+        lhs.push_str(&format!(
+            " + {}·{}",
+            paren_str(&expanded(&sf.omega_squared)),
+            pretty_name(q, 0)
+        ));
+    }
     out.push_str(&format!("  {lhs} = {}\n", as_unicode(&sf.forcing)));
     out.push_str(&format!("  ω² = {}\n", expanded(&sf.omega_squared)));
+    let zero = crate::algebra::sign::sign_of(&sf.omega_squared, set)
+        == Some(crate::algebra::sign::Sign::Zero);
+    if zero {
+        // no restoring force: the free motion drifts, it does not oscillate
+        let free = if sf.alpha.is_zero() {
+            "y = a + b·t"
+        } else {
+            "y = a + b·e^(−2α·t)"
+        };
+        out.push_str(&format!(
+            "  ω = 0: no restoring force, the free motion does not oscillate: {free}\n"
+        ));
+        if !sf.alpha.is_zero() {
+            out.push_str(&format!("  α = {}\n", expanded(&sf.alpha)));
+        }
+        out.push_str(&format!("  regime: {}\n", sf.regime));
+        return out;
+    }
     let ws = match &sf.omega {
         Some(w) => as_unicode(w),
         None => format!("√({})", expanded(&sf.omega_squared)),
@@ -168,7 +188,10 @@ fn characteristic_text(md: &Modes) -> String {
     });
     let lv = crate::expr::atom::unknown(osc::LAMBDA);
     // the equation is "= 0": constant factors are left out
-    let shown: Vec<&Expr> = md.factors.iter().filter(|f| f.depends_on(lv)).collect();
+    let mut shown: Vec<&Expr> = md.factors.iter().filter(|f| f.depends_on(lv)).collect();
+    // the factorization's order follows the atoms' interning order; the
+    // printed one must not: by degree, monomials first, then by text
+    shown.sort_by_cached_key(|f| (f.num().degree(lv), f.num().len() > 1, lambda_poly(f)));
     let factors: Vec<String> = shown
         .iter()
         .map(|f| {
@@ -230,7 +253,14 @@ fn frequencies_text(md: &Modes, set: &Values) -> String {
         out.push_str(&format!("  numeric ω²: none at these values: {why}\n"));
     }
     if let Ok(Some(g)) = numeric {
-        let v: Vec<String> = g.values.iter().map(|x| minus(format!("{x:.10}"))).collect();
+        // a zero ω² is computed as ±ε·max|ω²|: shown as 0, not −0
+        let biggest = g.values.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let v: Vec<String> = g
+            .values
+            .iter()
+            .map(|&x| if x.abs() <= 1e-11 * biggest { 0.0 } else { x })
+            .map(|x| minus(format!("{x:.10}")))
+            .collect();
         if md.gyroscopic {
             out.push_str(&format!(
                 "  numeric ω² (eigenvalues s = ±i·ω of the first-order system): {}\n",
@@ -251,7 +281,7 @@ fn frequencies_text(md: &Modes, set: &Values) -> String {
 /// q(t) = Σ Cᵢ·uᵢ·cos(ωᵢ·t + φᵢ), when every frequency is in closed form;
 /// a zero frequency's mode drifts, (Aᵢ + Bᵢ·t)·uᵢ, and a negative ω²'s
 /// grows, (Aᵢ·e^(κᵢ·t) + Bᵢ·e^(−κᵢ·t))·uᵢ.
-fn general_solution_text(md: &Modes, names: &[String]) -> String {
+fn general_solution_text(md: &Modes, names: &[String], set: &Values) -> String {
     if md.gyroscopic
         || md.defective
         || md.omega_squared.is_empty()
@@ -259,9 +289,10 @@ fn general_solution_text(md: &Modes, names: &[String]) -> String {
     {
         return String::new();
     }
-    use crate::algebra::sign::{sign_exact, Sign};
-    // each mode's motion: a drift at ω² = 0, a growth where ω² < 0
-    let kinds: Vec<Option<Sign>> = md.omega_squared.iter().map(sign_exact).collect();
+    use crate::algebra::sign::{sign_of, Sign};
+    // each mode's motion: a drift at ω² = 0, a growth where ω² < 0 (at
+    // the --set values when given: ω² = 16/81·k/m − g/(9·r) can be 0 there)
+    let kinds: Vec<Option<Sign>> = md.omega_squared.iter().map(|w| sign_of(w, set)).collect();
     let mut out = String::from("\nGeneral solution (undamped)  q(t) = Σ Cᵢ·uᵢ·cos(ωᵢ·t + φᵢ)");
     if kinds.contains(&Some(Sign::Zero)) {
         out.push_str(", and (Aᵢ + Bᵢ·t)·uᵢ where ωᵢ = 0");

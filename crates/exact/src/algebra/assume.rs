@@ -137,6 +137,21 @@ pub(super) fn decide(e: &Expr, plain: impl Fn(&Expr) -> Option<Sign>) -> Option<
     if a.is_empty() {
         return plain(e);
     }
+    // a fact itself times a number: also one no elimination reaches
+    // (`assume cos(lat) > 0`, whose atom is not a parameter)
+    for f in &a.positive {
+        if f.num().len() != e.num().len() || f.den().len() != e.den().len() {
+            continue;
+        }
+        if let Some(q) = e.div(f).ok().and_then(|r| r.as_rational()) {
+            if q.is_positive() {
+                return Some(Sign::Positive);
+            }
+            if q.is_negative() {
+                return Some(Sign::Negative);
+            }
+        }
+    }
     let mut e = e.clone();
     for (v, by) in &a.eliminations {
         if e.depends_on(*v) {

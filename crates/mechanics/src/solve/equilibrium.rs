@@ -257,7 +257,8 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
             } in sols
             {
                 let approx = numeric_values(&vals, set);
-                if all_set && approx.is_none() {
+                // (a free coordinate leaves the values symbolic: it exists)
+                if all_set && approx.is_none() && free.is_empty() {
                     continue; // does not exist for these parameter values (|x| > 1)
                 }
                 // two closed forms can coincide at the given values (a double root)

@@ -28,13 +28,14 @@
 //! Only a zero frequency (higher-order terms decide) and a repeated
 //! frequency of a gyroscopic system exactly at the boundary stay undecided.
 
+use super::condition::{describe, Condition, Positivity};
 use super::definite::{negated, Mass, Stiffness};
 use super::equilibrium::{jacobi, minor_signs, Stability};
-use crate::algebra::sign::{sign_exact, sign_of, Sign, Values};
+use crate::algebra::sign::{sign_of, Sign, Values};
 use crate::expr::atom::Atom;
 use crate::expr::{func, Expr};
 use crate::num::Q;
-use crate::poly::{Poly, Var};
+use crate::poly::Var;
 use nalgebra::DMatrix;
 
 /// The linearized system whose stability is decided.
@@ -108,7 +109,7 @@ fn positive_mass(
 
 /// The conditions on the factors of `p` over ℚ.
 fn from_factors(p: &Expr, lv: Var, gyroscopic: bool, set: &Values) -> Stability {
-    let mut conditions: Vec<String> = Vec::new();
+    let mut conditions: Vec<Condition> = Vec::new();
     let mut undecided: Option<String> = None;
     for (f, mult) in crate::poly::factor::factor(p.num()).factors {
         let cs: Vec<Expr> = f.coeffs_in(lv).into_iter().map(Expr::from_poly).collect();
@@ -134,7 +135,13 @@ fn from_factors(p: &Expr, lv: Var, gyroscopic: bool, set: &Values) -> Stability 
                 });
             }
             Verdict::Holds => {}
-            Verdict::When(c) => conditions.extend(c),
+            Verdict::When(c) => {
+                for c in c {
+                    if !conditions.contains(&c) {
+                        conditions.push(c);
+                    }
+                }
+            }
         }
     }
     if let Some(why) = undecided {
@@ -143,11 +150,16 @@ fn from_factors(p: &Expr, lv: Var, gyroscopic: bool, set: &Values) -> Stability 
     if conditions.is_empty() {
         return Stability::Stable;
     }
-    conditions.dedup();
-    Stability::Undecided(format!(
-        "stable when {}; give values with --set",
-        conditions.join(" and ")
-    ))
+    let decides = conditions.iter().any(|c| matches!(c, Condition::Holds(_)));
+    Stability::Undecided(if decides {
+        format!("{}; give values with --set", describe(&conditions))
+    } else {
+        // stable but where an equation holds: there a frequency is zero
+        format!(
+            "{}, where the linearization does not decide",
+            describe(&conditions)
+        )
+    })
 }
 
 /// Whether M·q̈ + K·q = 0 (no velocity terms) provably has a growing
@@ -194,8 +206,8 @@ enum Verdict {
     Fails,
     /// A zero (or double gyroscopic) root: the linearization does not decide.
     Zero(String),
-    /// Holds under these conditions (each "… > 0").
-    When(Vec<String>),
+    /// Holds under these conditions.
+    When(Vec<Condition>),
 }
 
 /// c₀ + c₁·λ: λ = −c₀/c₁ > 0.
@@ -214,24 +226,32 @@ fn quadratic(cs: &[Expr], gyroscopic: bool, set: &Values) -> Verdict {
         return Verdict::Zero("the characteristic polynomial could not be evaluated".into());
     };
     let zero = "a zero frequency: higher-order terms decide";
+    let boundary = "a double frequency at the boundary of gyroscopic stability: the linearization does not decide";
     let first = positive(&product, set, zero);
     let second = if !gyroscopic {
         positive(&sum, set, zero)
     } else {
+        let two = Q::from_i64(2);
         match (&first, root_of(&product, set)) {
             (Verdict::Fails | Verdict::Zero(_), _) => return first,
-            (_, Some(r)) => positive(
-                &sum.sub(&r.scale(&Q::from_i64(2))),
-                set,
-                "a double frequency at the boundary of gyroscopic stability: the linearization does not decide",
+            (_, Root::Known(r)) => positive(&sum.sub(&r.scale(&two)), set, boundary),
+            // √(r²) = |r|: −b/a > 2·|r| is −b/a > 2·r and −b/a > −2·r
+            (_, Root::Either(r)) => both(
+                positive(&sum.sub(&r.scale(&two)), set, boundary),
+                positive(&sum.add(&r.scale(&two)), set, boundary),
             ),
-            (_, None) => Verdict::When(vec![format!(
+            (_, Root::None) => Verdict::When(vec![Condition::Holds(format!(
                 "{} > 2·√({})",
                 crate::expr::print::expanded(&sum),
                 crate::expr::print::expanded(&product)
-            )]),
+            ))]),
         }
     };
+    both(first, second)
+}
+
+/// Both verdicts together.
+fn both(first: Verdict, second: Verdict) -> Verdict {
     match (first, second) {
         (Verdict::Fails, _) | (_, Verdict::Fails) => Verdict::Fails,
         (Verdict::Zero(w), _) | (_, Verdict::Zero(w)) => Verdict::Zero(w),
@@ -243,19 +263,32 @@ fn quadratic(cs: &[Expr], gyroscopic: bool, set: &Values) -> Verdict {
     }
 }
 
-/// √x exactly: P/D when x = P²/D² with P/D of known sign, else √x.
-fn root_of(x: &Expr, set: &Values) -> Option<Expr> {
+/// √x, when it can be written.
+enum Root {
+    /// P/D when x = P²/D² with P/D of known sign, else the radical √x.
+    Known(Expr),
+    /// x = r² with r of undecided sign: √x = |r|.
+    Either(Expr),
+    /// x is negative, or not formed.
+    None,
+}
+
+/// √x exactly (see [`Root`]).
+fn root_of(x: &Expr, set: &Values) -> Root {
     if sign_of(x, set) == Some(Sign::Negative) {
-        return None;
+        return Root::None;
     }
     if let (Some(p), Some(d)) = (x.num().exact_sqrt(), x.den().exact_sqrt()) {
-        let r = Expr::from_parts(p, d).ok()?;
-        return match sign_of(&r, set)? {
-            Sign::Negative => Some(r.neg()),
-            _ => Some(r),
+        let Ok(r) = Expr::from_parts(p, d) else {
+            return Root::None;
+        };
+        return match sign_of(&r, set) {
+            Some(Sign::Negative) => Root::Known(r.neg()),
+            Some(_) => Root::Known(r),
+            None => Root::Either(r),
         };
     }
-    func::sqrt(x).ok()
+    func::sqrt(x).map_or(Root::None, Root::Known)
 }
 
 /// x > 0 decided, failed, zero (`zero` says why) or a condition.
@@ -264,62 +297,47 @@ fn positive(x: &Expr, set: &Values, zero: &str) -> Verdict {
         Some(Sign::Positive) => Verdict::Holds,
         Some(Sign::Negative) => Verdict::Fails,
         Some(Sign::Zero) => Verdict::Zero(zero.into()),
-        None => Verdict::When(vec![format!("{} > 0", condition(x))]),
+        None => match super::condition::positive(x) {
+            Positivity::Holds => Verdict::Holds,
+            Positivity::Fails => Verdict::Fails,
+            Positivity::When(c) => Verdict::When(c),
+        },
     }
-}
-
-/// "x > 0" with x's factors of known sign taken out (a positive
-/// denominator, a positive parameter): the factor that decides.
-fn condition(x: &Expr) -> String {
-    let mut kept = Poly::one();
-    let mut flip = false;
-    let mut parts: Vec<Poly> = Vec::new();
-    let f = crate::poly::factor::factor(x.num());
-    if f.unit.is_negative() {
-        flip = !flip;
-    }
-    for (g, mult) in f.factors {
-        match sign_exact(&Expr::from_poly(g.clone())) {
-            Some(Sign::Positive) => continue,
-            Some(Sign::Negative) if mult % 2 == 0 => continue,
-            Some(Sign::Negative) => {
-                flip = !flip;
-                continue;
-            }
-            _ => {}
-        }
-        for _ in 0..mult {
-            parts.push(g.clone());
-        }
-    }
-    match sign_exact(&Expr::from_poly(x.den().clone())) {
-        Some(Sign::Positive) => {}
-        Some(Sign::Negative) => flip = !flip,
-        _ => return crate::expr::print::expanded(x),
-    }
-    for g in parts {
-        kept = &kept * &g;
-    }
-    let e = Expr::from_poly(kept);
-    crate::expr::print::expanded(&if flip { e.neg() } else { e })
 }
 
 /// The verdict from the eigenvalues of the first-order system at `set`,
 /// when every entry of M, C and K has a value there.
+///
+/// s = 0 is a root exactly when det K = 0, decided exactly (at the values)
+/// rather than from the eigenvalues: a zero frequency is a Jordan block in
+/// the first-order system, which rounding splits into s ≈ ±√ε·|A|, a
+/// "growing" or "oscillating" pair that is neither. So with det K = 0 (or
+/// undecided) the eigenvalues within [`ZERO_CLUSTER`] of the largest are
+/// that zero, and the verdict is undecided unless another one grows, as
+/// the exact verdict is without values.
 fn numeric(sys: &Linearized, set: &Values) -> Option<Stability> {
     let s = eigenvalues(sys.mass, sys.damping, sys.stiffness, set)?;
     let scale = s.iter().fold(0.0f64, |a, z| a.max(z.norm()));
     let tol = 1e-9 * scale.max(f64::MIN_POSITIVE);
-    if s.iter().any(|z| z.re > tol) {
+    let singular = crate::algebra::linear::det(sys.stiffness.to_vec())
+        .and_then(|d| sign_of(&d, set))
+        .is_none_or(|d| d == Sign::Zero);
+    let zero = |z: &nalgebra::Complex<f64>| singular && z.norm() <= ZERO_CLUSTER * scale;
+    if s.iter().any(|z| !zero(z) && z.re > tol) {
         return Some(Stability::Unstable);
     }
-    if scale == 0.0 || s.iter().any(|z| z.norm() <= tol) {
+    if scale == 0.0 || s.iter().any(zero) {
         return Some(Stability::Undecided(
             "a zero frequency: higher-order terms decide".into(),
         ));
     }
     Some(Stability::Stable)
 }
+
+/// With det K = 0, the eigenvalues s of the first-order system within this
+/// fraction of the largest |s| are its zero root, split by rounding (a
+/// Jordan block of size k splits by about ε^(1/k)).
+const ZERO_CLUSTER: f64 = 1e-4;
 
 /// The eigenvalues s of [[0, I], [−M⁻¹K, −M⁻¹C]] at `set` (q = u·e^{s·t}).
 pub(super) fn eigenvalues(

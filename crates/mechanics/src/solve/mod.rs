@@ -3,6 +3,7 @@
 
 pub mod certify;
 mod characteristic;
+mod condition;
 pub mod constrained;
 mod definite;
 pub mod eigen;

@@ -43,6 +43,7 @@
 
 mod cost;
 pub(crate) mod fourier;
+pub mod parameters;
 #[cfg(test)]
 mod work_tests;
 
@@ -374,14 +375,19 @@ fn factored(p: &Poly) -> Option<Poly> {
 /// `p` with the terms that share a monomial in moving atoms collected:
 /// Σ key·(coefficient sum); `None` when no two terms share one.
 fn collected(p: &Poly) -> Option<Poly> {
+    collected_by(p, atom::is_moving)
+}
+
+/// `p` with the terms that share a monomial in the atoms `key` picks
+/// collected (see [`collected`]).
+fn collected_by(p: &Poly, key: impl Fn(Var) -> bool) -> Option<Poly> {
     let mut groups: Vec<(Mono, Vec<(Mono, Q)>)> = Vec::new();
     // each key's place in `groups`: finding it by a scan would make
     // collecting quadratic in the terms
     let mut index: rustc_hash::FxHashMap<Mono, usize> = rustc_hash::FxHashMap::default();
     for (m, c) in p.terms() {
         type Factors = Vec<(Var, u32)>;
-        let (key, rest): (Factors, Factors) =
-            m.pairs().iter().partition(|&&(v, _)| atom::is_moving(v));
+        let (key, rest): (Factors, Factors) = m.pairs().iter().partition(|&&(v, _)| key(v));
         let key = Mono::from_pairs(key);
         let t = (Mono::from_pairs(rest), c.clone());
         match index.get(&key) {
