@@ -148,7 +148,18 @@ pub fn text(table: &CycleTable, degrees: bool) -> String {
         }
         cells.push(line);
     }
-    let widths: Vec<usize> = (0..cells[0].len())
+    let mut out = right_aligned(&cells);
+    for n in notes {
+        out.push_str(&n);
+        out.push('\n');
+    }
+    out
+}
+
+/// Rows of cells as columns aligned right, two spaces apart.
+pub(crate) fn right_aligned(cells: &[Vec<String>]) -> String {
+    let columns = cells.first().map_or(0, Vec::len);
+    let widths: Vec<usize> = (0..columns)
         .map(|k| {
             cells
                 .iter()
@@ -158,17 +169,13 @@ pub fn text(table: &CycleTable, degrees: bool) -> String {
         })
         .collect();
     let mut out = String::new();
-    for r in &cells {
+    for r in cells {
         let padded: Vec<String> = r
             .iter()
             .zip(&widths)
             .map(|(c, &w)| format!("{c:>w$}"))
             .collect();
         out.push_str(padded.join("  ").trim_end());
-        out.push('\n');
-    }
-    for n in notes {
-        out.push_str(&n);
         out.push('\n');
     }
     out

@@ -418,23 +418,6 @@ pub fn text(t: &ResponseTable) -> String {
         }
         cells.push(line);
     }
-    let widths: Vec<usize> = (0..cells[0].len())
-        .map(|k| {
-            cells
-                .iter()
-                .map(|r| r[k].chars().count())
-                .max()
-                .unwrap_or(0)
-        })
-        .collect();
-    for r in &cells {
-        let padded: Vec<String> = r
-            .iter()
-            .zip(&widths)
-            .map(|(c, &w)| format!("{c:>w$}"))
-            .collect();
-        out.push_str(padded.join("  ").trim_end());
-        out.push('\n');
-    }
+    out.push_str(&super::cycle::right_aligned(&cells));
     out
 }

@@ -129,7 +129,6 @@ fn of_time(v: Var) -> bool {
 /// Every derivative of a given function the equations use, mapped to the
 /// derivative of its definition.
 fn derivatives(lag: &Lagrange, values: &FxHashMap<&str, Expr>) -> FxHashMap<Var, Expr> {
-    let mut highest: FxHashMap<String, u32> = FxHashMap::default();
     let all = lag
         .mass_matrix
         .iter()
@@ -138,7 +137,17 @@ fn derivatives(lag: &Lagrange, values: &FxHashMap<&str, Expr>) -> FxHashMap<Var,
         .chain(lag.equations.iter().flat_map(|e| [&e.lhs, &e.rhs]))
         .chain(std::iter::once(&lag.kinetic))
         .chain(lag.constraints.expressions());
-    for e in all {
+    derivative_map(all, values)
+}
+
+/// Every derivative of a given function in `exprs` that `values` defines,
+/// mapped to the derivative of its definition.
+fn derivative_map<'a>(
+    exprs: impl IntoIterator<Item = &'a Expr>,
+    values: &FxHashMap<&str, Expr>,
+) -> FxHashMap<Var, Expr> {
+    let mut highest: FxHashMap<String, u32> = FxHashMap::default();
+    for e in exprs {
         for v in e.vars() {
             for w in std::iter::once(v).chain(atom::inner_atoms(v).iter().copied()) {
                 if let Atom::Given(n, k) = atom::atom(w) {
@@ -165,25 +174,6 @@ fn derivatives(lag: &Lagrange, values: &FxHashMap<&str, Expr>) -> FxHashMap<Var,
 /// `e` with every derivative of a given function replaced by the
 /// derivative of its definition in `values` ([`definitions`]).
 pub fn substitute(e: &Expr, values: &FxHashMap<&str, Expr>) -> Result<Expr, Diagnostic> {
-    let mut highest: FxHashMap<String, u32> = FxHashMap::default();
-    for v in e.vars() {
-        for w in std::iter::once(v).chain(atom::inner_atoms(v).iter().copied()) {
-            if let Atom::Given(n, k) = atom::atom(w) {
-                let h = highest.entry(n.to_string()).or_insert(0);
-                *h = (*h).max(k);
-            }
-        }
-    }
-    let mut map = FxHashMap::default();
-    for (name, k) in highest {
-        let Some(def) = values.get(name.as_str()) else {
-            continue;
-        };
-        let mut d = def.clone();
-        for order in 0..=k {
-            map.insert(atom::given(&name, order), d.clone());
-            d = d.dt();
-        }
-    }
+    let map = derivative_map(std::iter::once(e), values);
     e.subs_many(&map).map_err(|m| Diagnostic::global(m.message))
 }

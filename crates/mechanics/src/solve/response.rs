@@ -203,11 +203,13 @@ fn harmonic(forcing: &[Expr]) -> Result<(Expr, Vec<Expr>, Vec<Expr>), Diagnostic
             .with_hint(LOAD_HINT)
             .with_kind(crate::diag::ErrorKind::NothingToSolve))
         }
-        [a, b, ..] => {
+        [_, _, ..] => {
+            // named in text order, not in the order the atoms were made
+            let mut named: Vec<String> = angles.iter().map(Expr::to_unicode).collect();
+            named.sort();
             return Err(Diagnostic::global(format!(
                 "the load has more than one frequency (cos({}) and cos({})): the frequency response takes one harmonic load",
-                a.to_unicode(),
-                b.to_unicode()
+                named[0], named[1]
             ))
             .with_hint("keep one frequency in the scene; the responses to several add up"))
         }
