@@ -18,6 +18,7 @@ def run_command(
     set: Sequence[Tuple[str, float]] = ...,
     at: Optional[str] = ...,
     init: Optional[str] = ...,
+    steady: Optional[str] = ...,
     steps: bool = ...,
     standalone: bool = ...,
     title: str = ...,

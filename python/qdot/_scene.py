@@ -97,14 +97,16 @@ class Scene:
     def _run(self, command: str, fmt: str, set: Values = None, at: Any = None,
              init: Any = None, steps: bool = False, standalone: bool = False,
              title: Optional[str] = None, structure: Structure = "auto",
-             keep: Sequence[str] = ()) -> str:
+             keep: Sequence[str] = (), steady: Sequence[str] = ()) -> str:
         keep = _names(keep)
+        steady_list = ",".join(_names(steady)) or None
         key = (command, fmt, repr(_pairs(set, "set")), _exact(at), _exact(init), steps, standalone,
-               title, structure, tuple(keep))
+               title, structure, tuple(keep), steady_list)
         if key not in self._cache:
             out, warnings = _native.run_command(
                 command, self.source, fmt, file=self.name, set=_pairs(set, "set"),
-                at=_exact(at), init=_exact(init), steps=steps, standalone=standalone,
+                at=_exact(at), init=_exact(init), steady=steady_list, steps=steps,
+                standalone=standalone,
                 title=title if title is not None else os.path.splitext(os.path.basename(self.name))[0],
                 max_terms=self.max_terms, structure=structure, keep=keep,
             )
@@ -198,16 +200,21 @@ class Scene:
         (``structure`` and ``keep``: see :meth:`derive`)."""
         return Result("solve", self, {"structure": structure, "keep": _names(keep)})
 
-    def equilibria(self, set: Values = None) -> Result:
+    def equilibria(self, set: Values = None, steady: Sequence[str] = ()) -> Result:
         """The positions of equilibrium at rest and their stability
-        (``set``: parameter values that decide signs)."""
-        return Result("equilibrium", self, {"set": set})
+        (``set``: parameter values that decide signs); with ``steady``
+        (cyclic coordinates, ``["phi"]``), the steady motions in which they
+        turn at constant rates."""
+        return Result("equilibrium", self, {"set": set, "steady": steady})
 
-    def modes(self, set: Values = None, at: Any = None, init: Any = None) -> Result:
+    def modes(self, set: Values = None, at: Any = None, init: Any = None,
+              steady: Sequence[str] = ()) -> Result:
         """Small oscillations about ``at`` (default every q = 0): M, C, K,
         the natural frequencies in closed form, the modes, the response to
-        ``init``; numbers under ``set``."""
-        return Result("modes", self, {"set": set, "at": at, "init": init})
+        ``init``; numbers under ``set``. With ``steady`` (cyclic coordinates,
+        ``["phi"]``), about a steady motion in which they turn at constant
+        rates (``at`` may give the rates: ``"theta=pi/3,phi'=2"``)."""
+        return Result("modes", self, {"set": set, "at": at, "init": init, "steady": steady})
 
     def hamilton(self) -> Result:
         """The momenta, H(q, p, t) and Hamilton's equations."""

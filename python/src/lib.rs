@@ -79,7 +79,7 @@ fn structure_by_name(name: &str) -> PyResult<app::Structure> {
 
 /// Run a command of the CLI on a scene: (output, warnings rendered).
 #[pyfunction]
-#[pyo3(signature = (command, source, format, file="<scene>", set=Vec::new(), at=None, init=None, steps=false, standalone=false, title=String::new(), max_terms=0, structure="auto", keep=Vec::new()))]
+#[pyo3(signature = (command, source, format, file="<scene>", set=Vec::new(), at=None, init=None, steady=None, steps=false, standalone=false, title=String::new(), max_terms=0, structure="auto", keep=Vec::new()))]
 #[allow(clippy::too_many_arguments)]
 fn run_command(
     py: Python<'_>,
@@ -90,6 +90,7 @@ fn run_command(
     set: Vec<(String, f64)>,
     at: Option<String>,
     init: Option<String>,
+    steady: Option<String>,
     steps: bool,
     standalone: bool,
     title: String,
@@ -110,6 +111,7 @@ fn run_command(
         set: values(set),
         at,
         init,
+        steady,
         steps,
         standalone,
         title,

@@ -66,6 +66,19 @@ def test_results_are_the_cli_json(command, cli):
         assert {k: str(v) for k, v in result.items()} == json.loads(out.stdout)["generalized_forces"]
 
 
+def test_modes_and_equilibria_about_steady_motions(cli):
+    path = str(ROOT / "examples" / "spherical_pendulum.qd")
+    scene = qdot.Scene.load(ROOT / "examples" / "spherical_pendulum.qd")
+    modes = scene.modes(at="theta=pi/3", steady=["phi"])
+    out = cli("modes", path, "--format", "json", "--steady", "phi", "--at", "theta=pi/3")
+    assert modes.data == json.loads(out.stdout)
+    assert modes.data["steady_motion"]["solved"][0]["value"] == "2*g/l"
+    assert modes.data["omega_squared"] == ["7/2*g/l"]
+    steady = scene.equilibria(steady="phi")
+    assert steady.data["steady"] == {"phi": "phi'"}
+    assert steady.data == json.loads(cli("equilibrium", path, "--format", "json", "--steady", "phi").stdout)
+
+
 def test_modes_with_values_and_latex(cli):
     scene = qdot.Scene.load(ROOT / "examples" / "seed_24_2.qd")
     modes = scene.modes(set={"m": 1, "k": 6, "R": 0.5})
