@@ -58,7 +58,7 @@ pub(super) fn positive(x: &Expr) -> Positivity {
     let mut kept: Vec<Poly> = Vec::new();
     let mut unless: Vec<Vec<Poly>> = Vec::new();
     for (g, mult) in num.factors.into_iter().chain(den.factors) {
-        match sign_exact(&Expr::from_poly(g.clone())) {
+        match sign_exact(&Expr::from_poly(g.clone())).or_else(|| sign_in_sin_squared(&g)) {
             Some(Sign::Positive) => continue,
             Some(Sign::Negative) => {
                 negative ^= mult % 2 == 1;
@@ -124,6 +124,31 @@ pub(super) fn positive(x: &Expr) -> Positivity {
         Condition::Unless(eqs.join(" and "))
     }));
     Positivity::When(out)
+}
+
+/// The sign of a factor a + b·sin²(u) for every u: a linear function of
+/// sin² ∈ [0, 1] has the sign its two ends share (4 − 3·sin²(θ₀) ≥ 1, so
+/// the conical pendulum's condition is cos(θ₀) > 0). `None` when the ends
+/// differ or are not decided, or the factor is not of that form.
+fn sign_in_sin_squared(g: &Poly) -> Option<Sign> {
+    let vars = g.vars();
+    let s = vars.iter().copied().find(|&v| {
+        matches!(crate::expr::atom::atom(v), crate::expr::atom::Atom::Sin(_)) && g.degree(v) == 2
+    })?;
+    let crate::expr::atom::Atom::Sin(u) = crate::expr::atom::atom(s) else {
+        return None;
+    };
+    let (_, c) = crate::expr::atom::intern_trig(&u);
+    if vars.contains(&c) {
+        return None;
+    }
+    let cs = g.coeffs_in(s);
+    if !cs[1].is_zero() {
+        return None;
+    }
+    let at_zero = sign_exact(&Expr::from_poly(cs[0].clone()))?;
+    let at_one = sign_exact(&Expr::from_poly(&cs[0] + &cs[2]))?;
+    (at_zero == at_one && at_zero != Sign::Zero).then_some(at_zero)
 }
 
 /// The conditions in words: "stable when A > 0 and B > 0, unless C = D".
@@ -263,6 +288,22 @@ mod tests {
         let c = when(&x);
         assert_eq!(c, vec![Condition::Unless("l·W² = g".into())]);
         assert_eq!(describe(&c), "stable unless l·W² = g");
+    }
+
+    #[test]
+    fn a_factor_linear_in_a_sine_squared_has_the_sign_of_its_ends() {
+        let th = Expr::unknown("theta0");
+        let s2 = crate::expr::func::sin(&th).powi(2).unwrap();
+        let c = crate::expr::func::cos(&th);
+        // (4 − 3·sin²θ₀)·cos θ₀: the first factor is at least 1
+        let x = Expr::int(4).sub(&Expr::int(3).mul(&s2)).mul(&c);
+        assert_eq!(when(&x), vec![Condition::Holds("cos(θ₀) > 0".into())]);
+        // 1 − 2·sin²θ₀ changes sign: it stays
+        let y = Expr::one().sub(&Expr::int(2).mul(&s2));
+        assert!(matches!(positive(&y), Positivity::When(_)));
+        // 3·sin²θ₀ − 5 < 0 always
+        let z = Expr::int(3).mul(&s2).sub(&Expr::int(5));
+        assert!(matches!(positive(&z), Positivity::Fails));
     }
 
     #[test]
