@@ -73,7 +73,7 @@ def test_modes_and_equilibria_about_steady_motions(cli):
     out = cli("modes", path, "--format", "json", "--steady", "phi", "--at", "theta=pi/3")
     assert modes.data == json.loads(out.stdout)
     assert modes.data["steady_motion"]["solved"][0]["value"] == "2*g/l"
-    assert modes.data["omega_squared"] == ["7/2*g/l"]
+    assert modes.data["omega_squared"] == ["7*g/(2*l)"]
     steady = scene.equilibria(steady="phi")
     assert steady.data["steady"] == {"phi": "phi'"}
     assert steady.data == json.loads(cli("equilibrium", path, "--format", "json", "--steady", "phi").stdout)
