@@ -520,21 +520,27 @@ pub fn numeric_modes_or_why(
             vectors: Vec::new(),
         }));
     }
-    let at = |a: &Atom| match a {
-        Atom::Param(n) => set.get(&**n).copied(),
-        _ => None,
-    };
-    let num = |m: &[Vec<Expr>]| -> Option<Vec<Vec<f64>>> {
-        m.iter()
-            .map(|r| r.iter().map(|e| e.eval_f64(&at)).collect())
-            .collect()
-    };
-    let (Some(k), Some(m)) = (num(&md.stiffness), num(&md.mass)) else {
+    let (Some(k), Some(m)) = (
+        numeric_matrix(&md.stiffness, set),
+        numeric_matrix(&md.mass, set),
+    ) else {
         return Ok(None);
     };
     crate::solve::eigen::generalized_symmetric(&k, &m)
         .map(Some)
         .map_err(|e| e.to_string())
+}
+
+/// A matrix of expressions in the parameters at the values `set`; `None`
+/// when a parameter has no value (or an entry is not finite there).
+pub(super) fn numeric_matrix(m: &[Vec<Expr>], set: &Values) -> Option<Vec<Vec<f64>>> {
+    let at = |a: &Atom| match a {
+        Atom::Param(n) => set.get(&**n).copied(),
+        _ => None,
+    };
+    m.iter()
+        .map(|r| r.iter().map(|e| e.eval_f64(&at)).collect())
+        .collect()
 }
 
 /// One coordinate, undamped: y = A·sin(ω·t + φ) from y(0) = y0, ẏ(0) = v0

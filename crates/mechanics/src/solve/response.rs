@@ -584,16 +584,8 @@ pub fn natural_frequencies(sys: &ForcedSystem, set: &Values) -> Result<Vec<f64>,
         w.sort_by(f64::total_cmp);
         return Ok(w);
     }
-    let at = |a: &Atom| match a {
-        Atom::Param(n) => set.get(&**n).copied(),
-        _ => None,
-    };
-    let num = |m: &[Vec<Expr>]| -> Option<Vec<Vec<f64>>> {
-        m.iter()
-            .map(|r| r.iter().map(|e| e.eval_f64(&at)).collect())
-            .collect()
-    };
-    let (Some(k), Some(m)) = (num(&sys.stiffness), num(&sys.mass)) else {
+    let numeric = super::oscillations::numeric_matrix;
+    let (Some(k), Some(m)) = (numeric(&sys.stiffness, set), numeric(&sys.mass, set)) else {
         return Err("a parameter has no value".into());
     };
     let g = super::eigen::generalized_symmetric(&k, &m).map_err(|e| e.to_string())?;
