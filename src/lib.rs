@@ -31,7 +31,7 @@ pub use qdot_compile::cycle;
 pub use qdot_compile::floquet;
 pub use qdot_exact::{budget, expr, limits, num};
 pub use qdot_mechanics::{mechanics, scene, solve};
-pub use qdot_syntax::{diag, parse};
+pub use qdot_syntax::{diag, parse, spelling};
 pub mod app;
 #[cfg(feature = "drawing")]
 pub mod drawing;

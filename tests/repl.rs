@@ -294,7 +294,22 @@ fn commands() {
     assert!(ok(&mut s, ":show theta3").contains("generalized coordinate"));
     assert!(ok(&mut s, ":show g").contains("parameter"));
     assert!(err(&mut s, ":show nothing").contains("not in the scene"));
-    assert!(err(&mut s, ":sovle").contains("unknown command"));
+    assert_eq!(
+        err(&mut s, ":sovle"),
+        "error: unknown command `:sovle`\n  = hint: did you mean `:solve`? :help lists the commands\n"
+    );
+    assert_eq!(
+        err(&mut s, ":equilibirum"),
+        "error: unknown command `:equilibirum`\n  = hint: did you mean `:equilibrium`? :help lists the commands\n"
+    );
+    assert_eq!(
+        err(&mut s, ":xyzzy"),
+        "error: unknown command `:xyzzy`\n  = hint: :help lists the commands\n"
+    );
+    assert_eq!(
+        err(&mut s, ":modes --sett g=1"),
+        "error: this command takes no option `--sett`\n  = hint: did you mean `--set`? :equilibrium takes --set and --steady; :modes takes --at, --steady, --init and --set\n"
+    );
     assert!(err(&mut s, ":so").contains("did you mean `:solve`"));
     let help = ok(&mut s, ":help");
     for c in [":equations", ":solve", ":modes", ":latex", ":undo", ":quit"] {
@@ -476,6 +491,52 @@ fn piped_mode_reads_entries_without_prompts() {
     assert!(stderr.contains("unknown name `qq`"), "{stderr}");
     // an entry failed: exit status 1
     assert_eq!(out.status.code(), Some(1));
+}
+
+/// A script piped in: each error points at the script's line, a
+/// multi-line entry's at the line inside it, a loaded file's at the file's.
+#[test]
+fn piped_errors_point_at_the_scripts_lines() {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let dir = std::env::temp_dir().join(format!("qdot-piped-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("bad.qd");
+    std::fs::write(&file, "coordinates y\n\nkinetic T = y'^2 + zz\n").unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_qdot"))
+        .arg("repl")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let input = format!(
+        "coordinates x\nparameters m, k\n\nkinetic E = 1/2*m*x'^2\npotential V = 1/2*k*xx^2\nw = (1 +\n  2 +\n  )\n:load {}\n",
+        file.display()
+    );
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(input.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        stderr.contains(
+            " --> stdin:5:21\n  |\n5 | potential V = 1/2*k*xx^2\n  |                     ^^\n"
+        ),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains(" --> stdin:8:3\n  |\n8 |   )\n  |   ^\n"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains(&format!(" --> {}:3:20\n", file.display())),
+        "{stderr}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]

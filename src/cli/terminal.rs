@@ -17,6 +17,7 @@
 //! results go to stdout, errors to stderr, and the exit status is 1 when
 //! any entry failed. With `echo`, each entry is printed after its prompt
 //! and errors go to stdout too: a transcript, as the terminal would show.
+//! Errors point at the script's lines: `--> stdin:12:5`.
 
 use qdot::repl::editing::{completions, highlight};
 use qdot::repl::{is_complete, Response, Session};
@@ -36,6 +37,9 @@ use std::time::Duration;
 
 const PROMPT: &str = "qdot> ";
 const MORE: &str = "  ... ";
+/// The name errors give the entries read from a pipe: their lines are the
+/// script's.
+const SCRIPT: &str = "stdin";
 
 /// Set by the SIGINT handler while an entry computes.
 static INTERRUPTED: AtomicBool = AtomicBool::new(false);
@@ -85,21 +89,26 @@ pub fn piped(mut session: Session, input: impl BufRead, echo: bool) -> bool {
             print_response(r);
         }
     };
-    for line in input.lines() {
+    // the line of the input each entry starts on, for its errors
+    let mut start = 1;
+    for (i, line) in input.lines().enumerate() {
         let Ok(line) = line else { break };
         if !entry.is_empty() && starts_a_command(&line) {
             // the unfinished entry is executed alone: its error says why
-            let r = session.execute(&entry);
+            let r = session.execute_from(&entry, SCRIPT, start);
             show(&entry, &r);
             entry.clear();
             failed |= r.failed;
+        }
+        if entry.is_empty() {
+            start = i + 1;
         }
         entry.push_str(&line);
         entry.push('\n');
         if !is_complete(&entry) {
             continue;
         }
-        let r = session.execute(&entry);
+        let r = session.execute_from(&entry, SCRIPT, start);
         show(&entry, &r);
         entry.clear();
         failed |= r.failed;
@@ -108,7 +117,7 @@ pub fn piped(mut session: Session, input: impl BufRead, echo: bool) -> bool {
         }
     }
     if !entry.trim().is_empty() {
-        let r = session.execute(&entry);
+        let r = session.execute_from(&entry, SCRIPT, start);
         show(&entry, &r);
         failed |= r.failed;
     }

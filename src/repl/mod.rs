@@ -105,6 +105,25 @@ pub struct Session {
     pub format: Format,
     /// The work budget of every entry (`:max-terms`, `qdot --max-terms`).
     pub max_terms: usize,
+    /// Where the entry being executed comes from, for error positions.
+    origin: Origin,
+}
+
+/// Where an entry comes from: the name errors give it and the line of that
+/// source it starts on (a script piped in, a file loaded).
+#[derive(Clone, Debug)]
+struct Origin {
+    name: String,
+    first_line: usize,
+}
+
+impl Origin {
+    fn typed() -> Origin {
+        Origin {
+            name: INPUT.to_string(),
+            first_line: 1,
+        }
+    }
 }
 
 impl Default for Session {
@@ -192,6 +211,7 @@ impl Session {
             undo: Vec::new(),
             format: Format::Text,
             max_terms: crate::limits::DEFAULT_MAX_TERMS,
+            origin: Origin::typed(),
         }
     }
 
@@ -233,6 +253,26 @@ impl Session {
 
     /// Run one complete entry (see [`is_complete`]).
     pub fn execute(&mut self, entry: &str) -> Response {
+        self.execute_from(entry, INPUT, 1)
+    }
+
+    /// [`execute`](Self::execute) an entry that starts at line `first_line`
+    /// of the source `name` (a script read line by line): its errors point
+    /// at that source's lines.
+    pub fn execute_from(&mut self, entry: &str, name: &str, first_line: usize) -> Response {
+        let outer = std::mem::replace(
+            &mut self.origin,
+            Origin {
+                name: name.to_string(),
+                first_line,
+            },
+        );
+        let r = self.execute_bounded(entry);
+        self.origin = outer;
+        r
+    }
+
+    fn execute_bounded(&mut self, entry: &str) -> Response {
         let max_terms = self.max_terms;
         // an entry over budget changes nothing: statements are committed
         // only after the scene they make has been resolved
@@ -251,7 +291,7 @@ impl Session {
                 Response::error(
                     Diagnostic::global(e.message())
                         .with_hint(hint)
-                        .render(INPUT, ""),
+                        .render(&self.origin.name, ""),
                 )
             })
     }
@@ -275,7 +315,7 @@ impl Session {
                     } else {
                         expr_err
                     };
-                    Response::error(d.render(INPUT, entry))
+                    Response::error(self.render(&d, entry))
                 }
             },
         }
@@ -297,7 +337,7 @@ impl Session {
             let replaced = replace_last(entry, &value_input(last));
             return match crate::parse::parse_scene(&replaced) {
                 Ok(s) => self.statements(&replaced, &s),
-                Err(d) => Response::error(d.render(INPUT, &replaced)),
+                Err(d) => Response::error(self.render(&d, &replaced)),
             };
         }
         let mut list = self.statements.clone();
@@ -349,7 +389,7 @@ impl Session {
         for w in &scene.warnings {
             if let Some(span) = w.span {
                 if let Some(d) = shift(w, span.start, &offsets, &placed) {
-                    err.push_str(&d.render(INPUT, entry));
+                    err.push_str(&self.render(&d, entry));
                 }
             }
         }
@@ -383,11 +423,16 @@ impl Session {
     ) -> String {
         match d.span {
             Some(span) => match shift(d, span.start, offsets, placed) {
-                Some(e) => e.render(INPUT, entry),
+                Some(e) => self.render(&e, entry),
                 None => d.render("scene", src),
             },
-            None => d.render(INPUT, entry),
+            None => self.render(d, entry),
         }
+    }
+
+    /// `d` rendered against the entry, positioned in the entry's source.
+    fn render(&self, d: &Diagnostic, entry: &str) -> String {
+        d.render_from(&self.origin.name, entry, self.origin.first_line)
     }
 
     fn push_undo(&mut self) {
@@ -413,12 +458,12 @@ impl Session {
                 } else {
                     d
                 };
-                return Response::error(d.render(INPUT, entry));
+                return Response::error(self.render(&d, entry));
             }
         };
         let layout = self.layout(e, &extra);
         let out = self.show_value(None, &value, layout);
-        let err: String = warnings.iter().map(|w| w.render(INPUT, entry)).collect();
+        let err: String = warnings.iter().map(|w| self.render(w, entry)).collect();
         self.push_undo();
         self.last = Some(value);
         self.last_command = None;
@@ -645,10 +690,9 @@ impl Session {
                 )),
             },
             _ => {
-                let near = COMMANDS
-                    .iter()
-                    .map(|c| &c.0[1..])
-                    .find(|c| c.starts_with(name) && !name.is_empty());
+                let names = || COMMANDS.iter().map(|c| &c.0[1..]);
+                let near = crate::spelling::nearest(name, names())
+                    .or_else(|| names().find(|c| c.starts_with(name) && !name.is_empty()));
                 let hint = match near {
                     Some(c) => format!("did you mean `:{c}`? :help lists the commands"),
                     None => ":help lists the commands".to_string(),
@@ -814,17 +858,18 @@ impl Session {
             Ok(s) => s,
             Err(d) => return Response::error(d.render(path, &src)),
         };
+        let outer = std::mem::replace(
+            &mut self.origin,
+            Origin {
+                name: path.to_string(),
+                first_line: 1,
+            },
+        );
         let mut r = self.statements(&src, &stmts);
+        self.origin = outer;
         // the definitions of a whole file are not echoed
         if !r.failed {
             r.out = format!("(loaded {} statements from {path})\n", stmts.len());
-            r.err = r
-                .err
-                .replace(&format!("--> {INPUT}:"), &format!("--> {path}:"));
-        } else {
-            r.err = r
-                .err
-                .replace(&format!("--> {INPUT}:"), &format!("--> {path}:"));
         }
         r
     }
@@ -926,15 +971,18 @@ fn parse_options(args: &str, cmd: Command, opts: &mut CommandOptions) -> Result<
                 ))
             }
         };
-        let allowed = match cmd {
-            Command::Modes => ["set", "at", "init", "steady"].contains(&key.as_str()),
-            Command::Equilibrium => ["set", "steady"].contains(&key.as_str()),
-            Command::Latex => key == "set",
-            _ => false,
+        let allowed: &[&str] = match cmd {
+            Command::Modes => &["set", "at", "init", "steady"],
+            Command::Equilibrium => &["set", "steady"],
+            Command::Latex => &["set"],
+            _ => &[],
         };
-        if !allowed {
+        if !allowed.contains(&key.as_str()) {
+            let near = crate::spelling::nearest(&key, allowed.iter().copied())
+                .map(|k| format!("did you mean `--{k}`? "))
+                .unwrap_or_default();
             return Err(format!(
-                "error: this command takes no option `--{key}`\n  = hint: :equilibrium takes --set and --steady; :modes takes --at, --steady, --init and --set\n"
+                "error: this command takes no option `--{key}`\n  = hint: {near}:equilibrium takes --set and --steady; :modes takes --at, --steady, --init and --set\n"
             ));
         }
         let Some(value) = value else {

@@ -574,7 +574,7 @@ fn a_repl_command_never_continues_an_unfinished_entry() {
     o.assert_clean();
     assert!(
         o.stderr.starts_with(
-            "error: expected an expression after `+`, but the file ends\n --> input:1:24\n"
+            "error: expected an expression after `+`, but the file ends\n --> stdin:3:24\n"
         ),
         "{o:?}"
     );

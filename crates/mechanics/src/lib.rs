@@ -13,7 +13,7 @@ pub mod solve;
 // the lower layers, by the paths this crate's modules use
 use qdot_exact::{algebra, budget, expr, limits, num, poly, rng};
 use qdot_ode::dense;
-use qdot_syntax::{diag, parse};
+use qdot_syntax::{diag, parse, spelling};
 
 use diag::Diagnostic;
 use mechanics::Lagrange;

@@ -266,16 +266,27 @@ impl Diagnostic {
     ///   = hint: declare it with `parameters x`
     /// ```
     pub fn render(&self, file: &str, src: &str) -> String {
+        self.render_from(file, src, 1)
+    }
+
+    /// [`render`](Self::render) for a `src` that starts at line
+    /// `first_line` of `file` (an entry of a script read line by line): the
+    /// lines shown are numbered as in the file.
+    pub fn render_from(&self, file: &str, src: &str, first_line: usize) -> String {
+        let at = |c: Caret| Caret {
+            line: c.line + first_line.max(1) - 1,
+            ..c
+        };
         let kind = match self.severity {
             Severity::Error => "error",
             Severity::Warning => "warning",
         };
         let mut out = format!("{kind}: {}\n", self.message);
-        if let Some(main) = self.span.and_then(|s| Caret::of(src, s)) {
+        if let Some(main) = self.span.and_then(|s| Caret::of(src, s)).map(at) {
             let labels: Vec<(Caret, &str)> = self
                 .labels
                 .iter()
-                .filter_map(|l| Caret::of(src, l.span).map(|c| (c, l.message.as_str())))
+                .filter_map(|l| Caret::of(src, l.span).map(|c| (at(c), l.message.as_str())))
                 .collect();
             let widest = labels
                 .iter()

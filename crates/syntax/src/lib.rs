@@ -6,6 +6,7 @@
 
 pub mod diag;
 pub mod parse;
+pub mod spelling;
 pub mod unicode;
 
 // the lower layers, by the paths this crate's modules use

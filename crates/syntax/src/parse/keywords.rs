@@ -82,54 +82,13 @@ pub fn all() -> impl Iterator<Item = &'static str> {
         .chain(body_properties().filter(|w| !STOP.contains(w) && !STATEMENT.contains(w)))
 }
 
-/// The statement keyword `word` is most likely a misspelling of: within
-/// edit distance 1 of a keyword of up to 6 letters, 2 of a longer one
-/// (transpositions count 1; case is ignored). `None` for a keyword itself
-/// and for words shorter than 3 letters.
+/// The statement keyword `word` is most likely a misspelling of (see
+/// [`spelling::nearest`](crate::spelling::nearest)): within edit distance 1
+/// of a keyword of up to 6 letters, 2 of a longer one (transpositions count
+/// 1; case is ignored). `None` for a keyword itself and for words shorter
+/// than 3 letters.
 pub fn suggest(word: &str) -> Option<&'static str> {
-    if word.chars().count() < 3 || word.len() > 40 {
-        return None;
-    }
-    let lower = word.to_lowercase();
-    let w: Vec<char> = lower.chars().collect();
-    let mut best: Option<(usize, &'static str)> = None;
-    for k in statement_keywords() {
-        if k == word {
-            return None;
-        }
-        let limit = if k.len() <= 6 { 1 } else { 2 };
-        let kc: Vec<char> = k.chars().collect();
-        let d = distance(&w, &kc);
-        if d <= limit && best.is_none_or(|(b, _)| d < b) {
-            best = Some((d, k));
-        }
-    }
-    best.map(|(_, k)| k)
-}
-
-/// The optimal-string-alignment distance of `a` and `b` (Damerau–
-/// Levenshtein without edits inside a transposed pair): insertions,
-/// deletions, substitutions and swaps of two neighbours each cost 1.
-fn distance(a: &[char], b: &[char]) -> usize {
-    let n = b.len();
-    // three rows: two back (for swaps), one back, current
-    let mut two: Vec<usize> = vec![0; n + 1];
-    let mut one: Vec<usize> = (0..=n).collect();
-    let mut cur: Vec<usize> = vec![0; n + 1];
-    for i in 1..=a.len() {
-        cur[0] = i;
-        for j in 1..=n {
-            let cost = usize::from(a[i - 1] != b[j - 1]);
-            let mut d = (one[j] + 1).min(cur[j - 1] + 1).min(one[j - 1] + cost);
-            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
-                d = d.min(two[j - 2] + 1);
-            }
-            cur[j] = d;
-        }
-        std::mem::swap(&mut two, &mut one);
-        std::mem::swap(&mut one, &mut cur);
-    }
-    one[n]
+    crate::spelling::nearest(word, statement_keywords())
 }
 
 #[cfg(test)]
@@ -142,22 +101,6 @@ mod tests {
             assert_eq!(role_index(r), i);
             assert_eq!(Role::from_keyword(r.keyword()), Some(r));
         }
-    }
-
-    #[test]
-    fn distances() {
-        let d = |a: &str, b: &str| {
-            distance(
-                &a.chars().collect::<Vec<_>>(),
-                &b.chars().collect::<Vec<_>>(),
-            )
-        };
-        assert_eq!(d("rayliegh", "rayleigh"), 1);
-        assert_eq!(d("kinectic", "kinetic"), 1);
-        assert_eq!(d("potental", "potential"), 1);
-        assert_eq!(d("ab", "ba"), 1);
-        assert_eq!(d("ca", "abc"), 3);
-        assert_eq!(d("", "abc"), 3);
     }
 
     #[test]

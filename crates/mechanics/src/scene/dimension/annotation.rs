@@ -39,7 +39,7 @@ fn exponent(e: &Expr) -> Option<Q> {
 fn unknown(e: &Expr, n: &str) -> Diagnostic {
     let near = DIMENSION_NAMES
         .iter()
-        .map(|d| (crate::scene::eval::edit_distance(n, d.name), d.name))
+        .map(|d| (crate::spelling::distance(n, d.name), d.name))
         .filter(|(k, name)| *k <= 2 && *k < name.len())
         .min();
     let list = |unit: bool| {

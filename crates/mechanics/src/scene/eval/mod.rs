@@ -680,7 +680,7 @@ impl<'a> SyntaxEvaluator<'a> {
     fn nearest(&self, n: &str) -> Option<String> {
         let mut best: Option<(usize, &String)> = None;
         for k in self.names.keys() {
-            let d = edit_distance(n, k);
+            let d = crate::spelling::distance(n, k);
             // ties go to the name first in alphabetical order (the map's
             // order is arbitrary)
             if d <= 2
@@ -1193,22 +1193,6 @@ pub fn is_taylor_form(args: &[ast::Expr], moves: impl Fn(&str) -> bool) -> bool 
         ExprKind::Name(n) => moves(n),
         _ => false,
     }
-}
-
-/// Levenshtein distance over characters.
-pub(crate) fn edit_distance(a: &str, b: &str) -> usize {
-    let a: Vec<char> = a.chars().collect();
-    let b: Vec<char> = b.chars().collect();
-    let mut prev: Vec<usize> = (0..=b.len()).collect();
-    for i in 1..=a.len() {
-        let mut cur = vec![i; b.len() + 1];
-        for j in 1..=b.len() {
-            let cost = usize::from(a[i - 1] != b[j - 1]);
-            cur[j] = (prev[j] + 1).min(cur[j - 1] + 1).min(prev[j - 1] + cost);
-        }
-        prev = cur;
-    }
-    prev[b.len()]
 }
 
 /// An error when a function in `es` (just built at `span`) nests deeper
