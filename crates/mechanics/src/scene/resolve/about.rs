@@ -7,7 +7,7 @@
 //! is constant. The result is checked as any inertia about the centre:
 //! a provably impossible one is refused, an undecided one is a warning.
 
-use super::inertia::{self, Written, ABOUT_LABEL};
+use super::inertia::{self, Written};
 use super::{positions_only, Resolver, Value};
 use crate::algebra::assume::assuming;
 use crate::algebra::sign::{sign_exact, Sign};
@@ -18,6 +18,9 @@ use crate::scene::rotation::Rotation;
 
 /// How a point of the body is written, for hints.
 const POINT_HINT: &str = "P is in ground components, like the centre of mass, and moves with the body: a top's fixed point at the origin is `about [0, 0, 0]`, the end of a rod `about C - l/2*axis(B, 3)` for its centre C";
+
+/// The label at `about P` in the plane (`inertia` labels the space's).
+const PLANE_LABEL: &str = "the moment is given about this point; about the centre of mass it is J − m·|d|², d from this point to the centre";
 
 /// The body an inertia `about` a point belongs to.
 pub(super) struct Owner<'a> {
@@ -111,7 +114,7 @@ impl Resolver<'_> {
                     centroidal.to_input()
                 ),
             )
-            .with_label(about_span(about), ABOUT_LABEL)
+            .with_label(about_span(about), PLANE_LABEL)
             .with_hint("the moment about a point exceeds the one about the centre by m·|d|², d from the point to the centre: check the moment and the point")),
             Some(_) => Ok(centroidal),
             None => {
@@ -123,7 +126,7 @@ impl Resolver<'_> {
                             centroidal.to_input()
                         ),
                     )
-                    .with_label(about_span(about), ABOUT_LABEL)
+                    .with_label(about_span(about), PLANE_LABEL)
                     .with_hint(format!(
                         "a moment of inertia is ≥ 0; state it with `assume {} > 0` or give numbers",
                         centroidal.to_input()

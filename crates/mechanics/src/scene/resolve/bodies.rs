@@ -379,7 +379,10 @@ impl Resolver<'_> {
     }
 
     /// The inertia of a body in space: `[I1, I2, I3]` (principal, along the
-    /// body's axes) or a symmetric 3×3 `[[Ixx, Ixy, Ixz], …]`.
+    /// body's axes) or a symmetric 3×3 `[[Ixx, Ixy, Ixz], …]`. One about
+    /// the centre is checked to be a rigid body's here; one `about` a
+    /// point after it is moved to the centre (valid there, it is valid
+    /// about every point of the body).
     fn inertia_tensor(
         &mut self,
         p: &BodyProperty,
@@ -463,8 +466,10 @@ impl Resolver<'_> {
             moments,
             about: None,
         };
-        if let Some(w) = super::inertia::check(&m, &written, &self.assumed)? {
-            self.warnings.push(w);
+        if p.about.is_none() {
+            if let Some(w) = super::inertia::check(&m, &written, &self.assumed)? {
+                self.warnings.push(w);
+            }
         }
         Ok(m)
     }

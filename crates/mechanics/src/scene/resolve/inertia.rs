@@ -47,7 +47,7 @@ impl Written<'_> {
 }
 
 /// The label at `about P`.
-pub(super) const ABOUT_LABEL: &str = "the inertia is given about this point; about the centre of mass it is I − m·(|d|²·1 − d·dᵀ), d from this point to the centre along the body's axes";
+const ABOUT_LABEL: &str = "the inertia is given about this point; about the centre of mass it is I − m·(|d|²·1 − d·dᵀ), d from this point to the centre along the body's axes";
 
 /// The principal minors of a 3×3 matrix: the index sets and the values
 /// (`None` for a minor without a canonical form: its sign is undecided).
@@ -110,18 +110,33 @@ fn describe(
             let span = at.moments.map_or(at.span, |s| s[*k]);
             (
                 span,
-                format!(
-                    "{} ≤ {} + {}",
-                    i[*k][*k].to_input(),
-                    i[a][a].to_input(),
-                    i[b][b].to_input()
-                ),
-                format!(
-                    "{} + {} > {}",
-                    i[a][a].to_input(),
-                    i[b][b].to_input(),
-                    i[*k][*k].to_input()
-                ),
+                match at.about {
+                    Some(_) => format!(
+                        "{} ≤ {}",
+                        i[*k][*k].to_input(),
+                        i[a][a].add(&i[b][b]).to_input()
+                    ),
+                    None => format!(
+                        "{} ≤ {} + {}",
+                        i[*k][*k].to_input(),
+                        i[a][a].to_input(),
+                        i[b][b].to_input()
+                    ),
+                },
+                match at.about {
+                    // converted moments: their sum, collected
+                    Some(_) => format!(
+                        "{} > {}",
+                        i[a][a].add(&i[b][b]).to_input(),
+                        i[*k][*k].to_input()
+                    ),
+                    None => format!(
+                        "{} + {} > {}",
+                        i[a][a].to_input(),
+                        i[b][b].to_input(),
+                        i[*k][*k].to_input()
+                    ),
+                },
             )
         }
         (true, _, _) => (
@@ -248,5 +263,9 @@ fn refusal(
         Some(_) if !triangle || set.len() > 1 => format!("the inertia of {}: {message}", at.who()),
         _ => message,
     };
-    Diagnostic::error(span, message).with_hint(HINT)
+    let hint = match at.about {
+        Some(_) => format!("{HINT}; about a point the inertia exceeds the one about the centre by m·(|d|²·1 − d·dᵀ): check the inertia and the point"),
+        None => HINT.to_string(),
+    };
+    Diagnostic::error(span, message).with_hint(hint)
 }
