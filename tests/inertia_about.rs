@@ -66,7 +66,10 @@ fn the_gyrocompass_rotor_needs_no_mass() {
     let new = example("gyrocompass");
     assert!(!new.contains("mass m"));
     let old = new
-        .replace("parameters A: mass*length^2", "parameters m: mass, A: mass*length^2")
+        .replace(
+            "parameters A: mass*length^2",
+            "parameters m: mass, A: mass*length^2",
+        )
         .replace("body rotor: inertia", "body rotor: mass m, inertia");
     assert!(old.contains("body rotor: mass m, inertia [C, A, A]"));
     same_equations(&new, &old);
@@ -177,5 +180,9 @@ fn the_parser_keeps_the_point() {
     let about = b.properties[1].about.as_ref().expect("about");
     assert_eq!(&src[about.key_span.start..about.key_span.end], "about");
     assert_eq!(&src[about.point.span.start..about.point.span.end], "O");
-    assert!(b.properties.iter().enumerate().all(|(k, p)| (k == 1) == p.about.is_some()));
+    assert!(b
+        .properties
+        .iter()
+        .enumerate()
+        .all(|(k, p)| (k == 1) == p.about.is_some()));
 }

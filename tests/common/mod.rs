@@ -67,7 +67,12 @@ fn properties(b: &qdot::parse::ast::BodyStmt, show: impl Fn(&Expr) -> String, se
     b.properties
         .iter()
         .map(|p| match &p.about {
-            Some(a) => format!("{} {} about {}", p.key.keyword(), show(&p.value), show(&a.point)),
+            Some(a) => format!(
+                "{} {} about {}",
+                p.key.keyword(),
+                show(&p.value),
+                show(&a.point)
+            ),
             None => format!("{} {}", p.key.keyword(), show(&p.value)),
         })
         .collect::<Vec<_>>()

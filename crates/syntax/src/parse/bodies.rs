@@ -224,8 +224,11 @@ impl<'s> Parser<'s> {
         if starts_with_about(k) {
             let again = Span::new(self.pos(k), self.pos(k) + ABOUT.len());
             return self.fail(
-                Diagnostic::error(again, "an inertia is taken about one point, and this gives a second")
-                    .with_hint(ABOUT_FORM),
+                Diagnostic::error(
+                    again,
+                    "an inertia is taken about one point, and this gives a second",
+                )
+                .with_hint(ABOUT_FORM),
             );
         }
         Ok((rest, Some(About { key_span, point })))
