@@ -29,6 +29,7 @@ mod hostile;
 use hostile::bound;
 mod house;
 mod implicit;
+mod inertia_about;
 mod integrators;
 mod integrators_alloc;
 #[cfg(feature = "jit")]

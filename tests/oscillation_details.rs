@@ -197,7 +197,7 @@ fn the_gyrocompass_condition_is_factored_and_uses_the_assumptions() {
         "modes",
         "examples/gyrocompass.qd",
         "--set",
-        "m=1,A=1,C=1.5,s=100,Omega=0.0000729,lat=0.8",
+        "A=1,C=1.5,s=100,Omega=0.0000729,lat=0.8",
     ]);
     assert_eq!(stability_line(&out), "Stability of the equilibrium: stable");
 }

@@ -66,7 +66,15 @@ fn facts_text(
 fn properties(b: &qdot::parse::ast::BodyStmt, show: impl Fn(&Expr) -> String, sep: &str) -> String {
     b.properties
         .iter()
-        .map(|p| format!("{} {}", p.key.keyword(), show(&p.value)))
+        .map(|p| match &p.about {
+            Some(a) => format!(
+                "{} {} about {}",
+                p.key.keyword(),
+                show(&p.value),
+                show(&a.point)
+            ),
+            None => format!("{} {}", p.key.keyword(), show(&p.value)),
+        })
         .collect::<Vec<_>>()
         .join(sep)
 }

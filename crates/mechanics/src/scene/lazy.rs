@@ -54,7 +54,11 @@ fn statement_exprs(st: &Stmt) -> Vec<&ast::Expr> {
             .iter()
             .flat_map(|eq| [&eq.lhs, &eq.rhs])
             .collect(),
-        Stmt::Body(b) => b.properties.iter().map(|p| &p.value).collect(),
+        Stmt::Body(b) => b
+            .properties
+            .iter()
+            .flat_map(|p| std::iter::once(&p.value).chain(p.about.as_ref().map(|a| &a.point)))
+            .collect(),
         Stmt::Constraint { equation, .. } => vec![&equation.lhs, &equation.rhs],
         Stmt::Reaction { point, .. } => vec![point],
         Stmt::Joint(j) => [&j.first.point, &j.second.point]

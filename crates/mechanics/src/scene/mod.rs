@@ -203,7 +203,8 @@ pub struct Body {
 /// kinetic energy ½·m·|ċ|² + ½·ωᵀ·I·ω read as a rigid body's.
 #[derive(Clone, Debug)]
 pub struct MassProperties {
-    /// The mass, a positive constant.
+    /// The mass, a positive constant; 0 for a body written without one
+    /// (its centre is then fixed).
     pub mass: Expr,
     /// The centre of mass: 2 (plane) or 3 (space) components.
     pub centre: Vec<Expr>,

@@ -275,6 +275,18 @@ pub struct BodyProperty {
     pub key_span: Span,
     /// Its value.
     pub value: Expr,
+    /// `about P` after an inertia: the point the inertia is taken about
+    /// (ground components), when it is not the centre of mass.
+    pub about: Option<About>,
+}
+
+/// `about P`: the point an inertia is given about.
+#[derive(Clone, Debug, PartialEq)]
+pub struct About {
+    /// Where the word `about` is written.
+    pub key_span: Span,
+    /// The point, in ground components.
+    pub point: Expr,
 }
 
 /// The properties a body statement may give.
@@ -282,7 +294,8 @@ pub struct BodyProperty {
 pub enum PropertyKey {
     /// `mass M`.
     Mass,
-    /// `inertia I`: a number (plane), `[I1, I2, I3]` or a symmetric 3×3.
+    /// `inertia I`: a number (plane), `[I1, I2, I3]` or a symmetric 3×3,
+    /// optionally `about P`.
     Inertia,
     /// `frame F`: the body's orientation (a rotation).
     Frame,

@@ -1,7 +1,7 @@
 //! The statement rules of bodies in space and in the plane: `frame`,
 //! `body`/`particle` and `gravity`.
 
-use super::ast::{BodyKind, BodyProperty, BodyStmt, PropertyKey};
+use super::ast::{About, BodyKind, BodyProperty, BodyStmt, PropertyKey};
 use super::*;
 
 impl<'s> Parser<'s> {
@@ -126,7 +126,7 @@ impl<'s> Parser<'s> {
         ))
     }
 
-    /// `property ::= ( "mass" | "inertia" | "frame" | "angle" | "at" ) ws expr`
+    /// `property ::= ( "mass" | "inertia" | "frame" | "angle" | "at" ) ws expr ( ws "about" ws expr )?`
     pub(super) fn property(
         &self,
         i: &'s str,
@@ -137,6 +137,15 @@ impl<'s> Parser<'s> {
         let len = ident_len(j);
         let key = PropertyKey::from_keyword(&j[..len]);
         let Some(key) = key.filter(|_| len > 0) else {
+            if &j[..len] == ABOUT {
+                return self.fail(
+                    Diagnostic::error(
+                        self.token(j).0,
+                        "`about` belongs to the inertia: it follows the inertia's value, without a comma",
+                    )
+                    .with_hint(ABOUT_FORM),
+                );
+            }
             let words: Vec<&str> = PropertyKey::ALL.iter().map(|k| k.keyword()).collect();
             return self.fail(self.expected(
                 j,
@@ -153,14 +162,18 @@ impl<'s> Parser<'s> {
         let value = self.expr(rest);
         self.stop.set(false);
         match value {
-            Ok((rest, node)) => Ok((
-                rest,
-                BodyProperty {
-                    key,
-                    key_span,
-                    value: *node.e,
-                },
-            )),
+            Ok((rest, node)) => {
+                let (rest, about) = self.about(rest, key)?;
+                Ok((
+                    rest,
+                    BodyProperty {
+                        key,
+                        key_span,
+                        value: *node.e,
+                        about,
+                    },
+                ))
+            }
             Err(nom::Err::Error(_)) => self.fail(self.expected(
                 self.ws(rest),
                 &format!("a value after `{}`", key.keyword()),
@@ -170,15 +183,80 @@ impl<'s> Parser<'s> {
             Err(e) => Err(e),
         }
     }
+
+    /// `( ws "about" ws expr )?` after the value of the property `key`:
+    /// only an inertia is taken about a point, and about one.
+    fn about(&self, i: &'s str, key: PropertyKey) -> RuleResult<'s, Option<About>> {
+        let j = self.ws(i);
+        if !starts_with_about(j) {
+            return Ok((i, None));
+        }
+        let key_span = Span::new(self.pos(j), self.pos(j) + ABOUT.len());
+        if key != PropertyKey::Inertia {
+            return self.fail(
+                Diagnostic::error(
+                    key_span,
+                    format!(
+                        "`about` follows an inertia, and this follows the {}",
+                        p_key_noun_of(key)
+                    ),
+                )
+                .with_hint(ABOUT_FORM),
+            );
+        }
+        let rest = &j[ABOUT.len()..];
+        self.stop.set(true);
+        let point = self.expr(rest);
+        self.stop.set(false);
+        let (rest, point) = match point {
+            Ok((rest, node)) => (rest, *node.e),
+            Err(nom::Err::Error(_)) => {
+                return self.fail(self.expected(
+                    self.ws(rest),
+                    "the point after `about`",
+                    ABOUT_FORM,
+                    Some(key_span),
+                ))
+            }
+            Err(e) => return Err(e),
+        };
+        let k = self.ws(rest);
+        if starts_with_about(k) {
+            let again = Span::new(self.pos(k), self.pos(k) + ABOUT.len());
+            return self.fail(
+                Diagnostic::error(
+                    again,
+                    "an inertia is taken about one point, and this gives a second",
+                )
+                .with_hint(ABOUT_FORM),
+            );
+        }
+        Ok((rest, Some(About { key_span, point })))
+    }
+}
+
+/// The word of [`About`].
+const ABOUT: &str = "about";
+
+/// How an inertia about a point is written, for hints.
+const ABOUT_FORM: &str = "an inertia about a point other than the centre of mass is written `inertia [A, A, C] about O`, O the point in ground components (a point of the body, such as a fixed pivot), right after the inertia";
+
+/// Whether `i` starts with the word `about`.
+fn starts_with_about(i: &str) -> bool {
+    ident_len(i) == ABOUT.len() && i.starts_with(ABOUT)
+}
+
+/// "mass" / "position": how the property `key` is named in messages.
+fn p_key_noun_of(key: PropertyKey) -> &'static str {
+    match key {
+        PropertyKey::At => "position",
+        k => k.keyword(),
+    }
 }
 
 /// "mass" / "position": the last property parsed, for messages.
 fn p_key_noun(properties: &[BodyProperty]) -> &'static str {
-    match properties.last().map(|p| p.key) {
-        Some(PropertyKey::At) => "position",
-        Some(k) => k.keyword(),
-        None => "name",
-    }
+    properties.last().map_or("name", |p| p_key_noun_of(p.key))
 }
 
 /// How a body or particle named `name` is written, for hints.

@@ -55,9 +55,9 @@ pub const STATEMENT: &[&str] = &[
     "friction",
 ];
 
-/// The stop words inside `load … at …`, `torque … on …` and `joint … at
-/// … along …`.
-pub const STOP: &[&str] = &["at", "on", "along"];
+/// The stop words inside `load … at …`, `torque … on …`, `joint … at
+/// … along …` and a body's `inertia … about …`.
+pub const STOP: &[&str] = &["at", "on", "along", "about"];
 
 /// The property words of `body` and `particle` (`mass m, at P`).
 pub fn body_properties() -> impl Iterator<Item = &'static str> {

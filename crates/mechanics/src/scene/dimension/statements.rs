@@ -226,7 +226,8 @@ fn unknowns_in(block: &SolveBlock, eq: &Equation) -> usize {
 }
 
 /// `body`/`particle`: a mass, a moment of inertia per entry, a length
-/// per component of the position, a pure number for a plane angle.
+/// per component of the position and of an inertia's `about` point, a
+/// pure number for a plane angle.
 pub(super) fn body(w: &mut Walker, b: &BodyStmt) -> Checked<()> {
     let name = &b.name.name;
     for p in &b.properties {
@@ -268,6 +269,15 @@ pub(super) fn body(w: &mut Walker, b: &BodyStmt) -> Checked<()> {
             _ => {
                 w.value(&p.value, Some(&want))?;
             }
+        }
+        if let Some(about) = &p.about {
+            let want = Want {
+                form: DimForm::known(Dimension::LENGTH),
+                why: Why::Property {
+                    what: format!("the point the inertia of `{name}` is taken about"),
+                },
+            };
+            w.value(&about.point, Some(&want))?;
         }
     }
     Ok(())

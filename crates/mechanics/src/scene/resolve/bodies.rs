@@ -2,6 +2,7 @@
 //! become kinetic energies (`E_top`), gravity a potential on each (`V_top`),
 //! definitions with a role like the ones a scene writes by hand.
 
+use super::about::Owner;
 use super::{positions_only, Declarations, Definition, Resolver, Value};
 use crate::algebra::sign::{sign_exact, Sign};
 use crate::diag::Diagnostic;
@@ -26,7 +27,8 @@ pub(crate) fn gravity_name(name: &str) -> String {
 #[derive(Clone, Debug)]
 pub(super) struct ResolvedBody {
     pub(super) info: crate::scene::Body,
-    mass: Expr,
+    /// `None` for a body without a mass, its centre fixed.
+    pub(super) mass: Option<Expr>,
     /// The centre of mass: 2 or 3 components.
     position: Vec<Expr>,
 }
@@ -109,13 +111,19 @@ impl<'a> Properties<'a> {
                 }
             }
         }
+        // a rigid body may leave out its mass (its centre must then be
+        // fixed, checked when resolved), not both mass and inertia
+        let rigid = b.kind == BodyKind::Rigid;
+        let no_inertia = rigid && props.get(PropertyKey::Inertia).is_none();
         let mut missing: Vec<&str> = [PropertyKey::Mass, PropertyKey::At]
             .into_iter()
             .filter(|&k| props.get(k).is_none())
+            .filter(|&k| k != PropertyKey::Mass || !rigid || no_inertia)
             .map(PropertyKey::keyword)
             .collect();
-        if b.kind == BodyKind::Rigid && props.get(PropertyKey::Inertia).is_none() {
-            missing.insert(missing.len().min(1), "inertia");
+        if no_inertia {
+            let after_mass = usize::from(props.get(PropertyKey::Mass).is_none());
+            missing.insert(after_mass, "inertia");
         }
         if !missing.is_empty() {
             return Err(Diagnostic::error(
@@ -157,20 +165,33 @@ impl Resolver<'_> {
     /// A `body` or `particle` statement: its kinetic energy `E_name`.
     pub(super) fn body(&mut self, b: &BodyStmt) -> Result<(), Diagnostic> {
         let props = Properties::collect(b)?;
-        let (Some(mass), Some(at)) = (props.get(PropertyKey::Mass), props.get(PropertyKey::At))
-        else {
-            return Err(Diagnostic::global(
-                "internal: a body without mass or position",
-            ));
+        let Some(at) = props.get(PropertyKey::At) else {
+            return Err(Diagnostic::global("internal: a body without a position"));
         };
-        let m = self.mass(mass)?;
+        let m = match props.get(PropertyKey::Mass) {
+            Some(mass) => Some(self.mass(mass)?),
+            None => None,
+        };
         let position = self.position(at)?;
-        let mut speed2 = Expr::zero();
-        for c in &position {
-            let v = self.ev.time_derivative(c);
-            speed2 = speed2.add(&v.mul(&v));
+        if m.is_none() {
+            fixed_centre(b, at, &position)?;
         }
-        let mut energy = m.mul(&speed2);
+        let owner = Owner {
+            name: &b.name.name,
+            mass: m.as_ref(),
+            centre: &position,
+        };
+        let mut energy = match &m {
+            Some(m) => {
+                let mut speed2 = Expr::zero();
+                for c in &position {
+                    let v = self.ev.time_derivative(c);
+                    speed2 = speed2.add(&v.mul(&v));
+                }
+                m.mul(&speed2)
+            }
+            None => Expr::zero(),
+        };
         let mut turning = None;
         if let Some(inertia) = props.get(PropertyKey::Inertia) {
             if let Some(frame) = props.get(PropertyKey::Frame) {
@@ -182,7 +203,10 @@ impl Resolver<'_> {
                     )
                     .with_hint("write it as [x, y, z]; a body in the plane has an `angle` instead of a frame"));
                 }
-                let i = self.inertia_tensor(inertia, &b.name.name)?;
+                let mut i = self.inertia_tensor(inertia, &b.name.name)?;
+                if let Some(about) = &inertia.about {
+                    i = self.space_about(inertia, about, i, &r, &owner)?;
+                }
                 let w = r.omega_frame();
                 energy = energy.add(&quadratic_form(&i, &w));
                 turning = Some(Turning::Space {
@@ -200,13 +224,16 @@ impl Resolver<'_> {
                     )
                     .with_hint("write it as [x, y]; a body in space has a `frame` instead of an angle"));
                 }
-                let j = self.planar_inertia(inertia, &b.name.name)?;
+                let mut j = self.planar_inertia(inertia, &b.name.name)?;
                 let theta = self.ev.expr(&angle.value)?;
                 positions_only(
                     std::slice::from_ref(&theta),
                     angle.value.span,
                     "a body's angle",
                 )?;
+                if let Some(about) = &inertia.about {
+                    j = self.plane_about(inertia, about, j, &theta, &owner)?;
+                }
                 let w = self.ev.time_derivative(&theta);
                 energy = energy.add(&j.mul(&w).mul(&w));
                 turning = Some(Turning::Plane {
@@ -230,7 +257,7 @@ impl Resolver<'_> {
                 kinetic: kinetic_name(&b.name.name),
                 gravity: None,
                 mass_properties: MassProperties {
-                    mass: m.clone(),
+                    mass: m.clone().unwrap_or_else(Expr::zero),
                     centre: position.clone(),
                     turning,
                     gravity: None,
@@ -352,7 +379,10 @@ impl Resolver<'_> {
     }
 
     /// The inertia of a body in space: `[I1, I2, I3]` (principal, along the
-    /// body's axes) or a symmetric 3×3 `[[Ixx, Ixy, Ixz], …]`.
+    /// body's axes) or a symmetric 3×3 `[[Ixx, Ixy, Ixz], …]`. One about
+    /// the centre is checked to be a rigid body's here; one `about` a
+    /// point after it is moved to the centre (valid there, it is valid
+    /// about every point of the body).
     fn inertia_tensor(
         &mut self,
         p: &BodyProperty,
@@ -434,9 +464,12 @@ impl Resolver<'_> {
             body,
             span: e.span,
             moments,
+            about: None,
         };
-        if let Some(w) = super::inertia::check(&m, &written, &self.assumed)? {
-            self.warnings.push(w);
+        if p.about.is_none() {
+            if let Some(w) = super::inertia::check(&m, &written, &self.assumed)? {
+                self.warnings.push(w);
+            }
         }
         Ok(m)
     }
@@ -477,6 +510,8 @@ impl Resolver<'_> {
                 );
             }
             for b in &mut self.bodies {
+                // gravity does no work on a body whose centre is fixed
+                let Some(mass) = &b.mass else { continue };
                 if b.position.len() != g.len() {
                     return Err(Diagnostic::error(
                         value.span,
@@ -497,7 +532,7 @@ impl Resolver<'_> {
                 b.info.mass_properties.gravity = Some(g.clone());
                 self.body_energies.push(Definition {
                     name: gravity_name(&b.info.name),
-                    value: Value::Scalar(b.mass.mul(&work).neg()),
+                    value: Value::Scalar(mass.mul(&work).neg()),
                     span: *span,
                     role: Some(Role::Potential),
                 });
@@ -505,6 +540,23 @@ impl Resolver<'_> {
         }
         Ok(())
     }
+}
+
+/// An error unless the centre of a body without a mass is fixed: only
+/// then is its kinetic energy its turning's alone, whatever its mass.
+fn fixed_centre(b: &BodyStmt, at: &BodyProperty, position: &[Expr]) -> Result<(), Diagnostic> {
+    if position.iter().any(Expr::is_time_dependent) {
+        return Err(Diagnostic::error(
+            b.name.span,
+            format!("`{}` has no mass, and its centre moves", b.name.name),
+        )
+        .with_label(at.value.span, "this moves with time")
+        .with_hint(format!(
+            "a body whose centre moves needs its mass: `body {}: mass m, …`; only a body turning about its fixed centre (`at [0, 0, 0]`) may leave it out",
+            b.name.name
+        )));
+    }
+    Ok(())
 }
 
 /// ωᵀ·I·ω.

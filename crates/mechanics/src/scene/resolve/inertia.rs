@@ -18,12 +18,36 @@ use crate::parse::ast::Span;
 const HINT: &str = "a rigid body's inertia is positive semidefinite and its principal moments satisfy the triangle inequality (each at most the sum of the other two; equal for a flat body)";
 
 /// Where an inertia is written: the whole value, and each principal
-/// moment when it is written as `[I1, I2, I3]`.
+/// moment when it is written as `[I1, I2, I3]`; `about`, the point of
+/// `inertia I about P` when the inertia checked is the centroidal one
+/// converted from it.
 pub(super) struct Written<'a> {
     pub(super) body: &'a str,
     pub(super) span: Span,
     pub(super) moments: Option<[Span; 3]>,
+    pub(super) about: Option<Span>,
 }
+
+impl Written<'_> {
+    /// "`top`", or "`top` about its centre of mass" for a converted inertia.
+    fn who(&self) -> String {
+        match self.about {
+            Some(_) => format!("`{}` about its centre of mass", self.body),
+            None => format!("`{}`", self.body),
+        }
+    }
+
+    /// A diagnostic on a converted inertia points at the point too.
+    fn label(&self, d: Diagnostic) -> Diagnostic {
+        match self.about {
+            Some(p) => d.with_label(p, ABOUT_LABEL),
+            None => d,
+        }
+    }
+}
+
+/// The label at `about P`.
+const ABOUT_LABEL: &str = "the inertia is given about this point; about the centre of mass it is I − m·(|d|²·1 − d·dᵀ), d from this point to the centre along the body's axes";
 
 /// The principal minors of a 3×3 matrix: the index sets and the values
 /// (`None` for a minor without a canonical form: its sign is undecided).
@@ -86,18 +110,33 @@ fn describe(
             let span = at.moments.map_or(at.span, |s| s[*k]);
             (
                 span,
-                format!(
-                    "{} ≤ {} + {}",
-                    i[*k][*k].to_input(),
-                    i[a][a].to_input(),
-                    i[b][b].to_input()
-                ),
-                format!(
-                    "{} + {} > {}",
-                    i[a][a].to_input(),
-                    i[b][b].to_input(),
-                    i[*k][*k].to_input()
-                ),
+                match at.about {
+                    Some(_) => format!(
+                        "{} ≤ {}",
+                        i[*k][*k].to_input(),
+                        i[a][a].add(&i[b][b]).to_input()
+                    ),
+                    None => format!(
+                        "{} ≤ {} + {}",
+                        i[*k][*k].to_input(),
+                        i[a][a].to_input(),
+                        i[b][b].to_input()
+                    ),
+                },
+                match at.about {
+                    // converted moments: their sum, collected
+                    Some(_) => format!(
+                        "{} > {}",
+                        i[a][a].add(&i[b][b]).to_input(),
+                        i[*k][*k].to_input()
+                    ),
+                    None => format!(
+                        "{} + {} > {}",
+                        i[a][a].to_input(),
+                        i[b][b].to_input(),
+                        i[*k][*k].to_input()
+                    ),
+                },
             )
         }
         (true, _, _) => (
@@ -139,8 +178,8 @@ pub(super) fn check(
                     Diagnostic::warning(
                         at.span,
                         format!(
-                            "qdot can't tell that the inertia of `{}` is one a rigid body can have: its minor of {} has no canonical form",
-                            at.body,
+                            "qdot can't tell that the inertia of {} is one a rigid body can have: its minor of {} has no canonical form",
+                            at.who(),
                             rows(&set)
                         ),
                     )
@@ -149,7 +188,9 @@ pub(super) fn check(
                 continue;
             };
             match sign(&minor) {
-                Some(Sign::Negative) => return Err(refusal(i, &set, &minor, triangle, at)),
+                Some(Sign::Negative) => {
+                    return Err(at.label(refusal(i, &set, &minor, triangle, at)))
+                }
                 Some(_) => {}
                 None => {
                     if undecided.is_none() {
@@ -158,8 +199,8 @@ pub(super) fn check(
                             Diagnostic::warning(
                                 span,
                                 format!(
-                                    "qdot can't tell that the inertia of `{}` is one a rigid body can have: {what} is not decided",
-                                    at.body
+                                    "qdot can't tell that the inertia of {} is one a rigid body can have: {what} is not decided",
+                                    at.who()
                                 ),
                             )
                             .with_hint(format!("{HINT}; state it with `assume {fact}` or give numbers")),
@@ -169,7 +210,7 @@ pub(super) fn check(
             }
         }
     }
-    Ok(undecided)
+    Ok(undecided.map(|w| at.label(w)))
 }
 
 /// The error for a minor proved negative.
@@ -186,8 +227,8 @@ fn refusal(
             (
                 at.moments.map_or(at.span, |s| s[*k]),
                 format!(
-                    "the principal moments of inertia of `{}` violate the triangle inequality: {} > {} + {}",
-                    at.body,
+                    "the principal moments of inertia of {} violate the triangle inequality: {} > {} + {}",
+                    at.who(),
                     i[*k][*k].to_input(),
                     i[a][a].to_input(),
                     i[b][b].to_input()
@@ -218,5 +259,13 @@ fn refusal(
             ),
         ),
     };
-    Diagnostic::error(span, message).with_hint(HINT)
+    let message = match at.about {
+        Some(_) if !triangle || set.len() > 1 => format!("the inertia of {}: {message}", at.who()),
+        _ => message,
+    };
+    let hint = match at.about {
+        Some(_) => format!("{HINT}; about a point the inertia exceeds the one about the centre by m·(|d|²·1 − d·dᵀ): check the inertia and the point"),
+        None => HINT.to_string(),
+    };
+    Diagnostic::error(span, message).with_hint(hint)
 }

@@ -166,6 +166,13 @@ impl Resolver<'_> {
     /// The body a joint names: an index into the bodies, `None` for `ground`.
     fn joint_body(&self, id: &ast::Ident) -> Result<Option<usize>, Diagnostic> {
         if let Some(i) = self.bodies.iter().position(|b| b.info.name == id.name) {
+            if self.bodies[i].mass.is_none() {
+                return Err(Diagnostic::error(
+                    id.span,
+                    format!("`{}` has no mass, and a joint's reaction on it carries its weight and inertia", id.name),
+                )
+                .with_hint(format!("give `{}` its mass (`mass m`) in its `body` statement", id.name)));
+            }
             return Ok(Some(i));
         }
         if id.name == "ground" {

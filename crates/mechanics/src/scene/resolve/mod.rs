@@ -14,6 +14,7 @@ use crate::parse::ast::{self, Role, Span, Stmt};
 use crate::poly::Var;
 use rustc_hash::FxHashMap;
 
+mod about;
 mod assume;
 mod bodies;
 mod constraints;
