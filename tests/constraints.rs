@@ -565,10 +565,15 @@ fn an_integrable_velocity_constraint_hints_its_position_form() {
     .unwrap();
     assert!(out.contains("ω₂² = 3·k/(3·M₀ + m)"), "{out}");
     let hint = |constraint: &str| {
-        output::run(Command::Equilibrium, &cart(constraint), Format::Text, &Default::default())
-            .unwrap_err()
-            .hint
-            .unwrap()
+        output::run(
+            Command::Equilibrium,
+            &cart(constraint),
+            Format::Text,
+            &Default::default(),
+        )
+        .unwrap_err()
+        .hint
+        .unwrap()
     };
     assert_eq!(
         hint("constraint c: sin(phi)*phi' = x'"),
@@ -583,8 +588,13 @@ fn an_integrable_velocity_constraint_hints_its_position_form() {
         hint("constraint c: cos(phi)*x' = cos(phi)*s'"),
         "the constraint integrates: write it in the positions, `constraint c: x = s` (the constant of integration taken so that it holds where every coordinate is 0)"
     );
-    let err =
-        output::run(Command::Equilibrium, COIN, Format::Text, &Default::default()).unwrap_err();
+    let err = output::run(
+        Command::Equilibrium,
+        COIN,
+        Format::Text,
+        &Default::default(),
+    )
+    .unwrap_err();
     assert_eq!(
         err.hint.as_deref(),
         Some("write the scene in independent coordinates (the pendulum's angle instead of x, y) for its equilibria")

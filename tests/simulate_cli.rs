@@ -662,8 +662,16 @@ fn a_velocity_not_given_is_zero() {
     let file = scene("pendulum_init.qd", PENDULUM);
     let run = |init: &str| {
         qdot(&[
-            "simulate", &file, "--set", "m=1,g=9.81,l=1", "--init", init, "--t-end", "1",
-            "--points", "3",
+            "simulate",
+            &file,
+            "--set",
+            "m=1,g=9.81,l=1",
+            "--init",
+            init,
+            "--t-end",
+            "1",
+            "--points",
+            "3",
         ])
     };
     let (ok, implicit, err) = run("th=0.5");
@@ -677,7 +685,15 @@ fn a_velocity_not_given_is_zero() {
         "coordinates x, s\nparameters m, k\nkinetic E = 1/2*m*(x'^2 + s'^2)\npotential V = 1/2*k*(x - s)^2 + 1/2*k*x^2\n",
     );
     let (ok, out, err) = qdot(&[
-        "simulate", &two, "--set", "m=1,k=1", "--init", "x=0.1,s=0", "--t-end", "1", "--points",
+        "simulate",
+        &two,
+        "--set",
+        "m=1,k=1",
+        "--init",
+        "x=0.1,s=0",
+        "--t-end",
+        "1",
+        "--points",
         "2",
     ]);
     assert!(ok, "{err}");
@@ -685,7 +701,14 @@ fn a_velocity_not_given_is_zero() {
     let (_, r) = rows(&out);
     assert_eq!(&r[0][1..5], &[0.1, 0.0, 0.0, 0.0]);
     let (ok, _, err) = qdot(&[
-        "simulate", &two, "--set", "m=1,k=1", "--init", "x=0.1,x'=1", "--t-end", "1",
+        "simulate",
+        &two,
+        "--set",
+        "m=1,k=1",
+        "--init",
+        "x=0.1,x'=1",
+        "--t-end",
+        "1",
     ]);
     assert!(!ok);
     assert_eq!(
@@ -747,5 +770,8 @@ fn a_zero_damping_runs_in_numeric_commands() {
     let (ok, out, err) = qdot(&["modes", &real, "--set", "m=2,k=3,c=0"]);
     assert!(ok, "{err}");
     assert!(out.contains("  regime: undamped\n"), "{out}");
-    assert!(out.contains("Stability of the equilibrium: stable\n"), "{out}");
+    assert!(
+        out.contains("Stability of the equilibrium: stable\n"),
+        "{out}"
+    );
 }

@@ -141,7 +141,12 @@ pub fn run(src: &str, req: &Request) -> Result<FloquetRun, Diagnostic> {
         .map(|p| p.name.clone())
         .filter(|p| {
             let v = crate::expr::atom::param(p);
-            prepared.mass.iter().flatten().chain(&prepared.frequency).any(|e| e.depends_on(v))
+            prepared
+                .mass
+                .iter()
+                .flatten()
+                .chain(&prepared.frequency)
+                .any(|e| e.depends_on(v))
         })
         .collect();
     let base = crate::scene::given::parameter_map(&scene, &set, &inertial)?;

@@ -161,7 +161,10 @@ fn initial_values(names: &[String], req: &Request) -> Result<Vec<f64>, Diagnosti
             .with_kind(ErrorKind::bad_option("--init")));
         }
     }
-    let missing: Vec<&String> = names.iter().filter(|q| !req.init.contains_key(*q)).collect();
+    let missing: Vec<&String> = names
+        .iter()
+        .filter(|q| !req.init.contains_key(*q))
+        .collect();
     if !missing.is_empty() {
         let list: Vec<&str> = missing.iter().map(|q| q.as_str()).collect();
         let example: Vec<String> = list.iter().map(|q| format!("{q}=0")).collect();

@@ -101,8 +101,10 @@ pub fn parameter_values(s: &str) -> Result<Values, Diagnostic> {
 
 /// The error for `--set k=v` with v ≤ 0 for a positive parameter.
 fn not_positive(k: &str, v: f64) -> Diagnostic {
-    let d = Diagnostic::global(format!("`--set {k}={v}`: parameters are positive, and {v} is not"))
-        .with_kind(ErrorKind::bad_option(SET.option));
+    let d = Diagnostic::global(format!(
+        "`--set {k}={v}`: parameters are positive, and {v} is not"
+    ))
+    .with_kind(ErrorKind::bad_option(SET.option));
     if v == 0.0 {
         // the exact results were derived for k > 0 (a damping's verdict
         // "asymptotically stable" among them): k = 0 is re-derived only

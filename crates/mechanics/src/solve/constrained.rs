@@ -39,7 +39,8 @@ use rustc_hash::FxHashMap;
 const HINT: &str =
     "write the scene in independent coordinates (the pendulum's angle instead of x, y) for its equilibria";
 
-const OSCILLATIONS_HINT: &str = "write the scene in independent coordinates for its small oscillations";
+const OSCILLATIONS_HINT: &str =
+    "write the scene in independent coordinates for its small oscillations";
 
 /// The equilibria of a scene with constraints: `conditions` are the
 /// F_k at rest (free of t), `q` the coordinates' variables; and whether

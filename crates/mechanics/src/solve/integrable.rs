@@ -101,9 +101,8 @@ fn factors(coefficients: &[Expr]) -> Vec<Expr> {
 
 /// Whether (a_k) over `vars` has a symmetric Jacobian: ∂a_i/∂v_j = ∂a_j/∂v_i.
 fn is_gradient(a: &[Expr], vars: &[Var]) -> bool {
-    (0..vars.len()).all(|i| {
-        (i + 1..vars.len()).all(|j| a[i].diff(vars[j]).equals(&a[j].diff(vars[i])))
-    })
+    (0..vars.len())
+        .all(|i| (i + 1..vars.len()).all(|j| a[i].diff(vars[j]).equals(&a[j].diff(vars[i]))))
 }
 
 /// f with ∂f/∂v_k = a_k for every k, integrated variable by variable and
@@ -198,6 +197,9 @@ fn written(f: &Expr, gradient: &[Expr], vars: &[Var]) -> Integral {
     if !vars.iter().any(|&v| lhs.depends_on(v)) {
         std::mem::swap(&mut lhs, &mut rhs);
     }
-    let side = |e: &Expr| e.div(&den).map_or_else(|_| print::input(e), |e| print::input(&e));
+    let side = |e: &Expr| {
+        e.div(&den)
+            .map_or_else(|_| print::input(e), |e| print::input(&e))
+    };
     Integral::Written(format!("{} = {}", side(&lhs), side(&rhs)))
 }
