@@ -153,7 +153,7 @@ enum Command {
         /// Every parameter's value: m=1,g=9.81
         #[arg(long)]
         set: Option<String>,
-        /// Every coordinate's and velocity's initial value: theta=0.5,theta'=0
+        /// Every coordinate's initial value, and the velocities' (0 where not given): theta=0.5,theta'=0
         #[arg(long)]
         init: Option<String>,
         #[command(flatten)]
@@ -637,6 +637,10 @@ fn simulate(
         Ok(r) => r,
         Err(d) => return report.fail(&d, src),
     };
+    let coordinates = r.columns.iter().filter_map(|c| c.strip_suffix('\''));
+    if let Some(note) = run::zero_velocities_note(coordinates, |v| req.init.contains_key(v)) {
+        eprintln!("{note}");
+    }
     emit(&if output == "json" {
         run::json(&r)
     } else {
@@ -1093,7 +1097,7 @@ struct SweepArgs {
     /// The values of the parameters that do not vary: m=1,g=9.81
     #[arg(long)]
     set: Option<String>,
-    /// The initial values that do not vary: theta'=0
+    /// The initial values that do not vary (a velocity not given is 0): theta=0.5
     #[arg(long)]
     init: Option<String>,
     /// A varied parameter, coordinate or velocity: "l=0.5:2:16"
@@ -1218,6 +1222,10 @@ fn sweep(report: Reporter, src: &str, o: &SweepArgs) -> ExitCode {
         Ok(s) => s,
         Err(d) => return report.fail(&d, src),
     };
+    let given = |v: &str| base.init.contains_key(v) || axes.iter().any(|a| a.name == v);
+    if let Some(note) = run::zero_velocities_note(s.coordinates.iter().map(String::as_str), given) {
+        eprintln!("{note}");
+    }
     emit(&if o.output == "json" {
         sweep::json(&s)
     } else {

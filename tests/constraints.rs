@@ -527,3 +527,76 @@ fn reactions_at_points() {
     );
     assert!(err.span.is_some() && err.hint.is_some());
 }
+
+/// A velocity constraint that integrates is refused by `equilibrium` and
+/// `modes` with its position form as the hint, in the scene's syntax, its
+/// constant such that it holds where every coordinate is 0; one whose
+/// integral through 0 is singular leaves the constant to the user; one
+/// exact only after dividing by a coefficient integrates too; the rolling
+/// coin's does not integrate, and keeps the general hint.
+#[test]
+fn an_integrable_velocity_constraint_hints_its_position_form() {
+    let cart = |constraint: &str| {
+        format!(
+            "coordinates x, s, phi\nparameters M0, m, R, k\nkinetic E = 1/2*M0*x'^2 + 1/2*m*s'^2 + 1/4*m*R^2*phi'^2\npotential V = 1/2*k*x^2\n{constraint}\n"
+        )
+    };
+    let rolling = cart("constraint roll: s' + R*phi' = x'");
+    for command in [Command::Equilibrium, Command::Modes] {
+        let err = output::run(command, &rolling, Format::Text, &Default::default()).unwrap_err();
+        assert!(
+            err.message
+                .ends_with("under the constraint `roll` are not found: it restricts the velocities, not the position"),
+            "{}",
+            err.message
+        );
+        assert_eq!(
+            err.hint.as_deref(),
+            Some("the constraint integrates: write it in the positions, `constraint roll: s + R*phi = x` (the constant of integration taken so that it holds where every coordinate is 0)")
+        );
+    }
+    // the hint's form works
+    let (out, _) = output::run(
+        Command::Modes,
+        &cart("constraint roll: s + R*phi = x"),
+        Format::Text,
+        &Default::default(),
+    )
+    .unwrap();
+    assert!(out.contains("ω₂² = 3·k/(3·M₀ + m)"), "{out}");
+    let hint = |constraint: &str| {
+        output::run(
+            Command::Equilibrium,
+            &cart(constraint),
+            Format::Text,
+            &Default::default(),
+        )
+        .unwrap_err()
+        .hint
+        .unwrap()
+    };
+    assert_eq!(
+        hint("constraint c: sin(phi)*phi' = x'"),
+        "the constraint integrates: write it in the positions, `constraint c: x + cos(phi) = 1` (the constant of integration taken so that it holds where every coordinate is 0)"
+    );
+    assert_eq!(
+        hint("constraint x*x' + s*s' = 0"),
+        "the constraint integrates: write it in the positions, `constraint x^2/2 + s^2/2 = C0` with C0 a parameter, the constant of integration, from the initial position"
+    );
+    // exact after the factor 1/cos(phi), one coefficient's reciprocal
+    assert_eq!(
+        hint("constraint c: cos(phi)*x' = cos(phi)*s'"),
+        "the constraint integrates: write it in the positions, `constraint c: x = s` (the constant of integration taken so that it holds where every coordinate is 0)"
+    );
+    let err = output::run(
+        Command::Equilibrium,
+        COIN,
+        Format::Text,
+        &Default::default(),
+    )
+    .unwrap_err();
+    assert_eq!(
+        err.hint.as_deref(),
+        Some("write the scene in independent coordinates (the pendulum's angle instead of x, y) for its equilibria")
+    );
+}

@@ -320,7 +320,10 @@ fn missing_values_are_listed() {
     );
     let (ok, _, err) = qdot(&["simulate", &file, "--set", "m=1,g=1,l=1", "--t-end", "1"]);
     assert!(!ok);
-    assert!(err.contains("no initial value for th, th'"), "{err}");
+    assert_eq!(
+        err,
+        "error: no initial value for the coordinate th\n  = hint: give every coordinate a value (a velocity not given is 0): --init th=0\n"
+    );
     let (ok, _, err) = qdot(&[
         "simulate",
         &file,
@@ -648,5 +651,127 @@ fn stop_when_lands_on_the_event_within_1e_10() {
     assert!(
         err.contains("dense output of the explicit methods"),
         "{err}"
+    );
+}
+
+/// One rule for `--init`, as `modes --init` has it: a velocity not given is
+/// 0, and a note on standard error names it; the run equals the one with
+/// the velocity written 0. A coordinate not given is still an error.
+#[test]
+fn a_velocity_not_given_is_zero() {
+    let file = scene("pendulum_init.qd", PENDULUM);
+    let run = |init: &str| {
+        qdot(&[
+            "simulate",
+            &file,
+            "--set",
+            "m=1,g=9.81,l=1",
+            "--init",
+            init,
+            "--t-end",
+            "1",
+            "--points",
+            "3",
+        ])
+    };
+    let (ok, implicit, err) = run("th=0.5");
+    assert!(ok, "{err}");
+    assert_eq!(err, "note: velocities not given are 0: th'\n");
+    let (ok, explicit, err) = run("th=0.5,th'=0");
+    assert!(ok && err.is_empty(), "{err}");
+    assert_eq!(implicit, explicit);
+    let two = scene(
+        "two_init.qd",
+        "coordinates x, s\nparameters m, k\nkinetic E = 1/2*m*(x'^2 + s'^2)\npotential V = 1/2*k*(x - s)^2 + 1/2*k*x^2\n",
+    );
+    let (ok, out, err) = qdot(&[
+        "simulate",
+        &two,
+        "--set",
+        "m=1,k=1",
+        "--init",
+        "x=0.1,s=0",
+        "--t-end",
+        "1",
+        "--points",
+        "2",
+    ]);
+    assert!(ok, "{err}");
+    assert_eq!(err, "note: velocities not given are 0: x', s'\n");
+    let (_, r) = rows(&out);
+    assert_eq!(&r[0][1..5], &[0.1, 0.0, 0.0, 0.0]);
+    let (ok, _, err) = qdot(&[
+        "simulate",
+        &two,
+        "--set",
+        "m=1,k=1",
+        "--init",
+        "x=0.1,x'=1",
+        "--t-end",
+        "1",
+    ]);
+    assert!(!ok);
+    assert_eq!(
+        err,
+        "error: no initial value for the coordinate s\n  = hint: give every coordinate a value (a velocity not given is 0): --init s=0\n"
+    );
+}
+
+/// `--set c=0` in a numeric run: the damping's zero is taken as it is, and
+/// the run is the undamped scene's (its energy, computed from the rows,
+/// drifts by no more than the tolerances); a zero mass, which makes the
+/// mass matrix singular, is refused; and `modes --set c=0` is refused with
+/// the fix named, never given a damped verdict.
+#[test]
+fn a_zero_damping_runs_in_numeric_commands() {
+    let damped = scene(
+        "zero_damping.qd",
+        "coordinates x\nparameters m, k, c\nkinetic E = 1/2*m*x'^2\npotential V = 1/2*k*x^2\nrayleigh R = 1/2*c*x'^2\n",
+    );
+    let undamped = scene(
+        "no_damping.qd",
+        "coordinates x\nparameters m, k\nkinetic E = 1/2*m*x'^2\npotential V = 1/2*k*x^2\n",
+    );
+    let args = |file: &str, set: &str| {
+        qdot(&[
+            "simulate", file, "--set", set, "--init", "x=1,x'=0", "--t-end", "20", "--points",
+            "41", "--rtol", "1e-12", "--atol", "1e-12",
+        ])
+    };
+    let (ok, out, err) = args(&damped, "m=2,k=3,c=0");
+    assert!(ok && err.is_empty(), "{err}");
+    let (head, zero) = rows(&out);
+    assert_eq!(head, ["t", "x", "x'"]);
+    let (ok, out, err) = args(&undamped, "m=2,k=3");
+    assert!(ok, "{err}");
+    let (_, free) = rows(&out);
+    let energy = |r: &Vec<f64>| 0.5 * 2.0 * r[2] * r[2] + 0.5 * 3.0 * r[1] * r[1];
+    for (a, b) in zero.iter().zip(&free) {
+        assert!((a[1] - b[1]).abs() < 1e-12 && (a[2] - b[2]).abs() < 1e-12);
+        assert!((energy(a) - 1.5).abs() < 1e-9, "{a:?}");
+    }
+    let (ok, _, err) = args(&damped, "m=0,k=3,c=1");
+    assert!(!ok);
+    assert_eq!(
+        err,
+        "error: `--set m=0`: m is in the mass matrix or a constraint, where 0 can make the equations singular (a massless body, a rod of no length)\n  = hint: give m a positive value, or write the scene without what it measures\n"
+    );
+    let (ok, out, err) = qdot(&["modes", &damped, "--set", "m=2,k=3,c=0"]);
+    assert!(!ok && out.is_empty());
+    assert_eq!(
+        err,
+        "error: `--set c=0`: parameters are positive, and 0 is not\n  = hint: exact results are derived for c > 0; with `assume c real` in the scene they are derived for any c, its sign taken from the value (the numeric commands, `simulate`, `sweep`, `cycle`, `floquet`, `response --over`, take c=0 where c is not in the mass matrix)\n"
+    );
+    // the fix the hint names: derived for any c, undamped at c = 0
+    let real = scene(
+        "zero_damping_real.qd",
+        "coordinates x\nparameters m, k, c\nassume c real\nkinetic E = 1/2*m*x'^2\npotential V = 1/2*k*x^2\nrayleigh R = 1/2*c*x'^2\n",
+    );
+    let (ok, out, err) = qdot(&["modes", &real, "--set", "m=2,k=3,c=0"]);
+    assert!(ok, "{err}");
+    assert!(out.contains("  regime: undamped\n"), "{out}");
+    assert!(
+        out.contains("Stability of the equilibrium: stable\n"),
+        "{out}"
     );
 }

@@ -253,7 +253,53 @@ fn bad_sweeps_are_refused_with_a_hint() {
         "1",
     ]);
     assert!(!ok && out.is_empty());
-    assert!(err.contains("no initial value for theta, theta'"), "{err}");
+    assert_eq!(
+        err,
+        "error: no initial value for the coordinate theta\n  = hint: give every coordinate a value (a velocity not given is 0): --init theta=0\n"
+    );
+    // a velocity not given is 0, as in simulate, and the note says so once
+    let (ok, out, err) = qdot(&[
+        "sweep",
+        PENDULUM,
+        "--set",
+        "m=1,g=9.81",
+        "--init",
+        "theta=0.5",
+        "--vary",
+        "l=1:2:2",
+        "--t-end",
+        "1",
+    ]);
+    assert!(ok, "{err}");
+    assert_eq!(err, "note: velocities not given are 0: theta'\n");
+    let (ok, explicit, _) = qdot(&[
+        "sweep",
+        PENDULUM,
+        "--set",
+        "m=1,g=9.81",
+        "--init",
+        "theta=0.5,theta'=0",
+        "--vary",
+        "l=1:2:2",
+        "--t-end",
+        "1",
+    ]);
+    assert!(ok);
+    assert_eq!(out, explicit);
+    // a varied velocity is given
+    let (ok, _, err) = qdot(&[
+        "sweep",
+        PENDULUM,
+        "--set",
+        "m=1,g=9.81,l=1",
+        "--init",
+        "theta=0.5",
+        "--vary",
+        "theta'=0:1:2",
+        "--t-end",
+        "1",
+    ]);
+    assert!(ok && err.is_empty(), "{err}");
 }
 
 #[test]

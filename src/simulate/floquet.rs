@@ -134,7 +134,22 @@ pub fn run(src: &str, req: &Request) -> Result<FloquetRun, Diagnostic> {
         }
         set.insert(a.name.clone(), a.from);
     }
-    let base = crate::scene::given::parameter_map(&scene, &set)?;
+    // 0 is refused where it makes M singular or the period infinite
+    let inertial: Vec<String> = scene
+        .parameters
+        .iter()
+        .map(|p| p.name.clone())
+        .filter(|p| {
+            let v = crate::expr::atom::param(p);
+            prepared
+                .mass
+                .iter()
+                .flatten()
+                .chain(&prepared.frequency)
+                .any(|e| e.depends_on(v))
+        })
+        .collect();
+    let base = crate::scene::given::parameter_map(&scene, &set, &inertial)?;
     if req.over.is_empty() {
         let f = prepared.analyse(&base)?;
         return Ok(FloquetRun {

@@ -143,34 +143,11 @@ impl Run {
     }
 }
 
-/// The initial state y0 = (q, q̇) from `--init`: every coordinate and
-/// velocity, and nothing else.
+/// The initial state y0 = (q, q̇) from `--init`: every coordinate, and
+/// the velocities, a velocity not given being 0 (as in `modes --init`;
+/// [`zero_velocities_note`] names them). A
+/// coordinate has no such default: where a run starts is the user's to say.
 fn initial_values(names: &[String], req: &Request) -> Result<Vec<f64>, Diagnostic> {
-    let mut y0 = Vec::with_capacity(2 * names.len());
-    let mut missing: Vec<String> = Vec::new();
-    for order in ["", "'"] {
-        for q in names {
-            let key = format!("{q}{order}");
-            match req.init.get(&key) {
-                Some(&v) => y0.push(v),
-                None => {
-                    missing.push(key);
-                    y0.push(0.0);
-                }
-            }
-        }
-    }
-    if !missing.is_empty() {
-        let example: Vec<String> = missing.iter().map(|m| format!("{m}=0")).collect();
-        return Err(
-            Diagnostic::global(format!("no initial value for {}", missing.join(", ")))
-                .with_hint(format!(
-                    "give every coordinate and velocity a value: --init {}",
-                    example.join(",")
-                ))
-                .with_kind(ErrorKind::bad_option("--init")),
-        );
-    }
     for k in req.init.keys() {
         let base = k.trim_end_matches('\'');
         if !names.iter().any(|q| q == base) || k.len() - base.len() > 1 {
@@ -184,7 +161,43 @@ fn initial_values(names: &[String], req: &Request) -> Result<Vec<f64>, Diagnosti
             .with_kind(ErrorKind::bad_option("--init")));
         }
     }
+    let missing: Vec<&String> = names
+        .iter()
+        .filter(|q| !req.init.contains_key(*q))
+        .collect();
+    if !missing.is_empty() {
+        let list: Vec<&str> = missing.iter().map(|q| q.as_str()).collect();
+        let example: Vec<String> = list.iter().map(|q| format!("{q}=0")).collect();
+        return Err(Diagnostic::global(format!(
+            "no initial value for the coordinate{} {}",
+            if list.len() == 1 { "" } else { "s" },
+            list.join(", ")
+        ))
+        .with_hint(format!(
+            "give every coordinate a value (a velocity not given is 0): --init {}",
+            example.join(",")
+        ))
+        .with_kind(ErrorKind::bad_option("--init")));
+    }
+    let value = |key: &str| req.init.get(key).copied().unwrap_or(0.0);
+    let mut y0: Vec<f64> = names.iter().map(|q| value(q)).collect();
+    y0.extend(names.iter().map(|q| value(&format!("{q}'"))));
     Ok(y0)
+}
+
+/// The note that says which velocities of the coordinates `names` a run
+/// starts with at 0 (those `given` is false for), or `None` when every
+/// velocity is given.
+pub fn zero_velocities_note<'a>(
+    names: impl IntoIterator<Item = &'a str>,
+    given: impl Fn(&str) -> bool,
+) -> Option<String> {
+    let zero: Vec<String> = names
+        .into_iter()
+        .map(|q| format!("{q}'"))
+        .filter(|v| !given(v))
+        .collect();
+    (!zero.is_empty()).then(|| format!("note: velocities not given are 0: {}", zero.join(", ")))
 }
 
 /// The options' numbers: a positive, finite `--t-end`, `--dt` and
@@ -291,6 +304,9 @@ pub struct Prepared {
     scene: Scene,
     lag: crate::mechanics::Lagrange,
     drift: Vec<(String, Expr)>,
+    /// The parameters that cannot be 0 here
+    /// ([`crate::scene::given::inertial_parameters`]).
+    inertial: Vec<String>,
 }
 
 /// A [`Prepared`] scene compiled for one set of parameter values: what
@@ -313,9 +329,15 @@ impl Prepared {
         // a large body scene is simulated from its intermediates
         let scene = Scene::read(src, crate::scene::Structure::Auto)?;
         let lag = super::given::defined(&scene, scene.lagrange()?, functions)?;
+        let inertial = crate::scene::given::inertial_parameters(&scene, &lag);
         let drift = super::constrained::drift(&lag);
         let lag = super::constrained::stabilized(lag)?;
-        Ok(Prepared { scene, lag, drift })
+        Ok(Prepared {
+            scene,
+            lag,
+            drift,
+            inertial,
+        })
     }
 
     /// The coordinates, in the order of the state y = (q, q̇).
@@ -334,7 +356,7 @@ impl Prepared {
 
     /// Compile for `req.set` (and `req.stop_when`, `req.baumgarte`).
     pub fn compile(&self, req: &Request) -> Result<Compiled, Diagnostic> {
-        let mut params = crate::scene::given::parameter_map(&self.scene, &req.set)?;
+        let mut params = crate::scene::given::parameter_map(&self.scene, &req.set, &self.inertial)?;
         if !self.drift.is_empty() {
             params.insert(super::constrained::alpha_var(), req.baumgarte);
         }
@@ -374,7 +396,7 @@ impl Prepared {
     /// unknown parameter or initial value, a bad option, a `--stop-when`
     /// that names no quantity of the scene.
     pub fn check(&self, req: &Request) -> Result<(), Diagnostic> {
-        let params = crate::scene::given::parameter_map(&self.scene, &req.set)?;
+        let params = crate::scene::given::parameter_map(&self.scene, &req.set, &self.inertial)?;
         initial_values(&self.lag.coordinates, req)?;
         check_numbers(req)?;
         if let Some(text) = &req.stop_when {

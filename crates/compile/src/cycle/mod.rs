@@ -162,7 +162,8 @@ impl<'a> CompiledCycle<'a> {
     pub fn new(scene: &'a Scene, req: &CycleRequest) -> Result<CompiledCycle<'a>, Diagnostic> {
         counted(scene)?;
         let lag = scene.lagrange()?;
-        let params = crate::scene::given::parameter_map(scene, &req.set)?;
+        let inertial = crate::scene::given::inertial_parameters(scene, &lag);
+        let params = crate::scene::given::parameter_map(scene, &req.set, &inertial)?;
         Ok(CompiledCycle {
             scene,
             model: Model::new(scene, &lag, &params)?,

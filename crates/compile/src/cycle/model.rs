@@ -135,7 +135,7 @@ impl Model {
                 }
                 (false, None) => {
                     return Err(Diagnostic::error(c.span, format!("the constraint {} restricts the velocities, so it has no equation for the positions", c.label(j)))
-                        .with_hint("`qdot cycle` solves the positions from holonomic constraints: joints, drives and constraints without velocities"))
+                        .with_hint(qdot_mechanics::solve::integrable::hint(c, &q, "`qdot cycle` solves the positions from holonomic constraints: joints, drives and constraints without velocities")))
                 }
             }
         }

@@ -101,9 +101,66 @@ pub fn parameter_values(s: &str) -> Result<Values, Diagnostic> {
 
 /// The error for `--set k=v` with v ≤ 0 for a positive parameter.
 fn not_positive(k: &str, v: f64) -> Diagnostic {
-    Diagnostic::global(format!("`--set {k}={v}`: parameters are positive, and {v} is not"))
-        .with_hint("qdot takes every parameter to be positive; write a negative quantity as −p in the scene, or `assume p real`")
-        .with_kind(ErrorKind::bad_option(SET.option))
+    let d = Diagnostic::global(format!(
+        "`--set {k}={v}`: parameters are positive, and {v} is not"
+    ))
+    .with_kind(ErrorKind::bad_option(SET.option));
+    if v == 0.0 {
+        // the exact results were derived for k > 0 (a damping's verdict
+        // "asymptotically stable" among them): k = 0 is re-derived only
+        // when the scene lets k take any sign
+        return d.with_hint(format!(
+            "exact results are derived for {k} > 0; with `assume {k} real` in the scene they are derived for any {k}, its sign taken from the value (the numeric commands, `simulate`, `sweep`, `cycle`, `floquet`, `response --over`, take {k}=0 where {k} is not in the mass matrix)"
+        ));
+    }
+    d.with_hint(format!(
+        "qdot takes every parameter to be positive; write a negative quantity as −{k} in the scene, or `assume {k} real`"
+    ))
+}
+
+/// The error for `--set k=0` in a numeric command, `k` being in the mass
+/// matrix or a constraint (`where`).
+fn zero_in_inertia(k: &str) -> Diagnostic {
+    Diagnostic::global(format!(
+        "`--set {k}=0`: {k} is in the mass matrix or a constraint, where 0 can make the equations singular (a massless body, a rod of no length)"
+    ))
+    .with_hint(format!(
+        "give {k} a positive value, or write the scene without what it measures"
+    ))
+    .with_kind(ErrorKind::bad_option(SET.option))
+}
+
+/// The parameters a numeric run cannot take as 0: those of the mass matrix
+/// and of the constraints' coefficients (read through `lag`'s
+/// intermediates). At 0 the system can be singular, and the equations,
+/// derived and cancelled for positive parameters, would give their limit
+/// instead of saying so. Everywhere else (a damping, a stiffness, a load)
+/// the compiled equations are rational in the parameter and their value
+/// at 0 is the scene's.
+pub fn inertial_parameters(scene: &Scene, lag: &crate::mechanics::Lagrange) -> Vec<String> {
+    let roots: Vec<&Expr> = lag
+        .mass_matrix
+        .iter()
+        .flatten()
+        .chain(lag.constraints.matrix.iter().flatten())
+        .collect();
+    let used: Vec<&Expr> = match &lag.intermediates {
+        Some(tape) => tape
+            .used_by(roots.iter().copied())
+            .into_iter()
+            .map(|i| &tape.entries()[i].value)
+            .collect(),
+        None => Vec::new(),
+    };
+    scene
+        .parameters
+        .iter()
+        .filter(|p| {
+            let v = crate::expr::atom::param(&p.name);
+            roots.iter().chain(&used).any(|e| e.depends_on(v))
+        })
+        .map(|p| p.name.clone())
+        .collect()
 }
 
 /// `--set` names must be parameters of the scene: the one check every
@@ -126,15 +183,16 @@ pub fn set_names_are_parameters(scene: &Scene, set: &Values) -> Result<(), Diagn
     Ok(())
 }
 
-/// An error unless every value of `set` for a parameter of `scene` is
 /// Every parameter's value from `--set` as the numeric commands take
-/// them (`simulate`, `cycle`): signs checked ([`parameter_signs`]), every
-/// parameter given, and no other name.
+/// them (`simulate`, `cycle`): signs checked ([`numeric_parameter_signs`],
+/// 0 allowed but for the parameters `inertial`), every parameter given,
+/// and no other name.
 pub fn parameter_map(
     scene: &Scene,
     set: &Values,
+    inertial: &[String],
 ) -> Result<rustc_hash::FxHashMap<crate::poly::Var, f64>, Diagnostic> {
-    parameter_signs(scene, set)?;
+    numeric_parameter_signs(scene, set, inertial)?;
     let missing: Vec<&str> = scene
         .parameters
         .iter()
@@ -169,19 +227,51 @@ pub fn parameter_map(
     Ok(out)
 }
 
+/// An error unless every value of `set` for a parameter of `scene` is
 /// positive, but for the parameters the scene assumes `real`, and unless
 /// the values keep every order fact (`assume R > r`) whose parameters they
-/// all give.
+/// all give: the exact commands' check.
 pub fn parameter_signs(scene: &Scene, set: &Values) -> Result<(), Diagnostic> {
     for (k, &v) in set {
-        let real = scene
-            .assumptions
-            .real
-            .contains(&crate::expr::atom::param(k));
-        if v <= 0.0 && !real {
+        if v <= 0.0 && !assumed_real(scene, k) {
             return Err(not_positive(k, v));
         }
     }
+    order_facts_hold(scene, set)
+}
+
+/// [`parameter_signs`] for a numeric command, which evaluates compiled
+/// equations: a value may also be 0, but for the parameters `inertial`
+/// ([`inertial_parameters`]).
+pub fn numeric_parameter_signs(
+    scene: &Scene,
+    set: &Values,
+    inertial: &[String],
+) -> Result<(), Diagnostic> {
+    for (k, &v) in set {
+        if assumed_real(scene, k) {
+            continue;
+        }
+        if v < 0.0 {
+            return Err(not_positive(k, v));
+        }
+        if v == 0.0 && inertial.iter().any(|p| p == k) {
+            return Err(zero_in_inertia(k));
+        }
+    }
+    order_facts_hold(scene, set)
+}
+
+/// Whether the scene says `assume k real`.
+fn assumed_real(scene: &Scene, k: &str) -> bool {
+    scene
+        .assumptions
+        .real
+        .contains(&crate::expr::atom::param(k))
+}
+
+/// Every order fact (`assume R > r`) holds at the values `set` gives.
+fn order_facts_hold(scene: &Scene, set: &Values) -> Result<(), Diagnostic> {
     for fact in &scene.assumptions.positive {
         order_fact_holds(fact, set)?;
     }

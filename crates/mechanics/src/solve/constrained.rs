@@ -39,6 +39,9 @@ use rustc_hash::FxHashMap;
 const HINT: &str =
     "write the scene in independent coordinates (the pendulum's angle instead of x, y) for its equilibria";
 
+const OSCILLATIONS_HINT: &str =
+    "write the scene in independent coordinates for its small oscillations";
+
 /// The equilibria of a scene with constraints: `conditions` are the
 /// F_k at rest (free of t), `q` the coordinates' variables; and whether
 /// they were found in closed form (else numerically, given every
@@ -60,7 +63,7 @@ pub(super) fn constrained_equilibria(
                 c.span,
                 format!("equilibria under the constraint {} are not found: it restricts the velocities, not the position", c.label(j)),
             )
-            .with_hint(HINT));
+            .with_hint(super::integrable::hint(c, q, HINT)));
         }
         if c.expression.depends_on(atom::time())
             || super::equilibrium::has_given_function(&c.expression)
@@ -459,7 +462,11 @@ pub(super) fn multipliers_at(
                     }
                 ),
             )
-            .with_hint("write the scene in independent coordinates for its small oscillations"));
+            .with_hint(if c.holonomic {
+                OSCILLATIONS_HINT.to_string()
+            } else {
+                super::integrable::hint(c, q, OSCILLATIONS_HINT)
+            }));
         }
         if !at(&c.expression)?.is_zero() {
             return Err(Diagnostic::global(format!(

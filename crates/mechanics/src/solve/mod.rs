@@ -8,6 +8,7 @@ pub mod constrained;
 mod definite;
 pub mod eigen;
 pub mod equilibrium;
+pub mod integrable;
 pub mod kinetostatic;
 mod linear_stability;
 pub mod linearize;

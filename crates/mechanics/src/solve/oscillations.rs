@@ -318,7 +318,8 @@ pub fn standard_form(md: &Modes, set: &Values) -> Option<StandardForm> {
     } else {
         func::sqrt(&w2).ok().and_then(|w| alpha.div(&w).ok())
     };
-    let regime = if alpha.is_zero() {
+    // α is 0 also at a `--set` value of a parameter assumed real (c=0)
+    let regime = if alpha.is_zero() || sign_of(&alpha, set) == Some(Sign::Zero) {
         "undamped".to_string()
     } else {
         match sign_of(&alpha.mul(&alpha).sub(&w2), set) {
