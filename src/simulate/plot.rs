@@ -18,6 +18,7 @@ use crate::scene::dimension::DimensionSource;
 use crate::scene::Scene;
 use crate::simulate::Method;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 /// The plotting backend failed to draw the figure: its message.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -98,6 +99,8 @@ const MARGIN: u32 = 16;
 const X_LABELS: u32 = 56;
 const Y_LABELS: u32 = 100;
 const SAMPLE_LINE: u32 = 32;
+/// Room above a plotting area for its caption.
+const CAPTION_ROOM: u32 = 44;
 /// A title longer than this many characters is cut at a word.
 const TITLE_CHARS: usize = 72;
 
@@ -429,9 +432,10 @@ fn time_panel(
     let (lo, hi) = range(values.iter().flatten());
     let (t0, t1) = data.t_range();
     let quantity = group[0].quantity;
-    let caption = match quantity.and_then(|q| q.plural()) {
-        Some(kind) => format!("{kind} against time"),
-        None => "coordinates against time".to_string(),
+    let caption_text = match (&names[..], quantity.and_then(|q| q.plural())) {
+        ([one], _) => format!("{one} against time"),
+        (_, Some(kind)) => format!("{kind} against time"),
+        (_, None) => "coordinates against time".to_string(),
     };
     let y_name = match &names[..] {
         [a] => a.clone(),
@@ -441,8 +445,8 @@ fn time_panel(
         [] => "q".into(),
     };
     let mut chart = ChartBuilder::on(&plot)
-        .caption(caption, style::font(style::CAPTION))
         .margin(MARGIN)
+        .margin_top(CAPTION_ROOM)
         .x_label_area_size(X_LABELS)
         .y_label_area_size(Y_LABELS)
         .build_cartesian_2d(t0..t1, lo..hi)
@@ -456,6 +460,11 @@ fn time_panel(
         .y_label_formatter(&|v| tick_label(*v, hi - lo))
         .draw()
         .map_err(PlotError::drawing)?;
+    caption(
+        &plot,
+        chart.plotting_area().get_pixel_range(),
+        &caption_text,
+    )?;
     for (c, v) in group.iter().zip(&values) {
         let k = c.column - 1;
         chart
@@ -473,6 +482,25 @@ fn time_panel(
     // the legend's first entry level with the plotting area's top
     let top = chart.plotting_area().get_pixel_range().1.start - area.get_base_pixel().1;
     legend(&legend_area, &entries, top + style::LEGEND as i32 / 2)
+}
+
+/// A panel's caption, centred over its plotting area (`pixels`, the
+/// figure's pixels it covers): plotters would centre it over the whole
+/// panel, tick labels included.
+fn caption(
+    area: &Area,
+    pixels: (std::ops::Range<i32>, std::ops::Range<i32>),
+    text: &str,
+) -> Result<(), PlotError> {
+    let (base_x, base_y) = area.get_base_pixel();
+    let x = (pixels.0.start + pixels.0.end) / 2 - base_x;
+    let y = pixels.1.start - base_y - CAPTION_ROOM as i32 / 2;
+    area.draw(&Text::new(
+        text.to_string(),
+        (x, y),
+        style::font(style::CAPTION).pos(Pos::new(HPos::Center, VPos::Center)),
+    ))
+    .map_err(PlotError::drawing)
 }
 
 /// Each curve's sample line and name, one under another.
@@ -510,11 +538,8 @@ fn phase_panel(
     let (ylo, yhi) = range(qd.iter());
     let name = pretty_column(c.name);
     let mut chart = ChartBuilder::on(area)
-        .caption(
-            format!("phase portrait of {name}"),
-            style::font(style::CAPTION),
-        )
         .margin(MARGIN)
+        .margin_top(CAPTION_ROOM)
         .x_label_area_size(X_LABELS)
         .y_label_area_size(Y_LABELS)
         .build_cartesian_2d(xlo..xhi, ylo..yhi)
@@ -531,6 +556,8 @@ fn phase_panel(
         .y_label_formatter(&|v| tick_label(*v, yhi - ylo))
         .draw()
         .map_err(PlotError::drawing)?;
+    let pixels = chart.plotting_area().get_pixel_range();
+    caption(area, pixels, &format!("phase portrait of {name}"))?;
     chart
         .draw_series(LineSeries::new(
             q.into_iter().zip(qd),
@@ -548,8 +575,8 @@ fn energy_panel(area: &Area, data: &Data, column: usize, labels: &Labels) -> Res
     let (lo, hi) = range(dh.iter());
     let (t0, t1) = data.t_range();
     let mut chart = ChartBuilder::on(area)
-        .caption("energy error", style::font(style::CAPTION))
         .margin(MARGIN)
+        .margin_top(CAPTION_ROOM)
         .x_label_area_size(X_LABELS)
         .y_label_area_size(Y_LABELS)
         .build_cartesian_2d(t0..t1, lo..hi)
@@ -572,6 +599,11 @@ fn energy_panel(area: &Area, data: &Data, column: usize, labels: &Labels) -> Res
         })
         .draw()
         .map_err(PlotError::drawing)?;
+    caption(
+        area,
+        chart.plotting_area().get_pixel_range(),
+        "energy error",
+    )?;
     chart
         .draw_series(LineSeries::new(
             data.t.iter().copied().zip(dh),
