@@ -323,6 +323,7 @@ fn curve_panel(
         .map(|&c| column_name(table, c))
         .collect();
     style::mesh(&mut chart.configure_mesh())
+        .y_labels(6)
         .x_desc(x_desc)
         .y_desc(names.join(", "))
         .x_label_formatter(&|v| tick_label(*v, x1 - x0))
@@ -416,6 +417,8 @@ fn polar_panel(
         .map_err(PlotError::drawing)?;
     let (xn, yn) = (column_name(table, panel.x), column_name(table, panel.y));
     style::mesh(&mut chart.configure_mesh())
+        .x_labels(6)
+        .y_labels(8)
         .x_desc(xn.as_str())
         .y_desc(yn.as_str())
         .x_label_formatter(&|v| tick_label(*v, x1 - x0))
