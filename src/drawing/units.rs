@@ -73,9 +73,7 @@ pub fn si_unit(d: &Dimension) -> Option<String> {
     }
     let (mut over, mut under) = (Vec::new(), Vec::new());
     for (i, q) in d.exponents().iter().enumerate() {
-        let Some((num, den)) = q.small() else {
-            return None;
-        };
+        let (num, den) = q.small()?;
         if num == 0 {
             continue;
         }
