@@ -650,7 +650,8 @@ fn simulate(
         eprint!("{}", run::stats_text(&r));
     }
     if let Some(path) = plot {
-        let written = qdot::simulate::plot::svg(&r)
+        let labels = qdot::simulate::plot::Labels::of_scene(src, report.file, &req);
+        let written = qdot::simulate::plot::svg(&r, &labels)
             .map_err(|e| e.to_string())
             .and_then(|svg| std::fs::write(path, svg).map_err(|e| e.to_string()));
         if let Err(e) = written {

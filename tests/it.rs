@@ -55,6 +55,7 @@ mod response;
 mod scenes;
 mod seed;
 mod simulate_cli;
+mod simulate_plot;
 mod simulate_pty;
 mod solve_blocks;
 mod steady;

@@ -498,7 +498,12 @@ fn plot_of_seed_24_2_shows_the_motion() {
     assert_eq!(head, ["t", "x1", "x2", "x1'", "x2'", "energy"]);
     let svg = std::fs::read_to_string(&svg_path).unwrap();
     assert!(svg.starts_with("<svg"));
-    for caption in ["dop853 — q(t)", "phase portrait", "energy error"] {
+    for caption in [
+        "lengths against time",
+        "phase portrait of x₁",
+        "phase portrait of x₂",
+        "energy error",
+    ] {
         assert!(svg.contains(caption), "{caption}");
     }
     // tick labels print 0 as 0 (not 0.0, -0.0 or a rounding residue like

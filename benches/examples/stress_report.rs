@@ -18,7 +18,7 @@ mod common;
 
 use common::*;
 use plotters::prelude::*;
-use qdot::simulate::plot::PALETTE;
+use qdot::drawing::style::PALETTE;
 use qdot::simulate::run::method_name;
 use qdot::simulate::{Method, Solution};
 use std::fmt::Write as _;

@@ -260,7 +260,8 @@ pub fn simulate(data: &[u8]) {
             let _ = run::stats_text(&r);
             let _ = run::status_word(&r.solution.status);
             if plot {
-                let _ = qdot::simulate::plot::svg(&r);
+                let labels = qdot::simulate::plot::Labels::of_scene(scene, "fuzz.qd", &req);
+                let _ = qdot::simulate::plot::svg(&r, &labels);
             }
         }
         Err(d) => {

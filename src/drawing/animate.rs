@@ -11,7 +11,8 @@
 
 use super::plot::acting;
 use crate::cycle::{CycleRow, CycleTable, JointKind};
-use crate::simulate::plot::{pretty_column as pretty, PALETTE};
+use crate::drawing::style::PALETTE;
+use crate::simulate::plot::pretty_column as pretty;
 use serde_json::{json, Value};
 use std::fmt::Write;
 

@@ -2,9 +2,10 @@
 //! parameters (the Ince–Strutt diagram for the Mathieu equation), one
 //! filled cell per grid point, or the largest |μ| against one parameter.
 
+use crate::drawing::style::{self, PALETTE};
 use crate::floquet::Verdict;
 use crate::simulate::floquet::FloquetRun;
-use crate::simulate::plot::{pretty_column, tick_label, PlotError, PALETTE};
+use crate::simulate::plot::{pretty_column, tick_label, PlotError};
 use plotters::prelude::*;
 
 /// The fill of unstable, stable, undecided and failed cells.
@@ -50,16 +51,14 @@ fn chart(run: &FloquetRun, title: &str) -> Result<String, PlotError> {
         let caption =
             format!("{title}: stability chart (red: unstable, pale: stable, grey: undecided)");
         let mut c = ChartBuilder::on(&root)
-            .caption(caption, ("sans-serif", 18))
+            .caption(caption, style::font(style::CAPTION))
             .margin(14)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
+            .x_label_area_size(50)
+            .y_label_area_size(80)
             .build_cartesian_2d(x0..x1, y0..y1)
             .map_err(PlotError::drawing)?;
-        c.configure_mesh()
+        style::mesh(&mut c.configure_mesh())
             .disable_mesh()
-            .label_style(("sans-serif", 14))
-            .axis_desc_style(("sans-serif", 18))
             .x_desc(pretty_column(&a.name))
             .y_desc(pretty_column(&b.name))
             .x_label_formatter(&|v| tick_label(*v, x1 - x0))
@@ -114,15 +113,16 @@ fn curve(run: &FloquetRun, title: &str) -> Result<String, PlotError> {
         let root = SVGBackend::with_string(&mut out, (800, 420)).into_drawing_area();
         root.fill(&WHITE).map_err(PlotError::drawing)?;
         let mut c = ChartBuilder::on(&root)
-            .caption(format!("{title}: the largest |μ|"), ("sans-serif", 18))
+            .caption(
+                format!("{title}: the largest |μ|"),
+                style::font(style::CAPTION),
+            )
             .margin(14)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
+            .x_label_area_size(50)
+            .y_label_area_size(80)
             .build_cartesian_2d(x0..x1, lo..hi)
             .map_err(PlotError::drawing)?;
-        c.configure_mesh()
-            .label_style(("sans-serif", 14))
-            .axis_desc_style(("sans-serif", 18))
+        style::mesh(&mut c.configure_mesh())
             .x_desc(pretty_column(&a.name))
             .y_desc("max |μ|")
             .x_label_formatter(&|v| tick_label(*v, x1 - x0))
@@ -131,8 +131,11 @@ fn curve(run: &FloquetRun, title: &str) -> Result<String, PlotError> {
             .map_err(PlotError::drawing)?;
         c.draw_series(LineSeries::new([(x0, 1.0), (x1, 1.0)], BLACK.mix(0.5)))
             .map_err(PlotError::drawing)?;
-        c.draw_series(LineSeries::new(points, PALETTE[0].stroke_width(2)))
-            .map_err(PlotError::drawing)?;
+        c.draw_series(LineSeries::new(
+            points,
+            PALETTE[0].stroke_width(style::LINE),
+        ))
+        .map_err(PlotError::drawing)?;
         root.present().map_err(PlotError::drawing)?;
     }
     Ok(out)

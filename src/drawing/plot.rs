@@ -10,7 +10,8 @@
 //! single row is a dot.
 
 use crate::cycle::{CycleTable, JointKind};
-use crate::simulate::plot::{pretty_column, tick_label, PlotError, PALETTE};
+use crate::drawing::style::{self, PALETTE};
+use crate::simulate::plot::{pretty_column, tick_label, PlotError};
 use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint};
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -22,10 +23,10 @@ const WIDTH: u32 = 900;
 const PANEL_HEIGHT: u32 = 280;
 const POLAR_SIDE: u32 = WIDTH / 2;
 /// The figure's title bar.
-const TITLE_HEIGHT: u32 = 40;
+const TITLE_HEIGHT: u32 = 50;
 const MARGIN: u32 = 12;
-const X_LABELS: u32 = 40;
-const Y_LABELS: u32 = 70;
+const X_LABELS: u32 = 50;
+const Y_LABELS: u32 = 80;
 
 /// One panel of curves against the varied quantity.
 struct CurvePanel {
@@ -170,31 +171,17 @@ fn round(v: f64) -> String {
 }
 
 /// The varied axis: its ticks where [`ticks`] puts them (plotters'
-/// own would put 50° steps on a turn of the crank), a light line at
-/// every third (degrees) or fifth step between.
+/// own would put 50° steps on a turn of the crank).
 struct Ticked {
     range: RangedCoordf64,
-    bold: Vec<f64>,
-    light: Vec<f64>,
+    ticks: Vec<f64>,
 }
 
 impl Ticked {
     fn new(lo: f64, hi: f64, degrees: bool) -> Ticked {
-        let bold = ticks(lo, hi, degrees);
-        let parts = if degrees { 3 } else { 5 };
-        let light = match bold[..] {
-            [a, b, ..] => {
-                let step = (b - a) / parts as f64;
-                let first = (lo / step).ceil() as i64;
-                let last = (hi / step).floor() as i64;
-                (first..=last).map(|k| k as f64 * step).collect()
-            }
-            _ => bold.clone(),
-        };
         Ticked {
             range: (lo..hi).into(),
-            bold,
-            light,
+            ticks: ticks(lo, hi, degrees),
         }
     }
 }
@@ -207,12 +194,8 @@ impl Ranged for Ticked {
         self.range.map(value, limit)
     }
 
-    fn key_points<Hint: KeyPointHint>(&self, hint: Hint) -> Vec<f64> {
-        if hint.weight().allow_light_points() {
-            self.light.clone()
-        } else {
-            self.bold.clone()
-        }
+    fn key_points<Hint: KeyPointHint>(&self, _hint: Hint) -> Vec<f64> {
+        self.ticks.clone()
     }
 
     fn range(&self) -> Range<f64> {
@@ -259,7 +242,7 @@ pub fn reaction_diagrams(
         let root = SVGBackend::with_string(&mut out, (WIDTH, height)).into_drawing_area();
         root.fill(&WHITE).map_err(PlotError::drawing)?;
         let (head, body) = root.split_vertically(TITLE_HEIGHT);
-        head.titled(title, ("sans-serif", 22))
+        head.titled(title, style::font(style::TITLE))
             .map_err(PlotError::drawing)?;
         let (top, bottom) = body.split_vertically(PANEL_HEIGHT * curves.len() as u32);
         let varied: Vec<Option<f64>> = table
@@ -328,7 +311,7 @@ fn curve_panel(
     // headroom above the curves for the legend (upper right)
     let hi = hi + (hi - lo) * 0.12 * panel.columns.len() as f64;
     let mut chart = ChartBuilder::on(area)
-        .caption(&panel.caption, ("sans-serif", 17))
+        .caption(&panel.caption, style::font(style::CAPTION))
         .margin(MARGIN)
         .x_label_area_size(X_LABELS)
         .y_label_area_size(Y_LABELS)
@@ -339,8 +322,8 @@ fn curve_panel(
         .iter()
         .map(|&c| column_name(table, c))
         .collect();
-    chart
-        .configure_mesh()
+    style::mesh(&mut chart.configure_mesh())
+        .y_labels(6)
         .x_desc(x_desc)
         .y_desc(names.join(", "))
         .x_label_formatter(&|v| tick_label(*v, x1 - x0))
@@ -348,20 +331,23 @@ fn curve_panel(
         .draw()
         .map_err(PlotError::drawing)?;
     for (i, (&col, name)) in panel.columns.iter().zip(&names).enumerate() {
-        let colour = PALETTE[i % PALETTE.len()];
-        let style = colour.stroke_width(2);
+        let colour = style::colour(i);
+        let line = colour.stroke_width(style::LINE);
         let curve = runs((0..table.rows.len()).map(|r| (varied[r], value(r, col))));
         let mut labelled = false;
         for run in curve {
             let series = if run.len() == 1 {
                 chart.draw_series(std::iter::once(Circle::new(run[0], 3, colour.filled())))
             } else {
-                chart.draw_series(LineSeries::new(run, style))
+                chart.draw_series(LineSeries::new(run, line))
             }
             .map_err(PlotError::drawing)?;
             if !labelled {
                 series.label(name.as_str()).legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+                    PathElement::new(
+                        vec![(x, y), (x + 24, y)],
+                        colour.stroke_width(style::LINE + 1),
+                    )
                 });
                 labelled = true;
             }
@@ -370,6 +356,7 @@ fn curve_panel(
     chart
         .configure_series_labels()
         .position(SeriesLabelPosition::UpperRight)
+        .label_font(style::font(style::LEGEND))
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .draw()
@@ -408,7 +395,7 @@ fn polar_panel(
     let x = padded_range(pairs.iter().filter_map(|p| p.0).chain(origin.clone()));
     let y = padded_range(pairs.iter().filter_map(|p| p.1).chain(origin));
     let inner = area
-        .titled(&panel.caption, ("sans-serif", 16))
+        .titled(&panel.caption, style::font(style::AXIS))
         .map_err(PlotError::drawing)?;
     let builder = || {
         let mut b = ChartBuilder::on(&inner);
@@ -429,8 +416,9 @@ fn polar_panel(
         .build_cartesian_2d(x0..x1, y0..y1)
         .map_err(PlotError::drawing)?;
     let (xn, yn) = (column_name(table, panel.x), column_name(table, panel.y));
-    chart
-        .configure_mesh()
+    style::mesh(&mut chart.configure_mesh())
+        .x_labels(6)
+        .y_labels(8)
         .x_desc(xn.as_str())
         .y_desc(yn.as_str())
         .x_label_formatter(&|v| tick_label(*v, x1 - x0))
@@ -449,7 +437,7 @@ fn polar_panel(
         if run.len() == 1 {
             chart.draw_series(std::iter::once(Circle::new(run[0], 3, colour.filled())))
         } else {
-            chart.draw_series(LineSeries::new(run, colour.stroke_width(2)))
+            chart.draw_series(LineSeries::new(run, colour.stroke_width(style::LINE)))
         }
         .map_err(PlotError::drawing)?;
     }
@@ -477,6 +465,7 @@ fn polar_panel(
         chart
             .configure_series_labels()
             .position(SeriesLabelPosition::UpperRight)
+            .label_font(style::font(style::LEGEND))
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .draw()

@@ -8,8 +8,9 @@
 //! undamped natural frequency is a dashed grey vertical line in both. Rows
 //! with Ω ≤ 0, a zero amplitude or a singular matrix break the curves.
 
-use super::plot::{pretty_column, tick_label, PlotError, PALETTE};
+use super::plot::{pretty_column, tick_label, PlotError};
 use super::response::ResponseTable;
+use crate::drawing::style::{self, colour};
 use plotters::prelude::*;
 
 /// The runs of consecutive finite points with positive x (and positive y
@@ -98,15 +99,14 @@ pub fn svg(t: &ResponseTable, title: &str) -> Result<String, PlotError> {
         let mut chart = ChartBuilder::on(&areas[0])
             .caption(
                 format!("{title} — amplitude |X| against Ω"),
-                ("sans-serif", 18),
+                style::font(style::CAPTION),
             )
             .margin(12)
-            .x_label_area_size(30)
-            .y_label_area_size(70)
+            .x_label_area_size(50)
+            .y_label_area_size(90)
             .build_cartesian_2d((w0..w1).log_scale(), (a0..a1).log_scale())
             .map_err(PlotError::drawing)?;
-        chart
-            .configure_mesh()
+        style::mesh(&mut chart.configure_mesh())
             .x_desc("Ω")
             .x_label_formatter(&|v| frequency_label(*v))
             .y_label_formatter(&|v| format!("{v:.1e}"))
@@ -123,20 +123,29 @@ pub fn svg(t: &ResponseTable, title: &str) -> Result<String, PlotError> {
                 .map_err(PlotError::drawing)?;
         }
         for (j, rs) in amp.iter().enumerate() {
-            let c = PALETTE[j % PALETTE.len()];
+            let c = colour(j);
             for (k, r) in rs.iter().enumerate() {
                 let s = chart
-                    .draw_series(LineSeries::new(r.iter().copied(), c))
+                    .draw_series(LineSeries::new(
+                        r.iter().copied(),
+                        c.stroke_width(style::LINE),
+                    ))
                     .map_err(PlotError::drawing)?;
                 if k == 0 {
                     s.label(pretty_column(&t.coordinates[j]))
-                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c));
+                        .legend(move |(x, y)| {
+                            PathElement::new(
+                                vec![(x, y), (x + 24, y)],
+                                c.stroke_width(style::LINE + 1),
+                            )
+                        });
                 }
             }
         }
         chart
             .configure_series_labels()
             .position(SeriesLabelPosition::UpperRight)
+            .label_font(style::font(style::LEGEND))
             .background_style(WHITE.mix(0.8))
             .border_style(BLACK)
             .draw()
@@ -145,14 +154,13 @@ pub fn svg(t: &ResponseTable, title: &str) -> Result<String, PlotError> {
         let (p0, p1) = span(phase.iter().flatten().flatten().map(|p| p.1)).unwrap_or((0.0, 180.0));
         let (p0, p1) = (p0 - 10.0, p1 + 10.0);
         let mut chart = ChartBuilder::on(&areas[1])
-            .caption("phase φ (degrees) against Ω", ("sans-serif", 18))
+            .caption("phase φ (degrees) against Ω", style::font(style::CAPTION))
             .margin(12)
-            .x_label_area_size(30)
-            .y_label_area_size(70)
+            .x_label_area_size(50)
+            .y_label_area_size(90)
             .build_cartesian_2d((w0..w1).log_scale(), p0..p1)
             .map_err(PlotError::drawing)?;
-        chart
-            .configure_mesh()
+        style::mesh(&mut chart.configure_mesh())
             .x_desc("Ω")
             .x_label_formatter(&|v| frequency_label(*v))
             .y_label_formatter(&|v| tick_label(*v, p1 - p0))
@@ -169,10 +177,13 @@ pub fn svg(t: &ResponseTable, title: &str) -> Result<String, PlotError> {
                 .map_err(PlotError::drawing)?;
         }
         for (j, rs) in phase.iter().enumerate() {
-            let c = PALETTE[j % PALETTE.len()];
+            let c = colour(j);
             for r in rs {
                 chart
-                    .draw_series(LineSeries::new(r.iter().copied(), c))
+                    .draw_series(LineSeries::new(
+                        r.iter().copied(),
+                        c.stroke_width(style::LINE),
+                    ))
                     .map_err(PlotError::drawing)?;
             }
         }
