@@ -144,5 +144,5 @@ def test_a_warning_is_shown_once():
         scene.derive().latex
     assert [w.category for w in caught] == [qdot.QdotWarning]
     assert str(caught[0].message).startswith(
-        "warning: the parameter `C` has the name of the damping matrix C of `modes`' output\n"
-        " --> " + str(ROOT / "examples" / "spinning_top.qd") + ":9:30\n")
+        "warning: the parameter `C` has the name of the damping matrix C of `modes`' output, "
+        "and is in its entries\n --> " + str(ROOT / "examples" / "spinning_top.qd") + ":9:30\n")

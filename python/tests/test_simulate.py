@@ -55,7 +55,7 @@ def test_a_method_has_one_name(cli):
     assert e.value.hint == "SciPy's RK45 is `dopri5` here; " + METHODS_HINT
     with pytest.raises(qdot.QdotError) as e:
         scene.sweep(method="Radau", vary={"theta": (0.1, 1, 2)}, **args)
-    assert e.value.hint == "SciPy's RADAU is `radau5` here; " + METHODS_HINT
+    assert e.value.hint == "SciPy's Radau is `radau5` here; " + METHODS_HINT
     with pytest.raises(qdot.QdotError) as e:
         scene.simulate(method="euler", **args)
     assert (e.value.message, e.value.hint) == ("unknown method `euler`", METHODS_HINT)

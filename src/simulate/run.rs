@@ -259,7 +259,7 @@ const METHODS: [(Method, &str); 6] = [
 
 /// SciPy's names (`solve_ivp`'s `method`) of methods qdot names otherwise:
 /// refused, with a hint naming qdot's.
-const SCIPY_NAMES: [(&str, Method); 2] = [("rk45", Method::Dopri5), ("radau", Method::Radau5)];
+const SCIPY_NAMES: [(&str, Method); 2] = [("RK45", Method::Dopri5), ("Radau", Method::Radau5)];
 
 /// The method named on the command line (case aside).
 pub fn method_by_name(s: &str) -> Result<Method, Diagnostic> {
@@ -279,12 +279,11 @@ pub fn method_by_name(s: &str) -> Result<Method, Diagnostic> {
             _ => ", ",
         });
     }
-    if let Some((scipy, ours)) = SCIPY_NAMES.iter().find(|(scipy, _)| *scipy == lower) {
-        hint = format!(
-            "SciPy's {} is `{}` here; {hint}",
-            scipy.to_uppercase(),
-            method_name(*ours)
-        );
+    if let Some((scipy, ours)) = SCIPY_NAMES
+        .iter()
+        .find(|(scipy, _)| scipy.to_ascii_lowercase() == lower)
+    {
+        hint = format!("SciPy's {scipy} is `{}` here; {hint}", method_name(*ours));
     }
     Err(Diagnostic::global(format!("unknown method `{s}`"))
         .with_hint(hint)
