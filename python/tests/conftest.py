@@ -19,8 +19,10 @@ ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = sorted((ROOT / "examples").glob("*.qd"))
 
 #: How long `cargo build --release` of the CLI takes from a fresh clone
-#: (crates already downloaded) on 2 cores, measured (README.md's figure).
-BUILD_TIME = "about 2 min on 2 idle cores, 6–8 min on a loaded machine"
+#: (crates already downloaded), measured on 2026-11-28: 5 min of CPU time
+#: (user + sys) on 2 cores, 23½ min of wall time while other builds loaded
+#: them (load average 10–12); README.md says the same.
+BUILD_TIME = "2–5 min on 2 idle cores, 20+ min on a loaded machine"
 
 
 def qdot_bin() -> Path:

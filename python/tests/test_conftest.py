@@ -11,7 +11,7 @@ import sys
 import textwrap
 from pathlib import Path
 
-from conftest import ROOT
+from conftest import BUILD_TIME, ROOT
 
 TESTS = '''
 def test_needs_the_cli(cli):
@@ -65,7 +65,7 @@ def test_a_missing_cli_is_announced_then_built_once(tmp_path):
     # the first thing printed, before any test runs
     assert out.startswith(f"qdot: no CLI binary at {tmp_path / 'target' / 'release' / 'qdot'}; ")
     notice = 0
-    assert "build it first with `cargo build --release` (about 2 min" in out
+    assert f"build it first with `cargo build --release` ({BUILD_TIME}). " in out
     assert "QDOT_BIN=/path/to/qdot uses a built one instead." in out
     building = out.index(f"qdot: building the CLI: {tmp_path / 'cargo'} build --release")
     built = out.index("qdot: CLI built in ")
