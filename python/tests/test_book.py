@@ -45,3 +45,19 @@ def test_book_dask_snippet_runs_as_written(monkeypatch):
     # the lower rod flips over from some starting angles and not from others
     assert flips.any() and not flips.all()
     assert not flips[19:21, 19:21].any()  # near the bottom it does not
+
+
+def test_one_install_command_in_the_readme_the_book_and_ci():
+    """A newcomer installs with one command (one build of the wheel), the
+    one CI runs: `pip install './python[test]'`."""
+    command = "pip install './python[test]'"
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    section = readme[readme.index("\n## Python\n"):readme.index("\n## A scene\n")]
+    book = (ROOT / "book" / "src" / "python.md").read_text(encoding="utf-8")
+    for page in (section, book):
+        block = re.search(r"```sh\n(.*?)```", page, re.S).group(1)
+        installs = [line.split("#")[0].strip() for line in block.splitlines() if "pip install" in line]
+        assert installs == [command]
+    ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
+    assert [line.split("/bin/")[-1] for line in ci.splitlines() if "install --quiet './python" in line] == [
+        "pip\" install --quiet './python[test]'"]
