@@ -10,35 +10,57 @@ qdot derives Lagrange's equations exactly, and fast. This notebook works
 seed problem 23.4 and the double pendulum, checks qdot against SymPy's own
 derivation, times both, and simulates the double pendulum.
 
-Install: `pip install ./python` from the repository's root (with
-`'./python[test]'` for SymPy, matplotlib and Dask too). CI runs this
+Install: `pip install './python[test]'` from the repository's root (the
+package with SymPy, matplotlib, Jupyter's kernel and Dask). CI runs this
 notebook top to bottom (`python/tests/test_notebook.py`)."""),
-code("""import time
+code("""import os
+import time
+from pathlib import Path
+
 import numpy as np
 import sympy as sp
 from sympy.physics.mechanics import dynamicsymbols
 import qdot
 
+
+def examples_folder(name="seed_23_4.qd"):
+    \"\"\"The repository's examples/ (this notebook's folder), wherever Jupyter
+    was started: $QDOT_EXAMPLES, or the working directory or a folder above
+    it, or its examples/.\"\"\"
+    if os.environ.get("QDOT_EXAMPLES"):
+        return Path(os.environ["QDOT_EXAMPLES"])
+    for folder in [Path.cwd(), *Path.cwd().parents]:
+        for candidate in (folder, folder / "examples"):
+            if (candidate / name).is_file():
+                return candidate
+    raise FileNotFoundError(f"no {name} here, above here, or in an examples/ folder of either: "
+                            "start Jupyter in the qdot repository, or set QDOT_EXAMPLES "
+                            "to its examples folder")
+
+
+EXAMPLES = examples_folder()
 qdot.__version__"""),
 md("""## Seed problem 23.4
 
 Five bodies on a horizontal plane, two coordinates (y₃, θ₃), friction on
-body 5. The scene is the file `seed_23_4.qd` beside this notebook."""),
-code("""scene = qdot.Scene.load("seed_23_4.qd")
+body 5. The scene is the file `seed_23_4.qd` beside this notebook, in `EXAMPLES`."""),
+code("""scene = qdot.Scene.load(EXAMPLES / "seed_23_4.qd")
 scene.equations()"""),
 code("""scene.mass_matrix()"""),
 code("""acc = scene.accelerations()
 acc"""),
 md("""`.to_sympy()` gives SymPy objects (the coordinates as `dynamicsymbols`
-when asked), so qdot can be the derivation backend of a SymPy workflow."""),
+when asked; the parameters positive, as qdot takes them), so qdot can be
+the derivation backend of a SymPy workflow."""),
 code("""acc.to_sympy(dynamic=True)"""),
 md("""### SymPy's own derivation
 
 The same kinematic table and energies, written in SymPy, and Lagrange's
-equations solved for the accelerations:"""),
+equations solved for the accelerations (the parameters positive, as in
+qdot: the same SymPy symbols):"""),
 code("""t = dynamicsymbols._t
 y3, th3 = dynamicsymbols("y3 theta3")
-G, g, r = sp.symbols("G g r")
+G, g, r = sp.symbols("G g r", positive=True)
 
 def sympy_seed_23_4():
     m, J = G / g, 4 * G * r**2 / g
@@ -53,7 +75,7 @@ def sympy_seed_23_4():
     return [sp.simplify(sol[q.diff(t, 2)]) for q in (y3, th3)]
 
 start = time.perf_counter(); want = sympy_seed_23_4(); sympy_s = time.perf_counter() - start
-start = time.perf_counter(); ours = qdot.Scene.load("seed_23_4.qd").accelerations().to_sympy(dynamic=True)
+start = time.perf_counter(); ours = qdot.Scene.load(EXAMPLES / "seed_23_4.qd").accelerations().to_sympy(dynamic=True)
 qdot_s = time.perf_counter() - start
 assert all(sp.simplify(ours[q] - w) == 0 for q, w in zip(["y3", "theta3"], want))
 print(f"equal; SymPy {sympy_s * 1e3:.0f} ms, qdot {qdot_s * 1e3:.1f} ms (with the conversion to SymPy)")"""),
@@ -61,7 +83,7 @@ md("""## The double pendulum
 
 Two point masses on massless rods, angles from the downward vertical. qdot
 prints the accelerations in the textbook's compact form."""),
-code("""dp = qdot.Scene.load("double_pendulum.qd")
+code("""dp = qdot.Scene.load(EXAMPLES / "double_pendulum.qd")
 dp.accelerations()"""),
 md("""SymPy's `LagrangesMethod` derives the same equations; its accelerations
 need `simplify` to reach a readable form. Both are timed here:"""),
@@ -69,7 +91,7 @@ code("""from sympy.physics.mechanics import LagrangesMethod, Particle, Point, Re
 
 def sympy_double_pendulum():
     th1, th2 = dynamicsymbols("th1 th2")
-    m1, m2, l1, l2, g = sp.symbols("m1 m2 l1 l2 g")
+    m1, m2, l1, l2, g = sp.symbols("m1 m2 l1 l2 g", positive=True)
     N = ReferenceFrame("N")
     O = Point("O"); O.set_vel(N, 0)
     P1 = O.locatenew("P1", l1 * sp.sin(th1) * N.x - l1 * sp.cos(th1) * N.y)
@@ -84,7 +106,7 @@ def sympy_double_pendulum():
     return [sp.simplify(x) for x in lm.rhs()[2:]]
 
 start = time.perf_counter(); sympy_acc = sympy_double_pendulum(); sympy_s = time.perf_counter() - start
-start = time.perf_counter(); qdot_acc = qdot.Scene.load("double_pendulum.qd").accelerations(); qdot_s = time.perf_counter() - start
+start = time.perf_counter(); qdot_acc = qdot.Scene.load(EXAMPLES / "double_pendulum.qd").accelerations(); qdot_s = time.perf_counter() - start
 ours = qdot_acc.to_sympy(dynamic=True)
 assert all(sp.simplify(ours[q] - w) == 0 for q, w in zip(["th1", "th2"], sympy_acc))
 print(f"equal; SymPy {sympy_s:.2f} s, qdot {qdot_s * 1e3:.1f} ms: {sympy_s / qdot_s:.0f}x")"""),

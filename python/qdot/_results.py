@@ -82,8 +82,12 @@ class Expr:
 
 def _env(scene: Any, dynamic: bool, symbols: Optional[Mapping[str, Any]],
          bound: Optional[Dict[str, Any]] = None) -> Dict[str, Any]:
-    coordinates = scene.coordinates if (dynamic and scene is not None) else []
-    return _sympy.builders(coordinates, symbols, bound)
+    """The SymPy builders for ``to_sympy``: the scene's parameters carry
+    what qdot assumes of them; an expression without a scene has plain
+    Symbols."""
+    kinds = scene._kinds if scene is not None else {}
+    coordinates = [n for n, k in kinds.items() if k == "coordinate"] if dynamic else []
+    return _sympy.builders(coordinates, symbols, bound, kinds)
 
 
 _IDENTIFIER = re.compile(r"[^\W\d]\w*")

@@ -8,7 +8,7 @@ from typing import Any, Dict, List, Literal, Mapping, Optional, Sequence, Tuple,
 
 from . import _native
 from ._results import (Equation, Equations, Expr, ExprMap, Intermediates, Matrix, Result,
-                       markdown_of_latex)
+                       _env, markdown_of_latex)
 from ._cycle import Cycle
 from ._simulation import Simulation, Sweep
 
@@ -77,8 +77,12 @@ class Scene:
         self.source = text
         self.name = name
         self.max_terms = max_terms
-        _native.check_scene(text, name, max_terms=max_terms)
+        # the coordinates and parameters, each with what qdot assumes of it
+        self._kinds: Dict[str, str] = dict(_native.check_scene(text, name, max_terms=max_terms))
         self._cache: Dict[Any, Any] = {}
+        # a warning is about the scene: said once, though a result's JSON,
+        # text and LaTeX are each a run of the command
+        self._warned: set = set()
 
     @classmethod
     def load(cls, path: Union[str, "os.PathLike[str]"], *, max_terms: int = 0) -> "Scene":
@@ -110,10 +114,12 @@ class Scene:
                 title=title if title is not None else os.path.splitext(os.path.basename(self.name))[0],
                 max_terms=self.max_terms, structure=structure, keep=keep,
             )
-            if warnings:
+            fresh = [text for text in warnings if text not in self._warned]
+            if fresh:
                 import warnings as w
 
-                for text in warnings:
+                for text in fresh:
+                    self._warned.add(text)
                     w.warn(text, QdotWarning, stacklevel=3)
             self._cache[key] = out
         return self._cache[key]
@@ -184,6 +190,16 @@ class Scene:
         lhs = [f"Q_{{{self._latex_of([n])[0]}}}" for n in names]
         return ExprMap(dict(zip(names, self._exprs([q[n] for n in names]))),
                        dict(zip(names, lhs)), "Q_{}")
+
+    def sympy_symbols(self, dynamic: bool = False) -> Dict[str, Any]:
+        """The coordinates and parameters as ``.to_sympy()`` makes them, by
+        name: a parameter is ``Symbol(name, positive=True)`` (``real=True``
+        when the scene says ``assume name real``), so ``sqrt(m**2)`` is
+        ``m``; a coordinate a plain ``Symbol``, or with ``dynamic=True`` a
+        ``dynamicsymbols``. Substitute and ``lambdify`` with these: a
+        ``Symbol("m")`` without the assumption is another symbol."""
+        env = _env(self, dynamic, None)
+        return {n: env["N_"](n, 0) for n in self._kinds}
 
     def derive(self, structure: Structure = "auto", keep: Sequence[str] = ()) -> Result:
         """``qdot derive``: the equations, M and f. ``structure`` is how they

@@ -15,6 +15,17 @@ from . import _native
 #: qdot's built-in functions that SymPy names differently.
 _RENAMED = {"ln": "log"}
 
+#: A name's SymPy assumptions by what qdot assumes of it (the kinds
+#: ``_native.check_scene`` gives): a parameter is positive unless the scene
+#: says ``assume NAME real``. Coordinates carry none, as SymPy's own
+#: ``Symbol`` and ``dynamicsymbols`` make them: they are the unknowns user
+#: code builds Symbols of (``lambdify``'s arguments, the q of
+#: ``sympy.physics.mechanics``), and those must be the same objects.
+ASSUMPTIONS: Dict[str, Dict[str, bool]] = {
+    "parameter": {"positive": True},
+    "real parameter": {"real": True},
+}
+
 
 def _require_sympy() -> Any:
     try:
@@ -30,15 +41,17 @@ def builders(
     dynamic: Iterable[str] = (),
     symbols: Optional[Mapping[str, Any]] = None,
     bound: Optional[Mapping[str, Any]] = None,
+    kinds: Optional[Mapping[str, str]] = None,
 ) -> Dict[str, Any]:
     """The names the SymPy source is evaluated with.
 
     ``dynamic``: the names that become functions of time
     (``sympy.physics.mechanics.dynamicsymbols``), whose primes are time
     derivatives; every other name is a ``Symbol`` (or what ``symbols`` maps
-    it to, e.g. a positive Symbol of the user's own, or a number; a primed
-    name such as ``"x'"`` may be mapped too). A primed name that is not
-    dynamic is the Symbol ``x'``.
+    it to, e.g. a Symbol of the user's own, or a number; a primed name such
+    as ``"x'"`` may be mapped too). A primed name that is not dynamic is the
+    Symbol ``x'``. ``kinds``: the scene's names by kind (``"parameter"``,
+    …), whose Symbols carry the :data:`ASSUMPTIONS` of their kind.
 
     ``bound``: names (a result's intermediates) that stand for the SymPy
     objects it maps them to; read when a name is met, so the caller may
@@ -48,6 +61,7 @@ def builders(
     dynamic = set(dynamic)
     symbols = dict(symbols or {})
     bound = bound if bound is not None else {}
+    kinds = kinds or {}
     cache: Dict[str, Any] = {}
     t = symbols.get("t")
     if t is None:
@@ -80,7 +94,9 @@ def builders(
                 cache[n + "'" * order] = sp.Symbol(n + "'" * order)
             if order:
                 return cache[n + "'" * order]
-            base = cache.setdefault(n, sp.Symbol(n))
+            if n not in cache:
+                cache[n] = sp.Symbol(n, **ASSUMPTIONS.get(kinds.get(n, ""), {}))
+            base = cache[n]
         return sp.diff(base, t, order) if order else base
 
     def function(f: str, *args: Any) -> Any:

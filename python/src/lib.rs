@@ -129,12 +129,40 @@ fn run_command(
     }
 }
 
-/// Parse and resolve a scene; a QdotError for the first problem.
+/// Parse and resolve a scene; a QdotError for the first problem. Its
+/// names, each with what qdot assumes of it (for `.to_sympy()`'s
+/// Symbols): `"coordinate"`, `"parameter"` (positive) or `"real
+/// parameter"` (`assume e real`: either sign, or 0).
 #[pyfunction]
 #[pyo3(signature = (source, file="<scene>", max_terms=0))]
-fn check_scene(py: Python<'_>, source: &str, file: &str, max_terms: usize) -> PyResult<()> {
-    py.detach(|| context(max_terms).run(|| qdot::Scene::parse(source).map(|_| ())))
+fn check_scene(
+    py: Python<'_>,
+    source: &str,
+    file: &str,
+    max_terms: usize,
+) -> PyResult<Vec<(String, &'static str)>> {
+    py.detach(|| context(max_terms).run(|| qdot::Scene::parse(source).map(|s| names(&s))))
         .map_err(|d| error(&d, file, source))
+}
+
+/// A scene's coordinates and parameters, each with its kind (see
+/// [`check_scene`]); read where the scene's atoms were made.
+fn names(scene: &qdot::Scene) -> Vec<(String, &'static str)> {
+    let coordinates = scene
+        .coordinates
+        .iter()
+        .map(|c| (c.name.clone(), "coordinate"));
+    let parameters = scene.parameters.iter().map(|p| {
+        let real = scene
+            .assumptions
+            .real
+            .contains(&qdot::expr::atom::param(&p.name));
+        (
+            p.name.clone(),
+            if real { "real parameter" } else { "parameter" },
+        )
+    });
+    coordinates.chain(parameters).collect()
 }
 
 /// `name=value,…` as (name, value) pairs: `kind` "set" (parameters, any

@@ -79,13 +79,15 @@ def test_chain_of_four_accelerations_equal_pinocchios(case):
     # expanded through the intermediates, then evaluated by NumPy
     expanded = acc.to_sympy()
     assert not {str(s) for e in expanded.values() for s in e.free_symbols} & set(acc.intermediates)
-    f = sp.lambdify([sp.Symbol(n) for n in names], [expanded[q] for q in qs], "numpy", cse=True)
+    symbols = scene.sympy_symbols()
+    symbols.update({q + "'": sp.Symbol(q + "'") for q in qs})
+    f = sp.lambdify([symbols[n] for n in names], [expanded[q] for q in qs], "numpy", cse=True)
     assert np.allclose(np.array(f(*values), dtype=float), want, rtol=0, atol=1e-9)
     # numbers for the names: evaluated through the intermediates in order
     at = acc.to_sympy(symbols={n: sp.Float(v) for n, v in zip(names, values)})
     assert np.allclose([float(at[q]) for q in qs], want, rtol=0, atol=1e-9)
     # the cse-like form: the pairs evaluated in order, then the reduced expressions
-    state = {sp.Symbol(n): v for n, v in zip(names, values)}
+    state = {symbols[n]: v for n, v in zip(names, values)}
     for symbol, value in acc.intermediates.to_sympy():
         state[symbol] = value.xreplace(state).evalf()
     reduced = acc.to_sympy(keep_intermediates=True)
@@ -100,7 +102,9 @@ def test_small_scene_has_no_intermediates():
     acc = scene.accelerations()
     assert len(acc.intermediates) == 0
     assert acc.to_sympy() == acc.to_sympy(keep_intermediates=True)
-    assert acc.to_sympy()["theta"] == -sp.Symbol("g") * sp.sin(sp.Symbol("theta")) / sp.Symbol("l")
+    g, l, theta = (scene.sympy_symbols()[n] for n in ("g", "l", "theta"))
+    assert acc.to_sympy()["theta"] == -g * sp.sin(theta) / l
+    assert (g.is_positive, l.is_positive, theta) == (True, True, sp.Symbol("theta"))
     # asked for, even the pendulum is written through names; substituted, they are gone
     structured = scene.solve(structure="structured")
     assert structured.intermediates.names == ["M_11", "Q_theta", "z_1"]
@@ -169,7 +173,8 @@ def test_slider_crank_keeps_alpha_as_the_cli_keep_does():
     cli, _ = qdot._native.run_command("solve", scene.source, "json", keep=["alpha"])
     assert json.loads(cli) == kept.data
     # every reaction, its intermediates substituted, is the expanded one (at a state)
-    values = {sp.Symbol(k): v for k, v in
+    symbols = {**scene.sympy_symbols(), "t": sp.Symbol("t")}
+    values = {symbols[k]: v for k, v in
               {"R": 0.3, "L": 1.1, "m": 2.0, "J": 0.2, "mB": 0.7, "F": 1.3, "omega": 1.7,
                "g": 9.81, "t": 0.4}.items()}
     for name, text in kept.data["solutions"].items():

@@ -2,6 +2,7 @@
 
 import json
 import pickle
+import warnings
 
 import pytest
 
@@ -129,3 +130,19 @@ def test_errors_are_positioned_python_exceptions():
         scene.simulate(set={"m": 1, "g": 1}, init={"theta": 1, "theta'": 0}, t_end=1)
     assert "no value for the parameter l" in str(e.value)
     assert e.value.line == 0
+
+
+def test_a_warning_is_shown_once():
+    """A result's JSON, text and LaTeX are three runs of the command, each
+    with the scene's warnings: Python says each warning once."""
+    scene = qdot.Scene.load(ROOT / "examples" / "spinning_top.qd")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = scene.modes()
+        assert result.text.startswith("Linearized about a = 0, b = 0")
+        assert result._repr_markdown_() and result.latex
+        scene.derive().latex
+    assert [w.category for w in caught] == [qdot.QdotWarning]
+    assert str(caught[0].message).startswith(
+        "warning: the parameter `C` has the name of the damping matrix C of `modes`' output, "
+        "and is in its entries\n --> " + str(ROOT / "examples" / "spinning_top.qd") + ":9:30\n")

@@ -40,6 +40,34 @@ def test_simulate_methods_and_strings():
     assert np.allclose(gauss.q[-1], [-1, -4 / 3], atol=1e-8)
 
 
+METHODS_HINT = ("the methods are rk4, dopri5, dop853, vern7 (explicit), gauss6 (symplectic) "
+                "and radau5 (stiff)")
+
+
+def test_a_method_has_one_name(cli):
+    """SciPy's RK45 is qdot's dopri5: the name is refused with a hint that
+    says so, in Python and on the command line alike (one method table)."""
+    scene = qdot.Scene.load(PENDULUM)
+    args = dict(set="m=1,l=1,g=1", init="theta=1,theta'=0", t_end=1, points=2)
+    with pytest.raises(qdot.QdotError) as e:
+        scene.simulate(method="rk45", **args)
+    assert e.value.message == "unknown method `rk45`"
+    assert e.value.hint == "SciPy's RK45 is `dopri5` here; " + METHODS_HINT
+    with pytest.raises(qdot.QdotError) as e:
+        scene.sweep(method="Radau", vary={"theta": (0.1, 1, 2)}, **args)
+    assert e.value.hint == "SciPy's Radau is `radau5` here; " + METHODS_HINT
+    with pytest.raises(qdot.QdotError) as e:
+        scene.simulate(method="euler", **args)
+    assert (e.value.message, e.value.hint) == ("unknown method `euler`", METHODS_HINT)
+    # qdot's own names, in any case, run under that name
+    assert scene.simulate(method="DOPRI5", **args).method == "dopri5"
+    out = cli("simulate", str(PENDULUM), "--set", "m=1,l=1,g=1", "--init", "theta=1,theta'=0",
+              "--t-end", "1", "--method", "rk45")
+    assert out.returncode != 0
+    assert "unknown method `rk45`" in out.stderr
+    assert "= hint: SciPy's RK45 is `dopri5` here; " + METHODS_HINT in out.stderr
+
+
 def test_stop_when():
     scene = qdot.Scene.load(PENDULUM)
     sim = scene.simulate(set={"m": 1, "l": 1, "g": 1}, init={"theta": 3, "theta'": 0}, t_end=10,

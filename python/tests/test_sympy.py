@@ -25,7 +25,7 @@ def lagrange_accelerations(T, V, Q, qs):
 def test_seed_23_4_accelerations_equal_sympys_derivation():
     scene = qdot.Scene.load(ROOT / "examples" / "seed_23_4.qd")
     y3, th3 = dynamicsymbols("y3 theta3")
-    G, g, r = sp.symbols("G g r")
+    G, g, r = sp.symbols("G g r", positive=True)  # qdot's parameters are positive
     mu = sp.Rational(1, 8)
     m, J = G / g, 4 * G * r**2 / g
     y1, y2, th4, x5 = y3 + 2 * r * th3, y3 - r * th3, y3 / (2 * r), y3 / 2
@@ -37,7 +37,7 @@ def test_seed_23_4_accelerations_equal_sympys_derivation():
     Q = [sp.diff(work, q) for q in (y3, th3)]
     want = lagrange_accelerations(T, -U, Q, [y3, th3])
     acc = scene.accelerations().to_sympy(dynamic=True)
-    assert acc["y3"] == sp.Rational(343, 460) * sp.Symbol("g")
+    assert acc["y3"] == sp.Rational(343, 460) * g
     for a, b in zip([acc["y3"], acc["theta3"]], want):
         assert sp.simplify(a - b) == 0
 
@@ -45,7 +45,7 @@ def test_seed_23_4_accelerations_equal_sympys_derivation():
 def test_double_pendulum_equations_equal_sympys():
     scene = qdot.Scene.load(ROOT / "examples" / "double_pendulum.qd")
     th1, th2 = dynamicsymbols("th1 th2")
-    m1, m2, l1, l2, g = sp.symbols("m1 m2 l1 l2 g")
+    m1, m2, l1, l2, g = sp.symbols("m1 m2 l1 l2 g", positive=True)
     x1, y1 = l1 * sp.sin(th1), -l1 * sp.cos(th1)
     x2, y2 = x1 + l2 * sp.sin(th2), y1 - l2 * sp.cos(th2)
     d = lambda x: x.diff(t)  # noqa: E731
@@ -110,7 +110,7 @@ def test_seed_accelerations_solve_the_equations_in_sympy(path):
         for unknown, q in unknowns.items():
             assert is_zero(solved.expr(solved["solutions"][unknown]).to_sympy() - other[q].to_sympy())
         for unknown, answer in answers.items():
-            assert is_zero(solved.expr(solved["solutions"][unknown]).to_sympy() - qdot.Expr(answer).to_sympy())
+            assert is_zero(solved.expr(solved["solutions"][unknown]).to_sympy() - solved.expr(answer).to_sympy())
         return
     if "mechanism" in solved.data:
         # a driven mechanism: its reactions, in solving order, satisfy
@@ -168,3 +168,40 @@ def test_long_sums_do_not_nest():
     got = qdot.Expr(text).to_sympy()
     x = sp.Symbol("x")
     assert sp.expand(got - sum(k * x**k for k in range(1, 600))) == 0
+
+
+def test_parameters_are_positive_symbols_as_qdot_assumes():
+    scene = qdot.Scene.load(ROOT / "examples" / "seed_23_4.qd")
+    symbols = scene.sympy_symbols()
+    assert list(symbols) == ["y3", "theta3", "G", "g", "r"]
+    g, r = symbols["g"], symbols["r"]
+    assert g == sp.Symbol("g", positive=True) and g != sp.Symbol("g")
+    assert g.is_positive is True and sp.ask(sp.Q.positive(r)) is True
+    assert sp.sqrt(r**2) == r and sp.Abs(g) == g
+    # the results' symbols are these very ones
+    acc = scene.accelerations().to_sympy()
+    assert acc["y3"] == sp.Rational(343, 460) * g
+    assert acc["theta3"].free_symbols == {g, r}
+    assert scene.mass_matrix().to_sympy()[1, 1].free_symbols == {symbols["G"], g, r}
+    # coordinates are as SymPy makes them: plain Symbols, or dynamicsymbols
+    assert symbols["y3"] == sp.Symbol("y3") and symbols["y3"].is_positive is None
+    assert scene.sympy_symbols(dynamic=True)["y3"] == dynamicsymbols("y3")
+    # symbols= of the user's own still wins
+    assert scene.accelerations().to_sympy(symbols={"g": sp.Symbol("g")})["y3"] == (
+        sp.Rational(343, 460) * sp.Symbol("g"))
+
+
+def test_a_parameter_assumed_real_is_a_real_symbol():
+    scene = qdot.Scene.load(ROOT / "examples" / "mathieu.qd")
+    symbols = scene.sympy_symbols()
+    delta, eps, m, w = (symbols[n] for n in ("delta", "eps", "m", "w"))
+    assert (delta.is_real, delta.is_positive, eps.is_real, eps.is_positive) == (True, None, True, None)
+    assert (m.is_positive, w.is_positive) == (True, True)
+    assert sp.sqrt(delta**2) == sp.Abs(delta) and sp.sqrt(m**2) == m
+    x, t = symbols["x"], sp.Symbol("t")
+    assert scene.accelerations().to_sympy()["x"] == -eps * x * sp.cos(w * t) - delta * x
+
+
+def test_an_expression_without_a_scene_has_plain_symbols():
+    # no scene, no parameters: nothing is assumed of the names
+    assert qdot.Expr("sqrt(m^2)").to_sympy() == sp.sqrt(sp.Symbol("m") ** 2)

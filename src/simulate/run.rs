@@ -259,21 +259,48 @@ fn check_numbers(req: &Request) -> Result<(), Diagnostic> {
     Ok(())
 }
 
-/// The method named on the command line.
+/// The integrators, each with the kind an unknown name's hint groups them
+/// by; each is named once, by [`method_name`].
+const METHODS: [(Method, &str); 6] = [
+    (Method::Rk4, "explicit"),
+    (Method::Dopri5, "explicit"),
+    (Method::Dop853, "explicit"),
+    (Method::Vern7, "explicit"),
+    (Method::Gauss6, "symplectic"),
+    (Method::Radau5, "stiff"),
+];
+
+/// SciPy's names (`solve_ivp`'s `method`) of methods qdot names otherwise:
+/// refused, with a hint naming qdot's.
+const SCIPY_NAMES: [(&str, Method); 2] = [("RK45", Method::Dopri5), ("Radau", Method::Radau5)];
+
+/// The method named on the command line (case aside).
 pub fn method_by_name(s: &str) -> Result<Method, Diagnostic> {
-    Ok(match s.to_ascii_lowercase().as_str() {
-        "rk4" => Method::Rk4,
-        "dopri5" | "rk45" => Method::Dopri5,
-        "dop853" => Method::Dop853,
-        "vern7" => Method::Vern7,
-        "gauss6" => Method::Gauss6,
-        "radau5" => Method::Radau5,
-        _ => {
-            return Err(Diagnostic::global(format!("unknown method `{s}`")).with_hint(
-                "the methods are rk4, dopri5, dop853, vern7 (explicit), gauss6 (symplectic) and radau5 (stiff)",
-            ).with_kind(ErrorKind::bad_option("--method")))
+    let lower = s.to_ascii_lowercase();
+    if let Some((m, _)) = METHODS.iter().find(|(m, _)| method_name(*m) == lower) {
+        return Ok(*m);
+    }
+    let mut hint = String::from("the methods are ");
+    for (i, (m, kind)) in METHODS.iter().enumerate() {
+        hint.push_str(method_name(*m));
+        if METHODS.get(i + 1).is_none_or(|next| next.1 != *kind) {
+            hint.push_str(&format!(" ({kind})"));
         }
-    })
+        hint.push_str(match METHODS.len() - i {
+            1 => "",
+            2 => " and ",
+            _ => ", ",
+        });
+    }
+    if let Some((scipy, ours)) = SCIPY_NAMES
+        .iter()
+        .find(|(scipy, _)| scipy.to_ascii_lowercase() == lower)
+    {
+        hint = format!("SciPy's {scipy} is `{}` here; {hint}", method_name(*ours));
+    }
+    Err(Diagnostic::global(format!("unknown method `{s}`"))
+        .with_hint(hint)
+        .with_kind(ErrorKind::bad_option("--method")))
 }
 
 /// The lower-case name of a method, as the command line spells it.
