@@ -261,7 +261,7 @@ class Scene:
                  stop_when: Optional[str] = None, functions: Sequence[str] = (),
                  baumgarte: float = 1.0) -> Simulation:
         """Integrate the equations from t = 0 to ``t_end`` (``qdot simulate``):
-        ``set`` every parameter, ``init`` every q and q'."""
+        ``set`` every parameter, ``init`` every q (a velocity q' not given is 0, as on the command line)."""
         extra = {} if max_steps is None else {"max_steps": max_steps}
         raw = _native.simulate(
             self.source, _pairs(set, "set"), _pairs(init, "init"), float(t_end),

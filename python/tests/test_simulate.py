@@ -68,6 +68,17 @@ def test_a_method_has_one_name(cli):
     assert "= hint: SciPy's RK45 is `dopri5` here; " + METHODS_HINT in out.stderr
 
 
+def test_a_velocity_not_given_is_zero():
+    scene = qdot.Scene.load(PENDULUM)
+    args = dict(set={"m": 1, "l": 1, "g": 9.81}, t_end=2, points=11)
+    given = scene.simulate(init={"theta": 0.5, "theta'": 0}, **args)
+    left_out = scene.simulate(init={"theta": 0.5}, **args)
+    assert np.array_equal(given.data, left_out.data)
+    # a coordinate is still required: it is where the run starts
+    with pytest.raises(qdot.QdotError, match="no initial value for the coordinate theta"):
+        scene.simulate(init={"theta'": 1}, **args)
+
+
 def test_stop_when():
     scene = qdot.Scene.load(PENDULUM)
     sim = scene.simulate(set={"m": 1, "l": 1, "g": 1}, init={"theta": 3, "theta'": 0}, t_end=10,
