@@ -707,7 +707,11 @@ impl Writer {
                     .flat_map(|t| self.source(scene, t.source, c))
                     .collect();
                 chain.push(formulas);
-                if parts.len() > 1 {
+                // the sources' values side by side, unless they are the
+                // result's terms in another order
+                let spread: Vec<(bool, String)> =
+                    parts.iter().flat_map(|t| self.terms(&t.value)).collect();
+                if parts.len() > 1 && !same_terms(&spread, &self.terms(&eq.rhs)) {
                     chain.push(
                         parts
                             .iter()
@@ -988,19 +992,24 @@ fn capitalize(s: &str) -> String {
 /// k x` is one step), the later kept for its display order. The first side
 /// is what the row defines, and stays.
 fn distinct_steps(sides: &[Vec<(bool, String)>]) -> Vec<Vec<(bool, String)>> {
-    let sorted = |side: &Vec<(bool, String)>| {
-        let mut t = side.clone();
-        t.sort();
-        t
-    };
     let mut out: Vec<Vec<(bool, String)>> = Vec::with_capacity(sides.len());
     for side in sides {
-        if out.len() >= 2 && out.last().map(sorted) == Some(sorted(side)) {
+        if out.len() >= 2 && out.last().is_some_and(|last| same_terms(last, side)) {
             out.pop();
         }
         out.push(side.clone());
     }
     out
+}
+
+/// Whether two sums have the same signed terms, in any order.
+fn same_terms(a: &[(bool, String)], b: &[(bool, String)]) -> bool {
+    let sorted = |side: &[(bool, String)]| {
+        let mut t = side.to_vec();
+        t.sort();
+        t
+    };
+    a.len() == b.len() && sorted(a) == sorted(b)
 }
 
 /// Parentheses around a sum, grown to its height when it holds a fraction,
