@@ -8,26 +8,23 @@ use qdot::{CommandOptions, Scene};
 
 /// A cart on springs carrying a disk that rolls on it: a definition, a
 /// particle and a plane body.
-const CART: &str = "coordinates x: length, s: length
-parameters M0: mass, m: mass, R: length, k: stiffness
-phi = (x - s)/R
-particle cart: mass M0, at [x, 0]
-body disk: mass m, inertia 1/2*m*R^2, angle phi, at [s, R]
-potential V = 1/2*k*x^2 + 1/2*k*(s - x)^2
-";
+const CART: &str = "book/scenes/cart_and_disk.qd";
 
-fn steps(src: &str) -> String {
-    let scene = Scene::parse(src).expect("scene parses");
-    let opts = CommandOptions {
-        steps: true,
-        ..Default::default()
-    };
-    document(&scene, &opts).expect("latex --steps")
+/// `qdot ARGS`'s standard output, run as a user runs it: the order of the
+/// terms follows the names in the order the scene declares them, which a
+/// test process sharing its names between tests would not keep.
+fn qdot(args: &[&str]) -> String {
+    let (code, out, err) = crate::common::run::qdot(args);
+    assert_eq!(code, 0, "qdot {args:?} failed: {err}");
+    out
+}
+
+fn steps(path: &str) -> String {
+    qdot(&["latex", "--steps", path])
 }
 
 fn example_steps(name: &str) -> String {
-    let path = format!("{}/examples/{name}", env!("CARGO_MANIFEST_DIR"));
-    steps(&std::fs::read_to_string(path).expect("example"))
+    steps(&format!("examples/{name}"))
 }
 
 #[test]
@@ -222,9 +219,7 @@ fn a_parenthesized_sum_with_fractions_is_sized() {
 
 #[test]
 fn the_characteristic_factors_are_content_free() {
-    let scene = Scene::parse(CART).expect("scene parses");
-    let modes = qdot::modes(&scene, None, &Default::default()).expect("modes");
-    let out = qdot::output::latex::write(&scene, |w| w.modes(&modes));
+    let out = qdot(&["modes", CART, "--format", "latex"]);
     assert!(
         out.contains(
             "  &= \\frac{1}{2} (m (3 M_{0} + m) \\omega^{4} - k (2 M_{0} + 5 m) \\omega^{2} + 2 k^{2}) = 0\n"
@@ -232,14 +227,7 @@ fn the_characteristic_factors_are_content_free() {
         "{out}"
     );
     // two factors: no number in front
-    let src = std::fs::read_to_string(format!(
-        "{}/examples/seed_24_2.qd",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .expect("example");
-    let scene = Scene::parse(&src).expect("scene parses");
-    let modes = qdot::modes(&scene, None, &Default::default()).expect("modes");
-    let out = qdot::output::latex::write(&scene, |w| w.modes(&modes));
+    let out = qdot(&["modes", "examples/seed_24_2.qd", "--format", "latex"]);
     assert!(
         out.contains("= (6 m \\omega^{2} - k) (m \\omega^{2} - k) = 0\n"),
         "{out}"

@@ -167,10 +167,7 @@ impl Writer {
             }
             Some(Turning::Space { frame, inertia }) => {
                 let rows3: Vec<Vec<Expr>> = inertia.iter().map(|r| r.to_vec()).collect();
-                rows.push(vec![
-                    self.one(sub("I")),
-                    self.one(self.pmatrix(&rows3)),
-                ]);
+                rows.push(vec![self.one(sub("I")), self.one(self.pmatrix(&rows3))]);
                 let w = sub("\\boldsymbol{\\omega}");
                 omega_rows.push(vec![
                     self.one(w.clone()),
@@ -180,17 +177,19 @@ impl Writer {
             }
             None => {}
         }
-        rows.push(match declared(PropertyKey::At).and_then(|e| written(e, scene)) {
-            Some(Written::Vector(v)) if v != mp.centre => vec![
-                self.one(sub("\\mathbf{r}")),
-                self.one(self.vector(&v)),
-                self.one(self.vector(&mp.centre)),
-            ],
-            _ => vec![
-                self.one(sub("\\mathbf{r}")),
-                self.one(self.vector(&mp.centre)),
-            ],
-        });
+        rows.push(
+            match declared(PropertyKey::At).and_then(|e| written(e, scene)) {
+                Some(Written::Vector(v)) if v != mp.centre => vec![
+                    self.one(sub("\\mathbf{r}")),
+                    self.one(self.vector(&v)),
+                    self.one(self.vector(&mp.centre)),
+                ],
+                _ => vec![
+                    self.one(sub("\\mathbf{r}")),
+                    self.one(self.vector(&mp.centre)),
+                ],
+            },
+        );
         let rates: Vec<Expr> = mp.centre.iter().map(Expr::dt).collect();
         rows.push(vec![
             self.one(format!("{}^{{2}}", sub("v"))),

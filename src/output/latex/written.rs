@@ -90,9 +90,7 @@ fn name(n: &str, scene: &Scene) -> Option<Expr> {
         _ if scene.parameters.iter().any(|p| p.name == n) => atom::param(n),
         _ if scene.functions.iter().any(|g| g.name == n) => atom::given(n, 0),
         // a vector or a frame cannot stand as a symbol in exact arithmetic
-        _ if matches!(scene.value(n), Some(Value::Vector(_) | Value::Rotation(_))) => {
-            return None
-        }
+        _ if matches!(scene.value(n), Some(Value::Vector(_) | Value::Rotation(_))) => return None,
         _ => atom::coord(n, 0),
     };
     Some(Expr::var(v))

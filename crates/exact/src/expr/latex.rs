@@ -716,11 +716,17 @@ mod tests {
         let q = Expr::var(atom::coord("phi", 0));
         let s = func::sin(&q);
         // L² − R²·sin²φ: its display order puts the sin² term first
-        let radicand = p("L").powi(2).unwrap().sub(&p("R").powi(2).unwrap().mul(&s.mul(&s)));
+        let radicand = p("L")
+            .powi(2)
+            .unwrap()
+            .sub(&p("R").powi(2).unwrap().mul(&s.mul(&s)));
         let root = func::sqrt(&radicand).unwrap();
         assert_eq!(latex(&root), "\\sqrt{L^{2} - R^{2} \\sin^{2}\\varphi}");
         let one_minus = Expr::one().sub(&q.mul(&q));
-        assert_eq!(latex(&func::sqrt(&one_minus).unwrap()), "\\sqrt{1 - \\varphi^{2}}");
+        assert_eq!(
+            latex(&func::sqrt(&one_minus).unwrap()),
+            "\\sqrt{1 - \\varphi^{2}}"
+        );
         // a whole expression keeps the display order
         assert_eq!(latex(&radicand), "-R^{2} \\sin^{2}\\varphi + L^{2}");
     }
