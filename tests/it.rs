@@ -37,6 +37,7 @@ mod jit;
 mod joints;
 mod latex;
 mod latex_pdf;
+mod latex_steps;
 mod lazy;
 mod limits_doc;
 mod mechanisms;

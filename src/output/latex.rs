@@ -12,7 +12,9 @@
 //! and dissipation; for every coordinate ∂E/∂q̇_k, its time derivative,
 //! ∂E/∂q_k and Q_k term by term; the equation; then the solution.
 
+mod kinematics;
 mod mechanism;
+mod written;
 
 use super::position_strings;
 use crate::diag::Diagnostic;
@@ -29,6 +31,9 @@ use crate::solve::system::{self, BlockSolution};
 /// an `article` at 10pt with 2.5 cm margins holds about 70 letters of
 /// mathematics beside an equation number.
 const LINE: f64 = 56.0;
+
+/// One aligned row: a chain `side₀ = side₁ = …`, each side its signed terms.
+type Row = Vec<Vec<(bool, String)>>;
 
 /// `qdot latex`: the scene's main result — with dynamics, Lagrange's
 /// equations and the accelerations; its `solve` blocks and their
@@ -168,7 +173,7 @@ impl Writer {
         self.out.push_str(&format!("\\begin{{{env}}}\n"));
         let last = rows.len() - 1;
         for (i, row) in rows.iter().enumerate() {
-            let lines = layout(row);
+            let lines = layout(&distinct_steps(row));
             let n = lines.len();
             for (j, l) in lines.iter().enumerate() {
                 self.out.push_str("  ");
@@ -544,36 +549,7 @@ impl Writer {
         let lambda = crate::expr::atom::unknown(crate::solve::oscillations::LAMBDA);
         let w2 = Expr::coord("omega", 0).powi(2);
         let subst = |e: &Expr| w2.as_ref().ok().and_then(|w| e.subs(lambda, w).ok());
-        // each factor with a positive first term, the signs gathered in front
-        let mut negative = false;
-        let factored: Vec<String> = md
-            .factors
-            .iter()
-            .filter_map(&subst)
-            .filter(|f| {
-                // a unit ±1 is a sign, not a factor to write ("1 ω²")
-                let unit = f.as_rational().filter(|q| q.abs() == crate::num::Q::one());
-                if unit.as_ref().is_some_and(|q| q.is_negative()) {
-                    negative = !negative;
-                }
-                unit.is_none()
-            })
-            .collect::<Vec<Expr>>()
-            .into_iter()
-            .map(|f| {
-                let mut t = self.terms(&f);
-                if t.first().is_some_and(|x| x.0) {
-                    negative = !negative;
-                    t = self.terms(&f.neg());
-                }
-                let s = join(t);
-                if md.factors.len() > 1 && crate::expr::print::is_sum(&s) {
-                    format!("({s})")
-                } else {
-                    s
-                }
-            })
-            .collect();
+        let factored = self.characteristic_factors(md.factors.iter().filter_map(&subst));
         self.line("The characteristic equation:");
         let det = if md.gyroscopic {
             "\\det(K + s C + s^{2} M),\\ s = i\\omega"
@@ -585,9 +561,8 @@ impl Writer {
             // expanded here, factored next
             chain.push(crate::expr::compact::canonical_only(|| self.terms(&c)));
         }
-        if md.factors.len() > 1 {
-            let sign = if negative { "-" } else { "" };
-            chain.push(self.one(format!("{sign}{}", factored.join(" "))));
+        if let Some(f) = factored {
+            chain.push(self.one(f));
         }
         chain.push(self.one("0".into()));
         self.align(true, &[chain]);
@@ -649,6 +624,48 @@ impl Writer {
         self.line(&format!("The equilibrium is {st}."));
     }
 
+    /// The characteristic polynomial's factors as a lecturer writes them:
+    /// each with integer coefficients without a common divisor and a
+    /// positive first term, the rational content and the signs gathered in
+    /// one number in front (`\frac{1}{2} (m (3 M_{0} + m) \omega^{4} - …)`);
+    /// `None` when that is the expanded polynomial again.
+    fn characteristic_factors(&self, factors: impl Iterator<Item = Expr>) -> Option<String> {
+        let mut constant = crate::num::Q::one();
+        let mut polys: Vec<Expr> = Vec::new();
+        for f in factors {
+            if let Some(q) = f.as_rational() {
+                constant *= q;
+                continue;
+            }
+            let content = f.num().content().checked_div(&f.den().content())?;
+            let mut f = f.scale(&content.recip()?);
+            constant *= content;
+            if self.terms(&f).first().is_some_and(|t| t.0) {
+                f = f.neg();
+                constant = -constant;
+            }
+            polys.push(f);
+        }
+        let unit = constant.abs().is_one();
+        if polys.len() < 2 && unit {
+            return None;
+        }
+        let mut out = Vec::new();
+        if !unit {
+            out.push(crate::expr::latex::rational(&constant.abs()));
+        }
+        for f in &polys {
+            let s = join(self.terms(f));
+            out.push(if crate::expr::print::is_sum(&s) {
+                parens(&s)
+            } else {
+                s
+            });
+        }
+        let sign = if constant.is_negative() { "-" } else { "" };
+        Some(format!("{sign}{}", out.join(" ")))
+    }
+
     // -------------------------------------------------------------- steps
 
     /// The derivation, line by line (§23.5 of the seed).
@@ -657,55 +674,6 @@ impl Writer {
         self.forces_steps(scene);
         self.constraints_steps(scene);
         self.steps_equations(scene, lag, &e_name, has_bodies);
-    }
-
-    /// The kinetic energy, body by body: its name in the derivation, and
-    /// whether the scene has kinetic energies.
-    fn steps_energies(&mut self, scene: &Scene, lag: &Lagrange) -> (String, bool) {
-        let coords: Vec<String> = lag.coordinates.iter().map(|c| self.sym(c, 0)).collect();
-        let bodies: Vec<(String, Expr)> = scene
-            .role(Role::Kinetic)
-            .map(|d| {
-                (
-                    d.name.clone(),
-                    d.value.as_scalar().cloned().unwrap_or_else(Expr::zero),
-                )
-            })
-            .collect();
-        let e_name = match bodies.as_slice() {
-            [(n, _)] => self.sym(n, 0),
-            _ => "E".to_string(),
-        };
-        if !bodies.is_empty() {
-            let what = if bodies.len() > 1 {
-                "body by body, "
-            } else {
-                ""
-            };
-            self.para(
-                "Kinetic energy.",
-                &format!(
-                    "In the coordinates ${}$, {what}the kinetic energy is",
-                    coords.join(", ")
-                ),
-            );
-            let mut rows: Vec<_> = Vec::new();
-            if bodies.len() > 1 {
-                for (n, e) in &bodies {
-                    rows.push(vec![self.one(self.sym(n, 0)), self.terms(e)]);
-                }
-                let names: Vec<String> = bodies.iter().map(|(n, _)| self.sym(n, 0)).collect();
-                rows.push(vec![
-                    self.one("E".into()),
-                    vec![(false, names.join(" + "))],
-                    self.terms(&lag.kinetic),
-                ]);
-            } else {
-                rows.push(vec![self.one(e_name.clone()), self.terms(&lag.kinetic)]);
-            }
-            self.align(false, &rows);
-        }
-        (e_name, !bodies.is_empty())
     }
 
     /// Each coordinate's Lagrange equation, term by term.
@@ -739,7 +707,11 @@ impl Writer {
                     .flat_map(|t| self.source(scene, t.source, c))
                     .collect();
                 chain.push(formulas);
-                if parts.len() > 1 {
+                // the sources' values side by side, unless they are the
+                // result's terms in another order
+                let spread: Vec<(bool, String)> =
+                    parts.iter().flat_map(|t| self.terms(&t.value)).collect();
+                if parts.len() > 1 && !same_terms(&spread, &self.terms(&eq.rhs)) {
                     chain.push(
                         parts
                             .iter()
@@ -751,7 +723,7 @@ impl Writer {
                                         (true, b.to_string())
                                     }
                                     _ if crate::expr::print::is_sum(&s) && i > 0 => {
-                                        (false, format!("({s})"))
+                                        (false, parens(&s))
                                     }
                                     _ => (false, s),
                                 };
@@ -1012,6 +984,44 @@ fn capitalize(s: &str) -> String {
     match c.next() {
         Some(f) => f.to_uppercase().chain(c).collect(),
         None => String::new(),
+    }
+}
+
+/// A chain without its repeated steps: a side with the same terms as the
+/// next one, in any order, is left out (`= -k x - c \dot{x} = -c \dot{x} -
+/// k x` is one step), the later kept for its display order. The first side
+/// is what the row defines, and stays.
+fn distinct_steps(sides: &[Vec<(bool, String)>]) -> Vec<Vec<(bool, String)>> {
+    let mut out: Vec<Vec<(bool, String)>> = Vec::with_capacity(sides.len());
+    for side in sides {
+        if out.len() >= 2 && out.last().is_some_and(|last| same_terms(last, side)) {
+            out.pop();
+        }
+        out.push(side.clone());
+    }
+    out
+}
+
+/// Whether two sums have the same signed terms, in any order.
+fn same_terms(a: &[(bool, String)], b: &[(bool, String)]) -> bool {
+    let sorted = |side: &[(bool, String)]| {
+        let mut t = side.to_vec();
+        t.sort();
+        t
+    };
+    a.len() == b.len() && sorted(a) == sorted(b)
+}
+
+/// Parentheses around a sum, grown to its height when it holds a fraction,
+/// a radical or a matrix.
+fn parens(s: &str) -> String {
+    if ["\\frac", "\\dfrac", "\\sqrt", "\\begin"]
+        .iter()
+        .any(|tall| s.contains(tall))
+    {
+        format!("\\left({s}\\right)")
+    } else {
+        format!("({s})")
     }
 }
 

@@ -292,6 +292,16 @@ pub fn join(items: impl IntoIterator<Item = (bool, String)>) -> String {
     out
 }
 
+/// Terms with the positive ones first when the first is negative, each
+/// side in its order.
+fn positive_first(terms: Vec<(bool, String)>) -> Vec<(bool, String)> {
+    if !terms.first().is_some_and(|t| t.0) {
+        return terms;
+    }
+    let (pos, neg): (Vec<_>, Vec<_>) = terms.into_iter().partition(|t| !t.0);
+    pos.into_iter().chain(neg).collect()
+}
+
 /// What a factor is, for joining factors into a product.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Kind {
@@ -364,6 +374,14 @@ struct Tex<'a> {
 impl Tex<'_> {
     fn expr(&self, e: &Expr) -> String {
         join(self.terms(e))
+    }
+
+    /// `e` inside a radical, a function's argument, an exponent or a
+    /// power's parentheses: a positive term first when there is one
+    /// (`\sqrt{L^{2} - R^{2} \sin^{2}\varphi}`, not `\sqrt{-R^{2} … + L^{2}}`),
+    /// as [`print::sum_terms`] writes the sums inside a product.
+    fn inner(&self, e: &Expr) -> String {
+        join(positive_first(self.terms(e)))
     }
 
     /// The terms of `e` in display order, each (is negative, text).
@@ -450,7 +468,7 @@ impl Tex<'_> {
             .into_iter()
             .filter_map(|(v, e)| match atom::atom(v) {
                 Atom::Exp(u) => Some(Factor::new(
-                    format!("e^{{{}}}", self.expr(&u.scale(&Q::from_i64(-(e as i64))))),
+                    format!("e^{{{}}}", self.inner(&u.scale(&Q::from_i64(-(e as i64))))),
                     Kind::Plain,
                 )),
                 _ => None,
@@ -572,15 +590,15 @@ impl Tex<'_> {
             }
             Atom::Exp(u) => {
                 let x = u.scale(&Q::from_i64(e as i64));
-                Factor::new(format!("e^{{{}}}", self.expr(&x)), Kind::Plain)
+                Factor::new(format!("e^{{{}}}", self.inner(&x)), Kind::Plain)
             }
             Atom::Group(p) => {
-                let inner = join(self.parts_terms(p, &Poly::one()));
+                let inner = join(positive_first(self.parts_terms(p, &Poly::one())));
                 Factor::new(format!("{}{sup}", parens(&inner)), Kind::Plain)
             }
             Atom::Shown(f) if f.b.is_zero() => {
                 let name = if f.cos { "\\cos" } else { "\\sin" };
-                let angle = self.expr(&f.a);
+                let angle = self.inner(&f.a);
                 Factor::new(format!("{name}{sup}{}", parens(&angle)), Kind::Func)
             }
             Atom::Shown(f) => {
@@ -603,7 +621,7 @@ impl Tex<'_> {
             Atom::SqrtOf(u) => {
                 let s = match print::square_root_of_square(u) {
                     Some(q) => format!("\\left|{}\\right|", self.expr(&q)),
-                    None => format!("\\sqrt{{{}}}", self.expr(u)),
+                    None => format!("\\sqrt{{{}}}", self.inner(u)),
                 };
                 self.raised(s, e)
             }
@@ -634,7 +652,7 @@ impl Tex<'_> {
     /// A function's argument: bare when it is one symbol (`\sin\theta_{3}`),
     /// else in parentheses (`\sin(\omega t)`).
     fn argument(&self, u: &Expr) -> String {
-        let s = self.expr(u);
+        let s = self.inner(u);
         let simple = u.as_var().is_some_and(|v| {
             matches!(
                 atom::atom(v),
@@ -689,5 +707,27 @@ mod tests {
         n.set("theta3", "\\vartheta_3");
         assert_eq!(n.symbol("theta3", 0), "\\vartheta_3");
         assert_eq!(n.symbol("theta3", 2), "\\ddot{\\vartheta}_3");
+    }
+
+    #[test]
+    fn a_radicand_and_an_argument_start_with_a_positive_term() {
+        use crate::expr::func;
+        let p = |n: &str| Expr::var(atom::param(n));
+        let q = Expr::var(atom::coord("phi", 0));
+        let s = func::sin(&q);
+        // L² − R²·sin²φ: its display order puts the sin² term first
+        let radicand = p("L")
+            .powi(2)
+            .unwrap()
+            .sub(&p("R").powi(2).unwrap().mul(&s.mul(&s)));
+        let root = func::sqrt(&radicand).unwrap();
+        assert_eq!(latex(&root), "\\sqrt{L^{2} - R^{2} \\sin^{2}\\varphi}");
+        let one_minus = Expr::one().sub(&q.mul(&q));
+        assert_eq!(
+            latex(&func::sqrt(&one_minus).unwrap()),
+            "\\sqrt{1 - \\varphi^{2}}"
+        );
+        // a whole expression keeps the display order
+        assert_eq!(latex(&radicand), "-R^{2} \\sin^{2}\\varphi + L^{2}");
     }
 }
