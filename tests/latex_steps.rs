@@ -233,3 +233,22 @@ fn the_characteristic_factors_are_content_free() {
         "{out}"
     );
 }
+
+/// A body without a mass turns about its fixed centre: its steps show no
+/// mass, no v² and E = ½ωᵀIω.
+#[test]
+fn a_body_without_a_mass_shows_only_its_turning() {
+    let out = example_steps("torque_free_body.qd");
+    assert!(
+        out.contains("The body $\\mathrm{b}$: no mass (its centre is fixed), its inertia about the centre in its own axes (and its angular velocity in them) and centre:\n\\begin{align*}\n  I_{\\mathrm{b}} &= "),
+        "{out}"
+    );
+    assert!(
+        out.contains("  E_{b} &= \\frac{1}{2} \\boldsymbol{\\omega}_{\\mathrm{b}}^{T} I_{\\mathrm{b}} \\boldsymbol{\\omega}_{\\mathrm{b}} = "),
+        "{out}"
+    );
+    assert!(
+        !out.contains("m_{\\mathrm{b}}") && !out.contains("v_{\\mathrm{b}}"),
+        "{out}"
+    );
+}

@@ -134,8 +134,12 @@ impl Writer {
                 .map(|p| &p.value)
         };
         let mp = &body.mass_properties;
+        // a body without a mass turns about its fixed centre: no m, no v²
+        let massless = declared(PropertyKey::Mass).is_none() && mp.mass.is_zero();
         let mut rows: Vec<Row> = Vec::new();
-        rows.push(self.declared_row(sub("m"), declared(PropertyKey::Mass), scene, &mp.mass));
+        if !massless {
+            rows.push(self.declared_row(sub("m"), declared(PropertyKey::Mass), scene, &mp.mass));
+        }
         let mut turning_text = String::new();
         let mut omega_rows: Vec<Row> = Vec::new();
         match &mp.turning {
@@ -191,18 +195,25 @@ impl Writer {
             },
         );
         let rates: Vec<Expr> = mp.centre.iter().map(Expr::dt).collect();
-        rows.push(vec![
-            self.one(format!("{}^{{2}}", sub("v"))),
-            self.squares(&rates),
-        ]);
+        if !massless {
+            rows.push(vec![
+                self.one(format!("{}^{{2}}", sub("v"))),
+                self.squares(&rates),
+            ]);
+        }
         rows.extend(omega_rows);
-        rows.push(vec![
-            self.one(self.sym(&body.kinetic, 0)),
-            self.one(format!(
+        let formula = if massless {
+            turning_text.trim_start_matches(" + ").to_string()
+        } else {
+            format!(
                 "\\frac{{1}}{{2}} {} {}^{{2}}{turning_text}",
                 sub("m"),
                 sub("v")
-            )),
+            )
+        };
+        rows.push(vec![
+            self.one(self.sym(&body.kinetic, 0)),
+            self.one(formula),
             self.terms(energy),
         ]);
         let what = match body.kind {
@@ -210,6 +221,12 @@ impl Writer {
             ast::BodyKind::Particle => "particle",
         };
         let data = match &mp.turning {
+            Some(Turning::Space { .. }) if massless => {
+                "no mass (its centre is fixed), its inertia about the centre in its own axes (and its angular velocity in them) and centre"
+            }
+            Some(Turning::Plane { .. }) if massless => {
+                "no mass (its centre is fixed), its moment of inertia about the centre, angle and centre"
+            }
             Some(Turning::Plane { .. }) => {
                 "its mass, moment of inertia about the centre, angle and centre"
             }
