@@ -193,17 +193,21 @@ impl Writer {
         self.out.push_str(&format!("\\end{{{env}}}\n"));
     }
 
-    /// A matrix `name = (…)` in `equation*`.
-    fn matrix(&mut self, name: &str, m: &[Vec<Expr>]) {
-        let rows: Vec<String> = m
-            .iter()
+    /// A matrix's rows, each `a & b & c`.
+    fn matrix_rows(&self, m: &[Vec<Expr>]) -> Vec<String> {
+        m.iter()
             .map(|r| {
                 r.iter()
                     .map(|e| self.tex(e))
                     .collect::<Vec<_>>()
                     .join(" & ")
             })
-            .collect();
+            .collect()
+    }
+
+    /// A matrix `name = (…)` in `equation*`.
+    fn matrix(&mut self, name: &str, m: &[Vec<Expr>]) {
+        let rows = self.matrix_rows(m);
         self.out.push_str(&format!(
             "\\begin{{equation*}}\n  {name} = \\begin{{pmatrix}}\n    {}\n  \\end{{pmatrix}}\n\\end{{equation*}}\n",
             rows.join(" \\\\\n    ")

@@ -277,6 +277,27 @@ fn subtitle(file: &str, parameters: &[String], req: &Request) -> String {
 
 type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
 
+/// A panel's axes over `x` × `y`, with room for its caption and labels.
+type Panel<'a, 'b> = ChartContext<
+    'a,
+    SVGBackend<'b>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+fn panel<'a, 'b>(
+    area: &'a Area<'b>,
+    x: std::ops::Range<f64>,
+    y: std::ops::Range<f64>,
+) -> Result<Panel<'a, 'b>, PlotError> {
+    ChartBuilder::on(area)
+        .margin(MARGIN)
+        .margin_top(CAPTION_ROOM)
+        .x_label_area_size(X_LABELS)
+        .y_label_area_size(Y_LABELS)
+        .build_cartesian_2d(x, y)
+        .map_err(PlotError::drawing)
+}
+
 /// One coordinate: its column, its name, and what it measures.
 struct Coordinate<'r> {
     column: usize,
@@ -444,13 +465,7 @@ fn time_panel(
         [a, .., z] => format!("{a} … {z}"),
         [] => "q".into(),
     };
-    let mut chart = ChartBuilder::on(&plot)
-        .margin(MARGIN)
-        .margin_top(CAPTION_ROOM)
-        .x_label_area_size(X_LABELS)
-        .y_label_area_size(Y_LABELS)
-        .build_cartesian_2d(t0..t1, lo..hi)
-        .map_err(PlotError::drawing)?;
+    let mut chart = panel(&plot, t0..t1, lo..hi)?;
     style::mesh(&mut chart.configure_mesh())
         .x_labels(10)
         .y_labels(7)
@@ -537,13 +552,7 @@ fn phase_panel(
     let (xlo, xhi) = range(q.iter());
     let (ylo, yhi) = range(qd.iter());
     let name = pretty_column(c.name);
-    let mut chart = ChartBuilder::on(area)
-        .margin(MARGIN)
-        .margin_top(CAPTION_ROOM)
-        .x_label_area_size(X_LABELS)
-        .y_label_area_size(Y_LABELS)
-        .build_cartesian_2d(xlo..xhi, ylo..yhi)
-        .map_err(PlotError::drawing)?;
+    let mut chart = panel(area, xlo..xhi, ylo..yhi)?;
     style::mesh(&mut chart.configure_mesh())
         .x_labels(6)
         .y_labels(7)
@@ -574,13 +583,7 @@ fn energy_panel(area: &Area, data: &Data, column: usize, labels: &Labels) -> Res
     let dh: Vec<f64> = h.iter().map(|x| x - h0).collect();
     let (lo, hi) = range(dh.iter());
     let (t0, t1) = data.t_range();
-    let mut chart = ChartBuilder::on(area)
-        .margin(MARGIN)
-        .margin_top(CAPTION_ROOM)
-        .x_label_area_size(X_LABELS)
-        .y_label_area_size(Y_LABELS)
-        .build_cartesian_2d(t0..t1, lo..hi)
-        .map_err(PlotError::drawing)?;
+    let mut chart = panel(area, t0..t1, lo..hi)?;
     style::mesh(&mut chart.configure_mesh())
         .x_labels(6)
         .y_labels(7)

@@ -316,15 +316,7 @@ impl Writer {
 
     /// A matrix, inline.
     fn pmatrix(&self, m: &[Vec<Expr>]) -> String {
-        let rows: Vec<String> = m
-            .iter()
-            .map(|r| {
-                r.iter()
-                    .map(|e| self.tex(e))
-                    .collect::<Vec<_>>()
-                    .join(" & ")
-            })
-            .collect();
+        let rows = self.matrix_rows(m);
         format!(
             "\\begin{{pmatrix}} {} \\end{{pmatrix}}",
             rows.join(" \\\\ ")
