@@ -232,6 +232,12 @@ fn the_characteristic_factors_are_content_free() {
         out.contains("= (6 m \\omega^{2} - k) (m \\omega^{2} - k) = 0\n"),
         "{out}"
     );
+    // the content and a factor 1/r in front as one fraction
+    let out = qdot(&["modes", "examples/seed_24_1.qd", "--format", "latex"]);
+    assert!(
+        out.contains("= -\\frac{1}{9 r} (81 m r \\omega^{2} + 9 g m - 16 k r) = 0\n"),
+        "{out}"
+    );
 }
 
 /// A body without a mass turns about its fixed centre: its steps show no

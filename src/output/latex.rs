@@ -636,9 +636,15 @@ impl Writer {
     fn characteristic_factors(&self, factors: impl Iterator<Item = Expr>) -> Option<String> {
         let mut constant = crate::num::Q::one();
         let mut polys: Vec<Expr> = Vec::new();
+        // factors 1/r, 1/d⁶: written with the content as one fraction
+        let mut reciprocals = Expr::one();
         for f in factors {
             if let Some(q) = f.as_rational() {
                 constant *= q;
+                continue;
+            }
+            if f.num().is_constant() {
+                reciprocals = reciprocals.mul(&f);
                 continue;
             }
             let content = f.num().content().checked_div(&f.den().content())?;
@@ -650,13 +656,13 @@ impl Writer {
             }
             polys.push(f);
         }
-        let unit = constant.abs().is_one();
+        let unit = constant.abs().is_one() && reciprocals.is_one();
         if polys.len() < 2 && unit {
             return None;
         }
         let mut out = Vec::new();
         if !unit {
-            out.push(crate::expr::latex::rational(&constant.abs()));
+            out.push(self.tex(&reciprocals.scale(&constant.abs())));
         }
         for f in &polys {
             let s = join(self.terms(f));
