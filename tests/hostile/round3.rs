@@ -693,3 +693,32 @@ fn a_closed_pipe_is_not_a_panic() {
     assert_eq!(err, "", "nothing on stderr");
     assert_eq!(status.code(), Some(0));
 }
+
+/// A fuzz finding (fuzz/regressions/pipeline/abs-of-denominator-unreduced-
+/// square): the gyrocompass with its frame tilted by π/4 − lat. |d| of a
+/// denominator d holding cos(lat) was √(d²) with d² unreduced (cos² left
+/// in). The equilibria at these values: sin(α)·(…) = 0 with A = C, so
+/// α = 0 and π, the generalized force +c·sin(α) with c > 0 pushing away
+/// from α = 0.
+#[test]
+fn a_tilted_gyrocompass_reduces_the_square_under_its_absolute_value() {
+    let src = "coordinates alpha: angle\n\
+        parameters A: mass*length^2, C: mass*length^2, s: 1/time, Omega: 1/time, lat: angle\n\
+        assume C < 2*A, cos(lat) > 0\n\
+        frame L = rot(z, Omega*t) * rot(y, pi/4 - lat) * rot(z, pi)\n\
+        frame B = L * rot(z, alpha) * rot(x, s*t)\n\
+        body rotor: inertia [C, A, A], frame B, at [0, 0, 0]\n";
+    let o = qdot_scene(
+        "tilted_gyrocompass",
+        src.as_bytes(),
+        "equilibrium",
+        &["--set", "A=1,C=1,s=1,Omega=1,lat=1"],
+    );
+    o.assert_clean();
+    assert!(
+        o.stdout.contains(
+            "Equilibria\n  1. α = 0  ≈ (0.000000)  — unstable\n  2. α = π  ≈ (3.141593)  — stable\n"
+        ),
+        "{o:?}"
+    );
+}

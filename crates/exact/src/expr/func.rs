@@ -547,7 +547,9 @@ fn abs_of_denominator(d: &Poly) -> Expr {
         // as the same expression when printed and parsed again.
         let c = d.content().abs();
         let p = d.scale(&Q::one().checked_div(&c).unwrap_or_else(Q::one));
-        let square = &p * &p;
+        // p may hold radicals or cosines: its square is reduced like any
+        // polynomial before it is an expression
+        let square = super::reduced(&p * &p);
         match sqrt(&Expr::poly(square.clone())) {
             Ok(root) => root.scale(&c),
             // p² ≥ 0 is never certainly negative; were it refused, √(p²)
