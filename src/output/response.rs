@@ -8,7 +8,7 @@ use crate::diag::Diagnostic;
 use crate::expr::Expr;
 use crate::scene::Scene;
 use crate::solve::oscillations as osc;
-use crate::solve::response::{self, ForcedSystem, Peak, Response, SingleDof};
+use crate::solve::response::{self, ForcedSystem, LoadPeak, Peak, Response, SingleDof};
 use serde::Serialize;
 
 /// The exact response of the scene `src` about `at` (`--at th=pi`, default
@@ -146,6 +146,10 @@ fn single_text(s: &SingleDof) -> String {
         as_unicode(&s.transmissibility_squared)
     ));
     match &s.peak {
+        Peak::Load(l) => out.push_str(&load_peak_text(l)),
+        Peak::Undamped if s.static_deflection.is_none() => {
+            out.push_str("  resonance: undamped, |X| is infinite at Ω = ω₀\n")
+        }
         Peak::Undamped => out.push_str("  resonance: undamped, D is infinite at Ω = ω₀\n"),
         Peak::None => out.push_str("  resonance: no peak (ζ² ≥ 1/2): D falls from 1 at Ω = 0\n"),
         Peak::At {
@@ -186,6 +190,48 @@ fn single_text(s: &SingleDof) -> String {
                 ));
             }
         }
+    }
+    out
+}
+
+/// The peak of |X| for a load that depends on Ω, and D's for comparison.
+fn load_peak_text(l: &LoadPeak) -> String {
+    let mut out = String::from(
+        "  the load depends on Ω: the resonance below is the peak of |X| for this load\n",
+    );
+    if let Some(w2) = &l.omega_squared {
+        out.push_str(&format!(
+            "  resonance peak of |X|: Ω_peak² = {}{}\n",
+            as_unicode(w2),
+            match &l.condition {
+                Some(c) => format!("  (when {} > 0)", as_unicode(c)),
+                None => String::new(),
+            }
+        ));
+    }
+    if let Some(a) = &l.amplitude_squared {
+        out.push_str(&format!("  peak amplitude |X_peak|² = {}\n", as_unicode(a)));
+        if let Some(n) = &l.half_power_note {
+            out.push_str(&format!("  {n}\n"));
+        } else {
+            out.push_str("  half-power frequencies (|X| = |X_peak|/√2)\n");
+        }
+        for (name, h) in [("Ω₁", &l.half_power.0), ("Ω₂", &l.half_power.1)] {
+            match h {
+                Some(v) => out.push_str(&format!("    {name}² = {}\n", as_unicode(v))),
+                None if l.half_power_note.is_none() => out.push_str(&format!("    {name}: none\n")),
+                None => {}
+            }
+        }
+    }
+    if let Some(n) = &l.note {
+        out.push_str(&format!("  {n}\n"));
+    }
+    if let Some(d) = &l.constant_force_peak {
+        out.push_str(&format!(
+            "  (D, the factor of a constant-amplitude force, peaks at ω₀²·(1 − 2ζ²) = {})\n",
+            as_unicode(d)
+        ));
     }
     out
 }
@@ -237,8 +283,16 @@ pub struct SingleDofJson {
     pub tan_phase: String,
     /// T² in Ω.
     pub transmissibility_squared: String,
-    /// `"undamped"`, `"peak"` or `"none"` (ζ² ≥ 1/2).
+    /// `"undamped"`, `"peak"` or `"none"` (ζ² ≥ 1/2, or no peak of |X|
+    /// for a load that depends on Ω), `"undecided"` (see
+    /// `resonance_note`). The peak is that of |X| for the scene's load.
     pub resonance: &'static str,
+    /// For a load that depends on Ω: what the peak is of, or why it is
+    /// not given; else null.
+    pub resonance_note: Option<String>,
+    /// For a load that depends on Ω: where D (a constant-amplitude
+    /// force) peaks, ω₀² − 2α², for comparison; else null.
+    pub constant_force_peak_omega_squared: Option<String>,
     /// ω_peak², or null.
     pub peak_omega_squared: Option<String>,
     /// The expression that must be positive for the peak (ζ² < 1/2), when
@@ -248,7 +302,8 @@ pub struct SingleDofJson {
     pub peak_magnification_squared: Option<String>,
     /// X_peak, or null.
     pub peak_amplitude: Option<String>,
-    /// [Ω₁², Ω₂²] (Ω₁² null when it is not positive), or null.
+    /// [Ω₁², Ω₂²] (Ω₁² null when it is not positive; Ω₂² null where |X|
+    /// of a load that depends on Ω stays above |X_peak|/√2), or null.
     pub half_power_squared: Option<[Option<String>; 2]>,
     /// (Ω₂ − Ω₁)², or null.
     pub bandwidth_squared: Option<String>,
@@ -291,6 +346,8 @@ impl SingleDofJson {
             tan_phase: as_input(&s.tan_phase),
             transmissibility_squared: as_input(&s.transmissibility_squared),
             resonance: "none",
+            resonance_note: None,
+            constant_force_peak_omega_squared: None,
             peak_omega_squared: None,
             peak_condition: None,
             peak_magnification_squared: None,
@@ -299,6 +356,32 @@ impl SingleDofJson {
             bandwidth_squared: None,
         };
         match &s.peak {
+            Peak::Load(l) => {
+                j.resonance = match (&l.omega_squared, &l.note) {
+                    (Some(_), _) => "peak",
+                    (None, Some(n)) if n.starts_with("no peak") => "none",
+                    _ => "undecided",
+                };
+                j.resonance_note =
+                    Some(l.note.clone().unwrap_or_else(|| {
+                        "the peak of |X| for this load, which depends on Ω".into()
+                    }));
+                j.constant_force_peak_omega_squared = l.constant_force_peak.as_ref().map(as_input);
+                j.peak_omega_squared = l.omega_squared.as_ref().map(as_input);
+                j.peak_condition = l.condition.as_ref().map(as_input);
+                j.peak_amplitude = l
+                    .amplitude_squared
+                    .as_ref()
+                    .and_then(|a| crate::expr::func::sqrt(a).ok())
+                    .as_ref()
+                    .map(as_input);
+                if l.amplitude_squared.is_some() && l.half_power_note.is_none() {
+                    j.half_power_squared = Some([
+                        l.half_power.0.as_ref().map(as_input),
+                        l.half_power.1.as_ref().map(as_input),
+                    ]);
+                }
+            }
             Peak::Undamped => j.resonance = "undamped",
             Peak::None => {}
             Peak::At {

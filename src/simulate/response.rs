@@ -5,7 +5,8 @@
 //! [`crate::solve::response::ForcedSystem`]) are compiled once into one
 //! register program of Ω with the `--set` values folded in; at each Ω the
 //! program gives A = K − Ω²·M + i·Ω·C and F = F_c − i·F_s, and A·X = F is
-//! solved by complex LU with partial pivoting (Golub & Van Loan 3.4).
+//! solved by complex LU with partial pivoting on A equilibrated by powers
+//! of two (`dense::solve_complex_scaled`: no overflow at any scale of A).
 //! Amplitude |X_j| and phase φ_j = arg(X̄_j) (q_j = |X_j|·cos(Ω·t − φ_j))
 //! of every coordinate, the undamped natural frequencies and the sweep's
 //! resonance peaks (local maxima of |X_j| on the grid).
@@ -14,6 +15,7 @@ use super::cycle::short;
 use crate::algebra::sign::Values;
 use crate::cycle::Over;
 use crate::diag::{Diagnostic, ErrorKind};
+use crate::engine::dense::{solve_complex_scaled, Complex, Lu};
 use crate::expr::atom::{self, Atom};
 use crate::expr::Expr;
 use crate::poly::Var;
@@ -129,44 +131,39 @@ impl CompiledResponse {
         })
     }
 
-    /// X(Ω) into `x` (re, im per coordinate); false where A is singular
-    /// or a value is not finite. `a` is scratch of 2n² values.
-    fn solve_at(&mut self, omega: f64, a: &mut [f64], x: &mut [f64]) -> bool {
+    /// X(Ω) into `x`; false where A is singular or a value is not finite.
+    /// `lu` is scratch of size n.
+    fn solve_at(&mut self, omega: f64, lu: &mut Lu<Complex<f64>>, x: &mut [Complex<f64>]) -> bool {
         let n = self.n;
         self.program
             .eval(&[omega], &mut self.registers, &mut self.values);
         let v = &self.values;
         let nn = n * n;
         let w2 = omega * omega;
-        for k in 0..nn {
-            a[2 * k] = v[k] - w2 * v[nn + k];
-            a[2 * k + 1] = omega * v[2 * nn + k];
+        for (k, z) in lu.a.iter_mut().enumerate() {
+            *z = Complex::new(v[k] - w2 * v[nn + k], omega * v[2 * nn + k]);
         }
-        for j in 0..n {
-            x[2 * j] = v[3 * nn + j];
-            x[2 * j + 1] = -v[3 * nn + n + j];
+        for (j, z) in x.iter_mut().enumerate() {
+            *z = Complex::new(v[3 * nn + j], -v[3 * nn + n + j]);
         }
-        complex_lu_solve(a, x, n)
+        solve_complex_scaled(lu, x).is_ok()
+            && x.iter().all(|z| z.re.is_finite() && z.im.is_finite())
     }
 
     /// The response at every Ω of `over`.
     pub fn run(&mut self, over: &Over) -> ResponseTable {
         let n = self.n;
-        let mut a = vec![0.0; 2 * n * n];
-        let mut x = vec![0.0; 2 * n];
+        let mut lu = Lu::new(n, Complex::new(0.0, 0.0));
+        let mut x = vec![Complex::new(0.0, 0.0); n];
         let mut omega = Vec::with_capacity(over.count);
         let mut amplitude = Vec::with_capacity(over.count);
         let mut phase = Vec::with_capacity(over.count);
         for k in 0..over.count {
             let w = over.value(k);
             omega.push(w);
-            if self.solve_at(w, &mut a, &mut x) {
-                amplitude.push((0..n).map(|j| Some(x[2 * j].hypot(x[2 * j + 1]))).collect());
-                phase.push(
-                    (0..n)
-                        .map(|j| Some((-x[2 * j + 1]).atan2(x[2 * j])))
-                        .collect(),
-                );
+            if self.solve_at(w, &mut lu, &mut x) {
+                amplitude.push(x.iter().map(|z| Some(z.re.hypot(z.im))).collect());
+                phase.push(x.iter().map(|z| Some((-z.im).atan2(z.re))).collect());
             } else {
                 amplitude.push(vec![None; n]);
                 phase.push(vec![None; n]);
@@ -209,64 +206,27 @@ fn local_maxima(w: &[f64], a: &[Option<f64>]) -> Vec<(f64, f64)> {
 }
 
 /// Solve A·x = b in place for complex A (n×n, row-major, re/im
-/// interleaved) and b (re/im interleaved) by LU with partial pivoting;
-/// false when a pivot is zero or a value is not finite.
+/// interleaved) and b (re/im interleaved) by the equilibrated complex LU
+/// of [`crate::engine::dense::solve_complex_scaled`]; false when A is
+/// singular or a value is not finite.
 pub fn complex_lu_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
-    let at = |i: usize, j: usize| 2 * (i * n + j);
-    for k in 0..n {
-        // the pivot: the largest |a_ik| in column k, rows k..n
-        let mut p = k;
-        let mut best = -1.0;
-        for i in k..n {
-            let (re, im) = (a[at(i, k)], a[at(i, k) + 1]);
-            let m = re * re + im * im;
-            if m > best {
-                best = m;
-                p = i;
-            }
-        }
-        if best <= 0.0 || !best.is_finite() {
-            return false;
-        }
-        if p != k {
-            for j in 0..n {
-                a.swap(at(k, j), at(p, j));
-                a.swap(at(k, j) + 1, at(p, j) + 1);
-            }
-            b.swap(2 * k, 2 * p);
-            b.swap(2 * k + 1, 2 * p + 1);
-        }
-        // 1/pivot
-        let (pr, pi) = (a[at(k, k)], a[at(k, k) + 1]);
-        let (ir, ii) = (pr / best, -pi / best);
-        for i in k + 1..n {
-            let (xr, xi) = (a[at(i, k)], a[at(i, k) + 1]);
-            // l = a_ik / a_kk
-            let (lr, li) = (xr * ir - xi * ii, xr * ii + xi * ir);
-            for j in k + 1..n {
-                let (ur, ui) = (a[at(k, j)], a[at(k, j) + 1]);
-                a[at(i, j)] -= lr * ur - li * ui;
-                a[at(i, j) + 1] -= lr * ui + li * ur;
-            }
-            let (br, bi) = (b[2 * k], b[2 * k + 1]);
-            b[2 * i] -= lr * br - li * bi;
-            b[2 * i + 1] -= lr * bi + li * br;
-        }
+    if a.len() < 2 * n * n || b.len() < 2 * n {
+        return false;
     }
-    for k in (0..n).rev() {
-        let (mut sr, mut si) = (b[2 * k], b[2 * k + 1]);
-        for j in k + 1..n {
-            let (ur, ui) = (a[at(k, j)], a[at(k, j) + 1]);
-            let (xr, xi) = (b[2 * j], b[2 * j + 1]);
-            sr -= ur * xr - ui * xi;
-            si -= ur * xi + ui * xr;
-        }
-        let (pr, pi) = (a[at(k, k)], a[at(k, k) + 1]);
-        let d = pr * pr + pi * pi;
-        b[2 * k] = (sr * pr + si * pi) / d;
-        b[2 * k + 1] = (si * pr - sr * pi) / d;
+    let mut lu = Lu::new(n, Complex::new(0.0, 0.0));
+    for (z, p) in lu.a.iter_mut().zip(a.chunks_exact(2)) {
+        *z = Complex::new(p[0], p[1]);
     }
-    b.iter().all(|v| v.is_finite())
+    let mut x: Vec<Complex<f64>> = b[..2 * n]
+        .chunks_exact(2)
+        .map(|p| Complex::new(p[0], p[1]))
+        .collect();
+    let ok = solve_complex_scaled(&mut lu, &mut x).is_ok();
+    for (p, z) in b.chunks_exact_mut(2).zip(&x) {
+        p[0] = z.re;
+        p[1] = z.im;
+    }
+    ok && b.iter().all(|v| v.is_finite())
 }
 
 /// The scene `src` linearized about `at` (`--at th=pi`) and swept over `over` at the
@@ -369,6 +329,18 @@ pub fn json(t: &ResponseTable) -> String {
     serde_json::to_string(&wire).unwrap_or_default()
 }
 
+/// 6 significant digits at any scale: `short` but for values below 1e-12,
+/// which an amplitude or a frequency may be (k = 1e155: |x| = 1e-155).
+fn significant(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || x.abs() >= 1e-12 {
+        return short(x);
+    }
+    let s = format!("{x:.5e}");
+    let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
+    let m = m.trim_end_matches('0').trim_end_matches('.');
+    format!("{m}e{e}")
+}
+
 /// The table for reading: a header with the natural frequencies and the
 /// peaks, then Ω, |X_j| and φ_j in degrees, 6 significant digits.
 pub fn text(t: &ResponseTable) -> String {
@@ -382,7 +354,7 @@ pub fn text(t: &ResponseTable) -> String {
             } else {
                 t.natural_frequencies
                     .iter()
-                    .map(|w| format!("ω = {}", short(*w)))
+                    .map(|w| format!("ω = {}", significant(*w)))
                     .collect::<Vec<_>>()
                     .join(", ")
             }
@@ -392,7 +364,7 @@ pub fn text(t: &ResponseTable) -> String {
     for (q, p) in t.coordinates.iter().zip(&t.peaks) {
         let list: Vec<String> = p
             .iter()
-            .map(|(w, a)| format!("|X| = {} at Ω = {}", short(*a), short(*w)))
+            .map(|(w, a)| format!("|X| = {} at Ω = {}", significant(*a), significant(*w)))
             .collect();
         out.push_str(&format!(
             "peaks of {} on the grid: {}\n",
@@ -411,9 +383,9 @@ pub fn text(t: &ResponseTable) -> String {
     }
     let mut cells = vec![header];
     for (k, w) in t.omega.iter().enumerate() {
-        let mut line = vec![short(*w)];
+        let mut line = vec![significant(*w)];
         for j in 0..t.coordinates.len() {
-            line.push(t.amplitude[k][j].map_or("∞".into(), short));
+            line.push(t.amplitude[k][j].map_or("∞".into(), significant));
             line.push(t.phase[k][j].map_or("—".into(), |p| short(p.to_degrees())));
         }
         cells.push(line);

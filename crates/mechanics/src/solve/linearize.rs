@@ -283,15 +283,20 @@ fn forcing_at(
     let mut forcing = Vec::with_capacity(names.len());
     for (k, r) in residuals.iter().enumerate() {
         let f = r.subs_many(point).map_err(math)?.neg();
-        let (static_part, _) = split_time(&f, t);
+        // the mean over time: cos(2·p·t) = 1 − 2·sin²(p·t) has none
+        let (static_part, moving) = super::response::mean_over_time(&f).unwrap_or_else(|| {
+            let (fixed, moving) = split_time(&f, t);
+            (fixed, !moving.is_zero())
+        });
         if !static_part.is_zero() {
+            let what = if moving { "has the mean" } else { "is" };
             let q0s: Vec<String> = names
                 .iter()
                 .zip(q0)
                 .map(|(c, v)| format!("{c} = {}", crate::expr::print::input(v)))
                 .collect();
             return Err(Diagnostic::global(format!(
-                "{} is not an equilibrium: the force on `{}` there is {} ≠ 0",
+                "{} is not an equilibrium: the force on `{}` there {what} {} ≠ 0",
                 q0s.join(", "),
                 names[k],
                 crate::expr::print::unicode(&static_part)

@@ -138,15 +138,17 @@ fn forced(
             .chain(&sin)
     };
     let mut map: FxHashMap<Var, Expr> = FxHashMap::default();
-    match p.as_var() {
-        Some(v) if matches!(atom::atom(v), Atom::Param(_)) => {
+    match multiple_of_a_parameter(&p) {
+        Some((v, q)) => {
             if v != w && all().any(|e| e.depends_on(w)) {
                 return Err(Diagnostic::global(
                     "the scene has a parameter `Omega`, and `qdot response` names the forcing frequency Ω",
                 )
                 .with_hint("rename the scene's parameter `Omega`"));
             }
-            map.insert(v, omega);
+            // p = q·v is Ω: v = Ω/q wherever the system has it
+            let q_inv = Q::one().checked_div(&q).unwrap_or_else(Q::one);
+            map.insert(v, omega.scale(&q_inv));
         }
         _ => {
             // Ω replaces the whole of p: nothing else may depend on its parts
@@ -179,8 +181,144 @@ fn forced(
     })
 }
 
+/// p = q·v with a rational q ≠ 0 and a parameter v: (v, q).
+fn multiple_of_a_parameter(p: &Expr) -> Option<(Var, Q)> {
+    let [v] = p.vars()[..] else {
+        return None;
+    };
+    if !matches!(atom::atom(v), Atom::Param(_)) {
+        return None;
+    }
+    let q = p.div(&Expr::var(v)).ok()?.as_rational()?;
+    (!q.is_zero()).then_some((v, q))
+}
+
+/// cos^a θ · sin^b θ as Σ_k (A_k·cos kθ + B_k·sin kθ), k = 0..=a+b
+/// (product to sum, one factor at a time).
+fn power_harmonics(a: u32, b: u32) -> (Vec<Q>, Vec<Q>) {
+    let n = (a + b) as usize;
+    let half = Q::new(1, 2).unwrap_or_else(Q::one);
+    let (mut ca, mut sb) = (vec![Q::zero(); n + 2], vec![Q::zero(); n + 2]);
+    ca[0] = Q::one();
+    for step in 0..a + b {
+        let by_cos = step < a;
+        let (mut nc, mut ns) = (vec![Q::zero(); n + 2], vec![Q::zero(); n + 2]);
+        // x·cos jθ (+ y·sin jθ) at the signed index j: cos even, sin odd
+        let mut put = |j: i64, x: Q, y: Q| {
+            let i = j.unsigned_abs() as usize;
+            nc[i] += x;
+            if j < 0 {
+                ns[i] -= y;
+            } else {
+                ns[i] += y;
+            }
+        };
+        for k in 0..=n {
+            let (x, y) = (ca[k].clone(), sb[k].clone());
+            if x.is_zero() && y.is_zero() {
+                continue;
+            }
+            let (xh, yh) = (x * &half, y * &half);
+            let k = k as i64;
+            if by_cos {
+                // cos·cos kθ = (cos(k+1)θ + cos(k−1)θ)/2, cos·sin kθ likewise
+                put(k + 1, xh.clone(), yh.clone());
+                put(k - 1, xh, yh);
+            } else {
+                // sin·cos kθ = (sin(k+1)θ − sin(k−1)θ)/2,
+                // sin·sin kθ = (cos(k−1)θ − cos(k+1)θ)/2
+                put(k + 1, -yh.clone(), xh.clone());
+                put(k - 1, yh, -xh);
+            }
+        }
+        ns[0] = Q::zero(); // sin 0 = 0
+        ca = nc;
+        sb = ns;
+    }
+    ca.truncate(n + 1);
+    sb.truncate(n + 1);
+    (ca, sb)
+}
+
+/// A polynomial in sin θ (`sv`) and cos θ (`cv`) as its harmonics: per k,
+/// the coefficients of cos kθ and sin kθ.
+fn harmonics(
+    p: &crate::poly::Poly,
+    sv: Var,
+    cv: Var,
+) -> Vec<(crate::poly::Poly, crate::poly::Poly)> {
+    use crate::poly::Poly;
+    let mut out: Vec<(Poly, Poly)> = Vec::new();
+    for (m, c) in p.terms() {
+        let (a, b) = (m.degree(cv), m.degree(sv));
+        let rest = m.without(cv).without(sv);
+        let (ca, sb) = power_harmonics(a, b);
+        if out.len() < ca.len() {
+            out.resize(ca.len(), (Poly::zero(), Poly::zero()));
+        }
+        for (k, (x, y)) in ca.iter().zip(&sb).enumerate() {
+            let mut coef = c.clone();
+            coef *= x;
+            out[k].0 = &out[k].0 + &Poly::monomial(rest.clone(), coef);
+            let mut coef = c.clone();
+            coef *= y;
+            out[k].1 = &out[k].1 + &Poly::monomial(rest.clone(), coef);
+        }
+    }
+    out
+}
+
+/// The mean of `f` over time, and whether `f` changes with time: each
+/// term's mean over a period of the sines and cosines of t in it (their
+/// frequencies taken as independent: cos²(p·t)·cos(w·t) averages 0,
+/// cos²(p·t)·cos²(w·t) averages 1/4); a term with any other time
+/// dependence (t itself, e^t) counts as moving, with no mean taken.
+/// `None` when the denominator depends on time.
+pub(super) fn mean_over_time(f: &Expr) -> Option<(Expr, bool)> {
+    use crate::poly::Poly;
+    let t = atom::time();
+    if f.den().vars().iter().any(|&v| Expr::var(v).depends_on(t)) {
+        return None;
+    }
+    let mut mean = Poly::zero();
+    let mut moving = false;
+    for (m, c) in f.num().terms() {
+        let mut coef = c.clone();
+        let mut rest = m.clone();
+        let mut trig = true;
+        let mut timed = false;
+        for (v, _) in m.pairs().iter().copied() {
+            if !Expr::var(v).depends_on(t) {
+                continue;
+            }
+            timed = true;
+            rest = rest.without(v);
+            match atom::atom(v) {
+                Atom::Cos(u) | Atom::Sin(u) => {
+                    let (sv, cv) = atom::intern_trig(&u);
+                    // each angle once: the pair's exponents together
+                    if v == sv && m.degree(cv) > 0 {
+                        continue;
+                    }
+                    let (a, b) = (m.degree(cv), m.degree(sv));
+                    let (ca, _) = power_harmonics(a, b);
+                    coef *= &ca[0];
+                }
+                _ => trig = false,
+            }
+        }
+        moving |= timed;
+        if trig && !coef.is_zero() {
+            mean = &mean + &Poly::monomial(rest, coef);
+        }
+    }
+    Some((Expr::from_parts(mean, f.den().clone()).ok()?, moving))
+}
+
 /// f(t) = F_c·cos(p·t) + F_s·sin(p·t): (p, F_c, F_s), or why the forcing
-/// is not one harmonic load.
+/// is not one harmonic load. A polynomial in cos θ and sin θ (θ = ω·t)
+/// is read by its harmonics: F·cos(2·p·t) is the load at 2·p, and several
+/// harmonics are several frequencies.
 #[allow(clippy::type_complexity)] // a triple read by one caller
 fn harmonic(forcing: &[Expr]) -> Result<(Expr, Vec<Expr>, Vec<Expr>), Diagnostic> {
     let t = atom::time();
@@ -207,15 +345,11 @@ fn harmonic(forcing: &[Expr]) -> Result<(Expr, Vec<Expr>, Vec<Expr>), Diagnostic
             // named in text order, not in the order the atoms were made
             let mut named: Vec<String> = angles.iter().map(Expr::to_unicode).collect();
             named.sort();
-            return Err(Diagnostic::global(format!(
-                "the load has more than one frequency (cos({}) and cos({})): the frequency response takes one harmonic load",
-                named[0], named[1]
-            ))
-            .with_hint("keep one frequency in the scene; the responses to several add up"))
+            return Err(more_than_one(&named[0], &named[1]));
         }
     };
-    let p = u.diff(t);
-    if p.depends_on_time() || !u.sub(&p.mul(&Expr::time())).is_zero() {
+    let w = u.diff(t);
+    if w.depends_on_time() || !u.sub(&w.mul(&Expr::time())).is_zero() {
         return Err(Diagnostic::global(format!(
             "the load's angle {} is not p·t with a constant p: the frequency response takes F·cos(p·t) and F·sin(p·t)",
             u.to_unicode()
@@ -230,29 +364,68 @@ fn harmonic(forcing: &[Expr]) -> Result<(Expr, Vec<Expr>, Vec<Expr>), Diagnostic
         ))
         .with_hint(LOAD_HINT)
     };
-    let (mut cos, mut sin) = (Vec::new(), Vec::new());
+    // per coordinate, per harmonic k: (cos kθ, sin kθ)
+    let mut table: Vec<Vec<(Expr, Expr)>> = Vec::with_capacity(forcing.len());
     for f in forcing {
-        if f.den().contains_var(sv) || f.den().contains_var(cv) {
+        if f.den().contains_var(sv)
+            || f.den().contains_var(cv)
+            || Expr::from_poly(f.den().clone()).depends_on_time()
+        {
             return Err(not_harmonic(f));
         }
-        let by_cos = f.num().coeffs_in(cv);
-        let rest = by_cos.first().cloned().unwrap_or_default();
-        let by_sin = rest.coeffs_in(sv);
-        let c1 = by_cos.get(1).cloned().unwrap_or_default();
-        let s1 = by_sin.get(1).cloned().unwrap_or_default();
-        let constant = by_sin.first().is_some_and(|c| !c.is_zero());
-        if by_cos.len() > 2 || by_sin.len() > 2 || constant || c1.contains_var(sv) {
-            return Err(not_harmonic(f));
+        let mut row = Vec::new();
+        for (c, s) in harmonics(f.num(), sv, cv) {
+            let c = Expr::from_parts(c, f.den().clone()).map_err(math)?;
+            let s = Expr::from_parts(s, f.den().clone()).map_err(math)?;
+            if c.depends_on_time() || s.depends_on_time() {
+                return Err(not_harmonic(f));
+            }
+            row.push((c, s));
         }
-        let c = Expr::from_parts(c1, f.den().clone()).map_err(math)?;
-        let s = Expr::from_parts(s1, f.den().clone()).map_err(math)?;
-        if c.depends_on_time() || s.depends_on_time() {
-            return Err(not_harmonic(f));
+        if row.first().is_some_and(|(c, _)| !c.is_zero()) {
+            return Err(Diagnostic::global(format!(
+                "the forcing {} has the constant part {}: the frequency response takes a load without one",
+                f.to_unicode(),
+                row[0].0.to_unicode()
+            ))
+            .with_hint(LOAD_HINT));
         }
-        cos.push(c);
-        sin.push(s);
+        table.push(row);
     }
-    Ok((p, cos, sin))
+    let present: Vec<usize> = (1..table.iter().map(Vec::len).max().unwrap_or(0))
+        .filter(|&k| {
+            table
+                .iter()
+                .any(|r| r.get(k).is_some_and(|(c, s)| !c.is_zero() || !s.is_zero()))
+        })
+        .collect();
+    let angle = |k: usize| u.scale(&Q::from_i64(k as i64)).to_unicode();
+    let k = match present[..] {
+        [k] => k,
+        [] => {
+            return Err(Diagnostic::global(
+                "the scene has no harmonic load: the frequency response needs a force F·cos(p·t) (or sin) on the system",
+            )
+            .with_hint(LOAD_HINT)
+            .with_kind(crate::diag::ErrorKind::NothingToSolve))
+        }
+        [a, b, ..] => return Err(more_than_one(&angle(a), &angle(b))),
+    };
+    let pick = |i: usize| -> (Expr, Expr) {
+        table[i]
+            .get(k)
+            .cloned()
+            .unwrap_or_else(|| (Expr::zero(), Expr::zero()))
+    };
+    let (cos, sin): (Vec<Expr>, Vec<Expr>) = (0..forcing.len()).map(pick).unzip();
+    Ok((w.scale(&Q::from_i64(k as i64)), cos, sin))
+}
+
+fn more_than_one(a: &str, b: &str) -> Diagnostic {
+    Diagnostic::global(format!(
+        "the load has more than one frequency (cos({a}) and cos({b})): the frequency response takes one harmonic load"
+    ))
+    .with_hint("keep one frequency in the scene; the responses to several add up")
 }
 
 /// The exact frequency response.
@@ -329,6 +502,34 @@ pub enum Peak {
     },
     /// ζ² ≥ 1/2: D falls from Ω = 0 on.
     None,
+    /// A load that depends on Ω (a rotating unbalance m·e·Ω², a base
+    /// moved through a spring and a damper): where |X| itself peaks.
+    Load(LoadPeak),
+}
+
+/// The peak of |X| for a load that depends on Ω, from the stationary
+/// points of |X|² = N(λ)/D(λ) in λ = Ω²: the roots of N'·D − N·D'.
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct LoadPeak {
+    /// Ω_peak², or `None` when |X| has no peak at a finite Ω > 0 or it
+    /// was not found (`note` says which).
+    pub omega_squared: Option<Expr>,
+    /// When the peak's existence is undecided: the expression (Ω_peak²)
+    /// that must be positive.
+    pub condition: Option<Expr>,
+    /// |X_peak|².
+    pub amplitude_squared: Option<Expr>,
+    /// The half-power frequencies squared (|X| = |X_peak|/√2) below and
+    /// above the peak, each where it exists.
+    pub half_power: (Option<Expr>, Option<Expr>),
+    /// What was not found or does not exist, and why.
+    pub note: Option<String>,
+    /// Why the half-power frequencies are not given, when they are not.
+    pub half_power_note: Option<String>,
+    /// Where D, the magnification factor of a constant-amplitude force,
+    /// peaks: ω₀² − 2α², when it does (not a property of this load).
+    pub constant_force_peak: Option<Expr>,
 }
 
 /// The exact frequency response of `sys`, signs decided with `set`.
@@ -481,7 +682,13 @@ fn single_dof(sys: &ForcedSystem, set: &Values) -> Result<Option<SingleDof>, Dia
         let f2 = fc.mul(fc).add(&fs.mul(fs));
         Some(func::sqrt(&f2.div(&k2).map_err(math)?).map_err(math)?)
     };
-    let peak = peak(&w0sq, &alpha, static_deflection.as_ref(), set)?;
+    let load_depends_on_omega = fc.depends_on(w) || fs.depends_on(w);
+    let peak = if load_depends_on_omega && !alpha.is_zero() {
+        let f2 = fc.mul(fc).add(&fs.mul(fs));
+        Peak::Load(load_peak(&f2.div(&den).map_err(math)?, &w0sq, &alpha, set)?)
+    } else {
+        peak(&w0sq, &alpha, static_deflection.as_ref(), set)?
+    };
     Ok(Some(SingleDof {
         omega0_squared: w0sq,
         alpha,
@@ -554,6 +761,179 @@ fn peak(
         bandwidth_squared,
         condition,
     })
+}
+
+/// An even polynomial in Ω as the polynomial in λ = Ω² (`None` when it
+/// has an odd power of Ω).
+fn in_omega_squared(p: &crate::poly::Poly, lv: Var) -> Option<Expr> {
+    let cs = p.coeffs_in(atom::param(OMEGA));
+    let mut out = Expr::zero();
+    let lambda = Expr::var(lv);
+    let mut power = Expr::one();
+    for (i, c) in cs.into_iter().enumerate() {
+        if i % 2 == 1 {
+            if !c.is_zero() {
+                return None;
+            }
+            power = power.mul(&lambda);
+            continue;
+        }
+        out = out.add(&Expr::from_poly(c).mul(&power));
+    }
+    Some(out)
+}
+
+/// The coefficients of `e`'s numerator in `lv`, each over its denominator.
+fn coefficients(e: &Expr, lv: Var) -> Result<Vec<Expr>, Diagnostic> {
+    e.num()
+        .coeffs_in(lv)
+        .into_iter()
+        .map(|c| Expr::from_parts(c, e.den().clone()).map_err(math))
+        .collect()
+}
+
+fn positive(e: &Expr, set: &Values) -> Option<bool> {
+    match sign_of(e, set)? {
+        Sign::Positive => Some(true),
+        _ => Some(false),
+    }
+}
+
+/// The peak of |X|² = `amp2` (a rational function of Ω, the load's
+/// amplitude over (k − mΩ²)² + c²Ω²), its half-power points, and D's
+/// peak for comparison. Exact where the stationary points of |X|² in
+/// λ = Ω² have a closed form and their signs are decided; otherwise
+/// `note` says what is missing.
+fn load_peak(amp2: &Expr, w0sq: &Expr, alpha: &Expr, set: &Values) -> Result<LoadPeak, Diagnostic> {
+    let d_peak = w0sq.sub(&alpha.mul(alpha).scale(&Q::from_i64(2)));
+    let mut out = LoadPeak {
+        omega_squared: None,
+        condition: None,
+        amplitude_squared: None,
+        half_power: (None, None),
+        note: None,
+        half_power_note: None,
+        constant_force_peak: match sign_of(&d_peak, set) {
+            Some(Sign::Negative | Sign::Zero) => None,
+            _ => Some(d_peak),
+        },
+    };
+    let lv = atom::unknown(super::oscillations::LAMBDA);
+    let (Some(n), Some(d)) = (
+        in_omega_squared(amp2.num(), lv),
+        in_omega_squared(amp2.den(), lv),
+    ) else {
+        out.note = Some("|X|² has odd powers of Ω: its peak is not computed".into());
+        return Ok(out);
+    };
+    // d|X|²/dλ = (N'·D − N·D')/D²: its sign is that of the numerator
+    let slope = n.diff(lv).mul(&d).sub(&n.mul(&d.diff(lv)));
+    let mut cs = coefficients(&slope, lv)?;
+    while cs.len() > 1 && cs[0].is_zero() {
+        cs.remove(0); // λ = 0 is not a peak at Ω > 0
+    }
+    if cs.iter().all(Expr::is_zero) {
+        out.note = Some("|X| does not change with Ω: no peak".into());
+        return Ok(out);
+    }
+    let first = positive(&cs[0], set);
+    let lambda = Expr::var(lv);
+    let reduced = cs.iter().enumerate().fold(Expr::zero(), |acc, (i, c)| {
+        acc.add(&c.mul(&lambda.powi(i as i64).unwrap_or_else(|_| Expr::one())))
+    });
+    let mut roots = Vec::new();
+    if cs.len() > 1 {
+        let found = super::characteristic::roots(&reduced, lv, false, set);
+        if let Some(why) = found.why {
+            out.note = Some(format!(
+                "|X| is stationary where {} = 0 (λ = Ω²): {why}",
+                reduced.to_unicode()
+            ));
+            return Ok(out);
+        }
+        roots = found.roots;
+    }
+    let mut candidates: Vec<Expr> = Vec::new();
+    let mut undecided = false;
+    for r in roots {
+        match sign_of(&r, set) {
+            Some(Sign::Negative | Sign::Zero) => {}
+            s => {
+                undecided |= s.is_none();
+                if !candidates.iter().any(|c| c.equals(&r)) {
+                    candidates.push(r);
+                }
+            }
+        }
+    }
+    let monotone = |rises: bool| {
+        if rises {
+            "no peak: |X| rises with Ω for every Ω > 0"
+        } else {
+            "no peak: |X| falls with Ω for every Ω > 0"
+        }
+    };
+    let peak = match (&candidates[..], first) {
+        ([], Some(rises)) => {
+            out.note = Some(monotone(rises).into());
+            return Ok(out);
+        }
+        ([r], Some(true)) => r.clone(),
+        ([_], Some(false)) if !undecided => {
+            out.note = Some("no peak: |X| has a minimum and no maximum at Ω > 0".into());
+            return Ok(out);
+        }
+        _ => {
+            let list: Vec<String> = candidates.iter().map(Expr::to_unicode).collect();
+            out.note = Some(format!(
+                "|X| is stationary where {} = 0 (λ = Ω²){}: which is its peak is not decided",
+                reduced.to_unicode(),
+                if list.is_empty() {
+                    String::new()
+                } else {
+                    format!(", at λ = {}", list.join(", "))
+                }
+            ));
+            return Ok(out);
+        }
+    };
+    if undecided {
+        out.condition = Some(peak.clone());
+    }
+    let at_peak = |e: &Expr| e.subs(lv, &peak).map_err(math);
+    let a_peak = at_peak(&n)?.div(&at_peak(&d)?).map_err(math)?;
+    // |X|² = |X_peak|²/2: 2·N − |X_peak|²·D = 0
+    let half = n.scale(&Q::from_i64(2)).sub(&a_peak.mul(&d));
+    let hs = coefficients(&half, lv)?;
+    match super::equilibrium::quadratic(&hs) {
+        Some(roots) => {
+            for (r, _) in roots {
+                let above = r.sub(&peak);
+                match (sign_of(&r, set), sign_of(&above, set)) {
+                    (Some(Sign::Negative | Sign::Zero), _) => {}
+                    (Some(Sign::Positive), Some(Sign::Negative)) => out.half_power.0 = Some(r),
+                    (Some(Sign::Positive), Some(Sign::Positive)) => out.half_power.1 = Some(r),
+                    _ => {
+                        out.half_power = (None, None);
+                        out.half_power_note = Some(
+                            "half-power frequencies: where they lie about the peak is not decided"
+                                .into(),
+                        );
+                        break;
+                    }
+                }
+            }
+        }
+        None => {
+            out.half_power_note = Some(
+                "half-power frequencies: roots of an equation of degree > 2 in Ω², not computed"
+                    .into(),
+            );
+        }
+    }
+    out.omega_squared = Some(peak);
+    out.amplitude_squared = Some(a_peak);
+    Ok(out)
 }
 
 /// The undamped natural frequencies ω_i at the values `set`, ascending:
