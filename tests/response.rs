@@ -338,11 +338,21 @@ fn a_load_of_two_frequencies_is_refused() {
         refused("F0*(cos(p*t) + cos(w*t))*x"),
         "the load has more than one frequency (cos(p·t) and cos(w·t)): the frequency response takes one harmonic load"
     );
-    // sin(2·p·t)/2 is written in cos(p·t) and sin(p·t) of degree 2
+    // cos(p·t)·cos(2·p·t) = (cos(p·t) + cos(3·p·t))/2: two harmonics
     assert_eq!(
-        refused("F0*cos(p*t)*sin(p*t)*x"),
-        "the forcing F₀·cos(p·t)·sin(p·t) is not F_c·cos(p·t) + F_s·sin(p·t): the frequency response takes one harmonic load"
+        refused("F0*cos(p*t)*cos(2*p*t)*x"),
+        "the load has more than one frequency (cos(p·t) and cos(3·p·t)): the frequency response takes one harmonic load"
     );
+    // sin(2·p·t)/2, written in cos(p·t) and sin(p·t) of degree 2, is one
+    // harmonic load at 2·p
+    let scene = Scene::parse(
+        "coordinates x\nparameters m, k, F0, p\nkinetic E = 1/2*m*x'^2\npotential V = 1/2*k*x^2\nwork L = F0*cos(p*t)*sin(p*t)*x\n",
+    )
+    .unwrap();
+    let sys = ForcedSystem::of_scene(&scene, None).unwrap();
+    assert_eq!(sys.frequency.to_string(), "2*p");
+    assert!(sys.load_cos[0].is_zero());
+    assert_eq!(sys.load_sin[0], div(&p("F0"), &q(2)));
 }
 
 #[test]
