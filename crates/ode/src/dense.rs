@@ -268,7 +268,12 @@ pub fn solve_complex_scaled(
     if !lu.factor_above(tiny) {
         // the columns before the failing one have a pivot above `tiny`
         let column = (0..n)
-            .find(|&k| (k..n).all(|i| !(lu.a[i * n + k].mag() > tiny)))
+            .find(|&k| {
+                (k..n).all(|i| {
+                    let m = lu.a[i * n + k].mag();
+                    m <= tiny || m.is_nan()
+                })
+            })
             .unwrap_or(0);
         return Err(DenseError::Singular { column });
     }
