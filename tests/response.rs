@@ -447,3 +447,74 @@ fn a_gyroscopic_system_is_solved_with_its_skew_c() {
         }
     }
 }
+
+/// The scene m·ẍ + c·ẋ + k·x = load (F = 1 at evaluation): a constant
+/// force, a rotating unbalance F·p², or a base F·cos(p·t) moved through
+/// the spring and the damper.
+fn one_dof(kind: usize, m: i64, k: i64, c: i64) -> String {
+    let (potential, rayleigh, work) = match kind {
+        0 => ("x^2", "x'^2", "\nwork L = F*cos(p*t)*x"),
+        1 => ("x^2", "x'^2", "\nwork L = F*p^2*cos(p*t)*x"),
+        _ => ("(x - F*cos(p*t))^2", "(x' + F*p*sin(p*t))^2", ""),
+    };
+    format!("coordinates x\nparameters F, p\nkinetic E = 1/2*{m}*x'^2\npotential V = 1/2*{k}*{potential}\nrayleigh R = 1/2*{c}*{rayleigh}{work}\n")
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
+
+    /// The exact peak of |X| for the scene's load is the largest |X| on a
+    /// fine grid and a local maximum; at the half-power points |X|² is
+    /// half its peak; where qdot says there is no peak, |X| is monotone.
+    #[test]
+    fn the_exact_peak_is_the_maximum_of_the_amplitude(
+        kind in 0usize..3, m in 1i64..20, k in 1i64..2000, c in 1i64..120,
+    ) {
+        let scene = Scene::parse(&one_dof(kind, m, k, c)).unwrap();
+        let sys = ForcedSystem::of_scene(&scene, None).unwrap();
+        let r = response(sys, &Values::new()).unwrap();
+        let set = values("F=1");
+        let a2 = |w: f64| at(&r.amplitude_squared[0], &set, w);
+        let num = |e: &Expr| at(e, &set, 0.0);
+        let w0 = (k as f64 / m as f64).sqrt();
+        let grid: Vec<f64> = (0..4000).map(|i| w0 * 1e-3 * 1e4f64.powf(i as f64 / 3999.0)).collect();
+        let top = grid.iter().map(|&w| a2(w)).fold(0.0, f64::max);
+        let s = r.single.as_ref().unwrap();
+        let (peak, half, none): (Option<Expr>, Vec<Expr>, Option<bool>) = match &s.peak {
+            Peak::At { omega_squared, half_power, .. } => (
+                Some(omega_squared.clone()),
+                half_power.0.iter().chain([&half_power.1]).cloned().collect(),
+                None,
+            ),
+            Peak::None => (None, Vec::new(), Some(false)),
+            Peak::Load(l) => {
+                let note = l.note.clone().unwrap_or_default();
+                let none = match l.omega_squared {
+                    Some(_) => None,
+                    None if note == "no peak: |X| rises with Ω for every Ω > 0" => Some(true),
+                    None if note == "no peak: |X| falls with Ω for every Ω > 0" => Some(false),
+                    None => panic!("undecided with numbers: {note}"),
+                };
+                (l.omega_squared.clone(), l.half_power.0.iter().chain(&l.half_power.1).cloned().collect(), none)
+            }
+            Peak::Undamped => panic!("damped"),
+        };
+        if let Some(w2) = peak {
+            let wp = num(&w2).sqrt();
+            let ap = a2(wp);
+            proptest::prop_assert!(ap >= top * (1.0 - 1e-12), "{ap} < {top} at {wp}");
+            proptest::prop_assert!(ap >= a2(wp * 0.999) && ap >= a2(wp * 1.001));
+            for h in &half {
+                let v = a2(num(h).sqrt());
+                proptest::prop_assert!((v - ap / 2.0).abs() <= 1e-9 * ap, "{v} {ap}");
+            }
+        }
+        if let Some(rises) = none {
+            for pair in grid.windows(2) {
+                let (x, y) = (a2(pair[0]), a2(pair[1]));
+                let ok = if rises { y >= x * (1.0 - 1e-12) } else { y <= x * (1.0 + 1e-12) };
+                proptest::prop_assert!(ok, "not monotone at {pair:?}: {x} {y}");
+            }
+        }
+    }
+}
