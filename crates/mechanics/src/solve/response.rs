@@ -268,11 +268,18 @@ fn harmonics(
     out
 }
 
+/// Whether the angle `u` is ω·t + φ with ω and φ constant (periodic).
+fn linear_in_time(u: &Expr) -> bool {
+    let w = u.diff(atom::time());
+    !w.depends_on_time() && !u.sub(&w.mul(&Expr::time())).depends_on_time()
+}
+
 /// The mean of `f` over time, and whether `f` changes with time: each
 /// term's mean over a period of the sines and cosines of t in it (their
 /// frequencies taken as independent: cos²(p·t)·cos(w·t) averages 0,
 /// cos²(p·t)·cos²(w·t) averages 1/4); a term with any other time
-/// dependence (t itself, e^t) counts as moving, with no mean taken.
+/// dependence (t itself, e^t, cos(t²)) counts as moving, with no mean
+/// taken.
 /// `None` when the denominator depends on time.
 pub(super) fn mean_over_time(f: &Expr) -> Option<(Expr, bool)> {
     use crate::poly::Poly;
@@ -294,7 +301,7 @@ pub(super) fn mean_over_time(f: &Expr) -> Option<(Expr, bool)> {
             timed = true;
             rest = rest.without(v);
             match atom::atom(v) {
-                Atom::Cos(u) | Atom::Sin(u) => {
+                Atom::Cos(u) | Atom::Sin(u) if linear_in_time(&u) => {
                     let (sv, cv) = atom::intern_trig(&u);
                     // each angle once: the pair's exponents together
                     if v == sv && m.degree(cv) > 0 {
