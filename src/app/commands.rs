@@ -243,7 +243,9 @@ fn reference(scene: &Scene, opts: &CommandOptions) -> Result<osc::Reference, Dia
         }
     }
     steady.sort_by_key(|(k, _)| *k);
-    Ok(osc::Reference::at(at.as_deref()).steady(steady))
+    Ok(osc::Reference::at(at.as_deref())
+        .steady(steady)
+        .with_values(&opts.set))
 }
 
 pub(super) fn hamilton(
