@@ -183,7 +183,7 @@ pub(super) fn modes(
             }
         }
     }
-    let md = osc::modes_about(scene, &reference, set)?;
+    let md = crate::solve::steady::hint_for_free_symbols(osc::modes_about(scene, &reference, set)?);
     let (free, numeric) = match &opts.init {
         Some(i) => {
             let (q0, v0) = scene.initial_conditions(i)?;

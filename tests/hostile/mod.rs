@@ -14,3 +14,4 @@ mod mechanics;
 mod numeric;
 mod output;
 mod round3;
+mod round4_steady;

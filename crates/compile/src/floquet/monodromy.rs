@@ -505,3 +505,34 @@ pub fn shortest(x: f64) -> String {
         format!("{x:e}")
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{certified, shortest};
+
+    #[test]
+    fn certified_digits_are_scientific_outside_1e_minus4_to_1e6() {
+        // the fixed range as before: the decimals the error leaves
+        assert_eq!(certified(1.0000171314, 4e-11), "1.0000171314");
+        assert_eq!(certified(-0.0923112, 1e-6), "-0.092311");
+        assert_eq!(certified(3e-5, 1e-3), "0.000");
+        assert_eq!(certified(-3e-5, 1e-3), "0.000");
+        // small and large: scientific, the same certified digits
+        assert_eq!(certified(5e-5, 1e-12), "5.0000000e-5");
+        assert_eq!(certified(1.5e300, 1.4e286), "1.5000000000000e300");
+        assert_eq!(certified(2.5e7, 0.01), "2.500000000e7");
+        // below the error: 0, however large the error
+        assert_eq!(certified(3.0, 1e4), "0");
+        assert_eq!(certified(2.5e7, 1e4), "2.500e7");
+    }
+
+    #[test]
+    fn shortest_reads_back_and_is_scientific_outside_1e_minus4_to_1e6() {
+        assert_eq!(shortest(6.283185307179586), "6.283185307179586");
+        assert_eq!(shortest(6283185.307179586), "6.283185307179586e6");
+        assert_eq!(shortest(1e308), "1e308");
+        assert_eq!(shortest(-2.5e-7), "-2.5e-7");
+        assert_eq!(shortest(0.0), "0");
+        assert_eq!(shortest(999999.0), "999999");
+    }
+}

@@ -605,3 +605,55 @@ fn within_existence(
         decided => Some(decided),
     }
 }
+
+/// A verdict about a steady motion whose matrices hold symbols `--set`
+/// cannot give (a position `--at theta=theta0`, a rate still free): its
+/// "give values with --set" names them and `--at` instead.
+pub fn hint_for_free_symbols(mut md: super::oscillations::Modes) -> super::oscillations::Modes {
+    use super::equilibrium::Stability;
+    let Stability::Undecided(why) = &md.stability else {
+        return md;
+    };
+    if md.steady.is_none() || !why.contains("give values with --set") {
+        return md;
+    }
+    let mut free: Vec<crate::poly::Var> = Vec::new();
+    for e in md
+        .mass
+        .iter()
+        .chain(&md.damping)
+        .chain(&md.stiffness)
+        .flatten()
+    {
+        for v in e.vars() {
+            for w in std::iter::once(v).chain(atom::inner_atoms(v).iter().copied()) {
+                let symbol = matches!(
+                    atom::atom(w),
+                    atom::Atom::Unknown(_) | atom::Atom::Coord(_, 1)
+                );
+                if symbol && !free.contains(&w) {
+                    free.push(w);
+                }
+            }
+        }
+    }
+    if free.is_empty() {
+        return md;
+    }
+    free.sort_by_key(|&v| crate::expr::print::unicode(&Expr::var(v)));
+    let names: Vec<String> = free
+        .iter()
+        .map(|&v| crate::expr::print::unicode(&Expr::var(v)))
+        .collect();
+    let instead = format!(
+        "give {} {} with --at and the parameters with --set",
+        names.join(", "),
+        if names.len() == 1 {
+            "a value"
+        } else {
+            "values"
+        }
+    );
+    md.stability = Stability::Undecided(why.replace("give values with --set", &instead));
+    md
+}
