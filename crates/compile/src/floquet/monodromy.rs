@@ -442,7 +442,7 @@ fn more_steps_hint(how: &str, needed: f64) -> String {
 fn within_steps(p: &Prepared, params: &[f64], period: f64) -> Result<(), Diagnostic> {
     let rate = fastest_rate(p, params, period);
     let needed = rate * period;
-    if !(needed > p.max_steps as f64) {
+    if needed.is_nan() || needed <= p.max_steps as f64 {
         return Ok(());
     }
     Err(Diagnostic::global(format!(
@@ -528,7 +528,7 @@ mod tests {
 
     #[test]
     fn shortest_reads_back_and_is_scientific_outside_1e_minus4_to_1e6() {
-        assert_eq!(shortest(6.283185307179586), "6.283185307179586");
+        assert_eq!(shortest(std::f64::consts::TAU), "6.283185307179586");
         assert_eq!(shortest(6283185.307179586), "6.283185307179586e6");
         assert_eq!(shortest(1e308), "1e308");
         assert_eq!(shortest(-2.5e-7), "-2.5e-7");
