@@ -81,7 +81,13 @@ pub fn parse_over(text: &str) -> Result<Vec<Axis>, Diagnostic> {
         return Err(bad("one or two parameters vary, not more".into()));
     }
     if axes.len() == 2 && axes[0].name == axes[1].name {
-        return Err(bad(format!("`{}` varies twice", axes[0].name)));
+        // as `sweep --vary` says it
+        let name = &axes[0].name;
+        return Err(
+            Diagnostic::global(format!("`--over {name}`: `{name}` is varied twice"))
+                .with_hint("vary each parameter once")
+                .with_kind(ErrorKind::bad_option("--over")),
+        );
     }
     let total = axes.iter().map(|a| a.count).product::<usize>();
     if total > crate::limits::MAX_FLOQUET_POINTS {

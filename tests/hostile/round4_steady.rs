@@ -161,6 +161,18 @@ fn a_name_given_twice_in_an_option_list_is_refused() {
         o.stderr,
         "error: `--init`: `theta` is given twice\n  = hint: give each position and velocity one value\n"
     );
+    let o = qdot(&[
+        "floquet",
+        MATHIEU,
+        "--set",
+        "m=1,w=1",
+        "--over",
+        "delta=0:1:2,delta=0:1:2",
+    ]);
+    assert_eq!(
+        o.stderr,
+        "error: `--over delta`: `delta` is varied twice\n  = hint: vary each parameter once\n"
+    );
     let o = qdot(&["equilibrium", "examples/pendulum.qd", "--set", "m=1,m=2"]);
     assert_eq!(
         o.stderr,
