@@ -905,6 +905,10 @@ struct FloquetArgs {
     /// time dependence.
     #[arg(long)]
     period: Option<f64>,
+    /// The most steps one integration over the period may take (a period
+    /// long against the motion's own time scale needs more).
+    #[arg(long, default_value_t = qdot::limits::DEFAULT_MAX_STEPS)]
+    max_steps: usize,
     /// One or two parameters varied over a grid: delta=-1:3:81,eps=0:2:41
     #[arg(long)]
     over: Option<String>,
@@ -945,6 +949,7 @@ fn floquet_on(report: Reporter, src: &str, o: &FloquetArgs) -> ExitCode {
                 at: o.at.clone(),
                 functions: o.function.clone(),
                 period: o.period,
+                max_steps: Some(o.max_steps),
             },
             set: o
                 .set

@@ -432,7 +432,7 @@ fn refusals_say_why() {
     );
     refused(
         &[&two, "--set", "k=1", "--period", "6.283185307179586"],
-        "error: the linearized coefficients do not repeat after --period 6.283185307179586: they differ at t = 0.332111 and t + T\n  = hint: give the period of the time dependence, or leave --period out to find it\n",
+        "error: the linearized coefficients do not repeat after --period 6.283185307179586: they differ at t = 0.3321112 and t + T\n  = hint: give the period of the time dependence, or leave --period out to find it\n",
     );
     refused(
         &[KAPITZA, "--at", "theta=pi/2", "--set", "m=1,l=1,g=9.81,a=0.1,w=1"],

@@ -183,7 +183,7 @@ pub(super) fn modes(
             }
         }
     }
-    let md = osc::modes_about(scene, &reference, set)?;
+    let md = crate::solve::steady::hint_for_free_symbols(osc::modes_about(scene, &reference, set)?);
     let (free, numeric) = match &opts.init {
         Some(i) => {
             let (q0, v0) = scene.initial_conditions(i)?;
@@ -243,7 +243,9 @@ fn reference(scene: &Scene, opts: &CommandOptions) -> Result<osc::Reference, Dia
         }
     }
     steady.sort_by_key(|(k, _)| *k);
-    Ok(osc::Reference::at(at.as_deref()).steady(steady))
+    Ok(osc::Reference::at(at.as_deref())
+        .steady(steady)
+        .with_values(&opts.set))
 }
 
 pub(super) fn hamilton(

@@ -517,13 +517,19 @@ impl Writer {
             cyclic.join(", ")
         ));
         let mut rows = Vec::new();
-        for (_, f) in &sm.conditions {
+        for (_, f) in sm.conditions.iter().chain(&sm.held) {
             rows.push(vec![self.terms(f), self.one("0".into())]);
         }
         for s in &sm.solved {
             let power = if s.squared { "^{2}" } else { "" };
             let rate = format!("{}{power}", self.sym(&s.coordinate, 1));
-            rows.push(vec![self.one(rate), self.terms(&s.value)]);
+            rows.push(vec![self.one(rate.clone()), self.terms(&s.value)]);
+            for o in &s.others {
+                rows.push(vec![
+                    self.one(format!("\\text{{or }}{rate}")),
+                    self.terms(o),
+                ]);
+            }
         }
         self.align(false, &rows);
         let held: Vec<String> = cyclic.iter().map(|c| format!("p_{{{c}}}")).collect();

@@ -103,10 +103,27 @@ fn steady_motion_text(sm: &osc::SteadyMotion, at: &[String]) -> String {
             as_unicode(f)
         ));
     }
+    for (c, f) in &sm.held {
+        out.push_str(&format!(
+            "  the equation of {} there: {} = 0, which holds at the --set values\n",
+            pretty_name(c, 0),
+            as_unicode(f)
+        ));
+    }
     for s in &sm.solved {
         let rate = pretty_name(&s.coordinate, 1);
         let power = if s.squared { "²" } else { "" };
-        out.push_str(&format!("  so {rate}{power} = {}\n", as_unicode(&s.value)));
+        out.push_str(&format!("  so {rate}{power} = {}", as_unicode(&s.value)));
+        for o in &s.others {
+            out.push_str(&format!(" or {rate}{power} = {}", as_unicode(o)));
+        }
+        if !s.others.is_empty() {
+            out.push_str(&format!(
+                "; below about the first (for another, add {}'=… to --at)",
+                s.coordinate
+            ));
+        }
+        out.push('\n');
     }
     let held: Vec<String> = sm
         .rates

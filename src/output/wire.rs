@@ -806,6 +806,9 @@ pub struct SteadyMotionJson {
     pub conditions: Named<String>,
     /// The rates solved from the conditions, in order.
     pub solved: Vec<SolvedRateJson>,
+    /// coordinate → its equation at the steady motion where it holds no
+    /// unknown rate and vanishes only at the `--set` values.
+    pub held: Named<String>,
 }
 
 /// A rate solved from a steady motion's condition.
@@ -817,6 +820,9 @@ pub struct SolvedRateJson {
     pub squared: bool,
     /// The rate, or its square.
     pub value: String,
+    /// The other roots of a condition quadratic in the rate (the analysis
+    /// is about `value`).
+    pub others: Vec<String>,
 }
 
 /// One coordinate's equation ÿ + 2αẏ + ω²y = f.
@@ -921,8 +927,10 @@ impl ModesJson {
                         coordinate: s.coordinate.clone(),
                         squared: s.squared,
                         value: as_input(&s.value),
+                        others: s.others.iter().map(as_input).collect(),
                     })
                     .collect(),
+                held: named_pairs(&sm.held),
             }),
         }
     }

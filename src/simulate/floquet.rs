@@ -6,7 +6,10 @@
 use crate::algebra::sign::Values;
 use crate::diag::{Diagnostic, ErrorKind};
 use crate::expr::Expr;
-use crate::floquet::{monodromy::certified, prepare, Floquet, FloquetRequest, Prepared};
+use crate::floquet::{
+    monodromy::{certified, shortest},
+    prepare, Floquet, FloquetRequest, Prepared,
+};
 use crate::poly::Var;
 use crate::scene::Scene;
 use rayon::prelude::*;
@@ -78,7 +81,13 @@ pub fn parse_over(text: &str) -> Result<Vec<Axis>, Diagnostic> {
         return Err(bad("one or two parameters vary, not more".into()));
     }
     if axes.len() == 2 && axes[0].name == axes[1].name {
-        return Err(bad(format!("`{}` varies twice", axes[0].name)));
+        // as `sweep --vary` says it
+        let name = &axes[0].name;
+        return Err(
+            Diagnostic::global(format!("`--over {name}`: `{name}` is varied twice"))
+                .with_hint("vary each parameter once")
+                .with_kind(ErrorKind::bad_option("--over")),
+        );
     }
     let total = axes.iter().map(|a| a.count).product::<usize>();
     if total > crate::limits::MAX_FLOQUET_POINTS {
@@ -253,7 +262,7 @@ pub fn text(r: &FloquetRun) -> String {
 fn point_text(f: &Floquet, n: usize) -> String {
     let e = f.error;
     let d = 2 * n;
-    let mut out = format!("  T = {}\n", f.period);
+    let mut out = format!("  T = {}\n", shortest(f.period));
     out.push_str(&format!(
         "Monodromy matrix Φ(T)  (x = (q, q̇); error ≤ {e:.0e})\n"
     ));
@@ -304,12 +313,17 @@ fn table_text(r: &FloquetRun) -> String {
     for (v, f) in &r.points {
         rows.push(match f {
             Ok(f) => [
-                format!("{}", v[0]).replace('-', "−"),
+                shortest(v[0]).replace('-', "−"),
                 certified(f.max_abs, f.error),
                 signed(f.trace, 2.0 * r.prepared.n() as f64 * f.error),
                 f.verdict.name().to_string(),
             ],
-            Err(m) => [format!("{}", v[0]), "—".into(), "—".into(), m.clone()],
+            Err(m) => [
+                shortest(v[0]).replace('-', "−"),
+                "—".into(),
+                "—".into(),
+                m.clone(),
+            ],
         });
     }
     let widths: Vec<usize> = (0..4)
@@ -344,7 +358,12 @@ fn chart_text(r: &FloquetRun) -> String {
     let (a, b) = (&r.axes[0], &r.axes[1]);
     let mut out = format!(
         "Stability chart  (# unstable, . stable, ? undecided, ! failed)\n  {} from {} (left) to {} (right); {} from {} (bottom) to {} (top)\n",
-        a.name, a.from, a.to, b.name, b.from, b.to
+        a.name,
+        shortest(a.from),
+        shortest(a.to),
+        b.name,
+        shortest(b.from),
+        shortest(b.to)
     );
     for j in (0..b.count).rev() {
         let line: String = (0..a.count)
@@ -362,7 +381,13 @@ fn chart_text(r: &FloquetRun) -> String {
         count('!')
     ));
     if let Some((v, Err(m))) = r.points.iter().find(|(_, f)| f.is_err()) {
-        out.push_str(&format!("  first failure at {v:?}: {m}\n"));
+        let at: Vec<String> = r
+            .axes
+            .iter()
+            .zip(v)
+            .map(|(a, x)| format!("{} = {}", a.name, shortest(*x)))
+            .collect();
+        out.push_str(&format!("  first failure at {}: {m}\n", at.join(", ")));
     }
     out
 }

@@ -305,14 +305,7 @@ pub fn method_by_name(s: &str) -> Result<Method, Diagnostic> {
 
 /// The lower-case name of a method, as the command line spells it.
 pub fn method_name(m: Method) -> &'static str {
-    match m {
-        Method::Rk4 => "rk4",
-        Method::Dopri5 => "dopri5",
-        Method::Dop853 => "dop853",
-        Method::Vern7 => "vern7",
-        Method::Gauss6 => "gauss6",
-        Method::Radau5 => "radau5",
-    }
+    m.name()
 }
 
 pub use crate::scene::given::numeric_initial_values as parse_init;
@@ -495,6 +488,9 @@ impl Prepared {
         let solution = solution.map_err(|e| {
             match e {
                 SimError::BadInput(s) => Diagnostic::global(s).with_hint(match req.method {
+                    _ if event.is_some() && matches!(req.method, Method::Gauss6 | Method::Radau5) => {
+                        "--stop-when finds its time on the dense output: --method dopri5, dop853 or vern7"
+                    }
                     Method::Rk4 | Method::Gauss6 => "RK4 and Gauss6 take a fixed step: --dt 0.01",
                     _ => "check --rtol, --atol and --dt",
                 }),

@@ -15,3 +15,4 @@ mod numeric;
 mod output;
 mod round3;
 mod round4_response;
+mod round4_steady;

@@ -149,7 +149,7 @@ pub const MAX_CYCLE_POSITIONS: usize = 1_000_000;
 /// kinetostatics); past it the row says the iteration did not converge.
 pub const MAX_FRICTION_ITERATIONS: u32 = 200;
 
-/// The default of `qdot simulate --max-steps`: steps (accepted and
+/// The default of `qdot simulate --max-steps` and `qdot floquet --max-steps`: steps (accepted and
 /// rejected) before a run gives up with "too many steps". A second or two
 /// of integration for small systems; raise it for long runs.
 pub const DEFAULT_MAX_STEPS: usize = 1_000_000;

@@ -67,6 +67,20 @@ pub enum Method {
     Radau5,
 }
 
+impl Method {
+    /// The method's name as the command line takes it: `dop853`, `radau5`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Rk4 => "rk4",
+            Method::Dopri5 => "dopri5",
+            Method::Dop853 => "dop853",
+            Method::Vern7 => "vern7",
+            Method::Gauss6 => "gauss6",
+            Method::Radau5 => "radau5",
+        }
+    }
+}
+
 /// What to integrate and how precisely.
 #[derive(Clone, Debug)]
 pub struct IntegratorOptions {
@@ -176,7 +190,7 @@ pub enum SimError {
 impl std::fmt::Display for SimError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            SimError::NotExplicit(m) => write!(f, "{m:?} is not an explicit method"),
+            SimError::NotExplicit(m) => write!(f, "{} is not an explicit method", m.name()),
             SimError::BadInput(s) => write!(f, "bad input: {s}"),
         }
     }
@@ -242,7 +256,8 @@ pub fn integrate_with_event<S: System + ?Sized>(
             explicit::integrate_with_event(sys, method, y0, opts, event)
         }
         Method::Gauss6 | Method::Radau5 => Err(SimError::BadInput(format!(
-            "events are located on the dense output of the explicit methods; {method:?} has none here: use Dopri5, Dop853 or Vern7"
+            "events are located on the dense output of the explicit methods; {} has none here: use dopri5, dop853 or vern7",
+            method.name()
         ))),
     }
 }

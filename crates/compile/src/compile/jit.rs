@@ -319,7 +319,7 @@ impl Jit {
         }
         self.module
             .define_function(id, &mut self.ctx)
-            .map_err(|e| err("code generation")(format!("{e:?}")))?;
+            .map_err(|e| err("code generation")(e.to_string()))?;
         let bytes = self
             .ctx
             .compiled_code()

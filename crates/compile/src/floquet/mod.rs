@@ -43,6 +43,9 @@ pub struct FloquetRequest {
     /// `--period T`: the period, when it is not found from the time
     /// dependence (then checked on the compiled coefficients).
     pub period: Option<f64>,
+    /// `--max-steps N`: the steps one integration over the period may take
+    /// ([`crate::limits::DEFAULT_MAX_STEPS`] when `None`).
+    pub max_steps: Option<usize>,
 }
 
 /// A scene linearized about its reference, with the coefficients compiled:
@@ -64,6 +67,8 @@ pub struct Prepared {
     pub frequency: Option<Expr>,
     /// The given period (`--period`).
     pub given_period: Option<f64>,
+    /// The steps one integration over the period may take.
+    pub max_steps: usize,
     /// Whether the linearized equations are the Euler–Lagrange equations of
     /// a quadratic Lagrangian ([`is_lagrangian`]): then the multipliers
     /// come in pairs μ, 1/μ̄ and simple ones on the unit circle stay there.
@@ -129,10 +134,11 @@ pub fn prepare(scene: &Scene, req: &FloquetRequest) -> Result<Prepared, Diagnost
     let frequency = match req.period {
         Some(p) if p.is_finite() && p > 0.0 => None,
         Some(p) => {
-            return Err(
-                Diagnostic::global(format!("--period {p} must be a positive number"))
-                    .with_kind(ErrorKind::bad_option("--period")),
-            )
+            return Err(Diagnostic::global(format!(
+                "--period {} must be a positive number",
+                monodromy::shortest(p)
+            ))
+            .with_kind(ErrorKind::bad_option("--period")))
         }
         None => Some(period::fundamental(&all)?),
     };
@@ -163,6 +169,7 @@ pub fn prepare(scene: &Scene, req: &FloquetRequest) -> Result<Prepared, Diagnost
         stiffness,
         frequency,
         given_period: req.period,
+        max_steps: req.max_steps.unwrap_or(crate::limits::DEFAULT_MAX_STEPS),
         lagrangian,
         parameters,
         program,
@@ -301,8 +308,9 @@ impl Prepared {
         if !(omega.is_finite() && omega > 0.0) {
             let w = self.frequency.as_ref().map(crate::expr::print::unicode);
             return Err(Diagnostic::global(format!(
-                "the coefficients' angular frequency {} is {omega} at these values: no period",
-                w.unwrap_or_default()
+                "the coefficients' angular frequency {} is {} at these values: no period",
+                w.unwrap_or_default(),
+                monodromy::shortest(omega)
             ))
             .with_hint("give the parameters values with a nonzero frequency"));
         }
@@ -332,7 +340,9 @@ impl Prepared {
                 .any(|(x, y)| (x - y).abs() > 1e-9 * (1.0 + x.abs()))
             {
                 return Err(Diagnostic::global(format!(
-                    "the linearized coefficients do not repeat after --period {period}: they differ at t = {t:.6} and t + T"
+                    "the linearized coefficients do not repeat after --period {}: they differ at t = {} and t + T",
+                    monodromy::shortest(period),
+                    qdot_mechanics::solve::certify::significant(t, 7)
                 ))
                 .with_hint("give the period of the time dependence, or leave --period out to find it")
                 .with_kind(ErrorKind::bad_option("--period")));
@@ -374,7 +384,9 @@ impl Prepared {
         let at_a = unstable(a)?;
         if at_a == unstable(b)? {
             return Err(Diagnostic::global(format!(
-                "the verdict is the same at {name} = {lo} and {name} = {hi}: no boundary to bisect"
+                "the verdict is the same at {name} = {} and {name} = {}: no boundary to bisect",
+                monodromy::shortest(lo),
+                monodromy::shortest(hi)
             )));
         }
         for _ in 0..200 {

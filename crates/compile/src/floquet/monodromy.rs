@@ -14,7 +14,8 @@
 //! the error.
 
 use super::Prepared;
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, ErrorKind};
+use qdot_mechanics::solve::certify::significant;
 use qdot_ode::{explicit, IntegratorOptions, Method, Status, System};
 
 /// The loose and the tight relative tolerance (and absolute: Φ starts at I).
@@ -93,6 +94,7 @@ pub struct Floquet {
 /// Φ(T) and the multipliers at the parameter inputs `params`.
 pub(super) fn analyse(p: &Prepared, params: &[f64]) -> Result<Floquet, Diagnostic> {
     let period = p.period(params)?;
+    within_steps(p, params, period)?;
     if p.given_period.is_some() {
         p.check_given_period(params, period)?;
     }
@@ -173,22 +175,41 @@ fn verdict(mu: &[Multiplier], max_abs: f64, e: f64, lagrangian: bool) -> (Verdic
     (Verdict::Undecided, why.to_string())
 }
 
-/// `x` with the decimals the error `e` leaves certain (at most 15).
+/// `x` with the digits the error `e` leaves certain (at most 15): fixed
+/// decimals from 10⁻⁴ to 10⁶, scientific notation outside (as
+/// [`significant`]); a value below the error is 0.
 pub fn certified(x: f64, e: f64) -> String {
     let decimals = if e > 0.0 {
-        (-e.log10()).floor().clamp(0.0, 15.0) as usize
+        ((-e.log10()).floor() as i32).min(15)
     } else {
         15
     };
-    let s = format!("{x:.decimals$}");
-    if s.trim_start_matches('-')
-        .chars()
-        .all(|c| c == '0' || c == '.')
-    {
-        s.trim_start_matches('-').to_string()
+    let exp = if x == 0.0 {
+        i32::MIN / 2
     } else {
-        s
+        x.abs().log10().floor() as i32
+    };
+    let digits = exp.saturating_add(1).saturating_add(decimals);
+    if decimals >= 0 && (exp < 6 && (exp >= -4 || digits < 1)) {
+        let s = format!("{x:.*}", decimals as usize);
+        return if s
+            .trim_start_matches('-')
+            .chars()
+            .all(|c| c == '0' || c == '.')
+        {
+            s.trim_start_matches('-').to_string()
+        } else {
+            s
+        };
     }
+    if digits < 1 || !x.is_finite() {
+        return if x.is_finite() {
+            "0".into()
+        } else {
+            format!("{x}")
+        };
+    }
+    significant(x, digits.min(15) as usize)
 }
 
 /// The eigenvalues of the d × d row-major matrix `phi`, by decreasing
@@ -335,7 +356,7 @@ fn monodromy(
         atol: tol,
         dt: None,
         t_out: vec![period],
-        max_steps: crate::limits::DEFAULT_MAX_STEPS,
+        max_steps: p.max_steps,
     };
     let sol = explicit::integrate(&mut sys, Method::Dop853, &y0, &opts)
         .map_err(|e| Diagnostic::global(format!("cannot integrate over the period: {e}")))?;
@@ -345,14 +366,173 @@ fn monodromy(
         ))
         .with_hint("a singular M has no x' = A(t)·x: check the reference and the parameters"));
     }
-    let last = match (&sol.status, sol.y.last()) {
-        (Status::Done, Some(y)) => y.clone(),
-        (status, _) => {
-            return Err(Diagnostic::global(format!(
-                "the integration over the period T = {period:.6e} stopped early ({status:?})"
-            ))
-            .with_hint("check the parameters: the coefficients may not be finite over the period"))
+    match (&sol.status, sol.y.last()) {
+        (Status::Done, Some(y)) => Ok((y.clone(), sol.stats.steps)),
+        (status, _) => Err(stopped(status, period, p.max_steps)),
+    }
+}
+
+/// The error of an integration over the period that stopped at `status`.
+fn stopped(status: &Status, period: f64, max_steps: usize) -> Diagnostic {
+    let (t, why, hint) = match *status {
+        Status::TooManySteps { t } => {
+            // the steps so far, scaled to the whole period
+            let needed = max_steps as f64 * period / t.max(f64::MIN_POSITIVE);
+            (
+                t,
+                format!(
+                    "it took the most steps allowed ({}) and had covered {} of the period",
+                    crate::budget::grouped(max_steps),
+                    percent(t / period)
+                ),
+                more_steps_hint("about", needed),
+            )
         }
+        Status::StepTooSmall { t } => (
+            t,
+            "the step size fell below what a double resolves there".to_string(),
+            "the linearized solution may blow up there (a coefficient that is singular at these parameter values): check the parameters".to_string(),
+        ),
+        Status::NotFinite { t } => (
+            t,
+            "a value became infinite or not a number".to_string(),
+            "the coefficients may not be finite over the period: check the parameters".to_string(),
+        ),
+        // no events are asked for, and a finished run records its end
+        Status::Event { t } => (t, "it stopped at an event".to_string(), String::new()),
+        Status::Done => (period, "it recorded no state".to_string(), String::new()),
     };
-    Ok((last, sol.stats.steps))
+    let d = Diagnostic::global(format!(
+        "the integration over the period T = {} stopped at t = {}: {why}",
+        shortest(period),
+        significant(t, 7)
+    ))
+    .with_kind(ErrorKind::Integration);
+    if hint.is_empty() {
+        d
+    } else {
+        d.with_hint(hint)
+    }
+}
+
+/// `x` (a fraction) as a percentage with two significant digits.
+fn percent(x: f64) -> String {
+    format!("{}%", significant(100.0 * x, 2))
+}
+
+/// The hint for an integration that needs `needed` steps (`how`: "about",
+/// or "at least" for a lower bound).
+fn more_steps_hint(how: &str, needed: f64) -> String {
+    let shorter = "choose parameter values with a shorter period";
+    let n = significant(needed, 2);
+    if needed <= 1e9 {
+        format!(
+            "the period is long against the motion's own time scale: raise --max-steps to {how} {n} (the time grows in proportion), or {shorter}"
+        )
+    } else {
+        format!(
+            "the period is long against the motion's own time scale, beyond any integration ({how} {n} steps): {shorter}"
+        )
+    }
+}
+
+/// Refuse a period that the steps allowed cannot cover: every explicit
+/// method takes at least one step per radian of the fastest motion, whose
+/// rate is the largest |eigenvalue| of A(t), sampled over the period.
+fn within_steps(p: &Prepared, params: &[f64], period: f64) -> Result<(), Diagnostic> {
+    let rate = fastest_rate(p, params, period);
+    let needed = rate * period;
+    if needed.is_nan() || needed <= p.max_steps as f64 {
+        return Ok(());
+    }
+    Err(Diagnostic::global(format!(
+        "the period T = {} is too long to integrate: the linearized motion turns at rates up to {} per unit time, so one period takes at least {} steps, more than the {} allowed",
+        shortest(period),
+        significant(rate, 3),
+        significant(needed, 2),
+        crate::budget::grouped(p.max_steps)
+    ))
+    .with_hint(more_steps_hint("at least", needed))
+    .with_kind(ErrorKind::Integration))
+}
+
+/// The largest |eigenvalue| of A(t) at eight times over the period (0
+/// where M is singular at all of them: the integration says so).
+fn fastest_rate(p: &Prepared, params: &[f64], period: f64) -> f64 {
+    let n = p.n();
+    let d = 2 * n;
+    let mut inputs = vec![0.0];
+    inputs.extend_from_slice(params);
+    let mut sys = Variational {
+        p,
+        n,
+        inputs,
+        regs: p.program().registers(),
+        coefficients: vec![0.0; 3 * n * n],
+        solved: vec![0.0; n * d],
+        singular_at: None,
+    };
+    let mut identity = vec![0.0; d * d];
+    for i in 0..d {
+        identity[i * d + i] = 1.0;
+    }
+    let mut a = vec![0.0; d * d];
+    let mut rate = 0.0f64;
+    for i in 0..8 {
+        sys.singular_at = None;
+        sys.rhs((i as f64 + 0.37) * period / 8.0, &identity, &mut a);
+        if sys.singular_at.is_some() || a.iter().any(|x| !x.is_finite()) {
+            continue;
+        }
+        for m in multipliers(&a, d) {
+            rate = rate.max(m.abs());
+        }
+    }
+    rate
+}
+
+/// `x` with the shortest digits that read back to it, in scientific
+/// notation below 10⁻⁴ and from 10⁶ on (as [`significant`]).
+pub fn shortest(x: f64) -> String {
+    let e = if x == 0.0 {
+        0
+    } else {
+        x.abs().log10().floor() as i32
+    };
+    if (-4..6).contains(&e) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{certified, shortest};
+
+    #[test]
+    fn certified_digits_are_scientific_outside_1e_minus4_to_1e6() {
+        // the fixed range as before: the decimals the error leaves
+        assert_eq!(certified(1.0000171314, 4e-11), "1.0000171314");
+        assert_eq!(certified(-0.0923112, 1e-6), "-0.092311");
+        assert_eq!(certified(3e-5, 1e-3), "0.000");
+        assert_eq!(certified(-3e-5, 1e-3), "0.000");
+        // small and large: scientific, the same certified digits
+        assert_eq!(certified(5e-5, 1e-12), "5.0000000e-5");
+        assert_eq!(certified(1.5e300, 1.4e286), "1.5000000000000e300");
+        assert_eq!(certified(2.5e7, 0.01), "2.500000000e7");
+        // below the error: 0, however large the error
+        assert_eq!(certified(3.0, 1e4), "0");
+        assert_eq!(certified(2.5e7, 1e4), "2.500e7");
+    }
+
+    #[test]
+    fn shortest_reads_back_and_is_scientific_outside_1e_minus4_to_1e6() {
+        assert_eq!(shortest(std::f64::consts::TAU), "6.283185307179586");
+        assert_eq!(shortest(6283185.307179586), "6.283185307179586e6");
+        assert_eq!(shortest(1e308), "1e308");
+        assert_eq!(shortest(-2.5e-7), "-2.5e-7");
+        assert_eq!(shortest(0.0), "0");
+        assert_eq!(shortest(999999.0), "999999");
+    }
 }

@@ -43,7 +43,7 @@ pub const INIT: OptionSyntax = OptionSyntax {
 pub const SIMULATE_INIT: OptionSyntax = OptionSyntax {
     option: "--init",
     example: "--init theta=0.5,theta'=0",
-    once: None,
+    once: Some("give each position and velocity one value"),
 };
 
 /// One `name=value` item: as written (trimmed), its name and its value.
@@ -512,6 +512,7 @@ impl Scene {
             if out.contains(&k) {
                 return Err(
                     Diagnostic::global(format!("`--steady`: `{name}` is named twice"))
+                        .with_hint("name each steady coordinate once")
                         .with_kind(ErrorKind::bad_option("--steady")),
                 );
             }

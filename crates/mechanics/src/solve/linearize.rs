@@ -37,6 +37,9 @@ pub struct Reference {
     /// Whether M, C and K may depend on time (parametric excitation);
     /// without it such a dependence is refused.
     pub time_varying: bool,
+    /// The `--set` values: a steady motion's condition that holds no
+    /// unknown rate is judged at them.
+    pub values: crate::algebra::sign::Values,
 }
 
 impl Reference {
@@ -46,7 +49,15 @@ impl Reference {
             at: at.map(<[Expr]>::to_vec),
             steady: Vec::new(),
             time_varying: false,
+            values: crate::algebra::sign::Values::new(),
         }
+    }
+
+    /// This reference, with a steady motion's conditions judged at the
+    /// `--set` values `values` where no rate satisfies them.
+    pub fn with_values(mut self, values: &crate::algebra::sign::Values) -> Reference {
+        self.values = values.clone();
+        self
     }
 
     /// This reference with the coordinates of `steady` (index, rate)
@@ -194,7 +205,8 @@ fn linearize_steady(
             conditions.push((names[k].clone(), fixed));
         }
     }
-    let solved = steady::solve_rates(&conditions, &steady::open_rates(&rates))?;
+    let steady::Rates { solved, held } =
+        steady::solve_rates(&conditions, &steady::open_rates(&rates), &reference.values)?;
     let put = |e: &Expr| -> Result<Expr, Diagnostic> {
         solved
             .iter()
@@ -205,6 +217,11 @@ fn linearize_steady(
     for (k, r) in residuals.iter().enumerate() {
         let f = put(&r.subs_many(&point).map_err(math)?.neg())?;
         let (fixed, _) = split_time(&f, t);
+        // a condition that holds at the --set values leaves no force there
+        if held.iter().any(|(c, _)| c == &names[k]) {
+            forcing.push(f.sub(&fixed));
+            continue;
+        }
         if !fixed.is_zero() {
             return Err(Diagnostic::global(format!(
                 "no steady motion here: the equation of `{}` leaves {} ≠ 0",
@@ -233,6 +250,7 @@ fn linearize_steady(
             rates,
             conditions,
             solved,
+            held,
         }),
     })
 }

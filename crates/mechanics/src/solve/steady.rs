@@ -39,6 +39,9 @@ pub struct SolvedRate {
     pub squared: bool,
     /// The rate (or its square).
     pub value: Expr,
+    /// The other roots of a condition quadratic in the rate (the analysis
+    /// is about `value`; `--at q'=…` gives one of these).
+    pub others: Vec<Expr>,
 }
 
 /// The steady motion a linearization is about.
@@ -53,6 +56,18 @@ pub struct SteadyMotion {
     pub conditions: Vec<(String, Expr)>,
     /// The rates solved from those conditions, in solving order.
     pub solved: Vec<SolvedRate>,
+    /// The conditions free of the unknown rates that do not vanish
+    /// identically but do at the `--set` values (coordinate, F): the
+    /// steady motion exists there, and on the surface F = 0.
+    pub held: Vec<(String, Expr)>,
+}
+
+/// The rates found from a steady motion's conditions.
+pub(super) struct Rates {
+    /// The rates solved, in solving order.
+    pub(super) solved: Vec<SolvedRate>,
+    /// The conditions that hold only at the `--set` values.
+    pub(super) held: Vec<(String, Expr)>,
 }
 
 fn math(m: crate::expr::MathError) -> Diagnostic {
@@ -89,13 +104,17 @@ pub(super) fn check_cyclic(
 
 /// Solve the `conditions` (each must vanish) for the unknown rates among
 /// `unknown` (coordinate names whose rate is the symbol q̇): each
-/// condition in turn for the last unknown it is linear in, or whose square
-/// alone it holds. Errors name the condition that cannot be solved.
+/// condition in turn for the last unknown it is of degree one or two in
+/// (or whose square alone it holds). A condition no rate can satisfy is
+/// judged at the `--set` values `set`: one that vanishes there holds.
+/// Errors name the condition that cannot be solved.
 pub(super) fn solve_rates(
     conditions: &[(String, Expr)],
     unknown: &[String],
-) -> Result<Vec<SolvedRate>, Diagnostic> {
+    set: &crate::algebra::sign::Values,
+) -> Result<Rates, Diagnostic> {
     let mut solved: Vec<SolvedRate> = Vec::new();
+    let mut held = Vec::new();
     for (coordinate, condition) in conditions {
         let mut f = condition.clone();
         for s in &solved {
@@ -104,62 +123,167 @@ pub(super) fn solve_rates(
         if f.is_zero() {
             continue;
         }
-        let open = unknown
+        let open: Vec<&String> = unknown
             .iter()
-            .filter(|u| !solved.iter().any(|s| &s.coordinate == *u));
-        let found = open
-            .collect::<Vec<_>>()
-            .into_iter()
-            .rev()
-            .find_map(|u| solve_one(&f, u));
-        match found {
-            Some(s) => solved.push(s?),
-            None if unknown.is_empty() => {
-                return Err(Diagnostic::global(format!(
-                    "no steady motion here: the equation of `{coordinate}` leaves {} ≠ 0",
-                    crate::expr::print::unicode(&f)
-                ))
-                .with_hint("leave a rate to be found (--steady q without q' in --at), or give the position that suits the rates"))
+            .filter(|u| !solved.iter().any(|s| &s.coordinate == *u))
+            .collect();
+        let found = open.iter().rev().find_map(|u| solve_one(&f, u, coordinate));
+        if let Some(s) = found {
+            solved.push(s?);
+            continue;
+        }
+        if !set.is_empty() {
+            let at = f.subs_many(&exact_values(set)).map_err(math)?;
+            if at.is_zero() {
+                held.push((coordinate.clone(), f));
+                continue;
             }
-            None => {
+            if is_number(&at) {
                 return Err(Diagnostic::global(format!(
-                    "the steady motion needs {} = 0 (the equation of `{coordinate}`), and qdot cannot solve that for a rate",
-                    crate::expr::print::unicode(&f)
+                    "no steady motion at the --set values: the equation of `{coordinate}` needs {} = 0, and there it is {}",
+                    crate::expr::print::unicode(&f),
+                    crate::expr::print::unicode(&at)
                 ))
-                .with_hint("give the rates with --at, e.g. --at \"theta=pi/3,phi'=2\", or the position that suits them"))
+                .with_hint("give values on which the condition holds, or the position that suits them (--at)"));
             }
         }
+        if unknown.is_empty() {
+            return Err(Diagnostic::global(format!(
+                "no steady motion here: the equation of `{coordinate}` leaves {} ≠ 0",
+                crate::expr::print::unicode(&f)
+            ))
+            .with_hint("leave a rate to be found (--steady q without q' in --at), or give the position that suits the rates"));
+        }
+        let degree = open
+            .iter()
+            .map(|u| f.num().degree(atom::coord(u, 1)))
+            .max()
+            .unwrap_or(0);
+        let why = if degree > 2 {
+            format!(", of degree {degree} in the rate: qdot solves a rate's condition of degree two at most")
+        } else if degree == 0 {
+            ", which holds no rate: a condition on the parameters and the position".to_string()
+        } else {
+            ", and qdot cannot solve that for a rate".to_string()
+        };
+        return Err(Diagnostic::global(format!(
+            "the steady motion needs {} = 0 (the equation of `{coordinate}`){why}",
+            crate::expr::print::unicode(&f)
+        ))
+        .with_hint(if degree == 0 && set.is_empty() {
+            "give the parameters values on which it holds (--set), or the position that suits them (--at)"
+        } else {
+            "give the rates with --at, e.g. --at \"theta=pi/3,phi'=2\", or the position that suits them"
+        }));
     }
-    Ok(solved)
+    Ok(Rates { solved, held })
 }
 
-/// `f = 0` solved for the rate of `coordinate`: linear in it, or in its
-/// square alone; `None` when neither.
-fn solve_one(f: &Expr, coordinate: &str) -> Option<Result<SolvedRate, Diagnostic>> {
+/// Whether `e` is a number (radicals and π allowed): no parameter,
+/// coordinate, unknown or given function in it.
+fn is_number(e: &Expr) -> bool {
+    e.vars().into_iter().all(|v| {
+        std::iter::once(v)
+            .chain(atom::inner_atoms(v).iter().copied())
+            .all(|w| {
+                !matches!(
+                    atom::atom(w),
+                    atom::Atom::Param(_)
+                        | atom::Atom::Coord(..)
+                        | atom::Atom::Unknown(_)
+                        | atom::Atom::Given(..)
+                        | atom::Atom::Time
+                )
+            })
+    })
+}
+
+/// The `--set` values as exact rationals: each double's shortest decimal,
+/// the number as written.
+fn exact_values(
+    set: &crate::algebra::sign::Values,
+) -> rustc_hash::FxHashMap<crate::poly::Var, Expr> {
+    set.iter()
+        .filter_map(|(k, v)| {
+            let q: crate::num::Q = format!("{v}").parse().ok()?;
+            Some((atom::param(k), Expr::rational(q)))
+        })
+        .collect()
+}
+
+/// `f = 0` solved for the rate of `coordinate` (the condition of
+/// `of`): linear in it, in its square alone, or quadratic (both roots,
+/// the one with +√ first); `None` when none of these.
+fn solve_one(f: &Expr, coordinate: &str, of: &str) -> Option<Result<SolvedRate, Diagnostic>> {
     let u = atom::coord(coordinate, 1);
     if f.den().degree(u) > 0 {
         return None;
     }
-    let cs = f.num().coeffs_in(u);
-    let over = |a: &Poly, b: &Poly| -> Result<Expr, Diagnostic> {
-        let num = Expr::from_parts(a.clone(), Poly::one()).map_err(math)?;
-        let den = Expr::from_parts(b.clone(), Poly::one()).map_err(math)?;
-        num.neg().div(&den).map_err(math)
-    };
-    let solved = |squared: bool, value: Result<Expr, Diagnostic>| {
-        Some(value.map(|value| SolvedRate {
-            coordinate: coordinate.to_string(),
-            squared,
-            value,
+    // the coefficients over their common factor (r0 of m·r0·u² + … = 0)
+    let polys = f.num().coeffs_in(u);
+    let common = polys
+        .iter()
+        .filter(|c| !c.is_zero())
+        .fold(
+            Poly::zero(),
+            |g, c| if g.is_zero() { c.clone() } else { g.gcd(c) },
+        );
+    let cs: Vec<Expr> = polys
+        .into_iter()
+        .map(|c| Expr::from_poly(c.div_exact(&common).unwrap_or(c)))
+        .collect();
+    let solved = |squared: bool, value: Result<Vec<Expr>, Diagnostic>| {
+        Some(value.map(|mut roots| {
+            let value = roots.remove(0);
+            SolvedRate {
+                coordinate: coordinate.to_string(),
+                squared,
+                value,
+                others: roots,
+            }
         }))
     };
+    let ratio = |a: &Expr, b: &Expr| a.neg().div(b).map_err(math);
     match cs.as_slice() {
-        [c0, c1] if !c1.is_zero() => solved(false, over(c0, c1)),
+        [c0, c1] if !c1.is_zero() => solved(false, ratio(c0, c1).map(|r| vec![r])),
         [c0, c1, c2] if c1.is_zero() && !c2.is_zero() && !c0.is_zero() => {
-            solved(true, over(c0, c2))
+            solved(true, ratio(c0, c2).map(|r| vec![r]))
+        }
+        [c0, c1, c2] if !c1.is_zero() && !c2.is_zero() => {
+            solved(false, quadratic_roots(c0, c1, c2, coordinate, of))
         }
         _ => None,
     }
+}
+
+/// The roots of c2·u² + c1·u + c0 = 0 (c1, c2 ≠ 0): (−c1 ± √D)/(2·c2),
+/// the + root first; refused when D < 0 for every value of the
+/// parameters.
+fn quadratic_roots(
+    c0: &Expr,
+    c1: &Expr,
+    c2: &Expr,
+    coordinate: &str,
+    of: &str,
+) -> Result<Vec<Expr>, Diagnostic> {
+    if c0.is_zero() {
+        return Ok(vec![c1.neg().div(c2).map_err(math)?, Expr::zero()]);
+    }
+    let disc = c1
+        .mul(c1)
+        .sub(&c0.mul(c2).scale(&crate::num::Q::from_i64(4)));
+    let rate = crate::expr::print::pretty_name(coordinate, 1);
+    if crate::algebra::sign::sign_exact(&disc) == Some(crate::algebra::sign::Sign::Negative) {
+        return Err(Diagnostic::global(format!(
+            "no steady motion: the equation of `{of}` is quadratic in {rate} with the discriminant {} < 0, so no real rate satisfies it",
+            crate::expr::print::unicode(&disc)
+        )));
+    }
+    let root = crate::expr::func::sqrt(&disc).map_err(math)?;
+    let twice = c2.scale(&crate::num::Q::from_i64(2));
+    let plus = c1.neg().add(&root).div(&twice).map_err(math)?;
+    let minus = c1.neg().sub(&root).div(&twice).map_err(math)?;
+    Ok(vec![plus, minus])
 }
 
 /// `e` with a solved rate put in: the rate replaced, or for a solved
@@ -373,7 +497,17 @@ fn classified(
                 .collect(),
         );
         match super::oscillations::modes_about(scene, &reference, set) {
-            Ok(md) => md.stability,
+            Ok(md) => match &md.stability {
+                Stability::Undecided(why) => within_existence(&md, &sol.values, rates)
+                    .unwrap_or_else(|| {
+                        let at: Vec<&str> = rest
+                            .iter()
+                            .map(|&k| scene.coordinates[k].name.as_str())
+                            .collect();
+                        Stability::Undecided(for_any_rate(why, &at, rates))
+                    }),
+                decided => decided.clone(),
+            },
             Err(d) => Stability::Undecided(d.message),
         }
     } else {
@@ -383,4 +517,143 @@ fn classified(
     e.free = sol.free;
     e.conditions = sol.conditions;
     Ok(e)
+}
+
+/// An undecided verdict's reason for a steady motion whose rates are
+/// free: `--set` gives parameters, not rates, so its hint goes, and the
+/// command that takes a rate is named.
+fn for_any_rate(why: &str, at: &[&str], rates: &[(String, Expr)]) -> String {
+    let plain = why
+        .replace("; give values with --set", "")
+        .replace(" (give values with --set)", "");
+    if plain == why {
+        return plain;
+    }
+    let given: Vec<String> = at
+        .iter()
+        .map(|c| format!("{c}=…"))
+        .chain(rates.iter().map(|(c, _)| format!("{c}'=…")))
+        .collect();
+    let names: Vec<&str> = rates.iter().map(|(c, _)| c.as_str()).collect();
+    format!(
+        "{plain}; at one rate: qdot modes --steady {} --at \"{}\"",
+        names.join(","),
+        given.join(",")
+    )
+}
+
+/// The verdict about a steady motion off an axis, θ0 = ±acos(w) (or
+/// asin), decided where it exists: |w| < 1, written w = 1/(1 + ν) (w
+/// positive), −1/(1 + ν) (negative) or (1 − ν)/(1 + ν) with ν > 0, the
+/// rate solved from w and put into the reduced M, C and K. Stable when M
+/// and K are positive definite and C is skew or its part is a positive
+/// damping of one coordinate (Kelvin–Tait); unstable when K has an odd
+/// number of negative directions (Kelvin–Tait–Chetaev). `None` when that
+/// does not decide.
+fn within_existence(
+    md: &super::oscillations::Modes,
+    at: &[Expr],
+    rates: &[(String, Expr)],
+) -> Option<super::equilibrium::Stability> {
+    use super::equilibrium::Stability;
+    use crate::algebra::sign::{sign_exact, Sign, Values};
+    let w = at
+        .iter()
+        .flat_map(Expr::vars)
+        .find_map(|v| match atom::atom(v) {
+            atom::Atom::Acos(w) | atom::Atom::Asin(w) => Some(w),
+            _ => None,
+        })?;
+    let nu = Expr::param("ν·exists");
+    let one = Expr::one();
+    let u = match sign_exact(&w) {
+        Some(Sign::Positive) => one.div(&one.add(&nu)).ok()?,
+        Some(Sign::Negative) => one.div(&one.add(&nu)).ok()?.neg(),
+        _ => one.sub(&nu).div(&one.add(&nu)).ok()?,
+    };
+    // w = u has the roots of its numerator (w's denominator is not 0)
+    let g = Expr::from_poly(w.sub(&u).num().clone());
+    let open = open_rates(rates);
+    let s = open
+        .iter()
+        .rev()
+        .find_map(|c| solve_one(&g, c, c).and_then(Result::ok))
+        .filter(|s| s.others.is_empty())?;
+    let put = |e: &Expr| -> Option<Expr> {
+        let e = substitute_rate(e, &s).ok()?;
+        let free = open.iter().all(|c| !e.depends_on(atom::coord(c, 1)));
+        free.then_some(e)
+    };
+    let all = |a: &[Vec<Expr>]| -> Option<Vec<Vec<Expr>>> {
+        a.iter().map(|r| r.iter().map(&put).collect()).collect()
+    };
+    let (m, c, k) = (all(&md.mass)?, all(&md.damping)?, all(&md.stiffness)?);
+    let none = Values::new();
+    let n = m.len();
+    let m_signs = super::equilibrium::minor_signs(&m, &none).ok()?;
+    if !m_signs.iter().all(|s| *s == Some(Sign::Positive)) {
+        return None;
+    }
+    let skew = (0..n).all(|i| (0..n).all(|j| c[i][j].add(&c[j][i]).is_zero()));
+    let damped_one = n == 1 && sign_exact(&c[0][0]) == Some(Sign::Positive);
+    if !(skew || damped_one) {
+        return None;
+    }
+    let k_signs = super::equilibrium::minor_signs(&k, &none).ok()?;
+    match super::equilibrium::jacobi(&k_signs, !skew || c.iter().flatten().any(|e| !e.is_zero())) {
+        Stability::Undecided(_) => None,
+        decided => Some(decided),
+    }
+}
+
+/// A verdict about a steady motion whose matrices hold symbols `--set`
+/// cannot give (a position `--at theta=theta0`, a rate still free): its
+/// "give values with --set" names them and `--at` instead.
+pub fn hint_for_free_symbols(mut md: super::oscillations::Modes) -> super::oscillations::Modes {
+    use super::equilibrium::Stability;
+    let Stability::Undecided(why) = &md.stability else {
+        return md;
+    };
+    if md.steady.is_none() || !why.contains("give values with --set") {
+        return md;
+    }
+    let mut free: Vec<crate::poly::Var> = Vec::new();
+    for e in md
+        .mass
+        .iter()
+        .chain(&md.damping)
+        .chain(&md.stiffness)
+        .flatten()
+    {
+        for v in e.vars() {
+            for w in std::iter::once(v).chain(atom::inner_atoms(v).iter().copied()) {
+                let symbol = matches!(
+                    atom::atom(w),
+                    atom::Atom::Unknown(_) | atom::Atom::Coord(_, 1)
+                );
+                if symbol && !free.contains(&w) {
+                    free.push(w);
+                }
+            }
+        }
+    }
+    if free.is_empty() {
+        return md;
+    }
+    free.sort_by_key(|&v| crate::expr::print::unicode(&Expr::var(v)));
+    let names: Vec<String> = free
+        .iter()
+        .map(|&v| crate::expr::print::unicode(&Expr::var(v)))
+        .collect();
+    let instead = format!(
+        "give {} {} with --at and the parameters with --set",
+        names.join(", "),
+        if names.len() == 1 {
+            "a value"
+        } else {
+            "values"
+        }
+    );
+    md.stability = Stability::Undecided(why.replace("give values with --set", &instead));
+    md
 }

@@ -524,7 +524,14 @@ fn keep_structure(
         tape.reserve(name);
     }
     ev.tape = Some(tape);
-    for name in keep {
+    for (k, name) in keep.iter().enumerate() {
+        if keep[..k].contains(name) {
+            return Err(
+                Diagnostic::global(format!("`--keep`: `{name}` is named twice"))
+                    .with_hint("name each definition to keep once")
+                    .with_kind(crate::diag::ErrorKind::bad_option("--keep")),
+            );
+        }
         match decl.definitions.iter().position(|d| d.0.name == *name) {
             Some(i) if decl.definitions[i].2.is_none() => ev.kept_by_name[i] = true,
             _ => {
