@@ -3,7 +3,8 @@
 
 use crate::expr::atom::{self, Atom};
 use crate::expr::Expr;
-use crate::poly::{Poly, Var};
+use crate::poly::{Mono, Poly, Var};
+use qdot_exact::num::Q;
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
@@ -354,10 +355,17 @@ impl<'a> Builder<'a> {
     fn node_poly(&mut self, p: &Poly) -> Result<NodePoly, CompileError> {
         let mut merged: FxHashMap<NodeMonomial, f64> = FxHashMap::default();
         let mut order: Vec<NodeMonomial> = Vec::new();
-        for (m, c) in p.terms() {
+        // terms and factors in the atoms' history-independent order: the
+        // nodes (and so the program, the generated code, the rounding) are
+        // the same whatever the process interned first
+        let mut terms: Vec<&(Mono, Q)> = p.terms().iter().collect();
+        terms.sort_by_cached_key(|(m, _)| atom::stable_mono_key(m));
+        for (m, c) in terms {
             let mut coef = c.to_f64();
             let mut mono: NodeMonomial = SmallVec::new();
-            for &(v, e) in m.0.iter() {
+            let mut factors: SmallVec<[(Var, u32); 4]> = m.0.clone();
+            factors.sort_by_cached_key(|&(v, _)| atom::stable_key(v));
+            for (v, e) in factors {
                 let id = self.atom(v)?;
                 match self.as_const(id) {
                     Some(x) => coef *= powi(x, e),

@@ -387,7 +387,15 @@ fn linear_factor(lam: &Expr, r: &Expr) -> Expr {
 /// A polynomial in λ with its denominators cleared (a monic quadratic
 /// times the lcm of its coefficients' denominators).
 fn clear(e: &Expr) -> Expr {
-    Expr::from_poly(e.num().clone())
+    // primitive, its sign by the atoms' names: the numerator alone scales
+    // with the denominator's normalization, which follows the ids
+    let p = e.num().primitive();
+    let p = if atom::leads_negative_stable(&p) {
+        -p
+    } else {
+        p
+    };
+    Expr::from_poly(p)
 }
 
 /// Divide Σ cs[i]·λ^i by (λ − r) (r a root): the quotient's coefficients.
