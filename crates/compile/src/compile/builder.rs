@@ -77,6 +77,18 @@ pub fn naive_op_count(outputs: &[Expr]) -> usize {
     outputs.iter().map(expr).sum()
 }
 
+/// A quotient's two sides, borrowed.
+struct Parts<'a>(&'a Poly, &'a Poly);
+
+impl Parts<'_> {
+    fn num(&self) -> &Poly {
+        self.0
+    }
+    fn den(&self) -> &Poly {
+        self.1
+    }
+}
+
 /// A node of the expression DAG; operands are node ids.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub(super) enum Node {
@@ -286,6 +298,16 @@ impl<'a> Builder<'a> {
     // ------------------------------------------------------------ lowering
 
     fn expr(&mut self, e: &Expr) -> Result<u32, CompileError> {
+        // num/den scaled so that the denominator's first term by the atoms'
+        // names has coefficient 1: the canonical scaling follows the ids
+        let scaled;
+        let e = match atom::stable_leading_coeff(e.den()).and_then(|c| c.recip()) {
+            Some(r) if !e.den().is_constant() && !r.is_one() => {
+                scaled = (e.num().scale(&r), e.den().scale(&r));
+                Parts(&scaled.0, &scaled.1)
+            }
+            _ => Parts(e.num(), e.den()),
+        };
         let den = self.node_poly(e.den())?;
         if let Some(c) = constant_of(&den) {
             // A constant denominator folds into the numerator's coefficients.

@@ -585,16 +585,45 @@ pub fn stable_poly_key(p: &Poly) -> Vec<(Vec<(Arc<str>, u32)>, crate::num::Q)> {
     k
 }
 
+/// `f` with each factor's sign (its first term positive,
+/// [`leads_negative_stable`]) and the factors' order (degree, terms, then
+/// [`stable_poly_key`]) history-independent, the unit adjusted: what a
+/// printed factorization shows. [`crate::poly::factor`] itself orders by
+/// the ids, as a polynomial library over bare variables must.
+pub fn stable_factorization(
+    mut f: crate::poly::factor::Factorization,
+) -> crate::poly::factor::Factorization {
+    for (g, e) in f.factors.iter_mut() {
+        if leads_negative_stable(g) {
+            *g = -&*g;
+            if *e % 2 == 1 {
+                f.unit = -f.unit.clone();
+            }
+        }
+    }
+    f.factors
+        .sort_by_cached_key(|(g, e)| (g.total_degree(), g.len(), stable_poly_key(g), *e));
+    f
+}
+
 /// Whether `p`'s first term in the history-independent order (the
 /// highest degree, then [`stable_mono_key`]) has a negative coefficient:
 /// the sign the canonical forms normalize (`sin(u)` keeps `u` or `−u`)
 /// without reference to the ids.
 pub fn leads_negative_stable(p: &Poly) -> bool {
+    stable_leading_coeff(p).is_some_and(|c| c.is_negative())
+}
+
+/// The coefficient of `p`'s first term in the history-independent order
+/// of [`leads_negative_stable`]; `None` for 0. Dividing a quotient's both
+/// sides by its denominator's makes it the same whatever the ids (the
+/// canonical form makes the denominator monic in the ids' order).
+pub fn stable_leading_coeff(p: &Poly) -> Option<&crate::num::Q> {
     p.terms()
         .iter()
         .map(|(m, c)| ((std::cmp::Reverse(m.total_degree()), stable_mono_key(m)), c))
         .min_by(|a, b| a.0.cmp(&b.0))
-        .is_some_and(|(_, c)| c.is_negative())
+        .map(|(_, c)| c)
 }
 
 /// Whether `v` is a function of constants alone (`sin(π/7)`, `cos(1)`,

@@ -151,7 +151,7 @@ fn unsolved(p: &Expr, lv: Var, real: bool, set: &Values) -> (Vec<Expr>, String) 
     let mut factors = Vec::new();
     let mut why = String::from("no closed form for its roots");
     let mut found = false;
-    for (f, mult) in crate::poly::factor::factor(p.num()).factors {
+    for (f, mult) in atom::stable_factorization(crate::poly::factor::factor(p.num())).factors {
         let cs: Vec<Expr> = f.coeffs_in(lv).into_iter().map(Expr::from_poly).collect();
         if cs.len() <= 1 {
             continue;
@@ -326,7 +326,7 @@ fn lambda_roots_factored(p: &Expr, lv: Var) -> Option<(Vec<Expr>, Vec<Expr>)> {
     let lam = Expr::var(lv);
     let mut roots = Vec::new();
     let mut factors = Vec::new();
-    for (f, mult) in crate::poly::factor::factor(p.num()).factors {
+    for (f, mult) in atom::stable_factorization(crate::poly::factor::factor(p.num())).factors {
         let cs: Vec<Expr> = f.coeffs_in(lv).into_iter().map(Expr::from_poly).collect();
         match cs.len() {
             0 | 1 => continue, // free of λ: part of the content

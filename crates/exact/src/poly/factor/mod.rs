@@ -74,18 +74,16 @@ use crate::num::Q;
 use kronecker::kronecker_factor;
 use multivariate::hensel_factor;
 use std::cell::Cell;
-#[cfg(test)]
 use std::cmp::Ordering;
 use univariate::zassenhaus;
 use zpoly::{from_dense, to_dense};
 
 /// A complete factorization `unit · ∏ factorᵢ^expᵢ` over ℚ.
 ///
-/// Each factor is irreducible over ℚ, primitive with integer coefficients,
-/// its first term positive in the order of the atoms' names
-/// (`expr::atom::leads_negative_stable`); factors are distinct and sorted by
-/// total degree, then number of terms, then their terms by name, so the
-/// result is the same whatever the order the atoms were interned in.
+/// Each factor is irreducible over ℚ, primitive with integer coefficients and
+/// has a positive leading coefficient; factors are distinct and sorted by
+/// total degree, then number of terms, then terms (largest monomial first,
+/// coefficients ascending), so the result is canonical.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Factorization {
     /// The rational unit (0 for the zero polynomial).
@@ -186,22 +184,7 @@ fn factor_with(p: &Poly, trials: &Trials) -> Factorization {
         factor_squarefree(&part, &mut irr, trials);
         factors.extend(irr.into_iter().map(|g| (g, mult)));
     }
-    // each factor's sign and the factors' order by the atoms' names
-    // (`expr::atom::stable_cmp`), not their ids: the factorization, and
-    // what prints it, is the same whatever the process interned first
-    for (f, _) in factors.iter_mut() {
-        if crate::expr::atom::leads_negative_stable(f) {
-            *f = -&*f;
-        }
-    }
-    factors.sort_by_cached_key(|(f, e)| {
-        (
-            f.total_degree(),
-            f.len(),
-            crate::expr::atom::stable_poly_key(f),
-            *e,
-        )
-    });
+    factors.sort_by(|a, b| canonical_cmp(&a.0, &b.0).then(a.1.cmp(&b.1)));
     let mut den = Q::one();
     for (f, e) in &factors {
         if let Some(c) = f.leading_coeff() {
@@ -245,9 +228,8 @@ fn content_in(p: &Poly, v: Var) -> Poly {
     }
 }
 
-/// A deterministic total order on normalized polynomials, by the ids
-/// (the tests' reference order).
-#[cfg(test)]
+/// A deterministic total order on normalized polynomials (see
+/// [`Factorization`]).
 fn canonical_cmp(a: &Poly, b: &Poly) -> Ordering {
     a.total_degree()
         .cmp(&b.total_degree())
