@@ -555,9 +555,12 @@ pub fn stable_key(v: Var) -> Arc<str> {
         .map_or_else(|| Arc::from(format!("?{v}")), |e| e.key.clone())
 }
 
+/// A monomial's key in the history-independent order ([`stable_mono_key`]).
+pub type MonoKey = Vec<(Arc<str>, u32)>;
+
 /// A monomial's atoms with their exponents, in [`stable_cmp`]'s order: two
 /// monomials compare by it as a history-independent order.
-pub fn stable_mono_key(m: &crate::poly::Mono) -> Vec<(Arc<str>, u32)> {
+pub fn stable_mono_key(m: &crate::poly::Mono) -> MonoKey {
     let t = read();
     let mut k: Vec<(Arc<str>, u32)> = m
         .pairs()
@@ -575,7 +578,7 @@ pub fn stable_mono_key(m: &crate::poly::Mono) -> Vec<(Arc<str>, u32)> {
 
 /// `p`'s terms as ([`stable_mono_key`], coefficient), in that key's
 /// order: polynomials compare by it independently of the ids.
-pub fn stable_poly_key(p: &Poly) -> Vec<(Vec<(Arc<str>, u32)>, crate::num::Q)> {
+pub fn stable_poly_key(p: &Poly) -> Vec<(MonoKey, crate::num::Q)> {
     let mut k: Vec<_> = p
         .terms()
         .iter()
