@@ -16,6 +16,7 @@ mod codegen;
 mod compile;
 mod constraints;
 mod definite_props;
+mod determinism;
 mod dimensions;
 mod equilibrium;
 mod errors_json;

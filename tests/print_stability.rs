@@ -1,9 +1,10 @@
-//! A scene prints the same whatever the process parsed before it. The
-//! canonical forms follow the atoms' interning order, which differs from
-//! one process to the next (the REPL, the Python package and these tests
-//! parse many scenes in one process); the printers must not. Every example,
-//! printed in-process after all the others were parsed in a shuffled order,
-//! is the text the command line prints in a fresh process.
+//! A scene prints the same whatever the process parsed before it (the
+//! REPL, the Python package and these tests parse many scenes in one
+//! process). Every example, printed in-process after all the others were
+//! parsed in a shuffled order, is what the command line prints in a fresh
+//! process: the text and the JSON, and the same error where the command
+//! line refuses. `tests/determinism.rs` compares every command and format
+//! after scenes that intern the same names in the opposite order.
 
 use qdot::output::{run, Command, Format};
 use std::process::Command as Process;
@@ -37,18 +38,33 @@ fn every_example_prints_as_in_a_fresh_process() {
         ("integrals", Command::Integrals),
     ];
     let mut differ = Vec::new();
+    let (mut compared, mut refused) = (0, 0);
     for f in &files {
         let src = std::fs::read_to_string(f).expect("a scene");
-        for (name, cmd) in commands {
+        // the JSON of the two commands that print the most expressions
+        for (name, cmd, fmt) in commands.iter().map(|&(n, c)| (n, c, Format::Text)).chain([
+            ("solve", Command::Solve, Format::Json),
+            ("modes", Command::Modes, Format::Json),
+        ]) {
+            let format = if fmt == Format::Json { "json" } else { "text" };
             let fresh = Process::new(env!("CARGO_BIN_EXE_qdot"))
-                .args([name, f.to_str().expect("a path")])
+                .args([name, f.to_str().expect("a path"), "--format", format])
                 .output()
                 .expect("qdot runs");
-            let here = run(cmd, &src, Format::Text, &none);
-            if let Ok((text, _)) = here {
-                if fresh.status.success() && text.as_bytes() != fresh.stdout.as_slice() {
-                    differ.push(format!("{name} {}", f.display()));
+            compared += 1;
+            let same = match run(cmd, &src, fmt, &none) {
+                Ok((text, _)) => fresh.status.success() && text.as_bytes() == fresh.stdout,
+                // refused here and there, with the same message
+                Err(e) => {
+                    refused += 1;
+                    let stderr = String::from_utf8_lossy(&fresh.stderr);
+                    let stdout = String::from_utf8_lossy(&fresh.stdout);
+                    !fresh.status.success()
+                        && (stderr.contains(&e.message) || stdout.contains(&e.message))
                 }
+            };
+            if !same {
+                differ.push(format!("{name} --format {format} {}", f.display()));
             }
         }
     }
@@ -56,4 +72,7 @@ fn every_example_prints_as_in_a_fresh_process() {
         differ.is_empty(),
         "printed differently in-process: {differ:#?}"
     );
+    // 48 examples × 8 outputs; a handful are refusals (no equilibrium, …)
+    assert!(compared >= 380, "{compared} compared");
+    assert!(refused * 4 < compared, "{refused} of {compared} refused");
 }

@@ -3,7 +3,8 @@
 
 use crate::expr::atom::{self, Atom};
 use crate::expr::Expr;
-use crate::poly::{Poly, Var};
+use crate::poly::{Mono, Poly, Var};
+use qdot_exact::num::Q;
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
@@ -74,6 +75,18 @@ pub fn naive_op_count(outputs: &[Expr]) -> usize {
         n
     }
     outputs.iter().map(expr).sum()
+}
+
+/// A quotient's two sides, borrowed.
+struct Parts<'a>(&'a Poly, &'a Poly);
+
+impl Parts<'_> {
+    fn num(&self) -> &Poly {
+        self.0
+    }
+    fn den(&self) -> &Poly {
+        self.1
+    }
 }
 
 /// A node of the expression DAG; operands are node ids.
@@ -285,6 +298,16 @@ impl<'a> Builder<'a> {
     // ------------------------------------------------------------ lowering
 
     fn expr(&mut self, e: &Expr) -> Result<u32, CompileError> {
+        // num/den scaled so that the denominator's first term by the atoms'
+        // names has coefficient 1: the canonical scaling follows the ids
+        let scaled;
+        let e = match atom::stable_leading_coeff(e.den()).and_then(|c| c.recip()) {
+            Some(r) if !e.den().is_constant() && !r.is_one() => {
+                scaled = (e.num().scale(&r), e.den().scale(&r));
+                Parts(&scaled.0, &scaled.1)
+            }
+            _ => Parts(e.num(), e.den()),
+        };
         let den = self.node_poly(e.den())?;
         if let Some(c) = constant_of(&den) {
             // A constant denominator folds into the numerator's coefficients.
@@ -354,10 +377,17 @@ impl<'a> Builder<'a> {
     fn node_poly(&mut self, p: &Poly) -> Result<NodePoly, CompileError> {
         let mut merged: FxHashMap<NodeMonomial, f64> = FxHashMap::default();
         let mut order: Vec<NodeMonomial> = Vec::new();
-        for (m, c) in p.terms() {
+        // terms and factors in the atoms' history-independent order: the
+        // nodes (and so the program, the generated code, the rounding) are
+        // the same whatever the process interned first
+        let mut terms: Vec<&(Mono, Q)> = p.terms().iter().collect();
+        terms.sort_by_cached_key(|(m, _)| atom::stable_mono_key(m));
+        for (m, c) in terms {
             let mut coef = c.to_f64();
             let mut mono: NodeMonomial = SmallVec::new();
-            for &(v, e) in m.0.iter() {
+            let mut factors: SmallVec<[(Var, u32); 4]> = m.0.clone();
+            factors.sort_by_cached_key(|&(v, _)| atom::stable_key(v));
+            for (v, e) in factors {
                 let id = self.atom(v)?;
                 match self.as_const(id) {
                     Some(x) => coef *= powi(x, e),

@@ -170,6 +170,8 @@ struct Entry {
     inner: Arc<[Var]>,
     /// For reducible atoms: the polynomial P with atom² = P.
     square: Option<Poly>,
+    /// The atom's place in the history-independent order ([`stable_cmp`]).
+    key: Arc<str>,
     /// A number whose relations the canonical form may not know: a
     /// function atom of constants only (`sin(π/7)`, `√(5 − √5)`,
     /// `exp(1)`); see [`is_opaque_constant`].
@@ -288,7 +290,9 @@ impl Table {
                 }
             }
         }
+        let key = self.stable_key(&atom);
         self.entries.push(Entry {
+            key,
             atom: atom.clone(),
             depth,
             size,
@@ -300,6 +304,82 @@ impl Table {
         });
         self.index.insert(atom, v);
         v
+    }
+
+    /// The key of [`stable_cmp`]: a class (the printers' factor order), then
+    /// the name, or the function and its argument written with the keys of
+    /// its atoms; a long one is replaced by a hash of it, so that keys stay
+    /// short however deeply atoms nest.
+    fn stable_key(&self, atom: &Atom) -> Arc<str> {
+        let fun = |name: &str, u: &Expr| format!("4{name}({})", self.expr_key(u));
+        let named = |class: char, name: &str, tag: char, k: u32| {
+            format!("{class}{}\u{1}{name}\u{1}{tag}{k:010}", name.to_lowercase())
+        };
+        let key = match atom {
+            Atom::Param(n) => named('0', n, 'p', 0),
+            Atom::Unknown(n) => named('0', n, 'u', 0),
+            Atom::Pi => "1".into(),
+            Atom::Root(n) => format!("2{:010}{n}", n.len()),
+            Atom::SqrtOf(u) => format!("2sqrt({})", self.expr_key(u)),
+            Atom::Time => "3".into(),
+            Atom::Given(n, k) => named('3', n, 'g', *k),
+            Atom::Named(n) => format!("{}\u{1}{}", named('3', &n.name, 'n', n.order), n.tape),
+            Atom::Sin(u) => fun("sin", u),
+            Atom::Cos(u) => fun("cos", u),
+            Atom::Exp(u) => fun("exp", u),
+            Atom::Ln(u) => fun("ln", u),
+            Atom::Atan(u) => fun("atan", u),
+            Atom::Asin(u) => fun("asin", u),
+            Atom::Acos(u) => fun("acos", u),
+            Atom::Shown(f) => format!(
+                "4{}({}{}{})",
+                if f.cos { "cos" } else { "sin" },
+                self.expr_key(&f.a),
+                if f.minus { '-' } else { '+' },
+                self.expr_key(&f.b)
+            ),
+            Atom::Group(p) => format!("5({})", self.poly_key(p)),
+            Atom::Coord(n, k) => named('6', n, 'c', *k),
+        };
+        if key.len() <= MAX_KEY {
+            return key.into();
+        }
+        let hash = |seed: u64| {
+            use std::hash::{Hash, Hasher};
+            let mut h = rustc_hash::FxHasher::default();
+            seed.hash(&mut h);
+            key.hash(&mut h);
+            h.finish()
+        };
+        let head: String = key.chars().take(8).collect();
+        format!("{head}#{:016x}{:016x}", hash(1), hash(2)).into()
+    }
+
+    fn expr_key(&self, e: &Expr) -> String {
+        format!("{}/{}", self.poly_key(e.num()), self.poly_key(e.den()))
+    }
+
+    /// A polynomial's terms, each its coefficient and its atoms' keys, in
+    /// the order of those keys.
+    fn poly_key(&self, p: &Poly) -> String {
+        let mut terms: Vec<String> = p
+            .terms()
+            .iter()
+            .map(|(m, c)| {
+                let mut fs: Vec<String> = m
+                    .pairs()
+                    .iter()
+                    .map(|&(v, e)| {
+                        let k = self.entry(v).map_or("?", |e| &e.key);
+                        format!("[{k}]{e}")
+                    })
+                    .collect();
+                fs.sort();
+                format!("{}{c}", fs.concat())
+            })
+            .collect();
+        terms.sort();
+        terms.join(";")
     }
 
     fn entry(&self, v: Var) -> Option<&Entry> {
@@ -446,6 +526,107 @@ pub fn atom(v: Var) -> Atom {
         Some(e) => e.atom.clone(),
         None => Atom::Param(Arc::from(format!("?{v}"))),
     }
+}
+
+/// Keys longer than this are hashed ([`Table::stable_key`]).
+const MAX_KEY: usize = 256;
+
+/// The atoms in an order independent of the process's history (the ids
+/// follow the order of first use): by kind as the printers order factors
+/// (parameters, π, radicals, time, functions, coordinates), then by name,
+/// a function by its argument. Every choice that reaches output and is not
+/// the printers' own (the sign kept in `sin(u)`'s argument, the order of a
+/// generated program's operands) is made by it.
+pub fn stable_cmp(a: Var, b: Var) -> std::cmp::Ordering {
+    if a == b {
+        return std::cmp::Ordering::Equal;
+    }
+    let t = read();
+    match (t.entry(a), t.entry(b)) {
+        (Some(x), Some(y)) => x.key.cmp(&y.key).then(a.cmp(&b)),
+        _ => a.cmp(&b),
+    }
+}
+
+/// The key [`stable_cmp`] compares, to sort by once per atom.
+pub fn stable_key(v: Var) -> Arc<str> {
+    read()
+        .entry(v)
+        .map_or_else(|| Arc::from(format!("?{v}")), |e| e.key.clone())
+}
+
+/// A monomial's key in the history-independent order ([`stable_mono_key`]).
+pub type MonoKey = Vec<(Arc<str>, u32)>;
+
+/// A monomial's atoms with their exponents, in [`stable_cmp`]'s order: two
+/// monomials compare by it as a history-independent order.
+pub fn stable_mono_key(m: &crate::poly::Mono) -> MonoKey {
+    let t = read();
+    let mut k: Vec<(Arc<str>, u32)> = m
+        .pairs()
+        .iter()
+        .map(|&(v, e)| {
+            let key = t
+                .entry(v)
+                .map_or_else(|| Arc::from(format!("?{v}")), |x| x.key.clone());
+            (key, e)
+        })
+        .collect();
+    k.sort();
+    k
+}
+
+/// `p`'s terms as ([`stable_mono_key`], coefficient), in that key's
+/// order: polynomials compare by it independently of the ids.
+pub fn stable_poly_key(p: &Poly) -> Vec<(MonoKey, crate::num::Q)> {
+    let mut k: Vec<_> = p
+        .terms()
+        .iter()
+        .map(|(m, c)| (stable_mono_key(m), c.clone()))
+        .collect();
+    k.sort();
+    k
+}
+
+/// `f` with each factor's sign (its first term positive,
+/// [`leads_negative_stable`]) and the factors' order (degree, terms, then
+/// [`stable_poly_key`]) history-independent, the unit adjusted: what a
+/// printed factorization shows. [`crate::poly::factor`] itself orders by
+/// the ids, as a polynomial library over bare variables must.
+pub fn stable_factorization(
+    mut f: crate::poly::factor::Factorization,
+) -> crate::poly::factor::Factorization {
+    for (g, e) in f.factors.iter_mut() {
+        if leads_negative_stable(g) {
+            *g = -&*g;
+            if *e % 2 == 1 {
+                f.unit = -f.unit.clone();
+            }
+        }
+    }
+    f.factors
+        .sort_by_cached_key(|(g, e)| (g.total_degree(), g.len(), stable_poly_key(g), *e));
+    f
+}
+
+/// Whether `p`'s first term in the history-independent order (the
+/// highest degree, then [`stable_mono_key`]) has a negative coefficient:
+/// the sign the canonical forms normalize (`sin(u)` keeps `u` or `−u`)
+/// without reference to the ids.
+pub fn leads_negative_stable(p: &Poly) -> bool {
+    stable_leading_coeff(p).is_some_and(|c| c.is_negative())
+}
+
+/// The coefficient of `p`'s first term in the history-independent order
+/// of [`leads_negative_stable`]; `None` for 0. Dividing a quotient's both
+/// sides by its denominator's makes it the same whatever the ids (the
+/// canonical form makes the denominator monic in the ids' order).
+pub fn stable_leading_coeff(p: &Poly) -> Option<&crate::num::Q> {
+    p.terms()
+        .iter()
+        .map(|(m, c)| ((std::cmp::Reverse(m.total_degree()), stable_mono_key(m)), c))
+        .min_by(|a, b| a.0.cmp(&b.0))
+        .map(|(_, c)| c)
 }
 
 /// Whether `v` is a function of constants alone (`sin(π/7)`, `cos(1)`,

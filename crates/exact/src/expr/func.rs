@@ -355,10 +355,19 @@ fn multiple(s1: &Expr, c1: &Expr, n: i64) -> (Expr, Expr) {
     (s, c)
 }
 
+/// Whether `u` is the negative of the argument an atom keeps: its first
+/// term in the history-independent order ([`atom::leads_negative_stable`]),
+/// over its denominator's, is negative. Never the ids' order: the atom made
+/// (`sin(x·y − z)` or `−sin(z − x·y)`) would depend on what the process
+/// interned first.
+fn negative_lead(u: &Expr) -> bool {
+    atom::leads_negative_stable(u.num()) != atom::leads_negative_stable(u.den())
+}
+
 /// sin, cos of a non-polynomial argument: an atom pair, with the sign of
-/// the argument normalized (leading coefficient of the numerator positive).
+/// the argument normalized ([`negative_lead`]).
 fn base_sin_cos_signed(u: &Expr) -> (Expr, Expr) {
-    if u.num().leading_coeff().is_some_and(|c| c.is_negative()) {
+    if negative_lead(u) {
         let (s, c) = intern_base(&u.neg());
         (s.neg(), c)
     } else {
@@ -625,8 +634,8 @@ pub fn exp(u: &Expr) -> Expr {
         }
     }
     if !u.is_poly() {
-        // exp(−u) = 1/exp(u): the atom's argument has a positive leading coefficient.
-        if u.num().leading_coeff().is_some_and(|c| c.is_negative()) {
+        // exp(−u) = 1/exp(u): the atom's argument is the one [`negative_lead`] keeps.
+        if negative_lead(u) {
             return exp_atom(&u.neg()).recip().unwrap_or_else(|_| Expr::one());
         }
         return exp_atom(u);
@@ -675,7 +684,7 @@ pub fn atan(u: &Expr) -> Expr {
     if u.is_zero() {
         return Expr::zero();
     }
-    if u.num().leading_coeff().is_some_and(|c| c.is_negative()) {
+    if negative_lead(u) {
         return atan(&u.neg()).neg();
     }
     if let Some(k) = exact_angle(u, -5..=5, tan_twelfths) {
@@ -717,7 +726,7 @@ pub fn asin(u: &Expr) -> Result<Expr, MathError> {
     if u.is_zero() {
         return Ok(Expr::zero());
     }
-    if u.num().leading_coeff().is_some_and(|c| c.is_negative()) {
+    if negative_lead(u) {
         return Ok(asin(&u.neg())?.neg());
     }
     if let Some(q) = u.as_rational() {
@@ -749,7 +758,7 @@ pub fn acos(u: &Expr) -> Result<Expr, MathError> {
             return Ok(Expr::pi().scale(&k));
         }
     }
-    if u.num().leading_coeff().is_some_and(|c| c.is_negative()) {
+    if negative_lead(u) {
         // acos(−x) = π − acos x
         return Ok(Expr::pi().sub(&acos(&u.neg())?));
     }

@@ -200,12 +200,45 @@ pub fn with_coordinate_order<R>(names: &[String], f: impl FnOnce() -> R) -> R {
     struct Restore(Vec<String>);
     impl Drop for Restore {
         fn drop(&mut self) {
-            let old = std::mem::take(&mut self.0);
-            COORDINATE_ORDER.with(|c| *c.borrow_mut() = old);
+            set_coordinate_order(std::mem::take(&mut self.0));
         }
     }
-    let _restore = Restore(COORDINATE_ORDER.with(|c| c.replace(names.to_vec())));
+    let _restore = Restore(set_coordinate_order(names.to_vec()));
     f()
+}
+
+/// Installs `names` as the print order and returns the one it replaces.
+/// The caches of atom texts (and of what is computed from them) hold
+/// texts of the order in force: a new order empties them.
+fn set_coordinate_order(names: Vec<String>) -> Vec<String> {
+    let old = COORDINATE_ORDER.with(|c| c.replace(names));
+    let changed = COORDINATE_ORDER.with(|c| *c.borrow() != old);
+    if changed {
+        ATOM_TEXTS.with(|c| c.borrow_mut().clear());
+        super::compact::forget_atom_texts();
+    }
+    old
+}
+
+/// The order in which the angles of sines and cosines are written
+/// (`cos(θ₁ − θ₂)`, the Fourier form's frequencies): as their terms print
+/// (the print order in force, then names), then by
+/// [`atom::stable_cmp`] — never by interning order. `sin` is a sine atom.
+pub(crate) fn angle_rank(sin: Var) -> (Vec<TermKey>, std::sync::Arc<str>) {
+    let keys = match atom::atom(sin) {
+        Atom::Sin(u) => {
+            let mut k: Vec<TermKey> = u
+                .num()
+                .terms()
+                .iter()
+                .map(|(m, c)| term_key(m, c.is_negative()))
+                .collect();
+            k.sort();
+            k
+        }
+        _ => Vec::new(),
+    };
+    (keys, atom::stable_key(sin))
 }
 
 /// Where a term of a printed sum goes, computed once per term (the keys
@@ -700,21 +733,25 @@ enum AtomText {
 }
 
 thread_local! {
-    /// Atom texts already printed. An atom's text never changes, and
-    /// printing it again per occurrence and per sort comparison would
-    /// cost exponentially in the nesting of arguments.
-    static ATOM_TEXTS: std::cell::RefCell<rustc_hash::FxHashMap<(Var, AtomText), std::rc::Rc<str>>> =
+    /// Atom texts already printed, per (atom, text, whether the compact
+    /// forms are off): an atom's text depends on nothing else but the
+    /// print order, and a new print order empties the cache
+    /// ([`set_coordinate_order`]). Printing it again per occurrence and per
+    /// sort comparison would cost exponentially in the nesting of
+    /// arguments.
+    static ATOM_TEXTS: std::cell::RefCell<rustc_hash::FxHashMap<(Var, AtomText, bool), std::rc::Rc<str>>> =
         std::cell::RefCell::new(rustc_hash::FxHashMap::default());
 }
 
-/// The input-syntax text of atom `v` (printed once per thread).
+/// The input-syntax text of atom `v` (printed once per thread and order).
 pub(crate) fn atom_input_text(v: Var) -> std::rc::Rc<str> {
     atom_text(v, AtomText::Input)
 }
 
-/// The text of atom `v`, printed once per thread.
+/// The text of atom `v`, printed once per thread and print order.
 fn atom_text(v: Var, which: AtomText) -> std::rc::Rc<str> {
-    if let Some(s) = ATOM_TEXTS.with(|c| c.borrow().get(&(v, which)).cloned()) {
+    let key = (v, which, super::compact::is_canonical_only());
+    if let Some(s) = ATOM_TEXTS.with(|c| c.borrow().get(&key).cloned()) {
         return s;
     }
     let a = atom::atom(v);
@@ -724,7 +761,7 @@ fn atom_text(v: Var, which: AtomText) -> std::rc::Rc<str> {
         AtomText::UnicodeArgument => unicode_arg(&a),
     }
     .into();
-    ATOM_TEXTS.with(|c| c.borrow_mut().insert((v, which), s.clone()));
+    ATOM_TEXTS.with(|c| c.borrow_mut().insert(key, s.clone()));
     s
 }
 
@@ -792,6 +829,8 @@ fn atom_unicode(a: &Atom) -> String {
         Atom::Root(n) => format!("√{n}"),
         // √(q²) = |q|, as a lecturer writes it (the input syntax keeps sqrt)
         Atom::SqrtOf(u) => match square_root_of_square(u) {
+            // |q| = |−q|: the sign the printers give a sum, not the root's
+            Some(q) if leads_negative(q.num()) => format!("|{}|", unicode(&q.neg())),
             Some(q) => format!("|{}|", unicode(&q)),
             None => format!("√({})", unicode(u)),
         },
@@ -981,16 +1020,25 @@ pub(crate) fn fold_trig(p: &Poly) -> Option<Poly> {
     let mut used = vec![false; terms.len()];
     let mut out: Vec<(Mono, Q)> = Vec::new();
     let mut folded = false;
-    for i in 0..terms.len() {
+    // which pairs fold is decided in an order independent of the ids
+    let mut order: Vec<usize> = (0..terms.len()).collect();
+    order.sort_by_cached_key(|&i| atom::stable_mono_key(&terms[i].0));
+    let mut ranks: rustc_hash::FxHashMap<Var, (Vec<TermKey>, std::sync::Arc<str>)> =
+        rustc_hash::FxHashMap::default();
+    for i in order {
         if used[i] {
             continue;
         }
         let (m, c) = &terms[i];
-        let trig: Vec<(Var, Var, bool)> =
+        let mut trig: Vec<(Var, Var, bool)> =
             m.0.iter()
                 .filter(|&&(_, e)| e == 1)
                 .filter_map(|&(v, _)| trig_factor(v).map(|(s, is_cos)| (v, s, is_cos)))
                 .collect();
+        if trig.len() < 2 {
+            continue;
+        }
+        trig.sort_by_cached_key(|&(v, _, _)| atom::stable_key(v));
         'pairs: for x in 0..trig.len() {
             for y in 0..trig.len() {
                 if x == y || trig[x].1 == trig[y].1 {
@@ -1021,8 +1069,11 @@ pub(crate) fn fold_trig(p: &Poly) -> Option<Poly> {
                 let (Some(a), Some(b)) = (base_angle(sx), base_angle(sy)) else {
                     continue;
                 };
-                // Put the earlier angle first; sin(b − a) = −sin(a − b).
-                let a_first = sx < sy;
+                // Put the angle written first first; sin(b − a) = −sin(a − b).
+                for v in [sx, sy] {
+                    ranks.entry(v).or_insert_with(|| angle_rank(v));
+                }
+                let a_first = ranks.get(&sx) <= ranks.get(&sy);
                 let (var, coef) = if cx {
                     // cos a cos b (+) sin a sin b = cos(a − b); (−): cos(a + b)
                     let (p, q) = if a_first { (&a, &b) } else { (&b, &a) };

@@ -380,8 +380,11 @@ impl Tape {
     /// terms Σ ∂X/∂q̇·q̈ (rates must be defined).
     fn total_rate(&mut self, i: usize) -> Expr {
         let mut total = self.rates[&i].clone();
-        let leaves = self.entries[i].leaves.clone();
-        for &w in leaves.iter() {
+        // the partials are defined (and named) in the atoms'
+        // history-independent order, not the ids'
+        let mut leaves = self.entries[i].leaves.to_vec();
+        leaves.sort_by_cached_key(|&w| atom::stable_key(w));
+        for w in leaves {
             let Some(acc) = is_rate_of_coordinate(w) else {
                 continue;
             };

@@ -151,7 +151,7 @@ fn unsolved(p: &Expr, lv: Var, real: bool, set: &Values) -> (Vec<Expr>, String) 
     let mut factors = Vec::new();
     let mut why = String::from("no closed form for its roots");
     let mut found = false;
-    for (f, mult) in crate::poly::factor::factor(p.num()).factors {
+    for (f, mult) in atom::stable_factorization(crate::poly::factor::factor(p.num())).factors {
         let cs: Vec<Expr> = f.coeffs_in(lv).into_iter().map(Expr::from_poly).collect();
         if cs.len() <= 1 {
             continue;
@@ -326,7 +326,7 @@ fn lambda_roots_factored(p: &Expr, lv: Var) -> Option<(Vec<Expr>, Vec<Expr>)> {
     let lam = Expr::var(lv);
     let mut roots = Vec::new();
     let mut factors = Vec::new();
-    for (f, mult) in crate::poly::factor::factor(p.num()).factors {
+    for (f, mult) in atom::stable_factorization(crate::poly::factor::factor(p.num())).factors {
         let cs: Vec<Expr> = f.coeffs_in(lv).into_iter().map(Expr::from_poly).collect();
         match cs.len() {
             0 | 1 => continue, // free of λ: part of the content
@@ -387,7 +387,15 @@ fn linear_factor(lam: &Expr, r: &Expr) -> Expr {
 /// A polynomial in λ with its denominators cleared (a monic quadratic
 /// times the lcm of its coefficients' denominators).
 fn clear(e: &Expr) -> Expr {
-    Expr::from_poly(e.num().clone())
+    // primitive, its sign by the atoms' names: the numerator alone scales
+    // with the denominator's normalization, which follows the ids
+    let p = e.num().primitive();
+    let p = if atom::leads_negative_stable(&p) {
+        -p
+    } else {
+        p
+    };
+    Expr::from_poly(p)
 }
 
 /// Divide Σ cs[i]·λ^i by (λ − r) (r a root): the quotient's coefficients.

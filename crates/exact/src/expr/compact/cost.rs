@@ -10,8 +10,14 @@ use rustc_hash::FxHashMap;
 use std::cell::RefCell;
 
 thread_local! {
-    /// Operations of an atom written out (0 for a symbol), per atom.
+    /// Operations of an atom written out (0 for a symbol), per atom, in the
+    /// print order in force (the text of a sum depends on it).
     static ATOM_OPS: RefCell<FxHashMap<Var, usize>> = RefCell::new(FxHashMap::default());
+}
+
+/// Empties [`ATOM_OPS`] when the print order changes.
+pub(super) fn forget() {
+    ATOM_OPS.with(|c| c.borrow_mut().clear());
 }
 
 /// Operations of num/den printed as a quotient (or a polynomial).

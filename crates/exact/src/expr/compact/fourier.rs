@@ -8,6 +8,7 @@
 //! m₁ + ½·m₂ − ½·m₂·cos(2·θ₁ − 2·θ₂).
 
 use super::super::atom::{self, Atom, Folded};
+use super::super::print;
 use super::super::Expr;
 use crate::num::Q;
 use crate::poly::{Mono, Poly, Var};
@@ -15,10 +16,11 @@ use rustc_hash::FxHashMap;
 use std::sync::Arc;
 
 /// The angles of the sines and cosines in a polynomial: (sin var, cos var,
-/// the angle), sorted by the angle's printed name so that the frequency
-/// vectors' signs do not depend on interning order.
+/// the angle), in the order they are written ([`print::angle_rank`]: the
+/// print order, then names) so that the frequency vectors' signs do not
+/// depend on interning order: 2·θ₁ − 2·θ₂ when θ₁ is declared first.
 pub(crate) fn angles(ps: &[&Poly]) -> Vec<(Var, Var, Expr)> {
-    let mut seen: Vec<(String, Var, Var, Expr)> = Vec::new();
+    let mut seen: Vec<(Var, Var, Expr)> = Vec::new();
     for p in ps {
         for v in p.vars() {
             let sin = match atom::atom(v) {
@@ -26,22 +28,17 @@ pub(crate) fn angles(ps: &[&Poly]) -> Vec<(Var, Var, Expr)> {
                 Atom::Cos(_) => atom::sin_partner(v),
                 _ => continue,
             };
-            if seen.iter().any(|s| s.1 == sin) {
+            if seen.iter().any(|s| s.0 == sin) {
                 continue;
             }
             let (Atom::Sin(u), Some(cos)) = (atom::atom(sin), atom::cos_partner(sin)) else {
                 continue;
             };
-            seen.push((
-                super::super::print::atom_input_text(sin).to_string(),
-                sin,
-                cos,
-                u,
-            ));
+            seen.push((sin, cos, u));
         }
     }
-    seen.sort_by(|a, b| a.0.cmp(&b.0));
-    seen.into_iter().map(|(_, s, c, u)| (s, c, u)).collect()
+    seen.sort_by_cached_key(|s| print::angle_rank(s.0));
+    seen
 }
 
 /// A Fourier series: (k, the coefficient of e^{i·k·u}).

@@ -158,6 +158,17 @@ thread_local! {
     static CANONICAL_ONLY: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
 }
 
+/// Whether the compact forms are off ([`canonical_only`]): the text of an
+/// atom printed then differs.
+pub(crate) fn is_canonical_only() -> bool {
+    CANONICAL_ONLY.with(|c| c.get())
+}
+
+/// Empties the caches computed from atom texts (the print order changed).
+pub(crate) fn forget_atom_texts() {
+    cost::forget();
+}
+
 /// Runs `f` with the compact forms off: what it prints is the canonical
 /// (expanded) form, for the places that show it on purpose
 /// (det(K − λ·M) expanded, then factored).
