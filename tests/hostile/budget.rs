@@ -219,5 +219,8 @@ fn the_forces_of_a_thirty_rod_chain_in_space_stop_at_the_budget() {
         &[],
     );
     assert_eq!(o.code, Some(1), "{o:?}");
-    assert_eq!(o.stderr, "");
+    assert_eq!(
+        o.stderr,
+        "error: expression too large: 2,374,772 terms while expanding the generalized forces from the intermediates (the limit is 2,000,000)\n  = hint: exact expressions this large are rarely what a scene means (expand less, or choose other coordinates); to go on, raise the limit: --max-terms 20000000\n"
+    );
 }

@@ -307,6 +307,10 @@ pub fn expanded_generalized_forces(scene: &Scene) -> Result<Vec<Expr>, Diagnosti
         let Some(tape) = &scene.tape else {
             return Ok(generalized_forces(scene));
         };
+        let _context = crate::budget::enter(
+            || "expanding the generalized forces from the intermediates".into(),
+            None,
+        );
         let mut tape = tape.clone();
         force_terms_with(scene, &mut tape)
             .iter()
