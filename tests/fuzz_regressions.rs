@@ -1,7 +1,7 @@
 //! Every input the fuzzers ever found (fuzz/regressions/TARGET/*) and the
 //! seed corpus (fuzz/corpus/TARGET/*) replayed through the fuzz targets'
 //! own code (fuzz/src/pipeline.rs, included below), each in a child
-//! process under a time and an address-space bound, so that a panic, an
+//! process under a CPU-time and an address-space bound (`crate::bound`), so that a panic, an
 //! abort, a stack overflow, a hang and a memory blow-up all fail the test
 //! (each named with its file) instead of the whole test binary.
 //!
@@ -10,15 +10,14 @@
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::process::Command;
 
 #[allow(dead_code)]
 #[path = "../fuzz/src/pipeline.rs"]
 mod pipeline;
 
-/// The bounds of one replay: the fuzzers' `-timeout` (seconds) and
-/// `-rss_limit_mb`, the latter as an address-space limit.
+/// The bounds of one replay: the fuzzers' `-timeout` (seconds, here of
+/// CPU time) and `-rss_limit_mb`, the latter as an address-space limit.
 const SECONDS: u64 = 10;
 const MEMORY_MIB: u64 = 2048;
 
@@ -45,7 +44,10 @@ fn replay() {
             "self-test-overflow" => {
                 std::hint::black_box(deep(data.len() as u64 + 1));
             }
-            "self-test-hang" => std::thread::sleep(Duration::from_secs(3600)),
+            // a hang that computes: the CPU-time bound ends it
+            "self-test-hang" => loop {
+                std::hint::black_box(0u64);
+            },
             _ => pipeline::by_name(target, &data),
         }
     }
@@ -78,40 +80,26 @@ fn replay_bounded(target: &str, inputs: &[PathBuf], seconds: u64) -> Option<Stri
         job.push_str(&f.to_string_lossy());
     }
     let exe = std::env::current_exe().expect("the test binary");
-    let script = format!("ulimit -v {} && exec \"$0\" \"$@\"", MEMORY_MIB * 1024);
-    let mut child = Command::new("sh")
-        .arg("-c")
-        .arg(script)
-        .arg(exe)
+    let mut command = Command::new(&exe);
+    command
         .args([REPLAY_TEST, "--exact", "--nocapture", "--test-threads=1"])
         .env(ENV, job)
-        .env("RUST_BACKTRACE", "0")
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the child starts");
-    // drain stderr while the child runs (a long panic message must not block it)
-    let mut pipe = child.stderr.take().expect("stderr");
+        .env("RUST_BACKTRACE", "0");
+    let mut bounded = crate::bound::spawn_bounded(&exe, &mut command, seconds, MEMORY_MIB);
+    drop(bounded.child.stdin.take());
+    // drain both pipes while the child runs (a long panic message must not block it)
+    let mut out = bounded.child.stdout.take().expect("stdout");
+    let drain = std::thread::spawn(move || {
+        let _ = std::io::copy(&mut out, &mut std::io::sink());
+    });
+    let mut pipe = bounded.child.stderr.take().expect("stderr");
     let reader = std::thread::spawn(move || {
         let mut s = String::new();
         let _ = pipe.read_to_string(&mut s);
         s
     });
-    let start = Instant::now();
-    let mut timed_out = false;
-    let status = loop {
-        if let Some(s) = child.try_wait().expect("wait") {
-            break Some(s);
-        }
-        if start.elapsed() > Duration::from_secs(seconds) {
-            let _ = child.kill();
-            let _ = child.wait();
-            timed_out = true;
-            break None;
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
+    let (code, timed_out, _) = bounded.wait();
+    let _ = drain.join();
     let err = reader.join().unwrap_or_default();
     let last = err
         .lines()
@@ -119,10 +107,9 @@ fn replay_bounded(target: &str, inputs: &[PathBuf], seconds: u64) -> Option<Stri
         .map_or("", |l| &l["replaying ".len()..])
         .to_string();
     if timed_out {
-        return Some(format!("{last}: timed out after {seconds} s"));
+        return Some(format!("{last}: timed out after {seconds} s of CPU"));
     }
-    let status = status.expect("a status");
-    if status.success() && err.contains("replayed cleanly") {
+    if code == Some(0) && err.contains("replayed cleanly") {
         return None;
     }
     // the panic message, or the runtime's last words (stack overflow, failed allocation)
@@ -132,6 +119,10 @@ fn replay_bounded(target: &str, inputs: &[PathBuf], seconds: u64) -> Option<Stri
         .filter(|l| !l.starts_with("running ") && !l.starts_with("test "))
         .take(4)
         .collect();
+    let status = match code {
+        Some(c) => format!("exit status {c}"),
+        None => "ended by a signal".to_string(),
+    };
     Some(format!("{last}: {status}: {}", why.join(" | ")))
 }
 

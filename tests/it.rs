@@ -40,6 +40,7 @@ mod latex;
 mod latex_pdf;
 mod latex_steps;
 mod lazy;
+mod library_budget;
 mod limits_doc;
 mod mechanisms;
 mod modes;

@@ -41,6 +41,11 @@ type Row = Vec<Vec<(bool, String)>>;
 /// with the derivation first under `--steps`, and as a whole document
 /// under `--standalone`.
 pub fn document(scene: &Scene, opts: &super::CommandOptions) -> Result<String, Diagnostic> {
+    crate::diag::bounded(|| document_within(scene, opts))
+}
+
+/// [`document`] within the budget in force.
+fn document_within(scene: &Scene, opts: &super::CommandOptions) -> Result<String, Diagnostic> {
     let mut w = Writer::new(scene);
     let dynamics = scene.has_dynamics();
     if dynamics && crate::solve::kinetostatic::is_driven_mechanism(scene) {

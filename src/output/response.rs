@@ -22,6 +22,7 @@ pub fn response_output(
     json: bool,
 ) -> Result<String, Diagnostic> {
     let scene = Scene::parse(src)?;
+    response::check_time_dependence(&scene)?;
     crate::scene::given::parameter_signs(&scene, set)?;
     crate::scene::given::set_names_are_parameters(&scene, set)?;
     let ctx = Context::new().with_max_terms(max_terms).for_scene(&scene);

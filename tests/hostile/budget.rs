@@ -168,3 +168,59 @@ fn arithmetic_on_thousand_digit_numbers_is_charged_to_the_budget() {
         "{o:?}"
     );
 }
+
+/// A planar chain of `n` rods, each a `body` hinged to the end of the one
+/// before.
+fn planar_rod_chain(n: usize) -> String {
+    let qs: Vec<String> = (1..=n).map(|i| format!("q{i}: angle")).collect();
+    let mut s = format!(
+        "coordinates {}\nparameters m: mass, l: length, g: acceleration\n",
+        qs.join(", ")
+    );
+    for i in 1..=n {
+        let link = format!("[sin(q{i}), -cos(q{i})]");
+        let prev = if i > 1 {
+            format!("P{} + ", i - 1)
+        } else {
+            String::new()
+        };
+        s.push_str(&format!(
+            "body b{i}: mass m, inertia 1/12*m*l^2, angle q{i}, at {prev}l/2*{link}\nP{i} = {prev}l*{link}\n"
+        ));
+    }
+    s.push_str("gravity [0, -g]\n");
+    s
+}
+
+/// Issue 46, item 11: `response` on a 30-body chain linearized it and
+/// found its modes (9 s of CPU) before saying that it has no harmonic
+/// load; nothing in the scene depends on time, which is seen at once.
+#[test]
+fn a_chain_without_a_harmonic_load_is_refused_before_any_work() {
+    let o = run("response30", &planar_rod_chain(30), "response", &[]);
+    assert_eq!(o.code, Some(1), "{o:?}");
+    assert_eq!(
+        o.stderr,
+        "error: the scene has no harmonic load: the frequency response needs a force F·cos(p·t) (or sin) on the system\n  = hint: write a harmonic load in the scene, e.g. `work L = F0*cos(p*t)*x` (p the forcing frequency)\n"
+    );
+    o.assert_cpu_below(2.0);
+}
+
+/// Issue 46, item 11: `forces` on a 3D chain of 30 rods expanded every
+/// intermediate (its frames, its points) and held them all, to 3.6 GB and
+/// a failed allocation; the terms held by one expansion are bounded
+/// together, as one expression's.
+#[test]
+fn the_forces_of_a_thirty_rod_chain_in_space_stop_at_the_budget() {
+    let o = run(
+        "forces_rods30",
+        &qdot::engine::gallery::rod_chain_3d(30),
+        "forces",
+        &[],
+    );
+    assert_eq!(o.code, Some(1), "{o:?}");
+    assert_eq!(
+        o.stderr,
+        "error: expression too large: 2,374,772 terms while expanding the generalized forces from the intermediates (the limit is 2,000,000)\n  = hint: exact expressions this large are rarely what a scene means (expand less, or choose other coordinates); to go on, raise the limit: --max-terms 20000000\n"
+    );
+}

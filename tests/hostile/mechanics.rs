@@ -157,7 +157,7 @@ fn time_derivatives_past_the_bound_are_refused_at_their_position() {
     let src = std::fs::read_to_string(path).expect("the fuzz finding");
     let o = qdot_scene("primes", src.as_bytes(), "equilibrium", &[]);
     o.assert_clean();
-    assert!(o.elapsed.as_secs() < 5, "{o:?}");
+    o.assert_cpu_below(5.0);
     assert!(
         o.stderr.starts_with(
             "error: this takes the time derivative of order 65 of `theta2`; qdot allows at most 10\n --> scene.qd:8:60\n"
@@ -271,7 +271,7 @@ fn definitions_sharing_their_arguments_do_not_hang() {
             &["--set", "m=1"],
         );
         o.assert_clean();
-        assert!(o.elapsed.as_secs() < 5, "{o:?}");
+        o.assert_cpu_below(5.0);
         assert!(
             o.stderr.starts_with(
                 "error: a function's argument here is 2,044 symbols long written out; qdot allows at most 2,000\n  --> scene.qd:12:6\n"
@@ -464,7 +464,7 @@ fn constraints_that_grow_end_with_a_reason() {
     }
     let o = qdot_scene("many_constraints", many.as_bytes(), "solve", &[]);
     o.assert_clean();
-    assert!(o.elapsed.as_secs() < 2, "{o:?}");
+    o.assert_cpu_below(2.0);
     assert!(
         o.stderr.starts_with("error: more constraints than coordinates: with 2 coordinates at most 2 constraints can be independent\n --> scene.qd:6:1\n"),
         "{}",

@@ -8,15 +8,22 @@
 //! past the budget the thread unwinds with a [`TooLarge`] payload (by
 //! `resume_unwind`: no panic message), which `within` turns into an `Err`.
 //! The [`Computation`] a thread declares ([`enter`]) (the statement being evaluated,
-//! the phase of a command) is carried in the error. Threads outside
-//! `within` have no budget: a library user who does not opt in is never
-//! stopped, and pays one thread-local read per check.
+//! the phase of a command) is carried in the error.
+//!
+//! Where no budget is installed, the default one applies
+//! ([`crate::limits::DEFAULT_MAX_TERMS`]): no work is unbounded because
+//! nobody asked for a bound. The library's entry points that return a
+//! `Result` run [`bounded`], so past the default they return the error;
+//! an operation that has no `Result` (arithmetic on expressions), called
+//! outside any budget, panics with the budget's message instead. A caller
+//! who wants no bound asks for it: `within(UNLIMITED, …)`.
 
 use std::cell::{Cell, RefCell};
 use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
 
 thread_local! {
-    static LIMIT: Cell<usize> = const { Cell::new(usize::MAX) };
+    /// The budget [`within`] installed; `None`: none (the default applies).
+    static LIMIT: Cell<Option<usize>> = const { Cell::new(None) };
     static CONTEXT: RefCell<Vec<Computation>> = const { RefCell::new(Vec::new()) };
     static BIG_WORK: Cell<u64> = const { Cell::new(0) };
 }
@@ -139,14 +146,19 @@ pub fn grouped(n: usize) -> String {
     out
 }
 
-/// Run `f` with at most `max_terms` terms in any polynomial it builds.
-/// Budgets nest: the inner one applies, and the outer is restored after.
+/// The budget of no bound at all: `within(UNLIMITED, f)` runs `f` to its
+/// end whatever it costs.
+pub const UNLIMITED: usize = usize::MAX;
+
+/// Run `f` with at most `max_terms` terms in any polynomial it builds
+/// ([`UNLIMITED`]: no bound). Budgets nest: the inner one applies, and
+/// the outer is restored after.
 pub fn within<T>(max_terms: usize, f: impl FnOnce() -> T) -> Result<T, TooLarge> {
-    let outer = LIMIT.with(|l| l.replace(max_terms));
+    let outer = LIMIT.with(|l| l.replace(Some(max_terms)));
     // the work of big numbers is counted from the outermost budget on: a
     // nested one goes on counting (a fresh count would allow it its limit
     // again on top of the outer's)
-    let outermost = outer == usize::MAX;
+    let outermost = outer.is_none();
     if outermost {
         BIG_WORK.with(|w| w.set(0));
     }
@@ -166,11 +178,30 @@ pub fn within<T>(max_terms: usize, f: impl FnOnce() -> T) -> Result<T, TooLarge>
     }
 }
 
+/// Run `f` within the budget in force, or, where none is installed,
+/// within the default one; the budget's error becomes `f`'s by `error`.
+/// The library's entry points run so: a caller who installed no budget
+/// gets the default's error, never a computation without end.
+pub fn bounded<T, E>(
+    f: impl FnOnce() -> Result<T, E>,
+    error: impl FnOnce(TooLarge) -> E,
+) -> Result<T, E> {
+    if installed() {
+        return f();
+    }
+    within(crate::limits::DEFAULT_MAX_TERMS, f).unwrap_or_else(|e| Err(error(e)))
+}
+
+/// Whether a budget is installed on this thread ([`within`]).
+pub fn installed() -> bool {
+    LIMIT.with(Cell::get).is_some()
+}
+
 /// Declare what the thread computes until the guard is dropped (for the
-/// error of [`within`]). `what` is only built under a budget.
+/// error of [`within`]). `what` is only built under a bound.
 pub fn enter(what: impl FnOnce() -> String, span: Option<(usize, usize)>) -> ComputationGuard {
-    // no budget, no bookkeeping
-    if LIMIT.with(Cell::get) == usize::MAX {
+    // no bound, no bookkeeping
+    if limit() == UNLIMITED {
         return ComputationGuard { active: false };
     }
     CONTEXT.with(|c| c.borrow_mut().push(Computation { what: what(), span }));
@@ -191,10 +222,13 @@ impl Drop for ComputationGuard {
     }
 }
 
-/// The budget of this thread (`usize::MAX`: none).
+/// The budget of this thread: the one installed, else the default
+/// ([`UNLIMITED`]: none).
 #[inline]
 pub fn limit() -> usize {
-    LIMIT.with(Cell::get)
+    LIMIT
+        .with(Cell::get)
+        .unwrap_or(crate::limits::DEFAULT_MAX_TERMS)
 }
 
 /// Unwind with [`TooLarge`] if `terms` exceeds this thread's budget.
@@ -300,13 +334,14 @@ pub const WORD_PRODUCTS_PER_TERM: usize = 50;
 /// (numerator and denominator together), the larger having `digits`
 /// digits; unwind with [`TooLarge`] once the outermost [`within`] has charged more
 /// than [`WORD_PRODUCTS_PER_TERM`] × the budget. Only operations past
-/// machine size call it, and without a budget it costs one read.
+/// machine size call it. The count starts with the outermost [`within`]:
+/// outside one (and without a bound) nothing is charged.
 #[inline]
 pub fn charge_big_numbers(a: usize, b: usize, digits: impl FnOnce() -> usize) {
-    let limit = limit();
-    if limit == usize::MAX {
-        return;
-    }
+    let limit = match LIMIT.with(Cell::get) {
+        Some(l) if l != UNLIMITED => l,
+        _ => return,
+    };
     let cost = (a.max(1) as u64).saturating_mul(b.max(1) as u64);
     let used = BIG_WORK.with(|w| {
         let used = w.get().saturating_add(cost);
@@ -355,12 +390,21 @@ fn exceeded(terms: usize, limit: usize) -> ! {
 #[inline(never)]
 fn exceeded_with(terms: usize, limit: usize, measure: Measure) -> ! {
     let context = CONTEXT.with(|c| c.borrow().last().cloned());
-    resume_unwind(Box::new(TooLarge {
+    let e = TooLarge {
         terms,
         limit,
         context,
         measure,
-    }))
+    };
+    if !installed() {
+        // nobody to return the error to: an operation without a `Result`
+        // called outside any budget (see the module's doc)
+        panic!(
+            "{} (outside any work budget, the default one applies: run it in qdot::budget::within for the error as a value)",
+            e.message()
+        );
+    }
+    resume_unwind(Box::new(e))
 }
 
 #[cfg(test)]
@@ -383,10 +427,39 @@ mod tests {
             e.message(),
             "expression too large: 11 terms while evaluating `E` (the limit is 10)"
         );
-        // outside, no budget: nothing stops
-        check_terms(usize::MAX - 1);
-        assert_eq!(limit(), usize::MAX);
+        // unlimited when asked for
+        within(UNLIMITED, || check_terms(usize::MAX - 1)).expect("no bound");
         assert_eq!(within(5, || 7), Ok(7));
+    }
+
+    /// Outside any budget the default applies: an entry point that runs
+    /// `bounded` returns its error, and one inside a budget keeps that
+    /// budget.
+    #[test]
+    fn without_a_budget_the_default_applies() {
+        assert!(!installed());
+        assert_eq!(limit(), crate::limits::DEFAULT_MAX_TERMS);
+        let r: Result<(), TooLarge> = bounded(
+            || {
+                check_terms(crate::limits::DEFAULT_MAX_TERMS + 1);
+                Ok(())
+            },
+            |e| e,
+        );
+        let e = r.expect_err("past the default");
+        assert_eq!(e.limit, crate::limits::DEFAULT_MAX_TERMS);
+        let r = within(10, || bounded(|| Ok::<_, TooLarge>(limit()), |e| e));
+        assert_eq!(r, Ok(Ok(10)));
+        assert!(!installed());
+        // an operation without a `Result` outside any budget panics, with
+        // the budget's message
+        let p = catch_unwind(|| check_terms(crate::limits::DEFAULT_MAX_TERMS + 1))
+            .expect_err("past the default");
+        let m = p.downcast_ref::<String>().expect("a message");
+        assert!(
+            m.starts_with("expression too large: 2,000,001 terms (the limit is 2,000,000) (outside any work budget"),
+            "{m}"
+        );
     }
 
     /// A nested budget goes on counting the outer's work on big numbers:

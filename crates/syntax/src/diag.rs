@@ -555,6 +555,13 @@ pub fn too_large(e: &crate::budget::TooLarge) -> Diagnostic {
     .with_kind(ErrorKind::TooLarge { measure: e.measure })
 }
 
+/// Run `f` within the work budget in force, or the default one where none
+/// is installed ([`crate::budget::bounded`]); past it, the error of
+/// [`too_large`]. The library's entry points run so.
+pub fn bounded<T>(f: impl FnOnce() -> Result<T, Diagnostic>) -> Result<T, Diagnostic> {
+    crate::budget::bounded(f, |e| too_large(&e))
+}
+
 /// Read a source file: its text, or why it can't be read or is not UTF-8
 /// (see [`decode_source`]).
 pub fn read_source(path: &str) -> Result<String, SourceError> {

@@ -516,9 +516,15 @@ impl Tape {
     pub fn expand(&self, e: &Expr) -> Result<Expr, MathError> {
         let order = self.used_by(std::iter::once(e));
         let mut map: FxHashMap<Var, Expr> = FxHashMap::default();
+        // every expanded value is held until the end: their terms together
+        // are bounded as one expression's (each alone may stay under the
+        // budget while a long chain's hundreds of them fill the memory)
+        let mut held = 0usize;
         for i in order {
             let entry = &self.entries[i];
             let v = entry.value.subs_many(&map)?;
+            held = held.saturating_add(v.num().len() + v.den().len());
+            crate::budget::check_terms(held);
             map.insert(entry.var, v);
         }
         if map.is_empty() {

@@ -62,24 +62,26 @@ impl Hamiltonian {
     /// over the square of M's determinant); `Auto`, expanded unless H, ṗ
     /// and Q̃ expanded pass [`crate::limits::STRUCTURE_ABOVE_TERMS`] terms.
     pub fn derive_as(scene: &Scene, structure: Structure) -> Result<Hamiltonian, Diagnostic> {
-        scene.expanded_only("Hamilton's equations")?;
-        let _context = crate::budget::enter(|| "deriving Hamilton's equations".into(), None);
-        let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
-        check_scene(scene, &names)?;
-        let t = Transform::of(scene, names)?;
-        match structure {
-            Structure::Expanded => t.expanded(),
-            Structure::Kept => t.structured(scene),
-            Structure::Auto => {
-                let limit = crate::limits::STRUCTURE_ABOVE_TERMS;
-                match crate::budget::within(limit.saturating_mul(16), || t.expanded()) {
-                    Ok(Ok(h)) if h.expanded_terms() <= limit => Ok(h),
-                    Ok(Err(e)) => Err(e),
-                    // past the rule, or far past it (the measuring budget)
-                    Ok(Ok(_)) | Err(_) => t.structured(scene),
+        crate::diag::bounded(|| {
+            scene.expanded_only("Hamilton's equations")?;
+            let _context = crate::budget::enter(|| "deriving Hamilton's equations".into(), None);
+            let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
+            check_scene(scene, &names)?;
+            let t = Transform::of(scene, names)?;
+            match structure {
+                Structure::Expanded => t.expanded(),
+                Structure::Kept => t.structured(scene),
+                Structure::Auto => {
+                    let limit = crate::limits::STRUCTURE_ABOVE_TERMS;
+                    match crate::budget::within(limit.saturating_mul(16), || t.expanded()) {
+                        Ok(Ok(h)) if h.expanded_terms() <= limit => Ok(h),
+                        Ok(Err(e)) => Err(e),
+                        // past the rule, or far past it (the measuring budget)
+                        Ok(Ok(_)) | Err(_) => t.structured(scene),
+                    }
                 }
             }
-        }
+        })
     }
 
     /// Every expression the output prints: the momenta, the velocities,

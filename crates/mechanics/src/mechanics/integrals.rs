@@ -54,52 +54,55 @@ pub struct Routh {
 impl Integrals {
     /// Find the integrals of a scene.
     pub fn find(scene: &Scene) -> Result<Integrals, Diagnostic> {
-        scene.expanded_only("the search for first integrals")?;
-        let _context = crate::budget::enter(|| "finding the integrals of motion".into(), None);
-        let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
-        if names.is_empty() || !(scene.has_role(Role::Kinetic) || scene.has_role(Role::Lagrangian))
-        {
-            return Err(Diagnostic::global(
-                "integrals of motion need coordinates and a kinetic energy or a Lagrangian",
-            )
-            .with_hint("declare `coordinates …` and write `kinetic E = …`"));
-        }
-        let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();
-        let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
-        let qdd: Vec<Var> = names.iter().map(|c| atom::coord(c, 2)).collect();
-        let l = super::lagrangian(scene);
-        let rows = ConstraintRows::of(scene, &qd, &qdd)?;
-        let forced = forced_coordinates(scene, &rows);
-        let mut notes = Vec::new();
-        let mut cyclic = Vec::new();
-        for (k, name) in names.iter().enumerate() {
-            if l.depends_on(q[k]) {
-                continue;
+        crate::diag::bounded(|| {
+            scene.expanded_only("the search for first integrals")?;
+            let _context = crate::budget::enter(|| "finding the integrals of motion".into(), None);
+            let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
+            if names.is_empty()
+                || !(scene.has_role(Role::Kinetic) || scene.has_role(Role::Lagrangian))
+            {
+                return Err(Diagnostic::global(
+                    "integrals of motion need coordinates and a kinetic energy or a Lagrangian",
+                )
+                .with_hint("declare `coordinates …` and write `kinetic E = …`"));
             }
-            match &forced[k] {
-                Some(why) => notes.push(format!(
-                    "{name} is absent from L, but {why} acts on it: p_{name} is not conserved"
-                )),
-                None => cyclic.push((name.clone(), l.diff(qd[k]))),
+            let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();
+            let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
+            let qdd: Vec<Var> = names.iter().map(|c| atom::coord(c, 2)).collect();
+            let l = super::lagrangian(scene);
+            let rows = ConstraintRows::of(scene, &qd, &qdd)?;
+            let forced = forced_coordinates(scene, &rows);
+            let mut notes = Vec::new();
+            let mut cyclic = Vec::new();
+            for (k, name) in names.iter().enumerate() {
+                if l.depends_on(q[k]) {
+                    continue;
+                }
+                match &forced[k] {
+                    Some(why) => notes.push(format!(
+                        "{name} is absent from L, but {why} acts on it: p_{name} is not conserved"
+                    )),
+                    None => cyclic.push((name.clone(), l.diff(qd[k]))),
+                }
             }
-        }
-        let (energy, energy_is_e_plus_v) = energy_integral(scene, &l, &qd, &forced, &mut notes);
-        let routh = if cyclic.is_empty() || cyclic.len() == names.len() {
-            None
-        } else if !rows.is_empty() {
-            notes.push("Routh's reduction is not done for a scene with constraints".into());
-            None
-        } else {
-            let other = super::hamilton::other_forces(scene, &qd, &qdd)?;
-            Some(routh(&l, &names, &cyclic, &other, &qd, &qdd)?)
-        };
-        Ok(Integrals {
-            coordinates: names,
-            cyclic,
-            energy,
-            energy_is_e_plus_v,
-            routh,
-            notes,
+            let (energy, energy_is_e_plus_v) = energy_integral(scene, &l, &qd, &forced, &mut notes);
+            let routh = if cyclic.is_empty() || cyclic.len() == names.len() {
+                None
+            } else if !rows.is_empty() {
+                notes.push("Routh's reduction is not done for a scene with constraints".into());
+                None
+            } else {
+                let other = super::hamilton::other_forces(scene, &qd, &qdd)?;
+                Some(routh(&l, &names, &cyclic, &other, &qd, &qdd)?)
+            };
+            Ok(Integrals {
+                coordinates: names,
+                cyclic,
+                energy,
+                energy_is_e_plus_v,
+                routh,
+                notes,
+            })
         })
     }
 }
@@ -108,14 +111,16 @@ impl Integrals {
 /// one decision `integrals`, `simulate`'s energy drift and `codegen`'s
 /// energy function share.
 pub fn conserved_energy(scene: &Scene) -> Result<Option<Expr>, Diagnostic> {
-    scene.expanded_only("the energy integral")?;
-    let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
-    let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
-    let qdd: Vec<Var> = names.iter().map(|c| atom::coord(c, 2)).collect();
-    let rows = ConstraintRows::of(scene, &qd, &qdd)?;
-    let forced = forced_coordinates(scene, &rows);
-    let l = super::lagrangian(scene);
-    Ok(energy_integral(scene, &l, &qd, &forced, &mut Vec::new()).0)
+    crate::diag::bounded(|| {
+        scene.expanded_only("the energy integral")?;
+        let names: Vec<String> = scene.coordinates.iter().map(|c| c.name.clone()).collect();
+        let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
+        let qdd: Vec<Var> = names.iter().map(|c| atom::coord(c, 2)).collect();
+        let rows = ConstraintRows::of(scene, &qd, &qdd)?;
+        let forced = forced_coordinates(scene, &rows);
+        let l = super::lagrangian(scene);
+        Ok(energy_integral(scene, &l, &qd, &forced, &mut Vec::new()).0)
+    })
 }
 
 /// For each coordinate, what acts on it besides the potential: a

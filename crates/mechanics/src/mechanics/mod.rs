@@ -77,37 +77,39 @@ pub struct Lagrange {
 impl Lagrange {
     /// Derive the equations of a scene.
     pub fn derive(scene: &Scene) -> Result<Lagrange, Diagnostic> {
-        let n = scene.coordinates.len();
-        if n == 0 {
-            return Err(Diagnostic::global(
-                "the scene declares no coordinates, so there are no Lagrange equations",
-            )
-            .with_hint("declare the generalized coordinates with `coordinates q1, q2, …`")
-            .with_kind(crate::diag::ErrorKind::NothingToSolve));
-        }
-        if !scene.has_dynamics() {
-            if !scene.loads.is_empty() || !scene.torques.is_empty() {
+        crate::diag::bounded(|| {
+            let n = scene.coordinates.len();
+            if n == 0 {
                 return Err(Diagnostic::global(
-                    "the scene is static: it has loads but no kinetic energy and no inertia forces, so there are no accelerations",
+                    "the scene declares no coordinates, so there are no Lagrange equations",
                 )
-                .with_hint("`qdot forces` prints its generalized forces and `qdot equilibrium` its equilibria; for motion add `kinetic E = …` or inertia forces `load G - inertia(m, y) at y`")
+                .with_hint("declare the generalized coordinates with `coordinates q1, q2, …`")
                 .with_kind(crate::diag::ErrorKind::NothingToSolve));
             }
-            return Err(Diagnostic::global("the scene has no kinetic energy")
-                .with_hint("add `kinetic E = …` (several `kinetic` lines add up), or write the inertia forces as loads: `load G - inertia(m, y) at y`")
-                .with_kind(crate::diag::ErrorKind::NothingToSolve));
-        }
-        let _context = crate::budget::enter(|| "deriving Lagrange's equations".into(), None);
-        match &scene.tape {
-            Some(tape) => {
-                let mut tape = tape.clone();
-                let mut l = Lagrange::derive_with(scene, &mut tape)?;
-                structured::name_equations(&mut tape, &mut l);
-                l.intermediates = Some(Box::new(tape));
-                Ok(l)
+            if !scene.has_dynamics() {
+                if !scene.loads.is_empty() || !scene.torques.is_empty() {
+                    return Err(Diagnostic::global(
+                        "the scene is static: it has loads but no kinetic energy and no inertia forces, so there are no accelerations",
+                    )
+                    .with_hint("`qdot forces` prints its generalized forces and `qdot equilibrium` its equilibria; for motion add `kinetic E = …` or inertia forces `load G - inertia(m, y) at y`")
+                    .with_kind(crate::diag::ErrorKind::NothingToSolve));
+                }
+                return Err(Diagnostic::global("the scene has no kinetic energy")
+                    .with_hint("add `kinetic E = …` (several `kinetic` lines add up), or write the inertia forces as loads: `load G - inertia(m, y) at y`")
+                    .with_kind(crate::diag::ErrorKind::NothingToSolve));
             }
-            None => Lagrange::derive_with(scene, &mut Expanded),
-        }
+            let _context = crate::budget::enter(|| "deriving Lagrange's equations".into(), None);
+            match &scene.tape {
+                Some(tape) => {
+                    let mut tape = tape.clone();
+                    let mut l = Lagrange::derive_with(scene, &mut tape)?;
+                    structured::name_equations(&mut tape, &mut l);
+                    l.intermediates = Some(Box::new(tape));
+                    Ok(l)
+                }
+                None => Lagrange::derive_with(scene, &mut Expanded),
+            }
+        })
     }
 
     /// [`Lagrange::derive`] with the derivatives of `calc`.
@@ -204,78 +206,85 @@ impl Lagrange {
             || "the articulated-body recursion for the accelerations".into(),
             None,
         );
-        let (values, tape) = articulated::articulated(scene, self)?;
-        let mut a = Accelerations::new(self.coordinates.clone(), values);
-        a.set_intermediates(tape);
-        Ok(a)
+        crate::budget::bounded(
+            || {
+                let (values, tape) = articulated::articulated(scene, self)?;
+                let mut a = Accelerations::new(self.coordinates.clone(), values);
+                a.set_intermediates(tape);
+                Ok(a)
+            },
+            |e| e.message(),
+        )
     }
 
     /// The exact accelerations q̈ = M⁻¹·f; with constraints, q̈ and the
     /// multipliers λ of the augmented system (see [`ConstraintRows`]).
     pub fn accelerations(&self) -> Result<Accelerations, Diagnostic> {
-        let friction = self
-            .equations
-            .iter()
-            .flat_map(|e| &e.rhs_terms)
-            .any(|t| matches!(t.source, Source::Friction(_)));
-        if friction {
-            return Err(Diagnostic::global(
-                "the equations have Coulomb friction in a joint (−c·|N|·sgn v), which is not linear in the reactions, so the accelerations have no closed form",
-            )
-            .with_hint("`qdot cycle` solves a driven mechanism with friction position by position; without a drive, remove the `friction` statements"));
-        }
-        if !self.constraints.is_empty() {
-            let _context = crate::budget::enter(
-                || {
-                    "solving M·q̈ − Aᵀ·λ = f, A·q̈ = γ for the accelerations and the multipliers"
-                        .into()
-                },
-                None,
-            );
-            let (acc, lambda) = constraints::solve_augmented(
-                &self.coordinates,
-                &self.mass_matrix,
-                &self.forcing,
-                &self.constraints,
-            )?;
-            let mut a = Accelerations::new(self.coordinates.clone(), acc);
-            a.set_multipliers(self.constraints.multipliers.clone(), lambda);
-            return Ok(a);
-        }
-        let _context =
-            crate::budget::enter(|| "solving M·q̈ = f for the accelerations".into(), None);
-        if let Some(tape) = &self.intermediates {
-            let mut tape: Tape = (**tape).clone();
-            let acc = structured::solve_ldl(
-                &mut tape,
-                &self.coordinates,
-                &self.mass_matrix,
-                &self.forcing,
-            )?;
-            let mut a = Accelerations::new(self.coordinates.clone(), acc);
-            a.set_intermediates(tape);
-            return Ok(a);
-        }
-        let sol = crate::algebra::linear::solve(&self.mass_matrix, &self.forcing).map_err(|e| {
-            match e {
-                crate::algebra::linear::SolveError::Singular { dependent } => {
-                    let names: Vec<&str> = dependent
-                        .iter()
-                        .filter_map(|&i| self.coordinates.get(i).map(|s| s.as_str()))
-                        .collect();
-                    Diagnostic::global(format!(
-                        "the mass matrix is singular: the coordinates {} are not independent in the kinetic energy",
-                        names.join(", ")
-                    ))
-                    .with_hint("a combination of their velocities carries no kinetic energy; remove a redundant coordinate or add the missing inertia")
-                    .with_kind(crate::diag::ErrorKind::SingularSystem {
-                        unknowns: names.iter().map(|s| s.to_string()).collect(),
-                    })
-                }
-                crate::algebra::linear::SolveError::Math(m) => Diagnostic::global(m.message),
+        crate::diag::bounded(|| {
+            let friction = self
+                .equations
+                .iter()
+                .flat_map(|e| &e.rhs_terms)
+                .any(|t| matches!(t.source, Source::Friction(_)));
+            if friction {
+                return Err(Diagnostic::global(
+                    "the equations have Coulomb friction in a joint (−c·|N|·sgn v), which is not linear in the reactions, so the accelerations have no closed form",
+                )
+                .with_hint("`qdot cycle` solves a driven mechanism with friction position by position; without a drive, remove the `friction` statements"));
             }
-        })?;
-        Ok(Accelerations::new(self.coordinates.clone(), sol))
+            if !self.constraints.is_empty() {
+                let _context = crate::budget::enter(
+                    || {
+                        "solving M·q̈ − Aᵀ·λ = f, A·q̈ = γ for the accelerations and the multipliers"
+                            .into()
+                    },
+                    None,
+                );
+                let (acc, lambda) = constraints::solve_augmented(
+                    &self.coordinates,
+                    &self.mass_matrix,
+                    &self.forcing,
+                    &self.constraints,
+                )?;
+                let mut a = Accelerations::new(self.coordinates.clone(), acc);
+                a.set_multipliers(self.constraints.multipliers.clone(), lambda);
+                return Ok(a);
+            }
+            let _context =
+                crate::budget::enter(|| "solving M·q̈ = f for the accelerations".into(), None);
+            if let Some(tape) = &self.intermediates {
+                let mut tape: Tape = (**tape).clone();
+                let acc = structured::solve_ldl(
+                    &mut tape,
+                    &self.coordinates,
+                    &self.mass_matrix,
+                    &self.forcing,
+                )?;
+                let mut a = Accelerations::new(self.coordinates.clone(), acc);
+                a.set_intermediates(tape);
+                return Ok(a);
+            }
+            let sol = crate::algebra::linear::solve(&self.mass_matrix, &self.forcing).map_err(|e| {
+                match e {
+                    crate::algebra::linear::SolveError::Singular { dependent } => {
+                        let names: Vec<&str> = dependent
+                            .iter()
+                            .filter_map(|&i| self.coordinates.get(i).map(|s| s.as_str()))
+                            .collect();
+                        Diagnostic::global(format!(
+                            "the mass matrix is singular: the coordinates {} are not independent in the kinetic energy",
+                            names.join(", ")
+                        ))
+                        .with_hint("a combination of their velocities carries no kinetic energy; remove a redundant coordinate or add the missing inertia")
+                        .with_kind(crate::diag::ErrorKind::SingularSystem {
+                            unknowns: names.iter().map(|s| s.to_string()).collect(),
+                        })
+                    }
+                    crate::algebra::linear::SolveError::Math(m) => Diagnostic::global(m.message),
+                }
+            })?;
+            Ok(Accelerations::new(self.coordinates.clone(), sol))
+        })
     }
 }
 
@@ -294,17 +303,23 @@ pub fn generalized_forces(scene: &Scene) -> Vec<Expr> {
 /// in a result, when an expansion fails (a division by what is zero once
 /// the intermediates are expanded).
 pub fn expanded_generalized_forces(scene: &Scene) -> Result<Vec<Expr>, Diagnostic> {
-    let Some(tape) = &scene.tape else {
-        return Ok(generalized_forces(scene));
-    };
-    let mut tape = tape.clone();
-    force_terms_with(scene, &mut tape)
-        .iter()
-        .map(|terms| {
-            tape.expand(&sum_terms(terms))
-                .map_err(|e| Diagnostic::global(e.message))
-        })
-        .collect()
+    crate::diag::bounded(|| {
+        let Some(tape) = &scene.tape else {
+            return Ok(generalized_forces(scene));
+        };
+        let _context = crate::budget::enter(
+            || "expanding the generalized forces from the intermediates".into(),
+            None,
+        );
+        let mut tape = tape.clone();
+        force_terms_with(scene, &mut tape)
+            .iter()
+            .map(|terms| {
+                tape.expand(&sum_terms(terms))
+                    .map_err(|e| Diagnostic::global(e.message))
+            })
+            .collect()
+    })
 }
 
 /// The Lagrangian L = E + (lagrangian) − V + U of a scene's roles.

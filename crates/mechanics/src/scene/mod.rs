@@ -442,13 +442,15 @@ impl Scene {
     /// assert_eq!(scene.coordinates[0].name, "x");
     /// ```
     pub fn parse(src: &str) -> Result<Scene, Diagnostic> {
-        let stmts = crate::parse::parse_scene(src)?;
-        Scene::from_statements(src, &stmts)
+        crate::diag::bounded(|| {
+            let stmts = crate::parse::parse_scene(src)?;
+            Scene::from_statements(src, &stmts)
+        })
     }
 
     /// Resolve parsed statements (see [`Scene::parse`]).
     pub fn from_statements(src: &str, stmts: &[Stmt]) -> Result<Scene, Diagnostic> {
-        resolve::scene_from_statements(src, stmts, false, &[])
+        crate::diag::bounded(|| resolve::scene_from_statements(src, stmts, false, &[]))
     }
 
     /// Parse a scene keeping its kinematics structured: every moving vector
@@ -470,8 +472,10 @@ impl Scene {
     /// a definition of the scene, and for a kept name inside a rotation's
     /// angle.
     pub fn parse_keeping(src: &str, keep: &[String]) -> Result<Scene, Diagnostic> {
-        let stmts = crate::parse::parse_scene(src)?;
-        resolve::scene_from_statements(src, &stmts, true, keep)
+        crate::diag::bounded(|| {
+            let stmts = crate::parse::parse_scene(src)?;
+            resolve::scene_from_statements(src, &stmts, true, keep)
+        })
     }
 
     /// Evaluate an expression written in the scene's names (its parameters,
@@ -488,8 +492,10 @@ impl Scene {
 
     /// Like [`Scene::expr`], for an expression that may be a vector.
     pub fn value_of(&self, src: &str) -> Result<Value, Diagnostic> {
-        let e = crate::parse::parse_expr(src)?;
-        Ok(self.evaluate(&e, &[])?.0)
+        crate::diag::bounded(|| {
+            let e = crate::parse::parse_expr(src)?;
+            Ok(self.evaluate(&e, &[])?.0)
+        })
     }
 
     /// Evaluate a parsed expression in the scene's names, with `extra`
@@ -500,16 +506,18 @@ impl Scene {
         e: &ast::Expr,
         extra: &[(&str, Value)],
     ) -> Result<(Value, Vec<Diagnostic>), Diagnostic> {
-        self.evaluate_in_scene(e, extra)
+        crate::diag::bounded(|| self.evaluate_in_scene(e, extra))
     }
 
     /// The dimensions of the scene's names, declared or found (for a scene
     /// without annotations, relative to the dimensions it leaves free; a
     /// contradiction is still an error).
     pub fn dimension_report(&self) -> Result<dimension::DimensionReport, Diagnostic> {
-        let stmts = crate::parse::parse_scene(&self.source)?;
-        let constant = |name: &str| self.definition(name).and_then(Expr::as_rational);
-        dimension::check(&self.source, &stmts, &constant)
+        crate::diag::bounded(|| {
+            let stmts = crate::parse::parse_scene(&self.source)?;
+            let constant = |name: &str| self.definition(name).and_then(Expr::as_rational);
+            dimension::check(&self.source, &stmts, &constant)
+        })
     }
 
     /// The definitions playing `role`, in source order.

@@ -41,18 +41,20 @@ impl Scene {
         structure: Structure,
         keep: &[String],
     ) -> Result<Scene, Diagnostic> {
-        if !keep.is_empty() {
-            return Scene::parse_keeping(src, keep);
-        }
-        match structure {
-            Structure::Expanded => Scene::parse(src),
-            Structure::Kept => Scene::parse_structured(src),
-            Structure::Auto if !has_bodies(src) => Scene::parse(src),
-            Structure::Auto => match Scene::parse_structured(src) {
-                Ok(kept) if worth_keeping(&kept) => Ok(kept),
-                _ => Scene::parse(src),
-            },
-        }
+        crate::diag::bounded(|| {
+            if !keep.is_empty() {
+                return Scene::parse_keeping(src, keep);
+            }
+            match structure {
+                Structure::Expanded => Scene::parse(src),
+                Structure::Kept => Scene::parse_structured(src),
+                Structure::Auto if !has_bodies(src) => Scene::parse(src),
+                Structure::Auto => match Scene::parse_structured(src) {
+                    Ok(kept) if worth_keeping(&kept) => Ok(kept),
+                    _ => Scene::parse(src),
+                },
+            }
+        })
     }
 }
 

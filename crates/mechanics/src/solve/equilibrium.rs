@@ -173,8 +173,10 @@ impl Equilibria {
 
 /// Find and classify the equilibria of a scene.
 pub fn equilibria(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic> {
-    scene.expanded_only("the search for equilibria")?;
-    crate::algebra::assume::assuming(&scene.assumptions, || equilibria_assumed(scene, set))
+    crate::diag::bounded(|| {
+        scene.expanded_only("the search for equilibria")?;
+        crate::algebra::assume::assuming(&scene.assumptions, || equilibria_assumed(scene, set))
+    })
 }
 
 /// [`equilibria`] with the scene's assumptions in force.

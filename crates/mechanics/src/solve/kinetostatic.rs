@@ -55,6 +55,14 @@ pub fn mechanism_reactions(
     scene: &Scene,
     lag: &Lagrange,
 ) -> Result<MechanismReactions, Diagnostic> {
+    crate::diag::bounded(|| mechanism_reactions_within(scene, lag))
+}
+
+/// [`mechanism_reactions`] within the budget in force.
+fn mechanism_reactions_within(
+    scene: &Scene,
+    lag: &Lagrange,
+) -> Result<MechanismReactions, Diagnostic> {
     let _context = crate::budget::enter(|| "the kinetostatics of the mechanism".into(), None);
     let n = lag.coordinates.len();
     let qdd: Vec<Expr> = lag.coordinates.iter().map(|c| Expr::coord(c, 2)).collect();

@@ -109,6 +109,11 @@ fn math(m: crate::expr::MathError) -> Diagnostic {
 /// Linearize the scene's equations about `reference` (the scene's
 /// assumptions must be in force).
 pub fn linearize(scene: &Scene, reference: &Reference) -> Result<Linearization, Diagnostic> {
+    crate::diag::bounded(|| linearize_within(scene, reference))
+}
+
+/// [`linearize`] within the budget in force.
+fn linearize_within(scene: &Scene, reference: &Reference) -> Result<Linearization, Diagnostic> {
     let l = scene.lagrange()?;
     let names = l.coordinates.clone();
     let n = names.len();

@@ -123,8 +123,12 @@ pub fn modes_about(
     reference: &Reference,
     set: &Values,
 ) -> Result<Modes, Diagnostic> {
-    scene.expanded_only("small oscillations")?;
-    crate::algebra::assume::assuming(&scene.assumptions, || modes_assumed(scene, reference, set))
+    crate::diag::bounded(|| {
+        scene.expanded_only("small oscillations")?;
+        crate::algebra::assume::assuming(&scene.assumptions, || {
+            modes_assumed(scene, reference, set)
+        })
+    })
 }
 
 /// [`modes_about`] with the scene's assumptions in force.
@@ -351,6 +355,11 @@ pub fn standard_form(md: &Modes, set: &Values) -> Option<StandardForm> {
 /// q(t) = Σ_i u_i·(a_i·cos ω_i t + b_i·sin ω_i t). Returns q(t) per
 /// coordinate, exactly.
 pub fn free_response(md: &Modes, q0: &[Expr], v0: &[Expr]) -> Result<Vec<Expr>, Diagnostic> {
+    crate::diag::bounded(|| free_response_unbounded(md, q0, v0))
+}
+
+/// [`free_response`] within the budget in force.
+fn free_response_unbounded(md: &Modes, q0: &[Expr], v0: &[Expr]) -> Result<Vec<Expr>, Diagnostic> {
     let n = md.coordinates.len();
     if md.gyroscopic {
         return Err(Diagnostic::global(

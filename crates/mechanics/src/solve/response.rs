@@ -71,18 +71,26 @@ impl ForcedSystem {
     /// The system of `md` (from [`super::oscillations::modes`]) with its
     /// harmonic load.
     pub fn from_modes(md: &Modes) -> Result<ForcedSystem, Diagnostic> {
-        forced(
-            md.coordinates.clone(),
-            [&md.mass, &md.damping, &md.stiffness],
-            &md.forcing,
-        )
+        crate::diag::bounded(|| {
+            forced(
+                md.coordinates.clone(),
+                [&md.mass, &md.damping, &md.stiffness],
+                &md.forcing,
+            )
+        })
     }
 
     /// The scene linearized about `at` (every q = 0 by default) with its
     /// harmonic load, without the characteristic polynomial and the modes
     /// (what a numeric sweep needs).
     pub fn of_scene(scene: &Scene, at: Option<&[Expr]>) -> Result<ForcedSystem, Diagnostic> {
+        crate::diag::bounded(|| Self::of_scene_within(scene, at))
+    }
+
+    /// [`ForcedSystem::of_scene`] within the budget in force.
+    fn of_scene_within(scene: &Scene, at: Option<&[Expr]>) -> Result<ForcedSystem, Diagnostic> {
         scene.expanded_only("the frequency response")?;
+        check_time_dependence(scene)?;
         crate::algebra::assume::assuming(&scene.assumptions, || {
             let lin = super::linearize::linearize(scene, &super::linearize::Reference::at(at))?;
             forced(
@@ -322,6 +330,45 @@ pub(super) fn mean_over_time(f: &Expr) -> Option<(Expr, bool)> {
     Some((Expr::from_parts(mean, f.den().clone()).ok()?, moving))
 }
 
+fn no_harmonic_load() -> Diagnostic {
+    Diagnostic::global(
+        "the scene has no harmonic load: the frequency response needs a force F·cos(p·t) (or sin) on the system",
+    )
+    .with_hint(LOAD_HINT)
+    .with_kind(crate::diag::ErrorKind::NothingToSolve)
+}
+
+/// The error of a scene in which nothing depends on time (no definition,
+/// load, torque, force or constraint mentions `t` or a given function):
+/// it has no harmonic load, which is known before any linearization.
+pub fn check_time_dependence(scene: &Scene) -> Result<(), Diagnostic> {
+    let timed = |e: &Expr| e.depends_on_time();
+    let any = scene
+        .definitions
+        .iter()
+        .any(|d| d.value.components().iter().any(timed))
+        || !scene.deferred.is_empty()
+        || !scene.functions.is_empty()
+        || !scene.drives.is_empty()
+        || scene.loads.iter().any(|l| {
+            l.force.components().iter().any(timed) || l.point.components().iter().any(timed)
+        })
+        || scene
+            .torques
+            .iter()
+            .any(|q| timed(&q.moment) || timed(&q.angle))
+        || scene.forces.iter().any(|f| timed(&f.value))
+        || scene
+            .constraints
+            .iter()
+            .any(|c| timed(&c.expression) || timed(&c.rest) || c.coefficients.iter().any(timed));
+    if any {
+        Ok(())
+    } else {
+        Err(no_harmonic_load())
+    }
+}
+
 /// f(t) = F_c·cos(p·t) + F_s·sin(p·t): (p, F_c, F_s), or why the forcing
 /// is not one harmonic load. A polynomial in cos θ and sin θ (θ = ω·t)
 /// is read by its harmonics: F·cos(2·p·t) is the load at 2·p, and several
@@ -341,13 +388,7 @@ fn harmonic(forcing: &[Expr]) -> Result<(Expr, Vec<Expr>, Vec<Expr>), Diagnostic
     }
     let u = match &angles[..] {
         [u] => u.clone(),
-        [] => {
-            return Err(Diagnostic::global(
-                "the scene has no harmonic load: the frequency response needs a force F·cos(p·t) (or sin) on the system",
-            )
-            .with_hint(LOAD_HINT)
-            .with_kind(crate::diag::ErrorKind::NothingToSolve))
-        }
+        [] => return Err(no_harmonic_load()),
         [_, _, ..] => {
             // named in text order, not in the order the atoms were made
             let mut named: Vec<String> = angles.iter().map(Expr::to_unicode).collect();
@@ -541,6 +582,11 @@ pub struct LoadPeak {
 
 /// The exact frequency response of `sys`, signs decided with `set`.
 pub fn response(sys: ForcedSystem, set: &Values) -> Result<Response, Diagnostic> {
+    crate::diag::bounded(|| response_within(sys, set))
+}
+
+/// [`response`] within the budget in force.
+fn response_within(sys: ForcedSystem, set: &Values) -> Result<Response, Diagnostic> {
     let _context = crate::budget::enter(|| "computing the frequency response".into(), None);
     let (real, imag) = receptance(&sys)?;
     let mut amplitude_squared = Vec::with_capacity(real.len());

@@ -405,6 +405,15 @@ pub fn steady_motions(
     steady: &[usize],
     set: &crate::algebra::sign::Values,
 ) -> Result<super::equilibrium::Equilibria, Diagnostic> {
+    crate::diag::bounded(|| steady_motions_within(scene, steady, set))
+}
+
+/// [`steady_motions`] within the budget in force.
+fn steady_motions_within(
+    scene: &crate::scene::Scene,
+    steady: &[usize],
+    set: &crate::algebra::sign::Values,
+) -> Result<super::equilibrium::Equilibria, Diagnostic> {
     scene.expanded_only("the search for steady motions")?;
     if !scene.constraints.is_empty() {
         return Err(Diagnostic::global(

@@ -211,30 +211,32 @@ pub fn equation_label(sys: &SolveSystem, i: usize) -> String {
 /// Solve every `solve` block of a scene, in order; a block may use the
 /// unknowns of earlier blocks, whose solutions are put in.
 pub fn solve_scene(scene: &Scene) -> Result<Vec<BlockSolution>, Diagnostic> {
-    let _context = crate::budget::enter(|| "solving the `solve` blocks".into(), None);
-    let mut known: FxHashMap<Var, Expr> = FxHashMap::default();
-    let mut acc: Option<FxHashMap<Var, Expr>> = None;
-    let mut out = Vec::with_capacity(scene.systems.len());
-    for sys in &scene.systems {
-        let sol = solve_block(scene, sys, &known, &mut acc)?;
-        // each value may use the unknowns before it (see `in_order`):
-        // later blocks and the check see them resolved
-        let mut resolved = Vec::with_capacity(sol.values.len());
-        for (name, v) in &sol.values {
-            let v = if sol.in_order {
-                v.subs_many(&known).map_err(|m| math(sys.span, m))?
-            } else {
-                v.clone()
-            };
-            known.insert(atom::unknown(name), v.clone());
-            resolved.push((name.clone(), v));
+    crate::diag::bounded(|| {
+        let _context = crate::budget::enter(|| "solving the `solve` blocks".into(), None);
+        let mut known: FxHashMap<Var, Expr> = FxHashMap::default();
+        let mut acc: Option<FxHashMap<Var, Expr>> = None;
+        let mut out = Vec::with_capacity(scene.systems.len());
+        for sys in &scene.systems {
+            let sol = solve_block(scene, sys, &known, &mut acc)?;
+            // each value may use the unknowns before it (see `in_order`):
+            // later blocks and the check see them resolved
+            let mut resolved = Vec::with_capacity(sol.values.len());
+            for (name, v) in &sol.values {
+                let v = if sol.in_order {
+                    v.subs_many(&known).map_err(|m| math(sys.span, m))?
+                } else {
+                    v.clone()
+                };
+                known.insert(atom::unknown(name), v.clone());
+                resolved.push((name.clone(), v));
+            }
+            if let Some(tape) = scene.tape.as_ref().filter(|t| !t.is_empty()) {
+                verify_through(tape, sys, &resolved, &known)?;
+            }
+            out.push(sol);
         }
-        if let Some(tape) = scene.tape.as_ref().filter(|t| !t.is_empty()) {
-            verify_through(tape, sys, &resolved, &known)?;
-        }
-        out.push(sol);
-    }
-    Ok(out)
+        Ok(out)
+    })
 }
 
 /// For a block solved through intermediates: every solution finite and
