@@ -341,7 +341,19 @@ const PRODUCT_NAMES: [&str; 14] = [
 /// and exponent. `None` when a run that holds a word holds anything else:
 /// on the page its letters would join the neighbour's into a longer name.
 fn reread(tex: &str) -> Option<Vec<String>> {
-    let s: String = tex.chars().filter(|c| !c.is_whitespace()).collect();
+    // spaces go, but one that ends a control word (`\theta q`) is `{}`,
+    // as TeX reads it: `\thetaq` would be another command
+    let mut s = String::new();
+    for c in tex.chars() {
+        if !c.is_whitespace() {
+            s.push(c);
+            continue;
+        }
+        let letters = s.trim_end_matches(|c: char| c.is_ascii_alphabetic());
+        if letters.ends_with('\\') && letters.len() < s.len() {
+            s.push_str("{}");
+        }
+    }
     // the end of the brace group opening at byte `i`
     let group = |i: usize| -> usize {
         let mut depth = 0;
@@ -363,7 +375,8 @@ fn reread(tex: &str) -> Option<Vec<String>> {
     let mut start = 0;
     for run in s.split("\\cdot") {
         let mut factors: Vec<(String, bool)> = Vec::new();
-        let mut i = 0;
+        // the `{}` that ended `\cdot`
+        let mut i = if run.starts_with("{}") { 2 } else { 0 };
         let base = start;
         start += run.len() + "\\cdot".len();
         while i < run.len() {
@@ -379,16 +392,19 @@ fn reread(tex: &str) -> Option<Vec<String>> {
                 let open = rest.find('{').expect("a brace");
                 let inner_end = group(at + open) - base;
                 (inner_end, run[i..inner_end].contains("\\mathit{"))
-            } else if rest.starts_with('\\') {
-                let n = rest[1..]
+            } else if let Some(cmd) = rest.strip_prefix('\\') {
+                let n = cmd
                     .find(|c: char| !c.is_ascii_alphabetic())
                     .map_or(rest.len(), |k| k + 1);
                 (i + n, false)
             } else {
                 (i + rest.chars().next().expect("a char").len_utf8(), false)
             };
-            let mut j = end;
             let mut head = run[i..end].to_string();
+            let mut j = end;
+            if run[j..].starts_with("{}") {
+                j += 2;
+            }
             // a subscript belongs to the name; an exponent does not
             while j < run.len() && (run[j..].starts_with("_{") || run[j..].starts_with("^{")) {
                 let close = group(base + j + 1) - base;
@@ -461,5 +477,9 @@ fn rereading_a_product_catches_a_word_beside_a_name() {
     assert_eq!(
         reread("m \\theta \\dot{q}^{2}"),
         Some(vec!["m".into(), "\\theta".into(), "\\dot{q}".into()])
+    );
+    assert_eq!(
+        reread("\\theta q \\cdot \\mathit{xB}"),
+        Some(vec!["\\theta".into(), "q".into(), "\\mathit{xB}".into()])
     );
 }
