@@ -6,8 +6,8 @@
 #   scripts/fuzz.sh cmin [TARGET…]            minimize fuzz/corpus/TARGET in place
 #   scripts/fuzz.sh build                     build the targets only
 #
-# Targets: parse, pipeline, repl, simulate, commands (fuzz/src/pipeline.rs says what
-# each does). `run` reads the committed seeds (fuzz/corpus/TARGET, never
+# Targets: parse, pipeline, repl, simulate, commands, motions (fuzz/src/pipeline.rs
+# says what each does). `run` reads the committed seeds (fuzz/corpus/TARGET, never
 # written) and keeps what it finds new in fuzz/work/TARGET (not committed),
 # so a long campaign resumes where the last one stopped. A crash, a time-out
 # (-timeout, seconds per input) or a memory blow-up (-rss_limit_mb) stops
@@ -20,7 +20,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-TARGETS=(parse pipeline repl simulate commands)
+TARGETS=(parse pipeline repl simulate commands motions)
 CARGO_FUZZ_VERSION=0.13.2
 TIMEOUT=${FUZZ_TIMEOUT:-10}
 RSS_MB=${FUZZ_RSS_MB:-2048}
@@ -119,7 +119,7 @@ ones() {
 
 seeds() {
     local c=fuzz/corpus
-    mkdir -p "$c/parse" "$c/pipeline" "$c/repl" "$c/simulate" "$c/commands"
+    mkdir -p "$c/parse" "$c/pipeline" "$c/repl" "$c/simulate" "$c/commands" "$c/motions"
     rm -f "$c"/*/seed-*
     local scenes=(examples/*.qd book/scenes/*.qd tests/data/dimensions/*/*.qd tests/data/frames/*/*.qd tests/data/constraints/*/*.qd)
     for f in "${scenes[@]}"; do
@@ -186,7 +186,64 @@ seeds() {
     { printf -- '--command codegen\n--lang c\n--file M_PI.qd\n---\n'; printf 'coordinates x\nparameters M_E, unix, FP_NAN, _Bool, double\nkinetic E = 1/2*M_E*x'"'"'^2\npotential V = 1/2*(unix + FP_NAN + _Bool + double)*x^2\n'; } >"$k/seed-codegen-macros"
     { printf -- '--command integrals\n--format json\n---\n'; cat examples/moving_support.qd; } >"$k/seed-integrals-given"
     { printf -- '--command codegen\n--lang python\n--function s=t^2\n---\n'; cat examples/moving_support.qd; } >"$k/seed-codegen-given"
+    motion_seeds
     echo "seeds: $(ls "$c"/*/seed-* | wc -l) files, $(cat "$c"/*/* | wc -c) bytes"
+}
+
+# motions: each example's exact response (every parameter 1); the book's cycles, responses, Floquet runs and
+# steady motions; each mechanism fixture's cycle at 7 positions. Counts
+# stay within the target's bound (fuzz/src/pipeline.rs, MAX_FUZZ_POINTS).
+motion_seeds() {
+    local m=fuzz/corpus/motions f n
+    for f in examples/*.qd; do
+        n=$(seed_name "$f")
+        { printf -- '--command response\n--set %s\n---\n' "$(ones "$f")"; cat "$f"; } >"$m/seed-$n-response"
+    done
+    # seed(NAME, SCENE, OPTION LINES…)
+    seed() {
+        local name=$1 scene=$2
+        shift 2
+        { printf -- '%s\n' "$@" ---; cat "$scene"; } >"$m/seed-$name"
+    }
+    local s213='G1=20,G2=15,G3=10,g=9.81,R=0.1,AB=0.4,AC=0.15,J2=0.02,k=500,l0=0.45,mu=0.15,omega=20'
+    seed cycle-seed_21_3 examples/seed_21_3.qd '--command cycle' '--over phi=0:360deg:7' "--set $s213" \
+        '--guess x2=0.25,xB=0.5' '--columns xB,alpha,O_x,O_y,A_x,A_y,B_x,B_y,S_n,S_f,M'
+    seed cycle-slider_driven_crank examples/mechanisms/slider_driven_crank.qd '--command cycle' '--over t=0:0.6:9' \
+        '--set R=0.1,L=0.4,omega=10,m1=1,J1=0.005,m2=2,J2=0.03,m3=1.5,g=9.81' '--guess xb=0.5,phi=0.2'
+    local fx field
+    for fx in tests/fixtures/mechanisms/*.json; do
+        field() { sed -n 's/^  "'"$1"'": "\(.*\)",\{0,1\}$/\1/p' "$fx"; }
+        seed "cycle-$(seed_name "$fx")" "$(field scene)" '--command cycle' \
+            "--over $(field over | sed 's/:[0-9]*$/:7/')" "--set $(field set)" "--guess $(field guess)"
+    done
+    seed response-vibration_absorber-over examples/vibration_absorber.qd '--command response' \
+        '--set m1=1,m2=0.2,k1=1,k2=0.2,c=0.02,F0=1' '--over Omega=0.6:1.4:9'
+    seed response-forced_oscillator examples/forced_oscillator.qd '--command response'
+    seed floquet-kapitza examples/kapitza.qd '--command floquet' '--at theta=pi' '--set m=1,l=1,g=9.81,a=0.05,w=100'
+    seed floquet-kapitza-over examples/kapitza.qd '--command floquet' '--at theta=pi' \
+        '--set m=1,l=1,g=9.81,a=0.05' '--over w=80:100:3'
+    seed floquet-moving_support examples/moving_support.qd '--command floquet' \
+        "--function s=1/10*cos(3*t)" '--set m=1,l=1,g=9.81'
+    seed floquet-mathieu examples/mathieu.qd '--command floquet' '--set delta=0.25,eps=0.2,m=1,w=1'
+    seed floquet-mathieu-chart examples/mathieu.qd '--command floquet' '--set m=1,w=1' \
+        '--over delta=-0.5:2.5:4,eps=0:2:3'
+    seed floquet-mathieu-period examples/mathieu.qd '--command floquet' '--set delta=0.5,eps=0.2,m=1,w=1' '--period 6.283185307179586'
+    seed modes-steady-spherical examples/spherical_pendulum.qd '--command modes' '--steady phi' '--at theta=theta0'
+    seed modes-steady-spherical-pi3 examples/spherical_pendulum.qd '--command modes' '--steady phi' '--at theta=pi/3' '--format json'
+    seed modes-steady-heavy_top examples/heavy_top.qd '--command modes' '--steady phi,psi' '--at theta=theta0' '--format latex'
+    seed modes-steady-central_force examples/central_force.qd '--command modes' '--steady phi' '--at r=r0'
+    seed equilibrium-steady-spherical examples/spherical_pendulum.qd '--command equilibrium' '--steady phi'
+    # a bead on a hoop that spins freely (the hoop's inertia J)
+    local hoop
+    hoop=$(mktemp)
+    printf '%s\n' 'coordinates theta: angle, phi: angle' 'parameters m, R, g, J' \
+        "kinetic E = 1/2*m*R^2*(theta'^2 + sin(theta)^2*phi'^2) + 1/2*J*phi'^2" \
+        'potential V = -m*g*R*cos(theta)' >"$hoop"
+    seed equilibrium-steady-hoop "$hoop" '--command equilibrium' '--steady phi' '--format json'
+    seed modes-steady-hoop "$hoop" '--command modes' '--steady phi' '--at theta=pi/3' '--set m=1,R=1,g=9.81,J=1' \
+        "--init theta=1/10,theta'=0"
+    rm -f "$hoop"
+    seed equilibrium-steady-heavy_top examples/heavy_top.qd '--command equilibrium' '--steady phi,psi' '--set m=1,g=1,l=1,A=2,C=1'
 }
 
 case "${1:-run}" in

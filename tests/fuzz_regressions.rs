@@ -168,6 +168,11 @@ fn commands_regressions() {
     regressions("commands");
 }
 
+#[test]
+fn motions_regressions() {
+    regressions("motions");
+}
+
 /// The committed seeds replay cleanly (one child per target, a bound for
 /// the whole corpus), and there are seeds for every target.
 #[test]

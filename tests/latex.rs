@@ -272,3 +272,214 @@ fn undeclared_or_repeated_notation_warns() {
     }
     assert_eq!(names.symbol("m", 0), "b", "the later statement wins");
 }
+
+/// The lines of seed 21.3's LaTeX that multiply its two-letter lengths AB
+/// and AC with the reactions: a `\cdot` beside every word, so that the
+/// page never shows one name ABBₓ for AB·Bₓ.
+#[test]
+fn products_of_two_letter_names_are_dotted() {
+    let out = qdot(&["latex", "examples/seed_21_3.qd"]);
+    let line = |head: &str| {
+        out.lines()
+            .find(|l| l.trim_start().starts_with(head))
+            .unwrap_or_else(|| panic!("no line `{head}` in:\n{out}"))
+            .trim()
+            .to_string()
+    };
+    assert_eq!(
+        line("J_{2} \\ddot{\\alpha} &="),
+        "J_{2} \\ddot{\\alpha} &= (\\mathit{AB} \\cdot B_{x} - \\mathit{AC} \\cdot B_{x} \
+         + A_{x} \\cdot \\mathit{AC}) \\sin\\alpha - (\\mathit{AB} \\cdot B_{y} \
+         - \\mathit{AC} \\cdot B_{y} + A_{y} \\cdot \\mathit{AC}) \\cos\\alpha \\\\"
+    );
+    assert_eq!(
+        line("A_{y} &="),
+        "A_{y} &= \\frac{G_{2} (\\mathit{AB} - \\mathit{AC}) \\ddot{y}_{2} \\cos\\alpha \
+         - g J_{2} \\ddot{\\alpha} + g G_{2} (\\mathit{AB} - \\mathit{AC}) \\cos\\alpha \
+         + g (\\mathit{AB} \\cdot B_{x} - \\mathit{AC} \\cdot B_{x} + A_{x} \\cdot \\mathit{AC}) \
+         \\sin\\alpha}{\\mathit{AB} \\cdot g \\cos\\alpha} \\\\"
+    );
+    assert_eq!(
+        line("B_{y} &="),
+        "B_{y} &= \\frac{g (\\mathit{AB} \\cdot B_{x} - \\mathit{AC} \\cdot B_{x} \
+         + A_{x} \\cdot \\mathit{AC}) \\sin\\alpha - \\mathit{AC} \\cdot G_{2} \\ddot{y}_{2} \
+         \\cos\\alpha - g J_{2} \\ddot{\\alpha} - \\mathit{AC} \\cdot g G_{2} \
+         \\cos\\alpha}{\\mathit{AB} \\cdot g \\cos\\alpha} \\\\"
+    );
+    // beside a number, a fraction or a function a word needs no dot
+    let s =
+        Scene::parse("coordinates xB\nparameters AB, AC, G, g, k\nlatex AC = \"\\mathrm{AC}\"\n")
+            .expect("scene parses");
+    let names = notation(&s);
+    let t = |src: &str| latex_with(&s.expr(src).expect("parses"), &names);
+    assert_eq!(t("2*AB*sin(xB)"), "2 \\mathit{AB} \\sin\\mathit{xB}");
+    assert_eq!(t("G/g*xB''"), "\\frac{G}{g} \\ddot{\\mathit{xB}}");
+    assert_eq!(t("k*xB"), "k \\cdot \\mathit{xB}");
+    assert_eq!(t("AB*(G + k)"), "\\mathit{AB} \\cdot (G + k)");
+    // an override that is a word is one too; single letters stay side by side
+    assert_eq!(t("AC*g*k"), "\\mathrm{AC} \\cdot g k");
+}
+
+/// A scene's notation: the defaults and its `latex` statements.
+fn notation(s: &Scene) -> Names {
+    let mut names = Names::new();
+    for n in &s.latex_names {
+        names.set(&n.name, &n.tex);
+    }
+    names
+}
+
+/// The names a random product draws from: single letters, words, Greek
+/// names and names with subscripts, as parameters and coordinates.
+const PRODUCT_NAMES: [&str; 14] = [
+    "A", "B", "m", "AB", "AC", "Ff", "mass", "theta", "omega", "B_x", "F_max", "J2", "xB", "q",
+];
+
+/// Split a product's LaTeX, spaces removed, into the names a reader sees:
+/// runs of factors between `\cdot`s; within a run, each factor is a head
+/// (a letter, a command, `\mathit{…}`, a dotted head) with its subscript
+/// and exponent. `None` when a run that holds a word holds anything else:
+/// on the page its letters would join the neighbour's into a longer name.
+fn reread(tex: &str) -> Option<Vec<String>> {
+    // spaces go, but one that ends a control word (`\theta q`) is `{}`,
+    // as TeX reads it: `\thetaq` would be another command
+    let mut s = String::new();
+    for c in tex.chars() {
+        if !c.is_whitespace() {
+            s.push(c);
+            continue;
+        }
+        let letters = s.trim_end_matches(|c: char| c.is_ascii_alphabetic());
+        if letters.ends_with('\\') && letters.len() < s.len() {
+            s.push_str("{}");
+        }
+    }
+    // the end of the brace group opening at byte `i`
+    let group = |i: usize| -> usize {
+        let mut depth = 0;
+        for (k, c) in s[i..].char_indices() {
+            match c {
+                '{' => depth += 1,
+                '}' => {
+                    depth -= 1;
+                    if depth == 0 {
+                        return i + k + 1;
+                    }
+                }
+                _ => {}
+            }
+        }
+        s.len()
+    };
+    let mut names = Vec::new();
+    let mut start = 0;
+    for run in s.split("\\cdot") {
+        let mut factors: Vec<(String, bool)> = Vec::new();
+        // the `{}` that ended `\cdot`
+        let mut i = if run.starts_with("{}") { 2 } else { 0 };
+        let base = start;
+        start += run.len() + "\\cdot".len();
+        while i < run.len() {
+            let at = base + i;
+            let rest = &run[i..];
+            // the head, and whether it is a word
+            let (end, word) = if let Some(cmd) = ["\\mathit{", "\\mathrm{"]
+                .iter()
+                .find(|c| rest.starts_with(**c))
+            {
+                (group(at + cmd.len() - 1) - base, true)
+            } else if rest.starts_with("\\dot{") || rest.starts_with("\\ddot{") {
+                let open = rest.find('{').expect("a brace");
+                let inner_end = group(at + open) - base;
+                (inner_end, run[i..inner_end].contains("\\mathit{"))
+            } else if let Some(cmd) = rest.strip_prefix('\\') {
+                let n = cmd
+                    .find(|c: char| !c.is_ascii_alphabetic())
+                    .map_or(rest.len(), |k| k + 1);
+                (i + n, false)
+            } else {
+                (i + rest.chars().next().expect("a char").len_utf8(), false)
+            };
+            let mut head = run[i..end].to_string();
+            let mut j = end;
+            if run[j..].starts_with("{}") {
+                j += 2;
+            }
+            // a subscript belongs to the name; an exponent does not
+            while j < run.len() && (run[j..].starts_with("_{") || run[j..].starts_with("^{")) {
+                let close = group(base + j + 1) - base;
+                if run[j..].starts_with("_{") {
+                    head.push_str(&run[j..close]);
+                }
+                j = close;
+            }
+            factors.push((head, word));
+            i = j;
+        }
+        if factors.len() > 1 && factors.iter().any(|f| f.1) {
+            return None;
+        }
+        names.extend(factors.into_iter().map(|f| f.0));
+    }
+    Some(names)
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig {
+        cases: common::proptest_cases(200),
+        ..proptest::prelude::ProptestConfig::default()
+    })]
+
+    /// A random product of names reads back as exactly its names: every
+    /// word is wrapped and set apart by `\cdot`, so no two names of the
+    /// product can be read as another name.
+    #[test]
+    fn a_product_of_names_reads_back_as_its_names(
+        picks in proptest::collection::vec((0..PRODUCT_NAMES.len(), 1u32..4, 0u32..3), 1..5),
+    ) {
+        let s = Scene::parse(
+            "coordinates xB, q\nparameters A, B, m, AB, AC, Ff, mass, theta, omega, B_x, F_max, J2\n",
+        )
+        .expect("scene parses");
+        let names = notation(&s);
+        let mut seen = std::collections::BTreeSet::new();
+        let mut factors = Vec::new();
+        let mut expected = Vec::new();
+        for (k, power, dots) in picks {
+            let name = PRODUCT_NAMES[k];
+            let coordinate = name == "xB" || name == "q";
+            let dots = if coordinate { dots } else { 0 };
+            if !seen.insert((name, dots)) {
+                continue;
+            }
+            factors.push(format!("{name}{}^{power}", "'".repeat(dots as usize)));
+            expected.push(names.symbol(name, dots).replace(' ', ""));
+        }
+        let e = s.expr(&factors.join("*")).expect("parses");
+        let tex = latex_with(&e, &names);
+        let mut got = reread(&tex).unwrap_or_else(|| panic!("a word joins a neighbour in `{tex}`"));
+        got.sort();
+        expected.sort();
+        proptest::prop_assert_eq!(got, expected, "{}", tex);
+    }
+}
+
+/// The re-reading itself catches what it must: a word beside a name
+/// without a dot.
+#[test]
+fn rereading_a_product_catches_a_word_beside_a_name() {
+    assert_eq!(reread("\\mathit{AB} B_{x}"), None);
+    assert_eq!(reread("A_{x} \\mathit{AC}"), None);
+    assert_eq!(
+        reread("\\mathit{AB}^{2} \\cdot B_{x}"),
+        Some(vec!["\\mathit{AB}".to_string(), "B_{x}".to_string()])
+    );
+    assert_eq!(
+        reread("m \\theta \\dot{q}^{2}"),
+        Some(vec!["m".into(), "\\theta".into(), "\\dot{q}".into()])
+    );
+    assert_eq!(
+        reread("\\theta q \\cdot \\mathit{xB}"),
+        Some(vec!["\\theta".into(), "q".into(), "\\mathit{xB}".into()])
+    );
+}

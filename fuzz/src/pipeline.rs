@@ -22,7 +22,9 @@ const FUZZ_MAX_TERMS: usize = qdot::limits::DEFAULT_MAX_TERMS / 10;
 const FUZZ_MAX_STEPS: usize = 100_000;
 
 /// The target names, in the order the script runs them.
-pub const TARGETS: [&str; 5] = ["parse", "pipeline", "repl", "simulate", "commands"];
+pub const TARGETS: [&str; 6] = [
+    "parse", "pipeline", "repl", "simulate", "commands", "motions",
+];
 
 /// Replay `data` through the target called `name`.
 pub fn by_name(name: &str, data: &[u8]) {
@@ -32,6 +34,7 @@ pub fn by_name(name: &str, data: &[u8]) {
         "repl" => repl(data),
         "simulate" => simulate(data),
         "commands" => commands(data),
+        "motions" => motions(data),
         _ => panic!("no fuzz target `{name}`"), // ok: a typo in a test, not input
     }
 }
@@ -464,4 +467,187 @@ fn codegen(src: &str, o: &OptionLines) {
     if let Err(d) = qdot::app::codegen(&ctx, src, &req) {
         let _ = d.render("fuzz.qd", src);
     }
+}
+
+/// The most positions, frequencies or grid points a `motions` input may
+/// ask of `cycle`, `response --over` and `floquet --over`: each point is a
+/// numeric solve or a monodromy integration, and the fuzzer's time-out is
+/// per input; the commands' own bounds (a million) are tested in
+/// tests/hostile.
+const MAX_FUZZ_POINTS: usize = 12;
+
+/// Target `motions`: the analyses of motion, with fuzzed options, as
+/// `src/main.rs` runs them: `cycle` (`--over`, `--set`, `--guess`,
+/// `--columns`, every output and both pictures), `response` (`--at`,
+/// `--set`, and `--over` with its plot), `floquet` (`--at`, `--set`,
+/// `--function`, `--period`, `--over` with its chart), and the steady
+/// motions, `modes` (`--steady`, `--at`, `--init`, `--set`) and
+/// `equilibrium` (`--steady`, `--set`), in every format. The layout is
+/// the `commands` target's:
+///
+/// ```text
+/// --command floquet
+/// --set delta=0.5,eps=0.2,m=1,w=1
+/// ---
+/// coordinates x
+/// …
+/// ```
+pub fn motions(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    let (opts, scene) = match text.split_once("\n---\n") {
+        Some((o, s)) => (o, s),
+        None => (text, PENDULUM),
+    };
+    let o = OptionLines::read(opts);
+    let ctx = qdot::app::Context::new().with_max_terms(FUZZ_MAX_TERMS);
+    let outcome = match o.one("--command") {
+        Some("cycle") => ctx.within(|| cycle(scene, &o)),
+        Some("response") => ctx.within(|| response(scene, &o)),
+        Some("floquet") => ctx.within(|| floquet(scene, &o)),
+        Some("modes") => {
+            steady(Command::Modes, scene, &o);
+            Ok(Ok(()))
+        }
+        Some("equilibrium") => {
+            steady(Command::Equilibrium, scene, &o);
+            Ok(Ok(()))
+        }
+        _ => Ok(Ok(())),
+    };
+    match outcome {
+        Ok(Err(d)) => {
+            let _ = d.render("fuzz.qd", scene);
+        }
+        Err(e) => {
+            let _ = output::too_large(&e).render("fuzz.qd", scene);
+        }
+        Ok(Ok(())) => {}
+    }
+}
+
+/// Values of `--set` (any sign, as the CLI reads them), empty without it.
+fn set_values(o: &OptionLines) -> Result<qdot::solve::equilibrium::Values, qdot::Diagnostic> {
+    Ok(o.one("--set")
+        .map(output::parse_set_any_sign)
+        .transpose()?
+        .unwrap_or_default())
+}
+
+/// `qdot cycle`, its positions bounded, every rendering and picture.
+fn cycle(src: &str, o: &OptionLines) -> Result<(), qdot::Diagnostic> {
+    use qdot::cycle::{parse_guess, CycleRequest, Over};
+    use qdot::simulate::cycle as render;
+    let req = CycleRequest {
+        over: Over::parse(o.one("--over").unwrap_or("t=0:1:3"))?,
+        set: set_values(o)?,
+        guess: o
+            .one("--guess")
+            .map(parse_guess)
+            .transpose()?
+            .unwrap_or_default(),
+    };
+    if req.over.count > MAX_FUZZ_POINTS {
+        return Ok(());
+    }
+    let run = render::run(src, &req)?;
+    let table = match o.one("--columns") {
+        Some(c) => render::select(&run.table, c)?,
+        None => run.table.clone(),
+    };
+    let _ = render::csv(&table);
+    let _ = render::json(&table);
+    let _ = render::text(&table, run.degrees);
+    let _ = qdot::drawing::reaction_diagrams(&run.table, "fuzz", run.degrees);
+    let _ = qdot::drawing::animation_svg(&run.table, "fuzz");
+    let _ = qdot::drawing::animation_html(&run.table, "fuzz", run.degrees);
+    Ok(())
+}
+
+/// `qdot response`: the exact analysis as text and JSON, or with `--over`
+/// the sweep (its frequencies bounded) in every output and its plot.
+fn response(src: &str, o: &OptionLines) -> Result<(), qdot::Diagnostic> {
+    use qdot::simulate::response as sweep;
+    let set = set_values(o)?;
+    let at = o.one("--at");
+    let Some(over) = o.one("--over") else {
+        for json in [false, true] {
+            output::response::response_output(src, at, &set, FUZZ_MAX_TERMS, json)?;
+        }
+        return Ok(());
+    };
+    let over = sweep::parse_over(over)?;
+    if over.count > MAX_FUZZ_POINTS {
+        return Ok(());
+    }
+    let table = sweep::sweep(src, at, &set, &over)?;
+    let _ = sweep::csv(&table);
+    let _ = sweep::json(&table);
+    let _ = sweep::text(&table);
+    let _ = qdot::simulate::response_plot::svg(&table, "fuzz");
+    Ok(())
+}
+
+/// `qdot floquet`, its grid bounded, every output and the chart.
+fn floquet(src: &str, o: &OptionLines) -> Result<(), qdot::Diagnostic> {
+    use qdot::simulate::floquet as render;
+    let period = match o.one("--period") {
+        Some(p) => match p.parse::<f64>() {
+            Ok(p) => Some(p),
+            Err(_) => return Ok(()), // the CLI's parser refuses it
+        },
+        None => None,
+    };
+    let req = render::Request {
+        floquet: qdot::floquet::FloquetRequest {
+            at: o.one("--at").map(String::from),
+            functions: o.all("--function"),
+            period,
+        },
+        set: set_values(o)?,
+        over: o
+            .one("--over")
+            .map(render::parse_over)
+            .transpose()?
+            .unwrap_or_default(),
+    };
+    if req.over.iter().map(|a| a.count).product::<usize>() > MAX_FUZZ_POINTS {
+        return Ok(());
+    }
+    let run = render::run(src, &req)?;
+    let _ = render::text(&run);
+    let _ = render::csv(&run);
+    let _ = render::json(&run);
+    if !run.axes.is_empty() {
+        let _ = qdot::drawing::floquet::svg(&run, "fuzz");
+    }
+    Ok(())
+}
+
+/// `qdot modes` or `qdot equilibrium` with `--steady` (or without it),
+/// `--at`, `--init` (modes) and `--set`, in the format asked (text by
+/// default).
+fn steady(cmd: Command, src: &str, o: &OptionLines) {
+    let fmt = o
+        .one("--format")
+        .and_then(Format::from_name)
+        .unwrap_or(Format::Text);
+    let mut opts = CommandOptions {
+        max_terms: FUZZ_MAX_TERMS,
+        steady: o.one("--steady").map(String::from),
+        ..CommandOptions::default()
+    };
+    if cmd == Command::Modes {
+        opts.at = o.one("--at").map(String::from);
+        opts.init = o.one("--init").map(String::from);
+    }
+    match set_values(o) {
+        Ok(s) => opts.set = s,
+        Err(d) => {
+            let _ = d.render("--set", "");
+            return;
+        }
+    }
+    run_rendered(cmd, src, fmt, &opts);
 }

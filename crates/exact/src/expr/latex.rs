@@ -7,7 +7,9 @@
 //! their contents pulled out. What changes is the notation:
 //!
 //! * fractions are `\frac{…}{…}`, the sign outside;
-//! * products have no `\cdot` (a space only) unless two numbers meet;
+//! * products have no `\cdot` (a space only) unless two numbers meet or
+//!   a factor is a name of several letters: `\mathit{AB} \cdot B_{x}`, never
+//!   `\mathit{AB} B_{x}`, which the page shows as one name ABBₓ;
 //! * functions go last in a product, so `\sin\theta_{3}` needs no
 //!   parentheses (`m g l \sin\theta`); an argument that is more than one
 //!   symbol is parenthesized: `\cos(\theta_{1} - \theta_{2})`;
@@ -40,6 +42,17 @@ impl Names {
         self.overrides.insert(name.to_string(), tex.to_string());
     }
 
+    /// Whether `name` is written as a word of several letters
+    /// (`\mathit{AB}`, or an override such as `\mathrm{Re}`), which a
+    /// product sets apart from its neighbours: see [`product`].
+    pub fn is_word(&self, name: &str) -> bool {
+        if let Some(tex) = self.overrides.get(name) {
+            return word_tex(split_subscript(tex).0);
+        }
+        let (base, _) = split_name(name);
+        base.chars().count() > 1 && greek(base).is_none()
+    }
+
     /// The notation of `name` with `dots` time derivatives:
     /// `symbol("theta3", 2)` = `\ddot{\theta}_{3}`.
     pub fn symbol(&self, name: &str, dots: u32) -> String {
@@ -56,6 +69,32 @@ impl Names {
             Some(sub) => format!("{s}_{{{}}}", sub_tex(sub)),
         }
     }
+}
+
+/// Whether the head of an override reads as several letters: a word in
+/// a font command (`\mathit{Ff}`, `\mathrm{Re}`) or bare letters (`AB`).
+fn word_tex(head: &str) -> bool {
+    let letters = |s: &str| s.chars().filter(|c| c.is_alphabetic()).count() > 1;
+    const FONTS: [&str; 7] = [
+        "\\mathit{",
+        "\\mathrm{",
+        "\\mathsf{",
+        "\\mathbf{",
+        "\\text{",
+        "\\textit{",
+        "\\operatorname{",
+    ];
+    if let Some(inner) = FONTS.iter().find_map(|f| head.strip_prefix(f)) {
+        return letters(inner);
+    }
+    !head.contains('\\') && letters(head)
+}
+
+/// Whether a named intermediate's LaTeX ([`super::tape::latex_name`]) has
+/// a head of several letters (`rA_{x}`, not `P1_{x}` or `\omega_{B2}`).
+fn named_is_word(name: &str) -> bool {
+    let head = name.split_once('_').map_or(name, |(h, _)| h);
+    head != "omega" && head.chars().filter(|c| c.is_alphabetic()).count() > 1
 }
 
 /// `\vartheta_3` → (`\vartheta`, `_3`); the split is at the first `_`
@@ -309,6 +348,11 @@ enum Kind {
     Num,
     /// A symbol, power, radical or fraction: safe anywhere in a product.
     Plain,
+    /// A fraction, `\frac{…}{…}`: its bar sets it apart from any neighbour.
+    Frac,
+    /// A name of several letters (`\mathit{AB}`, `\dot{\mathit{xB}}^{2}`):
+    /// side by side with another factor it would read as a longer name.
+    Word,
     /// A sum: parenthesized when it is not alone.
     Sum,
     /// A function with its argument (`\sin\theta`): last in a product.
@@ -336,7 +380,8 @@ fn parens(s: &str) -> String {
 }
 
 /// Factors side by side: functions last, sums parenthesized unless alone,
-/// `\cdot` only between two numbers.
+/// `\cdot` only between two numbers and beside a word (see [`separated`]).
+/// Every product of the LaTeX is joined here.
 fn product(mut fs: Vec<Factor>) -> String {
     if fs.is_empty() {
         return "1".into();
@@ -355,7 +400,7 @@ fn product(mut fs: Vec<Factor>) -> String {
         };
         if let Some(p) = prev {
             let digit_next = tex.starts_with(|c: char| c.is_ascii_digit());
-            if p == Kind::Num && (f.kind == Kind::Num || digit_next) {
+            if separated(p, f.kind, digit_next) {
                 out.push_str(" \\cdot ");
             } else {
                 out.push(' ');
@@ -365,6 +410,20 @@ fn product(mut fs: Vec<Factor>) -> String {
         prev = Some(f.kind);
     }
     out
+}
+
+/// Whether a `\cdot` goes between factors of kinds `a` then `b` (`b`'s
+/// text starting with a digit when `digit_next`). Math mode ignores the
+/// space between `\mathit{AB} B_{x}`: the page shows ABBₓ, so a word
+/// takes a dot on each side, except after a number (`2 \mathit{AB}` reads
+/// as 2·AB), beside a fraction (`\frac{G}{g} \mathit{xB}`) and before a
+/// function, whose name TeX sets apart (`\mathit{AB} \sin\alpha`).
+fn separated(a: Kind, b: Kind, digit_next: bool) -> bool {
+    match (a, b) {
+        (Kind::Num, _) => b == Kind::Num || digit_next,
+        (Kind::Frac, _) | (_, Kind::Frac | Kind::Func) => false,
+        _ => a == Kind::Word || b == Kind::Word,
+    }
 }
 
 struct Tex<'a> {
@@ -503,7 +562,7 @@ impl Tex<'_> {
             neg,
             vec![Factor::new(
                 format!("\\frac{{{top}}}{{{bottom}}}"),
-                Kind::Plain,
+                Kind::Frac,
             )],
         )
     }
@@ -550,7 +609,7 @@ impl Tex<'_> {
             };
             fs.insert(
                 0,
-                Factor::new(format!("\\frac{{{top}}}{{{}}}", c.denom()), Kind::Plain),
+                Factor::new(format!("\\frac{{{top}}}{{{}}}", c.denom()), Kind::Frac),
             );
         } else if !c.is_one() {
             fs.insert(0, Factor::new(rational(c), Kind::Num));
@@ -627,16 +686,31 @@ impl Tex<'_> {
             }
             Atom::Pi => Factor::new(format!("\\pi{sup}"), Kind::Plain),
             Atom::Time => Factor::new(format!("t{sup}"), Kind::Plain),
-            Atom::Param(n) | Atom::Unknown(n) => {
-                Factor::new(format!("{}{sup}", self.names.symbol(n, 0)), Kind::Plain)
-            }
-            Atom::Coord(n, k) | Atom::Given(n, k) => {
-                Factor::new(format!("{}{sup}", self.names.symbol(n, *k)), Kind::Plain)
-            }
+            Atom::Param(n) | Atom::Unknown(n) => Factor::new(
+                format!("{}{sup}", self.names.symbol(n, 0)),
+                self.name_kind(n),
+            ),
+            Atom::Coord(n, k) | Atom::Given(n, k) => Factor::new(
+                format!("{}{sup}", self.names.symbol(n, *k)),
+                self.name_kind(n),
+            ),
             Atom::Named(n) => Factor::new(
                 format!("{}{sup}", super::tape::latex_name(&n.name, n.order)),
-                Kind::Plain,
+                if named_is_word(&n.name) {
+                    Kind::Word
+                } else {
+                    Kind::Plain
+                },
             ),
+        }
+    }
+
+    /// A scene's name as a factor: a word or a plain symbol.
+    fn name_kind(&self, name: &str) -> Kind {
+        if self.names.is_word(name) {
+            Kind::Word
+        } else {
+            Kind::Plain
         }
     }
 
