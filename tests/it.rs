@@ -42,6 +42,7 @@ mod lazy;
 mod limits_doc;
 mod mechanisms;
 mod modes;
+mod stability_verdicts;
 mod no_panic;
 mod oscillation_details;
 mod parse_ast;

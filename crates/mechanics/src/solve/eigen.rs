@@ -204,6 +204,76 @@ pub fn generalized_symmetric(
     Ok(GeneralizedEigen { values, vectors })
 }
 
+/// The eigenvalues of a real square matrix, each as often as its
+/// multiplicity, in the Schur form's order.
+///
+/// nalgebra's `complex_eigenvalues` runs its double-shift QR iteration
+/// without a bound, and without exceptional shifts it can cycle forever
+/// (the Penning trap's first-order matrix at some values did). Here the
+/// iteration is bounded ([`SCHUR_ITERATIONS_PER_ROW`] per row); when it
+/// stalls, the same matrix is tried after an orthogonal similarity (same
+/// eigenvalues, another iteration path), and after [`SCHUR_TRIES`] the
+/// answer is [`EigenError::NoConvergence`].
+///
+/// # Errors
+///
+/// A matrix that is not square or has an entry that is not finite, or
+/// the iteration not converging.
+pub fn general_eigenvalues(
+    a: &DMatrix<f64>,
+) -> Result<Vec<nalgebra::Complex<f64>>, EigenError> {
+    let n = a.nrows();
+    if a.ncols() != n {
+        return Err(EigenError::Shape(format!(
+            "the matrix is {n}×{}: eigenvalues need a square matrix",
+            a.ncols()
+        )));
+    }
+    if let Some(p) = a.iter().position(|v| !v.is_finite()) {
+        return Err(EigenError::NotFinite {
+            matrix: "A",
+            entry: (p % n.max(1), p / n.max(1)),
+            value: a[p],
+        });
+    }
+    let max_niter = SCHUR_ITERATIONS_PER_ROW * n + SCHUR_ITERATIONS_PER_ROW;
+    for attempt in 0..SCHUR_TRIES {
+        let m = if attempt == 0 {
+            a.clone()
+        } else {
+            let h = reflection(n, attempt);
+            &h * a * &h
+        };
+        if let Some(schur) = nalgebra::Schur::try_new(m, f64::EPSILON, max_niter) {
+            let values: Vec<_> = schur.complex_eigenvalues().iter().copied().collect();
+            if values.iter().all(|z| z.re.is_finite() && z.im.is_finite()) {
+                return Ok(values);
+            }
+        }
+    }
+    Err(EigenError::NoConvergence {
+        iterations: SCHUR_TRIES * max_niter,
+    })
+}
+
+/// The double-shift QR iterations allowed per row of the matrix (LAPACK's
+/// DHSEQR allows 30 per eigenvalue).
+const SCHUR_ITERATIONS_PER_ROW: usize = 40;
+/// How many matrices similar to the given one the Schur decomposition tries.
+const SCHUR_TRIES: usize = 3;
+
+/// The Householder reflection I − 2·v·vᵀ/(vᵀ·v) with v = (1, 1 + t, 1 + 2t,
+/// …), its own inverse: an orthogonal similarity that moves a stalled QR
+/// iteration without changing the eigenvalues or the conditioning.
+fn reflection(n: usize, t: usize) -> DMatrix<f64> {
+    let v: Vec<f64> = (0..n).map(|i| 1.0 + (i * t) as f64 / n as f64).collect();
+    let vv: f64 = v.iter().map(|x| x * x).sum();
+    DMatrix::from_fn(n, n, |i, j| {
+        let id = if i == j { 1.0 } else { 0.0 };
+        id - 2.0 * v[i] * v[j] / vv
+    })
+}
+
 /// The textbook's "distribution coefficients" of a mode: μⱼ = xⱼ/x₁, i.e.
 /// `v` divided by `v[0]` (so μ₀ = 1).
 ///
@@ -329,7 +399,7 @@ pub enum EigenError {
     },
     /// L⁻¹·K·L⁻ᵀ overflowed: K is too large relative to M.
     Overflow,
-    /// The symmetric QR iteration did not converge.
+    /// The QR iteration did not converge.
     NoConvergence {
         /// The iterations allowed.
         iterations: usize,
@@ -373,7 +443,7 @@ impl std::fmt::Display for EigenError {
             }
             EigenError::NoConvergence { iterations } => write!(
                 f,
-                "the symmetric QR iteration did not converge in {iterations} iterations"
+                "the QR iteration for the eigenvalues did not converge in {iterations} iterations"
             ),
             EigenError::Breakdown(what) => write!(f, "numerical breakdown: {what}"),
         }

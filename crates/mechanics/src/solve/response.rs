@@ -573,7 +573,7 @@ pub fn natural_frequencies(sys: &ForcedSystem, set: &Values) -> Result<Vec<f64>,
                 .sub(&sys.damping[j][i])
                 .scale(&Q::new(1, 2).unwrap_or_else(Q::one))
         });
-        let s = super::linear_stability::eigenvalues(&sys.mass, &skew, &sys.stiffness, set)
+        let s = super::linear_stability::eigenvalues(&sys.mass, &skew, &sys.stiffness, set)?
             .ok_or("a parameter has no value")?;
         let scale = s.iter().fold(0.0f64, |a, z| a.max(z.norm()));
         let mut w: Vec<f64> = s
