@@ -45,8 +45,9 @@ fn verdict(src: &str, values: &[(&str, f64)]) -> Stability {
     modes(&scene, None, &set).expect("modes").stability
 }
 
-fn stability_line(src: &str, args: &[&str]) -> String {
-    let out = qdot_on(src, "modes", args);
+fn stability_line(tag: &str, src: &str, args: &[&str]) -> String {
+    let (code, out, err) = qdot_on("stability", tag, src, "modes", args);
+    assert_eq!(code, 0, "{err}");
     out.lines()
         .find(|l| l.starts_with("Stability of the equilibrium"))
         .unwrap_or_else(|| panic!("no verdict in\n{out}"))
@@ -56,7 +57,7 @@ fn stability_line(src: &str, args: &[&str]) -> String {
 #[test]
 fn zieglers_pendulum_flutters_past_the_exact_load() {
     assert_eq!(
-        stability_line(ZIEGLER, &[]),
+        stability_line("ziegler", ZIEGLER, &[]),
         "Stability of the equilibrium: undecided (stable when 7·k − 2·k·√2 − 2·l·P > 0; give values with --set)"
     );
     // (7/2 − √2) = 2.0858: P = 3 flutters (ω² complex), 2 does not
@@ -73,7 +74,7 @@ fn zieglers_pendulum_flutters_past_the_exact_load() {
         Stability::Unstable
     );
     assert_eq!(
-        stability_line(ZIEGLER, &["--set", "m=1,l=1,k=1,P=3"]),
+        stability_line("ziegler_set", ZIEGLER, &["--set", "m=1,l=1,k=1,P=3"]),
         "Stability of the equilibrium: unstable"
     );
 }
@@ -91,14 +92,20 @@ fn zieglers_pendulum_below_the_divergence_load_is_not_called_stable_by_a_sum() {
 #[test]
 fn a_jeffcott_rotor_with_internal_damping_whirls_above_its_threshold() {
     assert_eq!(
-        stability_line(JEFFCOTT, &[]),
+        stability_line("jeffcott", JEFFCOTT, &[]),
         "Stability of the equilibrium: undecided (stable when 2·c_e·c_i·k + c_e²·k + c_i²·k − c_i²·m·W² > 0; give values with --set)"
     );
     // threshold W = 1 + c_e/c_i = 2
     let at = |w: f64| {
         verdict(
             JEFFCOTT,
-            &[("m", 1.0), ("k", 1.0), ("c_e", 0.05), ("c_i", 0.05), ("W", w)],
+            &[
+                ("m", 1.0),
+                ("k", 1.0),
+                ("c_e", 0.05),
+                ("c_i", 0.05),
+                ("W", w),
+            ],
         )
     };
     assert_eq!(at(3.0), Stability::Unstable);
@@ -126,13 +133,14 @@ fn negative_damping_under_a_stiff_spring_grows() {
 fn a_damped_circulatory_system_with_enough_damping_is_stable() {
     // m = 1, c = 2, k = 2, a follower coupling b: det = (s² + 2s + 2)² + b²
     let src = "coordinates x, y\nparameters b\nkinetic T = 1/2*(x'^2 + y'^2)\npotential V = x^2 + y^2\nrayleigh R = x'^2 + y'^2\nforce x: -b*y\nforce y: b*x\n";
-    // roots s = −1 ± i ± √(±i·b): stable while b < 2
+    // s² + 2s + 2 ± i·b = 0: s = −1 ± √(−1 ∓ i·b), whose real part
+    // √((√(1 + b²) − 1)/2) − 1 < 0 while b² < 8
     assert_eq!(
         verdict(src, &[]),
-        Stability::Undecided("stable when 4 − b² > 0; give values with --set".into())
+        Stability::Undecided("stable when 8 − b² > 0; give values with --set".into())
     );
-    assert_eq!(verdict(src, &[("b", 1.9)]), Stability::Stable);
-    assert_eq!(verdict(src, &[("b", 2.1)]), Stability::Unstable);
+    assert_eq!(verdict(src, &[("b", 2.82)]), Stability::Stable);
+    assert_eq!(verdict(src, &[("b", 2.83)]), Stability::Unstable);
 }
 
 // ------------------------------------------------------------- property
@@ -181,7 +189,11 @@ fn symmetrize(x: &mut [Vec<Entry>], skew: bool) {
     for i in 0..n {
         for j in 0..i {
             let (v, t) = x[i][j].clone();
-            x[j][i] = if skew { (-v, format!("(-{t})")) } else { (v, t) };
+            x[j][i] = if skew {
+                (-v, format!("(-{t})"))
+            } else {
+                (v, t)
+            };
         }
         if skew {
             x[i][i] = zero();
@@ -232,13 +244,20 @@ fn case(n: usize, kind: Kind, l: &[i64], kc: &[(i64, i64)]) -> Case {
     src.push_str(&format!("kinetic T = 1/2*({})\n", t.join(" + ")));
     for i in 0..n {
         let terms: Vec<String> = (0..n)
-            .flat_map(|j| [format!("{}*{}", k[i][j].1, q[j]), format!("{}*{}'", c[i][j].1, q[j])])
+            .flat_map(|j| {
+                [
+                    format!("{}*{}", k[i][j].1, q[j]),
+                    format!("{}*{}'", c[i][j].1, q[j]),
+                ]
+            })
             .collect();
         src.push_str(&format!("force {}: -({})\n", q[i], terms.join(" + ")));
     }
     let value = |x: &[Vec<Entry>]| x.iter().map(|r| r.iter().map(|e| e.0).collect()).collect();
     Case {
-        m: m.iter().map(|r| r.iter().map(|&v| v as f64).collect()).collect(),
+        m: m.iter()
+            .map(|r| r.iter().map(|&v| v as f64).collect())
+            .collect(),
         c: value(&c),
         k: value(&k),
         src,
@@ -307,9 +326,8 @@ fn verdicts_agree_with_the_eigenvalues_of_the_first_order_system() {
     runner
         .run(&strategy, |(n, kind, l, kc)| {
             let case = case(n, KINDS[kind], &l, &kc);
-            let scene = Scene::parse(&case.src).map_err(|d| {
-                TestCaseError::fail(d.render("scene.qd", &case.src))
-            })?;
+            let scene = Scene::parse(&case.src)
+                .map_err(|d| TestCaseError::fail(d.render("scene.qd", &case.src)))?;
             let got = modes(&scene, None, &Values::new())
                 .map_err(|d| TestCaseError::fail(format!("{}\n{}", d.message, case.src)))?
                 .stability;

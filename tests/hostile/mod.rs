@@ -6,6 +6,7 @@
 pub(crate) mod bound;
 mod budget;
 mod definite;
+mod eigen_bound;
 mod exact;
 mod exact_values;
 mod hidden_zeros;

@@ -385,7 +385,7 @@ impl AtRest {
     }
 
     /// C(q) = ∂R/∂q̇ at rest; `None` when it has no canonical form.
-    fn velocity_terms(&self) -> Option<Vec<Vec<Expr>>> {
+    pub(super) fn velocity_terms(&self) -> Option<Vec<Vec<Expr>>> {
         self.residuals
             .iter()
             .map(|r| {

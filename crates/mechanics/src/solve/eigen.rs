@@ -219,9 +219,7 @@ pub fn generalized_symmetric(
 ///
 /// A matrix that is not square or has an entry that is not finite, or
 /// the iteration not converging.
-pub fn general_eigenvalues(
-    a: &DMatrix<f64>,
-) -> Result<Vec<nalgebra::Complex<f64>>, EigenError> {
+pub fn general_eigenvalues(a: &DMatrix<f64>) -> Result<Vec<nalgebra::Complex<f64>>, EigenError> {
     let n = a.nrows();
     if a.ncols() != n {
         return Err(EigenError::Shape(format!(
@@ -818,6 +816,63 @@ mod tests {
     fn error_overflow() {
         let msg = err(&mat(&[&[1e300]]), &mat(&[&[1e-300]]));
         assert!(msg.contains("overflow"), "{msg}");
+    }
+
+    /// The first-order matrix of the Penning trap (m = e = V0 = 1,
+    /// d = 0.45, B = 3) on which nalgebra's unbounded Schur iteration
+    /// cycled forever: bounded, it converges on a similar matrix, and the
+    /// eigenvalues are the exact ones, s = ±i/d (axial) and
+    /// s = ±i·B/2 ± √(2/d² − B²)/2 (radial: unstable).
+    #[test]
+    fn the_penning_trap_matrix_that_stalled_the_schur_iteration() {
+        let (d, b) = (0.45f64, 3.0f64);
+        let kr = -1.0 / (2.0 * d * d);
+        let kz = 1.0 / (d * d);
+        #[rustfmt::skip]
+        let a = DMatrix::from_row_slice(6, 6, &[
+            0.0, 0.0, 0.0, 1.0, 0.0, 0.0,
+            0.0, 0.0, 0.0, 0.0, 1.0, 0.0,
+            0.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+            -kr, 0.0, 0.0, 0.0, b, 0.0,
+            0.0, -kr, 0.0, -b, 0.0, 0.0,
+            0.0, 0.0, -kz, 0.0, 0.0, 0.0,
+        ]);
+        // nalgebra's own iteration stalls on it (this fails when that is
+        // fixed; the retries stay harmless)
+        assert!(nalgebra::Schur::try_new(a.clone(), f64::EPSILON, 100_000).is_none());
+        let mut s = general_eigenvalues(&a).unwrap();
+        s.sort_by(|x, y| x.re.total_cmp(&y.re).then(x.im.total_cmp(&y.im)));
+        let g = (2.0 / (d * d) - b * b).sqrt() / 2.0;
+        let want = [
+            (-g, -b / 2.0),
+            (-g, b / 2.0),
+            (0.0, -1.0 / d),
+            (0.0, 1.0 / d),
+            (g, -b / 2.0),
+            (g, b / 2.0),
+        ];
+        for (z, (re, im)) in s.iter().zip(want) {
+            assert_close(z.re, re, 1e-9);
+            assert_close(z.im, im, 1e-9);
+        }
+    }
+
+    #[test]
+    fn general_eigenvalues_refuse_what_is_not_a_square_finite_matrix() {
+        let e = general_eigenvalues(&DMatrix::zeros(2, 3)).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "the matrix is 2×3: eigenvalues need a square matrix"
+        );
+        let mut a = DMatrix::<f64>::zeros(2, 2);
+        a[(1, 0)] = f64::NAN;
+        assert_eq!(
+            general_eigenvalues(&a).unwrap_err().to_string(),
+            "A[1][0] = NaN is not finite"
+        );
+        assert!(general_eigenvalues(&DMatrix::zeros(0, 0))
+            .unwrap()
+            .is_empty());
     }
 
     #[test]

@@ -52,7 +52,9 @@ pub(super) fn verdict(
         ));
     }
     let failed = || {
-        Stability::Undecided("the characteristic polynomial det(s²·M + s·C + K) could not be evaluated".into())
+        Stability::Undecided(
+            "the characteristic polynomial det(s²·M + s·C + K) could not be evaluated".into(),
+        )
     };
     let Some(b) = coefficients(m, c, k) else {
         return failed();
@@ -125,19 +127,12 @@ fn conditions(chipart: &[(&Expr, Option<Sign>)]) -> Stability {
     if conditions.is_empty() {
         return Stability::Stable;
     }
-    Stability::Undecided(format!(
-        "{}; give values with --set",
-        describe(&conditions)
-    ))
+    Stability::Undecided(format!("{}; give values with --set", describe(&conditions)))
 }
 
 /// b₀ … b_N of det(s²·M + s·C + K), highest power first; `None` when the
 /// determinant cannot be formed.
-pub(super) fn coefficients(
-    m: &[Vec<Expr>],
-    c: &[Vec<Expr>],
-    k: &[Vec<Expr>],
-) -> Option<Vec<Expr>> {
+pub(super) fn coefficients(m: &[Vec<Expr>], c: &[Vec<Expr>], k: &[Vec<Expr>]) -> Option<Vec<Expr>> {
     let n = m.len();
     let sv = atom::unknown(S);
     let s = Expr::var(sv);
@@ -180,7 +175,11 @@ fn hurwitz_determinants(b: &[Expr]) -> Option<Vec<Expr>> {
             .unwrap_or_else(Expr::zero)
     };
     (1..degree)
-        .map(|size| det((0..size).map(|i| (0..size).map(|j| entry(i, j)).collect()).collect()))
+        .map(|size| {
+            det((0..size)
+                .map(|i| (0..size).map(|j| entry(i, j)).collect())
+                .collect())
+        })
         .collect()
 }
 

@@ -39,8 +39,8 @@
 
 use super::condition::{describe, Condition, Positivity};
 use super::definite::{negated, Mass, Stiffness};
-use super::hurwitz::Dissipation;
 use super::equilibrium::{jacobi, minor_signs, Stability};
+use super::hurwitz::Dissipation;
 use crate::algebra::sign::{sign_of, Sign, Values};
 use crate::expr::atom::Atom;
 use crate::expr::{func, Expr};
@@ -101,6 +101,33 @@ pub(super) fn stability(
             numeric(sys, set).unwrap_or(exact)
         },
     )
+}
+
+/// The verdict on M·q̈ + C·q̇ + K·q = 0 as `modes` gives it, for the
+/// equilibria whose forces are not conservative or whose velocity terms
+/// may feed energy in.
+pub(super) fn of_matrices(
+    m: &[Vec<Expr>],
+    c: &[Vec<Expr>],
+    k: &[Vec<Expr>],
+    set: &Values,
+) -> Stability {
+    let n = m.len();
+    let any = c.iter().flatten().any(|e| !e.is_zero());
+    let gyroscopic = any && (0..n).all(|i| (0..n).all(|j| c[i][j].add(&c[j][i]).is_zero()));
+    let lv = crate::expr::atom::unknown(super::oscillations::LAMBDA);
+    let p = super::characteristic::polynomial(k, m, gyroscopic.then_some(c), lv)
+        .or_else(|| super::characteristic::polynomial(k, m, None, lv));
+    let Some(p) = p else {
+        return Stability::Undecided("the characteristic polynomial could not be evaluated".into());
+    };
+    let sys = Linearized {
+        mass: m,
+        damping: c,
+        stiffness: k,
+        gyroscopic,
+    };
+    stability(&sys, &Mass::exact(m, set), &p, lv, set)
 }
 
 /// The exact verdict for a positive definite M (see the module docs).
@@ -427,6 +454,62 @@ fn numeric(sys: &Linearized, set: &Values) -> Option<Stability> {
         ));
     }
     Some(Stability::Stable)
+}
+
+/// The verdict on numeric M, C, K with non-conservative terms (K not
+/// symmetric, or C's symmetric part not positive semidefinite) from the
+/// eigenvalues of the first-order system: `None` when the dissipation is
+/// of known sign and K symmetric (K's minors decide), or M is singular.
+pub(super) fn numeric_verdict(m: &[Vec<f64>], c: &[Vec<f64>], k: &[Vec<f64>]) -> Option<Stability> {
+    let n = m.len();
+    let scale = |x: &[Vec<f64>]| x.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
+    let (ks, cs) = (scale(k), scale(c));
+    let symmetric = (0..n).all(|i| (0..i).all(|j| (k[i][j] - k[j][i]).abs() <= 1e-8 * ks));
+    let half = DMatrix::from_fn(n, n, |i, j| 0.5 * (c[i][j] + c[j][i]));
+    let dissipative = cs == 0.0
+        || nalgebra::SymmetricEigen::try_new(half, f64::EPSILON, 100 * n + 100)
+            .is_some_and(|e| e.eigenvalues.iter().all(|&v| v >= -1e-9 * cs));
+    if symmetric && dissipative {
+        return None;
+    }
+    let mm = DMatrix::from_fn(n, n, |i, j| m[i][j]);
+    let cc = DMatrix::from_fn(n, n, |i, j| c[i][j]);
+    let kk = DMatrix::from_fn(n, n, |i, j| k[i][j]);
+    let lu = mm.lu();
+    let (mk, mc) = (lu.solve(&kk)?, lu.solve(&cc)?);
+    let a = DMatrix::from_fn(2 * n, 2 * n, |i, j| match (i < n, j < n) {
+        (true, true) => 0.0,
+        (true, false) => f64::from(u8::from(j - n == i)),
+        (false, true) => -mk[(i - n, j)],
+        (false, false) => -mc[(i - n, j - n)],
+    });
+    if a.iter().any(|v| !v.is_finite()) {
+        return None;
+    }
+    let s = match super::eigen::general_eigenvalues(&a) {
+        Ok(s) => s,
+        Err(e) => {
+            return Some(Stability::Undecided(format!(
+                "the eigenvalues here could not be computed ({e})"
+            )))
+        }
+    };
+    let scale = s.iter().fold(0.0f64, |x, z| x.max(z.norm()));
+    let tol = 1e-9 * scale.max(f64::MIN_POSITIVE);
+    let re = s.iter().fold(f64::NEG_INFINITY, |x, z| x.max(z.re));
+    // on the axis, simple and nonzero: bounded, as `modes` says of it
+    let simple = s.iter().enumerate().all(|(i, a)| {
+        a.norm() > 1e-6 * scale && s[..i].iter().all(|b| (a - b).norm() > 1e-6 * scale)
+    });
+    Some(if re > tol {
+        Stability::Unstable
+    } else if re < -tol || simple {
+        Stability::Stable
+    } else {
+        Stability::Undecided(
+            "an eigenvalue on the imaginary axis within rounding, with non-conservative forces: the linearization does not decide".into(),
+        )
+    })
 }
 
 /// With det K = 0, the eigenvalues s of the first-order system within this
