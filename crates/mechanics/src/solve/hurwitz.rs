@@ -95,6 +95,10 @@ pub(super) fn verdict(
     {
         return Stability::Unstable;
     }
+    if b_signs.last() == Some(&Some(Sign::Zero)) {
+        // det K = 0: s = 0 is a root, as without damping
+        return Stability::Undecided("a zero frequency: higher-order terms decide".into());
+    }
     if all.contains(&Some(Sign::Zero)) {
         return Stability::Undecided(BOUNDARY.into());
     }
