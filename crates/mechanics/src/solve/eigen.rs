@@ -234,6 +234,10 @@ pub fn general_eigenvalues(a: &DMatrix<f64>) -> Result<Vec<nalgebra::Complex<f64
             value: a[p],
         });
     }
+    if n == 0 {
+        // nalgebra's eigenvalues of a 0×0 Schur form underflow an index
+        return Ok(Vec::new());
+    }
     let max_niter = SCHUR_ITERATIONS_PER_ROW * n + SCHUR_ITERATIONS_PER_ROW;
     for attempt in 0..SCHUR_TRIES {
         let m = if attempt == 0 {
