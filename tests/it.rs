@@ -61,6 +61,7 @@ mod simulate_cli;
 mod simulate_plot;
 mod simulate_pty;
 mod solve_blocks;
+mod stability_verdicts;
 mod steady;
 mod stress;
 mod structured;

@@ -7,6 +7,7 @@ pub(crate) mod bound;
 mod budget;
 mod definite;
 mod determinism;
+mod eigen_bound;
 mod exact;
 mod exact_values;
 mod hidden_zeros;

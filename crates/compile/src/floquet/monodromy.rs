@@ -101,8 +101,8 @@ pub(super) fn analyse(p: &Prepared, params: &[f64]) -> Result<Floquet, Diagnosti
     let (loose, _) = monodromy(p, params, period, LOOSE)?;
     let (phi, steps) = monodromy(p, params, period, TIGHT)?;
     let d = 2 * p.n();
-    let mu = multipliers(&phi, d);
-    let mu_loose = multipliers(&loose, d);
+    let mu = multipliers(&phi, d)?;
+    let mu_loose = multipliers(&loose, d)?;
     let largest = phi.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let mut error = ROUNDING_ULPS * f64::EPSILON * largest.max(1.0);
     let mut used = vec![false; d];
@@ -213,16 +213,21 @@ pub fn certified(x: f64, e: f64) -> String {
 }
 
 /// The eigenvalues of the d × d row-major matrix `phi`, by decreasing
-/// modulus, then decreasing imaginary part.
-fn multipliers(phi: &[f64], d: usize) -> Vec<Multiplier> {
+/// modulus, then decreasing imaginary part (a bounded iteration: its
+/// failure is an error, not a hang).
+fn multipliers(phi: &[f64], d: usize) -> Result<Vec<Multiplier>, Diagnostic> {
     let m = nalgebra::DMatrix::from_row_slice(d, d, phi);
-    let mut mu: Vec<Multiplier> = m
-        .complex_eigenvalues()
+    let mut mu: Vec<Multiplier> = qdot_mechanics::solve::eigen::general_eigenvalues(&m)
+        .map_err(|e| {
+            Diagnostic::global(format!(
+                "the Floquet multipliers (the eigenvalues of the monodromy matrix) could not be computed: {e}"
+            ))
+        })?
         .iter()
         .map(|z| Multiplier { re: z.re, im: z.im })
         .collect();
     mu.sort_by(|a, b| b.abs().total_cmp(&a.abs()).then(b.im.total_cmp(&a.im)));
-    mu
+    Ok(mu)
 }
 
 /// x' = A(t)·x for the d × d solution matrix, row-major.

@@ -72,6 +72,14 @@ pub(super) fn positive(x: &Expr) -> Positivity {
         }
         match sum_of_squares(&g, MAX_SQUARES_DEPTH) {
             Some(zeros) if zeros.is_empty() => {}
+            // a square whose base has a sign never vanishes: the sum is positive
+            Some(zeros)
+                if zeros.iter().any(|z| {
+                    matches!(
+                        sign_exact(&Expr::from_poly(z.clone())),
+                        Some(Sign::Positive | Sign::Negative)
+                    )
+                }) => {}
             Some(zeros) => unless.push(zeros),
             None => {
                 // each factor as it prints with a positive first term, and

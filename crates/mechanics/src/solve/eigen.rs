@@ -204,6 +204,78 @@ pub fn generalized_symmetric(
     Ok(GeneralizedEigen { values, vectors })
 }
 
+/// The eigenvalues of a real square matrix, each as often as its
+/// multiplicity, in the Schur form's order.
+///
+/// nalgebra's `complex_eigenvalues` runs its double-shift QR iteration
+/// without a bound, and without exceptional shifts it can cycle forever
+/// (the Penning trap's first-order matrix at some values did). Here the
+/// iteration is bounded ([`SCHUR_ITERATIONS_PER_ROW`] per row); when it
+/// stalls, the same matrix is tried after an orthogonal similarity (same
+/// eigenvalues, another iteration path), and after [`SCHUR_TRIES`] the
+/// answer is [`EigenError::NoConvergence`].
+///
+/// # Errors
+///
+/// A matrix that is not square or has an entry that is not finite, or
+/// the iteration not converging.
+pub fn general_eigenvalues(a: &DMatrix<f64>) -> Result<Vec<nalgebra::Complex<f64>>, EigenError> {
+    let n = a.nrows();
+    if a.ncols() != n {
+        return Err(EigenError::Shape(format!(
+            "the matrix is {n}×{}: eigenvalues need a square matrix",
+            a.ncols()
+        )));
+    }
+    if let Some(p) = a.iter().position(|v| !v.is_finite()) {
+        return Err(EigenError::NotFinite {
+            matrix: "A",
+            entry: (p % n.max(1), p / n.max(1)),
+            value: a[p],
+        });
+    }
+    if n == 0 {
+        // nalgebra's eigenvalues of a 0×0 Schur form underflow an index
+        return Ok(Vec::new());
+    }
+    let max_niter = SCHUR_ITERATIONS_PER_ROW * n + SCHUR_ITERATIONS_PER_ROW;
+    for attempt in 0..SCHUR_TRIES {
+        let m = if attempt == 0 {
+            a.clone()
+        } else {
+            let h = reflection(n, attempt);
+            &h * a * &h
+        };
+        if let Some(schur) = nalgebra::Schur::try_new(m, f64::EPSILON, max_niter) {
+            let values: Vec<_> = schur.complex_eigenvalues().iter().copied().collect();
+            if values.iter().all(|z| z.re.is_finite() && z.im.is_finite()) {
+                return Ok(values);
+            }
+        }
+    }
+    Err(EigenError::NoConvergence {
+        iterations: SCHUR_TRIES * max_niter,
+    })
+}
+
+/// The double-shift QR iterations allowed per row of the matrix (LAPACK's
+/// DHSEQR allows 30 per eigenvalue).
+const SCHUR_ITERATIONS_PER_ROW: usize = 40;
+/// How many matrices similar to the given one the Schur decomposition tries.
+const SCHUR_TRIES: usize = 3;
+
+/// The Householder reflection I − 2·v·vᵀ/(vᵀ·v) with v = (1, 1 + t, 1 + 2t,
+/// …), its own inverse: an orthogonal similarity that moves a stalled QR
+/// iteration without changing the eigenvalues or the conditioning.
+fn reflection(n: usize, t: usize) -> DMatrix<f64> {
+    let v: Vec<f64> = (0..n).map(|i| 1.0 + (i * t) as f64 / n as f64).collect();
+    let vv: f64 = v.iter().map(|x| x * x).sum();
+    DMatrix::from_fn(n, n, |i, j| {
+        let id = if i == j { 1.0 } else { 0.0 };
+        id - 2.0 * v[i] * v[j] / vv
+    })
+}
+
 /// The textbook's "distribution coefficients" of a mode: μⱼ = xⱼ/x₁, i.e.
 /// `v` divided by `v[0]` (so μ₀ = 1).
 ///
@@ -329,7 +401,7 @@ pub enum EigenError {
     },
     /// L⁻¹·K·L⁻ᵀ overflowed: K is too large relative to M.
     Overflow,
-    /// The symmetric QR iteration did not converge.
+    /// The QR iteration did not converge.
     NoConvergence {
         /// The iterations allowed.
         iterations: usize,
@@ -373,7 +445,7 @@ impl std::fmt::Display for EigenError {
             }
             EigenError::NoConvergence { iterations } => write!(
                 f,
-                "the symmetric QR iteration did not converge in {iterations} iterations"
+                "the QR iteration for the eigenvalues did not converge in {iterations} iterations"
             ),
             EigenError::Breakdown(what) => write!(f, "numerical breakdown: {what}"),
         }
@@ -748,6 +820,63 @@ mod tests {
     fn error_overflow() {
         let msg = err(&mat(&[&[1e300]]), &mat(&[&[1e-300]]));
         assert!(msg.contains("overflow"), "{msg}");
+    }
+
+    /// The first-order matrix of the Penning trap (m = e = V0 = 1,
+    /// d = 0.45, B = 3) on which nalgebra's unbounded Schur iteration
+    /// cycled forever: bounded, it converges on a similar matrix, and the
+    /// eigenvalues are the exact ones, s = ±i/d (axial) and
+    /// s = ±i·B/2 ± √(2/d² − B²)/2 (radial: unstable).
+    #[test]
+    fn the_penning_trap_matrix_that_stalled_the_schur_iteration() {
+        let (d, b) = (0.45f64, 3.0f64);
+        let kr = -1.0 / (2.0 * d * d);
+        let kz = 1.0 / (d * d);
+        #[rustfmt::skip]
+        let a = DMatrix::from_row_slice(6, 6, &[
+            0.0, 0.0, 0.0, 1.0, 0.0, 0.0,
+            0.0, 0.0, 0.0, 0.0, 1.0, 0.0,
+            0.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+            -kr, 0.0, 0.0, 0.0, b, 0.0,
+            0.0, -kr, 0.0, -b, 0.0, 0.0,
+            0.0, 0.0, -kz, 0.0, 0.0, 0.0,
+        ]);
+        // nalgebra's own iteration stalls on it (this fails when that is
+        // fixed; the retries stay harmless)
+        assert!(nalgebra::Schur::try_new(a.clone(), f64::EPSILON, 100_000).is_none());
+        let mut s = general_eigenvalues(&a).unwrap();
+        s.sort_by(|x, y| x.re.total_cmp(&y.re).then(x.im.total_cmp(&y.im)));
+        let g = (2.0 / (d * d) - b * b).sqrt() / 2.0;
+        let want = [
+            (-g, -b / 2.0),
+            (-g, b / 2.0),
+            (0.0, -1.0 / d),
+            (0.0, 1.0 / d),
+            (g, -b / 2.0),
+            (g, b / 2.0),
+        ];
+        for (z, (re, im)) in s.iter().zip(want) {
+            assert_close(z.re, re, 1e-9);
+            assert_close(z.im, im, 1e-9);
+        }
+    }
+
+    #[test]
+    fn general_eigenvalues_refuse_what_is_not_a_square_finite_matrix() {
+        let e = general_eigenvalues(&DMatrix::zeros(2, 3)).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "the matrix is 2×3: eigenvalues need a square matrix"
+        );
+        let mut a = DMatrix::<f64>::zeros(2, 2);
+        a[(1, 0)] = f64::NAN;
+        assert_eq!(
+            general_eigenvalues(&a).unwrap_err().to_string(),
+            "A[1][0] = NaN is not finite"
+        );
+        assert!(general_eigenvalues(&DMatrix::zeros(0, 0))
+            .unwrap()
+            .is_empty());
     }
 
     #[test]

@@ -1029,12 +1029,38 @@ fn classify_exact(
     let Some(m) = matrix_at(inertia.mass(), &map) else {
         return Stability::Undecided("the mass matrix is undefined here".into());
     };
+    if let Some(v) = non_conservative(inertia, &map, &m, &k, set) {
+        return v;
+    }
     Mass::exact(&m, set).verdict(
         || Stiffness::exact(&k, set),
         || inertia.velocity_free(),
         || inertia.velocity_free() && super::linear_stability::undamped_grows(&m, &k, set),
         potential,
     )
+}
+
+/// The verdict of the whole linearization M·q̈ + C·q̇ + K·q = 0 (as
+/// `modes` decides it) where K's minors alone would mislead: K not
+/// symmetric (circulatory forces: flutter), or velocity terms that may
+/// feed energy in (C's symmetric part of no proved sign); `None` otherwise.
+fn non_conservative(
+    inertia: &AtRest,
+    at: &FxHashMap<Var, Expr>,
+    m: &[Vec<Expr>],
+    k: &[Vec<Expr>],
+    set: &Values,
+) -> Option<Stability> {
+    let n = k.len();
+    let symmetric = (0..n).all(|i| (0..i).all(|j| k[i][j].equals(&k[j][i])));
+    if symmetric && inertia.velocity_free() {
+        return None;
+    }
+    let c = matrix_at(&inertia.velocity_terms()?, at)?;
+    if symmetric && super::hurwitz::dissipation(&c, set) != super::hurwitz::Dissipation::Unknown {
+        return None;
+    }
+    Some(super::linear_stability::of_matrices(m, &c, k, set))
 }
 
 /// The verdict of the potential's Hessian K (for a positive definite
@@ -1256,20 +1282,33 @@ fn solve_numeric(
                             .map(|row| row.iter().map(|e| eval(e, &r.x)).collect())
                             .collect::<Option<Vec<Vec<f64>>>>()
                     });
+                    let velocity = |x: &[f64]| {
+                        let c = inertia?.velocity_terms()?;
+                        c.iter()
+                            .map(|row| row.iter().map(|e| eval(e, x)).collect())
+                            .collect::<Option<Vec<Vec<f64>>>>()
+                    };
                     match mass {
                         None => potential(false),
                         Some(None) => {
                             Stability::Undecided("the mass matrix is undefined here".into())
                         }
-                        Some(Some(m)) => Mass::numeric(&m).verdict(
-                            || Stiffness::numeric(&k),
-                            || inertia.is_some_and(AtRest::velocity_free),
-                            || {
-                                inertia.is_some_and(AtRest::velocity_free)
-                                    && undamped_grows_f64(&m, &k)
-                            },
-                            potential,
-                        ),
+                        Some(Some(m)) => (inertia.is_some_and(|i| !i.velocity_free())
+                            || !symmetric_f64(&k))
+                        .then(|| velocity(&r.x))
+                        .flatten()
+                        .and_then(|c| super::linear_stability::numeric_verdict(&m, &c, &k))
+                        .unwrap_or_else(|| {
+                            Mass::numeric(&m).verdict(
+                                || Stiffness::numeric(&k),
+                                || inertia.is_some_and(AtRest::velocity_free),
+                                || {
+                                    inertia.is_some_and(AtRest::velocity_free)
+                                        && undamped_grows_f64(&m, &k)
+                                },
+                                potential,
+                            )
+                        }),
                     }
                 }
                 None => Stability::Undecided("the Hessian is undefined here".into()),
@@ -1304,6 +1343,16 @@ fn flat(side: &impl Fn(f64) -> Option<f64>, x: f64, negate: bool) -> Option<Stab
     } else {
         None
     }
+}
+
+/// Whether a numeric K is symmetric (as [`classify_numeric`] reads it).
+fn symmetric_f64(k: &[Vec<f64>]) -> bool {
+    let scale = k.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    k.iter().enumerate().all(|(i, r)| {
+        r.iter()
+            .enumerate()
+            .all(|(j, v)| (v - k[j][i]).abs() <= 1e-8 * scale)
+    })
 }
 
 #[allow(clippy::needless_range_loop)] // matrix indices read best as indices

@@ -8,6 +8,7 @@ pub mod constrained;
 mod definite;
 pub mod eigen;
 pub mod equilibrium;
+mod hurwitz;
 pub mod integrable;
 pub mod kinetostatic;
 mod linear_stability;

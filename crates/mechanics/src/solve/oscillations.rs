@@ -514,7 +514,7 @@ pub fn numeric_modes_or_why(
     }
     if md.gyroscopic {
         let Some(s) =
-            super::linear_stability::eigenvalues(&md.mass, &md.damping, &md.stiffness, set)
+            super::linear_stability::eigenvalues(&md.mass, &md.damping, &md.stiffness, set)?
         else {
             return Ok(None);
         };

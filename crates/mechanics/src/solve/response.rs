@@ -451,11 +451,7 @@ fn harmonic(forcing: &[Expr]) -> Result<(Expr, Vec<Expr>, Vec<Expr>), Diagnostic
     let k = match present[..] {
         [k] => k,
         [] => {
-            return Err(Diagnostic::global(
-                "the scene has no harmonic load: the frequency response needs a force F·cos(p·t) (or sin) on the system",
-            )
-            .with_hint(LOAD_HINT)
-            .with_kind(crate::diag::ErrorKind::NothingToSolve))
+            return Err(no_harmonic_load())
         }
         [a, b, ..] => return Err(more_than_one(&angle(a), &angle(b))),
     };
@@ -1006,7 +1002,7 @@ pub fn natural_frequencies(sys: &ForcedSystem, set: &Values) -> Result<Vec<f64>,
                 .sub(&sys.damping[j][i])
                 .scale(&Q::new(1, 2).unwrap_or_else(Q::one))
         });
-        let s = super::linear_stability::eigenvalues(&sys.mass, &skew, &sys.stiffness, set)
+        let s = super::linear_stability::eigenvalues(&sys.mass, &skew, &sys.stiffness, set)?
             .ok_or("a parameter has no value")?;
         let scale = s.iter().fold(0.0f64, |a, z| a.max(z.norm()));
         let mut w: Vec<f64> = s
