@@ -5,6 +5,7 @@
 
 pub(crate) mod bound;
 mod budget;
+mod cycle;
 mod definite;
 mod exact;
 mod exact_values;

@@ -281,6 +281,9 @@ fn solve(model: &Model, at: &Position, r: &DVector<f64>, senses: &[f64]) -> Solv
         0 => Solve::Refused(format!(
             "the friction equations have no solution here: in none of the {cases} cases of the normal forces' signs do the reactions agree with their case (friction this large locks the mechanism)"
         )),
+        k if sliders.is_empty() => Solve::Refused(format!(
+            "the friction equations have {k} solutions here ({k} magnitudes of the pin's reaction agree with the friction couple it makes), so the reactions are not determined"
+        )),
         k => Solve::Refused(format!(
             "the friction equations have {k} solutions here (in the {cases} cases of the normal forces' signs), so the reactions are not determined"
         )),
