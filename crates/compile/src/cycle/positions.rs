@@ -160,37 +160,7 @@ pub(super) fn run(
             qdd: &qdd,
             scales: &scales,
         };
-        match kinetostatics(model, &at) {
-            Kinetostatics::Solved {
-                lambda,
-                friction,
-                iterations,
-            } => {
-                reactions(&mut row.values, layout, &lambda, &friction);
-                row.iterations = iterations;
-            }
-            Kinetostatics::Stick {
-                joint,
-                minus,
-                plus,
-                iterations,
-                note,
-            } => {
-                let side = |(lambda, friction): (Vec<f64>, Vec<f64>)| {
-                    let mut values = row.values.clone();
-                    reactions(&mut values, layout, &lambda, &friction);
-                    values
-                };
-                row.limits = Some(Box::new(StickLimits {
-                    joint,
-                    minus: side(minus),
-                    plus: side(plus),
-                }));
-                row.iterations = iterations;
-                row.add_note(note);
-            }
-            Kinetostatics::Refused(why) => row.add_note(why),
-        }
+        record(&mut row, layout, kinetostatics(model, &at));
         row.points = points(&motion[lay.points..], model.points);
         carried = Some(Carried {
             t,
@@ -214,6 +184,42 @@ pub(super) fn run(
         rows,
         drawing: model.drawing.clone(),
     })
+}
+
+/// The kinetostatics' outcome into the row: the reactions, or both
+/// limits at a stick, or why not.
+fn record(row: &mut CycleRow, layout: &Layout, k: Kinetostatics) {
+    match k {
+        Kinetostatics::Solved {
+            lambda,
+            friction,
+            iterations,
+        } => {
+            reactions(&mut row.values, layout, &lambda, &friction);
+            row.iterations = iterations;
+        }
+        Kinetostatics::Stick {
+            joint,
+            minus,
+            plus,
+            iterations,
+            note,
+        } => {
+            let side = |(lambda, friction): (Vec<f64>, Vec<f64>)| {
+                let mut values = row.values.clone();
+                reactions(&mut values, layout, &lambda, &friction);
+                values
+            };
+            row.limits = Some(Box::new(StickLimits {
+                joint,
+                minus: side(minus),
+                plus: side(plus),
+            }));
+            row.iterations = iterations;
+            row.add_note(note);
+        }
+        Kinetostatics::Refused(why) => row.add_note(why),
+    }
 }
 
 /// The reactions `lambda` (by constraint) and the frictions into their
