@@ -15,6 +15,7 @@ mod cli;
 mod codegen;
 mod compile;
 mod constraints;
+mod cycle_scale;
 mod definite_props;
 mod determinism;
 mod dimensions;

@@ -1048,27 +1048,40 @@ fn a_non_grashof_crank_driven_past_its_limit() {
 
 /// The engine with friction in its wrist pin B too, whose relative
 /// rotation −θ' vanishes at φ = 90° and 270° (rows 18 and 54): there the
-/// friction's sense is undefined and the row says so; with a coefficient
-/// of 0 there is no friction to refuse.
+/// friction's sense is undefined, the row says so and gives the
+/// reactions at both limits of sliding, where the couple is ∓μ₀·r₀·|B|;
+/// with a coefficient of 0 there is no friction and no stick.
 #[test]
-fn a_friction_at_rest_refuses_its_row_unless_its_coefficient_is_zero() {
+fn a_friction_at_rest_gives_both_limits_unless_its_coefficient_is_zero() {
     let f = fixture("slider_crank_engine");
     let src = edit(&source(&f.scene), "", "friction B: mu0*r0");
     let t = run_cycle(&src, &request(&f.over, &f.set, &f.guess));
+    let first_force = col(&t, "O_x");
+    let (bx, by, bf) = (col(&t, "B_x"), col(&t, "B_y"), col(&t, "B_f"));
     for (r, row) in t.rows.iter().enumerate() {
         if r == 18 || r == 54 {
             let note = row.note.as_deref().unwrap();
             assert!(
                 note.starts_with("stick: the relative velocity in the joint `B` vanishes here (")
-                    && note.ends_with("), so its friction's sense is undefined"),
+                    && note.ends_with("), so its friction may be anywhere between its values for sliding either way: the reactions are given at both, the limits v → 0⁻ and v → 0⁺"),
                 "{note}"
             );
-            // the motion is known, the forces are not
-            let first_force = col(&t, "O_x");
+            // the motion is known, the forces only at the two limits
             assert!(row.values[..first_force].iter().all(Option::is_some));
             assert!(row.values[first_force..].iter().all(Option::is_none));
+            let l = row.limits.as_deref().unwrap();
+            assert_eq!(l.joint, "B");
+            for (side, sense) in [(&l.minus, -1.0), (&l.plus, 1.0)] {
+                assert_eq!(side[..first_force], row.values[..first_force]);
+                let v = |k: usize| side[k].unwrap();
+                // −μ₀·r₀·|B|·sgn ω_rel with mu0 = 0.05, r0 = 0.01
+                let want = -0.05 * 0.01 * v(bx).hypot(v(by)) * sense;
+                assert!(close(v(bf), want), "row {r}: {} against {want}", v(bf));
+            }
+            assert!(l.minus[bf].unwrap() > 0.0 && l.plus[bf].unwrap() < 0.0);
         } else {
             assert_eq!(row.note, None, "row {r}");
+            assert!(row.limits.is_none());
         }
     }
     let free = fixture("slider_crank_engine_frictionless");

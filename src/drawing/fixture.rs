@@ -48,6 +48,7 @@ fn row(phi: f64) -> CycleRow {
         values,
         note: None,
         iterations: 0,
+        limits: None,
         // crank: centre, O, A; rod: centre, A, B; block: centre, B, G;
         // the guide: its point and one unit along it
         points: vec![

@@ -234,6 +234,8 @@ pub fn reaction_diagrams(
     title: &str,
     degrees: bool,
 ) -> Result<String, PlotError> {
+    // a stick is drawn as the jump between its two limits, not a hole
+    let table = &table.stick_rows_split();
     let (curves, polars) = panels(table);
     let polar_rows = polars.len().div_ceil(2) as u32;
     let height = TITLE_HEIGHT + PANEL_HEIGHT * curves.len() as u32 + POLAR_SIDE * polar_rows;

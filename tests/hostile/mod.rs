@@ -5,6 +5,7 @@
 
 pub(crate) mod bound;
 mod budget;
+mod cycle;
 mod definite;
 mod determinism;
 mod eigen_bound;

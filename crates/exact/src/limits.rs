@@ -144,9 +144,9 @@ pub const MAX_FLOQUET_POINTS: usize = 1_000_000;
 /// each row keeps its values and the drawing's points until printed.
 pub const MAX_CYCLE_POSITIONS: usize = 1_000_000;
 
-/// The most steps of the fixed-point iteration that finds a mechanism's
-/// Coulomb frictions at one position (each step one solve of the
-/// kinetostatics); past it the row says the iteration did not converge.
+/// The most steps of Newton's method on the reactions of a mechanism's
+/// pins with Coulomb friction at one position (sliders and a single pin
+/// are solved exactly); past it the row says it did not converge.
 pub const MAX_FRICTION_ITERATIONS: u32 = 200;
 
 /// The default of `qdot simulate --max-steps` and `qdot floquet --max-steps`: steps (accepted and

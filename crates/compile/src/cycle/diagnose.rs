@@ -3,12 +3,14 @@
 //! fix), or they cannot all hold at once (a loop whose links cannot reach).
 
 use super::model::Model;
+use super::scale::Scales;
 use super::Over;
 use crate::diag::Diagnostic;
 use crate::scene::Scene;
 use nalgebra::{DMatrix, DVector};
 
-/// A relative singular value below this is a dependency among the rows.
+/// A relative singular value (of the Jacobian in natural units) below
+/// this is a dependency among the rows.
 const DEPENDENT_RATIO: f64 = 1e-10;
 /// The least-squares search for the nearest assembly stops after this
 /// many steps.
@@ -39,25 +41,29 @@ pub(super) struct Dependency {
 }
 
 /// A point near `q`, the same for every call: off a singular Jacobian,
-/// by a thousandth of the coordinates' scale.
-pub(super) fn nudged(q: &[f64]) -> Vec<f64> {
+/// by a thousandth of each coordinate's natural scale.
+pub(super) fn nudged(scales: &Scales, q: &[f64]) -> Vec<f64> {
     q.iter()
+        .zip(&scales.coordinate)
         .enumerate()
-        .map(|(i, x)| x + 1e-3 * (1.0 + x.abs()) * (1.7 * i as f64 + 0.3).sin())
+        .map(|(i, (x, s))| x + 1e-3 * (s + x.abs()) * (1.7 * i as f64 + 0.3).sin())
         .collect()
 }
 
 /// The dependency among the rows of the Jacobian near `q`, if any.
 pub(super) fn dependency(
     model: &mut Model,
+    scales: &Scales,
     q: &[f64],
     t: f64,
     out: &mut [f64],
 ) -> Option<Dependency> {
-    let near = nudged(q);
+    let near = nudged(scales, q);
     let mut last = None;
     for point in [q, &near[..]] {
-        let svd = jacobian(model, point, t, out).svd(true, true);
+        let svd = scales
+            .scaled(&jacobian(model, point, t, out))
+            .svd(true, true);
         let s = &svd.singular_values;
         let (k, lo) =
             s.iter().enumerate().fold(
@@ -90,24 +96,30 @@ pub(super) fn dependency(
 }
 
 /// The least-squares assembly nearest `q` (Levenberg–Marquardt on
-/// |g|²) and its residuals: where the mechanism cannot close, the
-/// conditions left open there are the ones that cannot all hold.
+/// |g|², each condition and coordinate in its natural unit) and its
+/// residuals: where the mechanism cannot close, the conditions left open
+/// there are the ones that cannot all hold.
 pub(super) fn nearest(
     model: &mut Model,
+    scales: &Scales,
     q: &[f64],
     t: f64,
     offsets: &[f64],
     out: &mut [f64],
 ) -> (Vec<f64>, Vec<f64>) {
     let n = model.n;
+    let units = scales.rows(&jacobian(model, q, t, out));
+    let scaled = |g: &[f64]| -> Vec<f64> { g.iter().zip(&units).map(|(x, u)| x / u).collect() };
     let mut q = q.to_vec();
     let mut g = residual(model, &q, t, offsets, out);
-    let mut cost: f64 = g.iter().map(|x| x * x).sum();
+    let mut cost: f64 = scaled(&g).iter().map(|x| x * x).sum();
     let mut damping = 1e-3;
     for _ in 0..MAX_NEAREST_STEPS {
-        let a = jacobian(model, &q, t, out);
+        // A·dq = −g in natural units: rows over T_i, columns times S_j
+        let raw = jacobian(model, &q, t, out);
+        let a = DMatrix::from_fn(n, n, |i, j| raw[(i, j)] * scales.coordinate[j] / units[i]);
         let ata = a.transpose() * &a;
-        let atg = a.transpose() * DVector::from_column_slice(&g);
+        let atg = a.transpose() * DVector::from_column_slice(&scaled(&g));
         let mut lhs = ata.clone();
         for i in 0..n {
             lhs[(i, i)] += damping * (ata[(i, i)] + 1e-12);
@@ -115,11 +127,16 @@ pub(super) fn nearest(
         let Some(dq) = lhs.lu().solve(&(-atg)) else {
             break;
         };
-        let trial: Vec<f64> = q.iter().zip(dq.iter()).map(|(x, d)| x + d).collect();
+        let trial: Vec<f64> = q
+            .iter()
+            .zip(dq.iter())
+            .zip(&scales.coordinate)
+            .map(|((x, d), s)| x + d * s)
+            .collect();
         let gt = residual(model, &trial, t, offsets, out);
-        let ct: f64 = gt.iter().map(|x| x * x).sum();
+        let ct: f64 = scaled(&gt).iter().map(|x| x * x).sum();
         if ct.is_finite() && ct < cost {
-            let small = cost - ct <= 1e-15 * cost || dq.amax() <= 1e-14;
+            let small = cost - ct <= 1e-15 * cost || dq.amax() <= 1e-14 * scales.size(&q);
             (q, g, cost) = (trial, gt, ct);
             damping = (damping / 3.0).max(1e-12);
             if small {
@@ -220,6 +237,7 @@ pub(super) fn cannot_hold(scene: &Scene, residual: &[f64]) -> String {
 pub(super) fn unassembled(
     scene: &Scene,
     model: &mut Model,
+    scales: &Scales,
     start: &[f64],
     t: f64,
     residual: &[f64],
@@ -227,7 +245,7 @@ pub(super) fn unassembled(
     over: &Over,
     v: f64,
 ) -> Diagnostic {
-    if let Some(d) = dependency(model, start, t, out) {
+    if let Some(d) = dependency(model, scales, start, t, out) {
         return dependent(scene, &d, over, v);
     }
     let why = cannot_hold(scene, residual);

@@ -10,6 +10,7 @@ mod diagnose;
 mod friction;
 mod model;
 mod positions;
+mod scale;
 mod table;
 
 pub use table::*;

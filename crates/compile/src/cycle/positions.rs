@@ -3,9 +3,10 @@
 //! velocities and accelerations, and the kinetostatics.
 
 use super::diagnose::{self, dependency, nearest, nudged};
-use super::friction::{kinetostatics, Kinetostatics};
+use super::friction::{kinetostatics, Kinetostatics, Position};
 use super::model::Model;
-use super::table::{CycleRow, CycleTable, Layout};
+use super::scale::Scales;
+use super::table::{CycleRow, CycleTable, Layout, StickLimits};
 use super::{Over, Varied};
 use crate::diag::Diagnostic;
 use crate::scene::Scene;
@@ -13,16 +14,17 @@ use nalgebra::{DMatrix, DVector};
 
 /// Newton's method gives up after this many steps at one position.
 const MAX_NEWTON_STEPS: usize = 50;
-/// A Jacobian whose smallest pivot is below this fraction of its largest
-/// is singular: a dead point. Not near the rounding error: at a dead
+/// A Jacobian whose smallest pivot is below this fraction of its largest,
+/// in the mechanism's natural units (`scale.rs`), is singular: a dead point. Not near the rounding error: at a dead
 /// point g has a double root, which Newton's method finds only to about
 /// √ε, so the pivot there is ~1e-9 of the largest rather than 0.
 const SINGULAR_PIVOT_RATIO: f64 = 1e-6;
-/// Newton's steps are at most this fraction of the coordinates' scale.
+/// Newton's steps are at most this fraction of the position's size in
+/// natural units.
 const MAX_STEP: f64 = 0.5;
-/// A position whose residuals are below this (relative to the
-/// coordinates' scale) is assembled even when Newton's method, slowed by
-/// a singular Jacobian, did not converge.
+/// A position whose residuals are below this (in natural units, relative
+/// to the position's size) is assembled even when Newton's method, slowed
+/// by a singular Jacobian, did not converge.
 const ASSEMBLED_RESIDUAL: f64 = 1e-9;
 
 /// The state carried from one position to the next.
@@ -57,6 +59,7 @@ pub(super) fn run(
     for &j in &model.locked {
         offsets[j] = out[j];
     }
+    let scales = Scales::new(scene, model, &guess, t0);
     let mut carried: Option<Carried> = None;
     let mut rows = Vec::with_capacity(over.count);
     let ncols = layout.columns.len();
@@ -68,26 +71,27 @@ pub(super) fn run(
             note: None,
             iterations: 0,
             points: Vec::new(),
+            limits: None,
         };
         row.values[0] = Some(v);
         let t = match time_of(varied, v, carried.as_ref().map(|c| c.t)) {
             Ok(t) => t,
             Err(why) => {
-                row.note = Some(why);
+                row.add_note(why);
                 rows.push(row);
                 continue;
             }
         };
         let start = predict(carried.as_ref(), &guess, t);
-        let q = match assemble(model, &start, t, &offsets, &mut out) {
+        let q = match assemble(model, &scales, &start, t, &offsets, &mut out) {
             Ok(q) => q,
             Err(residual) => {
                 if carried.is_none() {
                     return Err(diagnose::unassembled(
-                        scene, model, &start, t, &residual, &mut out, over, v,
+                        scene, model, &scales, &start, t, &residual, &mut out, over, v,
                     ));
                 }
-                row.note = Some(format!(
+                row.add_note(format!(
                     "the mechanism cannot be assembled here: {}",
                     diagnose::cannot_hold(scene, &residual)
                 ));
@@ -105,13 +109,13 @@ pub(super) fn run(
         let lu = a.clone().lu();
         let det_positive = lu.determinant() > 0.0;
         let previous = carried.as_ref().and_then(|c| c.det_positive);
-        if let Some(ratio) = singular(&lu) {
+        if let Some(ratio) = singular(&scales.scaled(&a)) {
             if carried.is_none() {
-                if let Some(d) = dependency(model, &q, t, &mut out) {
+                if let Some(d) = dependency(model, &scales, &q, t, &mut out) {
                     return Err(diagnose::dependent(scene, &d, over, v));
                 }
             }
-            row.note = Some(format!("dead point: the constraint Jacobian is singular here (pivot ratio {ratio:.1e}), so the velocities, accelerations and reactions are not determined, and the position only to about 1e-8 of its scale (Newton's method at a double root); the assembly branch after it is compared with the one before"));
+            row.add_note(format!("dead point: the constraint Jacobian is singular here (pivot ratio {ratio:.1e}), so the velocities, accelerations and reactions are not determined, and the position only to about 1e-8 of its scale (Newton's method at a double root); the assembly branch after it is compared with the one before"));
             points_at(model, &q, &vec![0.0; n], t, &mut motion, &mut row);
             carried = Some(Carried {
                 t,
@@ -142,26 +146,21 @@ pub(super) fn run(
             row.values[1 + 2 * n + i] = Some(qdd[i]);
         }
         if previous.is_some_and(|p| p != det_positive) {
-            row.note = Some("the constraint Jacobian's determinant changed sign since the previous regular position: a dead point lies between them, and the assembly branch changed there".into());
-        } else if carried.as_ref().is_some_and(|c| turned_back(c, &start, &q)) {
-            row.note = Some("the position is far from the continuation of the previous one (Newton's method corrected more than half the step): a dead point may lie between them, where the mechanism turned back; take more positions there".into());
+            row.add_note("the constraint Jacobian's determinant changed sign since the previous regular position: a dead point lies between them, and the assembly branch changed there");
+        } else if carried
+            .as_ref()
+            .is_some_and(|c| turned_back(&scales, c, &start, &q))
+        {
+            row.add_note("the position is far from the continuation of the previous one (Newton's method corrected more than half the step): a dead point may lie between them, where the mechanism turned back; take more positions there");
         }
-        match kinetostatics(model, &a, &motion, &qd, &qdd) {
-            Kinetostatics::Solved {
-                lambda,
-                friction,
-                iterations,
-            } => {
-                for (j, &col) in layout.multiplier.iter().enumerate() {
-                    row.values[col] = Some(lambda[j]);
-                }
-                for (f, &col) in friction.iter().zip(&layout.friction) {
-                    row.values[col] = Some(*f);
-                }
-                row.iterations = iterations;
-            }
-            Kinetostatics::Refused(why) => row.note = Some(why),
-        }
+        let at = Position {
+            a: &a,
+            motion: &motion,
+            qd: &qd,
+            qdd: &qdd,
+            scales: &scales,
+        };
+        record(&mut row, layout, kinetostatics(model, &at));
         row.points = points(&motion[lay.points..], model.points);
         carried = Some(Carried {
             t,
@@ -187,6 +186,53 @@ pub(super) fn run(
     })
 }
 
+/// The kinetostatics' outcome into the row: the reactions, or both
+/// limits at a stick, or why not.
+fn record(row: &mut CycleRow, layout: &Layout, k: Kinetostatics) {
+    match k {
+        Kinetostatics::Solved {
+            lambda,
+            friction,
+            iterations,
+        } => {
+            reactions(&mut row.values, layout, &lambda, &friction);
+            row.iterations = iterations;
+        }
+        Kinetostatics::Stick {
+            joint,
+            minus,
+            plus,
+            iterations,
+            note,
+        } => {
+            let side = |(lambda, friction): (Vec<f64>, Vec<f64>)| {
+                let mut values = row.values.clone();
+                reactions(&mut values, layout, &lambda, &friction);
+                values
+            };
+            row.limits = Some(Box::new(StickLimits {
+                joint,
+                minus: side(minus),
+                plus: side(plus),
+            }));
+            row.iterations = iterations;
+            row.add_note(note);
+        }
+        Kinetostatics::Refused(why) => row.add_note(why),
+    }
+}
+
+/// The reactions `lambda` (by constraint) and the frictions into their
+/// columns.
+fn reactions(values: &mut [Option<f64>], layout: &Layout, lambda: &[f64], friction: &[f64]) {
+    for (j, &col) in layout.multiplier.iter().enumerate() {
+        values[col] = Some(lambda[j]);
+    }
+    for (f, &col) in friction.iter().zip(&layout.friction) {
+        values[col] = Some(*f);
+    }
+}
+
 /// The time at which the varied quantity has the value `v`: `v` itself,
 /// or the root of f(t) = v by Newton's method from the previous time.
 fn time_of(varied: &mut Varied, v: f64, previous: Option<f64>) -> Result<f64, String> {
@@ -202,9 +248,13 @@ fn time_of(varied: &mut Varied, v: f64, previous: Option<f64>) -> Result<f64, St
         if !(df.is_finite() && df != 0.0) {
             return Err(format!("the drive law's rate is {df} at t = {t}, so the time of this position is not found"));
         }
+        // converged when the law equals v to rounding: no unit of time in it
+        if f.abs() <= 4.0 * f64::EPSILON * (out[0].abs() + v.abs()) {
+            return Ok(t);
+        }
         let step = f / df;
         t -= step;
-        if step.abs() <= 1e-15 * (1.0 + t.abs()) {
+        if step.abs() <= 1e-15 * t.abs() {
             return Ok(t);
         }
     }
@@ -229,9 +279,11 @@ fn predict(c: Option<&Carried>, guess: &[f64], t: f64) -> Vec<f64> {
 }
 
 /// Newton's method on g(q, t) = 0 from `q`; `out` holds (g, A, b) at the
-/// result. The residual g where it fails.
+/// result. The residual g where it fails. Steps are measured in the
+/// mechanism's natural units (`scales`).
 fn newton(
     model: &mut Model,
+    scales: &Scales,
     q: &mut [f64],
     t: f64,
     offsets: &[f64],
@@ -258,17 +310,18 @@ fn newton(
         if dq.iter().any(|x| !x.is_finite()) {
             return Err(g);
         }
-        let scale = 1.0 + q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        // a step longer than half the scale (from a poor guess, or near a
+        let size = scales.size(q);
+        let step = scales.norm(dq.as_slice());
+        // a step longer than half the size (from a poor guess, or near a
         // singular Jacobian) is shortened: an angle then does not jump by
         // whole turns, nor the assembly to a far branch
-        let shorten = (MAX_STEP * scale / dq.amax()).min(1.0);
+        let shorten = (MAX_STEP * size / step).min(1.0);
         for (x, d) in q.iter_mut().zip(dq.iter()) {
             *x += shorten * d;
         }
         // one more evaluation after the step that converged: `out` then
         // holds the Jacobian at the final position
-        converged = dq.amax() <= 1e-12 * scale;
+        converged = step <= 1e-12 * size;
     }
     inputs[..n].copy_from_slice(q);
     inputs[n] = t;
@@ -283,21 +336,22 @@ fn newton(
 /// assembly.
 fn assemble(
     model: &mut Model,
+    scales: &Scales,
     start: &[f64],
     t: f64,
     offsets: &[f64],
     out: &mut [f64],
 ) -> Result<Vec<f64>, Vec<f64>> {
     let mut q = start.to_vec();
-    if closes(model, &mut q, t, offsets, out) {
+    if closes(model, scales, &mut q, t, offsets, out) {
         return Ok(q);
     }
-    let mut q = nudged(start);
-    if closes(model, &mut q, t, offsets, out) {
+    let mut q = nudged(scales, start);
+    if closes(model, scales, &mut q, t, offsets, out) {
         return Ok(q);
     }
-    let (mut q, residual) = nearest(model, start, t, offsets, out);
-    if closes(model, &mut q, t, offsets, out) {
+    let (mut q, residual) = nearest(model, scales, start, t, offsets, out);
+    if closes(model, scales, &mut q, t, offsets, out) {
         return Ok(q);
     }
     Err(residual)
@@ -305,15 +359,26 @@ fn assemble(
 
 /// Whether Newton's method from `q` assembles the mechanism (`q` then
 /// holds the position, `out` its g, A and b): converged, or slowed down
-/// by a dead point with its residuals vanishing all the same.
-fn closes(model: &mut Model, q: &mut [f64], t: f64, offsets: &[f64], out: &mut [f64]) -> bool {
-    match newton(model, q, t, offsets, out) {
+/// by a dead point with its residuals vanishing all the same (each in its
+/// constraint's natural unit).
+fn closes(
+    model: &mut Model,
+    scales: &Scales,
+    q: &mut [f64],
+    t: f64,
+    offsets: &[f64],
+    out: &mut [f64],
+) -> bool {
+    match newton(model, scales, q, t, offsets, out) {
         Ok(()) => true,
         Err(residual) => {
-            let scale = 1.0 + q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            let n = model.n;
+            let a = DMatrix::from_row_slice(n, n, &out[n..n + n * n]);
+            let size = scales.size(q);
             residual
                 .iter()
-                .all(|r| r.abs() <= ASSEMBLED_RESIDUAL * scale)
+                .zip(scales.rows(&a))
+                .all(|(r, unit)| (r / unit).abs() <= ASSEMBLED_RESIDUAL * size)
         }
     }
 }
@@ -328,31 +393,35 @@ fn leave_out_non_finite(row: &mut CycleRow) {
             bad = true;
         }
     }
+    if let Some(l) = row.limits.as_mut() {
+        for v in l.minus.iter_mut().chain(l.plus.iter_mut()) {
+            if v.is_some_and(|x| !x.is_finite()) {
+                *v = None;
+                bad = true;
+            }
+        }
+    }
     if bad {
-        let said = "some values are not finite here (an overflow in the velocities, accelerations or reactions): they are left out";
-        row.note = Some(match row.note.take() {
-            Some(n) => format!("{n}; {said}"),
-            None => said.to_string(),
-        });
+        row.add_note("some values are not finite here (an overflow in the velocities, accelerations or reactions): they are left out");
     }
 }
 
 /// Whether the assembled `q` is far from the continuation `start` of
 /// the regular position `c`: a correction of more than half the step,
 /// where a smooth motion's is of the order of the step cubed.
-fn turned_back(c: &Carried, start: &[f64], q: &[f64]) -> bool {
+fn turned_back(scales: &Scales, c: &Carried, start: &[f64], q: &[f64]) -> bool {
     let dist = |a: &[f64], b: &[f64]| {
-        a.iter()
-            .zip(b)
-            .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+        let d: Vec<f64> = a.iter().zip(b).map(|(x, y)| x - y).collect();
+        scales.norm(&d)
     };
     let step = dist(start, &c.q);
     c.adjacent && c.det_positive.is_some() && step > 0.0 && dist(q, start) > 0.5 * step
 }
 
-/// The pivot ratio of a singular LU factorization, `None` when regular.
-fn singular(lu: &nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>) -> Option<f64> {
-    let u = lu.u();
+/// The pivot ratio of the Jacobian `a` in natural units when it is
+/// singular, `None` when regular.
+fn singular(a: &DMatrix<f64>) -> Option<f64> {
+    let u = a.clone().lu().u();
     let d = u.diagonal();
     let (lo, hi) = d.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), x| {
         (lo.min(x.abs()), hi.max(x.abs()))
@@ -384,7 +453,14 @@ fn points_at(
 
 #[cfg(test)]
 mod tests {
-    use super::{turned_back, Carried};
+    use super::{turned_back, Carried, Scales};
+
+    fn unit() -> Scales {
+        Scales {
+            coordinate: vec![1.0],
+            length: 1.0,
+        }
+    }
 
     fn carried(q: f64) -> Carried {
         Carried {
@@ -404,6 +480,7 @@ mod tests {
             note: None,
             iterations: 0,
             points: Vec::new(),
+            limits: None,
         };
         super::leave_out_non_finite(&mut row);
         assert_eq!(row.values, vec![Some(1.0), None, None, None]);
@@ -417,19 +494,19 @@ mod tests {
     fn a_motion_that_turns_back_is_told_from_a_smooth_one() {
         let c = carried(1.0);
         // the continuation predicted 1.1; a smooth motion lands near it
-        assert!(!turned_back(&c, &[1.1], &[1.1001]));
+        assert!(!turned_back(&unit(), &c, &[1.1], &[1.1001]));
         // the mechanism went back to 0.95: it turned back at a dead point
-        assert!(turned_back(&c, &[1.1], &[0.95]));
+        assert!(turned_back(&unit(), &c, &[1.1], &[0.95]));
         // after a gap, or from an irregular position, nothing is said
         let gap = Carried {
             adjacent: false,
             ..carried(1.0)
         };
-        assert!(!turned_back(&gap, &[1.1], &[0.95]));
+        assert!(!turned_back(&unit(), &gap, &[1.1], &[0.95]));
         let dead = Carried {
             det_positive: None,
             ..carried(1.0)
         };
-        assert!(!turned_back(&dead, &[1.1], &[0.95]));
+        assert!(!turned_back(&unit(), &dead, &[1.1], &[0.95]));
     }
 }

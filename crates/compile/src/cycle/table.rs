@@ -33,13 +33,42 @@ pub struct CycleRow {
     /// or where the friction iteration did not converge).
     pub values: Vec<Option<f64>>,
     /// What is special about this position, when something is: a dead
-    /// point, a possible change of branch, a stick, no convergence.
+    /// point, a possible change of branch, a stick, no convergence; every
+    /// one that applies, joined by "; ".
     pub note: Option<String>,
     /// The iterations the friction forces needed (0 without friction).
     pub iterations: u32,
     /// The drawing's points at this position, in ground coordinates
     /// (indexed by [`DrawnBody::points`] and [`DrawnJoint::point`]).
     pub points: Vec<[f64; 2]>,
+    /// Where a friction's relative velocity vanishes (a stick: its force
+    /// anywhere in |F| ≤ μ·|N|), the reactions at both ends of that
+    /// interval, the one-sided limits of sliding; `values` leaves the
+    /// reactions out there.
+    pub limits: Option<Box<StickLimits>>,
+}
+
+impl CycleRow {
+    /// Add `note` after the ones the row has.
+    pub fn add_note(&mut self, note: impl Into<String>) {
+        let note = note.into();
+        self.note = Some(match self.note.take() {
+            Some(n) => format!("{n}; {note}"),
+            None => note,
+        });
+    }
+}
+
+/// The reactions at a stick, at the two ends of its friction's interval.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StickLimits {
+    /// The joint whose relative velocity vanishes.
+    pub joint: String,
+    /// The row's values (every column) in the limit v_rel → 0⁻, sliding
+    /// backwards: the friction at +μ·|N| (or +μ₀·r₀·|R|).
+    pub minus: Vec<Option<f64>>,
+    /// The limit v_rel → 0⁺: the friction at −μ·|N|.
+    pub plus: Vec<Option<f64>>,
 }
 
 pub use crate::parse::ast::JointKind;
@@ -186,5 +215,47 @@ impl Layout {
             joints,
             drives,
         }
+    }
+}
+
+impl CycleTable {
+    /// The table with every stick row written as two rows at the same
+    /// position, its two limits of sliding (the one that continues the
+    /// previous row first), each row's note saying which: what a
+    /// diagram draws (a jump, not a hole) and CSV writes.
+    pub fn stick_rows_split(&self) -> CycleTable {
+        let mut out = self.clone();
+        out.rows.clear();
+        let mut previous: Option<&Vec<Option<f64>>> = None;
+        for row in &self.rows {
+            let Some(limits) = &row.limits else {
+                out.rows.push(row.clone());
+                previous = Some(&row.values);
+                continue;
+            };
+            // the side nearer the previous row in the columns where the
+            // sides differ (the reactions) comes first
+            let distance = |side: &[Option<f64>]| -> f64 {
+                let Some(p) = previous else { return 0.0 };
+                (0..side.len())
+                    .filter(|&k| limits.minus.get(k) != limits.plus.get(k))
+                    .filter_map(|k| Some((p.get(k).copied().flatten()?, side[k]?)))
+                    .map(|(a, b)| (a - b).abs() / a.abs().max(b.abs()).max(f64::MIN_POSITIVE))
+                    .sum()
+            };
+            let mut sides = [("v → 0⁻", &limits.minus), ("v → 0⁺", &limits.plus)];
+            if distance(&limits.plus) < distance(&limits.minus) {
+                sides.swap(0, 1);
+            }
+            for (name, values) in sides {
+                let mut line = row.clone();
+                line.values = values.clone();
+                line.limits = None;
+                line.add_note(format!("this line: the limit {name}"));
+                out.rows.push(line);
+            }
+            previous = Some(sides[1].1);
+        }
+        out
     }
 }
