@@ -184,6 +184,7 @@ fn zero() -> Entry {
 }
 
 /// x made symmetric (or skew) from its lower triangle.
+#[allow(clippy::needless_range_loop)] // matrix indices read best as indices
 fn symmetrize(x: &mut [Vec<Entry>], skew: bool) {
     let n = x.len();
     for i in 0..n {
