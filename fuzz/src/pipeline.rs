@@ -604,6 +604,7 @@ fn floquet(src: &str, o: &OptionLines) -> Result<(), qdot::Diagnostic> {
             at: o.one("--at").map(String::from),
             functions: o.all("--function"),
             period,
+            max_steps: None, // the default limit: a fuzz input never raises it
         },
         set: set_values(o)?,
         over: o

@@ -273,8 +273,11 @@ fn hull(points: &[usize], at: &[[f64; 2]]) -> Vec<usize> {
         .fold(0.0, f64::max);
     let eps = 1e-9 * size.max(1e-300);
     let mut ps: Vec<usize> = points.to_vec();
-    // ok: `at` is a row `drawable_rows` found with every point finite
-    ps.sort_by(|&a, &b| at[a].partial_cmp(&at[b]).expect("finite points"));
+    ps.sort_by(|&a, &b| {
+        at[a][0]
+            .total_cmp(&at[b][0])
+            .then(at[a][1].total_cmp(&at[b][1]))
+    });
     ps.dedup_by(|a, b| {
         (at[*a][0] - at[*b][0]).abs() <= eps && (at[*a][1] - at[*b][1]).abs() <= eps
     });

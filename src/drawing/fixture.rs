@@ -2,6 +2,7 @@
 //! of issue 36 (crank R = 1 about O, rod L = 3, block on a horizontal
 //! guide through O, a spring k (xb − l0) on the block), its links
 //! massless, so each reaction follows from statics in a few lines.
+// A test module: compiled only under #[cfg(test)] (its parent's `mod` line).
 
 use crate::cycle::*;
 

@@ -117,18 +117,18 @@ fn panels(table: &CycleTable) -> (Vec<CurvePanel>, Vec<PolarPanel>) {
 /// The unbroken runs of a curve: a point is dropped, and the run broken,
 /// where either coordinate is `None` or not finite.
 fn runs(points: impl Iterator<Item = (Option<f64>, Option<f64>)>) -> Vec<Vec<(f64, f64)>> {
-    let mut out: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+    let mut out: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut run: Vec<(f64, f64)> = Vec::new();
     for p in points {
-        // ok (both expects): `out` starts with one run and only grows
         match p {
-            (Some(x), Some(y)) if x.is_finite() && y.is_finite() => {
-                out.last_mut().expect("never empty").push((x, y))
-            }
-            _ if !out.last().expect("never empty").is_empty() => out.push(Vec::new()),
+            (Some(x), Some(y)) if x.is_finite() && y.is_finite() => run.push((x, y)),
+            _ if !run.is_empty() => out.push(std::mem::take(&mut run)),
             _ => {}
         }
     }
-    out.retain(|r| !r.is_empty());
+    if !run.is_empty() {
+        out.push(run);
+    }
     out
 }
 

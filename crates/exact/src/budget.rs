@@ -399,7 +399,7 @@ fn exceeded_with(terms: usize, limit: usize, measure: Measure) -> ! {
     if !installed() {
         // nobody to return the error to: an operation without a `Result`
         // called outside any budget (see the module's doc)
-        panic!(
+        panic!( // ok: arithmetic without a Result, outside any budget (module doc); within() makes it a value
             "{} (outside any work budget, the default one applies: run it in qdot::budget::within for the error as a value)",
             e.message()
         );

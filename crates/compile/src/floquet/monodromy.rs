@@ -489,7 +489,8 @@ fn fastest_rate(p: &Prepared, params: &[f64], period: f64) -> f64 {
         if sys.singular_at.is_some() || a.iter().any(|x| !x.is_finite()) {
             continue;
         }
-        for m in multipliers(&a, d) {
+        // a sample whose eigenvalues fail to converge adds nothing to the estimate
+        for m in multipliers(&a, d).unwrap_or_default() {
             rate = rate.max(m.abs());
         }
     }

@@ -450,9 +450,7 @@ fn harmonic(forcing: &[Expr]) -> Result<(Expr, Vec<Expr>, Vec<Expr>), Diagnostic
     let angle = |k: usize| u.scale(&Q::from_i64(k as i64)).to_unicode();
     let k = match present[..] {
         [k] => k,
-        [] => {
-            return Err(no_harmonic_load())
-        }
+        [] => return Err(no_harmonic_load()),
         [a, b, ..] => return Err(more_than_one(&angle(a), &angle(b))),
     };
     let pick = |i: usize| -> (Expr, Expr) {

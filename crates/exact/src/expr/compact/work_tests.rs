@@ -1,6 +1,7 @@
 //! The compact search's work allowance ([`super::work_allowance`]),
 //! counted in the terms of the rewritings built ([`super::search_work`]),
 //! not timed.
+// A test module: compiled only under #[cfg(test)] (its parent's `mod` line).
 
 use super::*;
 use crate::expr::{func, Expr};
