@@ -499,14 +499,19 @@ proptest::proptest! {
             }
             Peak::Undamped => panic!("damped"),
         };
+        // The exact radicals lose digits in f64 by cancellation (Ω_peak² of a
+        // light base excitation is a difference of two terms ~1/ζ² times it),
+        // so the float checks allow 1e-12 (resp. 1e-9) times 1 + 1/ζ².
+        let zeta = c as f64 / (2.0 * ((k * m) as f64).sqrt());
+        let cond = 1.0 + 1.0 / (zeta * zeta);
         if let Some(w2) = peak {
             let wp = num(&w2).sqrt();
             let ap = a2(wp);
-            proptest::prop_assert!(ap >= top * (1.0 - 1e-12), "{ap} < {top} at {wp}");
+            proptest::prop_assert!(ap >= top * (1.0 - 1e-12 * cond), "{ap} < {top} at {wp}");
             proptest::prop_assert!(ap >= a2(wp * 0.999) && ap >= a2(wp * 1.001));
             for h in &half {
                 let v = a2(num(h).sqrt());
-                proptest::prop_assert!((v - ap / 2.0).abs() <= 1e-9 * ap, "{v} {ap}");
+                proptest::prop_assert!((v - ap / 2.0).abs() <= 1e-9 * cond * ap, "{v} {ap}");
             }
         }
         if let Some(rises) = none {
