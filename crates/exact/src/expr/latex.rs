@@ -44,7 +44,7 @@ impl Names {
 
     /// Whether `name` is written as a word of several letters
     /// (`\mathit{AB}`, or an override such as `\mathrm{Re}`), which a
-    /// product sets apart from its neighbours: see [`product`].
+    /// product sets apart from its neighbours: see `product` below.
     pub fn is_word(&self, name: &str) -> bool {
         if let Some(tex) = self.overrides.get(name) {
             return word_tex(split_subscript(tex).0);

@@ -210,9 +210,9 @@ pub fn generalized_symmetric(
 /// nalgebra's `complex_eigenvalues` runs its double-shift QR iteration
 /// without a bound, and without exceptional shifts it can cycle forever
 /// (the Penning trap's first-order matrix at some values did). Here the
-/// iteration is bounded ([`SCHUR_ITERATIONS_PER_ROW`] per row); when it
+/// iteration is bounded (`SCHUR_ITERATIONS_PER_ROW` per row); when it
 /// stalls, the same matrix is tried after an orthogonal similarity (same
-/// eigenvalues, another iteration path), and after [`SCHUR_TRIES`] the
+/// eigenvalues, another iteration path), and after `SCHUR_TRIES` the
 /// answer is [`EigenError::NoConvergence`].
 ///
 /// # Errors
