@@ -49,7 +49,9 @@ def test_columns_and_the_stick_rows(crank):
     assert crank["xB"][0] == 0.5 and crank["xB"][6] == pytest.approx(0.3, abs=1e-15)
     assert crank["phi"][6] == math.pi and crank["phi"][12] == 2 * math.pi
     assert np.isnan(crank["M"][6]) and crank["M"][3] == pytest.approx(1.51637, abs=1e-5)
-    assert crank.iterations.shape == (13,) and crank.iterations[0] == 0 and crank.iterations[1] > 0
+    # the linear systems the friction solve took: both sign cases of S_n at
+    # every row, and at a stick both one-sided limits (two cases each)
+    assert list(crank.iterations) == [4, 2, 2, 2, 2, 2, 4, 2, 2, 2, 2, 2, 4]
     with pytest.raises(KeyError, match="no column 'Q_x'; the columns are phi, x1"):
         crank["Q_x"]
 
