@@ -330,6 +330,33 @@ fn solve_mass(coefficients: &mut [f64], x: &mut [f64], n: usize) -> bool {
     true
 }
 
+impl<'a> Variational<'a> {
+    /// The variational system of `p` at the parameter values `params`.
+    fn new(p: &'a Prepared, params: &[f64]) -> Self {
+        let n = p.n();
+        let mut inputs = vec![0.0];
+        inputs.extend_from_slice(params);
+        Variational {
+            p,
+            n,
+            inputs,
+            regs: p.program().registers(),
+            coefficients: vec![0.0; 3 * n * n],
+            solved: vec![0.0; n * 2 * n],
+            singular_at: None,
+        }
+    }
+}
+
+/// The d×d identity, row-major.
+fn identity(d: usize) -> Vec<f64> {
+    let mut id = vec![0.0; d * d];
+    for i in 0..d {
+        id[i * d + i] = 1.0;
+    }
+    id
+}
+
 /// Φ(T) at tolerance `tol`, and the accepted steps.
 fn monodromy(
     p: &Prepared,
@@ -337,23 +364,9 @@ fn monodromy(
     period: f64,
     tol: f64,
 ) -> Result<(Vec<f64>, usize), Diagnostic> {
-    let n = p.n();
-    let d = 2 * n;
-    let mut inputs = vec![0.0];
-    inputs.extend_from_slice(params);
-    let mut sys = Variational {
-        p,
-        n,
-        inputs,
-        regs: p.program().registers(),
-        coefficients: vec![0.0; 3 * n * n],
-        solved: vec![0.0; n * d],
-        singular_at: None,
-    };
-    let mut y0 = vec![0.0; d * d];
-    for i in 0..d {
-        y0[i * d + i] = 1.0;
-    }
+    let d = 2 * p.n();
+    let mut sys = Variational::new(p, params);
+    let y0 = identity(d);
     let opts = IntegratorOptions {
         t0: 0.0,
         t_end: period,
@@ -464,23 +477,9 @@ fn within_steps(p: &Prepared, params: &[f64], period: f64) -> Result<(), Diagnos
 /// The largest |eigenvalue| of A(t) at eight times over the period (0
 /// where M is singular at all of them: the integration says so).
 fn fastest_rate(p: &Prepared, params: &[f64], period: f64) -> f64 {
-    let n = p.n();
-    let d = 2 * n;
-    let mut inputs = vec![0.0];
-    inputs.extend_from_slice(params);
-    let mut sys = Variational {
-        p,
-        n,
-        inputs,
-        regs: p.program().registers(),
-        coefficients: vec![0.0; 3 * n * n],
-        solved: vec![0.0; n * d],
-        singular_at: None,
-    };
-    let mut identity = vec![0.0; d * d];
-    for i in 0..d {
-        identity[i * d + i] = 1.0;
-    }
+    let d = 2 * p.n();
+    let mut sys = Variational::new(p, params);
+    let identity = identity(d);
     let mut a = vec![0.0; d * d];
     let mut rate = 0.0f64;
     for i in 0..8 {

@@ -54,25 +54,11 @@ pub(super) fn polynomial(
             .collect();
         return det(a);
     };
-    let sv = atom::unknown(S);
-    let s = Expr::var(sv);
-    let s2 = s.mul(&s);
-    let a = (0..n)
-        .map(|i| {
-            (0..n)
-                .map(|j| k[i][j].add(&s.mul(&g[i][j])).add(&s2.mul(&m[i][j])))
-                .collect()
-        })
-        .collect();
-    let d = det(a)?;
-    if d.den().contains_var(sv) {
-        return None;
-    }
-    let den = Expr::from_poly(d.den().clone());
+    let (coefficients, den) = pencil(m, g, k)?;
     let minus_lambda = lambda.neg();
     let mut p = Expr::zero();
     let mut power = Expr::one();
-    for (i, c) in d.num().coeffs_in(sv).into_iter().enumerate() {
+    for (i, c) in coefficients.into_iter().enumerate() {
         if i % 2 == 1 {
             if !c.is_zero() {
                 return None;
@@ -85,6 +71,46 @@ pub(super) fn polynomial(
         p = p.add(&Expr::from_poly(c).mul(&power));
     }
     p.div(&den).ok()
+}
+
+/// det(K + s·C + s²·M) as its numerator's coefficients in s (lowest
+/// first) and its denominator; `None` when the determinant fails or its
+/// denominator holds s.
+pub(super) fn pencil(
+    m: &[Vec<Expr>],
+    c: &[Vec<Expr>],
+    k: &[Vec<Expr>],
+) -> Option<(Vec<crate::poly::Poly>, Expr)> {
+    let n = m.len();
+    let sv = atom::unknown(S);
+    let s = Expr::var(sv);
+    let s2 = s.mul(&s);
+    let a = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| k[i][j].add(&s.mul(&c[i][j])).add(&s2.mul(&m[i][j])))
+                .collect()
+        })
+        .collect();
+    let d = det(a)?;
+    if d.den().contains_var(sv) {
+        return None;
+    }
+    Some((d.num().coeffs_in(sv), Expr::from_poly(d.den().clone())))
+}
+
+/// The cubic discriminant 18abcd − 4b³d + b²c² − 4ac³ − 27a²d² of
+/// a·x³ + b·x² + c·x + d.
+pub(super) fn cubic_discriminant(a: &Expr, b: &Expr, c: &Expr, d: &Expr) -> Expr {
+    let q = |n: i64| Q::from_i64(n);
+    a.mul(b)
+        .mul(c)
+        .mul(d)
+        .scale(&q(18))
+        .sub(&b.mul(b).mul(b).mul(d).scale(&q(4)))
+        .add(&b.mul(b).mul(c).mul(c))
+        .sub(&a.mul(c).mul(c).mul(c).scale(&q(4)))
+        .sub(&a.mul(a).mul(d).mul(d).scale(&q(27)))
 }
 
 /// The roots λ of `p` (a polynomial in `lv`) and its factors; `real` when
@@ -190,17 +216,7 @@ fn describe(cs: &[Expr], real: bool, set: &Values) -> Option<String> {
         }
         3 => {
             let (d, c, b, a) = (&cs[0], &cs[1], &cs[2], &cs[3]);
-            // Δ = 18abcd − 4b³d + b²c² − 4ac³ − 27a²d²
-            let q = |n: i64| Q::from_i64(n);
-            let disc = a
-                .mul(b)
-                .mul(c)
-                .mul(d)
-                .scale(&q(18))
-                .sub(&b.mul(b).mul(b).mul(d).scale(&q(4)))
-                .add(&b.mul(b).mul(c).mul(c))
-                .sub(&a.mul(c).mul(c).mul(c).scale(&q(4)))
-                .sub(&a.mul(a).mul(d).mul(d).scale(&q(27)));
+            let disc = cubic_discriminant(a, b, c, d);
             let sign = if real {
                 Some(Sign::Positive)
             } else {

@@ -24,16 +24,13 @@ use super::condition::{describe, Condition, Positivity};
 use super::equilibrium::Stability;
 use crate::algebra::linear::det;
 use crate::algebra::sign::{sign_of, Sign, Values};
-use crate::expr::{atom, Expr};
+use crate::expr::Expr;
 use crate::num::Q;
 
 /// The most coordinates whose Hurwitz determinants are formed exactly
 /// (degree 2n, determinants up to (2n − 1)×(2n − 1) of polynomials);
 /// past it the numeric eigenvalues at `--set` decide.
 const MAX_COORDINATES: usize = 3;
-
-/// The name of s while det(s²·M + s·C + K) is expanded.
-const S: &str = "s_hurwitz";
 
 /// Why a root on the imaginary axis leaves the verdict open.
 const BOUNDARY: &str = "a root of det(s²·M + s·C + K) on the imaginary axis (a Routh–Hurwitz coefficient or determinant is zero): the linearization does not decide";
@@ -138,24 +135,8 @@ fn conditions(chipart: &[(&Expr, Option<Sign>)]) -> Stability {
 /// determinant cannot be formed.
 pub(super) fn coefficients(m: &[Vec<Expr>], c: &[Vec<Expr>], k: &[Vec<Expr>]) -> Option<Vec<Expr>> {
     let n = m.len();
-    let sv = atom::unknown(S);
-    let s = Expr::var(sv);
-    let s2 = s.mul(&s);
-    let a = (0..n)
-        .map(|i| {
-            (0..n)
-                .map(|j| k[i][j].add(&s.mul(&c[i][j])).add(&s2.mul(&m[i][j])))
-                .collect()
-        })
-        .collect();
-    let d = det(a)?;
-    if d.den().contains_var(sv) {
-        return None;
-    }
-    let den = Expr::from_poly(d.den().clone());
-    let mut b = d
-        .num()
-        .coeffs_in(sv)
+    let (coefficients, den) = super::characteristic::pencil(m, c, k)?;
+    let mut b = coefficients
         .into_iter()
         .map(|x| Expr::from_poly(x).div(&den).ok())
         .collect::<Option<Vec<Expr>>>()?;

@@ -342,17 +342,7 @@ fn cubic(cs: &[Expr], set: &Values) -> Verdict {
     else {
         return Verdict::Zero("the characteristic polynomial could not be evaluated".into());
     };
-    let q = |x: i64| Q::from_i64(x);
-    // 18abcd − 4b³d + b²c² − 4ac³ − 27a²d²
-    let disc = a
-        .mul(b)
-        .mul(c)
-        .mul(d)
-        .scale(&q(18))
-        .sub(&b.mul(b).mul(b).mul(d).scale(&q(4)))
-        .add(&b.mul(b).mul(c).mul(c))
-        .sub(&a.mul(c).mul(c).mul(c).scale(&q(4)))
-        .sub(&a.mul(a).mul(d).mul(d).scale(&q(27)));
+    let disc = super::characteristic::cubic_discriminant(a, b, c, d);
     let zero = "a zero frequency: higher-order terms decide";
     let boundary = BOUNDARY;
     [
