@@ -295,14 +295,9 @@ const MAX_FUZZ_SWEEP_RUNS: usize = 16;
 /// --t-end 1
 /// ```
 pub fn commands(data: &[u8]) {
-    let Ok(text) = std::str::from_utf8(data) else {
+    let Some((o, scene)) = OptionLines::with_scene(data) else {
         return;
     };
-    let (opts, scene) = match text.split_once("\n---\n") {
-        Some((o, s)) => (o, s),
-        None => (text, PENDULUM),
-    };
-    let o = OptionLines::read(opts);
     match o.one("--command") {
         Some("integrals") => {
             scene_command(Command::Integrals, scene, o.one("--format"), o.one("--set"))
@@ -323,6 +318,14 @@ pub fn commands(data: &[u8]) {
 struct OptionLines<'a>(Vec<(&'a str, &'a str)>);
 
 impl<'a> OptionLines<'a> {
+    /// A `commands`/`motions` input: the option lines, then `---` and the
+    /// scene (the pendulum without one); `None` when it is not UTF-8.
+    fn with_scene(data: &'a [u8]) -> Option<(OptionLines<'a>, &'a str)> {
+        let text = std::str::from_utf8(data).ok()?;
+        let (opts, scene) = text.split_once("\n---\n").unwrap_or((text, PENDULUM));
+        Some((OptionLines::read(opts), scene))
+    }
+
     fn read(text: &'a str) -> OptionLines<'a> {
         OptionLines(
             text.lines()
@@ -493,14 +496,9 @@ const MAX_FUZZ_POINTS: usize = 12;
 /// …
 /// ```
 pub fn motions(data: &[u8]) {
-    let Ok(text) = std::str::from_utf8(data) else {
+    let Some((o, scene)) = OptionLines::with_scene(data) else {
         return;
     };
-    let (opts, scene) = match text.split_once("\n---\n") {
-        Some((o, s)) => (o, s),
-        None => (text, PENDULUM),
-    };
-    let o = OptionLines::read(opts);
     let ctx = qdot::app::Context::new().with_max_terms(FUZZ_MAX_TERMS);
     let outcome = match o.one("--command") {
         Some("cycle") => ctx.within(|| cycle(scene, &o)),
