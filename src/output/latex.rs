@@ -56,6 +56,8 @@ fn document_within(scene: &Scene, opts: &super::CommandOptions) -> Result<String
             w.forces_steps(scene);
         }
         w.mechanism(scene, &lag, &r, opts.steps);
+    } else if dynamics && !opts.steps && scene.systems.is_empty() && structured(scene, &mut w)? {
+        // written through intermediates, as `solve` writes it
     } else if dynamics {
         let lag = scene.lagrange()?;
         let acc = lag.accelerations()?;
@@ -91,6 +93,30 @@ fn document_within(scene: &Scene, opts: &super::CommandOptions) -> Result<String
     } else {
         body
     })
+}
+
+/// A scene whose expanded equations would be large (`solve`'s size rule,
+/// [`crate::scene::Structure::Auto`]) written as `solve` writes it: the
+/// intermediates, then Lagrange's equations and the accelerations through
+/// them (M = L·D·Lᵀ). Expanded, a chain of 30 rods has no accelerations
+/// within any budget; through intermediates they take a second and read
+/// line by line. `false` (nothing written) for a scene that reads
+/// expanded. Not under `--steps`: its derivation differentiates the
+/// expanded energies term by term.
+fn structured(scene: &Scene, w: &mut Writer) -> Result<bool, Diagnostic> {
+    let kept = Scene::read(&scene.source, crate::scene::Structure::Auto)?;
+    if kept.tape.as_ref().is_none_or(|t| t.is_empty()) {
+        return Ok(false);
+    }
+    let lag = kept.lagrange()?;
+    let acc = lag.accelerations()?;
+    *w = Writer::new(&kept);
+    if let Some((tape, roots)) = super::wire::structured_roots(&kept, Some(&lag), Some(&acc), &[]) {
+        w.intermediates(Some(tape), roots);
+    }
+    w.equations(&lag);
+    w.accelerations(&acc);
+    Ok(true)
 }
 
 /// What `f` writes with the notation of `scene`.

@@ -66,6 +66,9 @@ pub enum Measure {
     /// The term products of a whole elimination ([`WorkMeter`]): `terms`
     /// counts them.
     Work,
+    /// The size of the terms a whole elimination built ([`WorkMeter`]):
+    /// `terms` counts their variable powers.
+    Built,
     /// The subsets of modular factors a factorization tried to recombine
     /// ([`check_subsets`]): `terms` counts them.
     Subsets,
@@ -103,6 +106,12 @@ impl TooLarge {
                 grouped(self.terms),
                 grouped(self.limit),
                 grouped(self.limit.saturating_mul(ELIMINATION_PRODUCTS_PER_TERM))
+            ),
+            Measure::Built => format!(
+                "expression too large: {} variable powers in the terms built in all{what} (the limit is {} terms, and {} variable powers in the terms built in all)",
+                grouped(self.terms),
+                grouped(self.limit),
+                grouped(self.limit.saturating_mul(ELIMINATION_POWERS_PER_TERM))
             ),
             Measure::Subsets => format!(
                 "factoring too costly: {} subsets of modular factors tried{what} (the limit is {} terms, and {} subsets)",
@@ -260,12 +269,27 @@ pub fn check_product(a: usize, b: usize) {
 /// [`PRODUCTS_PER_TERM`] and still add up to minutes.
 pub const ELIMINATION_PRODUCTS_PER_TERM: usize = 64;
 
+/// How many variable powers (a variable and its exponent in one term's
+/// monomial) the terms a whole elimination builds may hold in all, per
+/// term of the budget. Term products do not see a term's width: a term of
+/// 30 masses, lengths and angles is hashed, stored, sorted and divided at
+/// the cost of its powers, and when few products cancel every product is a
+/// new term: the planar chains of 30 rods took 20 to 50 s (and 1.5 GB)
+/// within their term products. At 16, the default budget allows 32
+/// million powers, 1 to 4 s on those chains; the examples and the book's
+/// scenes build at most 7 million.
+pub const ELIMINATION_POWERS_PER_TERM: usize = 16;
+
 /// The work of a computation made of many products (an elimination): each
 /// [`charge`](WorkMeter::charge) adds one product's term products, and past
-/// [`ELIMINATION_PRODUCTS_PER_TERM`] × the budget it unwinds.
+/// [`ELIMINATION_PRODUCTS_PER_TERM`] × the budget it unwinds; each
+/// [`charge_built`](WorkMeter::charge_built) adds the variable powers of the
+/// terms a product or a quotient built, and past
+/// [`ELIMINATION_POWERS_PER_TERM`] × the budget it unwinds.
 #[derive(Debug, Default)]
 pub struct WorkMeter {
     used: Cell<usize>,
+    built: Cell<usize>,
 }
 
 impl WorkMeter {
@@ -286,9 +310,26 @@ impl WorkMeter {
         }
     }
 
+    /// Charge terms built (a product's, a quotient's) that hold `powers`
+    /// variable powers in all.
+    #[inline]
+    pub fn charge_built(&self, powers: usize) {
+        let built = self.built.get().saturating_add(powers);
+        self.built.set(built);
+        let limit = limit();
+        if built > limit.saturating_mul(ELIMINATION_POWERS_PER_TERM) {
+            exceeded_with(built, limit, Measure::Built);
+        }
+    }
+
     /// The term products charged so far.
     pub fn used(&self) -> usize {
         self.used.get()
+    }
+
+    /// The variable powers of the terms built so far.
+    pub fn built(&self) -> usize {
+        self.built.get()
     }
 }
 
@@ -481,6 +522,28 @@ mod tests {
             .expect_err("past 500");
         assert_eq!(e.terms, 501);
         assert_eq!(e.measure, Measure::Digits(100));
+    }
+
+    /// The terms an elimination builds are charged by their variable
+    /// powers, apart from its term products: wide terms stop it though
+    /// their products are few.
+    #[test]
+    fn the_terms_built_are_charged_by_their_powers() {
+        let limit = 10; // 640 term products, 160 powers
+        let r = within(limit, || {
+            let work = WorkMeter::new();
+            work.charge(10, 10);
+            work.charge_built(100);
+            assert_eq!((work.used(), work.built()), (100, 100));
+            work.charge_built(60); // 160: at the limit
+            work.charge_built(1);
+        });
+        let e = r.expect_err("past 160 powers");
+        assert_eq!((e.terms, e.measure), (161, Measure::Built));
+        assert_eq!(
+            e.message(),
+            "expression too large: 161 variable powers in the terms built in all (the limit is 10 terms, and 160 variable powers in the terms built in all)"
+        );
     }
 
     #[test]

@@ -120,7 +120,7 @@ impl ErrorKind {
                     Measure::Terms => "terms",
                     Measure::Product(..) => "product",
                     Measure::Printed => "printed",
-                    Measure::Work => "work",
+                    Measure::Work | Measure::Built => "work",
                     Measure::Subsets => "subsets",
                     Measure::Division(..) => "division",
                     Measure::Digits(..) => "digits",

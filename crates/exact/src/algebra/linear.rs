@@ -99,12 +99,16 @@ fn solve_free(a: &[Vec<Expr>], mut m: Vec<Vec<Poly>>) -> Result<Vec<Expr>, Solve
     for i in (0..n).rev() {
         work.charge(det.len(), m[i][n].len());
         let mut t = &det * &m[i][n];
+        work.charge_built(powers(&t));
         for j in i + 1..n {
             work.charge(m[i][j].len(), xs[j].len());
-            t = &t - &(&m[i][j] * &xs[j]);
+            let p = &m[i][j] * &xs[j];
+            work.charge_built(powers(&p));
+            t = &t - &p;
         }
         work.charge(t.len(), m[i][i].len());
         xs[i] = exact(&t, &m[i][i])?;
+        work.charge_built(powers(&xs[i]));
     }
     xs.into_iter()
         .map(|x| {
@@ -154,7 +158,8 @@ pub fn may_be_zero(p: &Poly) -> bool {
 /// One entry of a fraction-free elimination step, (p·x − l·u) / prev with
 /// `[p, x, l, u]` the pivot, the entry, its row's pivot-column entry and
 /// its column's pivot-row entry (Sylvester's identity makes it exact);
-/// every product and the division charged to `work`.
+/// every product and the division charged to `work`, and the terms each
+/// built.
 pub fn bareiss_entry(
     work: &crate::budget::WorkMeter,
     [p, x, l, u]: [&Poly; 4],
@@ -162,9 +167,21 @@ pub fn bareiss_entry(
 ) -> Result<Poly, SolveError> {
     work.charge(p.len(), x.len());
     work.charge(l.len(), u.len());
-    let t = &(p * x) - &(l * u);
+    let px = p * x;
+    work.charge_built(powers(&px));
+    let lu = l * u;
+    work.charge_built(powers(&lu));
+    let t = &px - &lu;
     work.charge(t.len(), prev.len());
-    exact(&t, prev)
+    let q = exact(&t, prev)?;
+    work.charge_built(powers(&q));
+    Ok(q)
+}
+
+/// The variable powers of `p`'s terms in all (a term `m₁·l₁²·cos q₁`
+/// holds 3): what building `p` cost past its term products.
+fn powers(p: &Poly) -> usize {
+    p.terms().iter().map(|(m, _)| m.0.len()).sum()
 }
 
 /// t / d, which fraction-free elimination guarantees to be exact.
