@@ -30,6 +30,7 @@ mod hostile;
 // the hostile modules say `crate::bound` (they were a crate of their own)
 use hostile::bound;
 mod house;
+mod house_rules;
 mod implicit;
 mod inertia_about;
 mod integrators;
