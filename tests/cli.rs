@@ -170,7 +170,9 @@ fn json_contract_and_reparse() {
             assert_eq!(got, q[k], "{name}: Q_{c}");
         }
         // `equilibrium`, where the forces do not depend on time
-        let Ok(eq) = qdot::solve::equilibrium::equilibria(&scene, &Default::default()) else {
+        let Ok(eq) = scene.assumptions_in_force(|| {
+            qdot::solve::equilibrium::equilibria(&scene, &Default::default())
+        }) else {
             let (code, _, err) = qdot(&["equilibrium", &path, "--format", "json"]);
             assert_eq!(code, 1, "{name}");
             assert!(err.contains("depends on time"), "{name}: {err}");

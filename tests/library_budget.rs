@@ -99,8 +99,14 @@ fn entry_points(src: &str, all: bool) -> Vec<(String, String)> {
     call("expanded_generalized_forces (kept)", &mut || {
         verdict(expanded_generalized_forces(&kept))
     });
-    call("equilibria", &mut || verdict(equilibria(&expanded, &set)));
-    call("modes", &mut || verdict(modes(&expanded, None, &set)));
+    // the engine's functions that decide signs take the scene's
+    // assumptions from their caller
+    call("equilibria", &mut || {
+        verdict(expanded.assumptions_in_force(|| equilibria(&expanded, &set)))
+    });
+    call("modes", &mut || {
+        verdict(expanded.assumptions_in_force(|| modes(&expanded, None, &set)))
+    });
     call("linearize", &mut || {
         verdict(linearize(&expanded, &Reference::at(None)))
     });

@@ -51,7 +51,8 @@ fn steady_modes(s: &Scene, steady: &[&str], at: &str) -> Modes {
     }
     reference.sort_by_key(|(k, _)| *k);
     let r = Reference::at(Some(&q0)).steady(reference);
-    osc::modes_about(s, &r, &Values::new()).unwrap_or_else(|d| panic!("{}", d.message))
+    s.assumptions_in_force(|| osc::modes_about(s, &r, &Values::new()))
+        .unwrap_or_else(|d| panic!("{}", d.message))
 }
 
 fn fixtures() -> Vec<Value> {

@@ -11,10 +11,13 @@ use crate::scene::Scene;
 /// (ÿ₃ before θ̈₃ when `y3` is declared first).
 ///
 /// The engine keeps the assumptions and the print order in thread-locals
-/// that only [`Context::run`] sets, for the time of one computation; a
-/// front end (the CLI, the REPL, Python, a library user) makes a context
-/// and passes it, and a report keeps the context it was computed in, so
-/// that what it prints is what the CLI prints.
+/// that only [`Context::run`] sets, for the time of one computation (the
+/// engine's functions that decide signs check that the scene's
+/// assumptions are in force; a library user who calls them directly runs
+/// them in `Scene::assumptions_in_force`); a front end (the CLI, the REPL,
+/// Python, a library user) makes a context and passes it, and a report
+/// keeps the context it was computed in, so that what it prints is what
+/// the CLI prints.
 #[derive(Clone, Debug)]
 pub struct Context {
     max_terms: usize,

@@ -93,7 +93,10 @@ pub fn defined(scene: &Scene, lag: Lagrange, defs: &[String]) -> Result<Lagrange
         return Ok(lag);
     }
     let map = derivatives(&lag, &values);
-    let subs = |e: &Expr| e.subs_many(&map).map_err(|m| Diagnostic::global(m.message));
+    let subs = |e: &Expr| {
+        e.subs_many(&map)
+            .map_err(|m| Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined))
+    };
     let mut out = lag.clone();
     for row in &mut out.mass_matrix {
         for m in row.iter_mut() {
@@ -175,5 +178,6 @@ fn derivative_map<'a>(
 /// derivative of its definition in `values` ([`definitions`]).
 pub fn substitute(e: &Expr, values: &FxHashMap<&str, Expr>) -> Result<Expr, Diagnostic> {
     let map = derivative_map(std::iter::once(e), values);
-    e.subs_many(&map).map_err(|m| Diagnostic::global(m.message))
+    e.subs_many(&map)
+        .map_err(|m| Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined))
 }

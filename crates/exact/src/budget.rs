@@ -206,6 +206,16 @@ pub fn installed() -> bool {
     LIMIT.with(Cell::get).is_some()
 }
 
+/// Try `f` within at most `max_terms` terms, as one step of an algorithm
+/// that falls back when it fails (expanded, else structured): nested in
+/// the budget in force, so the smaller of the two applies and the work of
+/// big numbers goes on counting toward the outer one; past it, the error
+/// is a value for the caller to fall back on. The one nested budget of
+/// the engine (the context that runs a command installs the outer one).
+pub fn probe<T>(max_terms: usize, f: impl FnOnce() -> T) -> Result<T, TooLarge> {
+    within(max_terms.min(limit()), f)
+}
+
 /// Declare what the thread computes until the guard is dropped (for the
 /// error of [`within`]). `what` is only built under a bound.
 pub fn enter(what: impl FnOnce() -> String, span: Option<(usize, usize)>) -> ComputationGuard {

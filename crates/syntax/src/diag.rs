@@ -59,10 +59,11 @@ pub enum ErrorKind {
     /// A term whose dimension is not the one needed there.
     DimensionMismatch,
     /// A linear system without a unique solution: the mass matrix, the
-    /// momenta's velocities, a `solve` block.
+    /// momenta's velocities, a `solve` block, the modes' amplitudes.
     SingularSystem {
         /// The names of the unknowns (coordinates, velocities, `solve`
-        /// unknowns) that the system leaves undetermined.
+        /// unknowns) that the system leaves undetermined; empty where the
+        /// system has no named unknowns (a matrix found singular).
         unknowns: Vec<String>,
     },
     /// The work budget (`--max-terms`) was exceeded.
@@ -91,6 +92,49 @@ pub enum ErrorKind {
     Constraints,
     /// A numeric integration that stopped before its end.
     Integration,
+    /// A value of the wrong sort where it is used: a vector where a number
+    /// is needed, a rotation in arithmetic, vectors of different sizes, a
+    /// point with 3 components in a planar joint.
+    TypeMismatch,
+    /// A statement that reads, and that the scene's rules refuse: a body
+    /// without a mass or an orientation, a constant that moves with time,
+    /// a definition that uses itself, a function given the wrong number
+    /// of arguments, a name used as what it is not.
+    InvalidScene,
+    /// A value physics rules out: a negative mass or moment of inertia, an
+    /// inertia matrix that is not symmetric positive semidefinite, an
+    /// `assume` fact false for the parameters as declared, a mass matrix
+    /// not positive definite at the `--set` values.
+    Unphysical,
+    /// An operation undefined for its operands, or not known to be
+    /// defined: division by zero, the square root or logarithm of a
+    /// negative number, a division by a quantity whose sign is undecided.
+    Undefined,
+    /// A limit of qdot's ([`crate::limits`]) passed: a number of too many
+    /// digits, nesting too deep, too many cases, a derivative of too high
+    /// an order. Not the work budget: that is [`ErrorKind::TooLarge`].
+    LimitExceeded,
+    /// Something qdot does not do, said with the reason: symbolic powers,
+    /// the complex modes of a gyroscopic system, steady motions with
+    /// constraints, a structured scene where an expanded one is needed.
+    Unsupported,
+    /// An exact answer that exists in general but not in closed form here
+    /// (the equilibria, the steady motions, the accelerations with
+    /// Coulomb friction, the Legendre transform): parameter values
+    /// (`--set`) or a numeric command may give one.
+    NoClosedForm,
+    /// No equilibrium or steady motion where one was asked for: a force
+    /// that depends on time, a position (`--at`) that is not one, a rate
+    /// no real number satisfies.
+    NoEquilibrium,
+    /// A numeric computation without a certified finite answer (not
+    /// converged, or not finite at the values given).
+    Convergence,
+    /// An invariant of the engine that does not hold: a bug in qdot, or a
+    /// library call outside the context the engine needs (the scene's
+    /// assumptions not in force: run it through `qdot::app` or
+    /// `Scene::assumptions_in_force`).
+    Internal,
     /// Every other error (and every warning).
     #[default]
     Other,
@@ -135,6 +179,16 @@ impl ErrorKind {
             | ErrorKind::NothingToSolve
             | ErrorKind::Constraints
             | ErrorKind::Integration
+            | ErrorKind::TypeMismatch
+            | ErrorKind::InvalidScene
+            | ErrorKind::Unphysical
+            | ErrorKind::Undefined
+            | ErrorKind::LimitExceeded
+            | ErrorKind::Unsupported
+            | ErrorKind::NoClosedForm
+            | ErrorKind::NoEquilibrium
+            | ErrorKind::Convergence
+            | ErrorKind::Internal
             | ErrorKind::Other => serde_json::json!({}),
         }
     }
@@ -154,6 +208,16 @@ impl ErrorKind {
             ErrorKind::NothingToSolve => "nothing_to_solve",
             ErrorKind::Constraints => "constraints",
             ErrorKind::Integration => "integration",
+            ErrorKind::TypeMismatch => "type_mismatch",
+            ErrorKind::InvalidScene => "invalid_scene",
+            ErrorKind::Unphysical => "unphysical",
+            ErrorKind::Undefined => "undefined",
+            ErrorKind::LimitExceeded => "limit_exceeded",
+            ErrorKind::Unsupported => "unsupported",
+            ErrorKind::NoClosedForm => "no_closed_form",
+            ErrorKind::NoEquilibrium => "no_equilibrium",
+            ErrorKind::Convergence => "convergence",
+            ErrorKind::Internal => "internal",
             ErrorKind::Other => "other",
         }
     }
@@ -225,7 +289,11 @@ impl Diagnostic {
     pub fn global_warning(message: impl Into<String>) -> Diagnostic {
         Diagnostic {
             severity: Severity::Warning,
-            ..Diagnostic::global(message)
+            span: None,
+            message: message.into(),
+            hint: None,
+            kind: Box::default(),
+            labels: Vec::new(),
         }
     }
     /// The same diagnostic with a hint attached.
@@ -547,12 +615,12 @@ pub fn too_large(e: &crate::budget::TooLarge) -> Diagnostic {
         "{why}; to go on, raise the limit: --max-terms {}",
         e.limit.saturating_mul(10)
     );
+    let kind = ErrorKind::TooLarge { measure: e.measure };
     match e.context.as_ref().and_then(|c| c.span) {
-        Some((a, b)) => Diagnostic::error(Span::new(a, b), e.message()),
-        None => Diagnostic::global(e.message()),
+        Some((a, b)) => Diagnostic::error(Span::new(a, b), e.message()).with_kind(kind),
+        None => Diagnostic::global(e.message()).with_kind(kind),
     }
     .with_hint(hint)
-    .with_kind(ErrorKind::TooLarge { measure: e.measure })
 }
 
 /// Run `f` within the work budget in force, or the default one where none

@@ -151,7 +151,8 @@ pub fn codegen(src: &str, req: &CodegenRequest) -> Result<String, Diagnostic> {
             return Err(Diagnostic::global(format!(
                 "--baumgarte {} must be a number ≥ 0",
                 req.baumgarte
-            )));
+            ))
+            .with_kind(crate::diag::ErrorKind::bad_option("--baumgarte")));
         }
         bound.insert(constrained::alpha_var(), req.baumgarte);
     }
@@ -261,6 +262,7 @@ impl Generator<'_> {
         compile_through(exprs, self.inputs, self.bound, tape).map_err(|e| {
             Diagnostic::global(format!("cannot generate code for {what}: {e}"))
                 .with_hint("the generated code evaluates the functions `qdot simulate` evaluates")
+                .with_kind(crate::diag::ErrorKind::Unsupported)
         })
     }
 
@@ -316,7 +318,7 @@ impl Generator<'_> {
         if n <= BEST_MAX_N {
             // an option, as in `CompiledDynamics::best`: past the work
             // budget M and f serve
-            let exact = crate::budget::within(crate::budget::limit(), || self.lag.accelerations());
+            let exact = crate::budget::probe(crate::budget::limit(), || self.lag.accelerations());
             if let Ok(Ok(acc)) = exact {
                 let exprs: Vec<Expr> = acc.values().to_vec();
                 let tape = acc.intermediates();
@@ -389,6 +391,9 @@ impl Generator<'_> {
             col[j] = 1.0;
             solve_spd(&mut m, &mut col, n).map_err(|e| {
                 Diagnostic::global(format!("the constant mass matrix cannot be inverted: {e}"))
+                    .with_kind(crate::diag::ErrorKind::SingularSystem {
+                        unknowns: Vec::new(),
+                    })
             })?;
             for i in 0..n {
                 inverse[i * n + j] = col[i];
@@ -405,7 +410,8 @@ impl Generator<'_> {
         if upper.iter().any(|e| qd.iter().any(|&v| e.depends_on(v))) {
             return Err(Diagnostic::global(
                 "the mass matrix depends on the velocities: it cannot be written as M(q, t)",
-            ));
+            )
+            .with_kind(crate::diag::ErrorKind::Unsupported));
         }
         let p = self.compile("M", &upper)?;
         let mut low = Lowering::default();

@@ -303,7 +303,7 @@ impl CompiledDynamics {
         }
         // the exact accelerations are an option: past the work budget, M
         // and f serve (the budget of the caller, nested so it unwinds here)
-        let exact = crate::budget::within(crate::budget::limit(), || {
+        let exact = crate::budget::probe(crate::budget::limit(), || {
             Self::from_accelerations(lagrange, params)
         });
         let exact = exact.unwrap_or_else(|e| {

@@ -11,9 +11,12 @@
 //! of either sign is decided case by case: positive, negative (p → −p)
 //! and zero must agree.
 //!
-//! The assumptions in force are a per-thread context set by
-//! [`assuming`] around the work of one scene (the solvers set it), read
-//! by [`crate::algebra::sign::sign_exact`].
+//! The assumptions in force are a per-thread context, read by
+//! [`crate::algebra::sign::sign_exact`]. The context that runs a command
+//! sets them ([`assuming`], from `app::Context` or `Scene::assumptions_in_force`);
+//! the engine's functions that decide signs for a scene check them
+//! ([`in_force`]); a reader that is still building a scene's assumptions
+//! passes them explicitly ([`sign_under`]).
 
 use super::sign::Sign;
 use crate::expr::atom::{self, Atom};
@@ -27,7 +30,7 @@ use std::rc::Rc;
 use crate::limits::MAX_REAL_CASES;
 
 /// What a scene assumes (see the module docs).
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Assumptions {
     /// The parameters of either sign (`assume e real`).
     pub real: Vec<Var>,
@@ -128,6 +131,18 @@ pub fn assuming<R>(a: &Assumptions, f: impl FnOnce() -> R) -> R {
     let prev = CURRENT.with(|c| std::mem::replace(&mut *c.borrow_mut(), Rc::new(a.clone())));
     let _restore = Restore(Some(prev));
     f()
+}
+
+/// Whether `a` are the assumptions in force on this thread.
+pub fn in_force(a: &Assumptions) -> bool {
+    CURRENT.with(|c| *c.borrow().as_ref() == *a)
+}
+
+/// The sign of `e` (as [`super::sign::sign_exact`] decides it) under `a`,
+/// whatever is in force: for a reader building a scene's assumptions,
+/// which no context above it has.
+pub fn sign_under(a: &Assumptions, e: &Expr) -> Option<Sign> {
+    assuming(a, || super::sign::sign_exact(e))
 }
 
 /// The sign of `e` under the assumptions in force, `plain` deciding for

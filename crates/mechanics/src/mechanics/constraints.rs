@@ -50,8 +50,9 @@ impl ConstraintRows {
                 .iter()
                 .zip(qd)
                 .fold(c.rest.clone(), |s, (a, &v)| s.add(&a.mul(&Expr::var(v))));
-            let (row, rest) =
-                split_linear(&velocity.dt(), qdd).map_err(|m| Diagnostic::global(m.message))?;
+            let (row, rest) = split_linear(&velocity.dt(), qdd).map_err(|m| {
+                Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined)
+            })?;
             debug_assert_eq!(row.len(), n);
             debug_assert!(row.iter().zip(&c.coefficients).all(|(r, a)| r.equals(a)));
             rows.multipliers.push(c.multiplier.clone());
@@ -127,7 +128,9 @@ pub(super) fn solve_augmented(
     let b: Vec<Expr> = forcing.iter().chain(&rows.forcing).cloned().collect();
     let mut x = crate::algebra::linear::solve(&a, &b).map_err(|e| match e {
         SolveError::Singular { dependent } => singular(coordinates, rows, &dependent),
-        SolveError::Math(m) => Diagnostic::global(m.message),
+        SolveError::Math(m) => {
+            Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined)
+        }
     })?;
     let lambda = x.split_off(n);
     Ok((x, lambda))
@@ -153,21 +156,21 @@ fn singular(coordinates: &[String], rows: &ConstraintRows, dependent: &[usize]) 
             Some(Dependence::Redundant) => Diagnostic::global(format!(
                 "the constraints {list} are redundant: one follows from the others, so their multipliers are not determined"
             ))
-            .with_hint("remove the constraint that the others imply"),
+            .with_hint("remove the constraint that the others imply").with_kind(crate::diag::ErrorKind::Constraints),
             Some(Dependence::Contradict(gap)) => Diagnostic::global(format!(
                 "the constraints {list} contradict each other: they differ by {}, which is not 0",
                 crate::expr::print::unicode(&gap)
             ))
-            .with_hint("no motion satisfies both; correct one of them"),
+            .with_hint("no motion satisfies both; correct one of them").with_kind(crate::diag::ErrorKind::Constraints),
             Some(Dependence::AgreeOnlyIf(gap)) => Diagnostic::global(format!(
                 "the constraints {list} are dependent: they agree only where {} = 0 (redundant then, contradictory otherwise), so their multipliers are not determined",
                 crate::expr::print::unicode(&gap)
             ))
-            .with_hint("keep one of them, or correct the one that contradicts the other"),
+            .with_hint("keep one of them, or correct the one that contradicts the other").with_kind(crate::diag::ErrorKind::Constraints),
             None => Diagnostic::global(format!(
                 "the constraints {list} are dependent (one's row is a combination of the others'): they are redundant or contradict each other, so their multipliers are not determined"
             ))
-            .with_hint("remove the constraint that the others imply, or correct the one that contradicts them"),
+            .with_hint("remove the constraint that the others imply, or correct the one that contradicts them").with_kind(crate::diag::ErrorKind::Constraints),
         };
         return d.with_kind(crate::diag::ErrorKind::Constraints);
     }

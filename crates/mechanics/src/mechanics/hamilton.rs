@@ -73,7 +73,7 @@ impl Hamiltonian {
                 Structure::Kept => t.structured(scene),
                 Structure::Auto => {
                     let limit = crate::limits::STRUCTURE_ABOVE_TERMS;
-                    match crate::budget::within(limit.saturating_mul(16), || t.expanded()) {
+                    match crate::budget::probe(limit.saturating_mul(16), || t.expanded()) {
                         Ok(Ok(h)) if h.expanded_terms() <= limit => Ok(h),
                         Ok(Err(e)) => Err(e),
                         // past the rule, or far past it (the measuring budget)
@@ -129,7 +129,9 @@ struct Transform {
 
 impl Transform {
     fn of(scene: &Scene, names: Vec<String>) -> Result<Transform, Diagnostic> {
-        let math = |m: crate::expr::MathError| Diagnostic::global(m.message);
+        let math = |m: crate::expr::MathError| {
+            Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined)
+        };
         let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();
         let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
         let qdd: Vec<Var> = names.iter().map(|c| atom::coord(c, 2)).collect();
@@ -149,7 +151,7 @@ impl Transform {
                 return Err(Diagnostic::global(
                     "the Lagrangian is not quadratic in the velocities, so the momenta are not linear in them and the Legendre transform has no closed form here",
                 )
-                .with_hint("Hamilton's equations need q̇ in terms of p: keep the kinetic energy quadratic in the velocities"));
+                .with_hint("Hamilton's equations need q̇ in terms of p: keep the kinetic energy quadratic in the velocities").with_kind(crate::diag::ErrorKind::NoClosedForm));
             }
             mass.push(row);
             p_minus_b.push(Expr::unknown(name).sub(&rest));
@@ -167,7 +169,7 @@ impl Transform {
                 .with_hint("Hamilton's equations need a kinetic energy in every velocity (a regular Lagrangian)")
                 .with_kind(crate::diag::ErrorKind::SingularSystem { unknowns })
             }
-            SolveError::Math(m) => Diagnostic::global(m.message),
+            SolveError::Math(m) => Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined),
         })?;
         let at_rest: FxHashMap<Var, Expr> = qd.iter().map(|&v| (v, Expr::zero())).collect();
         let l0 = l.subs_many(&at_rest).map_err(math)?;
@@ -196,9 +198,9 @@ impl Transform {
     /// p − b = M·q̇ (q̇ substituted into L would square the velocities'
     /// denominator).
     fn hamiltonian(&self, twice_kinetic: Expr) -> Result<Expr, Diagnostic> {
-        let half = twice_kinetic
-            .div(&Expr::int(2))
-            .map_err(|m| Diagnostic::global(m.message))?;
+        let half = twice_kinetic.div(&Expr::int(2)).map_err(|m| {
+            Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined)
+        })?;
         Ok(half.sub(&self.l0))
     }
 
@@ -264,8 +266,9 @@ impl Transform {
             self.qd.iter().copied().zip(named.iter().cloned()).collect();
         // q̇ → an atom or a polynomial in atoms: no denominator arises
         let in_named = |e: &Expr| {
-            e.subs_many(&to_named)
-                .map_err(|m| Diagnostic::global(m.message))
+            e.subs_many(&to_named).map_err(|m| {
+                Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined)
+            })
         };
         let hamiltonian = self.hamiltonian(dot(&self.p_minus_b, &named))?;
         Ok(Hamiltonian {
@@ -311,16 +314,18 @@ impl<'a> AtVelocities<'a> {
     /// Σ (p_k − b_k)·q̇_k over the velocities' own denominator.
     fn twice_kinetic(&self, p_minus_b: &[Expr]) -> Result<Expr, Diagnostic> {
         match &self.common {
-            Some((numerators, den)) => dot(p_minus_b, numerators)
-                .div(den)
-                .map_err(|m| Diagnostic::global(m.message)),
+            Some((numerators, den)) => dot(p_minus_b, numerators).div(den).map_err(|m| {
+                Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined)
+            }),
             None => Ok(dot(p_minus_b, self.velocities)),
         }
     }
 
     /// `e` (in q, q̇ and t) at q̇ = q̇(q, p, t).
     fn apply(&self, e: &Expr) -> Result<Expr, Diagnostic> {
-        let math = |m: crate::expr::MathError| Diagnostic::global(m.message);
+        let math = |m: crate::expr::MathError| {
+            Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined)
+        };
         match &self.common {
             Some((numerators, den)) if self.polynomial_in_velocities(e) => {
                 self.over_common(e, numerators, den).map_err(math)
@@ -446,7 +451,10 @@ fn check_scene(scene: &Scene, names: &[String]) -> Result<(), Diagnostic> {
             return Err(Diagnostic::global(format!(
                 "the momentum of `{n}` is named `{p}`, which the scene already uses"
             ))
-            .with_hint(format!("rename `{p}` in the scene")));
+            .with_hint(format!("rename `{p}` in the scene"))
+            .with_kind(crate::diag::ErrorKind::DuplicateName {
+                name: p.to_string(),
+            }));
         }
     }
     Ok(())
@@ -475,7 +483,7 @@ pub(super) fn other_forces(
             return Err(Diagnostic::global(
                 "a generalized force depends on an acceleration (an inertia force among the loads), which Hamilton's equations can't carry",
             )
-            .with_hint("write the inertia as a kinetic energy: `kinetic E = …`"));
+            .with_hint("write the inertia as a kinetic energy: `kinetic E = …`").with_kind(crate::diag::ErrorKind::Unsupported));
         }
         out.push(q);
     }

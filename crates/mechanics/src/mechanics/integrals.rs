@@ -64,7 +64,8 @@ impl Integrals {
                 return Err(Diagnostic::global(
                     "integrals of motion need coordinates and a kinetic energy or a Lagrangian",
                 )
-                .with_hint("declare `coordinates …` and write `kinetic E = …`"));
+                .with_hint("declare `coordinates …` and write `kinetic E = …`")
+                .with_kind(crate::diag::ErrorKind::NothingToSolve));
             }
             let q: Vec<Var> = names.iter().map(|c| atom::coord(c, 0)).collect();
             let qd: Vec<Var> = names.iter().map(|c| atom::coord(c, 1)).collect();
@@ -250,13 +251,14 @@ fn routh(
     let mut mass = Vec::with_capacity(c_idx.len());
     let mut rhs = Vec::with_capacity(c_idx.len());
     for (&k, (_, p_expr)) in c_idx.iter().zip(cyclic) {
-        let (row, rest) =
-            split_linear(p_expr, &c_vel).map_err(|m| Diagnostic::global(m.message))?;
+        let (row, rest) = split_linear(p_expr, &c_vel).map_err(|m| {
+            Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined)
+        })?;
         if row.iter().any(|e| c_vel.iter().any(|&v| e.depends_on(v))) {
             return Err(Diagnostic::global(
                 "the momenta of the cyclic coordinates are not linear in their velocities: no Routhian in closed form",
             )
-            .with_hint("keep the kinetic energy quadratic in the velocities"));
+            .with_hint("keep the kinetic energy quadratic in the velocities").with_kind(crate::diag::ErrorKind::NoClosedForm));
         }
         mass.push(row);
         rhs.push(Expr::unknown(&momentum_name(&names[k])).sub(&rest));
@@ -264,9 +266,15 @@ fn routh(
     let vel = linear::solve(&mass, &rhs).map_err(|_| {
         Diagnostic::global("the cyclic coordinates' momenta do not determine their velocities")
             .with_hint("a cyclic coordinate needs kinetic energy of its own")
+            .with_kind(crate::diag::ErrorKind::SingularSystem {
+                unknowns: Vec::new(),
+            })
     })?;
     let map: FxHashMap<Var, Expr> = c_vel.iter().copied().zip(vel.iter().cloned()).collect();
-    let subs = |e: &Expr| e.subs_many(&map).map_err(|m| Diagnostic::global(m.message));
+    let subs = |e: &Expr| {
+        e.subs_many(&map)
+            .map_err(|m| Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined))
+    };
     let mut r = l.clone();
     for (&k, v) in c_idx.iter().zip(&vel) {
         r = r.sub(&Expr::unknown(&momentum_name(&names[k])).mul(v));
@@ -275,7 +283,7 @@ fn routh(
     let rest: FxHashMap<Var, Expr> = r_idx.iter().map(|&k| (qd[k], Expr::zero())).collect();
     let effective_potential = routhian
         .subs_many(&rest)
-        .map_err(|m| Diagnostic::global(m.message))?
+        .map_err(|m| Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined))?
         .neg();
     let r_acc: Vec<Var> = r_idx.iter().map(|&k| qdd[k]).collect();
     let mut m = Vec::with_capacity(r_idx.len());
@@ -288,13 +296,18 @@ fn routh(
             .dt()
             .sub(&routhian.diff(q))
             .sub(&subs(&other[k])?);
-        let (row, rest) = split_linear(&lhs, &r_acc).map_err(|m| Diagnostic::global(m.message))?;
+        let (row, rest) = split_linear(&lhs, &r_acc).map_err(|m| {
+            Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined)
+        })?;
         m.push(row);
         f.push(rest.neg());
     }
     let acc = linear::solve(&m, &f).map_err(|_| {
         Diagnostic::global("the reduced equations are singular in the remaining accelerations")
             .with_hint("the remaining coordinates need kinetic energy of their own")
+            .with_kind(crate::diag::ErrorKind::SingularSystem {
+                unknowns: Vec::new(),
+            })
     })?;
     Ok(Routh {
         routhian,

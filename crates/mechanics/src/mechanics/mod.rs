@@ -144,8 +144,9 @@ impl Lagrange {
                 lhs = lhs.sub(&calc.partial(&e, q[k]));
             }
             // Mass-matrix row and the rest: lhs − Q = M_k·q̈ − f_k.
-            let (row, rest) =
-                split_linear(&lhs.sub(&rhs), &qdd).map_err(|m| Diagnostic::global(m.message))?;
+            let (row, rest) = split_linear(&lhs.sub(&rhs), &qdd).map_err(|m| {
+                Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined)
+            })?;
             for (j, m) in row.into_iter().enumerate() {
                 mass[k][j] = m;
             }
@@ -181,7 +182,7 @@ impl Lagrange {
             return Err(Diagnostic::global(
                 "the equations have no accelerations: the kinetic energy is zero and no load carries an inertia force",
             )
-            .with_hint("add `kinetic E = …`, or inertia forces as loads: `load G - inertia(m, y) at y`"));
+            .with_hint("add `kinetic E = …`, or inertia forces as loads: `load G - inertia(m, y) at y`").with_kind(crate::diag::ErrorKind::NothingToSolve));
         }
         Ok(Lagrange {
             coordinates: names,
@@ -230,7 +231,7 @@ impl Lagrange {
                 return Err(Diagnostic::global(
                     "the equations have Coulomb friction in a joint (−c·|N|·sgn v), which is not linear in the reactions, so the accelerations have no closed form",
                 )
-                .with_hint("`qdot cycle` solves a driven mechanism with friction position by position; without a drive, remove the `friction` statements"));
+                .with_hint("`qdot cycle` solves a driven mechanism with friction position by position; without a drive, remove the `friction` statements").with_kind(crate::diag::ErrorKind::NoClosedForm));
             }
             if !self.constraints.is_empty() {
                 let _context = crate::budget::enter(
@@ -280,7 +281,7 @@ impl Lagrange {
                             unknowns: names.iter().map(|s| s.to_string()).collect(),
                         })
                     }
-                    crate::algebra::linear::SolveError::Math(m) => Diagnostic::global(m.message),
+                    crate::algebra::linear::SolveError::Math(m) => Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined),
                 }
             })?;
             Ok(Accelerations::new(self.coordinates.clone(), sol))
@@ -315,8 +316,9 @@ pub fn expanded_generalized_forces(scene: &Scene) -> Result<Vec<Expr>, Diagnosti
         force_terms_with(scene, &mut tape)
             .iter()
             .map(|terms| {
-                tape.expand(&sum_terms(terms))
-                    .map_err(|e| Diagnostic::global(e.message))
+                tape.expand(&sum_terms(terms)).map_err(|e| {
+                    Diagnostic::global(e.message).with_kind(crate::diag::ErrorKind::Undefined)
+                })
             })
             .collect()
     })

@@ -107,7 +107,9 @@ pub(crate) fn solve_ldl(
             for k in 0..j {
                 s = s.sub(&l[i][k].mul(&l[j][k]).mul(&d[k]));
             }
-            let lij = s.div(&dj).map_err(|e| Diagnostic::global(e.message))?;
+            let lij = s.div(&dj).map_err(|e| {
+                Diagnostic::global(e.message).with_kind(crate::diag::ErrorKind::Undefined)
+            })?;
             let lij = tape.define(&format!("L_{}{}", i + 1, j + 1), lij);
             l[i].push(lij);
         }
@@ -122,7 +124,9 @@ pub(crate) fn solve_ldl(
             yi = yi.sub(&l[i][k].mul(&y[k]));
         }
         let yi = tape.define(&format!("y_{}", i + 1), yi);
-        let zi = yi.div(&d[i]).map_err(|e| Diagnostic::global(e.message))?;
+        let zi = yi.div(&d[i]).map_err(|e| {
+            Diagnostic::global(e.message).with_kind(crate::diag::ErrorKind::Undefined)
+        })?;
         z.push(tape.define(&format!("z_{}", i + 1), zi));
         y.push(yi);
     }

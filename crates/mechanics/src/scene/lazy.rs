@@ -116,8 +116,6 @@ pub(super) fn check_unused(
     let mut values = FxHashMap::default();
     let mut warnings = Vec::new();
     let mut sizes: FxHashMap<usize, u64> = FxHashMap::default();
-    // a budget already smaller than the check's stays in force
-    let budget = crate::budget::limit().min(CHECK_BUDGET);
     // those left unevaluated: what uses one is left too (its error, if
     // any, is reported once, at the definition it is in)
     let mut left: FxHashSet<usize> = FxHashSet::default();
@@ -128,7 +126,8 @@ pub(super) fn check_unused(
             left.insert(i);
             continue;
         }
-        match crate::budget::within(budget, || ev.definition(i)) {
+        // (a budget already smaller than the check's stays in force)
+        match crate::budget::probe(CHECK_BUDGET, || ev.definition(i)) {
             Ok(Ok(v)) => {
                 values.insert(i, v);
             }
@@ -269,7 +268,8 @@ impl Scene {
                 let mut out = Diagnostic::global(format!(
                     "`{name}` can't be evaluated: {} (line {line} of the scene)",
                     d.message
-                ));
+                ))
+                .with_kind(d.kind.as_ref().clone());
                 out.hint = d.hint.clone();
                 return Err(out);
             }

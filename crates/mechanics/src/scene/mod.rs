@@ -483,10 +483,10 @@ impl Scene {
     pub fn expr(&self, src: &str) -> Result<Expr, Diagnostic> {
         match self.value_of(src)? {
             Value::Scalar(e) => Ok(e),
-            v => Err(Diagnostic::global(format!(
-                "expected a number, found {}",
-                v.describe()
-            ))),
+            v => Err(
+                Diagnostic::global(format!("expected a number, found {}", v.describe()))
+                    .with_kind(crate::diag::ErrorKind::TypeMismatch),
+            ),
         }
     }
 
@@ -544,9 +544,33 @@ impl Scene {
             return Err(Diagnostic::global(format!(
                 "{what} needs the scene expanded, and it was read with its kinematics kept as intermediates"
             ))
-            .with_hint("read it with Scene::parse (the command line does so for every command but derive, solve and simulate)"));
+            .with_hint("read it with Scene::parse (the command line does so for every command but derive, solve and simulate)").with_kind(crate::diag::ErrorKind::Unsupported));
         }
         Ok(())
+    }
+
+    /// Run `f` with the scene's assumptions (`assume …`) in force: for a
+    /// library user who calls the engine's functions (equilibria, modes,
+    /// steady motions) directly rather than through `qdot::app`, whose
+    /// context installs them.
+    pub fn assumptions_in_force<T>(&self, f: impl FnOnce() -> T) -> T {
+        crate::algebra::assume::assuming(&self.assumptions, f)
+    }
+
+    /// An error unless the scene's assumptions are in force: `what`
+    /// decides signs under them, and without them it could decide one for
+    /// positive parameters where the scene assumes otherwise.
+    pub fn assumptions_required(&self, what: &str) -> Result<(), Diagnostic> {
+        let in_force = crate::algebra::assume::in_force(&self.assumptions);
+        debug_assert!(in_force, "{what}: the scene's assumptions are not in force");
+        if in_force {
+            return Ok(());
+        }
+        Err(Diagnostic::global(format!(
+            "{what} needs the scene's assumptions (`assume …`) in force, and they are not"
+        ))
+        .with_hint("run it through qdot::app, or within Scene::assumptions_in_force")
+        .with_kind(crate::diag::ErrorKind::Internal))
     }
 
     /// Whether any statement plays `role`.

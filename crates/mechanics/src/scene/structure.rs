@@ -85,7 +85,7 @@ fn worth_keeping(scene: &Scene) -> bool {
         return false;
     }
     let limit = crate::limits::STRUCTURE_ABOVE_TERMS;
-    let measured = crate::budget::within(limit.saturating_mul(16), || {
+    let measured = crate::budget::probe(limit.saturating_mul(16), || {
         let Ok(l) = scene.lagrange() else {
             return None;
         };

@@ -63,7 +63,7 @@ pub(super) fn constrained_equilibria(
                 c.span,
                 format!("equilibria under the constraint {} are not found: it restricts the velocities, not the position", c.label(j)),
             )
-            .with_hint(super::integrable::hint(c, q, HINT)));
+            .with_hint(super::integrable::hint(c, q, HINT)).with_kind(crate::diag::ErrorKind::Unsupported));
         }
         if c.expression.depends_on(atom::time())
             || super::equilibrium::has_given_function(&c.expression)
@@ -75,7 +75,8 @@ pub(super) fn constrained_equilibria(
                     c.label(j)
                 ),
             )
-            .with_hint("equilibria need fixed constraints"));
+            .with_hint("equilibria need fixed constraints")
+            .with_kind(crate::diag::ErrorKind::NoEquilibrium));
         }
         gs.push(c.expression.clone());
         lambdas.push(atom::unknown(&c.multiplier));
@@ -105,7 +106,7 @@ pub(super) fn constrained_equilibria(
             return Err(Diagnostic::global(
                 "no closed form for the equilibria on these constraints; they can be solved numerically given parameter values",
             )
-            .with_hint("give every parameter a value with `--set`"));
+            .with_hint("give every parameter a value with `--set`").with_kind(crate::diag::ErrorKind::NoClosedForm));
         }
         let numeric = Numeric {
             eqs: &eqs,
@@ -441,7 +442,7 @@ pub(super) fn multipliers_at(
     let point: FxHashMap<Var, Expr> = q.iter().copied().zip(q0.iter().cloned()).collect();
     let at = |e: &Expr| {
         e.subs_many(&point)
-            .map_err(|m| Diagnostic::global(m.message))
+            .map_err(|m| Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined))
     };
     let mut at_rows: Vec<Vec<Expr>> = Vec::with_capacity(q.len());
     let mut lambdas = Vec::new();
@@ -466,7 +467,8 @@ pub(super) fn multipliers_at(
                 OSCILLATIONS_HINT.to_string()
             } else {
                 super::integrable::hint(c, q, OSCILLATIONS_HINT)
-            }));
+            })
+            .with_kind(crate::diag::ErrorKind::Unsupported));
         }
         if !at(&c.expression)?.is_zero() {
             return Err(Diagnostic::global(format!(
@@ -474,7 +476,7 @@ pub(super) fn multipliers_at(
                 c.label(j),
                 crate::expr::print::unicode(&c.expression)
             ))
-            .with_hint("linearize about an equilibrium on the constraints: --at x=0,y=-l (`qdot equilibrium` lists them)"));
+            .with_hint("linearize about an equilibrium on the constraints: --at x=0,y=-l (`qdot equilibrium` lists them)").with_kind(crate::diag::ErrorKind::NoEquilibrium));
         }
         lambdas.push(Expr::unknown(&c.multiplier));
     }
@@ -499,7 +501,7 @@ pub(super) fn multipliers_at(
         return Err(Diagnostic::global(
             "this position is not an equilibrium on the constraints: no multipliers balance the forces there",
         )
-        .with_hint("`qdot equilibrium` finds the equilibria on the constraints; linearize about one with --at"));
+        .with_hint("`qdot equilibrium` finds the equilibria on the constraints; linearize about one with --at").with_kind(crate::diag::ErrorKind::NoEquilibrium));
     }
     Ok(scene
         .constraints
@@ -530,7 +532,9 @@ pub(super) fn reduce(
                 .collect::<Result<Vec<_>, _>>()
         })
         .collect::<Result<Vec<_>, _>>()
-        .map_err(|m| Diagnostic::global(m.message))?;
+        .map_err(|m| {
+            Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Constraints)
+        })?;
     let Some((z, free)) = null_basis_free(&a, q.len()) else {
         return Err(Diagnostic::global(
             "the constraints' gradients are dependent at this position",
@@ -579,9 +583,10 @@ pub fn reaction_forces(
     for r in &scene.reactions {
         let c = &scene.constraints[r.constraint];
         let Some((_, lambda)) = acc.multipliers().get(r.constraint) else {
-            return Err(Diagnostic::global(
-                "internal: a reaction without its multiplier",
-            ));
+            return Err(
+                Diagnostic::global("internal: a reaction without its multiplier")
+                    .with_kind(crate::diag::ErrorKind::Internal),
+            );
         };
         // Jᵀ: one row per coordinate, one column per component of P
         let jt: Vec<Vec<Expr>> = q
@@ -600,20 +605,21 @@ pub fn reaction_forces(
                     "the force of the constraint {label} at this point could not be solved for"
                 ),
             )
+            .with_kind(crate::diag::ErrorKind::Constraints)
         })?;
         if sol.residuals.iter().any(|(_, x)| !x.is_zero()) {
             return Err(Diagnostic::error(
                 r.span,
                 format!("the constraint {label} does not act at this point alone: no force there gives its generalized forces λ·a"),
             )
-            .with_hint("name the point of the one body the constraint holds (a rope between two bodies acts on both)"));
+            .with_hint("name the point of the one body the constraint holds (a rope between two bodies acts on both)").with_kind(crate::diag::ErrorKind::Constraints));
         }
         if !sol.shape.free.is_empty() {
             return Err(Diagnostic::error(
                 r.span,
                 format!("the point does not determine the force of the constraint {label}: it moves in fewer directions than it has components"),
             )
-            .with_hint("write the point with as many components as it moves in"));
+            .with_hint("write the point with as many components as it moves in").with_kind(crate::diag::ErrorKind::Constraints));
         }
         out.push(sol.values);
     }

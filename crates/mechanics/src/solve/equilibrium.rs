@@ -171,15 +171,17 @@ impl Equilibria {
     }
 }
 
-/// Find and classify the equilibria of a scene.
+/// Find and classify the equilibria of a scene, its assumptions in force
+/// ([`Scene::assumptions_in_force`]).
 pub fn equilibria(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic> {
     crate::diag::bounded(|| {
         scene.expanded_only("the search for equilibria")?;
-        crate::algebra::assume::assuming(&scene.assumptions, || equilibria_assumed(scene, set))
+        scene.assumptions_required("the search for equilibria")?;
+        equilibria_assumed(scene, set)
     })
 }
 
-/// [`equilibria`] with the scene's assumptions in force.
+/// [`equilibria`] once its preconditions hold.
 fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnostic> {
     let _context = crate::budget::enter(|| "finding the equilibria".into(), None);
     let n = scene.coordinates.len();
@@ -201,7 +203,7 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
     }
     let at_rest = |e: &Expr| {
         e.subs_many(&rest)
-            .map_err(|m| Diagnostic::global(m.message))
+            .map_err(|m| Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined))
     };
     let mut forces = Vec::with_capacity(n);
     for f in crate::mechanics::generalized_forces(scene) {
@@ -217,7 +219,7 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
                 "the force on `{}` depends on time, so there is no static equilibrium",
                 names[k]
             ))
-            .with_hint("equilibria need time-independent forces (a given function of time counts as one that changes); remove driving terms in t to study the system at rest"));
+            .with_hint("equilibria need time-independent forces (a given function of time counts as one that changes); remove driving terms in t to study the system at rest").with_kind(crate::diag::ErrorKind::NoEquilibrium));
         }
     }
     // K = −∂F/∂q, symbolic.
@@ -314,7 +316,7 @@ fn equilibria_assumed(scene: &Scene, set: &Values) -> Result<Equilibria, Diagnos
                         .map(|p| format!("{p}=…"))
                         .collect::<Vec<_>>()
                         .join(",")
-                )));
+                )).with_kind(crate::diag::ErrorKind::NoClosedForm));
             }
             found = solve_numeric(&conditions, &jac, inertia, &q, &periodic, set, gyroscopic);
             false
@@ -415,7 +417,7 @@ impl TooManyCases {
             "too many equilibria: the exact search for the equilibria split into more than {} cases (each root of one equation put into the others is a case)",
             crate::budget::grouped(MAX_EQUILIBRIUM_CASES)
         ))
-        .with_hint("n angles with two equilibria each (a chain of n pendulums) have 2ⁿ equilibria; study fewer coordinates at once, or fix some with a constraint")
+        .with_hint("n angles with two equilibria each (a chain of n pendulums) have 2ⁿ equilibria; study fewer coordinates at once, or fix some with a constraint").with_kind(crate::diag::ErrorKind::LimitExceeded)
     }
 }
 

@@ -108,7 +108,9 @@ fn mechanism_reactions_within(
         .iter()
         .map(|name| atom::unknown(name))
         .collect();
-    let math = |e: crate::expr::MathError| Diagnostic::global(e.message);
+    let math = |e: crate::expr::MathError| {
+        Diagnostic::global(e.message).with_kind(crate::diag::ErrorKind::Undefined)
+    };
     if let Some(order) = super::system::solve_in_order(&at, &rhs, &unknowns).map_err(math)? {
         let values = order
             .into_iter()
@@ -124,7 +126,7 @@ fn mechanism_reactions_within(
         crate::algebra::linear::SolveError::Singular { .. } => Diagnostic::global(
             "the joints and drives do not determine the reactions: the kinetostatic equations are singular (a joint or drive the others imply)",
         )
-        .with_hint("remove the redundant joint or drive"),
+        .with_hint("remove the redundant joint or drive").with_kind(crate::diag::ErrorKind::SingularSystem { unknowns: Vec::new() }),
         crate::algebra::linear::SolveError::Math(m) => math(m),
     })?;
     Ok(MechanismReactions {

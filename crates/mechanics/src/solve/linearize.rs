@@ -99,7 +99,7 @@ pub struct Linearization {
 }
 
 fn math(m: crate::expr::MathError) -> Diagnostic {
-    let d = Diagnostic::global(m.message);
+    let d = Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined);
     match m.hint {
         Some(h) => d.with_hint(h),
         None => d,
@@ -134,7 +134,8 @@ fn linearize_within(scene: &Scene, reference: &Reference) -> Result<Linearizatio
             return Err(Diagnostic::global(
                 "steady motions of a scene with constraints are not supported",
             )
-            .with_hint("write the scene in independent coordinates"));
+            .with_hint("write the scene in independent coordinates")
+            .with_kind(crate::diag::ErrorKind::Unsupported));
         }
         return linearize_steady(&names, &q0, &residuals, point, reference);
     }
@@ -233,7 +234,7 @@ fn linearize_steady(
                 names[k],
                 crate::expr::print::unicode(&fixed)
             ))
-            .with_hint("a steady motion needs one unknown rate per condition; give the rates with --at q'=value"));
+            .with_hint("a steady motion needs one unknown rate per condition; give the rates with --at q'=value").with_kind(crate::diag::ErrorKind::NoEquilibrium));
         }
         forcing.push(f);
     }
@@ -287,7 +288,7 @@ fn jacobians(
                     "the linearized coefficients of `{}` depend on time (parametric excitation)",
                     names[k]
                 ))
-                .with_hint("small oscillations need constant M, C and K; for periodic ones `qdot floquet` gives the Floquet multipliers and the stability"));
+                .with_hint("small oscillations need constant M, C and K; for periodic ones `qdot floquet` gives the Floquet multipliers and the stability").with_kind(crate::diag::ErrorKind::Unsupported));
             }
         }
     }
@@ -326,7 +327,8 @@ fn forcing_at(
             ))
             .with_hint(
                 "`qdot equilibrium` finds the equilibria; linearize about one with --at q=value",
-            ));
+            )
+            .with_kind(crate::diag::ErrorKind::NoEquilibrium));
         }
         forcing.push(f);
     }

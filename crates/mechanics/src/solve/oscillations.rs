@@ -104,7 +104,7 @@ pub struct StandardForm {
 }
 
 fn math(m: crate::expr::MathError) -> Diagnostic {
-    let d = Diagnostic::global(m.message);
+    let d = Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined);
     match m.hint {
         Some(h) => d.with_hint(h),
         None => d,
@@ -117,7 +117,8 @@ pub fn modes(scene: &Scene, at: Option<&[Expr]>, set: &Values) -> Result<Modes, 
 }
 
 /// Linearize about `reference` (an equilibrium or a steady motion) and
-/// find the modes.
+/// find the modes, the scene's assumptions in force
+/// ([`Scene::assumptions_in_force`]).
 pub fn modes_about(
     scene: &Scene,
     reference: &Reference,
@@ -125,13 +126,12 @@ pub fn modes_about(
 ) -> Result<Modes, Diagnostic> {
     crate::diag::bounded(|| {
         scene.expanded_only("small oscillations")?;
-        crate::algebra::assume::assuming(&scene.assumptions, || {
-            modes_assumed(scene, reference, set)
-        })
+        scene.assumptions_required("small oscillations")?;
+        modes_assumed(scene, reference, set)
     })
 }
 
-/// [`modes_about`] with the scene's assumptions in force.
+/// [`modes_about`] once its preconditions hold.
 fn modes_assumed(scene: &Scene, reference: &Reference, set: &Values) -> Result<Modes, Diagnostic> {
     let _context = crate::budget::enter(
         || "linearizing about the equilibrium for the small oscillations".into(),
@@ -152,7 +152,10 @@ fn modes_assumed(scene: &Scene, reference: &Reference, set: &Values) -> Result<M
     let lv = atom::unknown(LAMBDA);
     let gyro = gyroscopic_part(&damping);
     let characteristic = super::characteristic::polynomial(&stiffness, &mass, gyro.as_deref(), lv)
-        .ok_or_else(|| Diagnostic::global("the characteristic polynomial failed"))?;
+        .ok_or_else(|| {
+            Diagnostic::global("the characteristic polynomial failed")
+                .with_kind(crate::diag::ErrorKind::Internal)
+        })?;
     let symmetric = (0..n).all(|i| (0..n).all(|j| stiffness[i][j].equals(&stiffness[j][i])));
     // det(K − λ·M)'s roots are real for symmetric K and a definite M
     let mass_kind = super::definite::Mass::exact(&mass, set);
@@ -224,7 +227,8 @@ fn modes_of(
         if basis.len() < same {
             return Err(Diagnostic::global(
                 "internal error: fewer modes than the multiplicity of a root of det(K − λ·M)",
-            ));
+            )
+            .with_kind(crate::diag::ErrorKind::Internal));
         }
         modes.extend(basis.into_iter().take(same));
         i += same;
@@ -276,8 +280,10 @@ fn null_basis(
         .map(|j| Expr::unknown(&format!("mode{}", j + 1)))
         .collect();
     let zero = vec![Expr::zero(); n];
-    let sol = super::system::solve_rect(&a, &zero, &syms)
-        .map_err(|_| Diagnostic::global("internal error: the mode equations failed"))?;
+    let sol = super::system::solve_rect(&a, &zero, &syms).map_err(|_| {
+        Diagnostic::global("internal error: the mode equations failed")
+            .with_kind(crate::diag::ErrorKind::Internal)
+    })?;
     let mut out = Vec::new();
     for &f in &sol.shape.free {
         let map: FxHashMap<Var, Expr> = sol
@@ -365,28 +371,39 @@ fn free_response_unbounded(md: &Modes, q0: &[Expr], v0: &[Expr]) -> Result<Vec<E
         return Err(Diagnostic::global(
             "the free response of a gyroscopic system needs its complex modes, which qdot does not give",
         )
-        .with_hint("`qdot simulate` integrates the motion"));
+        .with_hint("`qdot simulate` integrates the motion").with_kind(crate::diag::ErrorKind::Unsupported));
     }
     if md.defective {
         return Err(Diagnostic::global(
             "the free response needs a mode per frequency, and a repeated ω² here has fewer (the mass matrix is not definite)",
         )
-        .with_hint("`qdot simulate` integrates the motion"));
+        .with_hint("`qdot simulate` integrates the motion").with_kind(crate::diag::ErrorKind::Unsupported));
     }
     if md.omega_squared.len() != n {
         return Err(
             Diagnostic::global("the free response needs every frequency in closed form")
-                .with_hint("give every parameter a value with --set for the numeric free response"),
+                .with_hint("give every parameter a value with --set for the numeric free response")
+                .with_kind(crate::diag::ErrorKind::NoClosedForm),
         );
     }
     // U·a = q0, U·(ω∘b) = v0 with U's columns the modes
     let u: Vec<Vec<Expr>> = (0..n)
         .map(|j| (0..n).map(|i| md.modes[i][j].clone()).collect())
         .collect();
-    let a = crate::algebra::linear::solve(&u, q0)
-        .map_err(|_| Diagnostic::global("the modes are not independent"))?;
-    let wb = crate::algebra::linear::solve(&u, v0)
-        .map_err(|_| Diagnostic::global("the modes are not independent"))?;
+    let a = crate::algebra::linear::solve(&u, q0).map_err(|_| {
+        Diagnostic::global("the modes are not independent").with_kind(
+            crate::diag::ErrorKind::SingularSystem {
+                unknowns: Vec::new(),
+            },
+        )
+    })?;
+    let wb = crate::algebra::linear::solve(&u, v0).map_err(|_| {
+        Diagnostic::global("the modes are not independent").with_kind(
+            crate::diag::ErrorKind::SingularSystem {
+                unknowns: Vec::new(),
+            },
+        )
+    })?;
     let t = Expr::time();
     let mut out = vec![Expr::zero(); n];
     for i in 0..n {
@@ -699,11 +716,12 @@ pub fn numeric_free_response(
         return Err(Diagnostic::global(
             "the free response of a gyroscopic system needs its complex modes, which qdot does not give",
         )
-        .with_hint("`qdot simulate` integrates the motion"));
+        .with_hint("`qdot simulate` integrates the motion").with_kind(crate::diag::ErrorKind::Unsupported));
     }
     let missing = || {
         Diagnostic::global("the numeric free response needs a value for every parameter")
             .with_hint("give them with --set NAME=VALUE,…")
+            .with_kind(crate::diag::ErrorKind::bad_option("--set"))
     };
     let g = numeric_modes(md, set).ok_or_else(|| {
         let at = |a: &Atom| match a {
@@ -719,7 +737,7 @@ pub fn numeric_free_response(
             Some(d) if d != super::definite::Definiteness::Positive => Diagnostic::global(
                 "the numeric free response needs a positive definite mass matrix, and this one is not at these values",
             )
-            .with_hint("`qdot simulate` integrates the motion"),
+            .with_hint("`qdot simulate` integrates the motion").with_kind(crate::diag::ErrorKind::Unphysical),
             _ => missing(),
         }
     })?;
@@ -744,9 +762,10 @@ pub fn numeric_free_response(
         .ok_or_else(missing)?;
     let finite = |x: &[f64]| x.iter().all(|v| v.is_finite());
     if !finite(&q0) || !finite(&v0) || !finite(&g.values) {
-        return Err(Diagnostic::global(
-            "the numeric free response is not finite at these values",
-        ));
+        return Err(
+            Diagnostic::global("the numeric free response is not finite at these values")
+                .with_kind(crate::diag::ErrorKind::Convergence),
+        );
     }
     // vᵀ·M·x
     let project = |v: &[f64], x: &[f64]| -> f64 {

@@ -71,7 +71,7 @@ pub(super) struct Rates {
 }
 
 fn math(m: crate::expr::MathError) -> Diagnostic {
-    let d = Diagnostic::global(m.message);
+    let d = Diagnostic::global(m.message).with_kind(crate::diag::ErrorKind::Undefined);
     match m.hint {
         Some(h) => d.with_hint(h),
         None => d,
@@ -96,7 +96,7 @@ pub(super) fn check_cyclic(
                 "`{}` appears in the equation of `{}`, so it cannot turn at a constant rate with the others at rest",
                 names[c], names[k]
             ))
-            .with_hint("a steady motion turns cyclic coordinates only; `qdot integrals` lists the scene's cyclic coordinates"));
+            .with_hint("a steady motion turns cyclic coordinates only; `qdot integrals` lists the scene's cyclic coordinates").with_kind(crate::diag::ErrorKind::NoEquilibrium));
         }
     }
     Ok(())
@@ -144,7 +144,7 @@ pub(super) fn solve_rates(
                     crate::expr::print::unicode(&f),
                     crate::expr::print::unicode(&at)
                 ))
-                .with_hint("give values on which the condition holds, or the position that suits them (--at)"));
+                .with_hint("give values on which the condition holds, or the position that suits them (--at)").with_kind(crate::diag::ErrorKind::NoEquilibrium));
             }
         }
         if unknown.is_empty() {
@@ -152,7 +152,7 @@ pub(super) fn solve_rates(
                 "no steady motion here: the equation of `{coordinate}` leaves {} ≠ 0",
                 crate::expr::print::unicode(&f)
             ))
-            .with_hint("leave a rate to be found (--steady q without q' in --at), or give the position that suits the rates"));
+            .with_hint("leave a rate to be found (--steady q without q' in --at), or give the position that suits the rates").with_kind(crate::diag::ErrorKind::NoEquilibrium));
         }
         let degree = open
             .iter()
@@ -174,7 +174,7 @@ pub(super) fn solve_rates(
             "give the parameters values on which it holds (--set), or the position that suits them (--at)"
         } else {
             "give the rates with --at, e.g. --at \"theta=pi/3,phi'=2\", or the position that suits them"
-        }));
+        }).with_kind(crate::diag::ErrorKind::NoEquilibrium));
     }
     Ok(Rates { solved, held })
 }
@@ -277,7 +277,7 @@ fn quadratic_roots(
         return Err(Diagnostic::global(format!(
             "no steady motion: the equation of `{of}` is quadratic in {rate} with the discriminant {} < 0, so no real rate satisfies it",
             crate::expr::print::unicode(&disc)
-        )));
+        )).with_kind(crate::diag::ErrorKind::NoEquilibrium));
     }
     let root = crate::expr::func::sqrt(&disc).map_err(math)?;
     let twice = c2.scale(&crate::num::Q::from_i64(2));
@@ -336,7 +336,7 @@ pub(super) fn routh_reduce(
                 "a force acts on `{}` about the steady motion, so its momentum is not conserved and Routh's reduction does not apply",
                 names[i]
             ))
-            .with_hint("a steady motion needs cyclic coordinates free of forces (no damping or load on them)"));
+            .with_hint("a steady motion needs cyclic coordinates free of forces (no damping or load on them)").with_kind(crate::diag::ErrorKind::NoEquilibrium));
         }
     }
     let block = |a: &[Vec<Expr>], rows: &[usize], cols: &[usize]| -> Vec<Vec<Expr>> {
@@ -353,7 +353,7 @@ pub(super) fn routh_reduce(
             cols.push(crate::algebra::linear::solve(&m_cc, &col).map_err(|_| {
                 Diagnostic::global(
                     "the steady coordinates' mass matrix is singular there (a coordinate singularity, like an azimuth at the pole), so their momenta do not fix their rates",
-                )
+                ).with_kind(crate::diag::ErrorKind::SingularSystem { unknowns: Vec::new() })
             })?);
         }
         Ok((0..steady.len())
@@ -399,7 +399,8 @@ pub(super) fn open_rates(rates: &[(String, Expr)]) -> Vec<String> {
 /// constant rates (their symbols q̇): the other coordinates' equations at
 /// (q̇_r = 0, q̇_c = q̇_c, q̈ = 0) solved for those coordinates in closed
 /// form, each solution classified by the linearization about it
-/// ([`super::oscillations::modes_about`]).
+/// ([`super::oscillations::modes_about`]). The scene's assumptions are
+/// in force ([`crate::scene::Scene::assumptions_in_force`]).
 pub fn steady_motions(
     scene: &crate::scene::Scene,
     steady: &[usize],
@@ -419,66 +420,67 @@ fn steady_motions_within(
         return Err(Diagnostic::global(
             "steady motions of a scene with constraints are not supported",
         )
-        .with_hint("write the scene in independent coordinates"));
+        .with_hint("write the scene in independent coordinates")
+        .with_kind(crate::diag::ErrorKind::Unsupported));
     }
-    crate::algebra::assume::assuming(&scene.assumptions, || {
-        let _context = crate::budget::enter(|| "finding the steady motions".into(), None);
-        let l = scene.lagrange()?;
-        let names = l.coordinates.clone();
-        let residuals: Vec<Expr> = l.equations.iter().map(|e| e.lhs.sub(&e.rhs)).collect();
-        check_cyclic(&names, &residuals, steady)?;
-        let rest: Vec<usize> = (0..names.len()).filter(|i| !steady.contains(i)).collect();
-        let mut point = rustc_hash::FxHashMap::default();
-        for (k, c) in names.iter().enumerate() {
-            let rate = if steady.contains(&k) {
-                rate_symbol(c)
-            } else {
-                Expr::zero()
-            };
-            point.insert(atom::coord(c, 1), rate);
-            point.insert(atom::coord(c, 2), Expr::zero());
-        }
-        let forces = crate::mechanics::generalized_forces(scene);
-        let mut conditions = Vec::with_capacity(rest.len());
-        let mut at_rest = Vec::with_capacity(rest.len());
-        for &k in &rest {
-            let f = residuals[k].subs_many(&point).map_err(math)?.neg();
-            if f.depends_on_time() {
-                return Err(Diagnostic::global(format!(
-                    "the force on `{}` depends on time, so there is no steady motion",
-                    names[k]
-                ))
-                .with_hint("steady motions need time-independent forces"));
-            }
-            conditions.push(f);
-            at_rest.push(forces[k].subs_many(&point).map_err(math)?);
-        }
-        let q: Vec<crate::poly::Var> = rest.iter().map(|&k| atom::coord(&names[k], 0)).collect();
-        let Some(found) =
-            super::equilibrium::solve_exact(&conditions, &q).map_err(|e| e.diagnostic())?
-        else {
-            return Err(
-                Diagnostic::global("no closed form for these steady-motion conditions").with_hint(
-                    "give the position and find the rate: qdot modes --steady q --at r=…",
-                ),
-            );
+    scene.assumptions_required("the search for steady motions")?;
+    let _context = crate::budget::enter(|| "finding the steady motions".into(), None);
+    let l = scene.lagrange()?;
+    let names = l.coordinates.clone();
+    let residuals: Vec<Expr> = l.equations.iter().map(|e| e.lhs.sub(&e.rhs)).collect();
+    check_cyclic(&names, &residuals, steady)?;
+    let rest: Vec<usize> = (0..names.len()).filter(|i| !steady.contains(i)).collect();
+    let mut point = rustc_hash::FxHashMap::default();
+    for (k, c) in names.iter().enumerate() {
+        let rate = if steady.contains(&k) {
+            rate_symbol(c)
+        } else {
+            Expr::zero()
         };
-        let rates: Vec<(String, Expr)> = steady
-            .iter()
-            .map(|&k| (names[k].clone(), rate_symbol(&names[k])))
-            .collect();
-        let motions = found
-            .into_iter()
-            .map(|sol| classified(scene, &rest, steady, &rates, sol, set))
-            .collect::<Result<_, _>>()?;
-        Ok(super::equilibrium::Equilibria::steady(
-            rest.iter().map(|&k| names[k].clone()).collect(),
-            at_rest,
-            conditions,
-            motions,
-            rates,
-        ))
-    })
+        point.insert(atom::coord(c, 1), rate);
+        point.insert(atom::coord(c, 2), Expr::zero());
+    }
+    let forces = crate::mechanics::generalized_forces(scene);
+    let mut conditions = Vec::with_capacity(rest.len());
+    let mut at_rest = Vec::with_capacity(rest.len());
+    for &k in &rest {
+        let f = residuals[k].subs_many(&point).map_err(math)?.neg();
+        if f.depends_on_time() {
+            return Err(Diagnostic::global(format!(
+                "the force on `{}` depends on time, so there is no steady motion",
+                names[k]
+            ))
+            .with_hint("steady motions need time-independent forces")
+            .with_kind(crate::diag::ErrorKind::NoEquilibrium));
+        }
+        conditions.push(f);
+        at_rest.push(forces[k].subs_many(&point).map_err(math)?);
+    }
+    let q: Vec<crate::poly::Var> = rest.iter().map(|&k| atom::coord(&names[k], 0)).collect();
+    let Some(found) =
+        super::equilibrium::solve_exact(&conditions, &q).map_err(|e| e.diagnostic())?
+    else {
+        return Err(
+            Diagnostic::global("no closed form for these steady-motion conditions")
+                .with_hint("give the position and find the rate: qdot modes --steady q --at r=…")
+                .with_kind(crate::diag::ErrorKind::NoClosedForm),
+        );
+    };
+    let rates: Vec<(String, Expr)> = steady
+        .iter()
+        .map(|&k| (names[k].clone(), rate_symbol(&names[k])))
+        .collect();
+    let motions = found
+        .into_iter()
+        .map(|sol| classified(scene, &rest, steady, &rates, sol, set))
+        .collect::<Result<_, _>>()?;
+    Ok(super::equilibrium::Equilibria::steady(
+        rest.iter().map(|&k| names[k].clone()).collect(),
+        at_rest,
+        conditions,
+        motions,
+        rates,
+    ))
 }
 
 /// One steady motion of the search, with the verdict of the linearization

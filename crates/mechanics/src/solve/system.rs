@@ -257,7 +257,7 @@ fn verify_through(
             sys.span,
             "this block's solution through the intermediates does not check out numerically: an elimination may have divided by a quantity that is zero once the intermediates are expanded",
         )
-        .with_hint("solve it expanded: drop `--keep` and `--structured`")
+        .with_hint("solve it expanded: drop `--keep` and `--structured`").with_kind(crate::diag::ErrorKind::Undefined)
     };
     let mut rng = crate::rng::SplitMix64::new(0x51_0e5);
     let roots: Vec<Expr> = solution.iter().map(|(_, v)| v.clone()).collect();
@@ -374,7 +374,7 @@ fn solve_block(
                 eq.span,
                 format!("{} is not linear in the unknowns: {why}", equation_label(sys, i)),
             )
-            .with_hint("a `solve` block solves linear equations exactly; move nonlinear relations into definitions, or solve for other unknowns")
+            .with_hint("a `solve` block solves linear equations exactly; move nonlinear relations into definitions, or solve for other unknowns").with_kind(crate::diag::ErrorKind::InvalidScene)
         })?;
         residuals.push(r);
     }
@@ -422,7 +422,7 @@ fn solve_block(
                 "the block has more equations than unknowns, and this one does not follow from the rest; check its signs and data"
             } else {
                 "the equations are dependent on the left but not on the right; check signs and data"
-            }));
+            }).with_kind(crate::diag::ErrorKind::SingularSystem { unknowns: Vec::new() }));
         }
         checks.push(*i);
     }
@@ -571,7 +571,7 @@ fn combinations(items: &[usize], k: usize) -> Vec<Vec<usize>> {
 }
 
 fn math(span: crate::parse::ast::Span, m: MathError) -> Diagnostic {
-    let d = Diagnostic::error(span, m.message);
+    let d = Diagnostic::error(span, m.message).with_kind(crate::diag::ErrorKind::Undefined);
     match m.hint {
         Some(h) => d.with_hint(h),
         None => d,

@@ -66,7 +66,7 @@ impl<'s> Parser<'s> {
         if k[1..].starts_with('=') {
             return self.fail(
                 Diagnostic::error(Span::new(self.pos(k), self.pos(k) + 2), "only strict order facts are supported")
-                    .with_hint("write `>` or `<`: a fact `a >= b` would allow a = b, where signs are undecided"),
+                    .with_hint("write `>` or `<`: a fact `a >= b` would allow a = b, where signs are undecided").with_kind(crate::diag::ErrorKind::Syntax),
             );
         }
         let (rest, right) = match self.expr(&k[1..]) {

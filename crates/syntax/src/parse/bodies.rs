@@ -143,7 +143,7 @@ impl<'s> Parser<'s> {
                         self.token(j).0,
                         "`about` belongs to the inertia: it follows the inertia's value, without a comma",
                     )
-                    .with_hint(ABOUT_FORM),
+                    .with_hint(ABOUT_FORM).with_kind(crate::diag::ErrorKind::Syntax),
                 );
             }
             let words: Vec<&str> = PropertyKey::ALL.iter().map(|k| k.keyword()).collect();
@@ -201,7 +201,8 @@ impl<'s> Parser<'s> {
                         p_key_noun_of(key)
                     ),
                 )
-                .with_hint(ABOUT_FORM),
+                .with_hint(ABOUT_FORM)
+                .with_kind(crate::diag::ErrorKind::Syntax),
             );
         }
         let rest = &j[ABOUT.len()..];
@@ -228,7 +229,8 @@ impl<'s> Parser<'s> {
                     again,
                     "an inertia is taken about one point, and this gives a second",
                 )
-                .with_hint(ABOUT_FORM),
+                .with_hint(ABOUT_FORM)
+                .with_kind(crate::diag::ErrorKind::Syntax),
             );
         }
         Ok((rest, Some(About { key_span, point })))

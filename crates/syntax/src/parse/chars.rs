@@ -40,7 +40,8 @@ pub fn no_bidi_control(src: &str) -> Result<(), Diagnostic> {
                     named(c, &name)
                 ),
             )
-            .with_hint(BIDI_HINT));
+            .with_hint(BIDI_HINT)
+            .with_kind(crate::diag::ErrorKind::Syntax));
         }
     }
     Ok(())

@@ -150,7 +150,11 @@ impl<'s> Parser<'s> {
         if self.src[left.end..right.start].contains('\n') {
             hint.push_str(" (or is a `)` missing before the line break?)");
         }
-        failure(Diagnostic::error(right, "two expressions side by side").with_hint(hint))
+        failure(
+            Diagnostic::error(right, "two expressions side by side")
+                .with_hint(hint)
+                .with_kind(crate::diag::ErrorKind::Syntax),
+        )
     }
 
     /// `unary ::= ws ( "-" | "+" ) unary | power`
@@ -315,7 +319,7 @@ impl<'s> Parser<'s> {
             if j.starts_with(',') {
                 return self.fail(
                     Diagnostic::error(self.token(j).0, "one component number between `[` and `]`")
-                        .with_hint("`P[k]` takes one component; a vector literal needs a space or an operator before it"),
+                        .with_hint("`P[k]` takes one component; a vector literal needs a space or an operator before it").with_kind(crate::diag::ErrorKind::Syntax),
                 );
             }
             if j.is_empty() {
@@ -463,7 +467,8 @@ impl<'s> Parser<'s> {
     pub(super) fn close_expected(&self, j: &'s str, open: usize, what: &str) -> Diagnostic {
         if j.is_empty() {
             return Diagnostic::error(Span::new(open, open + 1), "unclosed `(`")
-                .with_hint("add the matching `)`");
+                .with_hint("add the matching `)`")
+                .with_kind(crate::diag::ErrorKind::Syntax);
         }
         let (line, col) = Diagnostic::line_col(self.src, open);
         self.expected(
@@ -528,7 +533,8 @@ impl<'s> Parser<'s> {
         if at.starts_with(')') {
             return failure(
                 Diagnostic::error(Span::new(open, self.pos(at) + 1), "empty parentheses `()`")
-                    .with_hint("put an expression inside the parentheses, or remove them"),
+                    .with_hint("put an expression inside the parentheses, or remove them")
+                    .with_kind(crate::diag::ErrorKind::Syntax),
             );
         }
         if at.is_empty() {
@@ -596,6 +602,7 @@ impl<'s> Parser<'s> {
                 "a vector needs at least one component",
             )
             .with_hint("write its components separated by commas, like `[x, y]`")
+            .with_kind(crate::diag::ErrorKind::Syntax)
         } else if first {
             self.expected(at, "an expression after `[`", HINT_EXPR, None)
         } else if closes {
@@ -659,7 +666,11 @@ impl Parser<'_> {
             None => Ok(()),
             Some((p, c, message, hint)) => {
                 let at = Span::new(start + p, start + p + c.len_utf8());
-                Err(failure(Diagnostic::error(at, message).with_hint(hint)))
+                Err(failure(
+                    Diagnostic::error(at, message)
+                        .with_hint(hint)
+                        .with_kind(crate::diag::ErrorKind::Syntax),
+                ))
             }
         }
     }

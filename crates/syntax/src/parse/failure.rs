@@ -43,7 +43,8 @@ pub(super) fn too_deep(at: Span) -> nom::Err<RuleError> {
             at,
             format!("expression too deep (more than {MAX_DEPTH} levels)"),
         )
-        .with_hint("split it into several named definitions"),
+        .with_hint("split it into several named definitions")
+        .with_kind(crate::diag::ErrorKind::LimitExceeded),
     )
 }
 
@@ -52,7 +53,8 @@ pub(super) fn too_deep(at: Span) -> nom::Err<RuleError> {
 pub(super) fn star_star(op: Span) -> nom::Err<RuleError> {
     failure(
         Diagnostic::error(Span::new(op.start, op.end + 1), "`**` is not an operator")
-            .with_hint("write powers with `^`, like `x^2`"),
+            .with_hint("write powers with `^`, like `x^2`")
+            .with_kind(crate::diag::ErrorKind::Syntax),
     )
 }
 
@@ -61,7 +63,8 @@ pub(super) fn star_star(op: Span) -> nom::Err<RuleError> {
 pub(super) fn too_many_primes(at: Span) -> nom::Err<RuleError> {
     failure(
         Diagnostic::error(at, "too many primes")
-            .with_hint("a derivative order must fit in 32 bits"),
+            .with_hint("a derivative order must fit in 32 bits")
+            .with_kind(crate::diag::ErrorKind::LimitExceeded),
     )
 }
 
@@ -71,7 +74,7 @@ pub(super) fn prime_on_number(at: Span) -> nom::Err<RuleError> {
     failure(
         Diagnostic::error(at, "a prime `'` (time derivative) can't follow a number").with_hint(
             "primes apply to names, calls and parenthesized expressions: `x'`, `sin(x)'`, `(2*x)'`; the derivative of a constant is 0",
-        ),
+        ).with_kind(crate::diag::ErrorKind::Syntax),
     )
 }
 
@@ -80,7 +83,8 @@ pub(super) fn prime_on_number(at: Span) -> nom::Err<RuleError> {
 pub(super) fn unclosed_bracket(open: usize) -> nom::Err<RuleError> {
     failure(
         Diagnostic::error(Span::new(open, open + 1), "unclosed `[`")
-            .with_hint("add the matching `]`"),
+            .with_hint("add the matching `]`")
+            .with_kind(crate::diag::ErrorKind::Syntax),
     )
 }
 
@@ -88,7 +92,9 @@ pub(super) fn unclosed_bracket(open: usize) -> nom::Err<RuleError> {
 #[inline(never)]
 pub(super) fn unclosed_block(open: usize) -> nom::Err<RuleError> {
     failure(
-        Diagnostic::error(Span::new(open, open + 1), "unclosed `{`").with_hint(HINT_UNCLOSED_BLOCK),
+        Diagnostic::error(Span::new(open, open + 1), "unclosed `{`")
+            .with_hint(HINT_UNCLOSED_BLOCK)
+            .with_kind(crate::diag::ErrorKind::Syntax),
     )
 }
 

@@ -64,7 +64,7 @@ impl<'s> Parser<'s> {
                 let sp = Span::new(self.pos(k), self.pos(k) + "along".len());
                 return self.fail(
                     Diagnostic::error(sp, "a pin has no direction")
-                        .with_hint("`along` belongs to a slider: `joint G: slider A at P, B at Q along U`"),
+                        .with_hint("`along` belongs to a slider: `joint G: slider A at P, B at Q along U`").with_kind(crate::diag::ErrorKind::Syntax),
                 );
             }
             (JointKind::Pin, None) => (rest, None, second.point.span.end),

@@ -195,10 +195,13 @@ impl<'s> Parser<'s> {
         let (span, shown) = self.token(i);
         let Some(c) = first(i) else {
             return Diagnostic::error(span, "unexpected end of the file")
-                .with_hint("the statement is incomplete");
+                .with_hint("the statement is incomplete")
+                .with_kind(crate::diag::ErrorKind::Syntax);
         };
         let (msg, hint) = chars::unexpected(c, &shown);
-        Diagnostic::error(span, msg).with_hint(hint)
+        Diagnostic::error(span, msg)
+            .with_hint(hint)
+            .with_kind(crate::diag::ErrorKind::Syntax)
     }
 
     /// "expected WHAT, found …" at `i`. For the end of the file, `anchor`
@@ -210,13 +213,15 @@ impl<'s> Parser<'s> {
                 anchor.unwrap_or(span),
                 format!("expected {what}, but the file ends"),
             )
-            .with_hint(hint),
+            .with_hint(hint)
+            .with_kind(crate::diag::ErrorKind::Syntax),
             Some('\n') => Diagnostic::error(span, format!("expected {what}, but the line ends"))
-                .with_hint(hint),
+                .with_hint(hint)
+                .with_kind(crate::diag::ErrorKind::Syntax),
             Some(c) if !is_known(c) => self.unexpected(i),
-            Some(_) => {
-                Diagnostic::error(span, format!("expected {what}, found {shown}")).with_hint(hint)
-            }
+            Some(_) => Diagnostic::error(span, format!("expected {what}, found {shown}"))
+                .with_hint(hint)
+                .with_kind(crate::diag::ErrorKind::Syntax),
         }
     }
 
@@ -282,7 +287,8 @@ impl<'s> Parser<'s> {
                 span,
                 format!("expression nested too deeply (more than {MAX_NESTING} levels)"),
             )
-            .with_hint("split it into several named definitions"),
+            .with_hint("split it into several named definitions")
+            .with_kind(crate::diag::ErrorKind::LimitExceeded),
         )
     }
 
@@ -350,7 +356,9 @@ impl<'s> Parser<'s> {
                 self.unexpected(&self.src[at..])
             }
             nom::Err::Error(RuleError::Diag(d)) | nom::Err::Failure(RuleError::Diag(d)) => *d,
-            nom::Err::Incomplete(_) => Diagnostic::global("incomplete input"),
+            nom::Err::Incomplete(_) => {
+                Diagnostic::global("incomplete input").with_kind(crate::diag::ErrorKind::Syntax)
+            }
         };
         let Some(span) = d.span else { return d };
         if let Some((open, c)) = unclosed_before(self.src, span.start) {
@@ -363,7 +371,9 @@ impl<'s> Parser<'s> {
                     _ => HINT_UNCLOSED_BLOCK,
                 };
                 let msg = format!("unclosed `{}`", char::from(c));
-                return Diagnostic::error(Span::new(open, open + 1), msg).with_hint(hint);
+                return Diagnostic::error(Span::new(open, open + 1), msg)
+                    .with_hint(hint)
+                    .with_kind(crate::diag::ErrorKind::Syntax);
             }
         }
         d

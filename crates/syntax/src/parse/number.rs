@@ -161,7 +161,8 @@ impl<'s> Parser<'s> {
                 self.span(i, rest),
                 "a number can't start with a decimal point",
             )
-            .with_hint(format!("write `0.{frac}`")),
+            .with_hint(format!("write `0.{frac}`"))
+            .with_kind(crate::diag::ErrorKind::Syntax),
         )
     }
 
@@ -181,7 +182,8 @@ impl<'s> Parser<'s> {
             )
             .with_hint(format!(
                 "a decimal point must be followed by digits: write `{int}.0` or `{int}`"
-            )),
+            ))
+            .with_kind(crate::diag::ErrorKind::Syntax),
         )
     }
 
@@ -205,7 +207,8 @@ impl<'s> Parser<'s> {
                     crate::limits::MAX_NUMBER_DIGITS
                 ),
             )
-            .with_hint("write a large or small number with an exponent: `6.02214076e23`"),
+            .with_hint("write a large or small number with an exponent: `6.02214076e23`")
+            .with_kind(crate::diag::ErrorKind::LimitExceeded),
         )
     }
 
@@ -223,7 +226,8 @@ impl<'s> Parser<'s> {
             )
             .with_hint(
                 "a number has at most one decimal point, before any exponent: `1.25`, `1.5e-3`",
-            ),
+            )
+            .with_kind(crate::diag::ErrorKind::Syntax),
         )
     }
 
@@ -259,7 +263,8 @@ impl<'s> Parser<'s> {
     pub(super) fn exponent_out_of_range(&self, i: &'s str, rest: &'s str) -> nom::Err<RuleError> {
         failure(
             Diagnostic::error(self.span(i, rest), "exponent out of range")
-                .with_hint(format!("exponents up to {MAX_EXPONENT} are accepted")),
+                .with_hint(format!("exponents up to {MAX_EXPONENT} are accepted"))
+                .with_kind(crate::diag::ErrorKind::LimitExceeded),
         )
     }
 

@@ -166,7 +166,8 @@ impl<'s> Parser<'s> {
                 } else if at_end {
                     self.fail(
                         Diagnostic::error(self.span(j, after), format!("empty `{word}` list"))
-                            .with_hint(format!("list at least one name: `{word} x, y`")),
+                            .with_hint(format!("list at least one name: `{word} x, y`"))
+                            .with_kind(crate::diag::ErrorKind::Syntax),
                     )
                 } else {
                     self.fail(self.expected(
@@ -234,7 +235,8 @@ impl<'s> Parser<'s> {
                     }
                     self.fail(
                         Diagnostic::error(self.span(j, after), format!("unknown keyword `{word}`"))
-                            .with_hint(format!("did you mean `{k}`?")),
+                            .with_hint(format!("did you mean `{k}`?"))
+                            .with_kind(crate::diag::ErrorKind::Syntax),
                     )
                 }
                 None => self.definition(i),
@@ -251,12 +253,12 @@ impl<'s> Parser<'s> {
                 span,
                 format!("a statement must start with a name or a keyword, found {shown}"),
             )
-            .with_hint("a definition is written `NAME = expression`"),
+            .with_hint("a definition is written `NAME = expression`").with_kind(crate::diag::ErrorKind::Syntax),
             Some('+' | '-' | '*' | '/' | '^') => Diagnostic::error(
                 span,
                 format!("a statement can't start with {shown}"),
             )
-            .with_hint("to continue an expression on the next line, end the previous line with the operator"),
+            .with_hint("to continue an expression on the next line, end the previous line with the operator").with_kind(crate::diag::ErrorKind::Syntax),
             _ => self.unexpected(i),
         }
     }
@@ -301,7 +303,8 @@ impl<'s> Parser<'s> {
                         let (span, shown) = self.token(j);
                         return self.fail(
                             Diagnostic::error(span, format!("expected `,` before {shown}"))
-                                .with_hint("separate the names with commas: `x, y`"),
+                                .with_hint("separate the names with commas: `x, y`")
+                                .with_kind(crate::diag::ErrorKind::Syntax),
                         );
                     }
                     if j.starts_with('=') {
@@ -310,7 +313,7 @@ impl<'s> Parser<'s> {
                             Diagnostic::error(self.token(j).0, "a declaration can't have a value")
                                 .with_hint(format!(
                                     "to give `{name}` a value, write a definition `{name} = …` instead of declaring it"
-                                )),
+                                )).with_kind(crate::diag::ErrorKind::Syntax),
                         );
                     }
                     break;
@@ -483,13 +486,15 @@ impl<'s> Parser<'s> {
             let open = Span::new(self.pos(i), self.pos(i) + 1);
             return self.fail(
                 Diagnostic::error(open, "this string is not closed on its line")
-                    .with_hint("end the string with `\"` before the end of the line"),
+                    .with_hint("end the string with `\"` before the end of the line")
+                    .with_kind(crate::diag::ErrorKind::Syntax),
             );
         }
         if end == 0 {
             return self.fail(
                 Diagnostic::error(self.span(i, &body[1..]), "empty LaTeX notation")
-                    .with_hint("write the notation between the quotes, e.g. `\"\\vartheta_{3}\"`"),
+                    .with_hint("write the notation between the quotes, e.g. `\"\\vartheta_{3}\"`")
+                    .with_kind(crate::diag::ErrorKind::Syntax),
             );
         }
         Ok((&body[end + 1..], body[..end].to_string()))
@@ -746,7 +751,8 @@ impl<'s> Parser<'s> {
             let (span, shown) = self.token(j);
             return failure(
                 Diagnostic::error(span, format!("expected `,` before {shown}"))
-                    .with_hint("separate the unknowns with commas: `solve x, y { … }`"),
+                    .with_hint("separate the unknowns with commas: `solve x, y { … }`")
+                    .with_kind(crate::diag::ErrorKind::Syntax),
             );
         }
         failure(self.expected(
@@ -772,7 +778,7 @@ impl<'s> Parser<'s> {
         failure(
             Diagnostic::error(Span::new(open, end), "empty solve block").with_hint(
                 "write the equations inside the braces, one per line or separated by `;`: `solve x { a*x = b }`",
-            ),
+            ).with_kind(crate::diag::ErrorKind::Syntax),
         )
     }
 
@@ -812,9 +818,11 @@ impl<'s> Parser<'s> {
     #[inline(never)]
     pub(super) fn second_equals(&self, j: &'s str) -> nom::Err<RuleError> {
         failure(
-            Diagnostic::error(self.token(j).0, "an equation has exactly one `=`").with_hint(
-                "write each equation on its own line or separate them with `;`: `a = b; b = c`",
-            ),
+            Diagnostic::error(self.token(j).0, "an equation has exactly one `=`")
+                .with_hint(
+                    "write each equation on its own line or separate them with `;`: `a = b; b = c`",
+                )
+                .with_kind(crate::diag::ErrorKind::Syntax),
         )
     }
 
@@ -880,7 +888,8 @@ impl<'s> Parser<'s> {
             let l = excerpt(&self.src[lhs.start..lhs.end]);
             return failure(
                 Diagnostic::error(lhs, "an equation needs `=`")
-                    .with_hint(format!("write it as `lhs = rhs`, like `{l} = 0`")),
+                    .with_hint(format!("write it as `lhs = rhs`, like `{l} = 0`"))
+                    .with_kind(crate::diag::ErrorKind::Syntax),
             );
         }
         failure(self.expected(

@@ -19,10 +19,13 @@ pub(super) fn dimension_of(e: &Expr) -> Result<Dimension, Diagnostic> {
             let p = exponent(b).ok_or_else(|| {
                 Diagnostic::error(b.span, "the power of a dimension must be a number")
                     .with_hint("write `length^2`, `time^-1` or `length^(1/2)`")
+                    .with_kind(crate::diag::ErrorKind::InvalidScene)
             })?;
             Ok(dimension_of(a)?.pow(&p))
         }
-        _ => Err(Diagnostic::error(e.span, "this is not a dimension").with_hint(HINT_FORM)),
+        _ => Err(Diagnostic::error(e.span, "this is not a dimension")
+            .with_hint(HINT_FORM)
+            .with_kind(crate::diag::ErrorKind::InvalidScene)),
     }
 }
 

@@ -245,7 +245,7 @@ impl<'a> Walker<'a> {
                     crate::budget::grouped(crate::limits::MAX_DIMENSION_WORK as usize)
                 ),
             )
-            .with_hint("annotate the names whose dimensions are found from each other (`p: length`), or remove every annotation to skip the check");
+            .with_hint("annotate the names whose dimensions are found from each other (`p: length`), or remove every annotation to skip the check").with_kind(crate::diag::ErrorKind::LimitExceeded);
         }
         let mut d =
             Diagnostic::error(e.span, msg).with_kind(crate::diag::ErrorKind::DimensionMismatch);

@@ -23,9 +23,9 @@ pub fn axis_name(args: &[ast::Expr]) -> Option<usize> {
 /// An error at `span` when `v` is a rotation: "a rotation {what}".
 pub(super) fn not_a_rotation(v: &Value, span: Span, what: &str) -> Result<(), Diagnostic> {
     match v {
-        Value::Rotation(_) => {
-            Err(Diagnostic::error(span, format!("a rotation {what}")).with_hint(HINT_ROTATION))
-        }
+        Value::Rotation(_) => Err(Diagnostic::error(span, format!("a rotation {what}"))
+            .with_hint(HINT_ROTATION)
+            .with_kind(crate::diag::ErrorKind::InvalidScene)),
         _ => Ok(()),
     }
 }
@@ -58,7 +58,7 @@ pub(super) fn rotation_binary(
                     crate::limits::MAX_ROTATION_TURNS
                 ),
             )
-            .with_hint("a frame built on frames copies their turns; no mechanism needs this many")),
+            .with_hint("a frame built on frames copies their turns; no mechanism needs this many").with_kind(crate::diag::ErrorKind::LimitExceeded)),
         },
         (BinOp::Mul, Value::Rotation(r), Value::Vector(v)) => match space(v) {
             Some(v) => Ok(Value::Vector(r.to_ground(&v).to_vec())),
@@ -69,13 +69,13 @@ pub(super) fn rotation_binary(
                     y.describe()
                 ),
             )
-            .with_hint("write the vector with three components: [x, y, 0]")),
+            .with_hint("write the vector with three components: [x, y, 0]").with_kind(crate::diag::ErrorKind::TypeMismatch)),
         },
         (BinOp::Mul, Value::Vector(_), Value::Rotation(_)) => Err(Diagnostic::error(
             span,
             "a vector times a rotation is not defined; the rotation comes first",
         )
-        .with_hint("F * v gives the ground components of v given along F; express(v, F) the components of a ground vector along F")),
+        .with_hint("F * v gives the ground components of v given along F; express(v, F) the components of a ground vector along F").with_kind(crate::diag::ErrorKind::TypeMismatch)),
         _ => {
             let (side, other) = if matches!(x, Value::Rotation(_)) {
                 (a, &y)
@@ -97,7 +97,7 @@ pub(super) fn rotation_binary(
                 "rotations compose with `*` (rot(z, a) * rot(x, b)) and turn space vectors (F * [x, y, z]); "
                     .to_string()
                     + HINT_ROTATION,
-            ))
+            ).with_kind(crate::diag::ErrorKind::TypeMismatch))
         }
     }
 }
@@ -122,7 +122,8 @@ impl SyntaxEvaluator<'_> {
                     v.describe()
                 ),
             )
-            .with_hint("a frame's axes are in space; write a plane vector as [x, y, 0]"));
+            .with_hint("a frame's axes are in space; write a plane vector as [x, y, 0]")
+            .with_kind(crate::diag::ErrorKind::TypeMismatch));
         };
         let r = self.rotation(&args[1], Builtin::Express)?;
         Ok(Value::Vector(r.to_frame(&v3).to_vec()))
@@ -145,7 +146,8 @@ impl SyntaxEvaluator<'_> {
                 )
                 .with_hint(
                     "rot(z, phi) turns by phi about z; rot([0, 3/5, 4/5], a) about a unit vector",
-                ))
+                )
+                .with_kind(crate::diag::ErrorKind::InvalidScene))
             }
             None => {
                 let v = self.value(&args[0])?;
@@ -159,7 +161,7 @@ impl SyntaxEvaluator<'_> {
                                 v.describe()
                             ),
                         )
-                        .with_hint("rot(z, phi) turns by phi about z; rot([0, 3/5, 4/5], a) about a unit vector"))
+                        .with_hint("rot(z, phi) turns by phi about z; rot([0, 3/5, 4/5], a) about a unit vector").with_kind(crate::diag::ErrorKind::TypeMismatch))
                     }
                 }
             }
@@ -175,7 +177,7 @@ impl SyntaxEvaluator<'_> {
                 args[1].span,
                 format!("the angle of a rotation depends on the velocity {name}'; it must be a function of the coordinates and t"),
             )
-            .with_hint("a frame's orientation is a position; its angular velocity follows (omega(F))"));
+            .with_hint("a frame's orientation is a position; its angular velocity follows (omega(F))").with_kind(crate::diag::ErrorKind::InvalidScene));
         }
         Rotation::turn(axis, angle)
             .map(|r| Value::Rotation(Box::new(r)))
@@ -184,18 +186,18 @@ impl SyntaxEvaluator<'_> {
                     args[0].span,
                     "the axis of a rotation must be a unit vector, and this one is the zero vector: it has no direction",
                 )
-                .with_hint("name the axis: rot(z, a), or a unit vector such as rot([0, 3/5, 4/5], a)"),
+                .with_hint("name the axis: rot(z, a), or a unit vector such as rot([0, 3/5, 4/5], a)").with_kind(crate::diag::ErrorKind::InvalidScene),
                 TurnError::NotUnit(length2) => Diagnostic::error(
                     args[0].span,
                     format!("the axis of a rotation must be a unit vector; the squared length of this one is {length2}"),
                 )
-                .with_hint(format!("divide it by its length: rot(AXIS/sqrt({length2}), ANGLE)")),
-                TurnError::TooManyTurns => Diagnostic::global("internal: one turn is too many"),
+                .with_hint(format!("divide it by its length: rot(AXIS/sqrt({length2}), ANGLE)")).with_kind(crate::diag::ErrorKind::InvalidScene),
+                TurnError::TooManyTurns => Diagnostic::global("internal: one turn is too many").with_kind(crate::diag::ErrorKind::Internal),
                 TurnError::Moving => Diagnostic::error(
                     args[0].span,
                     "the axis of a rotation must be constant, and this one moves",
                 )
-                .with_hint("to turn about a moving axis, compose frames: B * rot(x, a) turns about the x axis of B"),
+                .with_hint("to turn about a moving axis, compose frames: B * rot(x, a) turns about the x axis of B").with_kind(crate::diag::ErrorKind::InvalidScene),
             })
     }
 
@@ -208,7 +210,7 @@ impl SyntaxEvaluator<'_> {
                 e.span,
                 format!("`{what}` needs a frame (a rotation), and this is {}", v.describe()),
             )
-            .with_hint("define a frame with `frame B = rot(z, phi)`, or write the rotation in place: rot(z, phi)")),
+            .with_hint("define a frame with `frame B = rot(z, phi)`, or write the rotation in place: rot(z, phi)").with_kind(crate::diag::ErrorKind::TypeMismatch)),
         }
     }
 
@@ -234,6 +236,7 @@ impl SyntaxEvaluator<'_> {
                 .with_hint(
                     "components are counted from 1: P[1] is the first (x), P[3] the third (z)",
                 )
+                .with_kind(crate::diag::ErrorKind::InvalidScene)
             })
     }
 
@@ -245,7 +248,8 @@ impl SyntaxEvaluator<'_> {
             Value::Rotation(_) => {
                 return Err(
                     Diagnostic::error(v.span, "a rotation has no components `[k]`")
-                        .with_hint("axis(F, k) is the k-th unit vector of the frame F"),
+                        .with_hint("axis(F, k) is the k-th unit vector of the frame F")
+                        .with_kind(crate::diag::ErrorKind::TypeMismatch),
                 )
             }
             Value::Scalar(_) => {
@@ -253,7 +257,8 @@ impl SyntaxEvaluator<'_> {
                     v.span,
                     "`[k]` takes a component of a vector, and this is a number",
                 )
-                .with_hint("P[k] is the k-th component of a vector P, counted from 1"))
+                .with_hint("P[k] is the k-th component of a vector P, counted from 1")
+                .with_kind(crate::diag::ErrorKind::TypeMismatch))
             }
         };
         let i = self.component_number(k, c.len(), "this vector has the components")?;

@@ -141,9 +141,7 @@ impl<'a> SyntaxEvaluator<'a> {
         let Some(q) = crate::expr::print::square_root_of_square(&u) else {
             return Ok(r);
         };
-        let sign = crate::algebra::assume::assuming(&self.assumed, || {
-            crate::algebra::sign::sign_exact(&q)
-        });
+        let sign = crate::algebra::assume::sign_under(&self.assumed, &q);
         Ok(match sign {
             Some(crate::algebra::sign::Sign::Positive) => q,
             Some(crate::algebra::sign::Sign::Negative) => q.neg(),
@@ -207,7 +205,8 @@ impl<'a> SyntaxEvaluator<'a> {
                     .collect();
                 chain.push(self.defs.get(k).map_or(String::new(), |d| d.0.name.clone()));
                 return Err(Diagnostic::error(span, cycle_message(&chain))
-                    .with_hint("a definition cannot use itself, directly or through others"));
+                    .with_hint("a definition cannot use itself, directly or through others")
+                    .with_kind(crate::diag::ErrorKind::InvalidScene));
             }
             if matches!(self.state.get(k), Some(State::Todo)) {
                 on_path[k] = true;
@@ -239,14 +238,16 @@ impl<'a> SyntaxEvaluator<'a> {
         match &self.state[i] {
             State::Done(e) => return Ok(e.clone()),
             State::Busy => {
-                return Err(Diagnostic::global(
-                    "internal error: a definition re-entered itself",
-                ))
+                return Err(
+                    Diagnostic::global("internal error: a definition re-entered itself")
+                        .with_kind(crate::diag::ErrorKind::Internal),
+                )
             }
             State::Todo => {}
         }
         let Some((_, Some(body))) = self.defs.get(i).copied() else {
-            return Err(Diagnostic::global("internal: definition without a body"));
+            return Err(Diagnostic::global("internal: definition without a body")
+                .with_kind(crate::diag::ErrorKind::Internal));
         };
         self.state[i] = State::Busy;
         self.stack.push(i);
@@ -341,13 +342,14 @@ impl<'a> SyntaxEvaluator<'a> {
                 span,
                 format!("{what} needs this value expanded, and it is kept as intermediates"),
             )
-            .with_hint("derive the scene expanded (`--expand`)"));
+            .with_hint("derive the scene expanded (`--expand`)")
+            .with_kind(crate::diag::ErrorKind::Unsupported));
         }
         Ok(())
     }
 
     fn err(&self, span: Span, e: MathError) -> Diagnostic {
-        let d = Diagnostic::error(span, e.message);
+        let d = Diagnostic::error(span, e.message).with_kind(crate::diag::ErrorKind::Undefined);
         match e.hint {
             Some(h) => d.with_hint(h),
             None => d,
@@ -371,12 +373,14 @@ impl<'a> SyntaxEvaluator<'a> {
                     c.len()
                 ),
             )
-            .with_hint(HINT_VECTOR)),
+            .with_hint(HINT_VECTOR)
+            .with_kind(crate::diag::ErrorKind::TypeMismatch)),
             Value::Rotation(_) => Err(Diagnostic::error(
                 span,
                 format!("expected {what}, found a rotation (a frame)"),
             )
-            .with_hint(frames::HINT_ROTATION)),
+            .with_hint(frames::HINT_ROTATION)
+            .with_kind(crate::diag::ErrorKind::TypeMismatch)),
         }
     }
 
@@ -406,14 +410,14 @@ impl<'a> SyntaxEvaluator<'a> {
                                 a.span,
                                 "a vector can't be raised to a power",
                             )
-                            .with_hint("for the squared length of a vector v write dot(v, v)"))
+                            .with_hint("for the squared length of a vector v write dot(v, v)").with_kind(crate::diag::ErrorKind::TypeMismatch))
                         }
                         Value::Rotation(_) => {
                             return Err(Diagnostic::error(
                                 a.span,
                                 "a rotation can't be raised to a power",
                             )
-                            .with_hint("compose rotations with `*`: rot(z, a) * rot(z, b)"))
+                            .with_hint("compose rotations with `*`: rot(z, a) * rot(z, b)").with_kind(crate::diag::ErrorKind::TypeMismatch))
                         }
                     };
                     return Ok(Value::Scalar(self.pow(&x, b, e.span)?));
@@ -426,7 +430,7 @@ impl<'a> SyntaxEvaluator<'a> {
                 e.span,
                 "`x = value` is a named argument, and only subs, taylor and series take one",
             )
-            .with_hint("write subs(E, x = 0), taylor(f, x = a, 3); a definition `x = …` stands on a line of its own")),
+            .with_hint("write subs(E, x = 0), taylor(f, x = a, 3); a definition `x = …` stands on a line of its own").with_kind(crate::diag::ErrorKind::InvalidScene)),
             ExprKind::Vector(items) => {
                 if !(2..=3).contains(&items.len()) {
                     return Err(Diagnostic::error(
@@ -436,7 +440,7 @@ impl<'a> SyntaxEvaluator<'a> {
                             items.len()
                         ),
                     )
-                    .with_hint("write a plane vector [x, y] or a space vector [x, y, z]"));
+                    .with_hint("write a plane vector [x, y] or a space vector [x, y, z]").with_kind(crate::diag::ErrorKind::InvalidScene));
                 }
                 let mut out = Vec::with_capacity(items.len());
                 for it in items {
@@ -458,7 +462,7 @@ impl<'a> SyntaxEvaluator<'a> {
                         x.span,
                         format!("{what} is not a function of time, so `'` cannot be taken"),
                     )
-                    .with_hint("`'` is d/dt: it applies to coordinates, `t`, and expressions built from them; declare it in `coordinates` if it moves"));
+                    .with_hint("`'` is d/dt: it applies to coordinates, `t`, and expressions built from them; declare it in `coordinates` if it moves").with_kind(crate::diag::ErrorKind::InvalidScene));
                 }
                 self.check_derivative_order(&v, *order, e.span)?;
                 Ok(v.map(|c| self.dt(c, *order)))
@@ -487,7 +491,7 @@ impl<'a> SyntaxEvaluator<'a> {
                 "this takes the time derivative of order {total} of `{name}`; qdot allows at most {MAX_TIME_DERIVATIVE_ORDER}"
             ),
         )
-        .with_hint("mechanics needs velocities and accelerations (x', x''); each further order multiplies the terms"))
+        .with_hint("mechanics needs velocities and accelerations (x', x''); each further order multiplies the terms").with_kind(crate::diag::ErrorKind::LimitExceeded))
     }
 
     /// The `order`-th time derivative, memoized by the shared value.
@@ -519,6 +523,7 @@ impl<'a> SyntaxEvaluator<'a> {
                 if y.is_zero() {
                     Diagnostic::error(b.span, "division by zero: this divisor is exactly 0")
                         .with_hint("check the definitions it uses")
+                        .with_kind(crate::diag::ErrorKind::Undefined)
                 } else {
                     self.err(b.span, e)
                 }
@@ -544,7 +549,8 @@ impl<'a> SyntaxEvaluator<'a> {
                     )
                     .with_hint(
                         "write plane vectors as [x, y, 0] to combine them with space vectors",
-                    ));
+                    )
+                    .with_kind(crate::diag::ErrorKind::TypeMismatch));
                 }
                 let f = if op == BinOp::Add {
                     Expr::add
@@ -563,7 +569,7 @@ impl<'a> SyntaxEvaluator<'a> {
                     "the left side is a number and the right side a vector"
                 };
                 Err(Diagnostic::error(span, format!("can't {sign} a vector and a number"))
-                    .with_hint(format!("{sides}; both sides of + and - must be numbers, or vectors of the same size")))
+                    .with_hint(format!("{sides}; both sides of + and - must be numbers, or vectors of the same size")).with_kind(crate::diag::ErrorKind::TypeMismatch))
             }
             (BinOp::Mul, Value::Scalar(k), Value::Vector(u))
             | (BinOp::Mul, Value::Vector(u), Value::Scalar(k)) => {
@@ -575,7 +581,8 @@ impl<'a> SyntaxEvaluator<'a> {
             )
             .with_hint(
                 "write dot(a, b) for the scalar product or cross(a, b) for the vector product",
-            )),
+            )
+            .with_kind(crate::diag::ErrorKind::TypeMismatch)),
             (BinOp::Div, Value::Vector(u), Value::Scalar(k)) => {
                 let mut out = Vec::with_capacity(u.len());
                 for c in &u {
@@ -585,12 +592,15 @@ impl<'a> SyntaxEvaluator<'a> {
             }
             (BinOp::Div, _, Value::Vector(_)) => {
                 Err(Diagnostic::error(b.span, "can't divide by a vector")
-                    .with_hint("divide by a number, such as norm(v)"))
+                    .with_hint("divide by a number, such as norm(v)")
+                    .with_kind(crate::diag::ErrorKind::TypeMismatch))
             }
-            (BinOp::Pow, ..) => Err(Diagnostic::global("internal: power on a vector")),
+            (BinOp::Pow, ..) => Err(Diagnostic::global("internal: power on a vector")
+                .with_kind(crate::diag::ErrorKind::Internal)),
             (_, Value::Rotation(_), _) | (_, _, Value::Rotation(_)) => Err(Diagnostic::global(
                 "internal: a rotation in vector arithmetic",
-            )),
+            )
+            .with_kind(crate::diag::ErrorKind::Internal)),
         }
     }
 
@@ -620,9 +630,10 @@ impl<'a> SyntaxEvaluator<'a> {
                 Ok(Value::Scalar(e))
             }
             Some((_, (Binding::Body | Binding::Multiplier | Binding::Reaction, _))) | None => {
-                Err(self
-                    .not_a_value(n, span)
-                    .unwrap_or_else(|| Diagnostic::global(format!("internal: `{n}` has a value"))))
+                Err(self.not_a_value(n, span).unwrap_or_else(|| {
+                    Diagnostic::global(format!("internal: `{n}` has a value"))
+                        .with_kind(crate::diag::ErrorKind::Internal)
+                }))
             }
             Some((_, (Binding::Time, _))) => Ok(Value::Scalar(Expr::time())),
             Some((_, (Binding::Pi, _))) => Ok(Value::Scalar(Expr::pi())),
@@ -636,7 +647,8 @@ impl<'a> SyntaxEvaluator<'a> {
                         .collect();
                     chain.push(n.to_string());
                     return Err(Diagnostic::error(span, cycle_message(&chain))
-                        .with_hint("a definition cannot use itself, directly or through others"));
+                        .with_hint("a definition cannot use itself, directly or through others")
+                        .with_kind(crate::diag::ErrorKind::InvalidScene));
                 }
                 self.definition(i)
             }
@@ -651,17 +663,17 @@ impl<'a> SyntaxEvaluator<'a> {
                 span,
                 format!("`{n}` is a body, not a value"),
             )
-            .with_hint(format!("use its position or its frame; its kinetic energy is `E_{n}`, outside the scene (the REPL, `--at`)"))),
+            .with_hint(format!("use its position or its frame; its kinetic energy is `E_{n}`, outside the scene (the REPL, `--at`)")).with_kind(crate::diag::ErrorKind::TypeMismatch)),
             Some((Binding::Multiplier, _)) => Some(Diagnostic::error(
                 span,
                 format!("`{n}` is the Lagrange multiplier of a constraint, not a value in the scene"),
             )
-            .with_hint("`qdot solve` finds it with the accelerations; in the REPL and in `--at` expressions it is an unknown")),
+            .with_hint("`qdot solve` finds it with the accelerations; in the REPL and in `--at` expressions it is an unknown").with_kind(crate::diag::ErrorKind::TypeMismatch)),
             Some((Binding::Reaction, _)) => Some(Diagnostic::error(
                 span,
                 format!("`{n}` is a joint's reaction, a drive's force or a friction, not a value in the scene"),
             )
-            .with_hint("`qdot solve` and `qdot cycle` find it from the kinetostatic equations")),
+            .with_hint("`qdot solve` and `qdot cycle` find it from the kinetostatic equations").with_kind(crate::diag::ErrorKind::TypeMismatch)),
             Some(_) => None,
             None => {
                 let d = Diagnostic::error(span, format!("unknown name `{n}`")).with_kind(
@@ -700,13 +712,14 @@ impl<'a> SyntaxEvaluator<'a> {
                 exp.span,
                 "the exponent must be a number: symbolic powers are not supported",
             )
-            .with_hint("write exp(y*ln(x)) for x^y"));
+            .with_hint("write exp(y*ln(x)) for x^y")
+            .with_kind(crate::diag::ErrorKind::Unsupported));
         };
         if q.is_integer() {
-            let n = q
-                .as_i64()
-                .filter(|n| n.abs() <= 10_000)
-                .ok_or_else(|| Diagnostic::error(exp.span, format!("exponent {q} is too large")))?;
+            let n = q.as_i64().filter(|n| n.abs() <= 10_000).ok_or_else(|| {
+                Diagnostic::error(exp.span, format!("exponent {q} is too large"))
+                    .with_kind(crate::diag::ErrorKind::LimitExceeded)
+            })?;
             return base.powi(n).map_err(|m| self.err(span, m));
         }
         let twice = &q * &Q::from_i64(2);
@@ -714,7 +727,10 @@ impl<'a> SyntaxEvaluator<'a> {
             let n = twice
                 .as_i64()
                 .filter(|n| n.abs() <= 10_000)
-                .ok_or_else(|| Diagnostic::error(exp.span, format!("exponent {q} is too large")))?;
+                .ok_or_else(|| {
+                    Diagnostic::error(exp.span, format!("exponent {q} is too large"))
+                        .with_kind(crate::diag::ErrorKind::LimitExceeded)
+                })?;
             let r = self.root(base).map_err(|m| self.err(span, m))?;
             bounded_functions(std::slice::from_ref(&r), span)?;
             return r.powi(n).map_err(|m| self.err(span, m));
@@ -723,7 +739,8 @@ impl<'a> SyntaxEvaluator<'a> {
             exp.span,
             format!("the exponent {q} is not exact here: only integers and halves are"),
         )
-        .with_hint("qdot keeps results exact; square roots are supported, other roots are not yet"))
+        .with_hint("qdot keeps results exact; square roots are supported, other roots are not yet")
+        .with_kind(crate::diag::ErrorKind::Unsupported))
     }
 
     /// A function call, its result's nesting depth bounded
@@ -753,7 +770,8 @@ impl<'a> SyntaxEvaluator<'a> {
                 span,
                 format!("`{}` combines two or more springs", b.name()),
             )
-            .with_hint(b.usage()));
+            .with_hint(b.usage())
+            .with_kind(crate::diag::ErrorKind::InvalidScene));
         }
         let mut acc = Expr::zero();
         for a in args {
@@ -762,6 +780,7 @@ impl<'a> SyntaxEvaluator<'a> {
                 Springs::Series => k.recip().map_err(|_| {
                     Diagnostic::error(a.span, "a spring of stiffness 0 in series")
                         .with_hint("series(k1, k2) = k1·k2/(k1 + k2) needs nonzero stiffnesses")
+                        .with_kind(crate::diag::ErrorKind::Undefined)
                 })?,
                 Springs::Parallel => k,
             });
@@ -769,6 +788,7 @@ impl<'a> SyntaxEvaluator<'a> {
         match how {
             Springs::Series => acc.recip().map(Value::Scalar).map_err(|_| {
                 Diagnostic::error(span, "the series stiffness is undefined: Σ 1/k_i = 0")
+                    .with_kind(crate::diag::ErrorKind::Undefined)
             }),
             Springs::Parallel => Ok(Value::Scalar(acc)),
         }
@@ -794,7 +814,8 @@ impl<'a> SyntaxEvaluator<'a> {
                     span,
                     format!("`{}` takes {n} {what}, not {}", b.name(), args.len()),
                 )
-                .with_hint(b.usage()));
+                .with_hint(b.usage())
+                .with_kind(crate::diag::ErrorKind::InvalidScene));
             }
         }
         // every built-in function has its arm: no name falls through to another
@@ -874,7 +895,7 @@ impl<'a> SyntaxEvaluator<'a> {
                     span,
                     format!("`{}` is a given function of time: write `{0}(t)` or `{0}`", f.name),
                 )
-                .with_hint(format!("its derivatives are `{0}'`, `{0}''`; a function of anything but t is not supported", f.name))),
+                .with_hint(format!("its derivatives are `{0}'`, `{0}''`; a function of anything but t is not supported", f.name)).with_kind(crate::diag::ErrorKind::InvalidScene)),
             };
         }
         Err(self.unknown_function(f))
@@ -909,7 +930,8 @@ impl<'a> SyntaxEvaluator<'a> {
                     b.name()
                 ),
             )
-            .with_hint("give the given function another name in `functions …`")),
+            .with_hint("give the given function another name in `functions …`")
+            .with_kind(crate::diag::ErrorKind::InvalidScene)),
             _ => Ok(()),
         }
     }
@@ -933,7 +955,7 @@ impl<'a> SyntaxEvaluator<'a> {
         let v = self.value(arg)?;
         let Value::Vector(c) = v else {
             return Err(Diagnostic::error(arg.span, format!("norm needs a vector, found {}", v.describe()))
-                .with_hint("the absolute value of a number is not exact-friendly; write sqrt(x^2) for a positive x"));
+                .with_hint("the absolute value of a number is not exact-friendly; write sqrt(x^2) for a positive x").with_kind(crate::diag::ErrorKind::TypeMismatch));
         };
         let sq = c.iter().fold(Expr::zero(), |acc, x| acc.add(&x.mul(x)));
         func::sqrt(&sq)
@@ -956,7 +978,8 @@ impl<'a> SyntaxEvaluator<'a> {
                 args[1].span,
                 "this does not move, so it has no inertia force",
             )
-            .with_hint("inertia(m, x) is m·x'': x must depend on the coordinates or on t"));
+            .with_hint("inertia(m, x) is m·x'': x must depend on the coordinates or on t")
+            .with_kind(crate::diag::ErrorKind::InvalidScene));
         }
         Ok(x.map(|c| self.dt(c, 2).mul(&m)))
     }
@@ -996,7 +1019,7 @@ impl<'a> SyntaxEvaluator<'a> {
             .with_hint(match &a.kind {
                 ExprKind::Name(n) => format!("`{n}` is a definition, not a variable; use the coordinate or parameter it is made of"),
                 _ => "write a name such as theta, theta' or m".to_string(),
-            })
+            }).with_kind(crate::diag::ErrorKind::InvalidScene)
         })
     }
 
@@ -1008,19 +1031,22 @@ impl<'a> SyntaxEvaluator<'a> {
                 span,
                 "`subs` needs an expression and at least one `x = value`",
             )
-            .with_hint("write subs(E, x = 0) or subs(E, x = 0, m = 2)"));
+            .with_hint("write subs(E, x = 0) or subs(E, x = 0, m = 2)")
+            .with_kind(crate::diag::ErrorKind::InvalidScene));
         }
         let mut map: FxHashMap<Var, Expr> = FxHashMap::default();
         for a in &args[1..] {
             let ExprKind::Assign(x, value) = &a.kind else {
                 return Err(Diagnostic::error(a.span, "expected `x = value` here")
-                    .with_hint("write subs(E, x = 0): each replacement names its variable"));
+                    .with_hint("write subs(E, x = 0): each replacement names its variable")
+                    .with_kind(crate::diag::ErrorKind::InvalidScene));
             };
             let v = self.variable(x, Builtin::Subs)?;
             let value = self.expr(value)?;
             if map.insert(v, value).is_some() {
                 return Err(Diagnostic::error(x.span, "this variable is replaced twice")
-                    .with_hint("give each variable one value"));
+                    .with_hint("give each variable one value")
+                    .with_kind(crate::diag::ErrorKind::InvalidScene));
             }
         }
         let target = self.value(&args[0])?;
@@ -1048,7 +1074,8 @@ impl<'a> SyntaxEvaluator<'a> {
                 span,
                 format!("a Taylor series takes 3 arguments, not {}", args.len()),
             )
-            .with_hint("write taylor(f, x, n) or taylor(f, x = a, n)"));
+            .with_hint("write taylor(f, x, n) or taylor(f, x = a, n)")
+            .with_kind(crate::diag::ErrorKind::InvalidScene));
         }
         let (x, at) = match &args[1].kind {
             ExprKind::Assign(x, a) => (&**x, Some(&**a)),
@@ -1071,6 +1098,7 @@ impl<'a> SyntaxEvaluator<'a> {
                     format!("the order must be a whole number from 0 to {MAX_TAYLOR_ORDER}"),
                 )
                 .with_hint("taylor(sin(x), x, 5) keeps the powers x⁰ … x⁵")
+                .with_kind(crate::diag::ErrorKind::InvalidScene)
             })?;
         let f = self.value(&args[0])?;
         frames::not_a_rotation(
@@ -1108,7 +1136,7 @@ impl<'a> SyntaxEvaluator<'a> {
                             crate::expr::print::input(&a)
                         ),
                     )
-                    .with_hint("qdot expands by derivatives at the point; write the function in a form defined there (sin(x)/x is 1 − x²/6 + x⁴/120 − …), or expand about another point: taylor(f, x = 1, 5)")
+                    .with_hint("qdot expands by derivatives at the point; write the function in a form defined there (sin(x)/x is 1 − x²/6 + x⁴/120 − …), or expand about another point: taylor(f, x = 1, 5)").with_kind(crate::diag::ErrorKind::Undefined)
                 })?;
                 let coef = at_a.scale(&fact.recip().unwrap_or_else(Q::zero));
                 sum = sum.add(&coef.mul(&power));
@@ -1152,7 +1180,7 @@ impl<'a> SyntaxEvaluator<'a> {
                         a.span,
                         format!("`{name}` needs two vectors, and this is {}", v.describe()),
                     )
-                    .with_hint("write vectors as [x, y] or [x, y, z]; axis(F, k) is the k-th unit vector of a frame F"))
+                    .with_hint("write vectors as [x, y] or [x, y, z]; axis(F, k) is the k-th unit vector of a frame F").with_kind(crate::diag::ErrorKind::TypeMismatch))
                 }
             }
         }
@@ -1166,7 +1194,8 @@ impl<'a> SyntaxEvaluator<'a> {
                     w.len()
                 ),
             )
-            .with_hint("write plane vectors as [x, y, 0] to combine them with space vectors"));
+            .with_hint("write plane vectors as [x, y, 0] to combine them with space vectors")
+            .with_kind(crate::diag::ErrorKind::TypeMismatch));
         }
         let c = |i: usize, j: usize| u[i].mul(&w[j]).sub(&u[j].mul(&w[i]));
         Ok(match product {
@@ -1210,7 +1239,7 @@ fn bounded_functions(es: &[Expr], span: Span) -> Result<(), Diagnostic> {
                 atom::MAX_NESTING
             ),
         )
-        .with_hint("a chain of definitions that each apply a function to the previous one nests them; no mechanics needs this depth"));
+        .with_hint("a chain of definitions that each apply a function to the previous one nests them; no mechanics needs this depth").with_kind(crate::diag::ErrorKind::LimitExceeded));
     }
     let size = es.iter().map(atom::largest_argument).max().unwrap_or(0);
     if size > MAX_FUNCTION_ARGUMENT_SIZE {
@@ -1222,7 +1251,7 @@ fn bounded_functions(es: &[Expr], span: Span) -> Result<(), Diagnostic> {
                 crate::budget::grouped(MAX_FUNCTION_ARGUMENT_SIZE as usize)
             ),
         )
-        .with_hint("definitions that each use the previous one twice inside a function (`f2 = sin(f1) + cos(f1)`) double its length per line; no mechanics needs this"));
+        .with_hint("definitions that each use the previous one twice inside a function (`f2 = sin(f1) + cos(f1)`) double its length per line; no mechanics needs this").with_kind(crate::diag::ErrorKind::LimitExceeded));
     }
     Ok(())
 }

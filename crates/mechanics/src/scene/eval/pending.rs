@@ -200,7 +200,8 @@ impl<'a> SyntaxEvaluator<'a> {
                     .collect();
                 chain.push(self.defs[k].0.name.clone());
                 return Err(Diagnostic::error(span, cycle_message(&chain))
-                    .with_hint("a definition cannot use itself, directly or through others"));
+                    .with_hint("a definition cannot use itself, directly or through others")
+                    .with_kind(crate::diag::ErrorKind::InvalidScene));
             }
             if !walked[k] && matches!(self.state[k], State::Todo) {
                 on_path.insert(k);

@@ -9,8 +9,8 @@
 
 use super::inertia::{self, Written};
 use super::{positions_only, Resolver, Value};
-use crate::algebra::assume::assuming;
-use crate::algebra::sign::{sign_exact, Sign};
+use crate::algebra::assume::sign_under;
+use crate::algebra::sign::Sign;
 use crate::diag::Diagnostic;
 use crate::expr::Expr;
 use crate::parse::ast::{About, BodyProperty, Span};
@@ -106,7 +106,7 @@ impl Resolver<'_> {
         let d2 = d.iter().fold(Expr::zero(), |s, c| s.add(&c.mul(c)));
         let centroidal = j.sub(&m.mul(&d2));
         let who = format!("`{}` about its centre of mass", owner.name);
-        match assuming(&self.assumed, || sign_exact(&centroidal)) {
+        match sign_under(&self.assumed, &centroidal) {
             Some(Sign::Negative) => Err(Diagnostic::error(
                 p.value.span,
                 format!(
@@ -115,7 +115,7 @@ impl Resolver<'_> {
                 ),
             )
             .with_label(about_span(about), PLANE_LABEL)
-            .with_hint("the moment about a point exceeds the one about the centre by m·|d|², d from the point to the centre: check the moment and the point")),
+            .with_hint("the moment about a point exceeds the one about the centre by m·|d|², d from the point to the centre: check the moment and the point").with_kind(crate::diag::ErrorKind::Unphysical)),
             Some(_) => Ok(centroidal),
             None => {
                 self.warnings.push(
@@ -152,7 +152,7 @@ impl Resolver<'_> {
                         v.describe()
                     ),
                 )
-                .with_hint(POINT_HINT))
+                .with_hint(POINT_HINT).with_kind(crate::diag::ErrorKind::TypeMismatch))
             }
         };
         positions_only(&point, span, "the point of `about`")?;
@@ -176,7 +176,7 @@ impl Resolver<'_> {
                     vector_input(d)
                 ),
             )
-            .with_hint(POINT_HINT));
+            .with_hint(POINT_HINT).with_kind(crate::diag::ErrorKind::InvalidScene));
         }
         Ok(())
     }
@@ -202,7 +202,7 @@ impl Resolver<'_> {
                     owner.name
                 ),
             )
-            .with_hint("give its mass (`mass m`), or its inertia about its centre (without `about`)")),
+            .with_hint("give its mass (`mass m`), or its inertia about its centre (without `about`)").with_kind(crate::diag::ErrorKind::InvalidScene)),
         }
     }
 }

@@ -3,7 +3,7 @@
 
 use super::Resolver;
 use crate::algebra::assume::Assumptions;
-use crate::algebra::sign::{sign_exact, Sign};
+use crate::algebra::sign::Sign;
 use crate::diag::Diagnostic;
 use crate::expr::atom;
 use crate::parse::ast::{Fact, Stmt};
@@ -29,7 +29,7 @@ impl Resolver<'_> {
                                 name.span,
                                 format!("`assume {} real` needs a parameter, and `{0}` is not one", name.name),
                             )
-                            .with_hint("coordinates and definitions have the signs their values give; declare it with `parameters`"));
+                            .with_hint("coordinates and definitions have the signs their values give; declare it with `parameters`").with_kind(crate::diag::ErrorKind::InvalidScene));
                         }
                         let v = atom::param(&name.name);
                         if !real.contains(&v) {
@@ -47,17 +47,19 @@ impl Resolver<'_> {
                                 *span,
                                 "an order fact compares constants, and this one changes with time",
                             )
-                            .with_hint("assume facts about the parameters: `assume R > r`"));
+                            .with_hint("assume facts about the parameters: `assume R > r`")
+                            .with_kind(crate::diag::ErrorKind::InvalidScene));
                         }
                         if let Some(u) = crate::scene::first_unknown(&d) {
                             return Err(Diagnostic::error(
                                 *span,
                                 format!("an order fact uses `{u}`, an unknown of a `solve` block"),
                             )
-                            .with_hint("assume facts about the parameters: `assume R > r`"));
+                            .with_hint("assume facts about the parameters: `assume R > r`")
+                            .with_kind(crate::diag::ErrorKind::InvalidScene));
                         }
                         let so_far = Assumptions::new(real.clone(), positive.clone());
-                        let known = crate::algebra::assume::assuming(&so_far, || sign_exact(&d));
+                        let known = crate::algebra::assume::sign_under(&so_far, &d);
                         match known {
                             Some(Sign::Positive) => {}
                             Some(_) => return Err(Diagnostic::error(
@@ -66,7 +68,8 @@ impl Resolver<'_> {
                             )
                             .with_hint(
                                 "parameters are positive unless assumed `real`; check the order",
-                            )),
+                            )
+                            .with_kind(crate::diag::ErrorKind::Unphysical)),
                             None => positive.push(d),
                         }
                     }

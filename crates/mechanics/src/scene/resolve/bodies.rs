@@ -4,7 +4,7 @@
 
 use super::about::Owner;
 use super::{positions_only, Declarations, Definition, Resolver, Value};
-use crate::algebra::sign::{sign_exact, Sign};
+use crate::algebra::sign::Sign;
 use crate::diag::Diagnostic;
 use crate::expr::Expr;
 use crate::parse::ast::{
@@ -41,7 +41,7 @@ pub(super) fn frame_value(e: &ast::Expr, v: &Value) -> Result<(), Diagnostic> {
             e.span,
             format!("a frame is a rotation, and this is {}", other.describe()),
         )
-        .with_hint("write it as rot(AXIS, ANGLE) or a product of them: `frame B = rot(z, phi) * rot(x, theta)`")),
+        .with_hint("write it as rot(AXIS, ANGLE) or a product of them: `frame B = rot(z, phi) * rot(x, theta)`").with_kind(crate::diag::ErrorKind::TypeMismatch)),
     }
 }
 
@@ -107,7 +107,7 @@ impl<'a> Properties<'a> {
                         p.key_span,
                         format!("a particle has no `{}`", key.keyword()),
                     )
-                    .with_hint("a particle is a point mass; a body with an orientation and an inertia is a `body`"));
+                    .with_hint("a particle is a point mass; a body with an orientation and an inertia is a `body`").with_kind(crate::diag::ErrorKind::InvalidScene));
                 }
             }
         }
@@ -130,7 +130,8 @@ impl<'a> Properties<'a> {
                 b.name.span,
                 format!("`{}` has no {}", b.name.name, missing.join(", no ")),
             )
-            .with_hint(format!("a {} is written {example}", b.kind.keyword())));
+            .with_hint(format!("a {} is written {example}", b.kind.keyword()))
+            .with_kind(crate::diag::ErrorKind::InvalidScene));
         }
         if b.kind == BodyKind::Rigid {
             match (props.get(PropertyKey::Frame), props.get(PropertyKey::Angle)) {
@@ -139,7 +140,8 @@ impl<'a> Properties<'a> {
                         a.key_span,
                         "a body has a `frame` (in space) or an `angle` (in the plane), not both",
                     )
-                    .with_hint(format!("write {example}")))
+                    .with_hint(format!("write {example}"))
+                    .with_kind(crate::diag::ErrorKind::InvalidScene))
                 }
                 (None, None) => {
                     return Err(Diagnostic::error(
@@ -148,7 +150,8 @@ impl<'a> Properties<'a> {
                     )
                     .with_hint(format!(
                         "give its `frame F` in space or its `angle theta` in the plane: {example}"
-                    )))
+                    ))
+                    .with_kind(crate::diag::ErrorKind::InvalidScene))
                 }
                 _ => {}
             }
@@ -166,7 +169,8 @@ impl Resolver<'_> {
     pub(super) fn body(&mut self, b: &BodyStmt) -> Result<(), Diagnostic> {
         let props = Properties::collect(b)?;
         let Some(at) = props.get(PropertyKey::At) else {
-            return Err(Diagnostic::global("internal: a body without a position"));
+            return Err(Diagnostic::global("internal: a body without a position")
+                .with_kind(crate::diag::ErrorKind::Internal));
         };
         let m = match props.get(PropertyKey::Mass) {
             Some(mass) => Some(self.mass(mass)?),
@@ -201,7 +205,7 @@ impl Resolver<'_> {
                         at.value.span,
                         "a body with a frame moves in space: its position needs three components",
                     )
-                    .with_hint("write it as [x, y, z]; a body in the plane has an `angle` instead of a frame"));
+                    .with_hint("write it as [x, y, z]; a body in the plane has an `angle` instead of a frame").with_kind(crate::diag::ErrorKind::TypeMismatch));
                 }
                 let mut i = self.inertia_tensor(inertia, &b.name.name)?;
                 if let Some(about) = &inertia.about {
@@ -222,7 +226,7 @@ impl Resolver<'_> {
                             position.len()
                         ),
                     )
-                    .with_hint("write it as [x, y]; a body in space has a `frame` instead of an angle"));
+                    .with_hint("write it as [x, y]; a body in space has a `frame` instead of an angle").with_kind(crate::diag::ErrorKind::TypeMismatch));
                 }
                 let mut j = self.planar_inertia(inertia, &b.name.name)?;
                 let theta = self.ev.expr(&angle.value)?;
@@ -277,9 +281,10 @@ impl Resolver<'_> {
                 p.value.span,
                 "a mass must be constant, and this one changes with time",
             )
-            .with_hint("a body's mass is a parameter or a number"));
+            .with_hint("a body's mass is a parameter or a number")
+            .with_kind(crate::diag::ErrorKind::InvalidScene));
         }
-        let sign = crate::algebra::assume::assuming(&self.assumed, || sign_exact(&m));
+        let sign = crate::algebra::assume::sign_under(&self.assumed, &m);
         if sign != Some(Sign::Positive) {
             let why = match sign {
                 Some(Sign::Zero) => "this one is 0".to_string(),
@@ -290,7 +295,7 @@ impl Resolver<'_> {
                 Diagnostic::error(p.value.span, format!("a mass must be positive; {why}"))
                     .with_hint(
                     "write the mass as a parameter (parameters are positive) or a positive number",
-                ),
+                ).with_kind(crate::diag::ErrorKind::Unphysical),
             );
         }
         Ok(m)
@@ -308,7 +313,8 @@ impl Resolver<'_> {
                 p.value.span,
                 format!("a position is a vector, and this is {}", v.describe()),
             )
-            .with_hint("write the centre of mass as [x, y] in the plane or [x, y, z] in space")),
+            .with_hint("write the centre of mass as [x, y] in the plane or [x, y, z] in space")
+            .with_kind(crate::diag::ErrorKind::TypeMismatch)),
         }
     }
 
@@ -322,7 +328,8 @@ impl Resolver<'_> {
             )
             .with_hint(
                 "name a frame (`frame B = rot(z, phi)`) or write a rotation: frame rot(z, phi)",
-            )),
+            )
+            .with_kind(crate::diag::ErrorKind::TypeMismatch)),
         }
     }
 
@@ -337,10 +344,10 @@ impl Resolver<'_> {
                     v.describe()
                 ),
             )
-            .with_hint("write `inertia J`; principal moments [I1, I2, I3] belong to a body in space, with a `frame`"));
+            .with_hint("write `inertia J`; principal moments [I1, I2, I3] belong to a body in space, with a `frame`").with_kind(crate::diag::ErrorKind::TypeMismatch));
         };
         self.moment(&j, p.value.span)?;
-        if crate::algebra::assume::assuming(&self.assumed, || sign_exact(&j)).is_none() {
+        if crate::algebra::assume::sign_under(&self.assumed, &j).is_none() {
             self.warnings.push(
                 Diagnostic::warning(
                     p.value.span,
@@ -362,10 +369,9 @@ impl Resolver<'_> {
     fn moment(&self, j: &Expr, span: Span) -> Result<(), Diagnostic> {
         if j.is_time_dependent() {
             return Err(Diagnostic::error(span, "a moment of inertia must be constant, and this one changes with time")
-                .with_hint("the inertia is about the centre of mass along the body's own axes, which turn with it"));
+                .with_hint("the inertia is about the centre of mass along the body's own axes, which turn with it").with_kind(crate::diag::ErrorKind::InvalidScene));
         }
-        if crate::algebra::assume::assuming(&self.assumed, || sign_exact(j)) == Some(Sign::Negative)
-        {
+        if crate::algebra::assume::sign_under(&self.assumed, j) == Some(Sign::Negative) {
             return Err(Diagnostic::error(
                 span,
                 format!(
@@ -373,7 +379,8 @@ impl Resolver<'_> {
                     j.to_input()
                 ),
             )
-            .with_hint("moments of inertia are parameters or numbers ≥ 0"));
+            .with_hint("moments of inertia are parameters or numbers ≥ 0")
+            .with_kind(crate::diag::ErrorKind::Unphysical));
         }
         Ok(())
     }
@@ -394,20 +401,20 @@ impl Resolver<'_> {
         match &e.kind {
             ExprKind::Vector(rows) if rows.iter().any(|r| matches!(r.kind, ExprKind::Vector(_))) => {
                 if rows.len() != 3 {
-                    return Err(Diagnostic::error(e.span, format!("an inertia matrix has 3 rows, this one {}", rows.len())).with_hint(hint));
+                    return Err(Diagnostic::error(e.span, format!("an inertia matrix has 3 rows, this one {}", rows.len())).with_hint(hint).with_kind(crate::diag::ErrorKind::TypeMismatch));
                 }
                 for (i, row) in rows.iter().enumerate() {
                     let ExprKind::Vector(items) = &row.kind else {
-                        return Err(Diagnostic::error(row.span, "each row of an inertia matrix is [a, b, c]").with_hint(hint));
+                        return Err(Diagnostic::error(row.span, "each row of an inertia matrix is [a, b, c]").with_hint(hint).with_kind(crate::diag::ErrorKind::TypeMismatch));
                     };
                     if items.len() != 3 {
-                        return Err(Diagnostic::error(row.span, format!("a row of an inertia matrix has 3 entries, this one {}", items.len())).with_hint(hint));
+                        return Err(Diagnostic::error(row.span, format!("a row of an inertia matrix has 3 entries, this one {}", items.len())).with_hint(hint).with_kind(crate::diag::ErrorKind::TypeMismatch));
                     }
                     for (j, item) in items.iter().enumerate() {
                         m[i][j] = self.ev.expr(item)?;
                         if m[i][j].is_time_dependent() {
                             return Err(Diagnostic::error(item.span, "an inertia must be constant, and this entry changes with time")
-                                .with_hint("the inertia is about the centre of mass along the body's own axes, which turn with it"));
+                                .with_hint("the inertia is about the centre of mass along the body's own axes, which turn with it").with_kind(crate::diag::ErrorKind::InvalidScene));
                         }
                     }
                 }
@@ -422,7 +429,7 @@ impl Resolver<'_> {
                                 i + 1, j + 1, m[i][j].to_input(), j + 1, i + 1, m[j][i].to_input()
                             ),
                         )
-                        .with_hint(hint));
+                        .with_hint(hint).with_kind(crate::diag::ErrorKind::Unphysical));
                     }
                 }
                 for (k, row) in rows.iter().enumerate() {
@@ -447,7 +454,7 @@ impl Resolver<'_> {
                         e.span,
                         format!("a body in space has an inertia of three principal moments or a 3×3 matrix, and this is {}", v.describe()),
                     )
-                    .with_hint(hint))
+                    .with_hint(hint).with_kind(crate::diag::ErrorKind::TypeMismatch))
                 }
             },
         }
@@ -499,7 +506,8 @@ impl Resolver<'_> {
                     )
                     .with_hint(
                         "write `gravity [0, -g]` in the plane or `gravity [0, 0, -g]` in space",
-                    ))
+                    )
+                    .with_kind(crate::diag::ErrorKind::TypeMismatch))
                 }
             };
             positions_only(&g, value.span, "gravity")?;
@@ -522,7 +530,7 @@ impl Resolver<'_> {
                             b.position.len()
                         ),
                     )
-                    .with_hint("write gravity and every position in the plane [x, y] or all in space [x, y, z]"));
+                    .with_hint("write gravity and every position in the plane [x, y] or all in space [x, y, z]").with_kind(crate::diag::ErrorKind::TypeMismatch));
                 }
                 let work = g
                     .iter()
@@ -554,7 +562,7 @@ fn fixed_centre(b: &BodyStmt, at: &BodyProperty, position: &[Expr]) -> Result<()
         .with_hint(format!(
             "a body whose centre moves needs its mass: `body {}: mass m, …`; only a body turning about its fixed centre (`at [0, 0, 0]`) may leave it out",
             b.name.name
-        )));
+        )).with_kind(crate::diag::ErrorKind::InvalidScene));
     }
     Ok(())
 }

@@ -45,7 +45,7 @@ impl Resolver<'_> {
                         s = if n == 1 { "" } else { "s" }
                     ),
                 )
-                .with_hint("remove the constraints the others imply, or add the coordinates they constrain"));
+                .with_hint("remove the constraints the others imply, or add the coordinates they constrain").with_kind(crate::diag::ErrorKind::Constraints));
             }
             let c = self.constraint(name.as_ref(), equation, *span, k)?;
             if let Some(prev) = out.iter().position(|p| p.expression.equals(&c.expression)) {
@@ -61,7 +61,8 @@ impl Resolver<'_> {
                 )
                 .with_hint(
                     "each constraint once: a repeated constraint has no multiplier of its own",
-                ));
+                )
+                .with_kind(crate::diag::ErrorKind::Constraints));
             }
             out.push(c);
         }
@@ -84,7 +85,8 @@ impl Resolver<'_> {
                     other.describe()
                 ),
             )
-            .with_hint("write one `constraint` per component: `constraint cx: P[1] = 0`")),
+            .with_hint("write one `constraint` per component: `constraint cx: P[1] = 0`")
+            .with_kind(crate::diag::ErrorKind::TypeMismatch)),
         };
         let lhs = side(self.ev.value(&equation.lhs)?, &equation.lhs)?;
         let rhs = side(self.ev.value(&equation.rhs)?, &equation.rhs)?;
@@ -121,7 +123,8 @@ impl Resolver<'_> {
                 equation,
                 format!("{label} depends on the acceleration {d}"),
             )
-            .with_hint(FORMS));
+            .with_hint(FORMS)
+            .with_kind(crate::diag::ErrorKind::Constraints));
         }
         let q: Vec<Var> = self.coordinate_vars.clone();
         let qd: Vec<Var> = self
@@ -137,18 +140,22 @@ impl Resolver<'_> {
                 "involves no coordinate".to_string()
             };
             return Err(Diagnostic::error(equation, format!("{label} {what}"))
-                .with_hint(NO_COORDINATE_HINT));
+                .with_hint(NO_COORDINATE_HINT)
+                .with_kind(crate::diag::ErrorKind::Constraints));
         }
         let velocity_level = if holonomic { g.dt() } else { g.clone() };
         let (coefficients, rest) = crate::algebra::linear::split_linear(&velocity_level, &qd)
-            .map_err(|m| Diagnostic::error(equation, m.message))?;
+            .map_err(|m| {
+                Diagnostic::error(equation, m.message).with_kind(crate::diag::ErrorKind::Undefined)
+            })?;
         let moving = |e: &Expr| qd.iter().any(|&v| e.depends_on(v));
         if coefficients.iter().any(moving) || moving(&rest) {
             return Err(Diagnostic::error(
                 equation,
                 format!("{label} is not linear in the velocities"),
             )
-            .with_hint(FORMS));
+            .with_hint(FORMS)
+            .with_kind(crate::diag::ErrorKind::Constraints));
         }
         debug_assert!(coefficients.iter().any(|a| !a.is_zero()));
         // a coefficient can be zero in a form the canonical one does not
@@ -170,7 +177,8 @@ impl Resolver<'_> {
                     zeros.join(", ")
                 ),
             )
-            .with_hint(NO_COORDINATE_HINT));
+            .with_hint(NO_COORDINATE_HINT)
+            .with_kind(crate::diag::ErrorKind::Constraints));
         }
         Ok(Constraint {
             name: Some(multiplier.to_string()),
@@ -215,7 +223,7 @@ impl Resolver<'_> {
                     "name the constraint: `constraint rod: x^2 + y^2 = l^2`, then `reaction rod at [x, y]`".to_string()
                 } else {
                     format!("the scene's named constraints: {}", names.join(", "))
-                }));
+                }).with_kind(crate::diag::ErrorKind::UnknownName { name: constraint.name.to_string() }));
             };
             let value = self.ev.value(point)?;
             let components =
@@ -228,13 +236,14 @@ impl Resolver<'_> {
                     )
                     .with_hint(
                         "a point is a position vector, `[x, y]`, or a displacement along a line",
-                    )),
+                    )
+                    .with_kind(crate::diag::ErrorKind::TypeMismatch)),
                 };
             no_unknowns(&components, point.span, "a reaction's point")?;
             positions_only(&components, point.span, "a reaction's point")?;
             if !components.iter().any(|e| self.moves(e)) {
                 return Err(Diagnostic::error(point.span, "this point does not move with any coordinate, so no force there does virtual work")
-                    .with_hint("name the point the constraint holds: its position in the coordinates"));
+                    .with_hint("name the point the constraint holds: its position in the coordinates").with_kind(crate::diag::ErrorKind::InvalidScene));
             }
             out.push(Reaction {
                 constraint: j,

@@ -8,8 +8,8 @@
 //! proved negative is refused where the inertia is written, one whose sign
 //! is not decided is a warning.
 
-use crate::algebra::assume::{assuming, Assumptions};
-use crate::algebra::sign::{sign_exact, Sign};
+use crate::algebra::assume::{sign_under, Assumptions};
+use crate::algebra::sign::Sign;
 use crate::diag::Diagnostic;
 use crate::expr::Expr;
 use crate::num::Q;
@@ -168,7 +168,7 @@ pub(super) fn check(
     at: &Written,
     assumed: &Assumptions,
 ) -> Result<Option<Diagnostic>, Diagnostic> {
-    let sign = |e: &Expr| assuming(assumed, || sign_exact(e));
+    let sign = |e: &Expr| sign_under(assumed, e);
     let mut undecided: Option<Diagnostic> = None;
     let s = second_moments(i);
     for (triangle, m) in [(false, i), (true, &s)] {
@@ -267,5 +267,7 @@ fn refusal(
         Some(_) => format!("{HINT}; about a point the inertia exceeds the one about the centre by m·(|d|²·1 − d·dᵀ): check the inertia and the point"),
         None => HINT.to_string(),
     };
-    Diagnostic::error(span, message).with_hint(hint)
+    Diagnostic::error(span, message)
+        .with_hint(hint)
+        .with_kind(crate::diag::ErrorKind::Unphysical)
 }

@@ -32,7 +32,10 @@ impl Resolver<'_> {
                             j.name.name
                         ),
                     )
-                    .with_hint("give each joint its own name"));
+                    .with_hint("give each joint its own name")
+                    .with_kind(crate::diag::ErrorKind::DuplicateName {
+                        name: j.name.name.to_string(),
+                    }));
                 }
                 let joint = self.joint(j, constraints)?;
                 joints.push(joint);
@@ -57,7 +60,10 @@ impl Resolver<'_> {
                             coordinate.name, prev.name
                         ),
                     )
-                    .with_hint("a coordinate has one law of motion: keep one drive"));
+                    .with_hint("a coordinate has one law of motion: keep one drive")
+                    .with_kind(crate::diag::ErrorKind::DuplicateName {
+                        name: coordinate.name.to_string(),
+                    }));
                 }
                 drives.push(d);
             }
@@ -94,7 +100,8 @@ impl Resolver<'_> {
                 j.second.body.span,
                 format!("the joint `{}` joins {what}", j.name.name),
             )
-            .with_hint("a joint joins two different bodies (or a body and `ground`)"));
+            .with_hint("a joint joins two different bodies (or a body and `ground`)")
+            .with_kind(crate::diag::ErrorKind::InvalidScene));
         }
         let p = self.joint_point(&j.first, bodies[0])?;
         let q = self.joint_point(&j.second, bodies[1])?;
@@ -160,7 +167,7 @@ impl Resolver<'_> {
             span,
             format!("more constraints than coordinates: the joints, drives and constraints hold {} conditions on {n} coordinate{}", count + 1, if n == 1 { "" } else { "s" }),
         )
-        .with_hint("each body in the plane has its own x, y and angle (a particle x, y): declare them all, or remove a joint or drive the others imply"))
+        .with_hint("each body in the plane has its own x, y and angle (a particle x, y): declare them all, or remove a joint or drive the others imply").with_kind(crate::diag::ErrorKind::Constraints))
     }
 
     /// The body a joint names: an index into the bodies, `None` for `ground`.
@@ -171,7 +178,7 @@ impl Resolver<'_> {
                     id.span,
                     format!("`{}` has no mass, and a joint's reaction on it carries its weight and inertia", id.name),
                 )
-                .with_hint(format!("give `{}` its mass (`mass m`) in its `body` statement", id.name)));
+                .with_hint(format!("give `{}` its mass (`mass m`) in its `body` statement", id.name)).with_kind(crate::diag::ErrorKind::InvalidScene));
             }
             return Ok(Some(i));
         }
@@ -185,7 +192,7 @@ impl Resolver<'_> {
             } else {
                 format!("a joint joins two of {} or `ground`", names.join(", "))
             },
-        ))
+        ).with_kind(crate::diag::ErrorKind::UnknownName { name: id.name.to_string() }))
     }
 
     /// A joint's point, checked to be a plane position on its own body.
@@ -205,7 +212,8 @@ impl Resolver<'_> {
                         v.len()
                     ),
                 )
-                .with_hint(POINT_HINT))
+                .with_hint(POINT_HINT)
+                .with_kind(crate::diag::ErrorKind::TypeMismatch))
             }
             other => {
                 return Err(Diagnostic::error(
@@ -215,7 +223,8 @@ impl Resolver<'_> {
                         other.describe()
                     ),
                 )
-                .with_hint(POINT_HINT))
+                .with_hint(POINT_HINT)
+                .with_kind(crate::diag::ErrorKind::TypeMismatch))
             }
         };
         no_unknowns(&p, span, "a joint's point")?;
@@ -236,7 +245,7 @@ impl Resolver<'_> {
             Value::Vector(v) if v.len() == 2 => v,
             other => {
                 return Err(Diagnostic::error(u.span, format!("a slider's direction is a plane vector, and this is {}", other.describe()))
-                    .with_hint("write it in ground components: `along [1, 0]`, or `along [cos(th), sin(th)]` for a guide that turns with the first body"))
+                    .with_hint("write it in ground components: `along [1, 0]`, or `along [cos(th), sin(th)]` for a guide that turns with the first body").with_kind(crate::diag::ErrorKind::TypeMismatch))
             }
         };
         no_unknowns(&v, u.span, "a slider's direction")?;
@@ -244,7 +253,8 @@ impl Resolver<'_> {
         if v.iter().all(Expr::is_zero) {
             return Err(
                 Diagnostic::error(u.span, "a slider's direction is the zero vector")
-                    .with_hint("give the guide's direction: `along [1, 0]`"),
+                    .with_hint("give the guide's direction: `along [1, 0]`")
+                    .with_kind(crate::diag::ErrorKind::InvalidScene),
             );
         }
         self.on_body(&v, body, u.span, &who.name, "direction")?;
@@ -281,7 +291,7 @@ impl Resolver<'_> {
             }
         };
         Err(Diagnostic::error(span, format!("this {what} moves with `{}`, a coordinate that is not of {owner}", c.name))
-            .with_hint("write each joint's point through its own body: P through the first body's position and angle, Q through the second's"))
+            .with_hint("write each joint's point through its own body: P through the first body's position and angle, Q through the second's").with_kind(crate::diag::ErrorKind::InvalidScene))
     }
 
     /// The coordinates a body's centre and angle move with (none for the ground).
@@ -332,7 +342,7 @@ impl Resolver<'_> {
             .position(|c| c.name == coordinate.name)
         else {
             return Err(Diagnostic::error(coordinate.span, format!("`{}` is not a coordinate", coordinate.name))
-                .with_hint("a drive prescribes one of the scene's `coordinates` as a function of time: `drive M: phi = omega*t`"));
+                .with_hint("a drive prescribes one of the scene's `coordinates` as a function of time: `drive M: phi = omega*t`").with_kind(crate::diag::ErrorKind::InvalidScene));
         };
         let f = match self.ev.value(value)? {
             Value::Scalar(e) => e,
@@ -344,7 +354,8 @@ impl Resolver<'_> {
                         other.describe()
                     ),
                 )
-                .with_hint("`drive M: phi = omega*t`"))
+                .with_hint("`drive M: phi = omega*t`")
+                .with_kind(crate::diag::ErrorKind::TypeMismatch))
             }
         };
         no_unknowns(std::slice::from_ref(&f), value.span, "a drive's law")?;
@@ -360,7 +371,8 @@ impl Resolver<'_> {
                     c.name
                 ),
             )
-            .with_hint("a relation between coordinates is a `constraint`; a drive is q = f(t)"));
+            .with_hint("a relation between coordinates is a `constraint`; a drive is q = f(t)")
+            .with_kind(crate::diag::ErrorKind::InvalidScene));
         }
         let n = self.coordinates.len();
         if constraints.len() >= n {
@@ -373,7 +385,7 @@ impl Resolver<'_> {
                     constraints.len() + 1
                 ),
             )
-            .with_hint("a driven mechanism has as many joint and drive conditions as coordinates: drive only the input, or give the bodies their own coordinates"));
+            .with_hint("a driven mechanism has as many joint and drive conditions as coordinates: drive only the input, or give the bodies their own coordinates").with_kind(crate::diag::ErrorKind::Constraints));
         }
         let g = Expr::coord(&coordinate.name, 0).sub(&f);
         let label = format!("drive `{}`", name.name);
@@ -407,6 +419,9 @@ impl Resolver<'_> {
                     .to_string()
             } else {
                 format!("the scene's joints: {}", names.join(", "))
+            })
+            .with_kind(crate::diag::ErrorKind::UnknownName {
+                name: joint.name.to_string(),
             }));
         };
         if let Some(prev) = &joints[j].friction {
@@ -418,7 +433,8 @@ impl Resolver<'_> {
                     joint.name
                 ),
             )
-            .with_hint("one `friction` statement per joint"));
+            .with_hint("one `friction` statement per joint")
+            .with_kind(crate::diag::ErrorKind::InvalidScene));
         }
         let c = match self.ev.value(coefficient)? {
             Value::Scalar(e) => e,
@@ -430,7 +446,8 @@ impl Resolver<'_> {
                         other.describe()
                     ),
                 )
-                .with_hint("`friction G: mu` (a slider), `friction A: mu0*r0` (a pin)"))
+                .with_hint("`friction G: mu` (a slider), `friction A: mu0*r0` (a pin)")
+                .with_kind(crate::diag::ErrorKind::TypeMismatch))
             }
         };
         no_unknowns(
@@ -443,7 +460,8 @@ impl Resolver<'_> {
                 coefficient.span,
                 "a friction coefficient is a constant",
             )
-            .with_hint("write it with parameters and numbers: `friction G: mu`"));
+            .with_hint("write it with parameters and numbers: `friction G: mu`")
+            .with_kind(crate::diag::ErrorKind::InvalidScene));
         }
         let jt = &joints[j];
         let relative = match &jt.along {
@@ -457,7 +475,7 @@ impl Resolver<'_> {
             None => {
                 if !self.turns(jt.bodies[0]) && !self.turns(jt.bodies[1]) {
                     return Err(Diagnostic::error(joint.span, format!("the pin `{}` joins two things that do not turn, so it has no friction couple", joint.name))
-                        .with_hint("a pin's friction opposes the relative rotation of two bodies with angles"));
+                        .with_hint("a pin's friction opposes the relative rotation of two bodies with angles").with_kind(crate::diag::ErrorKind::InvalidScene));
                 }
                 self.angle(jt.bodies[1]).sub(&self.angle(jt.bodies[0]))
             }
@@ -485,7 +503,9 @@ fn unit(u: Vec<Expr>, span: ast::Span) -> Result<Vec<Expr>, Diagnostic> {
     if uu.is_one() {
         return Ok(u);
     }
-    let math = |m: crate::expr::MathError| Diagnostic::error(span, m.message);
+    let math = |m: crate::expr::MathError| {
+        Diagnostic::error(span, m.message).with_kind(crate::diag::ErrorKind::Undefined)
+    };
     let len = crate::expr::func::sqrt(&uu).map_err(math)?;
     u.iter().map(|c| c.div(&len).map_err(math)).collect()
 }

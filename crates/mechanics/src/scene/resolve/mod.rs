@@ -207,7 +207,8 @@ impl<'a> Declarations<'a> {
                 name.span,
                 format!("`{}` is reserved: it is {what}", name.name),
             )
-            .with_hint("choose another name"));
+            .with_hint("choose another name")
+            .with_kind(crate::diag::ErrorKind::InvalidScene));
         }
         if let Some((prev, prev_span)) = self.names.get(&name.name) {
             return Err(self.declared_twice(name, &b, prev, *prev_span));
@@ -253,14 +254,20 @@ impl<'a> Declarations<'a> {
             } else {
                 format!("the unknown `{}` is already {what}", name.name)
             };
-            return first(Diagnostic::error(name.span, message).with_hint(hint));
+            return first(
+                Diagnostic::error(name.span, message)
+                    .with_hint(hint)
+                    .with_kind(crate::diag::ErrorKind::DuplicateName {
+                        name: name.name.to_string(),
+                    }),
+            );
         }
         if matches!(b, Binding::Reaction) {
             return first(Diagnostic::error(
                 name.span,
                 format!("`{}`, which this statement names, is already {what}", name.name),
             )
-            .with_hint("a joint NAME names its reaction NAME_x, NAME_y (a pin) or NAME_n, NAME_m (a slider), a drive its force, a friction NAME_f: rename the joint, drive or other name"));
+            .with_hint("a joint NAME names its reaction NAME_x, NAME_y (a pin) or NAME_n, NAME_m (a slider), a drive its force, a friction NAME_f: rename the joint, drive or other name").with_kind(crate::diag::ErrorKind::DuplicateName { name: name.name.to_string() }));
         }
         if matches!(b, Binding::Multiplier) {
             return first(Diagnostic::error(
@@ -270,7 +277,7 @@ impl<'a> Declarations<'a> {
                     name.name
                 ),
             )
-            .with_hint("a constraint NAME brings the multiplier `lambda_NAME`: rename the constraint or the other name"));
+            .with_hint("a constraint NAME brings the multiplier `lambda_NAME`: rename the constraint or the other name").with_kind(crate::diag::ErrorKind::DuplicateName { name: name.name.to_string() }));
         }
         let again = match (b, prev) {
             (Binding::Coord, Binding::Coord) => "coordinate declared twice",
@@ -281,7 +288,7 @@ impl<'a> Declarations<'a> {
             name.span,
             format!("{again}: `{}` is already {what}", name.name),
         )
-        .with_hint("each name has one meaning in a scene; role statements add up, but their names must differ"))
+        .with_hint("each name has one meaning in a scene; role statements add up, but their names must differ").with_kind(crate::diag::ErrorKind::DuplicateName { name: name.name.to_string() }))
     }
 }
 
@@ -411,7 +418,7 @@ pub(super) fn scene_from_statements(
         &mut warnings,
     );
     if coordinates.is_empty() && definitions.iter().any(|d| d.role.is_some()) {
-        warnings.push(Diagnostic::global(
+        warnings.push(Diagnostic::global_warning(
             "the scene has energies but no `coordinates`: there are no equations to derive",
         ));
     }
@@ -563,7 +570,8 @@ fn structure_allowed(stmts: &[Stmt]) -> Result<(), Diagnostic> {
             st.span(),
             format!("a scene with {what} is derived expanded, not through intermediates"),
         )
-        .with_hint("drop `--structured`: qdot expands this scene"));
+        .with_hint("drop `--structured`: qdot expands this scene")
+        .with_kind(crate::diag::ErrorKind::Unsupported));
     }
     Ok(())
 }
@@ -591,7 +599,8 @@ fn role_value_allowed(
             _ => {
                 "energies, work and dissipation are numbers; use dot(F, r) for the work of a force"
             }
-        })),
+        })
+        .with_kind(crate::diag::ErrorKind::TypeMismatch)),
         Value::Scalar(e) => e,
     };
     if let Some(u) = first_unknown(e) {
@@ -603,7 +612,7 @@ fn role_value_allowed(
                 name.name
             ),
         )
-        .with_hint("energies are functions of the coordinates and parameters; unknowns belong in `solve` equations"));
+        .with_hint("energies are functions of the coordinates and parameters; unknowns belong in `solve` equations").with_kind(crate::diag::ErrorKind::InvalidScene));
     }
     if let Some(acc) = energy_acceleration(role, e) {
         let at = second_prime_span(body).unwrap_or(body.span);
@@ -615,7 +624,7 @@ fn role_value_allowed(
                 name.name
             ),
         )
-        .with_hint("energies and the Lagrangian are functions of the coordinates, the velocities and t (Lagrange's equations would differentiate an acceleration into a third derivative); a force that depends on an acceleration is a `force` or a `load`"));
+        .with_hint("energies and the Lagrangian are functions of the coordinates, the velocities and t (Lagrange's equations would differentiate an acceleration into a third derivative); a force that depends on an acceleration is a `force` or a `load`").with_kind(crate::diag::ErrorKind::InvalidScene));
     }
     let what = format!("`{} {}`", role.keyword(), name.name);
     forces_in_order(std::slice::from_ref(e), body.span, &what)
@@ -638,7 +647,8 @@ impl Resolver<'_> {
                         "`force {}:` needs a coordinate, and `{}` is not one",
                         c.name, c.name
                     ),
-                );
+                )
+                .with_kind(crate::diag::ErrorKind::InvalidScene);
                 let list: Vec<&str> = self.coordinates.iter().map(|c| c.name.as_str()).collect();
                 d = d.with_hint(if list.is_empty() {
                     "declare it with `coordinates …`".to_string()
@@ -672,7 +682,8 @@ impl Resolver<'_> {
                 )
                 .with_hint(
                     "axis(F, k) is the k-th unit vector of a frame F: `load -m*g*axis(B, 3) at P`",
-                ));
+                )
+                .with_kind(crate::diag::ErrorKind::TypeMismatch));
             }
         }
         match (&f, &p) {
@@ -685,7 +696,7 @@ impl Resolver<'_> {
                         b.len()
                     ),
                 )
-                .with_hint("write both in the plane [x, y] or both in space [x, y, z]"))
+                .with_hint("write both in the plane [x, y] or both in space [x, y, z]").with_kind(crate::diag::ErrorKind::TypeMismatch))
             }
             (Value::Scalar(_), Value::Vector(_)) | (Value::Vector(_), Value::Scalar(_)) => {
                 return Err(Diagnostic::error(
@@ -696,7 +707,7 @@ impl Resolver<'_> {
                         p.describe()
                     ),
                 )
-                .with_hint("a vector force needs a position vector `load [Fx, Fy] at [x, y]`; a number needs a displacement along its line `load G at y1`"))
+                .with_hint("a vector force needs a position vector `load [Fx, Fy] at [x, y]`; a number needs a displacement along its line `load G at y1`").with_kind(crate::diag::ErrorKind::TypeMismatch))
             }
             _ => {}
         }
@@ -736,7 +747,8 @@ impl Resolver<'_> {
             )
             .with_hint(
                 "in the plane write the moment's z component, e.g. cross(r, F) of plane vectors",
-            )),
+            )
+            .with_kind(crate::diag::ErrorKind::TypeMismatch)),
         };
         let a = match self.ev.value(angle)? {
             Value::Scalar(a) => a,
@@ -748,7 +760,8 @@ impl Resolver<'_> {
                         a.describe()
                     ),
                 )
-                .with_hint("write `torque M on theta` with theta an angle of the scene"))
+                .with_hint("write `torque M on theta` with theta an angle of the scene")
+                .with_kind(crate::diag::ErrorKind::TypeMismatch))
             }
         };
         no_unknowns(std::slice::from_ref(&m), moment.span, "a torque")?;
@@ -788,7 +801,8 @@ impl Resolver<'_> {
                     )
                     .with_hint(
                         "compare a frame's axes or components instead: axis(B, 3) = [0, 0, 1]",
-                    ));
+                    )
+                    .with_kind(crate::diag::ErrorKind::TypeMismatch));
                 }
             }
             for side in [&l, &r] {
@@ -813,7 +827,7 @@ impl Resolver<'_> {
                             r.describe()
                         ),
                     )
-                    .with_hint("a vector equation needs vectors of one size on both sides, e.g. `[Fx, Fy] = m*a`; write `[0, 0]` for the zero vector"))
+                    .with_hint("a vector equation needs vectors of one size on both sides, e.g. `[Fx, Fy] = m*a`; write `[0, 0]` for the zero vector").with_kind(crate::diag::ErrorKind::TypeMismatch))
                 }
             };
             for (k, (a, b)) in comps.0.iter().zip(comps.1).enumerate() {
@@ -841,7 +855,7 @@ fn no_unknowns(es: &[Expr], span: Span, what: &str) -> Result<(), Diagnostic> {
             span,
             format!("{what} uses `{u}`, an unknown of a `solve` block"),
         )
-        .with_hint("loads, torques and forces enter the equations of motion, which are solved before the blocks; a reaction found by a block can't drive the motion")),
+        .with_hint("loads, torques and forces enter the equations of motion, which are solved before the blocks; a reaction found by a block can't drive the motion").with_kind(crate::diag::ErrorKind::InvalidScene)),
         None => Ok(()),
     }
 }
@@ -877,7 +891,7 @@ fn forces_in_order(es: &[Expr], span: Span, what: &str) -> Result<(), Diagnostic
             span,
             format!("{what} depends on {d}, a time derivative of order {k}"),
         )
-        .with_hint("forces depend on the coordinates, the velocities and t, and (D'Alembert's inertia forces) on the accelerations; the equations of motion are of second order")),
+        .with_hint("forces depend on the coordinates, the velocities and t, and (D'Alembert's inertia forces) on the accelerations; the equations of motion are of second order").with_kind(crate::diag::ErrorKind::InvalidScene)),
         None => Ok(()),
     }
 }
@@ -893,7 +907,8 @@ fn positions_only(es: &[Expr], span: Span, what: &str) -> Result<(), Diagnostic>
                 "{what} depends on {d}; it must be a position, a function of the coordinates and t"
             ),
         )
-        .with_hint("a force that depends on the velocities goes in the force: `load -c*r' at r`")),
+        .with_hint("a force that depends on the velocities goes in the force: `load -c*r' at r`")
+        .with_kind(crate::diag::ErrorKind::InvalidScene)),
         None => Ok(()),
     }
 }
