@@ -535,3 +535,83 @@ impl Scene {
         Ok((q0, v0))
     }
 }
+
+/// One axis of a grid, `NAME=FROM:TO:COUNT`: COUNT evenly spaced values of
+/// NAME from FROM to TO, both ends included (`--over` of `cycle`,
+/// `response` and `floquet`).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct GridAxis {
+    /// The varied name: a parameter, a driven coordinate, `t` or `Omega`.
+    pub name: String,
+    /// The first value.
+    pub from: f64,
+    /// The last value.
+    pub to: f64,
+    /// How many values (1: FROM alone).
+    pub count: usize,
+}
+
+impl GridAxis {
+    /// The k-th value.
+    pub fn value(&self, k: usize) -> f64 {
+        if self.count <= 1 {
+            return self.from;
+        }
+        self.from + (self.to - self.from) * k as f64 / (self.count - 1) as f64
+    }
+}
+
+impl GridAxis {
+    /// Parse `phi=0:360deg:73`: `deg` (or `°`) and `pi` are allowed after
+    /// a number (`2pi`, `pi`, `-90deg`).
+    pub fn parse(s: &str) -> Result<GridAxis, Diagnostic> {
+        let bad = |why: String| {
+            Diagnostic::global(format!("`--over {s}`: {why}"))
+                .with_hint("write the varied quantity, its first and last values and the number of positions: --over phi=0:360deg:73 or --over t=0:2:101")
+                .with_kind(ErrorKind::bad_option("--over"))
+        };
+        let (name, range) = s.split_once('=').ok_or_else(|| bad("no `=`".into()))?;
+        let parts: Vec<&str> = range.split(':').collect();
+        let [from, to, count] = parts[..] else {
+            return Err(bad(format!(
+                "{} parts after `=`, and it takes 3 (FROM:TO:COUNT)",
+                parts.len()
+            )));
+        };
+        let count: usize = count
+            .trim()
+            .parse()
+            .map_err(|_| bad(format!("`{count}` is not a number of positions")))?;
+        if count == 0 || count > crate::limits::MAX_CYCLE_POSITIONS {
+            return Err(bad(format!(
+                "{count} positions: give 1 to {}",
+                crate::limits::MAX_CYCLE_POSITIONS
+            )));
+        }
+        Ok(GridAxis {
+            name: name.trim().to_string(),
+            from: angle_value(from).ok_or_else(|| bad(format!("`{from}` is not a number")))?,
+            to: angle_value(to).ok_or_else(|| bad(format!("`{to}` is not a number")))?,
+            count,
+        })
+    }
+}
+
+/// `360deg` → 2π, `2pi` → 2π, `pi` → π, `0.5` → 0.5.
+pub fn angle_value(s: &str) -> Option<f64> {
+    let s = s.trim();
+    let (number, scale) = if let Some(n) = s.strip_suffix("deg").or_else(|| s.strip_suffix('°')) {
+        (n.trim(), std::f64::consts::PI / 180.0)
+    } else if let Some(n) = s.strip_suffix("pi").or_else(|| s.strip_suffix('π')) {
+        (n.trim(), std::f64::consts::PI)
+    } else {
+        (s, 1.0)
+    };
+    let x: f64 = match number {
+        "" => 1.0,
+        "-" => -1.0,
+        n => n.trim_end_matches('*').parse().ok()?,
+    };
+    let v = x * scale;
+    v.is_finite().then_some(v)
+}
