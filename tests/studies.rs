@@ -231,3 +231,129 @@ fn every_study_is_a_command_with_its_formats() {
         "`qdot cycle` varies one quantity, and 0 were given"
     );
 }
+
+/// The one reader of `NAME=FROM:TO:COUNT` ranges and grids
+/// (`scene::given::parse_ranges`): the values it reads, and one message
+/// per failure.
+#[test]
+fn one_range_reader() {
+    use qdot::scene::given::{
+        parse_ranges, GridAxis, CYCLE_OVER, FLOQUET_OVER, RESPONSE_OVER, SWEEP_VARY,
+    };
+    use std::f64::consts::PI;
+    let one = |syntax, text: &str| {
+        let mut axes = parse_ranges(syntax, text).expect(text);
+        assert_eq!(axes.len(), 1, "{text}");
+        axes.remove(0)
+    };
+    let axis = |name: &str, from: f64, to: f64, count: usize| GridAxis {
+        name: name.into(),
+        from,
+        to,
+        count,
+    };
+    assert_eq!(
+        one(&CYCLE_OVER, "phi=0:360deg:73"),
+        axis("phi", 0.0, 360.0 * (PI / 180.0), 73)
+    );
+    assert_eq!(
+        one(&CYCLE_OVER, " t = -pi : 2pi : 5 "),
+        axis("t", -PI, 2.0 * PI, 5)
+    );
+    assert_eq!(
+        one(&CYCLE_OVER, "phi=-90°:2*pi:2"),
+        axis("phi", -90.0 * (PI / 180.0), 2.0 * PI, 2)
+    );
+    // constant expressions
+    let e = one(&RESPONSE_OVER, "Omega=pi/4:sqrt(2):3");
+    assert_eq!((e.from, e.to), (PI / 4.0, 2f64.sqrt()));
+    assert_eq!(one(&CYCLE_OVER, "t=1/4:3/4:2"), axis("t", 0.25, 0.75, 2));
+    // a grid, and sweep's range without COUNT
+    let grid = parse_ranges(&FLOQUET_OVER, "delta=-1:3:81,eps=0:2:41").expect("grid");
+    assert_eq!(
+        grid,
+        [axis("delta", -1.0, 3.0, 81), axis("eps", 0.0, 2.0, 41)]
+    );
+    assert_eq!(one(&SWEEP_VARY, "l=0.5:2"), axis("l", 0.5, 2.0, 0));
+    assert_eq!(
+        GridAxis::parse("phi=0:1:3").expect("parse"),
+        axis("phi", 0.0, 1.0, 3)
+    );
+    let refused = |syntax, text: &str, message: &str| {
+        let e = parse_ranges(syntax, text).expect_err(text);
+        assert_eq!(e.message, message, "{text}");
+        e
+    };
+    let e = refused(&CYCLE_OVER, "phi", "`--over phi`: no `=`");
+    assert_eq!(e.hint.as_deref(), Some(CYCLE_OVER.hint));
+    refused(&CYCLE_OVER, "=0:1:3", "`--over =0:1:3`: no name before `=`");
+    refused(
+        &CYCLE_OVER,
+        "phi=0:360deg",
+        "`--over phi=0:360deg`: 2 parts after `=`, and it takes 3 (FROM:TO:COUNT)",
+    );
+    refused(
+        &CYCLE_OVER,
+        "phi=0:x:3",
+        "`--over phi=0:x:3`: `x` is not a number",
+    );
+    refused(
+        &CYCLE_OVER,
+        "phi=0:1e400:3",
+        "`--over phi=0:1e400:3`: `1e400` is not a number",
+    );
+    refused(
+        &CYCLE_OVER,
+        "phi=0:1:0",
+        "`--over phi=0:1:0`: COUNT `0` must be a whole number from 1 to 1,000,000",
+    );
+    refused(
+        &CYCLE_OVER,
+        "phi=0:1:1000001",
+        "`--over phi=0:1:1000001`: COUNT `1000001` must be a whole number from 1 to 1,000,000",
+    );
+    refused(
+        &CYCLE_OVER,
+        "phi=0:1:3,t=0:1:3",
+        "`--over phi=0:1:3,t=0:1:3`: one quantity varies, not more",
+    );
+    let e = refused(
+        &FLOQUET_OVER,
+        "delta=0:1:3,eps=0:1",
+        "`--over delta=0:1:3,eps=0:1`: `eps=0:1`: 2 parts after `=`, and it takes 3 (FROM:TO:COUNT)",
+    );
+    assert_eq!(e.hint.as_deref(), Some(FLOQUET_OVER.hint));
+    refused(
+        &FLOQUET_OVER,
+        "delta=0:1:1001,eps=0:1:1000",
+        "`--over delta=0:1:1001,eps=0:1:1000`: 1,001,000 points, more than 1,000,000",
+    );
+    refused(
+        &FLOQUET_OVER,
+        "a=0:1:2,b=0:1:2,c=0:1:2",
+        "`--over a=0:1:2,b=0:1:2,c=0:1:2`: one or two parameters vary, not more",
+    );
+    refused(
+        &FLOQUET_OVER,
+        "d=0:1:2,d=0:1:2",
+        "`--over d`: `d` is varied twice",
+    );
+    refused(
+        &SWEEP_VARY,
+        "l=0.5:2:3:4",
+        "`--vary l=0.5:2:3:4`: 4 parts after `=`, and it takes 2 or 3 (FROM:TO or FROM:TO:COUNT)",
+    );
+    // the commands read their --over so
+    assert_eq!(
+        app::parse_over(Command::Response, "p=0:1:10")
+            .unwrap_err()
+            .message,
+        "`--over p=0:1:10`: `qdot response` varies the forcing frequency, `Omega`, not `p`"
+    );
+    assert_eq!(
+        app::parse_over(Command::Solve, "p=0:1:10")
+            .unwrap_err()
+            .message,
+        "`qdot solve` takes no --over"
+    );
+}

@@ -6,7 +6,7 @@ use super::report::{CycleReport, CycleRun, FloquetReport, FloquetRun, FrequencyR
 use super::{Command, CommandOptions, Context, ResponseReport};
 use crate::diag::{Diagnostic, ErrorKind};
 use crate::poly::Var;
-use crate::scene::given::GridAxis;
+use crate::scene::given::{parse_ranges, GridAxis, CYCLE_OVER};
 use crate::scene::Scene;
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
@@ -18,7 +18,7 @@ use std::sync::Arc;
 /// (`delta=-1:3:81,eps=0:2:41`).
 pub fn parse_over(cmd: Command, text: &str) -> Result<Vec<GridAxis>, Diagnostic> {
     match cmd {
-        Command::Cycle => Ok(vec![GridAxis::parse(text)?]),
+        Command::Cycle => parse_ranges(&CYCLE_OVER, text),
         Command::Response => Ok(vec![crate::simulate::response::parse_over(text)?]),
         Command::Floquet => crate::simulate::floquet::parse_over(text),
         _ => Err(no_over(cmd)),
@@ -32,6 +32,24 @@ fn no_over(cmd: Command) -> Diagnostic {
         .with_kind(ErrorKind::bad_option("--over"))
 }
 
+/// An error unless every axis of `over` has 1 to
+/// [`crate::scene::given::MAX_GRID_POINTS`] values, and the grid as many
+/// points at most (an `over` not read by [`parse_over`]).
+fn bounded_grid(over: &[GridAxis]) -> Result<(), Diagnostic> {
+    let max = crate::scene::given::MAX_GRID_POINTS;
+    let total = over
+        .iter()
+        .try_fold(1usize, |t, a| t.checked_mul(a.count).filter(|&t| t >= 1));
+    match total {
+        Some(t) if t <= max => Ok(()),
+        _ => Err(Diagnostic::global(format!(
+            "--over: every range has 1 to {} values, and the grid as many points at most",
+            crate::budget::grouped(max)
+        ))
+        .with_kind(ErrorKind::bad_option("--over"))),
+    }
+}
+
 /// `cycle`: the mechanism of `scene` over `opts.over` (one axis).
 pub(super) fn cycle(
     ctx: &Context,
@@ -43,9 +61,10 @@ pub(super) fn cycle(
             "`qdot cycle` varies one quantity, and {} were given",
             opts.over.len()
         ))
-        .with_hint("--over phi=0:360deg:73 or --over t=0:2:101")
+        .with_hint(CYCLE_OVER.hint)
         .with_kind(ErrorKind::bad_option("--over")));
     };
+    bounded_grid(&opts.over)?;
     let req = crate::cycle::CycleRequest {
         over: over.clone(),
         set: opts.set.clone(),
@@ -100,6 +119,7 @@ pub(super) fn response(
             FrequencyResponse::Exact(Box::new((md, r)))
         }
         [over] => {
+            bounded_grid(&opts.over)?;
             let written = format!("{}={}:{}:{}", over.name, over.from, over.to, over.count);
             crate::simulate::response::check_axis(over, &written)?;
             crate::scene::given::set_names_are_parameters(scene, set)?;
@@ -112,7 +132,7 @@ pub(super) fn response(
         _ => {
             return Err(
                 Diagnostic::global("`qdot response` sweeps one frequency, `Omega`")
-                    .with_hint("--over Omega=0:3:600: the first and last frequencies, and how many")
+                    .with_hint(crate::scene::given::RESPONSE_OVER.hint)
                     .with_kind(ErrorKind::bad_option("--over")),
             )
         }
@@ -150,9 +170,10 @@ pub(super) fn floquet(
             "`qdot floquet` varies one or two parameters, not {}",
             over.len()
         ))
-        .with_hint("--over NAME=FROM:TO:COUNT, or two of them for a chart: --over \"delta=-1:3:81,eps=0:2:41\"")
+        .with_hint(crate::scene::given::FLOQUET_OVER.hint)
         .with_kind(ErrorKind::bad_option("--over")));
     }
+    bounded_grid(over)?;
     let prepared = crate::floquet::prepare(scene, &req)?;
     let mut set = opts.set.clone();
     for a in over {

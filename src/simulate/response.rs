@@ -14,10 +14,11 @@
 use crate::algebra::sign::Values;
 use crate::cycle::Over;
 use crate::diag::{Diagnostic, ErrorKind};
-use crate::engine::dense::{solve_complex_scaled, Complex, Lu};
+use qdot_ode::dense::{solve_complex_scaled, Complex, Lu};
 use crate::expr::atom::{self, Atom};
 use crate::expr::Expr;
 use crate::poly::Var;
+use crate::scene::given::{parse_ranges, RESPONSE_OVER};
 use crate::solve::response::{natural_frequencies, ForcedSystem, OMEGA};
 use qdot_compile::compile::{compile_with, Program};
 use rustc_hash::FxHashMap;
@@ -54,12 +55,10 @@ pub struct CompiledResponse {
     coordinates: Vec<String>,
 }
 
-/// The hint of `response --over`.
-const OVER_HINT: &str = "--over Omega=0:3:600: the first and last frequencies, and how many";
-
-/// `--over` of `qdot response`: the varied quantity must be Ω.
+/// `--over` of `qdot response` ([`crate::scene::given::parse_ranges`]
+/// with [`RESPONSE_OVER`]): the varied quantity must be Ω.
 pub fn parse_over(s: &str) -> Result<Over, Diagnostic> {
-    let over = Over::parse(s).map_err(|d| d.with_hint(OVER_HINT))?;
+    let over = parse_ranges(&RESPONSE_OVER, s)?.remove(0);
     check_axis(&over, s)?;
     Ok(over)
 }
@@ -71,7 +70,7 @@ pub fn check_axis(over: &Over, written: &str) -> Result<(), Diagnostic> {
             "`--over {written}`: `qdot response` varies the forcing frequency, `Omega`, not `{}`",
             over.name
         ))
-        .with_hint(OVER_HINT)
+        .with_hint(RESPONSE_OVER.hint)
         .with_kind(ErrorKind::bad_option("--over")));
     }
     Ok(())

@@ -13,6 +13,7 @@ mod positions;
 mod scale;
 mod table;
 
+pub use friction::MAX_FRICTION_ITERATIONS;
 pub use table::*;
 
 use crate::diag::{Diagnostic, ErrorKind};
@@ -37,9 +38,10 @@ pub struct CycleRequest {
 /// TO in COUNT positions (both ends included), in the scene's units.
 pub use crate::scene::given::GridAxis as Over;
 
-pub use crate::limits::MAX_CYCLE_POSITIONS;
+/// The most positions of one `qdot cycle`: the one limit of `--over` grids.
+pub use crate::scene::given::MAX_GRID_POINTS as MAX_CYCLE_POSITIONS;
 
-use crate::scene::given::angle_value;
+use crate::scene::given::range_value as angle_value;
 
 /// Analyse the mechanism of `scene` over `req.over`.
 pub fn cycle(scene: &Scene, req: &CycleRequest) -> Result<CycleTable, Diagnostic> {
