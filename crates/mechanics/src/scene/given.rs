@@ -724,7 +724,7 @@ pub fn parse_ranges(syntax: &RangeSyntax, text: &str) -> Result<Vec<GridAxis>, D
             format!(
                 "`{} {text}`: {} points, more than {}",
                 syntax.option,
-                total.map_or_else(|| "too many".to_string(), |t| crate::budget::grouped(t)),
+                total.map_or_else(|| "too many".to_string(), crate::budget::grouped),
                 crate::budget::grouped(syntax.max_points)
             ),
             syntax.hint,
