@@ -395,12 +395,39 @@ fn main() -> ExitCode {
             let report = Reporter::new(&args.file, args.output == "json");
             return on_scene(report, cli.max_terms, |src| sweep(report, src, args));
         }
-        Command::Cycle(args) => {
-            let report = Reporter::new(&args.file, args.output == "json");
-            return on_scene(report, cli.max_terms, |src| cycle(report, src, args));
+        Command::Cycle(o) => {
+            let (cmd, max) = (output::Command::Cycle, cli.max_terms);
+            return study(
+                cmd,
+                &o.file,
+                &o.output,
+                max,
+                |x| o.options(x),
+                |r| o.pictures(r),
+            );
         }
-        Command::Response(args) => return response(args, cli.max_terms),
-        Command::Floquet(args) => return floquet(args, cli.max_terms),
+        Command::Response(o) => {
+            let (cmd, max) = (output::Command::Response, cli.max_terms);
+            return study(
+                cmd,
+                &o.file,
+                &o.output,
+                max,
+                |x| o.options(x),
+                |r| o.pictures(r),
+            );
+        }
+        Command::Floquet(o) => {
+            let (cmd, max) = (output::Command::Floquet, cli.max_terms);
+            return study(
+                cmd,
+                &o.file,
+                &o.output,
+                max,
+                |x| o.options(x),
+                |r| o.pictures(r),
+            );
+        }
         Command::Codegen {
             file,
             lang,
@@ -724,61 +751,115 @@ struct CycleArgs {
     animate: Option<String>,
 }
 
-fn cycle(report: Reporter, src: &str, o: &CycleArgs) -> ExitCode {
-    use qdot::cycle::{parse_guess, CycleRequest, Over};
-    use qdot::simulate::cycle as render;
-    let req = (|| -> Result<CycleRequest, qdot::Diagnostic> {
-        if !["csv", "json", "text"].contains(&o.output.as_str()) {
-            return Err(
-                qdot::Diagnostic::global(format!("unknown output `{}`", o.output))
-                    .with_hint("--output csv, --output json or --output text")
-                    .with_kind(ErrorKind::bad_option("--output")),
-            );
+impl CycleArgs {
+    /// These options as the application layer's.
+    fn options(&self, opts: &mut output::CommandOptions) -> Result<Format, qdot::Diagnostic> {
+        let fmt = study_format(
+            &self.output,
+            &[Format::Csv, Format::Json, Format::Text],
+            "--output csv, --output json or --output text".into(),
+        )?;
+        opts.over = qdot::app::parse_over(output::Command::Cycle, &self.over)?;
+        opts.set = parse_set(self.set.as_deref())?;
+        opts.guess = self
+            .guess
+            .as_deref()
+            .map(qdot::cycle::parse_guess)
+            .transpose()?
+            .unwrap_or_default();
+        opts.columns = self
+            .columns
+            .as_deref()
+            .map(qdot::simulate::cycle::column_names);
+        Ok(fmt)
+    }
+
+    /// `--plot` and `--animate`: the pictures written to their files.
+    fn pictures(&self, report: &qdot::AnyReport) -> Result<(), qdot::Diagnostic> {
+        let qdot::AnyReport::Cycle(r) = report else {
+            return Ok(());
+        };
+        let (run, title) = (&r.result, base_name(&self.file));
+        if let Some(path) = &self.plot {
+            let svg =
+                qdot::drawing::reaction_diagrams(&run.table, &title, run.degrees).map_err(|e| {
+                    qdot::Diagnostic::global(format!("cannot draw the reaction diagrams: {e}"))
+                })?;
+            write_picture(path, &svg)?;
         }
-        Ok(CycleRequest {
-            over: Over::parse(&o.over)?,
-            set: o
-                .set
-                .as_deref()
-                .map(output::parse_set_any_sign)
-                .transpose()?
-                .unwrap_or_default(),
-            guess: o
-                .guess
-                .as_deref()
-                .map(parse_guess)
-                .transpose()?
-                .unwrap_or_default(),
+        if let Some(path) = &self.animate {
+            let page = if path.ends_with(".svg") {
+                qdot::drawing::animation_svg(&run.table, &title)
+            } else {
+                qdot::drawing::animation_html(&run.table, &title, run.degrees)
+            };
+            write_picture(path, &page)?;
+        }
+        Ok(())
+    }
+}
+
+/// A picture written to `path`.
+fn write_picture(path: &str, text: &str) -> Result<(), qdot::Diagnostic> {
+    std::fs::write(path, text)
+        .map_err(|e| qdot::Diagnostic::global(format!("cannot write `{path}`: {e}")))
+}
+
+/// `--set` of a numeric study: any sign.
+fn parse_set(set: Option<&str>) -> Result<qdot::solve::equilibrium::Values, qdot::Diagnostic> {
+    Ok(set
+        .map(output::parse_set_any_sign)
+        .transpose()?
+        .unwrap_or_default())
+}
+
+/// `--output NAME` of a numeric study, one of `accepted`.
+fn study_format(name: &str, accepted: &[Format], hint: String) -> Result<Format, qdot::Diagnostic> {
+    Format::from_name(name)
+        .filter(|f| accepted.contains(f))
+        .ok_or_else(|| {
+            qdot::Diagnostic::global(format!("unknown output `{name}`"))
+                .with_hint(hint)
+                .with_kind(ErrorKind::bad_option("--output"))
         })
-    })();
-    let req = match req {
-        Ok(r) => r,
+}
+
+/// `qdot cycle`, `response` or `floquet` on the scene `file`: the options
+/// read by `options`, the study run by the application layer, its
+/// pictures written by `pictures`, the report printed.
+fn study(
+    cmd: output::Command,
+    file: &str,
+    output_name: &str,
+    max_terms: usize,
+    options: impl FnOnce(&mut output::CommandOptions) -> Result<Format, qdot::Diagnostic>,
+    pictures: impl FnOnce(&qdot::AnyReport) -> Result<(), qdot::Diagnostic>,
+) -> ExitCode {
+    let report = Reporter::new(file, output_name == "json");
+    let src = match report.read_scene() {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let mut opts = output::CommandOptions::default();
+    let fmt = match options(&mut opts) {
+        Ok(f) => f,
         Err(d) => return report.fail(&d, ""),
     };
-    let run = match render::run(src, &req) {
-        Ok(t) => t,
-        Err(d) => return report.fail(&d, src),
+    let ctx = qdot::Context::new().with_max_terms(max_terms);
+    let result = match qdot::app::run(&ctx, cmd, &src, &opts) {
+        Ok(r) => r,
+        Err(d) => return report.fail(&d, &src),
     };
-    if let Err(d) = cycle_pictures(&run, &base_name(&o.file), o) {
+    if let Err(d) = pictures(&result) {
         return report.fail(&d, "");
     }
-    let table = &run.table;
-    let shown = match o
-        .columns
-        .as_deref()
-        .map(|c| render::select(table, c))
-        .transpose()
-    {
-        Ok(t) => t,
-        Err(d) => return report.fail(&d, ""),
-    };
-    let table = shown.as_ref().unwrap_or(table);
-    emit(&match o.output.as_str() {
-        "json" => render::json(table),
-        "text" => render::text(table, run.degrees),
-        _ => render::csv(table),
-    });
-    ExitCode::SUCCESS
+    match output::render(&result, fmt) {
+        Ok(out) => {
+            emit(&out);
+            ExitCode::SUCCESS
+        }
+        Err(d) => report.fail(&d, &src),
+    }
 }
 
 /// The options of `qdot response`.
@@ -805,84 +886,46 @@ struct ResponseArgs {
     plot: Option<String>,
 }
 
-fn response(o: &ResponseArgs, max_terms: usize) -> ExitCode {
-    let report = Reporter::new(&o.file, o.output == "json");
-    on_scene(report, max_terms, |src| {
-        response_of(report, src, o, max_terms)
-    })
-}
-
-/// `qdot response` on the scene text `src`.
-fn response_of(report: Reporter, src: &str, o: &ResponseArgs, max_terms: usize) -> ExitCode {
-    use qdot::simulate::response as sweep;
-    let outputs: &[&str] = if o.over.is_some() {
-        &["csv", "json", "text"]
-    } else {
-        &["json", "text"]
-    };
-    let options = (|| -> Result<_, qdot::Diagnostic> {
-        if !outputs.contains(&o.output.as_str()) {
-            return Err(
-                qdot::Diagnostic::global(format!("unknown output `{}`", o.output))
-                    .with_hint(format!(
-                        "--output {}{}",
-                        outputs.join(", --output "),
-                        if o.over.is_some() {
-                            ""
-                        } else {
-                            " (csv with --over)"
-                        }
-                    ))
-                    .with_kind(ErrorKind::bad_option("--output")),
-            );
-        }
-        let set = o
-            .set
+impl ResponseArgs {
+    /// These options as the application layer's.
+    fn options(&self, opts: &mut output::CommandOptions) -> Result<Format, qdot::Diagnostic> {
+        let fmt = if self.over.is_some() {
+            study_format(
+                &self.output,
+                &[Format::Csv, Format::Json, Format::Text],
+                "--output csv, --output json, --output text".into(),
+            )
+        } else {
+            study_format(
+                &self.output,
+                &[Format::Json, Format::Text],
+                "--output json, --output text (csv with --over)".into(),
+            )
+        }?;
+        opts.set = parse_set(self.set.as_deref())?;
+        opts.over = self
+            .over
             .as_deref()
-            .map(output::parse_set_any_sign)
+            .map(|o| qdot::app::parse_over(output::Command::Response, o))
             .transpose()?
             .unwrap_or_default();
-        let over = o.over.as_deref().map(sweep::parse_over).transpose()?;
-        Ok((set, over))
-    })();
-    let (set, over) = match options {
-        Ok(x) => x,
-        Err(d) => return report.fail(&d, ""),
-    };
-    let Some(over) = over else {
-        return match output::response::response_output(
-            src,
-            o.at.as_deref(),
-            &set,
-            max_terms,
-            o.output == "json",
-        ) {
-            Ok(text) => {
-                emit(&text);
-                ExitCode::SUCCESS
-            }
-            Err(d) => report.fail(&d, src),
-        };
-    };
-    let table = match sweep::sweep(src, o.at.as_deref(), &set, &over) {
-        Ok(t) => t,
-        Err(d) => return report.fail(&d, src),
-    };
-    if let Some(path) = &o.plot {
-        let written = qdot::simulate::response_plot::svg(&table, &base_name(&o.file))
-            .map_err(|e| e.to_string())
-            .and_then(|svg| std::fs::write(path, svg).map_err(|e| e.to_string()));
-        if let Err(e) = written {
-            let d = qdot::Diagnostic::global(format!("cannot write the plot `{path}`: {e}"));
-            return report.fail(&d, "");
-        }
+        opts.at = self.at.clone();
+        Ok(fmt)
     }
-    emit(&match o.output.as_str() {
-        "json" => sweep::json(&table),
-        "csv" => sweep::csv(&table),
-        _ => sweep::text(&table),
-    });
-    ExitCode::SUCCESS
+
+    /// `--plot`: the resonance curves written to their file.
+    fn pictures(&self, report: &qdot::AnyReport) -> Result<(), qdot::Diagnostic> {
+        let (Some(path), qdot::AnyReport::Response(r)) = (&self.plot, report) else {
+            return Ok(());
+        };
+        let qdot::app::FrequencyResponse::Swept(table) = &r.result else {
+            return Ok(());
+        };
+        qdot::simulate::response_plot::svg(table, &base_name(&self.file))
+            .map_err(|e| e.to_string())
+            .and_then(|svg| std::fs::write(path, svg).map_err(|e| e.to_string()))
+            .map_err(|e| qdot::Diagnostic::global(format!("cannot write the plot `{path}`: {e}")))
+    }
 }
 
 /// The options of `qdot floquet`.
@@ -921,102 +964,47 @@ struct FloquetArgs {
     plot: Option<String>,
 }
 
-/// `qdot floquet`, under the work budget `--max-terms`.
-fn floquet(o: &FloquetArgs, max_terms: usize) -> ExitCode {
-    let report = Reporter::new(&o.file, o.output == "json");
-    on_scene(report, max_terms, |src| floquet_on(report, src, o))
-}
-
-fn floquet_on(report: Reporter, src: &str, o: &FloquetArgs) -> ExitCode {
-    use qdot::simulate::floquet as render;
-    let req = (|| -> Result<render::Request, qdot::Diagnostic> {
-        if !["csv", "json", "text"].contains(&o.output.as_str()) {
-            return Err(
-                qdot::Diagnostic::global(format!("unknown output `{}`", o.output))
-                    .with_hint("--output text, --output csv or --output json")
-                    .with_kind(ErrorKind::bad_option("--output")),
-            );
-        }
-        if o.plot.is_some() && o.over.is_none() {
+impl FloquetArgs {
+    /// These options as the application layer's.
+    fn options(&self, opts: &mut output::CommandOptions) -> Result<Format, qdot::Diagnostic> {
+        let fmt = study_format(
+            &self.output,
+            &[Format::Text, Format::Csv, Format::Json],
+            "--output text, --output csv or --output json".into(),
+        )?;
+        if self.plot.is_some() && self.over.is_none() {
             return Err(qdot::Diagnostic::global(
                 "--plot draws the stability over the --over parameters",
             )
             .with_hint("add --over NAME=FROM:TO:COUNT: one parameter draws the largest |μ|, two the stability chart")
             .with_kind(ErrorKind::bad_option("--plot")));
         }
-        Ok(render::Request {
-            floquet: qdot::floquet::FloquetRequest {
-                at: o.at.clone(),
-                functions: o.function.clone(),
-                period: o.period,
-                max_steps: Some(o.max_steps),
-            },
-            set: o
-                .set
-                .as_deref()
-                .map(output::parse_set_any_sign)
-                .transpose()?
-                .unwrap_or_default(),
-            over: o
-                .over
-                .as_deref()
-                .map(render::parse_over)
-                .transpose()?
-                .unwrap_or_default(),
-        })
-    })();
-    let req = match req {
-        Ok(r) => r,
-        Err(d) => return report.fail(&d, ""),
-    };
-    let run = match render::run(src, &req) {
-        Ok(r) => r,
-        Err(d) => return report.fail(&d, src),
-    };
-    if let Some(path) = &o.plot {
-        let drawn = qdot::drawing::floquet::svg(&run, &base_name(&o.file))
+        opts.at = self.at.clone();
+        opts.functions = self.function.clone();
+        opts.period = self.period;
+        opts.max_steps = Some(self.max_steps);
+        opts.set = parse_set(self.set.as_deref())?;
+        opts.over = self
+            .over
+            .as_deref()
+            .map(|o| qdot::app::parse_over(output::Command::Floquet, o))
+            .transpose()?
+            .unwrap_or_default();
+        Ok(fmt)
+    }
+
+    /// `--plot`: the chart written to its file.
+    fn pictures(&self, report: &qdot::AnyReport) -> Result<(), qdot::Diagnostic> {
+        let (Some(path), qdot::AnyReport::Floquet(r)) = (&self.plot, report) else {
+            return Ok(());
+        };
+        qdot::drawing::floquet::svg(&r.result, &base_name(&self.file))
             .map_err(|e| format!("cannot draw the chart: {e}"))
             .and_then(|svg| {
                 std::fs::write(path, svg).map_err(|e| format!("cannot write `{path}`: {e}"))
-            });
-        if let Err(e) = drawn {
-            return report.fail(&qdot::Diagnostic::global(e), "");
-        }
+            })
+            .map_err(qdot::Diagnostic::global)
     }
-    emit(&match o.output.as_str() {
-        "json" => render::json(&run),
-        "csv" => render::csv(&run),
-        _ => render::text(&run),
-    });
-    ExitCode::SUCCESS
-}
-
-/// `cycle --plot` and `--animate`: the pictures written to their files.
-fn cycle_pictures(
-    run: &qdot::simulate::cycle::CycleRun,
-    title: &str,
-    o: &CycleArgs,
-) -> Result<(), qdot::Diagnostic> {
-    let write = |path: &str, text: &str| {
-        std::fs::write(path, text)
-            .map_err(|e| qdot::Diagnostic::global(format!("cannot write `{path}`: {e}")))
-    };
-    if let Some(path) = &o.plot {
-        let svg =
-            qdot::drawing::reaction_diagrams(&run.table, title, run.degrees).map_err(|e| {
-                qdot::Diagnostic::global(format!("cannot draw the reaction diagrams: {e}"))
-            })?;
-        write(path, &svg)?;
-    }
-    if let Some(path) = &o.animate {
-        let page = if path.ends_with(".svg") {
-            qdot::drawing::animation_svg(&run.table, title)
-        } else {
-            qdot::drawing::animation_html(&run.table, title, run.degrees)
-        };
-        write(path, &page)?;
-    }
-    Ok(())
 }
 
 /// A file's name without its folders and extension: the default title of

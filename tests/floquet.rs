@@ -456,7 +456,7 @@ fn refusals_say_why() {
     );
     refused(
         &[MATHIEU, "--over", "delta=0:1:3,eps=0:1", "--set", "eps=1"],
-        "error: `--over delta=0:1:3,eps=0:1`: `eps=0:1`: the range is FROM:TO:COUNT\n  = hint: --over NAME=FROM:TO:COUNT, or two of them for a chart: --over \"delta=-1:3:81,eps=0:2:41\"\n",
+        "error: `--over delta=0:1:3,eps=0:1`: `eps=0:1`: 2 parts after `=`, and it takes 3 (FROM:TO:COUNT)\n  = hint: --over NAME=FROM:TO:COUNT, or two of them for a chart: --over \"delta=-1:3:81,eps=0:2:41\"\n",
     );
     refused(
         &[MATHIEU, "--over", "delta=0:1:1001,eps=0:1:1000"],

@@ -69,6 +69,7 @@ mod stability_verdicts;
 mod steady;
 mod stress;
 mod structured;
+mod studies;
 mod sweep;
 mod sympy_fixtures;
 mod work_precision;

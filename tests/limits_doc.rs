@@ -1,12 +1,21 @@
-//! The limits have one source of truth, crates/exact/src/limits.rs: every integer limit
-//! there appears, with its value, in README's "Limits" section and in the
-//! book's limits page.
+//! The limits have one table, README's "Limits" section (and the book's
+//! limits page): every integer limit appears there with its value. The
+//! engine's are in crates/exact/src/limits.rs; a command's live with its
+//! code (the `--over` grids' with their reader in scene/given.rs, the
+//! cycle's friction iterations in cycle/friction.rs).
 
-/// `(NAME, value)` for every `pub const NAME: int = value;` of limits.rs.
+/// Where the limits are defined.
+const SOURCES: [&str; 3] = [
+    include_str!("../crates/exact/src/limits.rs"),
+    include_str!("../crates/mechanics/src/scene/given.rs"),
+    include_str!("../crates/compile/src/cycle/friction.rs"),
+];
+
+/// `(NAME, value)` for every `pub const NAME: int = value;` of the
+/// limits' sources.
 fn limits() -> Vec<(String, u64)> {
-    let src = include_str!("../crates/exact/src/limits.rs");
     let mut out = Vec::new();
-    for line in src.lines() {
+    for line in SOURCES.iter().flat_map(|src| src.lines()) {
         let Some(rest) = line.strip_prefix("pub const ") else {
             continue;
         };
@@ -34,6 +43,13 @@ fn grouped(n: u64) -> String {
 fn every_limit_is_documented_with_its_value() {
     let all = limits();
     assert!(all.len() >= 8, "{all:?}");
+    for found in [
+        "MAX_GRID_POINTS",
+        "MAX_FRICTION_ITERATIONS",
+        "MAX_SWEEP_RUNS",
+    ] {
+        assert!(all.iter().any(|(n, _)| n == found), "{found}: {all:?}");
+    }
     let readme = include_str!("../README.md");
     let section = &readme[readme.find("## Limits").expect("a Limits section")..];
     let section = &section[..section[3..].find("\n## ").map_or(section.len(), |i| i + 3)];

@@ -17,8 +17,16 @@ pub(super) fn run_scene(
     opts: &CommandOptions,
 ) -> Result<AnyReport, Diagnostic> {
     // `equilibrium` and `modes` check their `--set` themselves (they are
-    // also called directly, by `app::equilibria` and `app::modes`)
-    if !matches!(cmd, Command::Equilibrium | Command::Modes) {
+    // also called directly, by `app::equilibria` and `app::modes`); the
+    // numeric studies check theirs as they read them
+    if !matches!(
+        cmd,
+        Command::Equilibrium
+            | Command::Modes
+            | Command::Cycle
+            | Command::Response
+            | Command::Floquet
+    ) {
         crate::scene::given::parameter_signs(scene, &opts.set)?;
     }
     Ok(match cmd {
@@ -46,11 +54,14 @@ pub(super) fn run_scene(
             ))
         }
         Command::Check => AnyReport::Check(report(ctx, scene, scene.dimension_report()?)),
+        Command::Cycle => AnyReport::Cycle(super::studies::cycle(ctx, scene, opts)?),
+        Command::Response => AnyReport::Response(super::studies::response(ctx, scene, opts)?),
+        Command::Floquet => AnyReport::Floquet(super::studies::floquet(ctx, scene, opts)?),
     })
 }
 
 /// `result` as a report on `scene`, with the scene's warnings.
-fn report<T>(ctx: &Context, scene: &Arc<Scene>, result: T) -> Report<T> {
+pub(super) fn report<T>(ctx: &Context, scene: &Arc<Scene>, result: T) -> Report<T> {
     Report::new(
         result,
         Arc::clone(scene),

@@ -22,6 +22,11 @@ pub use report::{
     HamiltonReport, IntegralsReport, LatexReport, LatexRequest, ModesReport, Oscillations, Report,
     SolveReport, Solved,
 };
+pub use report::{
+    CycleReport, CycleRun, FloquetPoint, FloquetReport, FloquetRun, FrequencyResponse,
+    ResponseReport,
+};
+pub use studies::parse_over;
 
 use crate::diag::Diagnostic;
 use crate::scene::Scene;
@@ -50,11 +55,22 @@ pub enum Command {
     Hamilton,
     /// `qdot integrals`: cyclic coordinates, the energy integral, Routh.
     Integrals,
+    // the numeric studies (options: `over`, `guess`, `columns`,
+    // `functions`, `period`, `max_steps` of [`CommandOptions`])
+    /// `qdot cycle`: a planar mechanism over its cycle (`over`: `t` or a
+    /// driven coordinate): positions, velocities, accelerations, reactions.
+    Cycle,
+    /// `qdot response`: the frequency response to the harmonic load,
+    /// exact, or swept over `Omega` numerically (`over`).
+    Response,
+    /// `qdot floquet`: the Floquet stability about a motion, at one point
+    /// or over one or two parameters (`over`).
+    Floquet,
 }
 
 impl Command {
     /// Every command, in the order the CLI's help lists them.
-    pub const ALL: [Command; 9] = [
+    pub const ALL: [Command; 12] = [
         Command::Derive,
         Command::Solve,
         Command::Forces,
@@ -64,6 +80,9 @@ impl Command {
         Command::Integrals,
         Command::Latex,
         Command::Check,
+        Command::Cycle,
+        Command::Response,
+        Command::Floquet,
     ];
 
     /// The command's name on the command line, in the REPL and in Python.
@@ -78,6 +97,9 @@ impl Command {
             Command::Check => "check",
             Command::Hamilton => "hamilton",
             Command::Integrals => "integrals",
+            Command::Cycle => "cycle",
+            Command::Response => "response",
+            Command::Floquet => "floquet",
         }
     }
 
@@ -87,12 +109,16 @@ impl Command {
     }
 
     /// The formats the command writes (`latex` writes LaTeX whatever the
-    /// format; `check` writes text or JSON).
+    /// format; `check` writes text or JSON; the numeric studies write
+    /// tables: CSV, JSON or text, `response` without `over` text or JSON).
     pub fn formats(self) -> &'static [Format] {
         match self {
             Command::Latex => &[Format::Latex],
             Command::Check => &[Format::Text, Format::Json],
-            _ => &Format::ALL,
+            Command::Cycle => &[Format::Csv, Format::Json, Format::Text],
+            Command::Response => &[Format::Text, Format::Json, Format::Csv],
+            Command::Floquet => &[Format::Text, Format::Csv, Format::Json],
+            _ => &[Format::Text, Format::Json, Format::Latex],
         }
     }
 }
@@ -106,11 +132,14 @@ pub enum Format {
     Json,
     /// amsmath LaTeX (see [`crate::output::latex`]).
     Latex,
+    /// Comma-separated values, every digit of each double (the numeric
+    /// studies' tables).
+    Csv,
 }
 
 impl Format {
     /// Every format.
-    pub const ALL: [Format; 3] = [Format::Text, Format::Json, Format::Latex];
+    pub const ALL: [Format; 4] = [Format::Text, Format::Json, Format::Latex, Format::Csv];
 
     /// The format's name (`--format NAME`).
     pub fn name(self) -> &'static str {
@@ -118,6 +147,7 @@ impl Format {
             Format::Text => "text",
             Format::Json => "json",
             Format::Latex => "latex",
+            Format::Csv => "csv",
         }
     }
 
@@ -129,7 +159,7 @@ impl Format {
     /// What the command line's help says of the format, if anything.
     pub fn about(self) -> Option<&'static str> {
         match self {
-            Format::Text | Format::Json => None,
+            Format::Text | Format::Json | Format::Csv => None,
             Format::Latex => Some("amsmath LaTeX, a fragment to \\input"),
         }
     }
@@ -140,7 +170,8 @@ impl Format {
 pub struct CommandOptions {
     /// `--set`: parameter values.
     pub set: Values,
-    /// `modes --at q=value,…`: the equilibrium (expressions in the scene).
+    /// `modes --at q=value,…`: the equilibrium (expressions in the scene);
+    /// `response --at`, `floquet --at`: the position linearized about.
     pub at: Option<String>,
     /// `modes --steady q,…` / `equilibrium --steady q,…`: the coordinates
     /// turning at constant rates (a steady motion).
@@ -162,6 +193,25 @@ pub struct CommandOptions {
     /// `--keep NAME,…`: definitions `derive` and `solve` keep as
     /// intermediates (the scene is then read structured).
     pub keep: Vec<String>,
+    // the numeric studies: cycle, response, floquet
+    /// `--over NAME=FROM:TO:COUNT` ([`parse_over`]): `cycle`'s varied
+    /// quantity (one axis, required), `response`'s `Omega` (none: the
+    /// exact response), `floquet`'s parameters (none: one point; one or
+    /// two axes: a table or a chart).
+    pub over: Vec<crate::scene::given::GridAxis>,
+    /// `cycle --guess th=-0.3,…` ([`crate::cycle::parse_guess`]):
+    /// coordinates of an assembly near the first position.
+    pub guess: Vec<(String, f64)>,
+    /// `cycle --columns O_x,M`: only these columns after the varied one
+    /// (`None`: every column).
+    pub columns: Option<Vec<String>>,
+    /// `floquet --function s=EXPR`: each given function of time.
+    pub functions: Vec<String>,
+    /// `floquet --period T`: the period, when it is not found.
+    pub period: Option<f64>,
+    /// `floquet --max-steps N`: the steps one integration over the period
+    /// may take (`None`: [`crate::limits::DEFAULT_MAX_STEPS`]).
+    pub max_steps: Option<usize>,
 }
 
 pub use crate::scene::Structure;
@@ -280,6 +330,7 @@ pub fn codegen(
 }
 
 mod commands;
+mod studies;
 
 #[cfg(test)]
 mod tests {

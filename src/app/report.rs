@@ -160,6 +160,62 @@ pub type CheckReport = Report<DimensionReport>;
 /// `latex`'s report.
 pub type LatexReport = Report<LatexRequest>;
 
+// ---- the numeric studies: cycle, response, floquet ----
+
+/// `cycle`: a mechanism over its cycle.
+#[derive(Clone, Debug)]
+pub struct CycleRun {
+    /// The whole table (the pictures draw it).
+    pub table: crate::cycle::CycleTable,
+    /// Whether the varied quantity is an angle (shown in degrees; its
+    /// column holds radians).
+    pub degrees: bool,
+    /// The table with only the `--columns` asked for after the varied
+    /// one (what the text, CSV and JSON write), when they were.
+    pub shown: Option<crate::cycle::CycleTable>,
+}
+
+impl CycleRun {
+    /// The table the text, CSV and JSON write: [`CycleRun::shown`], else
+    /// the whole table.
+    pub fn shown(&self) -> &crate::cycle::CycleTable {
+        self.shown.as_ref().unwrap_or(&self.table)
+    }
+}
+
+/// `response`: the frequency response to the scene's harmonic load.
+#[derive(Clone, Debug)]
+pub enum FrequencyResponse {
+    /// Without `--over`: the exact receptance, with the small oscillations
+    /// it comes from.
+    Exact(Box<(Modes, crate::solve::response::Response)>),
+    /// With `--over Omega=…`: amplitude and phase swept numerically.
+    Swept(crate::simulate::response::ResponseTable),
+}
+
+/// One point of a Floquet grid: the varied parameters' values, and the
+/// analysis or why it failed.
+pub type FloquetPoint = (Vec<f64>, Result<crate::floquet::Floquet, String>);
+
+/// `floquet`: the Floquet stability at one point or over a grid.
+#[derive(Clone, Debug)]
+pub struct FloquetRun {
+    /// The linearized scene.
+    pub prepared: crate::floquet::Prepared,
+    /// The axes (empty for one point).
+    pub axes: Vec<crate::scene::given::GridAxis>,
+    /// Without axes, the one point; else every grid point, the first
+    /// axis varying fastest.
+    pub points: Vec<FloquetPoint>,
+}
+
+/// `cycle`'s report.
+pub type CycleReport = Report<CycleRun>;
+/// `response`'s report.
+pub type ResponseReport = Report<FrequencyResponse>;
+/// `floquet`'s report.
+pub type FloquetReport = Report<FloquetRun>;
+
 /// The report of any command ([`super::run`]).
 #[derive(Clone, Debug)]
 #[non_exhaustive]
@@ -182,6 +238,12 @@ pub enum AnyReport {
     Check(CheckReport),
     /// `latex`.
     Latex(LatexReport),
+    /// `cycle`.
+    Cycle(CycleReport),
+    /// `response`.
+    Response(ResponseReport),
+    /// `floquet`.
+    Floquet(FloquetReport),
 }
 
 impl AnyReport {
@@ -197,6 +259,9 @@ impl AnyReport {
             AnyReport::Integrals(_) => Command::Integrals,
             AnyReport::Check(_) => Command::Check,
             AnyReport::Latex(_) => Command::Latex,
+            AnyReport::Cycle(_) => Command::Cycle,
+            AnyReport::Response(_) => Command::Response,
+            AnyReport::Floquet(_) => Command::Floquet,
         }
     }
 
@@ -212,6 +277,9 @@ impl AnyReport {
             AnyReport::Integrals(r) => r.warnings(),
             AnyReport::Check(r) => r.warnings(),
             AnyReport::Latex(r) => r.warnings(),
+            AnyReport::Cycle(r) => r.warnings(),
+            AnyReport::Response(r) => r.warnings(),
+            AnyReport::Floquet(r) => r.warnings(),
         }
     }
 }

@@ -2,9 +2,9 @@
 //! parameters (the Ince–Strutt diagram for the Mathieu equation), one
 //! filled cell per grid point, or the largest |μ| against one parameter.
 
+use crate::app::FloquetRun;
 use crate::drawing::style::{self, PALETTE};
 use crate::floquet::Verdict;
-use crate::simulate::floquet::FloquetRun;
 use crate::simulate::plot::{pretty_column, tick_label, PlotError};
 use plotters::prelude::*;
 

@@ -19,10 +19,13 @@ use crate::expr::Expr;
 use crate::scene::Scene;
 use crate::solve::equilibrium::{self, Equilibria, Position, Values};
 
+pub mod cycle;
 mod dimensions;
+pub mod floquet;
 pub mod latex;
 mod modes;
 pub mod response;
+mod table;
 mod text;
 pub mod wire;
 
@@ -71,11 +74,16 @@ pub use crate::diag::too_large;
 /// `report` written in `fmt`, in the context it was computed in (its
 /// budget bounds what printing writes out).
 pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
+    let cmd = report.command();
+    if fmt == Format::Csv && !cmd.formats().contains(&fmt) {
+        return Err(not_written(cmd, fmt));
+    }
     match report {
         AnyReport::Derive(r) => in_context(r, |r| {
             let lag = &r.result.lagrange;
             let scene = r.scene();
             Ok(match fmt {
+                Format::Csv => return Err(not_written(cmd, fmt)),
                 Format::Text => text::dynamics_text(scene, lag, None, &[]),
                 Format::Json => scene_json(scene, DeriveJson::new(scene, lag))?,
                 Format::Latex => latex::write(scene, |w| {
@@ -92,6 +100,7 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
             let (names, q) = (&r.result.coordinates, &r.result.forces);
             let scene = r.scene();
             Ok(match fmt {
+                Format::Csv => return Err(not_written(cmd, fmt)),
                 Format::Text => forces_text(names, q),
                 Format::Latex => latex::write(scene, |w| w.forces(names, q)),
                 Format::Json => scene_json(scene, ForcesJson::new(scene, names, q))?,
@@ -100,6 +109,7 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
         AnyReport::Equilibrium(r) => in_context(r, |r| {
             let eq = &r.result;
             Ok(match fmt {
+                Format::Csv => return Err(not_written(cmd, fmt)),
                 Format::Text => equilibrium_text(eq),
                 Format::Json => scene_json(r.scene(), EquilibriumJson::new(eq))?,
                 Format::Latex => latex::write(r.scene(), |w| w.equilibrium(eq)),
@@ -109,6 +119,7 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
             let o = &r.result;
             let (md, set) = (&o.modes, &o.set);
             Ok(match fmt {
+                Format::Csv => return Err(not_written(cmd, fmt)),
                 Format::Text => modes_text(md, set, o.free.as_deref(), o.numeric.as_ref()),
                 Format::Json => scene_json(
                     r.scene(),
@@ -126,6 +137,7 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
         AnyReport::Hamilton(r) => in_context(r, |r| {
             let h = &r.result;
             Ok(match fmt {
+                Format::Csv => return Err(not_written(cmd, fmt)),
                 Format::Text => text::hamilton_text(h),
                 Format::Json => scene_json(r.scene(), HamiltonJson::new(h))?,
                 Format::Latex => latex::write(r.scene(), |w| {
@@ -137,6 +149,7 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
         AnyReport::Integrals(r) => in_context(r, |r| {
             let i = &r.result;
             Ok(match fmt {
+                Format::Csv => return Err(not_written(cmd, fmt)),
                 Format::Text => text::integrals_text(i),
                 Format::Json => scene_json(r.scene(), IntegralsJson::new(i))?,
                 Format::Latex => latex::write(r.scene(), |w| w.integrals(i)),
@@ -158,10 +171,40 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
             Ok(match fmt {
                 Format::Json => json_string(&CheckJson::new(r.scene(), &r.result)),
                 // `check` has no LaTeX: its text
-                Format::Text | Format::Latex => check_text(r.scene(), &r.result),
+                Format::Text | Format::Latex | Format::Csv => check_text(r.scene(), &r.result),
+            })
+        }),
+        AnyReport::Cycle(r) => in_context(r, |r| {
+            let run = &r.result;
+            Ok(match fmt {
+                Format::Csv => cycle::csv(run.shown()),
+                Format::Json => cycle::json(run.shown()),
+                Format::Text => cycle::text(run.shown(), run.degrees),
+                Format::Latex => return Err(not_written(cmd, fmt)),
+            })
+        }),
+        AnyReport::Response(r) => in_context(r, |r| response::render(&r.result, fmt)),
+        AnyReport::Floquet(r) => in_context(r, |r| {
+            Ok(match fmt {
+                Format::Text => floquet::text(&r.result),
+                Format::Csv => floquet::csv(&r.result),
+                Format::Json => floquet::json(&r.result),
+                Format::Latex => return Err(not_written(cmd, fmt)),
             })
         }),
     }
+}
+
+/// The error of a format `cmd` does not write.
+fn not_written(cmd: Command, fmt: Format) -> Diagnostic {
+    let names: Vec<&str> = cmd.formats().iter().map(|f| f.name()).collect();
+    Diagnostic::global(format!(
+        "`{}` writes {}, not {}",
+        cmd.name(),
+        names.join(", "),
+        fmt.name()
+    ))
+    .with_kind(crate::diag::ErrorKind::bad_option("--format"))
 }
 
 /// `f` on `report` within the report's context.
@@ -188,6 +231,7 @@ fn solve_output(
 ) -> Result<String, Diagnostic> {
     let (lag, reactions, blocks) = (&solved.dynamics, &solved.reactions, &solved.blocks);
     Ok(match fmt {
+        Format::Csv => return Err(not_written(Command::Solve, fmt)),
         Format::Text => {
             let mut out = match (lag, &solved.mechanism) {
                 (None, Some(m)) => {

@@ -1,19 +1,24 @@
-//! `qdot response FILE` without `--over`: the exact frequency response
-//! ([`crate::solve::response`]) as text or JSON.
+//! `qdot response`: without `--over` the exact frequency response
+//! ([`crate::solve::response`]) as text or JSON; with it the swept table
+//! ([`crate::simulate::response`]) as text, CSV or JSON.
 
+use super::table::{full, right_aligned, short};
 use super::{as_input, as_unicode};
 use crate::algebra::sign::Values;
-use crate::app::Context;
-use crate::diag::Diagnostic;
+use crate::app::{Command, Context, Format, FrequencyResponse};
+use crate::diag::{Diagnostic, ErrorKind};
 use crate::expr::Expr;
-use crate::scene::Scene;
+use crate::simulate::response::ResponseTable;
 use crate::solve::oscillations as osc;
-use crate::solve::response::{self, ForcedSystem, LoadPeak, Peak, Response, SingleDof};
+use crate::solve::response::{LoadPeak, Peak, Response, SingleDof, OMEGA};
 use serde::Serialize;
 
 /// The exact response of the scene `src` about `at` (`--at th=pi`, default
 /// every q = 0), signs decided with `set`, written as `json` or text; the
-/// work budget is `max_terms`.
+/// work budget is `max_terms`: [`crate::app::run`] of
+/// [`crate::app::Command::Response`], then [`super::render`] (kept for the
+/// fuzz targets).
+#[doc(hidden)]
 pub fn response_output(
     src: &str,
     at: Option<&str>,
@@ -21,20 +26,34 @@ pub fn response_output(
     max_terms: usize,
     json: bool,
 ) -> Result<String, Diagnostic> {
-    let scene = Scene::parse(src)?;
-    response::check_time_dependence(&scene)?;
-    crate::scene::given::parameter_signs(&scene, set)?;
-    crate::scene::given::set_names_are_parameters(&scene, set)?;
-    let ctx = Context::new().with_max_terms(max_terms).for_scene(&scene);
-    ctx.run(|| {
-        let at = at.map(|a| scene.coordinate_values(a)).transpose()?;
-        let md = osc::modes(&scene, at.as_deref(), set)?;
-        let r = response::response(ForcedSystem::from_modes(&md)?, set)?;
-        Ok(if json {
-            super::wire::json_string(&ResponseJson::new(&md, &r))
-        } else {
-            text(&md, &r)
-        })
+    use crate::app::{Command, CommandOptions, Format};
+    let opts = CommandOptions {
+        at: at.map(String::from),
+        set: set.clone(),
+        ..CommandOptions::default()
+    };
+    let ctx = Context::new().with_max_terms(max_terms);
+    let report = crate::app::run(&ctx, Command::Response, src, &opts)?;
+    super::render(&report, if json { Format::Json } else { Format::Text })
+}
+
+/// `response`'s report in `fmt`: the exact response as text or JSON, the
+/// swept one as text, CSV or JSON.
+pub(super) fn render(r: &FrequencyResponse, fmt: Format) -> Result<String, Diagnostic> {
+    Ok(match (r, fmt) {
+        (FrequencyResponse::Exact(e), Format::Text) => text(&e.0, &e.1),
+        (FrequencyResponse::Exact(e), Format::Json) => {
+            super::wire::json_string(&ResponseJson::new(&e.0, &e.1))
+        }
+        (FrequencyResponse::Swept(t), Format::Text) => swept_text(t),
+        (FrequencyResponse::Swept(t), Format::Json) => swept_json(t),
+        (FrequencyResponse::Swept(t), Format::Csv) => swept_csv(t),
+        (FrequencyResponse::Exact(_), Format::Csv) => {
+            return Err(Diagnostic::global("unknown output `csv`")
+                .with_hint("--output json, --output text (csv with --over)")
+                .with_kind(ErrorKind::bad_option("--output")))
+        }
+        (_, Format::Latex) => return Err(super::not_written(Command::Response, fmt)),
     })
 }
 
@@ -407,4 +426,151 @@ impl SingleDofJson {
         }
         j
     }
+}
+
+// ---- `response --over`: the swept table ----
+
+/// The column names after `Omega`: `|X_x|`, `phi_x` per coordinate.
+fn swept_columns(t: &ResponseTable) -> Vec<String> {
+    let mut c = vec![OMEGA.to_string()];
+    for q in &t.coordinates {
+        c.push(format!("amp_{q}"));
+        c.push(format!("phase_{q}"));
+    }
+    c
+}
+
+/// The table as CSV: Ω, then each coordinate's amplitude and phase
+/// (radians); an empty cell where A is singular.
+pub fn swept_csv(t: &ResponseTable) -> String {
+    let mut out = swept_columns(t).join(",");
+    out.push('\n');
+    for (k, w) in t.omega.iter().enumerate() {
+        out.push_str(&full(*w));
+        for j in 0..t.coordinates.len() {
+            for v in [t.amplitude[k][j], t.phase[k][j]] {
+                out.push(',');
+                out.push_str(&v.map(full).unwrap_or_default());
+            }
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// `response --over … --output json`.
+#[derive(serde::Serialize)]
+pub struct ResponseSweepJson<'a> {
+    /// The coordinates.
+    pub coordinates: &'a [String],
+    /// `Omega`, then `amp_q` and `phase_q` (radians) per coordinate q.
+    pub columns: Vec<String>,
+    /// One row per Ω, in the order of `columns`; null where
+    /// K − Ω²·M + i·Ω·C is singular.
+    pub rows: Vec<Vec<Option<f64>>>,
+    /// The undamped natural frequencies ω_i, ascending.
+    pub natural_frequencies: &'a [f64],
+    /// Why `natural_frequencies` is empty, or null.
+    pub natural_frequencies_note: Option<&'a str>,
+    /// coordinate → the local maxima of its amplitude on the grid, each
+    /// `[Omega, amplitude]`.
+    pub peaks: serde_json::Map<String, serde_json::Value>,
+}
+
+/// The table as JSON (one line): [`ResponseSweepJson`].
+pub fn swept_json(t: &ResponseTable) -> String {
+    let rows = t
+        .omega
+        .iter()
+        .enumerate()
+        .map(|(k, w)| {
+            let mut r = vec![Some(*w)];
+            for j in 0..t.coordinates.len() {
+                r.push(t.amplitude[k][j]);
+                r.push(t.phase[k][j]);
+            }
+            r
+        })
+        .collect();
+    let mut peaks = serde_json::Map::new();
+    for (q, p) in t.coordinates.iter().zip(&t.peaks) {
+        peaks.insert(
+            q.clone(),
+            serde_json::json!(p.iter().map(|(w, a)| [*w, *a]).collect::<Vec<_>>()),
+        );
+    }
+    let wire = ResponseSweepJson {
+        coordinates: &t.coordinates,
+        columns: swept_columns(t),
+        rows,
+        natural_frequencies: &t.natural_frequencies,
+        natural_frequencies_note: t.natural_note.as_deref(),
+        peaks,
+    };
+    serde_json::to_string(&wire).unwrap_or_default()
+}
+
+/// 6 significant digits at any scale: `short` but for values below 1e-12,
+/// which an amplitude or a frequency may be (k = 1e155: |x| = 1e-155).
+fn significant(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || x.abs() >= 1e-12 {
+        return short(x);
+    }
+    let s = format!("{x:.5e}");
+    let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
+    let m = m.trim_end_matches('0').trim_end_matches('.');
+    format!("{m}e{e}")
+}
+
+/// The table for reading: a header with the natural frequencies and the
+/// peaks, then Ω, |X_j| and φ_j in degrees, 6 significant digits.
+pub fn swept_text(t: &ResponseTable) -> String {
+    let mut out = String::new();
+    let pretty = |q: &str| crate::expr::print::pretty_name(q, 0);
+    match &t.natural_note {
+        None => out.push_str(&format!(
+            "natural frequencies (undamped): {}\n",
+            if t.natural_frequencies.is_empty() {
+                "none".to_string()
+            } else {
+                t.natural_frequencies
+                    .iter()
+                    .map(|w| format!("ω = {}", significant(*w)))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            }
+        )),
+        Some(why) => out.push_str(&format!("natural frequencies: {why}\n")),
+    }
+    for (q, p) in t.coordinates.iter().zip(&t.peaks) {
+        let list: Vec<String> = p
+            .iter()
+            .map(|(w, a)| format!("|X| = {} at Ω = {}", significant(*a), significant(*w)))
+            .collect();
+        out.push_str(&format!(
+            "peaks of {} on the grid: {}\n",
+            pretty(q),
+            if list.is_empty() {
+                "none".to_string()
+            } else {
+                list.join(", ")
+            }
+        ));
+    }
+    let mut header = vec!["Ω".to_string()];
+    for q in &t.coordinates {
+        header.push(format!("|{}|", pretty(q)));
+        header.push(format!("φ({}) deg", pretty(q)));
+    }
+    let mut cells = vec![header];
+    for (k, w) in t.omega.iter().enumerate() {
+        let mut line = vec![significant(*w)];
+        for j in 0..t.coordinates.len() {
+            line.push(t.amplitude[k][j].map_or("∞".into(), significant));
+            line.push(t.phase[k][j].map_or("—".into(), |p| short(p.to_degrees())));
+        }
+        cells.push(line);
+    }
+    out.push_str(&right_aligned(&cells));
+    out
 }

@@ -557,7 +557,8 @@ impl Session {
     fn show_value(&self, name: Option<&str>, v: &Value, layout: Layout) -> String {
         let layout = &layout;
         match self.format {
-            Format::Text => {
+            // a value has no table: CSV shows it as text
+            Format::Text | Format::Csv => {
                 let body = match v {
                     Value::Scalar(e) => layout.text(e),
                     Value::Vector(c) => format!(

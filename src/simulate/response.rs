@@ -11,14 +11,14 @@
 //! of every coordinate, the undamped natural frequencies and the sweep's
 //! resonance peaks (local maxima of |X_j| on the grid).
 
-use super::cycle::short;
 use crate::algebra::sign::Values;
 use crate::cycle::Over;
 use crate::diag::{Diagnostic, ErrorKind};
-use crate::engine::dense::{solve_complex_scaled, Complex, Lu};
+use qdot_ode::dense::{solve_complex_scaled, Complex, Lu};
 use crate::expr::atom::{self, Atom};
 use crate::expr::Expr;
 use crate::poly::Var;
+use crate::scene::given::{parse_ranges, RESPONSE_OVER};
 use crate::solve::response::{natural_frequencies, ForcedSystem, OMEGA};
 use qdot_compile::compile::{compile_with, Program};
 use rustc_hash::FxHashMap;
@@ -55,19 +55,25 @@ pub struct CompiledResponse {
     coordinates: Vec<String>,
 }
 
-/// `--over` of `qdot response`: the varied quantity must be Ω.
+/// `--over` of `qdot response` ([`crate::scene::given::parse_ranges`]
+/// with [`RESPONSE_OVER`]): the varied quantity must be Ω.
 pub fn parse_over(s: &str) -> Result<Over, Diagnostic> {
-    const HINT: &str = "--over Omega=0:3:600: the first and last frequencies, and how many";
-    let over = Over::parse(s).map_err(|d| d.with_hint(HINT))?;
+    let over = parse_ranges(&RESPONSE_OVER, s)?.remove(0);
+    check_axis(&over, s)?;
+    Ok(over)
+}
+
+/// An error unless `over` (written `written`) varies Ω.
+pub fn check_axis(over: &Over, written: &str) -> Result<(), Diagnostic> {
     if over.name != OMEGA && over.name != "Ω" {
         return Err(Diagnostic::global(format!(
-            "`--over {s}`: `qdot response` varies the forcing frequency, `Omega`, not `{}`",
+            "`--over {written}`: `qdot response` varies the forcing frequency, `Omega`, not `{}`",
             over.name
         ))
-        .with_hint(HINT)
+        .with_hint(RESPONSE_OVER.hint)
         .with_kind(ErrorKind::bad_option("--over")));
     }
-    Ok(over)
+    Ok(())
 }
 
 impl CompiledResponse {
@@ -205,191 +211,38 @@ fn local_maxima(w: &[f64], a: &[Option<f64>]) -> Vec<(f64, f64)> {
     out
 }
 
-/// Solve A·x = b in place for complex A (n×n, row-major, re/im
-/// interleaved) and b (re/im interleaved) by the equilibrated complex LU
-/// of [`crate::engine::dense::solve_complex_scaled`]; false when A is
-/// singular or a value is not finite.
-pub fn complex_lu_solve(a: &mut [f64], b: &mut [f64], n: usize) -> bool {
-    if a.len() < 2 * n * n || b.len() < 2 * n {
-        return false;
-    }
-    let mut lu = Lu::new(n, Complex::new(0.0, 0.0));
-    for (z, p) in lu.a.iter_mut().zip(a.chunks_exact(2)) {
-        *z = Complex::new(p[0], p[1]);
-    }
-    let mut x: Vec<Complex<f64>> = b[..2 * n]
-        .chunks_exact(2)
-        .map(|p| Complex::new(p[0], p[1]))
-        .collect();
-    let ok = solve_complex_scaled(&mut lu, &mut x).is_ok();
-    for (p, z) in b.chunks_exact_mut(2).zip(&x) {
-        p[0] = z.re;
-        p[1] = z.im;
-    }
-    ok && b.iter().all(|v| v.is_finite())
-}
-
-/// The scene `src` linearized about `at` (`--at th=pi`) and swept over `over` at the
-/// values `set`.
+/// The scene `src` linearized about `at` (`--at th=pi`) and swept over
+/// `over` at the values `set`: [`crate::app::run`] of
+/// [`crate::app::Command::Response`] (kept for the Python module and the
+/// fuzz targets).
+#[doc(hidden)]
 pub fn sweep(
     src: &str,
     at: Option<&str>,
     set: &Values,
     over: &Over,
 ) -> Result<ResponseTable, Diagnostic> {
-    let scene = crate::scene::Scene::parse(src)?;
-    crate::scene::given::set_names_are_parameters(&scene, set)?;
-    let at = at.map(|a| scene.coordinate_values(a)).transpose()?;
-    let sys = ForcedSystem::of_scene(&scene, at.as_deref())?;
-    Ok(CompiledResponse::new(&sys, set)?.run(over))
-}
-
-/// A value as CSV and JSON print it: every digit of the double.
-fn full(x: f64) -> String {
-    format!("{x:.17e}")
-}
-
-/// The column names after `Omega`: `|X_x|`, `phi_x` per coordinate.
-fn columns(t: &ResponseTable) -> Vec<String> {
-    let mut c = vec![OMEGA.to_string()];
-    for q in &t.coordinates {
-        c.push(format!("amp_{q}"));
-        c.push(format!("phase_{q}"));
-    }
-    c
-}
-
-/// The table as CSV: Ω, then each coordinate's amplitude and phase
-/// (radians); an empty cell where A is singular.
-pub fn csv(t: &ResponseTable) -> String {
-    let mut out = columns(t).join(",");
-    out.push('\n');
-    for (k, w) in t.omega.iter().enumerate() {
-        out.push_str(&full(*w));
-        for j in 0..t.coordinates.len() {
-            for v in [t.amplitude[k][j], t.phase[k][j]] {
-                out.push(',');
-                out.push_str(&v.map(full).unwrap_or_default());
-            }
-        }
-        out.push('\n');
-    }
-    out
-}
-
-/// `response --over … --output json`.
-#[derive(serde::Serialize)]
-pub struct ResponseSweepJson<'a> {
-    /// The coordinates.
-    pub coordinates: &'a [String],
-    /// `Omega`, then `amp_q` and `phase_q` (radians) per coordinate q.
-    pub columns: Vec<String>,
-    /// One row per Ω, in the order of `columns`; null where
-    /// K − Ω²·M + i·Ω·C is singular.
-    pub rows: Vec<Vec<Option<f64>>>,
-    /// The undamped natural frequencies ω_i, ascending.
-    pub natural_frequencies: &'a [f64],
-    /// Why `natural_frequencies` is empty, or null.
-    pub natural_frequencies_note: Option<&'a str>,
-    /// coordinate → the local maxima of its amplitude on the grid, each
-    /// `[Omega, amplitude]`.
-    pub peaks: serde_json::Map<String, serde_json::Value>,
-}
-
-/// The table as JSON (one line): [`ResponseSweepJson`].
-pub fn json(t: &ResponseTable) -> String {
-    let rows = t
-        .omega
-        .iter()
-        .enumerate()
-        .map(|(k, w)| {
-            let mut r = vec![Some(*w)];
-            for j in 0..t.coordinates.len() {
-                r.push(t.amplitude[k][j]);
-                r.push(t.phase[k][j]);
-            }
-            r
-        })
-        .collect();
-    let mut peaks = serde_json::Map::new();
-    for (q, p) in t.coordinates.iter().zip(&t.peaks) {
-        peaks.insert(
-            q.clone(),
-            serde_json::json!(p.iter().map(|(w, a)| [*w, *a]).collect::<Vec<_>>()),
-        );
-    }
-    let wire = ResponseSweepJson {
-        coordinates: &t.coordinates,
-        columns: columns(t),
-        rows,
-        natural_frequencies: &t.natural_frequencies,
-        natural_frequencies_note: t.natural_note.as_deref(),
-        peaks,
+    use crate::app::{self, AnyReport, Command, CommandOptions, Context, FrequencyResponse};
+    let opts = CommandOptions {
+        at: at.map(String::from),
+        set: set.clone(),
+        over: vec![over.clone()],
+        ..CommandOptions::default()
     };
-    serde_json::to_string(&wire).unwrap_or_default()
+    match app::run(
+        &Context::new().with_max_terms(crate::budget::limit()),
+        Command::Response,
+        src,
+        &opts,
+    )? {
+        AnyReport::Response(r) => match r.result {
+            FrequencyResponse::Swept(t) => Ok(t),
+            FrequencyResponse::Exact(_) => Err(Diagnostic::global("no sweep")),
+        },
+        _ => Err(Diagnostic::global("no sweep")),
+    }
 }
 
-/// 6 significant digits at any scale: `short` but for values below 1e-12,
-/// which an amplitude or a frequency may be (k = 1e155: |x| = 1e-155).
-fn significant(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() || x.abs() >= 1e-12 {
-        return short(x);
-    }
-    let s = format!("{x:.5e}");
-    let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
-    let m = m.trim_end_matches('0').trim_end_matches('.');
-    format!("{m}e{e}")
-}
-
-/// The table for reading: a header with the natural frequencies and the
-/// peaks, then Ω, |X_j| and φ_j in degrees, 6 significant digits.
-pub fn text(t: &ResponseTable) -> String {
-    let mut out = String::new();
-    let pretty = |q: &str| crate::expr::print::pretty_name(q, 0);
-    match &t.natural_note {
-        None => out.push_str(&format!(
-            "natural frequencies (undamped): {}\n",
-            if t.natural_frequencies.is_empty() {
-                "none".to_string()
-            } else {
-                t.natural_frequencies
-                    .iter()
-                    .map(|w| format!("ω = {}", significant(*w)))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            }
-        )),
-        Some(why) => out.push_str(&format!("natural frequencies: {why}\n")),
-    }
-    for (q, p) in t.coordinates.iter().zip(&t.peaks) {
-        let list: Vec<String> = p
-            .iter()
-            .map(|(w, a)| format!("|X| = {} at Ω = {}", significant(*a), significant(*w)))
-            .collect();
-        out.push_str(&format!(
-            "peaks of {} on the grid: {}\n",
-            pretty(q),
-            if list.is_empty() {
-                "none".to_string()
-            } else {
-                list.join(", ")
-            }
-        ));
-    }
-    let mut header = vec!["Ω".to_string()];
-    for q in &t.coordinates {
-        header.push(format!("|{}|", pretty(q)));
-        header.push(format!("φ({}) deg", pretty(q)));
-    }
-    let mut cells = vec![header];
-    for (k, w) in t.omega.iter().enumerate() {
-        let mut line = vec![significant(*w)];
-        for j in 0..t.coordinates.len() {
-            line.push(t.amplitude[k][j].map_or("∞".into(), significant));
-            line.push(t.phase[k][j].map_or("—".into(), |p| short(p.to_degrees())));
-        }
-        cells.push(line);
-    }
-    out.push_str(&super::cycle::right_aligned(&cells));
-    out
-}
+pub use crate::output::response::{
+    swept_csv as csv, swept_json as json, swept_text as text, ResponseSweepJson,
+};

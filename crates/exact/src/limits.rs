@@ -136,19 +136,6 @@ pub const MAX_POINTS: usize = 1_000_000;
 /// keeps its summary (final state, max |q|, energy drift) in memory.
 pub const MAX_SWEEP_RUNS: usize = 1_000_000;
 
-/// The most grid points of one `qdot floquet --over`: each keeps its
-/// monodromy matrix and multipliers in memory until printed.
-pub const MAX_FLOQUET_POINTS: usize = 1_000_000;
-
-/// The most positions of one `qdot cycle` (`--over NAME=FROM:TO:COUNT`):
-/// each row keeps its values and the drawing's points until printed.
-pub const MAX_CYCLE_POSITIONS: usize = 1_000_000;
-
-/// The most steps of Newton's method on the reactions of a mechanism's
-/// pins with Coulomb friction at one position (sliders and a single pin
-/// are solved exactly); past it the row says it did not converge.
-pub const MAX_FRICTION_ITERATIONS: u32 = 200;
-
 /// The default of `qdot simulate --max-steps` and `qdot floquet --max-steps`: steps (accepted and
 /// rejected) before a run gives up with "too many steps". A second or two
 /// of integration for small systems; raise it for long runs.

@@ -16,7 +16,11 @@ use super::scale::Scales;
 use super::table::JointKind;
 use nalgebra::{DMatrix, DVector};
 
-use crate::limits::MAX_FRICTION_ITERATIONS;
+/// The most steps of Newton's method on the reactions of a mechanism's
+/// pins with Coulomb friction at one position (sliders and a single pin
+/// are solved exactly); past it the row says it did not converge.
+pub const MAX_FRICTION_ITERATIONS: u32 = 200;
+
 /// A relative velocity below this fraction of the mechanism's velocity
 /// (in natural units: radians, or the mechanism's size, per unit time)
 /// is rest: friction's sense is undefined there.

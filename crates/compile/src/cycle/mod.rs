@@ -13,6 +13,7 @@ mod positions;
 mod scale;
 mod table;
 
+pub use friction::MAX_FRICTION_ITERATIONS;
 pub use table::*;
 
 use crate::diag::{Diagnostic, ErrorKind};
@@ -35,81 +36,12 @@ pub struct CycleRequest {
 
 /// `--over NAME=FROM:TO:COUNT`: `t` or a driven coordinate, from FROM to
 /// TO in COUNT positions (both ends included), in the scene's units.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Over {
-    /// `t` or a driven coordinate.
-    pub name: String,
-    /// The first value.
-    pub from: f64,
-    /// The last value.
-    pub to: f64,
-    /// How many positions (≥ 2, or 1 for a single position at FROM).
-    pub count: usize,
-}
+pub use crate::scene::given::GridAxis as Over;
 
-pub use crate::limits::MAX_CYCLE_POSITIONS;
+/// The most positions of one `qdot cycle`: the one limit of `--over` grids.
+pub use crate::scene::given::MAX_GRID_POINTS as MAX_CYCLE_POSITIONS;
 
-impl Over {
-    /// Parse `phi=0:360deg:73`: `deg` (or `°`) and `pi` are allowed after
-    /// a number (`2pi`, `pi`, `-90deg`).
-    pub fn parse(s: &str) -> Result<Over, Diagnostic> {
-        let bad = |why: String| {
-            Diagnostic::global(format!("`--over {s}`: {why}"))
-                .with_hint("write the varied quantity, its first and last values and the number of positions: --over phi=0:360deg:73 or --over t=0:2:101")
-                .with_kind(ErrorKind::bad_option("--over"))
-        };
-        let (name, range) = s.split_once('=').ok_or_else(|| bad("no `=`".into()))?;
-        let parts: Vec<&str> = range.split(':').collect();
-        let [from, to, count] = parts[..] else {
-            return Err(bad(format!(
-                "{} parts after `=`, and it takes 3 (FROM:TO:COUNT)",
-                parts.len()
-            )));
-        };
-        let count: usize = count
-            .trim()
-            .parse()
-            .map_err(|_| bad(format!("`{count}` is not a number of positions")))?;
-        if count == 0 || count > MAX_CYCLE_POSITIONS {
-            return Err(bad(format!(
-                "{count} positions: give 1 to {MAX_CYCLE_POSITIONS}"
-            )));
-        }
-        Ok(Over {
-            name: name.trim().to_string(),
-            from: angle_value(from).ok_or_else(|| bad(format!("`{from}` is not a number")))?,
-            to: angle_value(to).ok_or_else(|| bad(format!("`{to}` is not a number")))?,
-            count,
-        })
-    }
-
-    /// The k-th value.
-    pub fn value(&self, k: usize) -> f64 {
-        if self.count == 1 {
-            return self.from;
-        }
-        self.from + (self.to - self.from) * k as f64 / (self.count - 1) as f64
-    }
-}
-
-/// `360deg` → 2π, `2pi` → 2π, `pi` → π, `0.5` → 0.5.
-fn angle_value(s: &str) -> Option<f64> {
-    let s = s.trim();
-    let (number, scale) = if let Some(n) = s.strip_suffix("deg").or_else(|| s.strip_suffix('°')) {
-        (n.trim(), std::f64::consts::PI / 180.0)
-    } else if let Some(n) = s.strip_suffix("pi").or_else(|| s.strip_suffix('π')) {
-        (n.trim(), std::f64::consts::PI)
-    } else {
-        (s, 1.0)
-    };
-    let x: f64 = match number {
-        "" => 1.0,
-        "-" => -1.0,
-        n => n.trim_end_matches('*').parse().ok()?,
-    };
-    let v = x * scale;
-    v.is_finite().then_some(v)
-}
+use crate::scene::given::range_value as angle_value;
 
 /// Analyse the mechanism of `scene` over `req.over`.
 pub fn cycle(scene: &Scene, req: &CycleRequest) -> Result<CycleTable, Diagnostic> {

@@ -219,6 +219,32 @@ impl Layout {
 }
 
 impl CycleTable {
+    /// The table with only the columns `names` after the varied one, in
+    /// the order given (`--columns O_x,O_y,M`).
+    pub fn select(&self, names: &[String]) -> Result<CycleTable, crate::diag::Diagnostic> {
+        let mut keep = vec![0];
+        for name in names {
+            let Some(k) = self.columns.iter().skip(1).position(|c| c == name) else {
+                return Err(crate::diag::Diagnostic::global(format!(
+                    "`--columns {name}`: the table has no column `{name}`"
+                ))
+                .with_hint(format!("the columns are {}", self.columns[1..].join(", ")))
+                .with_kind(crate::diag::ErrorKind::bad_option("--columns")));
+            };
+            keep.push(k + 1);
+        }
+        let mut out = self.clone();
+        out.columns = keep.iter().map(|&k| self.columns[k].clone()).collect();
+        for row in &mut out.rows {
+            row.values = keep.iter().map(|&k| row.values[k]).collect();
+            if let Some(l) = row.limits.as_mut() {
+                l.minus = keep.iter().map(|&k| l.minus[k]).collect();
+                l.plus = keep.iter().map(|&k| l.plus[k]).collect();
+            }
+        }
+        Ok(out)
+    }
+
     /// The table with every stick row written as two rows at the same
     /// position, its two limits of sliding (the one that continues the
     /// previous row first), each row's note saying which: what a

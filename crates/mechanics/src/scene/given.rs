@@ -535,3 +535,256 @@ impl Scene {
         Ok((q0, v0))
     }
 }
+
+/// One axis of a grid, `NAME=FROM:TO:COUNT`: COUNT evenly spaced values of
+/// NAME from FROM to TO, both ends included (`--over` of `cycle`,
+/// `response` and `floquet`).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct GridAxis {
+    /// The varied name: a parameter, a driven coordinate, `t` or `Omega`.
+    pub name: String,
+    /// The first value.
+    pub from: f64,
+    /// The last value.
+    pub to: f64,
+    /// How many values (1: FROM alone).
+    pub count: usize,
+}
+
+impl GridAxis {
+    /// Parse one range as `cycle --over` takes it (`phi=0:360deg:73`):
+    /// [`parse_ranges`] with [`CYCLE_OVER`].
+    pub fn parse(s: &str) -> Result<GridAxis, Diagnostic> {
+        let mut axes = parse_ranges(&CYCLE_OVER, s)?;
+        Ok(axes.remove(0))
+    }
+
+    /// The k-th value.
+    pub fn value(&self, k: usize) -> f64 {
+        if self.count <= 1 {
+            return self.from;
+        }
+        self.from + (self.to - self.from) * k as f64 / (self.count - 1) as f64
+    }
+}
+
+/// The most points of one `--over` grid: `cycle`'s positions, `response`'s
+/// frequencies, `floquet`'s grid points. Each row is kept in memory until
+/// printed.
+pub const MAX_GRID_POINTS: usize = 1_000_000;
+
+/// How a range option is written and bounded, for [`parse_ranges`].
+#[derive(Clone, Copy, Debug)]
+pub struct RangeSyntax {
+    /// `--over`, `--vary`.
+    pub option: &'static str,
+    /// The hint of every error: how the option is written.
+    pub hint: &'static str,
+    /// How many ranges one option may give, comma-separated.
+    pub max_ranges: usize,
+    /// The error when more are given: what varies.
+    pub too_many: &'static str,
+    /// Whether COUNT may be left out (`NAME=FROM:TO`: then the axis's
+    /// count is 0, for a random design to fill).
+    pub count_optional: bool,
+    /// The most points: the product of the counts.
+    pub max_points: usize,
+}
+
+/// `cycle --over phi=0:360deg:73`: `t` or a driven coordinate.
+pub const CYCLE_OVER: RangeSyntax = RangeSyntax {
+    option: "--over",
+    hint: "write the varied quantity, its first and last values and the number of positions: --over phi=0:360deg:73 or --over t=0:2:101",
+    max_ranges: 1,
+    too_many: "one quantity varies, not more",
+    count_optional: false,
+    max_points: MAX_GRID_POINTS,
+};
+
+/// `response --over Omega=0:3:600`: the forcing frequency.
+pub const RESPONSE_OVER: RangeSyntax = RangeSyntax {
+    hint: "--over Omega=0:3:600: the first and last frequencies, and how many",
+    ..CYCLE_OVER
+};
+
+/// `floquet --over delta=-1:3:81,eps=0:2:41`: one or two parameters.
+pub const FLOQUET_OVER: RangeSyntax = RangeSyntax {
+    hint:
+        "--over NAME=FROM:TO:COUNT, or two of them for a chart: --over \"delta=-1:3:81,eps=0:2:41\"",
+    max_ranges: 2,
+    too_many: "one or two parameters vary, not more",
+    ..CYCLE_OVER
+};
+
+/// `sweep --vary l=0.5:2:16` (one range a `--vary`; COUNT may be left out
+/// with `--samples`).
+pub const SWEEP_VARY: RangeSyntax = RangeSyntax {
+    option: "--vary",
+    hint: "--vary NAME=FROM:TO:COUNT, e.g. --vary \"l=0.5:2:16\" (COUNT may be left out with --samples)",
+    max_ranges: 1,
+    too_many: "one name varies per --vary",
+    count_optional: true,
+    max_points: crate::limits::MAX_SWEEP_RUNS,
+};
+
+/// The one reader of ranges and grids: `NAME=FROM:TO:COUNT`, or several
+/// comma-separated (a grid, the first varying fastest). FROM and TO are
+/// numbers, `deg` (or `°`) after one for degrees, `pi` (`2pi`, `-pi`), or
+/// constant expressions (`pi/2`, `sqrt(2)`, `1/3`); COUNT a whole number
+/// from 1 (FROM alone) to the syntax's limit, the product of the counts
+/// too.
+pub fn parse_ranges(syntax: &RangeSyntax, text: &str) -> Result<Vec<GridAxis>, Diagnostic> {
+    let error = |message: String, hint: &str| {
+        Diagnostic::global(message)
+            .with_hint(hint)
+            .with_kind(ErrorKind::bad_option(syntax.option))
+    };
+    let items = top_level_items(text);
+    let several = items.len() > 1;
+    let bad = |item: &str, why: String| {
+        let item = if several {
+            format!("`{}`: ", item.trim())
+        } else {
+            String::new()
+        };
+        error(
+            format!("`{} {text}`: {item}{why}", syntax.option),
+            syntax.hint,
+        )
+    };
+    if items.len() > syntax.max_ranges {
+        return Err(error(
+            format!("`{} {text}`: {}", syntax.option, syntax.too_many),
+            syntax.hint,
+        ));
+    }
+    let mut axes: Vec<GridAxis> = Vec::new();
+    for item in items {
+        let (name, range) = item
+            .split_once('=')
+            .ok_or_else(|| bad(item, "no `=`".into()))?;
+        let name = name.trim();
+        if name.is_empty() {
+            return Err(bad(item, "no name before `=`".into()));
+        }
+        let parts: Vec<&str> = range.split(':').map(str::trim).collect();
+        let takes = if syntax.count_optional {
+            "2 or 3 (FROM:TO or FROM:TO:COUNT)"
+        } else {
+            "3 (FROM:TO:COUNT)"
+        };
+        let (from, to, count) = match parts[..] {
+            [from, to, count] => (from, to, Some(count)),
+            [from, to] if syntax.count_optional => (from, to, None),
+            _ => {
+                return Err(bad(
+                    item,
+                    format!("{} parts after `=`, and it takes {takes}", parts.len()),
+                ))
+            }
+        };
+        let number =
+            |s: &str| range_value(s).ok_or_else(|| bad(item, format!("`{s}` is not a number")));
+        let (from, to) = (number(from)?, number(to)?);
+        let count = match count {
+            Some(c) => c
+                .parse::<usize>()
+                .ok()
+                .filter(|c| (1..=syntax.max_points).contains(c))
+                .ok_or_else(|| {
+                    bad(
+                        item,
+                        format!(
+                            "COUNT `{c}` must be a whole number from 1 to {}",
+                            crate::budget::grouped(syntax.max_points)
+                        ),
+                    )
+                })?,
+            None => 0,
+        };
+        if axes.iter().any(|a| a.name == name) {
+            return Err(error(
+                format!("`{} {name}`: `{name}` is varied twice", syntax.option),
+                "vary each parameter once",
+            ));
+        }
+        axes.push(GridAxis {
+            name: name.to_string(),
+            from,
+            to,
+            count,
+        });
+    }
+    let total = axes
+        .iter()
+        .try_fold(1usize, |t, a| t.checked_mul(a.count.max(1)));
+    match total {
+        Some(t) if t <= syntax.max_points => Ok(axes),
+        _ => Err(error(
+            format!(
+                "`{} {text}`: {} points, more than {}",
+                syntax.option,
+                total.map_or_else(|| "too many".to_string(), crate::budget::grouped),
+                crate::budget::grouped(syntax.max_points)
+            ),
+            syntax.hint,
+        )),
+    }
+}
+
+/// `text` split at its commas outside parentheses (an expression's
+/// `atan2(1, 2)` stays whole).
+fn top_level_items(text: &str) -> Vec<&str> {
+    let mut items = Vec::new();
+    let (mut depth, mut start) = (0i32, 0);
+    for (i, c) in text.char_indices() {
+        match c {
+            '(' | '[' => depth += 1,
+            ')' | ']' => depth -= 1,
+            ',' if depth == 0 => {
+                items.push(&text[start..i]);
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    items.push(&text[start..]);
+    items
+}
+
+/// A value of a range or a guess: `0.5`, `360deg` (or `°`) → 2π, `2pi`,
+/// `pi` → π, or a constant expression (`pi/2`, `sqrt(2)`); `None` for
+/// anything else, or a value beyond the doubles.
+pub fn range_value(s: &str) -> Option<f64> {
+    let s = s.trim();
+    let (body, scale) = match s.strip_suffix("deg").or_else(|| s.strip_suffix('°')) {
+        Some(n) => (n.trim(), std::f64::consts::PI / 180.0),
+        None => (s, 1.0),
+    };
+    let v = match body.parse::<f64>() {
+        Ok(x) => x,
+        Err(_) => match body.strip_suffix("pi").or_else(|| body.strip_suffix('π')) {
+            Some(n) => {
+                let x: f64 = match n.trim() {
+                    "" => 1.0,
+                    "-" => -1.0,
+                    n => match n.trim_end_matches('*').trim().parse() {
+                        Ok(x) => x,
+                        Err(_) => constant(body)? / std::f64::consts::PI,
+                    },
+                };
+                x * std::f64::consts::PI
+            }
+            None if body.is_empty() => 1.0,
+            None if body == "-" => -1.0,
+            None => constant(body)?,
+        },
+    } * scale;
+    v.is_finite().then_some(v)
+}
+
+/// A constant expression's value (`pi/2`, `sqrt(2)`): no names but `pi`.
+fn constant(text: &str) -> Option<f64> {
+    let e = Scene::default().expr(text).ok()?;
+    e.eval_f64(&|_| None)
+}
