@@ -1,12 +1,17 @@
-//! The limits have one source of truth, crates/exact/src/limits.rs: every integer limit
-//! there appears, with its value, in README's "Limits" section and in the
-//! book's limits page.
+//! Every integer limit is a `pub const` of crates/exact/src/limits.rs or
+//! of the command it bounds (listed in [`SOURCES`]); each appears, with
+//! its value, in README's "Limits" section and in the book's limits page.
 
-/// `(NAME, value)` for every `pub const NAME: int = value;` of limits.rs.
+/// The files that define limits: the exact crate's, and the commands'.
+const SOURCES: [&str; 2] = [
+    include_str!("../crates/exact/src/limits.rs"),
+    include_str!("../src/simulate/sweep.rs"),
+];
+
+/// `(NAME, value)` for every `pub const NAME: int = value;` of [`SOURCES`].
 fn limits() -> Vec<(String, u64)> {
-    let src = include_str!("../crates/exact/src/limits.rs");
     let mut out = Vec::new();
-    for line in src.lines() {
+    for line in SOURCES.iter().flat_map(|s| s.lines()) {
         let Some(rest) = line.strip_prefix("pub const ") else {
             continue;
         };
@@ -34,6 +39,11 @@ fn grouped(n: u64) -> String {
 fn every_limit_is_documented_with_its_value() {
     let all = limits();
     assert!(all.len() >= 8, "{all:?}");
+    // a command's own limit, beside the command
+    assert!(
+        all.contains(&("MAX_SWEEP_RUNS".to_string(), 1_000_000)),
+        "{all:?}"
+    );
     let readme = include_str!("../README.md");
     let section = &readme[readme.find("## Limits").expect("a Limits section")..];
     let section = &section[..section[3..].find("\n## ").map_or(section.len(), |i| i + 3)];

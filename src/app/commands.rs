@@ -18,7 +18,15 @@ pub(super) fn run_scene(
 ) -> Result<AnyReport, Diagnostic> {
     // `equilibrium` and `modes` check their `--set` themselves (they are
     // also called directly, by `app::equilibria` and `app::modes`)
-    if !matches!(cmd, Command::Equilibrium | Command::Modes) {
+    // (the numeric commands take any sign: a value is a number to compute with)
+    if !matches!(
+        cmd,
+        Command::Equilibrium
+            | Command::Modes
+            | Command::Simulate
+            | Command::Sweep
+            | Command::Codegen
+    ) {
         crate::scene::given::parameter_signs(scene, &opts.set)?;
     }
     Ok(match cmd {
@@ -46,11 +54,14 @@ pub(super) fn run_scene(
             ))
         }
         Command::Check => AnyReport::Check(report(ctx, scene, scene.dimension_report()?)),
+        Command::Simulate => AnyReport::Simulate(super::simulation::simulate(ctx, scene, opts)?),
+        Command::Sweep => AnyReport::Sweep(super::simulation::sweep(ctx, scene, opts)?),
+        Command::Codegen => AnyReport::Codegen(super::simulation::codegen(ctx, scene, opts)?),
     })
 }
 
 /// `result` as a report on `scene`, with the scene's warnings.
-fn report<T>(ctx: &Context, scene: &Arc<Scene>, result: T) -> Report<T> {
+pub(super) fn report<T>(ctx: &Context, scene: &Arc<Scene>, result: T) -> Report<T> {
     Report::new(
         result,
         Arc::clone(scene),

@@ -15,6 +15,7 @@
 
 mod context;
 pub mod report;
+mod simulation;
 
 pub use context::Context;
 pub use report::{
@@ -22,6 +23,10 @@ pub use report::{
     HamiltonReport, IntegralsReport, LatexReport, LatexRequest, ModesReport, Oscillations, Report,
     SolveReport, Solved,
 };
+pub use report::{
+    CodegenReport, GeneratedCode, SimulateReport, Simulation, SweepReport, SweepStudy,
+};
+pub use simulation::{thread_count, thread_pool, ProgressHook, SweepOptions};
 
 use crate::diag::Diagnostic;
 use crate::scene::Scene;
@@ -50,11 +55,18 @@ pub enum Command {
     Hamilton,
     /// `qdot integrals`: cyclic coordinates, the energy integral, Routh.
     Integrals,
+    // the numeric commands
+    /// `qdot simulate`: the exact equations compiled and integrated.
+    Simulate,
+    /// `qdot sweep`: many runs of one scene over a grid or random points.
+    Sweep,
+    /// `qdot codegen`: the equations of motion as source code.
+    Codegen,
 }
 
 impl Command {
     /// Every command, in the order the CLI's help lists them.
-    pub const ALL: [Command; 9] = [
+    pub const ALL: [Command; 12] = [
         Command::Derive,
         Command::Solve,
         Command::Forces,
@@ -64,6 +76,9 @@ impl Command {
         Command::Integrals,
         Command::Latex,
         Command::Check,
+        Command::Simulate,
+        Command::Sweep,
+        Command::Codegen,
     ];
 
     /// The command's name on the command line, in the REPL and in Python.
@@ -78,6 +93,9 @@ impl Command {
             Command::Check => "check",
             Command::Hamilton => "hamilton",
             Command::Integrals => "integrals",
+            Command::Simulate => "simulate",
+            Command::Sweep => "sweep",
+            Command::Codegen => "codegen",
         }
     }
 
@@ -87,11 +105,13 @@ impl Command {
     }
 
     /// The formats the command writes (`latex` writes LaTeX whatever the
-    /// format; `check` writes text or JSON).
+    /// format, `codegen` its language; `check` writes text or JSON; the
+    /// text of `simulate` and `sweep` is their table as CSV).
     pub fn formats(self) -> &'static [Format] {
         match self {
             Command::Latex => &[Format::Latex],
-            Command::Check => &[Format::Text, Format::Json],
+            Command::Check | Command::Simulate | Command::Sweep => &[Format::Text, Format::Json],
+            Command::Codegen => &[Format::Text],
             _ => &Format::ALL,
         }
     }
@@ -162,6 +182,17 @@ pub struct CommandOptions {
     /// `--keep NAME,…`: definitions `derive` and `solve` keep as
     /// intermediates (the scene is then read structured).
     pub keep: Vec<String>,
+    // the numeric commands
+    /// `simulate` and `sweep`: the run (`--t-end`, `--method`, `--init`,
+    /// …); its `set` is not read: the parameter values are
+    /// [`CommandOptions::set`].
+    pub simulate: crate::simulate::run::Request,
+    /// `sweep`: what varies, how, on how many threads.
+    pub sweep: SweepOptions,
+    /// `codegen`: the language, the form, the file named in the code; its
+    /// `set` is not read: the parameters made constants are
+    /// [`CommandOptions::set`].
+    pub codegen: crate::simulate::codegen::CodegenRequest,
 }
 
 pub use crate::scene::Structure;
@@ -176,6 +207,8 @@ pub fn run(
 ) -> Result<AnyReport, Diagnostic> {
     let (structure, keep) = match cmd {
         Command::Derive | Command::Solve => (opts.structure, opts.keep.as_slice()),
+        // a large body scene is simulated (and generated) from its intermediates
+        Command::Simulate | Command::Sweep | Command::Codegen => (Structure::Auto, &[][..]),
         // the generalized forces are expanded, the kinetic energy need not be
         Command::Forces => (Structure::Auto, &[][..]),
         _ => (Structure::Expanded, &[][..]),
@@ -241,19 +274,28 @@ pub fn integrals(ctx: &Context, src: &str) -> Result<IntegralsReport, Diagnostic
     on_scene(ctx, src, commands::integrals)
 }
 
-/// `simulate` on the scene source `src` (`qdot simulate`), within `ctx`'s
-/// budget.
+/// `simulate` on the scene source `src` (`qdot simulate`; `req.set` the
+/// parameter values), within `ctx`: the run of [`Command::Simulate`]'s
+/// report.
 pub fn simulate(
     ctx: &Context,
     src: &str,
     req: &crate::simulate::run::Request,
 ) -> Result<crate::simulate::run::Run, Diagnostic> {
-    ctx.run(|| crate::simulate::run::simulate(src, req))
+    let opts = CommandOptions {
+        set: req.set.clone(),
+        simulate: req.clone(),
+        ..CommandOptions::default()
+    };
+    let r = on_scene_as(ctx, src, Structure::Auto, |ctx, scene| {
+        simulation::simulate(ctx, scene, &opts)
+    })?;
+    Ok(r.result.run)
 }
 
 /// `sweep` on the scene source `src` (`qdot sweep`): `base` once per point
-/// of the design, within `ctx`'s budget (see
-/// [`crate::simulate::sweep::sweep`]).
+/// of the design, within `ctx` (see [`crate::simulate::sweep::sweep`]);
+/// `progress` is told the number of finished runs after each run.
 pub fn sweep(
     ctx: &Context,
     src: &str,
@@ -263,20 +305,39 @@ pub fn sweep(
     threads: usize,
     progress: &(dyn Fn(usize) + Sync),
 ) -> Result<crate::simulate::sweep::Sweep, Diagnostic> {
-    ctx.run(|| {
-        let prepared = crate::simulate::run::Prepared::new(src, &base.functions)?;
-        crate::simulate::sweep::sweep(&prepared, base, axes, design, threads, progress)
-    })
+    let o = SweepOptions {
+        axes: axes.to_vec(),
+        design,
+        threads,
+        progress: None,
+    };
+    let told = |done: usize, _: usize| {
+        if done > 0 {
+            progress(done);
+        }
+    };
+    let r = on_scene_as(ctx, src, Structure::Auto, |ctx, scene| {
+        simulation::sweep_study(ctx, scene, base.clone(), &o, &told)
+    })?;
+    Ok(r.result.sweep)
 }
 
-/// `codegen` on the scene source `src` (`qdot codegen`): the source code,
-/// within `ctx`'s budget.
+/// `codegen` on the scene source `src` (`qdot codegen`; `req.set` the
+/// constants): the source code, within `ctx`.
 pub fn codegen(
     ctx: &Context,
     src: &str,
     req: &crate::simulate::codegen::CodegenRequest,
 ) -> Result<String, Diagnostic> {
-    ctx.run(|| crate::simulate::codegen::codegen(src, req))
+    let opts = CommandOptions {
+        set: req.set.clone(),
+        codegen: req.clone(),
+        ..CommandOptions::default()
+    };
+    let r = on_scene_as(ctx, src, Structure::Auto, |ctx, scene| {
+        simulation::codegen(ctx, scene, &opts)
+    })?;
+    Ok(r.result.code)
 }
 
 mod commands;

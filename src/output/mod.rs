@@ -23,6 +23,9 @@ mod dimensions;
 pub mod latex;
 mod modes;
 pub mod response;
+pub mod run;
+pub mod sweep;
+pub mod table;
 mod text;
 pub mod wire;
 
@@ -161,7 +164,28 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
                 Format::Text | Format::Latex => check_text(r.scene(), &r.result),
             })
         }),
+        // the numeric commands: their text is their table as CSV; no LaTeX
+        AnyReport::Simulate(r) => match fmt {
+            Format::Json => Ok(run::json(&r.result.run)),
+            Format::Text => Ok(run::csv(&r.result.run)),
+            Format::Latex => Err(unwritten(Command::Simulate, fmt)),
+        },
+        AnyReport::Sweep(r) => match fmt {
+            Format::Json => Ok(sweep::json(&r.result.sweep)),
+            Format::Text => Ok(sweep::csv(&r.result.sweep)),
+            Format::Latex => Err(unwritten(Command::Sweep, fmt)),
+        },
+        // `codegen` writes its language whatever the format
+        AnyReport::Codegen(r) => Ok(r.result.code.clone()),
     }
+}
+
+/// The error of a format `cmd` does not write.
+fn unwritten(cmd: Command, fmt: Format) -> Diagnostic {
+    let names: Vec<&str> = cmd.formats().iter().map(|f| f.name()).collect();
+    Diagnostic::global(format!("`{}` writes no {}", cmd.name(), fmt.name()))
+        .with_hint(format!("its formats: {}", names.join(", ")))
+        .with_kind(crate::diag::ErrorKind::bad_option("--format"))
 }
 
 /// `f` on `report` within the report's context.
