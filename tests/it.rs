@@ -7,6 +7,7 @@ mod common;
 mod compact;
 mod stress_common;
 
+mod app_numeric;
 mod articulated;
 mod assumptions;
 mod book;

@@ -2,11 +2,13 @@
 //! limits page): every integer limit appears there with its value. The
 //! engine's are in crates/exact/src/limits.rs; a command's live with its
 //! code (the `--over` grids' with their reader in scene/given.rs, the
-//! cycle's friction iterations in cycle/friction.rs).
+//! cycle's friction iterations in cycle/friction.rs, the sweep's runs in
+//! simulate/sweep.rs).
 
 /// Where the limits are defined.
-const SOURCES: [&str; 3] = [
+const SOURCES: [&str; 4] = [
     include_str!("../crates/exact/src/limits.rs"),
+    include_str!("../src/simulate/sweep.rs"),
     include_str!("../crates/mechanics/src/scene/given.rs"),
     include_str!("../crates/compile/src/cycle/friction.rs"),
 ];

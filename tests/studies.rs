@@ -237,9 +237,8 @@ fn every_study_is_a_command_with_its_formats() {
 /// per failure.
 #[test]
 fn one_range_reader() {
-    use qdot::scene::given::{
-        parse_ranges, GridAxis, CYCLE_OVER, FLOQUET_OVER, RESPONSE_OVER, SWEEP_VARY,
-    };
+    use qdot::scene::given::{parse_ranges, GridAxis, CYCLE_OVER, FLOQUET_OVER, RESPONSE_OVER};
+    use qdot::simulate::sweep::SWEEP_VARY;
     use std::f64::consts::PI;
     let one = |syntax, text: &str| {
         let mut axes = parse_ranges(syntax, text).expect(text);

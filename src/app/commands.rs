@@ -18,7 +18,8 @@ pub(super) fn run_scene(
 ) -> Result<AnyReport, Diagnostic> {
     // `equilibrium` and `modes` check their `--set` themselves (they are
     // also called directly, by `app::equilibria` and `app::modes`); the
-    // numeric studies check theirs as they read them
+    // numeric studies check theirs as they read them; simulate, sweep and
+    // codegen take any sign: a value is a number to compute with)
     if !matches!(
         cmd,
         Command::Equilibrium
@@ -26,6 +27,9 @@ pub(super) fn run_scene(
             | Command::Cycle
             | Command::Response
             | Command::Floquet
+            | Command::Simulate
+            | Command::Sweep
+            | Command::Codegen
     ) {
         crate::scene::given::parameter_signs(scene, &opts.set)?;
     }
@@ -57,6 +61,9 @@ pub(super) fn run_scene(
         Command::Cycle => AnyReport::Cycle(super::studies::cycle(ctx, scene, opts)?),
         Command::Response => AnyReport::Response(super::studies::response(ctx, scene, opts)?),
         Command::Floquet => AnyReport::Floquet(super::studies::floquet(ctx, scene, opts)?),
+        Command::Simulate => AnyReport::Simulate(super::simulation::simulate(ctx, scene, opts)?),
+        Command::Sweep => AnyReport::Sweep(super::simulation::sweep(ctx, scene, opts)?),
+        Command::Codegen => AnyReport::Codegen(super::simulation::codegen(ctx, scene, opts)?),
     })
 }
 

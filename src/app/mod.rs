@@ -15,6 +15,7 @@
 
 mod context;
 pub mod report;
+mod simulation;
 
 pub use context::Context;
 pub use report::{
@@ -23,9 +24,13 @@ pub use report::{
     SolveReport, Solved,
 };
 pub use report::{
+    CodegenReport, GeneratedCode, SimulateReport, Simulation, SweepReport, SweepStudy,
+};
+pub use report::{
     CycleReport, CycleRun, FloquetPoint, FloquetReport, FloquetRun, FrequencyResponse,
     ResponseReport,
 };
+pub use simulation::{thread_count, thread_pool, ProgressHook, SweepOptions};
 pub use studies::parse_over;
 
 use crate::diag::Diagnostic;
@@ -66,11 +71,18 @@ pub enum Command {
     /// `qdot floquet`: the Floquet stability about a motion, at one point
     /// or over one or two parameters (`over`).
     Floquet,
+    // the numeric commands
+    /// `qdot simulate`: the exact equations compiled and integrated.
+    Simulate,
+    /// `qdot sweep`: many runs of one scene over a grid or random points.
+    Sweep,
+    /// `qdot codegen`: the equations of motion as source code.
+    Codegen,
 }
 
 impl Command {
     /// Every command, in the order the CLI's help lists them.
-    pub const ALL: [Command; 12] = [
+    pub const ALL: [Command; 15] = [
         Command::Derive,
         Command::Solve,
         Command::Forces,
@@ -83,6 +95,9 @@ impl Command {
         Command::Cycle,
         Command::Response,
         Command::Floquet,
+        Command::Simulate,
+        Command::Sweep,
+        Command::Codegen,
     ];
 
     /// The command's name on the command line, in the REPL and in Python.
@@ -100,6 +115,9 @@ impl Command {
             Command::Cycle => "cycle",
             Command::Response => "response",
             Command::Floquet => "floquet",
+            Command::Simulate => "simulate",
+            Command::Sweep => "sweep",
+            Command::Codegen => "codegen",
         }
     }
 
@@ -110,7 +128,8 @@ impl Command {
 
     /// The formats the command writes (`latex` writes LaTeX whatever the
     /// format; `check` writes text or JSON; the numeric studies write
-    /// tables: CSV, JSON or text, `response` without `over` text or JSON).
+    /// tables: CSV, JSON or text, `response` without `over` text or JSON;
+    /// `simulate` and `sweep` CSV or JSON; `codegen` its language as text).
     pub fn formats(self) -> &'static [Format] {
         match self {
             Command::Latex => &[Format::Latex],
@@ -118,6 +137,8 @@ impl Command {
             Command::Cycle => &[Format::Csv, Format::Json, Format::Text],
             Command::Response => &[Format::Text, Format::Json, Format::Csv],
             Command::Floquet => &[Format::Text, Format::Csv, Format::Json],
+            Command::Simulate | Command::Sweep => &[Format::Csv, Format::Json],
+            Command::Codegen => &[Format::Text],
             _ => &[Format::Text, Format::Json, Format::Latex],
         }
     }
@@ -212,6 +233,17 @@ pub struct CommandOptions {
     /// `floquet --max-steps N`: the steps one integration over the period
     /// may take (`None`: [`crate::limits::DEFAULT_MAX_STEPS`]).
     pub max_steps: Option<usize>,
+    // the numeric commands
+    /// `simulate` and `sweep`: the run (`--t-end`, `--method`, `--init`,
+    /// …); its `set` is not read: the parameter values are
+    /// [`CommandOptions::set`].
+    pub simulate: crate::simulate::run::Request,
+    /// `sweep`: what varies, how, on how many threads.
+    pub sweep: SweepOptions,
+    /// `codegen`: the language, the form, the file named in the code; its
+    /// `set` is not read: the parameters made constants are
+    /// [`CommandOptions::set`].
+    pub codegen: crate::simulate::codegen::CodegenRequest,
 }
 
 pub use crate::scene::Structure;
@@ -226,6 +258,8 @@ pub fn run(
 ) -> Result<AnyReport, Diagnostic> {
     let (structure, keep) = match cmd {
         Command::Derive | Command::Solve => (opts.structure, opts.keep.as_slice()),
+        // a large body scene is simulated (and generated) from its intermediates
+        Command::Simulate | Command::Sweep | Command::Codegen => (Structure::Auto, &[][..]),
         // the generalized forces are expanded, the kinetic energy need not be
         Command::Forces => (Structure::Auto, &[][..]),
         _ => (Structure::Expanded, &[][..]),
@@ -291,19 +325,28 @@ pub fn integrals(ctx: &Context, src: &str) -> Result<IntegralsReport, Diagnostic
     on_scene(ctx, src, commands::integrals)
 }
 
-/// `simulate` on the scene source `src` (`qdot simulate`), within `ctx`'s
-/// budget.
+/// `simulate` on the scene source `src` (`qdot simulate`; `req.set` the
+/// parameter values), within `ctx`: the run of [`Command::Simulate`]'s
+/// report.
 pub fn simulate(
     ctx: &Context,
     src: &str,
     req: &crate::simulate::run::Request,
 ) -> Result<crate::simulate::run::Run, Diagnostic> {
-    ctx.run(|| crate::simulate::run::simulate(src, req))
+    let opts = CommandOptions {
+        set: req.set.clone(),
+        simulate: req.clone(),
+        ..CommandOptions::default()
+    };
+    let r = on_scene_as(ctx, src, Structure::Auto, |ctx, scene| {
+        simulation::simulate(ctx, scene, &opts)
+    })?;
+    Ok(r.result.run)
 }
 
 /// `sweep` on the scene source `src` (`qdot sweep`): `base` once per point
-/// of the design, within `ctx`'s budget (see
-/// [`crate::simulate::sweep::sweep`]).
+/// of the design, within `ctx` (see [`crate::simulate::sweep::sweep`]);
+/// `progress` is told the number of finished runs after each run.
 pub fn sweep(
     ctx: &Context,
     src: &str,
@@ -313,20 +356,39 @@ pub fn sweep(
     threads: usize,
     progress: &(dyn Fn(usize) + Sync),
 ) -> Result<crate::simulate::sweep::Sweep, Diagnostic> {
-    ctx.run(|| {
-        let prepared = crate::simulate::run::Prepared::new(src, &base.functions)?;
-        crate::simulate::sweep::sweep(&prepared, base, axes, design, threads, progress)
-    })
+    let o = SweepOptions {
+        axes: axes.to_vec(),
+        design,
+        threads,
+        progress: None,
+    };
+    let told = |done: usize, _: usize| {
+        if done > 0 {
+            progress(done);
+        }
+    };
+    let r = on_scene_as(ctx, src, Structure::Auto, |ctx, scene| {
+        simulation::sweep_study(ctx, scene, base.clone(), &o, &told)
+    })?;
+    Ok(r.result.sweep)
 }
 
-/// `codegen` on the scene source `src` (`qdot codegen`): the source code,
-/// within `ctx`'s budget.
+/// `codegen` on the scene source `src` (`qdot codegen`; `req.set` the
+/// constants): the source code, within `ctx`.
 pub fn codegen(
     ctx: &Context,
     src: &str,
     req: &crate::simulate::codegen::CodegenRequest,
 ) -> Result<String, Diagnostic> {
-    ctx.run(|| crate::simulate::codegen::codegen(src, req))
+    let opts = CommandOptions {
+        set: req.set.clone(),
+        codegen: req.clone(),
+        ..CommandOptions::default()
+    };
+    let r = on_scene_as(ctx, src, Structure::Auto, |ctx, scene| {
+        simulation::codegen(ctx, scene, &opts)
+    })?;
+    Ok(r.result.code)
 }
 
 mod commands;

@@ -141,6 +141,43 @@ pub struct LatexRequest {
     pub set: Values,
 }
 
+// the numeric commands
+/// `simulate`: one run, with the request it ran.
+#[derive(Clone, Debug)]
+pub struct Simulation {
+    /// The table, the integrator's work and how the run ended.
+    pub run: crate::simulate::run::Run,
+    /// What was run (the parameter values in its `set`).
+    pub request: crate::simulate::run::Request,
+}
+
+/// `sweep`: the runs, with what they varied.
+#[derive(Clone, Debug)]
+pub struct SweepStudy {
+    /// One summary row per run.
+    pub sweep: crate::simulate::sweep::Sweep,
+    /// The request every run starts from (the values that do not vary).
+    pub base: crate::simulate::run::Request,
+    /// The varied names and their ranges.
+    pub axes: Vec<crate::simulate::sweep::Axis>,
+}
+
+/// `codegen`: the source code, with the request it answers.
+#[derive(Clone, Debug)]
+pub struct GeneratedCode {
+    /// The code.
+    pub code: String,
+    /// What was asked (the constants in its `set`).
+    pub request: crate::simulate::codegen::CodegenRequest,
+}
+
+/// `simulate`'s report.
+pub type SimulateReport = Report<Simulation>;
+/// `sweep`'s report.
+pub type SweepReport = Report<SweepStudy>;
+/// `codegen`'s report.
+pub type CodegenReport = Report<GeneratedCode>;
+
 /// `derive`'s report.
 pub type DeriveReport = Report<Derived>;
 /// `solve`'s report.
@@ -244,6 +281,12 @@ pub enum AnyReport {
     Response(ResponseReport),
     /// `floquet`.
     Floquet(FloquetReport),
+    /// `simulate`.
+    Simulate(SimulateReport),
+    /// `sweep`.
+    Sweep(SweepReport),
+    /// `codegen`.
+    Codegen(CodegenReport),
 }
 
 impl AnyReport {
@@ -262,6 +305,9 @@ impl AnyReport {
             AnyReport::Cycle(_) => Command::Cycle,
             AnyReport::Response(_) => Command::Response,
             AnyReport::Floquet(_) => Command::Floquet,
+            AnyReport::Simulate(_) => Command::Simulate,
+            AnyReport::Sweep(_) => Command::Sweep,
+            AnyReport::Codegen(_) => Command::Codegen,
         }
     }
 
@@ -280,6 +326,9 @@ impl AnyReport {
             AnyReport::Cycle(r) => r.warnings(),
             AnyReport::Response(r) => r.warnings(),
             AnyReport::Floquet(r) => r.warnings(),
+            AnyReport::Simulate(r) => r.warnings(),
+            AnyReport::Sweep(r) => r.warnings(),
+            AnyReport::Codegen(r) => r.warnings(),
         }
     }
 }

@@ -25,7 +25,9 @@ pub mod floquet;
 pub mod latex;
 mod modes;
 pub mod response;
-mod table;
+pub mod run;
+pub mod sweep;
+pub mod table;
 mod text;
 pub mod wire;
 
@@ -192,6 +194,19 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
                 Format::Latex => return Err(not_written(cmd, fmt)),
             })
         }),
+        // simulate and sweep: their table as CSV, or JSON
+        AnyReport::Simulate(r) => match fmt {
+            Format::Json => Ok(run::json(&r.result.run)),
+            Format::Csv => Ok(run::csv(&r.result.run)),
+            Format::Text | Format::Latex => Err(not_written(cmd, fmt)),
+        },
+        AnyReport::Sweep(r) => match fmt {
+            Format::Json => Ok(sweep::json(&r.result.sweep)),
+            Format::Csv => Ok(sweep::csv(&r.result.sweep)),
+            Format::Text | Format::Latex => Err(not_written(cmd, fmt)),
+        },
+        // `codegen` writes its language whatever the format
+        AnyReport::Codegen(r) => Ok(r.result.code.clone()),
     }
 }
 

@@ -125,18 +125,23 @@ impl Labels {
     /// with the request `req`. A scene that cannot be read again (it was,
     /// to run) gets no units rather than an error.
     pub fn of_scene(src: &str, file: &str, req: &Request) -> Labels {
-        let path = std::path::Path::new(file);
-        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or(file);
-        let name = path.file_name().and_then(|s| s.to_str()).unwrap_or(file);
         let scene = Scene::parse_structured(src)
             .or_else(|_| Scene::parse(src))
             .ok();
+        Labels::of_run(scene.as_ref(), src, file, req)
+    }
+
+    /// [`Labels::of_scene`] with the scene already read (the one the run
+    /// was made from), or none.
+    pub fn of_run(scene: Option<&Scene>, src: &str, file: &str, req: &Request) -> Labels {
+        let path = std::path::Path::new(file);
+        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or(file);
+        let name = path.file_name().and_then(|s| s.to_str()).unwrap_or(file);
         let parameters: Vec<String> = scene
             .iter()
             .flat_map(|s| s.parameters.iter().map(|p| p.name.clone()))
             .collect();
         let quantities = scene
-            .as_ref()
             .filter(|s| s.dimensions_checked)
             .map(quantities)
             .unwrap_or_default();

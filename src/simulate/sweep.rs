@@ -8,14 +8,29 @@
 //! The runs are spread over a rayon pool; each keeps a summary, not its
 //! trajectory, so memory stays O(runs).
 
-use super::run::{status_word, Prepared, Request, Run};
+use super::run::{Prepared, Request, Run};
 use super::Status;
+use crate::app::Context;
 use crate::diag::{Diagnostic, ErrorKind};
-use crate::limits::MAX_SWEEP_RUNS;
 use qdot_exact::rng::SplitMix64;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
+
+/// The most runs of one `qdot sweep` (grid points or `--samples`): each
+/// keeps its summary (final state, max |q|, energy drift) in memory.
+pub const MAX_SWEEP_RUNS: usize = 1_000_000;
+
+/// `sweep --vary l=0.5:2:16` (one range a `--vary`; COUNT may be left out
+/// with `--samples`).
+pub const SWEEP_VARY: crate::scene::given::RangeSyntax = crate::scene::given::RangeSyntax {
+    option: "--vary",
+    hint: "--vary NAME=FROM:TO:COUNT, e.g. --vary \"l=0.5:2:16\" (COUNT may be left out with --samples)",
+    max_ranges: 1,
+    too_many: "one name varies per --vary",
+    count_optional: true,
+    max_points: MAX_SWEEP_RUNS,
+};
 
 /// One varied name: a parameter, a coordinate (`theta`) or a velocity
 /// (`theta'`), from `from` to `to`.
@@ -33,9 +48,10 @@ pub struct Axis {
 }
 
 /// How the runs' values are chosen.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Design {
     /// Every combination of the axes' values (the first axis varies slowest).
+    #[default]
     Grid,
     /// `samples` points drawn uniformly in the box of the axes, from `seed`
     /// (the same seed gives the same points on every machine).
@@ -202,9 +218,25 @@ pub fn design_points(axes: &[Axis], design: Design) -> Result<Vec<Vec<f64>>, Dia
 
 /// Run `base` once per point of the design, `axes` overriding its `set`
 /// and `init`, on `threads` threads (0: one per core; see
-/// [`thread_count`]). `progress` is
-/// called with the number of finished runs after each run.
+/// [`crate::app::thread_count`]), under the work budget of the calling
+/// thread. `progress` is called with the number of finished runs after
+/// each run.
 pub fn sweep(
+    prepared: &Prepared,
+    base: &Request,
+    axes: &[Axis],
+    design: Design,
+    threads: usize,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<Sweep, Diagnostic> {
+    let ctx = Context::new().with_max_terms(crate::budget::limit());
+    sweep_within(&ctx, prepared, base, axes, design, threads, progress)
+}
+
+/// [`sweep`] with every run in `ctx` (its budget, and the scene's
+/// assumptions on the pool's threads too).
+pub fn sweep_within(
+    ctx: &Context,
     prepared: &Prepared,
     base: &Request,
     axes: &[Axis],
@@ -259,13 +291,7 @@ pub fn sweep(
         Some(prepared.compile(&first)?)
     };
     let compilations = AtomicUsize::new(usize::from(shared.is_some()));
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(thread_count(threads, points.len()))
-        .build()
-        .map_err(|e| Diagnostic::global(format!("cannot start the sweep's threads: {e}")))?;
-    // the pool's threads work under this thread's budget (`--max-terms`):
-    // a run compiles exactly (the accelerations) when parameters vary
-    let limit = crate::budget::limit();
+    let pool = crate::app::thread_pool(threads, points.len())?;
     let done = AtomicUsize::new(0);
     let start = Instant::now();
     let runs: Vec<(Vec<f64>, Result<Outcome, String>)> = pool.install(|| {
@@ -277,8 +303,9 @@ pub fn sweep(
                     Some(c) => Ok(c.clone()),
                     None => {
                         compilations.fetch_add(1, Ordering::Relaxed);
-                        crate::budget::within(limit, || prepared.compile(&req))
-                            .unwrap_or_else(|e| Err(crate::diag::too_large(&e)))
+                        // the pool's threads work in the context too: a run
+                        // compiles exactly (the accelerations) when parameters vary
+                        ctx.run(|| prepared.compile(&req))
                     }
                 };
                 let outcome = compiled
@@ -321,14 +348,7 @@ fn given_once(axis: &Axis, earlier: &[Axis], base: &Request) -> Result<(), Diagn
     )
 }
 
-/// The threads a sweep of `runs` runs uses for `requested` (0: one per
-/// core): never more than the cores, nor than the runs (each thread costs
-/// a stack, and CPU-bound runs gain nothing from more threads than cores).
-pub fn thread_count(requested: usize, runs: usize) -> usize {
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let wanted = if requested == 0 { cores } else { requested };
-    wanted.min(cores).min(runs).max(1)
-}
+pub use crate::app::thread_count;
 
 /// What a sweep keeps of one run.
 fn summary(run: &Run, n: usize) -> Outcome {
@@ -354,114 +374,8 @@ fn summary(run: &Run, n: usize) -> Outcome {
     }
 }
 
-/// The sweep as CSV: the varied values, `status`, `t`, the final state
-/// (`q(t)`, `q'(t)`),
-/// `max|q|` per coordinate, `energy_drift` (empty when not conserved),
-/// `steps`; a failed run has its message in `status` and empty cells.
-pub fn csv(s: &Sweep) -> String {
-    let mut header: Vec<String> = s.names.clone();
-    header.extend(["status".into(), "t".into()]);
-    // the final state, q(t): the varied names may include q itself
-    header.extend(s.coordinates.iter().map(|q| format!("{q}(t)")));
-    header.extend(s.coordinates.iter().map(|q| format!("{q}'(t)")));
-    header.extend(s.coordinates.iter().map(|q| format!("max|{q}|")));
-    header.extend(["energy_drift".into(), "steps".into()]);
-    let mut out = header.join(",") + "\n";
-    let n = s.coordinates.len();
-    for (values, outcome) in &s.runs {
-        let mut cells: Vec<String> = values.iter().map(|v| format!("{v}")).collect();
-        match outcome {
-            Ok(o) => {
-                cells.push(status_word(&o.status).into());
-                cells.push(format!("{:.17e}", o.t));
-                cells.extend(o.y.iter().chain(&o.max_abs_q).map(|x| format!("{x:.17e}")));
-                cells.push(o.energy_drift.map_or(String::new(), |d| format!("{d:.3e}")));
-                cells.push(o.steps.to_string());
-            }
-            Err(m) => {
-                cells.push(format!("\"error: {}\"", m.replace('"', "'")));
-                cells.extend(std::iter::repeat_n(String::new(), 1 + 3 * n + 2));
-            }
-        }
-        out.push_str(&cells.join(","));
-        out.push('\n');
-    }
-    out
-}
-
-/// The sweep as JSON (one line): [`SweepJson`].
-pub fn json(s: &Sweep) -> String {
-    let wire = SweepJson {
-        names: &s.names,
-        coordinates: &s.coordinates,
-        runs: s
-            .runs
-            .iter()
-            .map(|(values, outcome)| match outcome {
-                Ok(o) => SweepRunJson::Done {
-                    values,
-                    status: status_word(&o.status),
-                    t: o.t,
-                    y: &o.y,
-                    max_abs_q: &o.max_abs_q,
-                    energy_drift: o.energy_drift,
-                    steps: o.steps,
-                },
-                Err(error) => SweepRunJson::Failed { values, error },
-            })
-            .collect(),
-        seconds: s.seconds,
-        threads: s.threads,
-    };
-    let mut out = serde_json::to_string(&wire).unwrap_or_default();
-    out.push('\n');
-    out
-}
-
-/// `sweep --output json`.
-#[derive(serde::Serialize)]
-pub struct SweepJson<'a> {
-    /// The varied names.
-    pub names: &'a [String],
-    /// The coordinates.
-    pub coordinates: &'a [String],
-    /// One entry per run.
-    pub runs: Vec<SweepRunJson<'a>>,
-    /// The sweep's wall time.
-    pub seconds: f64,
-    /// The threads used.
-    pub threads: usize,
-}
-
-/// One run of a sweep.
-#[derive(serde::Serialize)]
-#[serde(untagged)]
-pub enum SweepRunJson<'a> {
-    /// A run that integrated.
-    Done {
-        /// The varied names' values.
-        values: &'a [f64],
-        /// How it ended.
-        status: &'static str,
-        /// The time it reached.
-        t: f64,
-        /// The state there.
-        y: &'a [f64],
-        /// max |q| per coordinate over the output times.
-        max_abs_q: &'a [f64],
-        /// The energy drift, or null.
-        energy_drift: Option<f64>,
-        /// Accepted steps.
-        steps: usize,
-    },
-    /// A run that could not start.
-    Failed {
-        /// The varied names' values.
-        values: &'a [f64],
-        /// Why.
-        error: &'a str,
-    },
-}
+// the writers at their first paths, for library users
+pub use crate::output::sweep::{csv, json, SweepJson, SweepRunJson};
 
 #[cfg(test)]
 mod tests {

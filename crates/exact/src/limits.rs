@@ -132,10 +132,6 @@ pub const MAX_PRINTED_FACTOR_SUBSETS: usize = 10_000;
 /// t, q and q̇ (and the energy) in memory until printed.
 pub const MAX_POINTS: usize = 1_000_000;
 
-/// The most runs of one `qdot sweep` (grid points or `--samples`): each
-/// keeps its summary (final state, max |q|, energy drift) in memory.
-pub const MAX_SWEEP_RUNS: usize = 1_000_000;
-
 /// The default of `qdot simulate --max-steps` and `qdot floquet --max-steps`: steps (accepted and
 /// rejected) before a run gives up with "too many steps". A second or two
 /// of integration for small systems; raise it for long runs.

@@ -114,6 +114,13 @@ pub struct CodegenRequest {
     pub baumgarte: f64,
 }
 
+impl Default for CodegenRequest {
+    /// C for `scene.qd`, the default form, nothing bound.
+    fn default() -> CodegenRequest {
+        CodegenRequest::new("scene.qd", Lang::C)
+    }
+}
+
 impl CodegenRequest {
     /// A request for `file` in `lang`, the default form, nothing bound.
     pub fn new(file: &str, lang: Lang) -> CodegenRequest {
@@ -135,7 +142,13 @@ impl CodegenRequest {
 pub fn codegen(src: &str, req: &CodegenRequest) -> Result<String, Diagnostic> {
     // a large body scene is generated from its intermediates
     let scene = Scene::read(src, crate::scene::Structure::Auto)?;
-    let lag = given::defined(&scene, scene.lagrange()?, &req.functions)?;
+    codegen_scene(&scene, req)
+}
+
+/// [`codegen`] on a scene already read (as [`codegen`] reads it:
+/// `Structure::Auto`).
+pub fn codegen_scene(scene: &Scene, req: &CodegenRequest) -> Result<String, Diagnostic> {
+    let lag = given::defined(scene, scene.lagrange()?, &req.functions)?;
     let constraints: Vec<String> = lag.constraints.multipliers.clone();
     let lag = constrained::stabilized(lag)?;
     let n = lag.coordinates.len();
@@ -145,7 +158,7 @@ pub fn codegen(src: &str, req: &CodegenRequest) -> Result<String, Diagnostic> {
         )
         .with_kind(crate::diag::ErrorKind::NothingToSolve));
     }
-    let mut bound = bound_parameters(&scene, req)?;
+    let mut bound = bound_parameters(scene, req)?;
     if !constraints.is_empty() {
         if !(req.baumgarte.is_finite() && req.baumgarte >= 0.0) {
             return Err(Diagnostic::global(format!(
@@ -190,7 +203,7 @@ pub fn codegen(src: &str, req: &CodegenRequest) -> Result<String, Diagnostic> {
     vals.extend((0..2 * n).map(Val::State));
     vals.extend((0..free.len()).map(Val::Param));
     // a tree of rigid bodies read with its kinematics kept: q̈ in O(n)
-    let articulated = lag.articulated_accelerations(&scene).ok();
+    let articulated = lag.articulated_accelerations(scene).ok();
     let g = Generator {
         lag: &lag,
         articulated: articulated.as_ref(),
@@ -210,7 +223,7 @@ pub fn codegen(src: &str, req: &CodegenRequest) -> Result<String, Diagnostic> {
             "M and f apart: solve M·q̈ = f with them".to_string(),
         ),
     };
-    if let Some(h) = crate::mechanics::integrals::conserved_energy(&scene)
+    if let Some(h) = crate::mechanics::integrals::conserved_energy(scene)
         .ok()
         .flatten()
     {

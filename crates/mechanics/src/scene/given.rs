@@ -616,17 +616,6 @@ pub const FLOQUET_OVER: RangeSyntax = RangeSyntax {
     ..CYCLE_OVER
 };
 
-/// `sweep --vary l=0.5:2:16` (one range a `--vary`; COUNT may be left out
-/// with `--samples`).
-pub const SWEEP_VARY: RangeSyntax = RangeSyntax {
-    option: "--vary",
-    hint: "--vary NAME=FROM:TO:COUNT, e.g. --vary \"l=0.5:2:16\" (COUNT may be left out with --samples)",
-    max_ranges: 1,
-    too_many: "one name varies per --vary",
-    count_optional: true,
-    max_points: crate::limits::MAX_SWEEP_RUNS,
-};
-
 /// The one reader of ranges and grids: `NAME=FROM:TO:COUNT`, or several
 /// comma-separated (a grid, the first varying fastest). FROM and TO are
 /// numbers, `deg` (or `°`) after one for degrees, `pi` (`2pi`, `-pi`), or
