@@ -110,9 +110,11 @@ pub enum ErrorKind {
     /// defined: division by zero, the square root or logarithm of a
     /// negative number, a division by a quantity whose sign is undecided.
     Undefined,
-    /// A limit of qdot's ([`crate::limits`]) passed: a number of too many
-    /// digits, nesting too deep, too many cases, a derivative of too high
-    /// an order. Not the work budget: that is [`ErrorKind::TooLarge`].
+    /// A limit of qdot's ([`crate::limits`]) passed in a scene that reads:
+    /// too many equilibrium cases, a derivative of too high an order,
+    /// functions nested too deep. Not the work budget (that is
+    /// [`ErrorKind::TooLarge`]), and not the parser's limits (digits,
+    /// nesting of the text: those are [`ErrorKind::Syntax`]).
     LimitExceeded,
     /// Something qdot does not do, said with the reason: symbolic powers,
     /// the complex modes of a gyroscopic system, steady motions with

@@ -44,7 +44,7 @@ pub(super) fn too_deep(at: Span) -> nom::Err<RuleError> {
             format!("expression too deep (more than {MAX_DEPTH} levels)"),
         )
         .with_hint("split it into several named definitions")
-        .with_kind(crate::diag::ErrorKind::LimitExceeded),
+        .with_kind(crate::diag::ErrorKind::Syntax),
     )
 }
 
@@ -64,7 +64,7 @@ pub(super) fn too_many_primes(at: Span) -> nom::Err<RuleError> {
     failure(
         Diagnostic::error(at, "too many primes")
             .with_hint("a derivative order must fit in 32 bits")
-            .with_kind(crate::diag::ErrorKind::LimitExceeded),
+            .with_kind(crate::diag::ErrorKind::Syntax),
     )
 }
 

@@ -288,7 +288,7 @@ impl<'s> Parser<'s> {
                 format!("expression nested too deeply (more than {MAX_NESTING} levels)"),
             )
             .with_hint("split it into several named definitions")
-            .with_kind(crate::diag::ErrorKind::LimitExceeded),
+            .with_kind(crate::diag::ErrorKind::Syntax),
         )
     }
 

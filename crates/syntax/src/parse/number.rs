@@ -208,7 +208,7 @@ impl<'s> Parser<'s> {
                 ),
             )
             .with_hint("write a large or small number with an exponent: `6.02214076e23`")
-            .with_kind(crate::diag::ErrorKind::LimitExceeded),
+            .with_kind(crate::diag::ErrorKind::Syntax),
         )
     }
 
@@ -264,7 +264,7 @@ impl<'s> Parser<'s> {
         failure(
             Diagnostic::error(self.span(i, rest), "exponent out of range")
                 .with_hint(format!("exponents up to {MAX_EXPONENT} are accepted"))
-                .with_kind(crate::diag::ErrorKind::LimitExceeded),
+                .with_kind(crate::diag::ErrorKind::Syntax),
         )
     }
 
