@@ -12,6 +12,7 @@
 #   3d30       30 rods in space hinged about alternating axes (gallery::rod_chain_3d(30)).
 # Every run is under `ulimit -t $LIMIT` (default 120 s of CPU); CPU s is
 # user + system time, peak MB the maximum resident set (GNU time).
+# ONLY='^(simulate|cycle)' runs only the commands whose label matches.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 qdot=${QDOT:-target/release/qdot}
@@ -107,6 +108,7 @@ summary() {
 run() {
     local scene=$1 label=$2
     shift 2
+    [[ $label =~ ${ONLY:-.} ]] || return 0
     local out="$work/out" err="$work/err" times="$work/times" code cpu mb
     (
         ulimit -t "$limit"

@@ -241,7 +241,7 @@ fn every_entry_point_on_the_rod_chain_returns_within_the_default_budget() {
             ("Hamiltonian::derive", "too large"),
             ("Integrals::find", "answer"),
             ("solve_scene", "answer"),
-            ("latex::document", "too large"),
+            ("latex::document", "answer"),
             ("latex::document --steps", "too large"),
             ("app::solve", "answer"),
         ],
