@@ -32,6 +32,16 @@ fn ok(s: &mut Session, entry: &str) -> String {
     r.out
 }
 
+/// The CLI's output as the REPL prints it: every REPL output ends its
+/// line (the CLI's JSON ends without a line break).
+fn as_printed(out: String) -> String {
+    if out.ends_with('\n') {
+        out
+    } else {
+        out + "\n"
+    }
+}
+
 /// `:CMD OPTS` in the REPL in each of `formats` (by `:format` and by
 /// `--output`) against `qdot CMD FILE OPTS --output FORMAT`.
 fn same_as_cli(file: &str, cmd: &str, opts: &[&str], formats: &[&str]) {
@@ -42,13 +52,13 @@ fn same_as_cli(file: &str, cmd: &str, opts: &[&str], formats: &[&str]) {
             if o.starts_with("--") {
                 o.to_string()
             } else {
-                format!("'{o}'")
+                format!("\"{o}\"")
             }
         })
         .collect();
     let line = format!(":{cmd} {}", quoted.join(" "));
     for fmt in formats {
-        let theirs = cli(&[&[cmd, file][..], opts, &["--output", fmt]].concat());
+        let theirs = as_printed(cli(&[&[cmd, file][..], opts, &["--output", fmt]].concat()));
         assert!(!theirs.is_empty());
         ok(&mut s, &format!(":format {fmt}"));
         assert_eq!(ok(&mut s, &line), theirs, "{line} in :format {fmt}");
@@ -83,8 +93,22 @@ fn cycle_on_seed_21_3_is_the_clis() {
         ),
     );
     let header = csv.lines().next().expect("a header");
-    assert_eq!(header.split(',').count(), 2, "{header}");
-    assert_eq!(csv.lines().count(), 14, "{csv}");
+    assert_eq!(header, "phi,M,note");
+    let theirs = cli(&[
+        "cycle",
+        "examples/seed_21_3.qd",
+        "--over",
+        "phi=0:360deg:13",
+        "--set",
+        SET_213,
+        "--guess",
+        "x2=0.25,xB=0.5",
+        "--columns",
+        "M",
+    ]);
+    assert_eq!(csv, as_printed(theirs));
+    // the balancing couple at 90°, as the book prints it
+    assert!(csv.contains("\n1.57079632679489656e0,1.51637"), "{csv}");
 }
 
 #[test]
@@ -122,7 +146,7 @@ fn simulate_sweep_and_codegen_on_the_pendulum_are_the_clis() {
         "--points",
         "3",
     ];
-    let theirs = cli(&[&["simulate", file][..], &sim].concat());
+    let theirs = as_printed(cli(&[&["simulate", file][..], &sim].concat()));
     assert_eq!(ok(&mut s, &format!(":simulate {}", sim.join(" "))), theirs);
     assert_eq!(theirs.lines().count(), 4, "{theirs}");
     // JSON: the same table (the timings differ run to run)
@@ -154,12 +178,12 @@ fn simulate_sweep_and_codegen_on_the_pendulum_are_the_clis() {
         "--threads",
         "1",
     ];
-    let theirs = cli(&[&["sweep", file][..], &sweep].concat());
+    let theirs = as_printed(cli(&[&["sweep", file][..], &sweep].concat()));
     assert_eq!(ok(&mut s, &format!(":sweep {}", sweep.join(" "))), theirs);
     assert_eq!(theirs.lines().count(), 7, "{theirs}");
 
     let gen = ["--lang", "python", "--set", "g=9.81,l=1"];
-    let theirs = cli(&[&["codegen", file][..], &gen].concat());
+    let theirs = as_printed(cli(&[&["codegen", file][..], &gen].concat()));
     let ours = ok(&mut s, &format!(":codegen {}", gen.join(" ")));
     assert_eq!(ours, theirs);
     assert!(ours.contains("def pendulum_rhs("), "{ours}");
@@ -238,6 +262,17 @@ fn the_command_table_is_the_applications_and_the_repls() {
     }
 }
 
+/// A command may be named as on the command line: `:derive` is
+/// `:equations`.
+#[test]
+fn the_clis_names_run_too() {
+    let mut s = loaded("examples/pendulum.qd");
+    let eq = ok(&mut s, ":equations");
+    assert!(eq.starts_with("Lagrange's equations"), "{eq}");
+    assert_eq!(ok(&mut s, ":derive"), eq);
+    assert_eq!(ok(&mut s, ":eq"), eq);
+}
+
 #[test]
 fn commands_and_their_options_complete() {
     use qdot::repl::editing::completions;
@@ -246,7 +281,8 @@ fn commands_and_their_options_complete() {
         c.into_iter().map(|c| c.display).collect()
     };
     assert_eq!(shown(":fl"), [":floquet"]);
-    assert_eq!(shown(":res"), [":reset", ":response"]);
+    // in the table's order: the application's commands first
+    assert_eq!(shown(":res"), [":response", ":reset"]);
     assert_eq!(shown(":floquet --p"), ["--period", "--plot"]);
     assert_eq!(shown(":cycle --set m=1 --g"), ["--guess"]);
     let (start, c) = completions(":response --o", 13, &[]);

@@ -226,13 +226,19 @@ pub fn commands() -> Vec<ReplCommand> {
     out
 }
 
-/// The command called `name` (without `:`).
+/// The command called `name` (without `:`), or an application command by
+/// its CLI name (`:derive`, `:eq` for `:equations`).
 pub fn find(name: &str) -> Option<ReplCommand> {
-    commands().into_iter().find(|c| c.name == name)
+    let name = if name == "eq" { "equations" } else { name };
+    let all = commands();
+    all.iter().find(|c| c.name == name).copied().or_else(|| {
+        let entry = of_app(Command::from_name(name)?);
+        all.into_iter().find(|c| c.name == entry.name)
+    })
 }
 
 /// A command's options as written: `--name value` or `--name=value`,
-/// values quoted with `"…"` or `'…'` when they hold spaces.
+/// values quoted with `"…"` when they hold spaces.
 #[derive(Clone, Debug, Default)]
 pub(super) struct Options {
     pub pairs: Vec<(String, String)>,
@@ -268,7 +274,8 @@ fn words(args: &str) -> Result<Vec<String>, String> {
         match quote {
             Some(q) if c == q => quote = None,
             Some(_) => word.push(c),
-            None if c == '"' || c == '\'' => {
+            // only `"`: a prime is part of a name (`theta'=0`)
+            None if c == '"' => {
                 quote = Some(c);
                 started = true;
             }

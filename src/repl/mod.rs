@@ -584,7 +584,7 @@ impl Session {
             Some(i) => (&cmd[..i], cmd[i..].trim()),
             None => (cmd, ""),
         };
-        let entry = commands::find(if name == "eq" { "equations" } else { name });
+        let entry = commands::find(name);
         if let Some(c) = &entry {
             match c.name {
                 "simulate" => return self.simulate(c, args),
