@@ -536,6 +536,7 @@ impl CycleTable {
 /// (a [`CycleTable`], for the pictures).
 #[pyfunction]
 #[pyo3(signature = (source, over, set, guess=Vec::new(), file="<scene>", max_terms=0, columns=None))]
+#[allow(clippy::too_many_arguments)]
 fn cycle<'py>(
     py: Python<'py>,
     source: &str,
