@@ -173,6 +173,43 @@ fn motions_regressions() {
     regressions("motions");
 }
 
+/// The seeds of the numeric studies and of the whole command table
+/// (`cycle`, `response`, `floquet`, `check`, `derive`, `codegen` through
+/// the REPL, the `commands` target and a `pipeline` header) replay
+/// cleanly, each in its own child; the application's commands are all
+/// reached.
+#[test]
+fn every_command_has_replaying_seeds() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut reached = std::collections::BTreeSet::new();
+    for target in ["repl", "commands", "pipeline"] {
+        let seeds: Vec<PathBuf> = files(&root.join("fuzz/corpus").join(target))
+            .into_iter()
+            .filter(|f| {
+                let name = f.file_name().map(|n| n.to_string_lossy().into_owned());
+                name.is_some_and(|n| n.starts_with(&format!("seed-{target}-")))
+            })
+            .collect();
+        assert!(seeds.len() >= 3, "`{target}` has {} seeds", seeds.len());
+        for f in &seeds {
+            let text = std::fs::read_to_string(f).expect("a seed");
+            for c in qdot::app::Command::ALL {
+                let name = c.name();
+                if text.contains(&format!(":{name} "))
+                    || text.contains(&format!("--command {name}\n"))
+                    || text.starts_with(&format!("#@ {name} "))
+                {
+                    reached.insert(name);
+                }
+            }
+            assert_eq!(replay_bounded(target, std::slice::from_ref(f), 60), None);
+        }
+    }
+    for name in ["cycle", "response", "floquet"] {
+        assert!(reached.contains(name), "{name} in {reached:?}");
+    }
+}
+
 /// The committed seeds replay cleanly (one child per target, a bound for
 /// the whole corpus), and there are seeds for every target.
 #[test]

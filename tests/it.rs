@@ -59,6 +59,7 @@ mod print_stability;
 mod properties;
 mod repl;
 mod repl_pty;
+mod repl_studies;
 mod response;
 mod scenes;
 mod seed;

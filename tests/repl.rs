@@ -308,7 +308,7 @@ fn commands() {
     );
     assert_eq!(
         err(&mut s, ":modes --sett g=1"),
-        "error: this command takes no option `--sett`\n  = hint: did you mean `--set`? :equilibrium takes --set and --steady; :modes takes --at, --steady, --init and --set\n"
+        "error: `:modes` takes no option `--sett`\n  = hint: did you mean `--set`? :modes takes --set, --at, --init, --steady\n"
     );
     assert!(err(&mut s, ":so").contains("did you mean `:solve`"));
     let help = ok(&mut s, ":help");

@@ -132,7 +132,7 @@ pub fn repl(data: &[u8]) {
     let feed = |session: &mut Session, entry: &str| -> bool {
         let cmd = entry.trim_start();
         let word = cmd.split_whitespace().next().unwrap_or("");
-        if word == ":load" || word == ":save" {
+        if word == ":load" || word == ":save" || !repl_entry_is_bounded(cmd) {
             return false;
         }
         session.execute(entry).quit
@@ -278,9 +278,10 @@ pub fn simulate(data: &[u8]) {
 /// tested in tests/hostile.
 const MAX_FUZZ_SWEEP_RUNS: usize = 16;
 
-/// Target `commands`: the scene-level commands that came after the other
-/// targets, with fuzzed options: `integrals` and `hamilton` in every
-/// format (with `--set`), `sweep` (its `--vary` axes, `--samples`,
+/// Target `commands`: every command by its name in the application's
+/// table (`app::Command::ALL`) with fuzzed options: each in the format
+/// asked (with `--set`), the numeric studies and steady motions as the
+/// `motions` target runs them, and the commands beside the table: `sweep` (its `--vary` axes, `--samples`,
 /// `--threads`, `--stop-when`, CSV and JSON) and `codegen` (every
 /// language and form, `--set`, `--function`, and a fuzzed file name,
 /// which names the generated functions). The input is option lines, the
@@ -299,18 +300,20 @@ pub fn commands(data: &[u8]) {
         return;
     };
     match o.one("--command") {
-        Some("integrals") => {
-            scene_command(Command::Integrals, scene, o.one("--format"), o.one("--set"))
-        }
-        Some("hamilton") => {
-            scene_command(Command::Hamilton, scene, o.one("--format"), o.one("--set"))
-        }
         // as the CLI runs them: within the work budget
         Some("sweep") => {
             let _ = qdot::budget::within(FUZZ_MAX_TERMS, || sweep(scene, &o));
         }
         Some("codegen") => codegen(scene, &o),
-        _ => {}
+        // the numeric studies and the steady motions: the `motions` target's
+        Some("cycle" | "response" | "floquet" | "modes" | "equilibrium") => motions(data),
+        // any other command of the application's table
+        Some(name) => {
+            if let Some(cmd) = Command::from_name(name) {
+                scene_command(cmd, scene, o.one("--format"), o.one("--set"))
+            }
+        }
+        None => {}
     }
 }
 
@@ -479,11 +482,12 @@ fn codegen(src: &str, o: &OptionLines) {
 /// tests/hostile.
 const MAX_FUZZ_POINTS: usize = 12;
 
-/// Target `motions`: the analyses of motion, with fuzzed options, as
-/// `src/main.rs` runs them: `cycle` (`--over`, `--set`, `--guess`,
-/// `--columns`, every output and both pictures), `response` (`--at`,
-/// `--set`, and `--over` with its plot), `floquet` (`--at`, `--set`,
-/// `--function`, `--period`, `--over` with its chart), and the steady
+/// Target `motions`: the analyses of motion, with fuzzed options, through
+/// the application layer as the CLI runs them ([`study`]): `cycle`
+/// (`--over`, `--set`, `--guess`, `--columns`, every output and both
+/// pictures), `response` (`--at`, `--set`, and `--over` with its plot),
+/// `floquet` (`--at`, `--set`, `--function`, `--period`, `--over` with
+/// its chart), and the steady
 /// motions, `modes` (`--steady`, `--at`, `--init`, `--set`) and
 /// `equilibrium` (`--steady`, `--set`), in every format. The layout is
 /// the `commands` target's:
@@ -501,9 +505,9 @@ pub fn motions(data: &[u8]) {
     };
     let ctx = qdot::app::Context::new().with_max_terms(FUZZ_MAX_TERMS);
     let outcome = match o.one("--command") {
-        Some("cycle") => ctx.within(|| cycle(scene, &o)),
-        Some("response") => ctx.within(|| response(scene, &o)),
-        Some("floquet") => ctx.within(|| floquet(scene, &o)),
+        Some("cycle") => ctx.within(|| study(Command::Cycle, scene, &o)),
+        Some("response") => ctx.within(|| study(Command::Response, scene, &o)),
+        Some("floquet") => ctx.within(|| study(Command::Floquet, scene, &o)),
         Some("modes") => {
             steady(Command::Modes, scene, &o);
             Ok(Ok(()))
@@ -533,95 +537,94 @@ fn set_values(o: &OptionLines) -> Result<qdot::solve::equilibrium::Values, qdot:
         .unwrap_or_default())
 }
 
-/// `qdot cycle`, its positions bounded, every rendering and picture.
-fn cycle(src: &str, o: &OptionLines) -> Result<(), qdot::Diagnostic> {
-    use qdot::cycle::{parse_guess, CycleRequest, Over};
-    use qdot::simulate::cycle as render;
-    let req = CycleRequest {
-        over: Over::parse(o.one("--over").unwrap_or("t=0:1:3"))?,
+/// `qdot cycle`, `response` or `floquet` as the CLI runs it: the options
+/// read into the application's, the study run by `app::run` (its points
+/// bounded), written in every format the command writes, and its pictures
+/// drawn.
+fn study(cmd: Command, src: &str, o: &OptionLines) -> Result<(), qdot::Diagnostic> {
+    let mut opts = CommandOptions {
+        max_terms: FUZZ_MAX_TERMS,
         set: set_values(o)?,
-        guess: o
-            .one("--guess")
-            .map(parse_guess)
-            .transpose()?
-            .unwrap_or_default(),
+        at: o.one("--at").map(String::from),
+        functions: o.all("--function"),
+        columns: o.one("--columns").map(qdot::simulate::cycle::column_names),
+        ..CommandOptions::default()
     };
-    if req.over.count > MAX_FUZZ_POINTS {
-        return Ok(());
+    if let Some(g) = o.one("--guess") {
+        opts.guess = qdot::cycle::parse_guess(g)?;
     }
-    let run = render::run(src, &req)?;
-    let table = match o.one("--columns") {
-        Some(c) => render::select(&run.table, c)?,
-        None => run.table.clone(),
-    };
-    let _ = render::csv(&table);
-    let _ = render::json(&table);
-    let _ = render::text(&table, run.degrees);
-    let _ = qdot::drawing::reaction_diagrams(&run.table, "fuzz", run.degrees);
-    let _ = qdot::drawing::animation_svg(&run.table, "fuzz");
-    let _ = qdot::drawing::animation_html(&run.table, "fuzz", run.degrees);
-    Ok(())
-}
-
-/// `qdot response`: the exact analysis as text and JSON, or with `--over`
-/// the sweep (its frequencies bounded) in every output and its plot.
-fn response(src: &str, o: &OptionLines) -> Result<(), qdot::Diagnostic> {
-    use qdot::simulate::response as sweep;
-    let set = set_values(o)?;
-    let at = o.one("--at");
-    let Some(over) = o.one("--over") else {
-        for json in [false, true] {
-            output::response::response_output(src, at, &set, FUZZ_MAX_TERMS, json)?;
-        }
-        return Ok(());
-    };
-    let over = sweep::parse_over(over)?;
-    if over.count > MAX_FUZZ_POINTS {
-        return Ok(());
-    }
-    let table = sweep::sweep(src, at, &set, &over)?;
-    let _ = sweep::csv(&table);
-    let _ = sweep::json(&table);
-    let _ = sweep::text(&table);
-    let _ = qdot::simulate::response_plot::svg(&table, "fuzz");
-    Ok(())
-}
-
-/// `qdot floquet`, its grid bounded, every output and the chart.
-fn floquet(src: &str, o: &OptionLines) -> Result<(), qdot::Diagnostic> {
-    use qdot::simulate::floquet as render;
-    let period = match o.one("--period") {
-        Some(p) => match p.parse::<f64>() {
-            Ok(p) => Some(p),
+    if let Some(p) = o.one("--period") {
+        match p.parse::<f64>() {
+            Ok(p) => opts.period = Some(p),
             Err(_) => return Ok(()), // the CLI's parser refuses it
-        },
-        None => None,
+        }
+    }
+    // `cycle` needs a varied quantity; the others run without one
+    let over = match (cmd, o.one("--over")) {
+        (_, Some(text)) => Some(text),
+        (Command::Cycle, None) => Some("t=0:1:3"),
+        _ => None,
     };
-    let req = render::Request {
-        floquet: qdot::floquet::FloquetRequest {
-            at: o.one("--at").map(String::from),
-            functions: o.all("--function"),
-            period,
-            max_steps: None, // the default limit: a fuzz input never raises it
-        },
-        set: set_values(o)?,
-        over: o
-            .one("--over")
-            .map(render::parse_over)
-            .transpose()?
-            .unwrap_or_default(),
-    };
-    if req.over.iter().map(|a| a.count).product::<usize>() > MAX_FUZZ_POINTS {
+    if let Some(text) = over {
+        opts.over = qdot::app::parse_over(cmd, text)?;
+    }
+    if opts.over.iter().map(|a| a.count).product::<usize>() > MAX_FUZZ_POINTS {
         return Ok(());
     }
-    let run = render::run(src, &req)?;
-    let _ = render::text(&run);
-    let _ = render::csv(&run);
-    let _ = render::json(&run);
-    if !run.axes.is_empty() {
-        let _ = qdot::drawing::floquet::svg(&run, "fuzz");
+    let ctx = qdot::app::Context::new().with_max_terms(FUZZ_MAX_TERMS);
+    let report = qdot::app::run(&ctx, cmd, src, &opts)?;
+    for fmt in cmd.formats() {
+        if let Err(d) = output::render(&report, *fmt) {
+            let _ = d.render("fuzz.qd", src);
+        }
+    }
+    match &report {
+        qdot::AnyReport::Cycle(r) => {
+            let run = &r.result;
+            let _ = qdot::drawing::reaction_diagrams(&run.table, "fuzz", run.degrees);
+            let _ = qdot::drawing::animation_svg(&run.table, "fuzz");
+            let _ = qdot::drawing::animation_html(&run.table, "fuzz", run.degrees);
+        }
+        qdot::AnyReport::Response(r) => {
+            if let qdot::app::FrequencyResponse::Swept(t) = &r.result {
+                let _ = qdot::simulate::response_plot::svg(t, "fuzz");
+            }
+        }
+        qdot::AnyReport::Floquet(r) if !r.result.axes.is_empty() => {
+            let _ = qdot::drawing::floquet::svg(&r.result, "fuzz");
+        }
+        _ => {}
     }
     Ok(())
+}
+
+/// Whether a REPL entry's numeric command is bounded for the fuzzer: no
+/// picture (it would write the fuzzer's disk), at most
+/// [`MAX_FUZZ_POINTS`] points over its `--over`; `:simulate` and `:sweep`
+/// are left to the `simulate` and `commands` targets, which bound their
+/// steps and runs.
+fn repl_entry_is_bounded(entry: &str) -> bool {
+    let mut words = entry.split_whitespace();
+    let study = match words.next() {
+        Some(":simulate" | ":sweep") => return false,
+        Some(":cycle") => Command::Cycle,
+        Some(":response") => Command::Response,
+        Some(":floquet") => Command::Floquet,
+        _ => return true,
+    };
+    if entry.contains("--plot") || entry.contains("--animate") {
+        return false;
+    }
+    let mut rest = entry.split("--over").skip(1);
+    rest.all(|after| {
+        let value = after.trim_start_matches([' ', '=']);
+        let value = value.split_whitespace().next().unwrap_or("");
+        let value = value.trim_matches(['"', '\'']);
+        match qdot::app::parse_over(study, value) {
+            Ok(axes) => axes.iter().map(|a| a.count).product::<usize>() <= MAX_FUZZ_POINTS,
+            Err(_) => true,
+        }
+    })
 }
 
 /// `qdot modes` or `qdot equilibrium` with `--steady` (or without it),

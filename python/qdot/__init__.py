@@ -21,21 +21,26 @@ from ._cycle import Cycle
 from ._results import Equation, Equations, Expr, ExprMap, Intermediates, Matrix, Result
 from ._scene import QdotWarning, Scene
 from ._simulation import Simulation, Sweep
+from ._studies import COMMANDS, Floquet, Response, run_command
 
 __version__ = _version()
 
 __all__ = [
+    "COMMANDS",
     "Cycle",
     "Equation",
     "Equations",
     "Expr",
     "ExprMap",
+    "Floquet",
     "Intermediates",
     "Matrix",
     "QdotError",
     "QdotWarning",
+    "Response",
     "Result",
     "Scene",
     "Simulation",
     "Sweep",
+    "run_command",
 ]

@@ -70,7 +70,37 @@ def cycle(
     guess: Sequence[Tuple[str, float]] = ...,
     file: str = ...,
     max_terms: int = ...,
+    columns: Optional[Sequence[str]] = ...,
 ) -> Dict[str, Any]: ...
+
+def commands() -> List[Tuple[str, List[str]]]:
+    """Every command of the application layer with the formats it writes."""
+    ...
+
+def run_report(
+    command: str,
+    source: str,
+    formats: Sequence[str],
+    file: str = ...,
+    set: Sequence[Tuple[str, float]] = ...,
+    at: Optional[str] = ...,
+    init: Optional[str] = ...,
+    steady: Optional[str] = ...,
+    steps: bool = ...,
+    standalone: bool = ...,
+    title: str = ...,
+    max_terms: int = ...,
+    structure: str = ...,
+    keep: Sequence[str] = ...,
+    over: Optional[str] = ...,
+    guess: Sequence[Tuple[str, float]] = ...,
+    columns: Optional[Sequence[str]] = ...,
+    functions: Sequence[str] = ...,
+    period: Optional[float] = ...,
+    max_steps: Optional[int] = ...,
+) -> Tuple[List[str], List[str]]:
+    """A command run once, written in each format: (outputs, warnings)."""
+    ...
 
 class CycleTable:
     """A mechanism's cycle, kept for its pictures (``Scene.cycle``)."""

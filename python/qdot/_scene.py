@@ -11,6 +11,7 @@ from ._results import (Equation, Equations, Expr, ExprMap, Intermediates, Matrix
                        _env, markdown_of_latex)
 from ._cycle import Cycle
 from ._simulation import Simulation, Sweep
+from ._studies import Floquet, Response, _native_options
 
 #: How ``derive`` and ``solve`` write their results: ``"auto"`` (through
 #: named intermediates when the expanded results would be large: a chain of
@@ -55,6 +56,14 @@ def _over(over: Over) -> str:
         raise ValueError(f"over[{name!r}]: (from, to, count)")
     ends = [x if isinstance(x, str) else repr(float(x)) for x in r[:2]]
     return f"{name}={ends[0]}:{ends[1]}:{int(r[2])}"
+
+
+def _over_any(over: Over) -> str:
+    """``over`` of ``response`` and ``floquet`` as the CLI's ``--over``: text,
+    or ``{name: (from, to, count), …}`` (floquet: one or two names)."""
+    if isinstance(over, str):
+        return over
+    return ",".join(_over({name: r}) for name, r in over.items())
 
 
 def _exact(values: Union[Mapping[str, Any], str, None]) -> Optional[str]:
@@ -123,6 +132,23 @@ class Scene:
                     w.warn(text, QdotWarning, stacklevel=3)
             self._cache[key] = out
         return self._cache[key]
+
+    def _report(self, command: str, formats: List[str], **options: Any) -> Tuple[List[str], List[str]]:
+        """``command`` run once and written in each of ``formats`` (any
+        command of the application's table, the CLI's options)."""
+        native = _native_options(self, options)
+        outs, warnings = _native.run_report(command, self.source, formats, **native)
+        self._warn(warnings)
+        return outs, warnings
+
+    def _warn(self, warnings: Sequence[str]) -> None:
+        fresh = [text for text in warnings if text not in self._warned]
+        if fresh:
+            import warnings as w
+
+            for text in fresh:
+                self._warned.add(text)
+                w.warn(text, QdotWarning, stacklevel=4)
 
     def _json(self, command: str, **options: Any) -> Dict[str, Any]:
         return json.loads(self._run(command, "json", **options))
@@ -271,17 +297,50 @@ class Scene:
         )
         return Simulation(raw)
 
-    def cycle(self, over: Over, set: Values, guess: Values = None) -> Cycle:
+    def response(self, set: Values = None, at: Any = None, over: Optional[Over] = None) -> Response:
+        """The steady response to the scene's harmonic load (``qdot
+        response``): exact in the forcing frequency ``Omega`` (SymPy through
+        ``.to_sympy()``), or with ``over`` (``"Omega=0.5:1.5:101"`` or
+        ``{"Omega": (0.5, 1.5, 101)}``; ``set`` then every parameter) the
+        amplitude and phase swept numerically, a NumPy table. ``at``: the
+        equilibrium linearized about (every q = 0 by default)."""
+        options: Dict[str, Any] = {"set": set, "at": at, "over": over}
+        formats = ["json", "text"] + (["csv"] if over is not None else [])
+        outs, _ = self._report("response", formats, **options)
+        return Response(self, dict(zip(formats, outs)), _native_options(self, options))
+
+    def floquet(self, set: Values = None, at: Any = None, over: Optional[Over] = None,
+                functions: Sequence[str] = (), period: Optional[float] = None,
+                max_steps: Optional[int] = None) -> Floquet:
+        """Floquet's stability about a motion (``qdot floquet``): the
+        monodromy matrix over one period of the coefficients, the
+        multipliers, the verdict; at the ``set`` values, or over one or two
+        parameters (``over``: ``"delta=-1:3:81,eps=0:2:41"`` or
+        ``{"delta": (-1, 3, 81), "eps": (0, 2, 41)}``). ``at``: the
+        reference motion; ``functions``: ``"s=EXPR"`` per given function
+        of time; ``period`` when it is not found; ``max_steps`` per
+        integration."""
+        options: Dict[str, Any] = {"set": set, "at": at, "over": over,
+                                   "functions": list(functions) or None,
+                                   "period": period, "max_steps": max_steps}
+        formats = ["json", "text", "csv"]
+        outs, _ = self._report("floquet", formats, **options)
+        return Floquet(self, dict(zip(formats, outs)), _native_options(self, options))
+
+    def cycle(self, over: Over, set: Values, guess: Values = None,
+              columns: Optional[Sequence[str]] = None) -> Cycle:
         """A planar mechanism over its cycle (``qdot cycle``): at each value
         of ``over`` (``"phi=0:360deg:73"``: ``t`` or a driven coordinate,
         from, to, and the number of positions), the positions, velocities
         and accelerations, every joint's reaction and every drive's force.
         ``set`` every parameter; ``guess`` coordinates of an assembly near
         the first position (the others start from 0; as text, angles may be
-        written ``30deg``)."""
+        written ``30deg``). ``columns``: only these after the varied one
+        (``--columns``; the pictures still draw every column)."""
         raw = _native.cycle(
             self.source, _over(over), _pairs(set, "set"), _pairs(guess, "guess"),
             file=self.name, max_terms=self.max_terms,
+            columns=None if columns is None else _names(columns),
         )
         return Cycle(raw, os.path.splitext(os.path.basename(self.name))[0])
 

@@ -77,6 +77,139 @@ fn structure_by_name(name: &str) -> PyResult<app::Structure> {
     }
 }
 
+/// The options of a command (the CLI's flags) as the application's.
+#[allow(clippy::too_many_arguments)]
+fn command_options(
+    cmd: output::Command,
+    set: Vec<(String, f64)>,
+    at: Option<String>,
+    init: Option<String>,
+    steady: Option<String>,
+    steps: bool,
+    standalone: bool,
+    title: String,
+    max_terms: usize,
+    structure: &str,
+    keep: Vec<String>,
+    study: StudyOptions,
+) -> PyResult<CommandOptions> {
+    let over = match &study.over {
+        Some(text) => app::parse_over(cmd, text).map_err(|d| error(&d, "over", text))?,
+        None => Vec::new(),
+    };
+    Ok(CommandOptions {
+        set: values(set),
+        at,
+        init,
+        steady,
+        steps,
+        standalone,
+        title,
+        max_terms,
+        structure: structure_by_name(structure)?,
+        keep,
+        over,
+        guess: study.guess,
+        columns: study.columns,
+        functions: study.functions,
+        period: study.period,
+        max_steps: study.max_steps,
+    })
+}
+
+/// The options of the numeric studies (`cycle`, `response`, `floquet`).
+#[derive(Default)]
+struct StudyOptions {
+    over: Option<String>,
+    guess: Vec<(String, f64)>,
+    columns: Option<Vec<String>>,
+    functions: Vec<String>,
+    period: Option<f64>,
+    max_steps: Option<usize>,
+}
+
+fn format_by_name(name: &str) -> PyResult<Format> {
+    Format::from_name(name).ok_or_else(|| {
+        let all: Vec<&str> = Format::ALL.iter().map(|f| f.name()).collect();
+        pyo3::exceptions::PyValueError::new_err(format!(
+            "unknown format `{name}`: {}",
+            all.join(", ")
+        ))
+    })
+}
+
+/// The commands of the application layer (`app::Command::ALL`), each
+/// with the formats it writes: the table `qdot.run_command` reads.
+#[pyfunction]
+fn commands() -> Vec<(&'static str, Vec<&'static str>)> {
+    output::Command::ALL
+        .iter()
+        .map(|c| (c.name(), c.formats().iter().map(|f| f.name()).collect()))
+        .collect()
+}
+
+/// Run a command of the CLI on a scene once and write it in each of
+/// `formats`: (the outputs, warnings rendered). The options are the
+/// CLI's; `over` its `--over` text.
+#[pyfunction]
+#[pyo3(signature = (command, source, formats, file="<scene>", set=Vec::new(), at=None, init=None, steady=None, steps=false, standalone=false, title=String::new(), max_terms=0, structure="auto", keep=Vec::new(), over=None, guess=Vec::new(), columns=None, functions=Vec::new(), period=None, max_steps=None))]
+#[allow(clippy::too_many_arguments)]
+fn run_report(
+    py: Python<'_>,
+    command: &str,
+    source: &str,
+    formats: Vec<String>,
+    file: &str,
+    set: Vec<(String, f64)>,
+    at: Option<String>,
+    init: Option<String>,
+    steady: Option<String>,
+    steps: bool,
+    standalone: bool,
+    title: String,
+    max_terms: usize,
+    structure: &str,
+    keep: Vec<String>,
+    over: Option<String>,
+    guess: Vec<(String, f64)>,
+    columns: Option<Vec<String>>,
+    functions: Vec<String>,
+    period: Option<f64>,
+    max_steps: Option<usize>,
+) -> PyResult<(Vec<String>, Vec<String>)> {
+    let cmd = command_by_name(command)?;
+    let fmts = formats
+        .iter()
+        .map(|f| format_by_name(f))
+        .collect::<PyResult<Vec<_>>>()?;
+    let study = StudyOptions {
+        over,
+        guess,
+        columns,
+        functions,
+        period,
+        max_steps,
+    };
+    let opts = command_options(
+        cmd, set, at, init, steady, steps, standalone, title, max_terms, structure, keep, study,
+    )?;
+    let result = py.detach(|| {
+        let report = app::run(&context(max_terms), cmd, source, &opts)?;
+        let outs = fmts
+            .iter()
+            .map(|f| output::render(&report, *f))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok::<_, Diagnostic>((outs, report.warnings().to_vec()))
+    });
+    match result {
+        Ok((outs, warnings)) => Ok((
+            outs,
+            warnings.iter().map(|w| w.render(file, source)).collect(),
+        )),
+        Err(d) => Err(error(&d, file, source)),
+    }
+}
+
 /// Run a command of the CLI on a scene: (output, warnings rendered).
 #[pyfunction]
 #[pyo3(signature = (command, source, format, file="<scene>", set=Vec::new(), at=None, init=None, steady=None, steps=false, standalone=false, title=String::new(), max_terms=0, structure="auto", keep=Vec::new()))]
@@ -99,16 +232,10 @@ fn run_command(
     keep: Vec<String>,
 ) -> PyResult<(String, Vec<String>)> {
     let cmd = command_by_name(command)?;
-    let fmt = match Format::from_name(format) {
-        Some(f) => f,
-        None => {
-            return Err(pyo3::exceptions::PyValueError::new_err(format!(
-                "unknown format `{format}`: text, json or latex"
-            )))
-        }
-    };
-    let opts = CommandOptions {
-        set: values(set),
+    let fmt = format_by_name(format)?;
+    let opts = command_options(
+        cmd,
+        set,
         at,
         init,
         steady,
@@ -116,9 +243,10 @@ fn run_command(
         standalone,
         title,
         max_terms,
-        structure: structure_by_name(structure)?,
+        structure,
         keep,
-    };
+        StudyOptions::default(),
+    )?;
     let result = py.detach(|| output::run_with(cmd, source, fmt, &opts));
     match result {
         Ok((out, warnings)) => Ok((
@@ -359,10 +487,13 @@ fn sweep<'py>(
     Ok(d)
 }
 
-/// A mechanism's cycle (`qdot cycle`), kept for its pictures.
+/// A mechanism's cycle (`qdot cycle`), kept for its pictures, with its
+/// CSV and JSON as the CLI writes them.
 #[pyclass(frozen)]
 struct CycleTable {
-    run: qdot::simulate::cycle::CycleRun,
+    run: app::CycleRun,
+    csv: String,
+    json: String,
 }
 
 #[pymethods]
@@ -387,23 +518,25 @@ impl CycleTable {
 
     /// The table as `cycle --output csv` prints it.
     fn csv(&self) -> String {
-        qdot::simulate::cycle::csv(&self.run.table)
+        self.csv.clone()
     }
 
     /// The table as `cycle --output json` prints it.
     fn json(&self) -> String {
-        qdot::simulate::cycle::json(&self.run.table)
+        self.json.clone()
     }
 }
 
 /// A mechanism over its cycle (`qdot cycle`): `over` as `--over`
-/// (`phi=0:360deg:73`). A dict with `varied`, `degrees` (the varied
+/// (`phi=0:360deg:73`), `columns` as `--columns` (the columns shown after
+/// the varied one; None: all). A dict with `varied`, `degrees` (the varied
 /// quantity is an angle, its column in radians), `columns`, `rows`,
 /// `data` (bytes of little-endian f64, row-major, NaN where a value is not
 /// determined), `notes` (a str or None per row), `iterations` and `table`
 /// (a [`CycleTable`], for the pictures).
 #[pyfunction]
-#[pyo3(signature = (source, over, set, guess=Vec::new(), file="<scene>", max_terms=0))]
+#[pyo3(signature = (source, over, set, guess=Vec::new(), file="<scene>", max_terms=0, columns=None))]
+#[allow(clippy::too_many_arguments)]
 fn cycle<'py>(
     py: Python<'py>,
     source: &str,
@@ -412,17 +545,30 @@ fn cycle<'py>(
     guess: Vec<(String, f64)>,
     file: &str,
     max_terms: usize,
+    columns: Option<Vec<String>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let req = qdot::cycle::CycleRequest {
-        over: qdot::cycle::Over::parse(over).map_err(|d| error(&d, file, ""))?,
+    let cmd = output::Command::Cycle;
+    let opts = CommandOptions {
+        over: app::parse_over(cmd, over).map_err(|d| error(&d, "over", over))?,
         set: values(set),
         guess,
+        columns,
+        max_terms,
+        ..CommandOptions::default()
     };
     let ctx = context(max_terms);
-    let r = py
-        .detach(|| ctx.run(|| qdot::simulate::cycle::run(source, &req)))
+    let (r, csv, json) = py
+        .detach(|| {
+            let report = app::run(&ctx, cmd, source, &opts)?;
+            let csv = output::render(&report, Format::Csv)?;
+            let json = output::render(&report, Format::Json)?;
+            match report {
+                app::AnyReport::Cycle(r) => Ok((r.result, csv, json)),
+                _ => Err(Diagnostic::global("`cycle` gave another command's report")),
+            }
+        })
         .map_err(|d| error(&d, file, source))?;
-    let t = &r.table;
+    let t = r.shown();
     let mut bytes = Vec::with_capacity(t.rows.len() * t.columns.len() * 8);
     for row in &t.rows {
         for x in &row.values {
@@ -439,7 +585,7 @@ fn cycle<'py>(
     d.set_item("notes", notes)?;
     let iterations: Vec<u32> = t.rows.iter().map(|r| r.iterations).collect();
     d.set_item("iterations", iterations)?;
-    d.set_item("table", CycleTable { run: r })?;
+    d.set_item("table", CycleTable { run: r, csv, json })?;
     Ok(d)
 }
 
@@ -541,6 +687,8 @@ fn version() -> &'static str {
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("QdotError", m.py().get_type::<QdotError>())?;
     m.add_function(wrap_pyfunction!(run_command, m)?)?;
+    m.add_function(wrap_pyfunction!(run_report, m)?)?;
+    m.add_function(wrap_pyfunction!(commands, m)?)?;
     m.add_function(wrap_pyfunction!(check_scene, m)?)?;
     m.add_function(wrap_pyfunction!(parse_values, m)?)?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;

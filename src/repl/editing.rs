@@ -3,7 +3,7 @@
 //! ([`highlight`]). The terminal (the `qdot` binary) puts them behind its
 //! line editor.
 
-use super::{keywords, COMMANDS};
+use super::{commands, keywords};
 use crate::parse::functions::{self, Builtin};
 
 /// A completion candidate: what the list shows and what replaces the word.
@@ -98,15 +98,19 @@ pub fn completions(line: &str, pos: usize, names: &[&[String]]) -> (usize, Vec<C
         Some(t) if t.end == before.len() && t.kind != LineTokenKind::Other => (t.start, t.kind),
         _ => (before.len(), LineTokenKind::Other),
     };
+    if let Some(found) = option_completions(before) {
+        return found;
+    }
     let word = &before[start..];
     let mut out: Vec<Completion> = Vec::new();
     match kind {
         LineTokenKind::Command => {
-            for (c, _, _) in COMMANDS {
-                if c.starts_with(word) {
+            for c in commands() {
+                let name = format!(":{}", c.name);
+                if name.starts_with(word) {
                     out.push(Completion {
-                        display: c.to_string(),
-                        replacement: c.to_string(),
+                        display: name.clone(),
+                        replacement: name,
                     });
                 }
             }
@@ -146,6 +150,29 @@ pub fn completions(line: &str, pos: usize, names: &[&[String]]) -> (usize, Vec<C
     out.sort_by(|a, b| a.display.cmp(&b.display));
     out.dedup_by(|a, b| a.display == b.display);
     (start, out)
+}
+
+/// After `:command `, a word starting with `-`: the command's options.
+fn option_completions(before: &str) -> Option<(usize, Vec<Completion>)> {
+    let rest = before.trim_start().strip_prefix(':')?;
+    let (name, _) = rest.split_once(char::is_whitespace)?;
+    let start = before.rfind(char::is_whitespace).map_or(0, |i| i + 1);
+    let word = &before[start..];
+    if !word.starts_with('-') {
+        return None;
+    }
+    let c = commands().into_iter().find(|c| c.name == name)?;
+    let out = c
+        .options
+        .iter()
+        .map(|o| format!("--{o}"))
+        .filter(|o| o.starts_with(word))
+        .map(|o| Completion {
+            display: o.clone(),
+            replacement: format!("{o} "),
+        })
+        .collect();
+    Some((start, out))
 }
 
 const RESET: &str = "\x1b[0m";

@@ -20,8 +20,12 @@
 //! assert!(s.execute(":solve").out.contains("= −k/m·x"));
 //! ```
 
+mod commands;
 pub mod editing;
 mod layout;
+mod running;
+
+pub use commands::{commands, ReplCommand};
 
 use crate::diag::Diagnostic;
 use crate::expr::latex::{self as tex, Names};
@@ -107,6 +111,8 @@ pub struct Session {
     pub max_terms: usize,
     /// Where the entry being executed comes from, for error positions.
     origin: Origin,
+    /// The last file `:load`ed: the name of generated code and pictures.
+    source: Option<String>,
 }
 
 /// Where an entry comes from: the name errors give it and the line of that
@@ -131,59 +137,6 @@ impl Default for Session {
         Session::new()
     }
 }
-
-/// The commands, for `:help` and completion: (name, arguments, what it does).
-pub const COMMANDS: &[(&str, &str, &str)] = &[
-    (
-        ":equations",
-        "",
-        "Lagrange's equations, the mass matrix and the forcing",
-    ),
-    (
-        ":solve",
-        "",
-        "the exact accelerations and the solve blocks' solutions",
-    ),
-    (":forces", "", "the generalized forces Q_k"),
-    (
-        ":hamilton",
-        "",
-        "the momenta, H(q, p, t) and Hamilton's equations",
-    ),
-    (
-        ":equilibrium",
-        "[--set m=1,g=9.81] [--steady q,…]",
-        "the equilibria (or steady motions) and their stability",
-    ),
-    (
-        ":modes",
-        "[--at q=…] [--steady q,…] [--init q=…,q'=…] [--set …]",
-        "small oscillations: frequencies and modes",
-    ),
-    (
-        ":latex",
-        "[steps]",
-        "LaTeX of the last result (an expression, or the last :solve, :modes, :equilibrium, …), or of the whole derivation",
-    ),
-    (
-        ":show",
-        "NAME",
-        "what a name is: its value, role or declaration",
-    ),
-    (":scene", "", "the scene so far, as a .qd file"),
-    (":load", "FILE", "run a .qd file's statements"),
-    (":save", "FILE", "write the scene to a .qd file"),
-    (":undo", "", "take back the last change"),
-    (":reset", "", "start from an empty scene"),
-    (":format", "text|latex|json", "how results are printed"),
-    (
-        ":max-terms",
-        "N",
-        "the work budget: the most terms an expression may reach",
-    ),
-    (":help", "", "this list"),
-    (":quit", "", "leave (Ctrl-D does too)"),
-];
 
 // The keywords, for completion and highlighting: the parser's list.
 use crate::parse::keywords;
@@ -212,6 +165,7 @@ impl Session {
             format: Format::Text,
             max_terms: crate::limits::DEFAULT_MAX_TERMS,
             origin: Origin::typed(),
+            source: None,
         }
     }
 
@@ -630,8 +584,17 @@ impl Session {
             Some(i) => (&cmd[..i], cmd[i..].trim()),
             None => (cmd, ""),
         };
-        if let Some(cmd) = repl_command(name) {
-            return self.run_result(cmd, args);
+        let entry = commands::find(name);
+        if let Some(c) = &entry {
+            match c.name {
+                "simulate" => return self.simulate(c, args),
+                "sweep" => return self.sweep(c, args),
+                "codegen" => return self.codegen(c, args),
+                _ => {}
+            }
+            if let Some(cmd) = repl_command(c.name) {
+                return self.run_result(c, cmd, args);
+            }
         }
         match name {
             "q" | "quit" | "exit" => Response {
@@ -687,11 +650,13 @@ impl Session {
                     Response::out(format!("the format is {}", self.format.name()))
                 }
                 None => Response::error(format!(
-                    "error: unknown format `{args}`\n  = hint: :format text, :format latex or :format json\n"
+                    "error: unknown format `{args}`\n  = hint: :format {}\n",
+                    Format::ALL.map(Format::name).join(", :format ")
                 )),
             },
             _ => {
-                let names = || COMMANDS.iter().map(|c| &c.0[1..]);
+                let all = commands();
+                let names = || all.iter().map(|c| c.name);
                 let near = crate::spelling::nearest(name, names())
                     .or_else(|| names().find(|c| c.starts_with(name) && !name.is_empty()));
                 let hint = match near {
@@ -710,32 +675,17 @@ impl Session {
         Response::out(format!("(results as {})", f.name()))
     }
 
-    /// [`Session::run`], remembered as the last result when it succeeds.
-    fn run_result(&mut self, cmd: Command, args: &str) -> Response {
-        let r = self.run(cmd, args);
+    /// [`Session::run`], remembered as the last result when it succeeds
+    /// and `:latex` can typeset it.
+    fn run_result(&mut self, c: &ReplCommand, cmd: Command, args: &str) -> Response {
+        let r = self.run(c, cmd, args);
         if r.err.is_empty() || !r.out.is_empty() {
-            self.last_command = Some((cmd, args.to_string()));
+            self.last_command = cmd
+                .formats()
+                .contains(&Format::Latex)
+                .then(|| (cmd, args.to_string()));
         }
         r
-    }
-
-    fn run(&self, cmd: Command, args: &str) -> Response {
-        let mut opts = CommandOptions::default();
-        if let Err(e) = parse_options(args, cmd, &mut opts) {
-            return Response::error(e);
-        }
-        let (src, _) = join(&self.statements);
-        match output::run_with(cmd, &src, self.format, &opts) {
-            Ok((out, warnings)) => {
-                let err: String = warnings.iter().map(|w| w.render("scene", &src)).collect();
-                Response {
-                    out: if out.ends_with('\n') { out } else { out + "\n" },
-                    err,
-                    ..Response::default()
-                }
-            }
-            Err(d) => Response::error(d.render("scene", &src)),
-        }
     }
 
     fn latex(&self, args: &str) -> Response {
@@ -777,10 +727,18 @@ impl Session {
 
     /// The LaTeX of a command's result, with the options it was run with.
     fn latex_of_command(&self, cmd: Command, args: &str) -> Response {
-        let mut opts = CommandOptions::default();
-        if let Err(e) = parse_options(args, cmd, &mut opts) {
-            return Response::error(e);
-        }
+        let Some(c) = commands()
+            .into_iter()
+            .find(|c| repl_command(c.name) == Some(cmd))
+        else {
+            return Response::error(format!("error: `:{}` has no LaTeX", cmd.name()));
+        };
+        let opts = match commands::parse(&c, args)
+            .and_then(|o| commands::app_options(cmd, &o, self.max_terms))
+        {
+            Ok((opts, _)) => opts,
+            Err(e) => return Response::error(e),
+        };
         let (src, _) = join(&self.statements);
         match output::run_with(cmd, &src, Format::Latex, &opts) {
             Ok((out, _)) => Response::out(out),
@@ -868,6 +826,9 @@ impl Session {
         );
         let mut r = self.statements(&src, &stmts);
         self.origin = outer;
+        if !r.failed {
+            self.source = Some(path.to_string());
+        }
         // the definitions of a whole file are not echoed
         if !r.failed {
             r.out = format!("(loaded {} statements from {path})\n", stmts.len());
@@ -937,69 +898,30 @@ fn shift(
 fn repl_command(word: &str) -> Option<Command> {
     match word {
         "equations" | "eq" => Some(Command::Derive),
-        _ => Command::from_name(word).filter(|c| !matches!(c, Command::Latex | Command::Check)),
+        // `:latex` typesets the last result
+        _ => Command::from_name(word).filter(|c| *c != Command::Latex),
     }
 }
 
 fn help_text() -> String {
     let mut out = String::from(HELP);
     out.push_str("\nCommands:\n");
-    for (c, a, what) in COMMANDS {
-        let head = if a.is_empty() {
-            c.to_string()
+    for c in commands() {
+        let head = if c.args.is_empty() {
+            format!(":{}", c.name)
         } else {
-            format!("{c} {a}")
+            format!(":{} {}", c.name, c.args)
         };
-        out.push_str(&format!("  {head:<44} {what}\n"));
+        if head.chars().count() > 44 {
+            // a long list of options: the description on a line of its own
+            out.push_str(&format!("  {head}\n  {:<44} {}\n", "", c.about));
+        } else {
+            out.push_str(&format!("  {head:<44} {}\n", c.about));
+        }
     }
     let functions: Vec<&str> = crate::parse::functions::names().collect();
     out.push_str(&format!("Functions: {}\n", functions.join(", ")));
     out
-}
-
-/// `--at X --init Y --set Z` (or `at=X`) after `:modes`/`:equilibrium`.
-fn parse_options(args: &str, cmd: Command, opts: &mut CommandOptions) -> Result<(), String> {
-    let mut words = args.split_whitespace();
-    while let Some(w) = words.next() {
-        let (key, value) = match w.strip_prefix("--") {
-            Some(k) => match k.split_once('=') {
-                Some((k, v)) => (k.to_string(), Some(v.to_string())),
-                None => (k.to_string(), words.next().map(str::to_string)),
-            },
-            None => {
-                return Err(format!(
-                    "error: unexpected `{w}`\n  = hint: options are written --set m=1,g=9.81 (and for :modes --at q=…, --init q=…)\n"
-                ))
-            }
-        };
-        let allowed: &[&str] = match cmd {
-            Command::Modes => &["set", "at", "init", "steady"],
-            Command::Equilibrium => &["set", "steady"],
-            Command::Latex => &["set"],
-            _ => &[],
-        };
-        if !allowed.contains(&key.as_str()) {
-            let near = crate::spelling::nearest(&key, allowed.iter().copied())
-                .map(|k| format!("did you mean `--{k}`? "))
-                .unwrap_or_default();
-            return Err(format!(
-                "error: this command takes no option `--{key}`\n  = hint: {near}:equilibrium takes --set and --steady; :modes takes --at, --steady, --init and --set\n"
-            ));
-        }
-        let Some(value) = value else {
-            return Err(format!("error: `--{key}` needs a value\n"));
-        };
-        match key.as_str() {
-            "set" => {
-                opts.set =
-                    output::parse_set_any_sign(&value).map_err(|d| d.render("--set", &value))?;
-            }
-            "at" => opts.at = Some(value),
-            "steady" => opts.steady = Some(value),
-            _ => opts.init = Some(value),
-        }
-    }
-    Ok(())
 }
 
 /// Whether an entry that parses neither way was meant as a statement: it
