@@ -63,7 +63,7 @@ fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
 }
 
 /// The files that may install thread-local state, and why.
-const INSTALLERS: &[(&str, &str)] = &[
+pub(crate) const INSTALLERS: &[(&str, &str)] = &[
     (
         "src/app/context.rs",
         "Context::within: the context of a command",

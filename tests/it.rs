@@ -32,6 +32,7 @@ mod hamilton;
 mod hostile;
 // the hostile modules say `crate::bound` (they were a crate of their own)
 use hostile::bound;
+mod architecture;
 mod house;
 mod house_rules;
 mod implicit;
