@@ -395,39 +395,9 @@ fn main() -> ExitCode {
             let report = Reporter::new(&args.file, args.output == "json");
             return on_scene(report, cli.max_terms, |src| sweep(report, src, args));
         }
-        Command::Cycle(o) => {
-            let (cmd, max) = (output::Command::Cycle, cli.max_terms);
-            return study(
-                cmd,
-                &o.file,
-                &o.output,
-                max,
-                |x| o.options(x),
-                |r| o.pictures(r),
-            );
-        }
-        Command::Response(o) => {
-            let (cmd, max) = (output::Command::Response, cli.max_terms);
-            return study(
-                cmd,
-                &o.file,
-                &o.output,
-                max,
-                |x| o.options(x),
-                |r| o.pictures(r),
-            );
-        }
-        Command::Floquet(o) => {
-            let (cmd, max) = (output::Command::Floquet, cli.max_terms);
-            return study(
-                cmd,
-                &o.file,
-                &o.output,
-                max,
-                |x| o.options(x),
-                |r| o.pictures(r),
-            );
-        }
+        Command::Cycle(o) => return o.study(cli.max_terms),
+        Command::Response(o) => return o.study(cli.max_terms),
+        Command::Floquet(o) => return o.study(cli.max_terms),
         Command::Codegen {
             file,
             lang,
@@ -752,6 +722,13 @@ struct CycleArgs {
 }
 
 impl CycleArgs {
+    /// `qdot cycle` through the application layer ([`study`]).
+    fn study(&self, max_terms: usize) -> ExitCode {
+        let cmd = output::Command::Cycle;
+        let (options, pictures) = (|x: &mut _| self.options(x), |r: &_| self.pictures(r));
+        study(cmd, &self.file, &self.output, max_terms, options, pictures)
+    }
+
     /// These options as the application layer's.
     fn options(&self, opts: &mut output::CommandOptions) -> Result<Format, qdot::Diagnostic> {
         let fmt = study_format(
@@ -887,6 +864,13 @@ struct ResponseArgs {
 }
 
 impl ResponseArgs {
+    /// `qdot response` through the application layer ([`study`]).
+    fn study(&self, max_terms: usize) -> ExitCode {
+        let cmd = output::Command::Response;
+        let (options, pictures) = (|x: &mut _| self.options(x), |r: &_| self.pictures(r));
+        study(cmd, &self.file, &self.output, max_terms, options, pictures)
+    }
+
     /// These options as the application layer's.
     fn options(&self, opts: &mut output::CommandOptions) -> Result<Format, qdot::Diagnostic> {
         let fmt = if self.over.is_some() {
@@ -965,6 +949,13 @@ struct FloquetArgs {
 }
 
 impl FloquetArgs {
+    /// `qdot floquet` through the application layer ([`study`]).
+    fn study(&self, max_terms: usize) -> ExitCode {
+        let cmd = output::Command::Floquet;
+        let (options, pictures) = (|x: &mut _| self.options(x), |r: &_| self.pictures(r));
+        study(cmd, &self.file, &self.output, max_terms, options, pictures)
+    }
+
     /// These options as the application layer's.
     fn options(&self, opts: &mut output::CommandOptions) -> Result<Format, qdot::Diagnostic> {
         let fmt = study_format(

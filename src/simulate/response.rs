@@ -14,13 +14,13 @@
 use crate::algebra::sign::Values;
 use crate::cycle::Over;
 use crate::diag::{Diagnostic, ErrorKind};
-use qdot_ode::dense::{solve_complex_scaled, Complex, Lu};
 use crate::expr::atom::{self, Atom};
 use crate::expr::Expr;
 use crate::poly::Var;
 use crate::scene::given::{parse_ranges, RESPONSE_OVER};
 use crate::solve::response::{natural_frequencies, ForcedSystem, OMEGA};
 use qdot_compile::compile::{compile_with, Program};
+use qdot_ode::dense::{solve_complex_scaled, Complex, Lu};
 use rustc_hash::FxHashMap;
 
 /// The swept frequency response.
