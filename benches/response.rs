@@ -110,7 +110,9 @@ fn main() {
     let src = std::fs::read_to_string(Path::new(ROOT).join("examples/damped_chain.qd"))
         .expect("the chain's scene");
     let scene = Scene::parse(&src).expect("parses");
-    let sys = ForcedSystem::of_scene(&scene, None).expect("linearizes");
+    let sys = scene
+        .assumptions_in_force(|| ForcedSystem::of_scene(&scene, None))
+        .expect("linearizes");
     let set = values();
     let over = over(FREQUENCIES);
     let mut compiled = CompiledResponse::new(&sys, &set).expect("compiles");

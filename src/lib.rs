@@ -27,10 +27,9 @@
 // The public API: the modules along the data's path, the application
 // layer, and the names a user needs at the root. The engine's internals
 // are behind one hidden module, `engine`.
-pub use qdot_compile::cycle;
-pub use qdot_compile::floquet;
 pub use qdot_exact::{budget, expr, limits, num};
 pub use qdot_mechanics::{mechanics, scene, solve};
+pub use qdot_study::{cycle, floquet};
 pub use qdot_syntax::{diag, parse, spelling};
 pub mod app;
 #[cfg(feature = "drawing")]

@@ -88,17 +88,6 @@ pub(crate) const INSTALLERS: &[(&str, &str)] = &[
         "src/simulate/sweep.rs",
         "a thread pool's workers take the budget of the thread that started them",
     ),
-    // the numeric commands' front ends (src/simulate/{response,floquet}.rs)
-    // parse the scene themselves, outside a scene's context; these two go
-    // when those commands run through `app`
-    (
-        "crates/mechanics/src/solve/response.rs",
-        "pending: ForcedSystem::of_scene",
-    ),
-    (
-        "crates/compile/src/floquet/mod.rs",
-        "pending: floquet::prepare",
-    ),
 ];
 
 /// The calls that install thread-local state: the function names, called
@@ -291,8 +280,8 @@ fn kindless_constructions_are_found() {
 /// the given functions, the frequency response, the budget and the
 /// expressions): counted, and counted apart in the message.
 const COUNTED_APART: &[&str] = &[
-    "crates/compile/src/cycle/",
-    "crates/compile/src/floquet/",
+    "crates/study/src/cycle/",
+    "crates/study/src/floquet/",
     "crates/mechanics/src/scene/given.rs",
     "crates/mechanics/src/solve/response.rs",
     "crates/exact/src/budget.rs",

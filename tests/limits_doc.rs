@@ -10,7 +10,7 @@ const SOURCES: [&str; 4] = [
     include_str!("../crates/exact/src/limits.rs"),
     include_str!("../src/simulate/sweep.rs"),
     include_str!("../crates/mechanics/src/scene/given.rs"),
-    include_str!("../crates/compile/src/cycle/friction.rs"),
+    include_str!("../crates/study/src/cycle/friction.rs"),
 ];
 
 /// `(NAME, value)` for every `pub const NAME: int = value;` of the

@@ -49,7 +49,9 @@ fn at(e: &Expr, set: &Values, omega: f64) -> f64 {
 /// |X_j| and φ_j (radians) swept numerically at the single frequency `omega`.
 fn swept(file: &str, set: &Values, omega: f64) -> Vec<(f64, f64)> {
     let scene = Scene::parse(&std::fs::read_to_string(file).unwrap()).unwrap();
-    let sys = ForcedSystem::of_scene(&scene, None).unwrap();
+    let sys = scene
+        .assumptions_in_force(|| ForcedSystem::of_scene(&scene, None))
+        .unwrap();
     let over = Over {
         name: OMEGA.into(),
         from: omega,
@@ -332,7 +334,10 @@ fn a_load_of_two_frequencies_is_refused() {
             "coordinates x\nparameters m, k, F0, p, w\nkinetic E = 1/2*m*x'^2\npotential V = 1/2*k*x^2\nwork L = {work}\n"
         ))
         .unwrap();
-        ForcedSystem::of_scene(&scene, None).unwrap_err().message
+        scene
+            .assumptions_in_force(|| ForcedSystem::of_scene(&scene, None))
+            .unwrap_err()
+            .message
     };
     assert_eq!(
         refused("F0*(cos(p*t) + cos(w*t))*x"),
@@ -349,7 +354,9 @@ fn a_load_of_two_frequencies_is_refused() {
         "coordinates x\nparameters m, k, F0, p\nkinetic E = 1/2*m*x'^2\npotential V = 1/2*k*x^2\nwork L = F0*cos(p*t)*sin(p*t)*x\n",
     )
     .unwrap();
-    let sys = ForcedSystem::of_scene(&scene, None).unwrap();
+    let sys = scene
+        .assumptions_in_force(|| ForcedSystem::of_scene(&scene, None))
+        .unwrap();
     assert_eq!(sys.frequency.to_string(), "2*p");
     assert!(sys.load_cos[0].is_zero());
     assert_eq!(sys.load_sin[0], div(&p("F0"), &q(2)));
@@ -362,7 +369,9 @@ fn a_sine_load_and_a_rotating_unbalance_read_their_amplitudes() {
         "coordinates x\nparameters m, k, c, e, p\nkinetic E = 1/2*m*x'^2\npotential V = 1/2*k*x^2\nrayleigh R = 1/2*c*x'^2\nwork L = m*e*p^2*sin(p*t)*x\n",
     )
     .unwrap();
-    let sys = ForcedSystem::of_scene(&scene, None).unwrap();
+    let sys = scene
+        .assumptions_in_force(|| ForcedSystem::of_scene(&scene, None))
+        .unwrap();
     let w = p(OMEGA);
     assert!(sys.load_cos[0].is_zero());
     assert_eq!(sys.load_sin[0], p("m").mul(&p("e")).mul(&w).mul(&w));
@@ -420,7 +429,9 @@ fn book_figure_is_the_commands_plot() {
 fn a_gyroscopic_system_is_solved_with_its_skew_c() {
     let src = "coordinates x, y\nparameters m, k, W, F0, p\nkinetic E = 1/2*m*((x' - W*y)^2 + (y' + W*x)^2)\npotential V = 1/2*k*(x^2 + y^2)\nwork L = F0*cos(p*t)*x\n";
     let scene = Scene::parse(src).unwrap();
-    let sys = ForcedSystem::of_scene(&scene, None).unwrap();
+    let sys = scene
+        .assumptions_in_force(|| ForcedSystem::of_scene(&scene, None))
+        .unwrap();
     assert!(sys.gyroscopic());
     let r = response(sys.clone(), &Values::new()).unwrap();
     assert_eq!(
@@ -471,7 +482,9 @@ proptest::proptest! {
         kind in 0usize..3, m in 1i64..20, k in 1i64..2000, c in 1i64..120,
     ) {
         let scene = Scene::parse(&one_dof(kind, m, k, c)).unwrap();
-        let sys = ForcedSystem::of_scene(&scene, None).unwrap();
+        let sys = scene
+        .assumptions_in_force(|| ForcedSystem::of_scene(&scene, None))
+        .unwrap();
         let r = response(sys, &Values::new()).unwrap();
         let set = values("F=1");
         let a2 = |w: f64| at(&r.amplitude_squared[0], &set, w);

@@ -59,7 +59,10 @@ pub fn thread_pool(requested: usize, jobs: usize) -> Result<rayon::ThreadPool, D
     rayon::ThreadPoolBuilder::new()
         .num_threads(thread_count(requested, jobs))
         .build()
-        .map_err(|e| Diagnostic::global(format!("cannot start the threads: {e}")))
+        .map_err(|e| {
+            Diagnostic::global(format!("cannot start the threads: {e}"))
+                .with_kind(crate::diag::ErrorKind::Internal)
+        })
 }
 
 /// The run of `simulate`/`sweep`: the options' request with the `--set`

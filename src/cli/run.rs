@@ -58,6 +58,7 @@ fn run(cmd: Command, src: &str, opts: &qdot::CommandOptions) -> Result<AnyReport
 /// The error of a report of another command than asked (never made).
 fn mismatched(cmd: Command) -> Diagnostic {
     Diagnostic::global(format!("`{}` made another report", cmd.name()))
+        .with_kind(qdot::diag::ErrorKind::Internal)
 }
 
 /// `--output`: JSON, or the table's CSV.
@@ -109,7 +110,8 @@ pub fn simulate(a: &SimulateArgs, max_terms: usize) -> ExitCode {
             .map_err(|e| e.to_string())
             .and_then(|svg| std::fs::write(path, svg).map_err(|e| e.to_string()));
         if let Err(e) = written {
-            let d = Diagnostic::global(format!("cannot write the plot `{path}`: {e}"));
+            let d = Diagnostic::global(format!("cannot write the plot `{path}`: {e}"))
+                .with_kind(qdot::diag::ErrorKind::bad_option("--plot"));
             return report.fail(&d, "");
         }
     }

@@ -74,6 +74,7 @@ impl CycleArgs {
             let svg =
                 qdot::drawing::reaction_diagrams(&run.table, &title, run.degrees).map_err(|e| {
                     qdot::Diagnostic::global(format!("cannot draw the reaction diagrams: {e}"))
+                        .with_kind(ErrorKind::bad_option("--plot"))
                 })?;
             write_picture(path, &svg)?;
         }

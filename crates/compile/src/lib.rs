@@ -2,20 +2,18 @@
 //! scene's given functions and constraints prepared for integration
 //! ([`given`], [`constrained`]), register programs and machine code
 //! ([`compile`]), and source code in C, Rust, Python and Julia
-//! ([`codegen`]); the Floquet stability of periodic coefficients
-//! ([`floquet`]).
+//! ([`codegen`]). The numeric studies built on them (`cycle`,
+//! `floquet`) are the crate `qdot-study`.
 
 #![warn(missing_docs)]
 
 pub mod codegen;
 pub mod compile;
 pub mod constrained;
-pub mod cycle;
-pub mod floquet;
 pub mod given;
 
 // the lower layers, by the paths this crate's modules use
-use qdot_exact::{algebra, budget, expr, limits, poly};
+use qdot_exact::{algebra, budget, expr, poly};
 use qdot_mechanics::{mechanics, scene};
 use qdot_ode::dense;
-use qdot_syntax::{diag, parse};
+use qdot_syntax::diag;

@@ -91,14 +91,13 @@ impl ForcedSystem {
     fn of_scene_within(scene: &Scene, at: Option<&[Expr]>) -> Result<ForcedSystem, Diagnostic> {
         scene.expanded_only("the frequency response")?;
         check_time_dependence(scene)?;
-        crate::algebra::assume::assuming(&scene.assumptions, || {
-            let lin = super::linearize::linearize(scene, &super::linearize::Reference::at(at))?;
-            forced(
-                lin.coordinates,
-                [&lin.mass, &lin.damping, &lin.stiffness],
-                &lin.forcing,
-            )
-        })
+        scene.assumptions_required("the frequency response")?;
+        let lin = super::linearize::linearize(scene, &super::linearize::Reference::at(at))?;
+        forced(
+            lin.coordinates,
+            [&lin.mass, &lin.damping, &lin.stiffness],
+            &lin.forcing,
+        )
     }
 
     /// Whether C has a part that is not zero.

@@ -96,10 +96,9 @@ pub fn prepare(scene: &Scene, req: &FloquetRequest) -> Result<Prepared, Diagnost
         }
     }
     let defs = crate::given::definitions(scene, &req.functions, "for its Floquet multipliers")?;
-    let lin = crate::algebra::assume::assuming(&scene.assumptions, || {
-        check_motion(scene, at.as_deref(), &defs)?;
-        linearize(scene, &Reference::at(at.as_deref()).time_varying())
-    })?;
+    scene.assumptions_required("the Floquet multipliers")?;
+    check_motion(scene, at.as_deref(), &defs)?;
+    let lin = linearize(scene, &Reference::at(at.as_deref()).time_varying())?;
     let define = |rows: &[Vec<Expr>]| -> Result<Vec<Vec<Expr>>, Diagnostic> {
         rows.iter()
             .map(|r| {

@@ -1,0 +1,16 @@
+//! qdot's numeric studies on the compiled equations of a scene, above
+//! the compilation (`qdot-compile`): a planar mechanism over its cycle
+//! ([`cycle`], `qdot cycle`) and the Floquet stability of a motion whose
+//! linearized equations have periodic coefficients ([`floquet`], `qdot
+//! floquet`). Floating point throughout; the exact equations come from
+//! `qdot-mechanics`.
+
+#![warn(missing_docs)]
+
+pub mod cycle;
+pub mod floquet;
+
+use qdot_compile::{compile, given};
+use qdot_exact::{algebra, budget, expr, limits, poly};
+use qdot_mechanics::{mechanics, scene};
+use qdot_syntax::{diag, parse};
