@@ -56,8 +56,8 @@ fn simulate_is_the_exact_solution_of_the_oscillator() {
         assert!((row[1] - x).abs() < 1e-9, "x({}) = {}", row[0], row[1]);
         assert!((row[3] - 2.0).abs() < 1e-9, "energy {}", row[3]);
     }
-    // its text is the CSV of the command line
-    let csv = qdot::output::render(&report, Format::Text).expect("CSV");
+    // its CSV is the command line's
+    let csv = qdot::output::render(&report, Format::Csv).expect("CSV");
     assert!(csv.starts_with("t,x,x',energy\n0.00000000000000000e0,1.00000000000000000e0,"));
     assert_eq!(csv.lines().count(), 6);
     let json = qdot::output::render(&report, Format::Json).expect("JSON");
@@ -67,7 +67,7 @@ fn simulate_is_the_exact_solution_of_the_oscillator() {
     );
     // and no LaTeX
     let e = qdot::output::render(&report, Format::Latex).unwrap_err();
-    assert_eq!(e.message, "`simulate` writes no latex");
+    assert_eq!(e.message, "`simulate` writes csv, json, not latex");
 }
 
 /// The pendulum from θ = 3 at rest first passes θ = 0 after a quarter of
@@ -134,7 +134,7 @@ fn a_two_run_sweep_is_two_simulations() {
     assert_eq!(r.result.sweep.threads, 1);
     assert_eq!(r.result.zero_velocities_note(), None);
     assert!(r.result.failures().is_none());
-    let csv = qdot::output::render(&report, Format::Text).expect("CSV");
+    let csv = qdot::output::render(&report, Format::Csv).expect("CSV");
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(
         lines[0],
@@ -232,8 +232,8 @@ fn codegen_is_the_command_lines() {
 #[test]
 fn the_numeric_commands_are_in_the_table() {
     for (name, formats) in [
-        ("simulate", &[Format::Text, Format::Json][..]),
-        ("sweep", &[Format::Text, Format::Json]),
+        ("simulate", &[Format::Csv, Format::Json][..]),
+        ("sweep", &[Format::Csv, Format::Json]),
         ("codegen", &[Format::Text]),
     ] {
         let cmd = Command::from_name(name).expect("a command");
