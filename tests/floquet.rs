@@ -21,7 +21,9 @@ fn prepared(file: &str, at: Option<&str>) -> Prepared {
         at: at.map(String::from),
         ..FloquetRequest::default()
     };
-    prepare(&scene, &req).expect("the scene linearizes")
+    scene
+        .assumptions_in_force(|| prepare(&scene, &req))
+        .expect("the scene linearizes")
 }
 
 fn values(pairs: &[(&str, f64)]) -> rustc_hash::FxHashMap<qdot_exact::poly::Var, f64> {
