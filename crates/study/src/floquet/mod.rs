@@ -96,7 +96,7 @@ pub fn prepare(scene: &Scene, req: &FloquetRequest) -> Result<Prepared, Diagnost
         }
     }
     let defs = crate::given::definitions(scene, &req.functions, "for its Floquet multipliers")?;
-    scene.assumptions_required("the Floquet multipliers")?;
+    scene.assumptions_required("the Floquet analysis")?;
     check_motion(scene, at.as_deref(), &defs)?;
     let lin = linearize(scene, &Reference::at(at.as_deref()).time_varying())?;
     let define = |rows: &[Vec<Expr>]| -> Result<Vec<Vec<Expr>>, Diagnostic> {
