@@ -114,6 +114,9 @@ fn command_options(
         functions: study.functions,
         period: study.period,
         max_steps: study.max_steps,
+        // simulate, sweep and codegen have calls of their own (`simulate`,
+        // `sweep`, `codegen` below), with their options
+        ..CommandOptions::default()
     })
 }
 

@@ -56,7 +56,7 @@ pub fn run(
     run_with(cmd, src, fmt, &opts)
 }
 
-/// [`run`] with every option, within the work budget `opts.max_terms`:
+/// [`run()`] with every option, within the work budget `opts.max_terms`:
 /// [`crate::app::run`], then [`render`].
 pub fn run_with(
     cmd: Command,
