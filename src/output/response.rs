@@ -4,38 +4,13 @@
 
 use super::table::{full, right_aligned, short};
 use super::{as_input, as_unicode};
-use crate::algebra::sign::Values;
-use crate::app::{Command, Context, Format, FrequencyResponse};
+use crate::app::{Command, Format, FrequencyResponse};
 use crate::diag::{Diagnostic, ErrorKind};
 use crate::expr::Expr;
 use crate::simulate::response::ResponseTable;
 use crate::solve::oscillations as osc;
 use crate::solve::response::{LoadPeak, Peak, Response, SingleDof, OMEGA};
 use serde::Serialize;
-
-/// The exact response of the scene `src` about `at` (`--at th=pi`, default
-/// every q = 0), signs decided with `set`, written as `json` or text; the
-/// work budget is `max_terms`: [`crate::app::run`] of
-/// [`crate::app::Command::Response`], then [`super::render`] (kept for the
-/// fuzz targets).
-#[doc(hidden)]
-pub fn response_output(
-    src: &str,
-    at: Option<&str>,
-    set: &Values,
-    max_terms: usize,
-    json: bool,
-) -> Result<String, Diagnostic> {
-    use crate::app::{Command, CommandOptions, Format};
-    let opts = CommandOptions {
-        at: at.map(String::from),
-        set: set.clone(),
-        ..CommandOptions::default()
-    };
-    let ctx = Context::new().with_max_terms(max_terms);
-    let report = crate::app::run(&ctx, Command::Response, src, &opts)?;
-    super::render(&report, if json { Format::Json } else { Format::Text })
-}
 
 /// `response`'s report in `fmt`: the exact response as text or JSON, the
 /// swept one as text, CSV or JSON.

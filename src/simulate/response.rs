@@ -211,38 +211,6 @@ fn local_maxima(w: &[f64], a: &[Option<f64>]) -> Vec<(f64, f64)> {
     out
 }
 
-/// The scene `src` linearized about `at` (`--at th=pi`) and swept over
-/// `over` at the values `set`: [`crate::app::run`] of
-/// [`crate::app::Command::Response`] (kept for the Python module and the
-/// fuzz targets).
-#[doc(hidden)]
-pub fn sweep(
-    src: &str,
-    at: Option<&str>,
-    set: &Values,
-    over: &Over,
-) -> Result<ResponseTable, Diagnostic> {
-    use crate::app::{self, AnyReport, Command, CommandOptions, Context, FrequencyResponse};
-    let opts = CommandOptions {
-        at: at.map(String::from),
-        set: set.clone(),
-        over: vec![over.clone()],
-        ..CommandOptions::default()
-    };
-    match app::run(
-        &Context::new().with_max_terms(crate::budget::limit()),
-        Command::Response,
-        src,
-        &opts,
-    )? {
-        AnyReport::Response(r) => match r.result {
-            FrequencyResponse::Swept(t) => Ok(t),
-            FrequencyResponse::Exact(_) => Err(Diagnostic::global("no sweep")),
-        },
-        _ => Err(Diagnostic::global("no sweep")),
-    }
-}
-
 pub use crate::output::response::{
     swept_csv as csv, swept_json as json, swept_text as text, ResponseSweepJson,
 };
