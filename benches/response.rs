@@ -19,8 +19,9 @@
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 use criterion::Criterion;
+use qdot::app::{self, AnyReport, CommandOptions, Context, FrequencyResponse};
 use qdot::cycle::Over;
-use qdot::simulate::response::{sweep, CompiledResponse, ResponseTable};
+use qdot::simulate::response::{CompiledResponse, ResponseTable};
 use qdot::solve::response::ForcedSystem;
 use qdot::Scene;
 use std::hint::black_box;
@@ -91,12 +92,33 @@ fn reference(args: &[&str]) -> Result<String, String> {
     Ok(String::from_utf8_lossy(&out.stdout).into_owned())
 }
 
+/// `qdot response --over` of the scene `src` at `set`, through the one
+/// door every command goes through ([`app::run`]).
+fn sweep(
+    src: &str,
+    set: &qdot::solve::equilibrium::Values,
+    over: &Over,
+) -> Result<ResponseTable, qdot::Diagnostic> {
+    let opts = CommandOptions {
+        set: set.clone(),
+        over: vec![over.clone()],
+        ..CommandOptions::default()
+    };
+    match app::run(&Context::new(), app::Command::Response, src, &opts)? {
+        AnyReport::Response(r) => match r.result {
+            FrequencyResponse::Swept(t) => Ok(t),
+            FrequencyResponse::Exact(_) => Err(qdot::Diagnostic::global("no sweep")),
+        },
+        _ => Err(qdot::Diagnostic::global("no sweep")),
+    }
+}
+
 /// The largest relative difference of our amplitudes from NumPy's at 101
 /// frequencies.
 fn numpy_difference(src: &str) -> Result<f64, String> {
     let text = reference(&["--check", "101"])?;
     let theirs: Vec<Vec<f64>> = serde_json::from_str(&text).map_err(|e| e.to_string())?;
-    let ours = sweep(src, None, &values(), &over(101)).map_err(|d| d.message)?;
+    let ours = sweep(src, &values(), &over(101)).map_err(|d| d.message)?;
     let mut worst = 0.0f64;
     for (row, want) in ours.amplitude.iter().zip(&theirs) {
         for (a, b) in row.iter().zip(want) {
@@ -116,7 +138,7 @@ fn main() {
     let set = values();
     let over = over(FREQUENCIES);
     let mut compiled = CompiledResponse::new(&sys, &set).expect("compiles");
-    let whole = || sweep(&src, None, &set, &over).expect("runs");
+    let whole = || sweep(&src, &set, &over).expect("runs");
     checked(whole());
     checked(compiled.run(&over));
 
