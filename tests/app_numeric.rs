@@ -206,7 +206,7 @@ fn codegen_is_the_command_lines() {
     let code = qdot::output::render(&report, Format::Text).expect("code");
     let cli = std::process::Command::new(env!("CARGO_BIN_EXE_qdot"))
         .args(["codegen", file, "--lang", "c", "--set", "g=9.81"])
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .current_dir(env!("QDOT_ROOT"))
         .output()
         .expect("qdot runs");
     assert!(cli.status.success());

@@ -194,7 +194,7 @@ fn command(line: &str) -> Invocation {
     if let Ok(out) = Command::new("bash")
         .args(["--norc", "--noprofile", "-c"])
         .arg(format!("printf '%s\\0' {}", &line["qdot".len()..]))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .current_dir(env!("QDOT_ROOT"))
         .stdin(std::process::Stdio::null())
         .output()
     {
@@ -211,7 +211,7 @@ fn command(line: &str) -> Invocation {
 /// What `inv` prints: stdout, and for `2>&1` stdout then stderr, and exit
 /// status 1.
 fn run(inv: &Invocation) -> String {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = std::path::Path::new(env!("QDOT_ROOT"));
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_qdot"));
     cmd.args(&inv.args).current_dir(root);
     let shown = inv.line();
@@ -417,7 +417,7 @@ fn tex_markdown(tex: &str) -> String {
 
 #[test]
 fn book_output_is_qdots_real_output() {
-    let dir = format!("{}/book/src", env!("CARGO_MANIFEST_DIR"));
+    let dir = format!("{}/book/src", env!("QDOT_ROOT"));
     let bless = std::env::var_os("QDOT_BLESS").is_some();
     let mut blocks = 0;
     for entry in std::fs::read_dir(&dir).expect("book/src") {

@@ -108,8 +108,7 @@ fn json_contract_and_reparse() {
     let mut kinds = std::collections::BTreeSet::new();
     for name in qdot::engine::gallery::SEED_EXAMPLES {
         let path = format!("examples/{name}.qd");
-        let src =
-            std::fs::read_to_string(format!("{}/{path}", env!("CARGO_MANIFEST_DIR"))).unwrap();
+        let src = std::fs::read_to_string(format!("{}/{path}", env!("QDOT_ROOT"))).unwrap();
         let scene = Scene::parse(&src).unwrap();
         let dynamics = scene.has_dynamics() && scene.lagrange().is_ok();
         let blocks = !scene.systems.is_empty();
@@ -219,7 +218,7 @@ fn json_contract_and_reparse() {
     let v = json(&out);
     let scene = Scene::parse(
         &std::fs::read_to_string(concat!(
-            env!("CARGO_MANIFEST_DIR"),
+            env!("QDOT_ROOT"),
             "/examples/seed_21_2_kinetostatic.qd"
         ))
         .unwrap(),

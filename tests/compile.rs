@@ -167,7 +167,7 @@ fn check_program(exprs: &[Expr], points: usize, seed: u64) -> f64 {
 }
 
 fn example(name: &str) -> Scene {
-    let path = format!("{}/examples/{name}.qd", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/examples/{name}.qd", env!("QDOT_ROOT"));
     let src = std::fs::read_to_string(path).expect("example exists");
     Scene::parse(&src).expect("example parses")
 }

@@ -13,7 +13,7 @@ use qdot::{Expr, Scene};
 use rustc_hash::FxHashMap;
 use std::path::Path;
 
-const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/constraints");
+const DATA: &str = concat!(env!("QDOT_ROOT"), "/tests/data/constraints");
 
 fn scene(src: &str) -> Scene {
     Scene::parse(src).unwrap_or_else(|d| panic!("{}", d.render("scene", src)))
@@ -425,7 +425,7 @@ fn wrong_constraints_are_refused_where_written() {
 #[test]
 fn seed_reactions_from_the_multipliers() {
     let example = |name: &str| {
-        let path = format!("{}/examples/{name}.qd", env!("CARGO_MANIFEST_DIR"));
+        let path = format!("{}/examples/{name}.qd", env!("QDOT_ROOT"));
         scene(&std::fs::read_to_string(path).unwrap())
     };
     let block = |s: &Scene| -> FxHashMap<String, Expr> {
@@ -514,10 +514,7 @@ fn reactions_at_points() {
     assert_eq!(v["reactions"][0]["constraint"], "rod");
     assert_eq!(v["reactions"][0]["point"], "[x, y]");
 
-    let path = format!(
-        "{}/examples/seed_21_2_constraints.qd",
-        env!("CARGO_MANIFEST_DIR")
-    );
+    let path = format!("{}/examples/seed_21_2_constraints.qd", env!("QDOT_ROOT"));
     let two = std::fs::read_to_string(path).unwrap() + "reaction rope1 at y1\n";
     let err = output::run(Command::Solve, &two, Format::Text, &Default::default()).unwrap_err();
     assert!(

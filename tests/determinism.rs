@@ -23,7 +23,7 @@ const BUDGET: usize = 100_000;
 
 /// The scenes compared: the examples, the mechanisms, the book's scenes.
 fn scenes() -> Vec<PathBuf> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = Path::new(env!("QDOT_ROOT"));
     let mut out = Vec::new();
     for dir in ["examples", "examples/mechanisms", "book/scenes"] {
         let Ok(entries) = std::fs::read_dir(root.join(dir)) else {
@@ -239,7 +239,7 @@ fn repl(session: &str) -> (String, String) {
     use std::io::Write;
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_qdot"))
         .arg("repl")
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .current_dir(env!("QDOT_ROOT"))
         .stdin(std::process::Stdio::piped())
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())
@@ -262,8 +262,8 @@ fn a_repl_session_prints_a_scene_as_a_fresh_one() {
     let commands = ":solve\n:hamilton\n:equilibrium\n:modes\n:format json\n:solve\n\
                     :modes\n:format latex\n:solve\n:hamilton\n";
     for file in ["examples/double_pendulum.qd", "examples/heavy_top.qd"] {
-        let src = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(file))
-            .expect("a scene");
+        let src =
+            std::fs::read_to_string(Path::new(env!("QDOT_ROOT")).join(file)).expect("a scene");
         let primer = reversed_primer(&src).expect("coordinates");
         // the primer typed in, then reset; its echo is the first lines
         let typed: String = primer.lines().map(|l| format!("{l}\n")).collect();

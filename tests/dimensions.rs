@@ -15,7 +15,7 @@ use qdot::scene::dimension::{self, Dimension, DimensionSource, DIMENSION_NAMES};
 use qdot::Scene;
 use std::path::{Path, PathBuf};
 
-const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/dimensions");
+const DATA: &str = concat!(env!("QDOT_ROOT"), "/tests/data/dimensions");
 
 fn cases(dir: &str) -> Vec<PathBuf> {
     crate::common::cases(&Path::new(DATA).join(dir))
@@ -90,7 +90,7 @@ fn right_scenes_are_accepted() {
 /// every coordinate, parameter and `solve` unknown.
 #[test]
 fn examples_are_annotated_and_clean() {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/examples");
+    let dir = concat!(env!("QDOT_ROOT"), "/examples");
     let mut n = 0;
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();
@@ -121,11 +121,8 @@ fn examples_are_annotated_and_clean() {
 /// coordinates are declared and the definitions found.
 #[test]
 fn seed_23_4_dimensions() {
-    let src = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/examples/seed_23_4.qd"
-    ))
-    .unwrap();
+    let src =
+        std::fs::read_to_string(concat!(env!("QDOT_ROOT"), "/examples/seed_23_4.qd")).unwrap();
     let (json, _) = output::run(Command::Check, &src, Format::Json, &Default::default()).unwrap();
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();
     assert_eq!(v["accelerations"]["y3"], "acceleration");
@@ -246,11 +243,8 @@ proptest! {
 /// The book's table of dimension names is `DIMENSION_NAMES`, row by row.
 #[test]
 fn book_table_is_the_table() {
-    let page = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/book/src/dimensions.md"
-    ))
-    .unwrap();
+    let page =
+        std::fs::read_to_string(concat!(env!("QDOT_ROOT"), "/book/src/dimensions.md")).unwrap();
     let table = page
         .split("<!-- dimension-names -->")
         .nth(1)

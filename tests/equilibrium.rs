@@ -953,7 +953,7 @@ fn dalembert_scenes_are_taken_at_rest() {
     // forces vanish, Q = (4G, G r) — constant, so no equilibrium; the same
     // as seed 21.2 by Lagrange.
     let read = |n: &str| {
-        std::fs::read_to_string(format!("{}/examples/{n}.qd", env!("CARGO_MANIFEST_DIR"))).unwrap()
+        std::fs::read_to_string(format!("{}/examples/{n}.qd", env!("QDOT_ROOT"))).unwrap()
     };
     let a = parse(&read("seed_22_3"));
     let b = parse(&read("seed_21_2"));

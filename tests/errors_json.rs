@@ -514,9 +514,8 @@ fn to_json_of_a_global_error_has_null_places() {
 fn the_application_layers_refusals_have_kinds() {
     use qdot::app::{self, CommandOptions, Context};
     use qdot::diag::ErrorKind;
-    let pendulum =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/first.qd"))
-            .expect("the example");
+    let pendulum = std::fs::read_to_string(concat!(env!("QDOT_ROOT"), "/examples/first.qd"))
+        .expect("the example");
     let ctx = Context::new();
     let mut set = qdot::solve::equilibrium::Values::default();
     set.insert("k".to_string(), 1.0);

@@ -323,7 +323,7 @@ fn the_books_chart_is_what_floquet_draws() {
     assert_eq!(code, 0, "{err}");
     let now = std::fs::read_to_string(&made).expect("the chart");
     let book = concat!(
-        env!("CARGO_MANIFEST_DIR"),
+        env!("QDOT_ROOT"),
         "/book/src/oscillations/mathieu_chart.svg"
     );
     if std::env::var_os("QDOT_BLESS").is_some() {

@@ -11,7 +11,7 @@ use qdot::output::{self, Command, Format};
 use qdot::Scene;
 use std::path::Path;
 
-const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/frames");
+const DATA: &str = concat!(env!("QDOT_ROOT"), "/tests/data/frames");
 
 fn scene(src: &str) -> Scene {
     Scene::parse(src).unwrap_or_else(|d| panic!("{}", d.render("scene", src)))

@@ -128,7 +128,7 @@ fn replay_bounded(target: &str, inputs: &[PathBuf], seconds: u64) -> Option<Stri
 
 /// Each regression of `target` in its own child; every failure listed.
 fn regressions(target: &str) {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = Path::new(env!("QDOT_ROOT"));
     let inputs = files(&root.join("fuzz/regressions").join(target));
     let failures: Vec<String> = inputs
         .iter()
@@ -180,7 +180,7 @@ fn motions_regressions() {
 /// reached.
 #[test]
 fn every_command_has_replaying_seeds() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = Path::new(env!("QDOT_ROOT"));
     let mut reached = std::collections::BTreeSet::new();
     for target in ["repl", "commands", "pipeline"] {
         let seeds: Vec<PathBuf> = files(&root.join("fuzz/corpus").join(target))
@@ -214,7 +214,7 @@ fn every_command_has_replaying_seeds() {
 /// the whole corpus), and there are seeds for every target.
 #[test]
 fn seed_corpus_replays_cleanly() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = Path::new(env!("QDOT_ROOT"));
     for target in pipeline::TARGETS {
         let inputs = files(&root.join("fuzz/corpus").join(target));
         assert!(inputs.len() >= 10, "`{target}` has {} seeds", inputs.len());

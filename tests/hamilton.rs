@@ -126,11 +126,8 @@ potential V = 1/2*k*x^2*cos(w*t)
 /// carries the documented keys and re-parses.
 #[test]
 fn the_heavy_top_json() {
-    let src = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/examples/heavy_top.qd"
-    ))
-    .unwrap();
+    let src =
+        std::fs::read_to_string(concat!(env!("QDOT_ROOT"), "/examples/heavy_top.qd")).unwrap();
     let s = scene(&src);
     let (out, _) =
         output::run_with(Command::Integrals, &src, Format::Json, &Default::default()).unwrap();
@@ -293,11 +290,8 @@ fn structured_hamilton_expands_to_the_expanded_one() {
 /// velocities' denominator, which the canonical form cannot cancel).
 #[test]
 fn the_double_pendulum_hamiltonian_is_the_textbook_one() {
-    let src = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/examples/double_pendulum.qd"
-    ))
-    .unwrap();
+    let src = std::fs::read_to_string(concat!(env!("QDOT_ROOT"), "/examples/double_pendulum.qd"))
+        .unwrap();
     let s = scene(&src);
     let h = Hamiltonian::derive(&s).unwrap();
     assert!(h.intermediates.is_none());

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 /// Every source directory of the workspace, with the prefix its files are
 /// named by.
 fn source_dirs() -> Vec<PathBuf> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = Path::new(env!("QDOT_ROOT"));
     let mut dirs = vec![root.join("src")];
     let mut crates: Vec<PathBuf> = std::fs::read_dir(root.join("crates"))
         .expect("crates/ is readable")
@@ -73,7 +73,7 @@ fn long_functions(text: &str, limit: usize) -> Vec<(String, usize)> {
 
 #[test]
 fn files_and_functions_stay_small() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = Path::new(env!("QDOT_ROOT"));
     let mut files = Vec::new();
     for dir in source_dirs() {
         rust_files(&dir, &mut files);

@@ -12,7 +12,7 @@
 use std::path::{Path, PathBuf};
 
 fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
+    Path::new(env!("QDOT_ROOT"))
 }
 
 /// Every library source file, by its path from the root, with its text up

@@ -1,7 +1,16 @@
 //! The integration tests: one test crate (one link of the library instead
-//! of one per file), each file of tests/ a module. Helpers shared by
-//! several modules are in `common` and `stress_common`; the hostile-input
-//! suite is a directory of its own.
+//! of one per file), each file of tests/ a module, in a package of its own
+//! (tests/Cargo.toml) so that the suite's code builds unoptimized. Helpers
+//! shared by several modules are in `common` and `stress_common`; the
+//! hostile-input suite is a directory of its own.
+
+/// The tests name files relative to the repository's root (`examples/…`),
+/// in process and in the commands they run, while cargo starts a package's
+/// tests in its own directory (tests/): move to the root before any test.
+#[ctor::ctor(unsafe)]
+fn run_from_the_repository_root() {
+    std::env::set_current_dir(env!("QDOT_ROOT")).expect("the repository's root exists");
+}
 
 mod common;
 mod compact;

@@ -82,7 +82,7 @@ fn forms(lag: &Lagrange, params: &FxHashMap<Var, f64>) -> Vec<CompiledDynamics> 
 
 #[test]
 fn every_example_agrees_with_the_interpreter() {
-    let dir = format!("{}/examples", env!("CARGO_MANIFEST_DIR"));
+    let dir = format!("{}/examples", env!("QDOT_ROOT"));
     let mut names: Vec<_> = std::fs::read_dir(&dir)
         .expect("examples/")
         .filter_map(|e| e.ok().map(|e| e.path()))
@@ -297,7 +297,7 @@ fn qdot(args: &[&str]) -> (bool, String, String) {
 
 #[test]
 fn simulate_evaluator_option() {
-    let file = format!("{}/examples/pendulum.qd", env!("CARGO_MANIFEST_DIR"));
+    let file = format!("{}/examples/pendulum.qd", env!("QDOT_ROOT"));
     let base = [
         "simulate",
         &file,

@@ -14,8 +14,8 @@ use qdot::output::{self, Command, Format};
 use qdot::Scene;
 use std::path::Path;
 
-const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/joints");
-const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+const DATA: &str = concat!(env!("QDOT_ROOT"), "/tests/data/joints");
+const ROOT: &str = env!("QDOT_ROOT");
 
 fn example(name: &str) -> String {
     std::fs::read_to_string(format!("{ROOT}/examples/{name}")).expect("the example exists")

@@ -44,7 +44,7 @@ fn every_seed_example_compiles_with_pdflatex() {
         );
         return;
     }
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = Path::new(env!("QDOT_ROOT"));
     let dir = std::env::temp_dir().join(format!("qdot-pdflatex-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let mut compiled = 0;

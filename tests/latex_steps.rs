@@ -154,7 +154,7 @@ fn term_set(side: &str) -> Vec<String> {
 
 #[test]
 fn no_step_repeats_the_one_before_in_any_example() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let dir = std::path::Path::new(env!("QDOT_ROOT")).join("examples");
     let mut checked = 0;
     let mut too_large = Vec::new();
     for entry in std::fs::read_dir(&dir).expect("examples/") {

@@ -161,10 +161,10 @@ fn entry_points_child() {
 
 fn scene(which: &str) -> String {
     match which {
-        "rod_chain" => std::fs::read_to_string(
-            Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/rod_chain.qd"),
-        )
-        .expect("examples/rod_chain.qd"),
+        "rod_chain" => {
+            std::fs::read_to_string(Path::new(env!("QDOT_ROOT")).join("examples/rod_chain.qd"))
+                .expect("examples/rod_chain.qd")
+        }
         "chain30" => qdot::engine::gallery::pendulum_chain(30),
         other => panic!("no scene {other}"),
     }

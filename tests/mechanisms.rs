@@ -33,7 +33,7 @@ struct Fixture {
 fn fixture(name: &str) -> Fixture {
     let path = format!(
         "{}/tests/fixtures/mechanisms/{name}.json",
-        env!("CARGO_MANIFEST_DIR")
+        env!("QDOT_ROOT")
     );
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
     let json: serde_json::Value = serde_json::from_str(&text).expect("fixture JSON");
@@ -68,7 +68,7 @@ fn fixture(name: &str) -> Fixture {
 }
 
 fn source(path: &str) -> String {
-    let path = format!("{}/{path}", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/{path}", env!("QDOT_ROOT"));
     std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
 }
 
@@ -174,7 +174,7 @@ fn marghitus_slider_crank_equals_the_numpy_reference() {
 
 #[test]
 fn every_fixture_is_tested() {
-    let dir = format!("{}/tests/fixtures/mechanisms", env!("CARGO_MANIFEST_DIR"));
+    let dir = format!("{}/tests/fixtures/mechanisms", env!("QDOT_ROOT"));
     let mut names: Vec<String> = std::fs::read_dir(&dir)
         .expect("the fixtures")
         .filter_map(|e| {
@@ -255,7 +255,7 @@ fn marghitus_printed_forces_are_reproduced() {
 fn qdot(args: &[&str]) -> (bool, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_qdot"))
         .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .current_dir(env!("QDOT_ROOT"))
         .output()
         .expect("qdot runs");
     (

@@ -84,7 +84,7 @@ fn parse(src: &str) -> Scene {
 }
 
 fn example_src(name: &str) -> String {
-    let path = format!("{}/examples/{name}.qd", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/examples/{name}.qd", env!("QDOT_ROOT"));
     std::fs::read_to_string(&path).expect("example exists")
 }
 
@@ -1636,7 +1636,7 @@ fn a_free_response_never_prints_a_double_minus() {
 /// (SymPy derives M, C and K from its own Lagrangian, det(K + s·C + s²·M)
 /// or det(K − λ·M), factors it over ℚ and solves each factor).
 fn modes_fixtures() -> Vec<Value> {
-    let path = format!("{}/tests/fixtures/modes.json", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/tests/fixtures/modes.json", env!("QDOT_ROOT"));
     let text = std::fs::read_to_string(path).expect("modes.json exists");
     let v: Value = serde_json::from_str(&text).expect("modes.json is JSON");
     v["cases"].as_array().expect("cases").clone()

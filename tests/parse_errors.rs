@@ -23,7 +23,7 @@ use pretty_assertions::assert_eq;
 use qdot::parse::{parse_expr, parse_scene, MAX_DEPTH, MAX_NESTING};
 use std::path::{Path, PathBuf};
 
-const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/parse_errors");
+const DATA: &str = concat!(env!("QDOT_ROOT"), "/tests/data/parse_errors");
 const BLESS: &str = "QDOT_BLESS=1 cargo test --release --test it parse_errors::";
 
 /// The blessed output of one case: `LINE:COL WIDTH`, then the rendered

@@ -24,8 +24,7 @@ fn norm(s: &str) -> String {
 
 /// rule name -> body, from the EBNF.
 fn grammar_rules() -> BTreeMap<String, String> {
-    let src =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/grammar/qd.ebnf")).unwrap();
+    let src = std::fs::read_to_string(concat!(env!("QDOT_ROOT"), "/grammar/qd.ebnf")).unwrap();
     let text = strip_comments(&src);
     let mut rules = BTreeMap::new();
     let mut current: Option<(String, String)> = None;
@@ -51,7 +50,7 @@ fn grammar_rules() -> BTreeMap<String, String> {
 
 /// The parser's source: every file of crates/syntax/src/parse/, in name order.
 fn parser_source() -> String {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/crates/syntax/src/parse");
+    let dir = concat!(env!("QDOT_ROOT"), "/crates/syntax/src/parse");
     let mut files: Vec<_> = std::fs::read_dir(dir)
         .expect("crates/syntax/src/parse")
         .map(|e| e.expect("an entry").path())
@@ -151,8 +150,7 @@ fn statements_vectors_and_solve_blocks_are_live_rules() {
     assert_eq!(statement.last().map(String::as_str), Some("definition"));
     assert!(alternatives("atom").iter().any(|a| a == "vector"));
     // the grammar states the stop-word rule of `load`/`torque`
-    let src =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/grammar/qd.ebnf")).unwrap();
+    let src = std::fs::read_to_string(concat!(env!("QDOT_ROOT"), "/grammar/qd.ebnf")).unwrap();
     assert!(src.contains("Stop word"), "stop-word rule missing");
     assert!(src.contains("[x, y]"));
 }

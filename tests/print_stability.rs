@@ -11,7 +11,7 @@ use std::process::Command as Process;
 
 #[test]
 fn every_example_prints_as_in_a_fresh_process() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let dir = std::path::Path::new(env!("QDOT_ROOT")).join("examples");
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .expect("examples/")
         .filter_map(|e| e.ok().map(|e| e.path()))

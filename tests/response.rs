@@ -405,7 +405,7 @@ fn book_figure_is_the_commands_plot() {
     assert_eq!(code, 0, "{err}");
     let now = std::fs::read_to_string(&svg).unwrap();
     let book = concat!(
-        env!("CARGO_MANIFEST_DIR"),
+        env!("QDOT_ROOT"),
         "/book/src/oscillations/vibration_absorber_response.svg"
     );
     if std::env::var_os("QDOT_BLESS").is_some() {

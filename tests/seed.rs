@@ -4,7 +4,7 @@
 use qdot::{Expr, Scene};
 
 fn scene(name: &str) -> Scene {
-    let path = format!("{}/examples/{name}.qd", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/examples/{name}.qd", env!("QDOT_ROOT"));
     let src = std::fs::read_to_string(&path).expect("example exists");
     match Scene::parse(&src) {
         Ok(s) => s,

@@ -4,7 +4,7 @@
 
 use std::process::Command;
 
-const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+const ROOT: &str = env!("QDOT_ROOT");
 
 /// The book's page that shows the figures, and where they are kept.
 const PAGE: &str = "book/src/simulation.md";

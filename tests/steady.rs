@@ -12,7 +12,7 @@ use serde_json::Value;
 use std::process::Command;
 
 fn root() -> &'static str {
-    env!("CARGO_MANIFEST_DIR")
+    env!("QDOT_ROOT")
 }
 
 fn scene(path: &str) -> Scene {

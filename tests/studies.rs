@@ -6,7 +6,7 @@ use crate::common::run::qdot;
 use qdot::app::{self, AnyReport, Command, CommandOptions, Context, Format, FrequencyResponse};
 
 fn source(file: &str) -> String {
-    std::fs::read_to_string(format!("{}/{file}", env!("CARGO_MANIFEST_DIR"))).expect("scene")
+    std::fs::read_to_string(format!("{}/{file}", env!("QDOT_ROOT"))).expect("scene")
 }
 
 const SET_213: &str =

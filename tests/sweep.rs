@@ -8,7 +8,7 @@ use std::process::Command;
 fn qdot(args: &[&str]) -> (bool, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_qdot"))
         .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .current_dir(env!("QDOT_ROOT"))
         .output()
         .expect("qdot runs");
     (

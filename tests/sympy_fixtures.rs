@@ -20,7 +20,7 @@ use qdot::{Expr, Scene};
 use serde_json::Value;
 
 fn fixtures(file: &str) -> Value {
-    let path = format!("{}/tests/fixtures/{file}", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/tests/fixtures/{file}", env!("QDOT_ROOT"));
     let text = std::fs::read_to_string(path).expect("fixture file exists");
     serde_json::from_str(&text).expect("fixture file is JSON")
 }

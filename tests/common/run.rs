@@ -36,7 +36,7 @@ pub const EQUILIBRIUM_KEYS: [&str; 14] = [
 pub fn qdot(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_qdot"))
         .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .current_dir(env!("QDOT_ROOT"))
         .output()
         .expect("qdot runs");
     (

@@ -197,7 +197,7 @@ fn children_cpu(times: &str) -> Duration {
 pub fn qdot_bounded(args: &[&str], stdin: &str, seconds: u64, memory_mib: u64) -> Outcome {
     let exe = Path::new(env!("CARGO_BIN_EXE_qdot"));
     let mut command = Command::new(exe);
-    command.args(args).current_dir(env!("CARGO_MANIFEST_DIR"));
+    command.args(args).current_dir(env!("QDOT_ROOT"));
     let mut bounded = spawn_bounded(exe, &mut command, seconds, memory_mib);
     let child = &mut bounded.child;
     let mut input = child.stdin.take().expect("stdin");

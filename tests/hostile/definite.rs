@@ -145,7 +145,7 @@ fn an_indefinite_mass_matrix_is_never_stable() {
 #[test]
 fn a_singular_mass_matrix_gives_no_verdict() {
     let src = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
+        env!("QDOT_ROOT"),
         "/examples/spherical_pendulum.qd"
     ))
     .expect("the example");

@@ -14,7 +14,7 @@ fn qdot_cpu_bounded(args: &[&str], cpu_seconds: u32) -> (Option<i32>, String, St
         .arg(format!("ulimit -t {cpu_seconds} && exec \"$0\" \"$@\""))
         .arg(env!("CARGO_BIN_EXE_qdot"))
         .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .current_dir(env!("QDOT_ROOT"))
         .output()
         .expect("qdot starts");
     (

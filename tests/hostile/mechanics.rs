@@ -9,7 +9,7 @@ use crate::bound::*;
 use qdot::Scene;
 
 fn example(name: &str) -> String {
-    std::fs::read_to_string(format!("{}/examples/{name}.qd", env!("CARGO_MANIFEST_DIR")))
+    std::fs::read_to_string(format!("{}/examples/{name}.qd", env!("QDOT_ROOT")))
         .expect("the example")
 }
 
@@ -151,7 +151,7 @@ fn an_acceleration_in_an_energy_is_refused_at_its_position() {
 #[test]
 fn time_derivatives_past_the_bound_are_refused_at_their_position() {
     let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
+        env!("QDOT_ROOT"),
         "/fuzz/regressions/pipeline/high-order-derivative"
     );
     let src = std::fs::read_to_string(path).expect("the fuzz finding");

@@ -13,7 +13,7 @@
 use crate::bound::*;
 
 fn example(name: &str) -> String {
-    std::fs::read_to_string(format!("{}/examples/{name}.qd", env!("CARGO_MANIFEST_DIR")))
+    std::fs::read_to_string(format!("{}/examples/{name}.qd", env!("QDOT_ROOT")))
         .expect("the example")
 }
 
@@ -658,7 +658,7 @@ fn a_closed_pipe_is_not_a_panic() {
     use std::io::{BufRead, BufReader, Read};
     use std::process::{Command, Stdio};
     let mut child = Command::new(env!("CARGO_BIN_EXE_qdot"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .current_dir(env!("QDOT_ROOT"))
         .args([
             "simulate",
             "examples/seed_23_4.qd",
