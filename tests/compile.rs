@@ -704,3 +704,32 @@ fn both_evaluators_give_the_same_double_pendulum_trajectory() {
     // the trajectory moves: not a trivially equal pair of constants
     assert!((a.y[100][0] - p.y0[0]).abs() > 1e-2);
 }
+
+/// A whole power compiles to binary powering, exact for small exponents as
+/// repeated multiplication is (the register program's `powi`).
+#[test]
+fn whole_powers_are_repeated_multiplication() {
+    let x = Expr::coord("x", 0);
+    let exprs: Vec<Expr> = (0..12)
+        .chain([17, 31])
+        .map(|n| x.powi(n).expect("a power"))
+        .collect();
+    let inputs = leaves(&exprs);
+    let prog = compile(&exprs, &inputs).expect("compiles");
+    let mut regs = prog.registers();
+    let mut out = vec![0.0; exprs.len()];
+    for at in [1.3f64, -0.7, 2.0] {
+        let point: Vec<f64> = inputs.iter().map(|_| at).collect();
+        prog.eval(&point, &mut regs, &mut out);
+        for (n, got) in (0..12).chain([17, 31]).zip(&out) {
+            let mut want = 1.0f64;
+            for _ in 0..n {
+                want *= at;
+            }
+            assert!(
+                (got - want).abs() <= 1e-14 * want.abs(),
+                "{at}^{n}: compiled {got}, repeated multiplication {want}"
+            );
+        }
+    }
+}

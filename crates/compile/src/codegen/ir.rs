@@ -34,8 +34,8 @@ pub(super) enum Fun {
 
 impl Fun {
     /// Every function (C and Julia call them by their bare names, so their
-    /// lists of reserved names must hold each one).
-    #[cfg(test)]
+    /// lists of reserved names must hold each one: checked at compile time
+    /// below, [`EVERY_FUNCTION_IS_RESERVED`]).
     const ALL: [Fun; 8] = [
         Fun::Sin,
         Fun::Cos,
@@ -49,7 +49,7 @@ impl Fun {
 
     /// Its name in C's libm, which C, Python's `math` and Julia share
     /// (Rust writes `ln` for `log`).
-    pub(super) fn libm_name(self) -> &'static str {
+    pub(super) const fn libm_name(self) -> &'static str {
         match self {
             Fun::Sin => "sin",
             Fun::Cos => "cos",
@@ -379,15 +379,34 @@ fn fold(op: &Op) -> Option<f64> {
     })
 }
 
-#[cfg(test)]
-mod tests {
-    use super::Fun;
+/// Whether `list` holds `name` (`<[&str]>::contains` in a constant).
+const fn holds(list: &[&str], name: &str) -> bool {
+    let mut i = 0;
+    while i < list.len() {
+        let (a, b) = (list[i].as_bytes(), name.as_bytes());
+        if a.len() == b.len() {
+            let mut k = 0;
+            while k < a.len() && a[k] == b[k] {
+                k += 1;
+            }
+            if k == a.len() {
+                return true;
+            }
+        }
+        i += 1;
+    }
+    false
+}
 
-    #[test]
-    fn every_function_is_listed_and_its_bare_name_reserved() {
-        // no wildcard: a new function fails to compile here until it has
-        // a position in ALL
-        let position = |f: Fun| match f {
+/// A parameter named like a called function would shadow it, so C's and
+/// Julia's reserved names hold every function's name, and `ALL` holds
+/// every function (the match has no wildcard: a new function fails to
+/// compile here until it has its position in `ALL`).
+const EVERY_FUNCTION_IS_RESERVED: () = {
+    let mut i = 0;
+    while i < Fun::ALL.len() {
+        let f = Fun::ALL[i];
+        let position = match f {
             Fun::Sin => 0,
             Fun::Cos => 1,
             Fun::Exp => 2,
@@ -397,16 +416,13 @@ mod tests {
             Fun::Asin => 6,
             Fun::Acos => 7,
         };
-        assert_eq!(Fun::ALL.len(), 8);
-        for (i, f) in Fun::ALL.into_iter().enumerate() {
-            assert_eq!(position(f), i);
-            let name = f.libm_name();
-            // a parameter named like a called function would shadow it
-            assert!(super::super::c::RESERVED.contains(&name), "C: {name}");
-            assert!(
-                super::super::julia::RESERVED.contains(&name),
-                "Julia: {name}"
-            );
-        }
+        assert!(position == i, "Fun::ALL is in the order of the enum");
+        assert!(holds(super::c::RESERVED, f.libm_name()), "C reserves it");
+        assert!(
+            holds(super::julia::RESERVED, f.libm_name()),
+            "Julia reserves it"
+        );
+        i += 1;
     }
-}
+};
+const _: () = EVERY_FUNCTION_IS_RESERVED;

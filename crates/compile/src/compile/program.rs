@@ -249,20 +249,3 @@ pub(super) fn powi(x: f64, n: u32) -> f64 {
 
 /// "No register": a dot product without an initial value.
 pub(super) const NONE: u32 = u32::MAX;
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn powi_matches_repeated_multiplication() {
-        for n in 0..12u32 {
-            let x = 1.3f64;
-            let mut p = 1.0;
-            for _ in 0..n {
-                p *= x;
-            }
-            assert!((powi(x, n) - p).abs() <= 1e-14 * p, "{n}");
-        }
-    }
-}
