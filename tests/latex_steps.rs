@@ -42,7 +42,7 @@ fn the_definitions_come_first_as_written() {
     for row in [
         "  J_{3} &= \\frac{1}{3} l^{2} m_{3} = 36 m r^{2} \\\\\n",
         "  \\theta_{3} &= \\frac{y_{1}}{3 r} \\\\\n",
-        "  \\mathit{xB} &= 4 r \\theta_{3} = \\frac{4}{3} y_{1} \\\\\n",
+        "  x_{B} &= 4 r \\theta_{3} = \\frac{4}{3} y_{1} \\\\\n",
         "  E_{2} &= \\frac{1}{2} J_{2} \\dot{\\theta}_{2}^{2} = 2 m \\dot{y}_{1}^{2} \\\\\n",
     ] {
         assert!(seed.contains(row), "missing {row:?} in\n{seed}");
