@@ -15,6 +15,7 @@ mod book_markdown;
 mod builtins;
 mod cli;
 mod cli_help;
+mod closed_values;
 mod codegen;
 mod compile;
 mod constraints;

@@ -152,8 +152,12 @@ fn standalone_is_a_document() {
     let doc = qdot(&["latex", "--standalone", "examples/seed_22_2.qd"]);
     assert!(doc.starts_with("\\documentclass[10pt]{article}\n"));
     assert!(doc.contains("\\usepackage{amsmath}"));
-    // titled by the file's base name, or by --title
-    assert!(doc.contains("\\section*{seed\\_22\\_2}"), "{doc}");
+    // titled by the scene's first comment (as `simulate --plot`), or by
+    // --title
+    assert!(
+        doc.contains("\\section*{Seed problem 22.2 as the book solves it}"),
+        "{doc}"
+    );
     let titled = qdot(&[
         "latex",
         "--standalone",
@@ -178,7 +182,7 @@ fn modes_as_a_standalone_document() {
         "--standalone",
     ]);
     assert!(doc.starts_with("\\documentclass[10pt]{article}\n"));
-    assert!(doc.contains("\\section*{seed\\_24\\_2}"));
+    assert!(doc.contains("\\section*{Seed problem 24.2}"), "{doc}");
     assert!(doc.contains(&qdot(&[
         "modes",
         "examples/seed_24_2.qd",

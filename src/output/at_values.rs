@@ -3,10 +3,10 @@
 //! most 6 significant ones.
 //!
 //! The value is computed in floating point; its rounding noise is
-//! estimated as `certify` estimates a function's, from evaluations at
-//! parameter values a few units in the last place apart (a cancellation,
-//! such as a bandwidth's difference of close terms, shows as a large
-//! spread). The digits printed are those the ends of value ± 16 × noise
+//! estimated as `certify` estimates a function's, from evaluations with
+//! each parameter's value moved by a unit or two in the last place (a
+//! cancellation, such as a bandwidth's difference of close terms, shows
+//! as a large spread). The digits printed are those the ends of value ± 16 × noise
 //! share.
 
 use crate::expr::atom::Atom;
@@ -80,13 +80,13 @@ pub(crate) fn evaluate(e: &Expr, set: &Values) -> Option<Enclosed> {
     };
     let v = at(&|_| 0.0)?;
     let mut noise = 0.0f64;
-    // every value moved by a few ulps, in several sign patterns
-    for k in 1..=4 {
-        let moved = at(&|i| {
-            let sign = if (i + k) % 2 == 0 { 1.0 } else { -1.0 };
-            sign * (k as f64)
-        })?;
-        noise = noise.max((moved - v).abs());
+    // each value moved alone by one and two ulps either way (moved
+    // together, a homogeneous form's changes could cancel)
+    for i in 0..set.len() {
+        for bump in [1.0, -1.0, 2.0, -2.0] {
+            let moved = at(&|j| if j == i { bump } else { 0.0 })?;
+            noise = noise.max((moved - v).abs());
+        }
     }
     let width = 16.0 * noise + 8.0 * f64::EPSILON * v.abs();
     Some(Enclosed {
