@@ -32,7 +32,8 @@ impl Writer {
             .first()
             .is_some_and(|d| scene.bodies.iter().any(|b| b.kinetic == d.name));
         let what = match (energies.len() > 1, of_bodies) {
-            (_, true) => "the kinetic energy is found body by body.",
+            (true, true) => "the kinetic energy is found body by body.",
+            (false, true) => "the kinetic energy is found from the body's data.",
             (true, false) => "body by body, the kinetic energy is",
             (false, false) => "the kinetic energy is",
         };
