@@ -36,7 +36,7 @@ fn main() -> ExitCode {
         Command::Cycle(o) => cli::study::run(
             output::Command::Cycle,
             &o.file,
-            &o.output,
+            o.output_name(),
             max_terms,
             |x| o.options(x),
             |r| o.pictures(r),

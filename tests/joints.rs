@@ -342,6 +342,6 @@ fn a_long_relative_velocity_gets_its_own_row_in_latex() {
     ));
     let seed = tex("seed_21_3.qd");
     assert!(seed.contains(
-        "S_{f} &= -\\mu \\, \\left|S_{n}\\right| \\operatorname{sgn}\\left(\\dot{\\mathit{xB}}\\right)"
+        "S_{f} &= -\\mu \\, \\left|S_{n}\\right| \\operatorname{sgn}\\left(\\dot{x}_{B}\\right)"
     ));
 }

@@ -152,8 +152,12 @@ fn standalone_is_a_document() {
     let doc = qdot(&["latex", "--standalone", "examples/seed_22_2.qd"]);
     assert!(doc.starts_with("\\documentclass[10pt]{article}\n"));
     assert!(doc.contains("\\usepackage{amsmath}"));
-    // titled by the file's base name, or by --title
-    assert!(doc.contains("\\section*{seed\\_22\\_2}"), "{doc}");
+    // titled by the scene's first comment (as `simulate --plot`), or by
+    // --title
+    assert!(
+        doc.contains("\\section*{Seed problem 22.2 as the book solves it}"),
+        "{doc}"
+    );
     let titled = qdot(&[
         "latex",
         "--standalone",
@@ -178,7 +182,7 @@ fn modes_as_a_standalone_document() {
         "--standalone",
     ]);
     assert!(doc.starts_with("\\documentclass[10pt]{article}\n"));
-    assert!(doc.contains("\\section*{seed\\_24\\_2}"));
+    assert!(doc.contains("\\section*{Seed problem 24.2}"), "{doc}");
     assert!(doc.contains(&qdot(&[
         "modes",
         "examples/seed_24_2.qd",
@@ -307,14 +311,19 @@ fn products_of_two_letter_names_are_dotted() {
          \\cos\\alpha}{\\mathit{AB} \\cdot g \\cos\\alpha} \\\\"
     );
     // beside a number, a fraction or a function a word needs no dot
-    let s =
-        Scene::parse("coordinates xB\nparameters AB, AC, G, g, k\nlatex AC = \"\\mathrm{AC}\"\n")
-            .expect("scene parses");
+    let s = Scene::parse(
+        "coordinates xs, xB\nparameters AB, AC, G, g, k\nlatex AC = \"\\mathrm{AC}\"\n",
+    )
+    .expect("scene parses");
     let names = notation(&s);
     let t = |src: &str| latex_with(&s.expr(src).expect("parses"), &names);
-    assert_eq!(t("2*AB*sin(xB)"), "2 \\mathit{AB} \\sin\\mathit{xB}");
-    assert_eq!(t("G/g*xB''"), "\\frac{G}{g} \\ddot{\\mathit{xB}}");
-    assert_eq!(t("k*xB"), "k \\cdot \\mathit{xB}");
+    assert_eq!(t("2*AB*sin(xs)"), "2 \\mathit{AB} \\sin\\mathit{xs}");
+    assert_eq!(t("G/g*xs''"), "\\frac{G}{g} \\ddot{\\mathit{xs}}");
+    assert_eq!(t("k*xs"), "k \\cdot \\mathit{xs}");
+    // a small letter before capitals is a point's coordinate: the letter
+    // with a subscript, its dot on the letter alone
+    assert_eq!(t("G/g*xB''"), "\\frac{G}{g} \\ddot{x}_{B}");
+    assert_eq!(t("k*xB'^2"), "k \\dot{x}_{B}^{2}");
     assert_eq!(t("AB*(G + k)"), "\\mathit{AB} \\cdot (G + k)");
     // an override that is a word is one too; single letters stay side by side
     assert_eq!(t("AC*g*k"), "\\mathrm{AC} \\cdot g k");

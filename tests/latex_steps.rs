@@ -42,7 +42,7 @@ fn the_definitions_come_first_as_written() {
     for row in [
         "  J_{3} &= \\frac{1}{3} l^{2} m_{3} = 36 m r^{2} \\\\\n",
         "  \\theta_{3} &= \\frac{y_{1}}{3 r} \\\\\n",
-        "  \\mathit{xB} &= 4 r \\theta_{3} = \\frac{4}{3} y_{1} \\\\\n",
+        "  x_{B} &= 4 r \\theta_{3} = \\frac{4}{3} y_{1} \\\\\n",
         "  E_{2} &= \\frac{1}{2} J_{2} \\dot{\\theta}_{2}^{2} = 2 m \\dot{y}_{1}^{2} \\\\\n",
     ] {
         assert!(seed.contains(row), "missing {row:?} in\n{seed}");
@@ -269,5 +269,49 @@ fn a_body_without_a_mass_shows_only_its_turning() {
     assert!(
         !out.contains("m_{\\mathrm{b}}") && !out.contains("v_{\\mathrm{b}}"),
         "{out}"
+    );
+}
+
+#[test]
+fn a_mechanisms_steps_read_as_sentences_titled_by_the_scene() {
+    let (code, tex, err) =
+        crate::common::run::qdot(&["latex", "--steps", "--standalone", "examples/seed_21_3.qd"]);
+    assert_eq!(code, 0, "{err}");
+    // the title is the scene's first comment, as `simulate --plot` takes it
+    assert!(
+        tex.contains("\\begin{document}\n\\section*{The seed's problem 21.3 (§21.5)}\n"),
+        "{tex}"
+    );
+    // the lead-in is a sentence of its own before the first body's
+    assert!(
+        tex.contains(
+            "\\paragraph{Kinetic energy.} In the coordinates $x_{1}, y_{1}, \\varphi, x_{2}, \
+             y_{2}, \\alpha, x_{B}, y_{B}$, the kinetic energy is found body by body.\n\
+             The body $\\mathrm{disk}$: its mass,"
+        ),
+        "{tex}"
+    );
+    // xB is x with the subscript B: the dot on the x alone
+    assert!(
+        tex.contains("v_{\\mathrm{slider}}^{2} &= \\dot{x}_{B}^{2} + \\dot{y}_{B}^{2} \\\\\n"),
+        "{tex}"
+    );
+    assert!(!tex.contains("mathit{xB}"), "{tex}");
+    // an explicit title wins
+    let (_, tex, _) = crate::common::run::qdot(&[
+        "latex",
+        "--standalone",
+        "--title",
+        "Slider-crank",
+        "examples/seed_21_3.qd",
+    ]);
+    assert!(tex.contains("\\section*{Slider-crank}\n"), "{tex}");
+}
+
+#[test]
+fn a_title_with_mathematics_still_compiles() {
+    assert_eq!(
+        qdot::output::latex::escape_text("force −k/r² on θ (§1)"),
+        "force \\ensuremath{-}k/r² on \\ensuremath{\\theta} (§1)"
     );
 }

@@ -1,5 +1,5 @@
-//! The limits have one table, README's "Limits" section (and the book's
-//! limits page): every integer limit appears there with its value. The
+//! The limits have one table, the book's limits page: every integer limit
+//! appears there with its value. The
 //! engine's are in crates/exact/src/limits.rs; a command's live with its
 //! code (the `--over` grids' with their reader in scene/given.rs, the
 //! cycle's friction iterations in cycle/friction.rs, the sweep's runs in
@@ -52,16 +52,9 @@ fn every_limit_is_documented_with_its_value() {
     ] {
         assert!(all.iter().any(|(n, _)| n == found), "{found}: {all:?}");
     }
-    let readme = include_str!("../README.md");
-    let section = &readme[readme.find("## Limits").expect("a Limits section")..];
-    let section = &section[..section[3..].find("\n## ").map_or(section.len(), |i| i + 3)];
     let book = include_str!("../book/src/limits.md");
     for (name, v) in &all {
         let shown = grouped(*v);
-        assert!(
-            section.contains(&shown),
-            "README's Limits section lacks {name} = {shown}"
-        );
         assert!(
             book.contains(&shown),
             "book/src/limits.md lacks {name} = {shown}"

@@ -733,3 +733,66 @@ fn a_label_outside_the_entry_is_left_out() {
         "error: coordinate declared twice: `x` is already a coordinate\n --> input:1:13\n  |\n1 | coordinates x\n  |             ^\n  = hint: each name has one meaning in a scene; role statements add up, but their names must differ\n"
     );
 }
+
+#[test]
+fn bare_command_words_are_understood() {
+    let mut s = Session::new();
+    // `exit` and `quit` leave, `help` is `:help`
+    for word in ["exit", "quit", "  exit  "] {
+        let r = s.execute(word);
+        assert!(r.quit && !r.failed, "{word}: {r:?}");
+        assert_eq!((r.out.as_str(), r.err.as_str()), ("", ""), "{word}");
+    }
+    assert_eq!(ok(&mut s, "help"), ok(&mut s, ":help"));
+    // a command's name without its colon says to type it
+    assert_eq!(
+        err(&mut s, "solve"),
+        "error: `solve` is a command: commands start with a colon\n  = hint: type `:solve`\n"
+    );
+    assert_eq!(
+        err(&mut s, "modes --set k=1"),
+        "error: `modes` is a command: commands start with a colon\n  = hint: type `:modes --set k=1`\n"
+    );
+    assert_eq!(
+        err(&mut s, "equations"),
+        "error: `equations` is a command: commands start with a colon\n  = hint: type `:equations`\n"
+    );
+    // a scene's own name is its value; a solve block is a statement
+    ok(&mut s, "parameters exit, help");
+    assert_eq!(ok(&mut s, "exit"), "exit\n");
+    assert_eq!(ok(&mut s, "help"), "help\n");
+    assert!(!s.execute("exit").quit);
+    ok(&mut s, "parameters a, b");
+    assert_eq!(ok(&mut s, "solve u { u = a + b }"), "");
+}
+
+#[test]
+fn a_derivative_written_in_words_suggests_the_prime() {
+    let mut s = Session::new();
+    ok(&mut s, "coordinates theta, x");
+    assert_eq!(
+        err(&mut s, "thetadot"),
+        "error: unknown name `thetadot`\n --> input:1:1\n  |\n1 | thetadot\n  | ^^^^^^^^\n  = hint: a time derivative is written with primes: `theta'` (`theta'` the velocity, `theta''` the acceleration)\n"
+    );
+    assert!(err(&mut s, "2*xddot").contains("written with primes: `x''`"));
+    // in a statement too
+    assert!(err(&mut s, "kinetic E = thetadot^2").contains("`theta'`"));
+    // a name that is no coordinate's keeps the usual hint
+    assert!(err(&mut s, "phidot").contains("declare it with `parameters phidot`"));
+}
+
+#[test]
+fn undo_says_what_it_undid() {
+    let mut s = Session::new();
+    ok(&mut s, "parameters a");
+    ok(&mut s, "b = 2*a");
+    ok(&mut s, "b + 1");
+    ok(&mut s, "c = 1\nd = 2");
+    ok(&mut s, ":reset");
+    assert_eq!(ok(&mut s, ":undo"), "(undone: :reset)\n");
+    assert_eq!(ok(&mut s, ":undo"), "(undone: 2 statements from `c = 1`)\n");
+    assert_eq!(ok(&mut s, ":undo"), "(undone: the result of `b + 1`)\n");
+    assert_eq!(ok(&mut s, ":undo"), "(undone: `b = 2*a`)\n");
+    assert_eq!(ok(&mut s, ":undo"), "(undone: `parameters a`)\n");
+    assert_eq!(err(&mut s, ":undo"), "error: nothing to undo\n");
+}

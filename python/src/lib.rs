@@ -34,6 +34,9 @@ fn error(d: &Diagnostic, file: &str, src: &str) -> PyErr {
         Some(s) => Diagnostic::line_col(src, s.start),
         None => (0, 0),
     };
+    let mut d = d.clone();
+    d.hint = d.hint.as_deref().map(python_hint);
+    let d = &d;
     let err = QdotError::new_err(d.render(file, src).trim_end().to_string());
     Python::attach(|py| {
         let value = err.value(py);
@@ -45,6 +48,65 @@ fn error(d: &Diagnostic, file: &str, src: &str) -> PyErr {
         let _ = value.setattr("column", column);
     });
     err
+}
+
+/// A hint in Python's terms: the command line's options become the
+/// keyword arguments of the same name (`--set m=1,g=9.81` is
+/// `set={"m": 1, "g": 9.81}`, `--at x=0` is `at="x=0"`, `--dt 0.01` is
+/// `dt=0.01`, `--expand` is `structure="expanded"`).
+fn python_hint(hint: &str) -> String {
+    let mut out = String::with_capacity(hint.len());
+    let mut rest = hint;
+    while let Some(i) = rest.find("--") {
+        let before = &rest[..i];
+        let after = &rest[i + 2..];
+        out.push_str(before);
+        let len = after
+            .find(|c: char| !(c.is_ascii_lowercase() || c == '-'))
+            .unwrap_or(after.len());
+        let starts_word = before.is_empty() || before.ends_with([' ', '`', '(', '"']);
+        if len == 0 || !starts_word {
+            out.push_str("--");
+            rest = after;
+            continue;
+        }
+        let name = &after[..len];
+        let tail = &after[len..];
+        // an argument: the next word when it assigns (`m=1,g=9.81`)
+        let arg = tail.strip_prefix(' ').map(|t| {
+            let end = t
+                .find(|c: char| c.is_whitespace() || c == '`' || c == ')')
+                .unwrap_or(t.len());
+            &t[..end]
+        });
+        let arg = arg.filter(|a| a.contains('=') || a.parse::<f64>().is_ok());
+        let dict = |a: &str| {
+            let items: Vec<String> = a
+                .split(',')
+                .map(|item| match item.split_once('=') {
+                    Some((k, v)) => format!("\"{k}\": {v}"),
+                    None => item.to_string(),
+                })
+                .collect();
+            format!("{{{}}}", items.join(", "))
+        };
+        let keyword = name.replace('-', "_");
+        out.push_str(&match (name, arg) {
+            ("expand", _) => "structure=\"expanded\"".to_string(),
+            ("structured", _) => "structure=\"structured\"".to_string(),
+            ("set" | "init" | "guess", Some(a)) => format!("{keyword}={}", dict(a)),
+            ("set" | "init" | "guess", None) => format!("{keyword}={{…}}"),
+            (_, Some(a)) if a.parse::<f64>().is_ok() => format!("{keyword}={a}"),
+            (_, Some(a)) => format!("{keyword}=\"{a}\""),
+            (_, None) => keyword,
+        });
+        rest = match arg {
+            Some(a) => &tail[1 + a.len()..],
+            None => tail,
+        };
+    }
+    out.push_str(rest);
+    out
 }
 
 /// The context of a call: the work budget of exact computation

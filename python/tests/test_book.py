@@ -52,7 +52,8 @@ def test_one_install_command_in_the_readme_the_book_and_ci():
     one CI runs: `pip install './python[test]'`."""
     command = "pip install './python[test]'"
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
-    section = readme[readme.index("\n## Python\n"):readme.index("\n## A scene\n")]
+    section = readme[readme.index("\n## Python\n"):]
+    section = section[:section.index("\n## ", 1)]
     book = (ROOT / "book" / "src" / "python.md").read_text(encoding="utf-8")
     for page in (section, book):
         block = re.search(r"```sh\n(.*?)```", page, re.S).group(1)

@@ -130,6 +130,9 @@ def test_errors_are_positioned_python_exceptions():
         scene.simulate(set={"m": 1, "g": 1}, init={"theta": 1, "theta'": 0}, t_end=1)
     assert "no value for the parameter l" in str(e.value)
     assert e.value.line == 0
+    # the hint in Python's terms: the keyword argument, not the CLI's option
+    assert e.value.hint == 'give every parameter a value: set={"l": 1}'
+    assert "--set" not in str(e.value)
 
 
 def test_a_warning_is_shown_once():

@@ -224,8 +224,15 @@ impl CycleRun {
 #[derive(Clone, Debug)]
 pub enum FrequencyResponse {
     /// Without `--over`: the exact receptance, with the small oscillations
-    /// it comes from.
-    Exact(Box<(Modes, crate::solve::response::Response)>),
+    /// it comes from and the `--set` values its closed forms are
+    /// evaluated at.
+    Exact(
+        Box<(
+            Modes,
+            crate::solve::response::Response,
+            crate::solve::equilibrium::Values,
+        )>,
+    ),
     /// With `--over Omega=…`: amplitude and phase swept numerically.
     Swept(crate::simulate::response::ResponseTable),
 }

@@ -116,7 +116,7 @@ pub(super) fn response(
             let at = at_values(scene, opts)?;
             let md = crate::solve::oscillations::modes(scene, at.as_deref(), set)?;
             let r = exact::response(ForcedSystem::from_modes(&md)?, set)?;
-            FrequencyResponse::Exact(Box::new((md, r)))
+            FrequencyResponse::Exact(Box::new((md, r, set.clone())))
         }
         [over] => {
             bounded_grid(&opts.over)?;

@@ -14,6 +14,8 @@ use qdot::Diagnostic;
 #[command(
     name = "qdot",
     version,
+    // help lines wrap at the terminal's width, and never past 100 columns
+    max_term_width = 100,
     about = "Exact analytical mechanics: Lagrange's equations, derived and solved exactly"
 )]
 pub struct Cli {
@@ -131,8 +133,8 @@ pub enum Command {
         /// it, a fragment to \input)
         #[arg(long)]
         standalone: bool,
-        /// The title of the --standalone document (default: the file's
-        /// base name)
+        /// The title of the --standalone document (default: the scene's
+        /// first comment, else the file's base name)
         #[arg(long)]
         title: Option<String>,
         /// Parameter values, for scenes whose equilibria need them: m=1,g=9.81
@@ -281,8 +283,8 @@ pub struct ModesArgs {
     /// with pdflatex (without it, a fragment to \input)
     #[arg(long)]
     pub standalone: bool,
-    /// The title of the --standalone document (default: the file's
-    /// base name)
+    /// The title of the --standalone document (default: the scene's
+    /// first comment, else the file's base name)
     #[arg(long, requires = "standalone")]
     pub title: Option<String>,
 }
@@ -300,7 +302,10 @@ impl ModesArgs {
                 .with_kind(ErrorKind::bad_option("--standalone")));
         }
         opts.standalone = self.standalone;
-        opts.title = self.title.clone().unwrap_or_else(|| base_name(&self.file));
+        opts.title = self
+            .title
+            .clone()
+            .unwrap_or_else(|| document_title(&self.file));
         Ok(())
     }
 }
@@ -504,7 +509,7 @@ impl Command {
             } => {
                 opts.steps = *steps;
                 opts.standalone = *standalone;
-                opts.title = title.clone().unwrap_or_else(|| base_name(file));
+                opts.title = title.clone().unwrap_or_else(|| document_title(file));
                 (app::Command::Latex, file, Format::Latex, set.as_deref())
             }
             Command::Modes(args) => {
@@ -653,8 +658,18 @@ impl CodegenArgs {
     }
 }
 
-/// A file's name without its folders and extension: the default title of
-/// a standalone LaTeX document (`examples/seed_24_2.qd` → `seed_24_2`).
+/// The default title of a standalone LaTeX document: the scene's name
+/// from its first comment, as `simulate --plot` titles it, else the
+/// file's [`base_name`].
+fn document_title(file: &str) -> String {
+    std::fs::read_to_string(file)
+        .ok()
+        .and_then(|src| qdot::simulate::plot::scene_title(&src))
+        .unwrap_or_else(|| base_name(file))
+}
+
+/// A file's name without its folders and extension
+/// (`examples/seed_24_2.qd` → `seed_24_2`).
 pub fn base_name(file: &str) -> String {
     std::path::Path::new(file)
         .file_stem()

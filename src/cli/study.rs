@@ -24,9 +24,11 @@ pub struct CycleArgs {
     /// start from 0): th=-0.3,xb=0.5
     #[arg(long)]
     pub guess: Option<String>,
-    /// csv, json or text (aligned, 6 digits)
-    #[arg(long, default_value = "csv")]
-    pub output: String,
+    /// text (the reactions, aligned, 5 significant digits), csv (every
+    /// column, every digit) or json; default: text on a terminal, csv
+    /// when standard output is piped
+    #[arg(long, visible_alias = "format")]
+    pub output: Option<String>,
     /// Print only these columns after the varied one: O_x,O_y,M
     #[arg(long)]
     pub columns: Option<String>,
@@ -42,10 +44,19 @@ pub struct CycleArgs {
 }
 
 impl CycleArgs {
+    /// `--output`, or by default text on a terminal and CSV otherwise.
+    pub fn output_name(&self) -> &str {
+        match &self.output {
+            Some(name) => name,
+            None if std::io::IsTerminal::is_terminal(&std::io::stdout()) => "text",
+            None => "csv",
+        }
+    }
+
     /// These options as the application layer's.
     pub fn options(&self, opts: &mut output::CommandOptions) -> Result<Format, qdot::Diagnostic> {
         let fmt = study_format(
-            &self.output,
+            self.output_name(),
             &[Format::Csv, Format::Json, Format::Text],
             "--output csv, --output json or --output text".into(),
         )?;

@@ -1289,6 +1289,17 @@ pub fn escape_text(s: &str) -> String {
             }
             '~' => out.push_str("\\textasciitilde{}"),
             '^' => out.push_str("\\textasciicircum{}"),
+            // what pdflatex's UTF-8 input cannot set in text (a title
+            // taken from a scene's comment: `−k/r²`, `θ`)
+            '−' => out.push_str("\\ensuremath{-}"),
+            'Ͱ'..='Ͽ' => {
+                let tex = crate::expr::latex::Names::new().symbol(&c.to_string(), 0);
+                if tex.starts_with('\\') {
+                    out.push_str(&format!("\\ensuremath{{{tex}}}"));
+                } else {
+                    out.push(c);
+                }
+            }
             c => out.push(c),
         }
     }

@@ -19,6 +19,7 @@ use crate::expr::Expr;
 use crate::scene::Scene;
 use crate::solve::equilibrium::{self, Equilibria, Position, Values};
 
+mod at_values;
 pub mod cycle;
 mod dimensions;
 pub mod floquet;
@@ -181,7 +182,7 @@ pub fn render(report: &AnyReport, fmt: Format) -> Result<String, Diagnostic> {
             Ok(match fmt {
                 Format::Csv => cycle::csv(run.shown()),
                 Format::Json => cycle::json(run.shown()),
-                Format::Text => cycle::text(run.shown(), run.degrees),
+                Format::Text => cycle::reading(run),
                 Format::Latex => return Err(not_written(cmd, fmt)),
             })
         }),

@@ -184,6 +184,9 @@ fn standard_form_text(q: &str, sf: &StandardForm, set: &Values) -> String {
         None => format!("√({})", expanded(&sf.omega_squared)),
     };
     out.push_str(&format!("  ω = {ws}   T = 2π/ω   f = ω/(2π)\n"));
+    if let Some(n) = super::at_values::frequency("", &sf.omega_squared, set) {
+        out.push_str(&format!("      {n}\n"));
+    }
     if !sf.alpha.is_zero() {
         out.push_str(&format!("  α = {}", expanded(&sf.alpha)));
         match (&sf.zeta, &sf.omega) {
@@ -191,6 +194,18 @@ fn standard_form_text(q: &str, sf: &StandardForm, set: &Values) -> String {
             _ => out.push_str("   ζ = α/ω"),
         }
         out.push('\n');
+        let alpha = super::at_values::evaluate(&sf.alpha, set);
+        let zeta = sf
+            .zeta
+            .as_ref()
+            .and_then(|z| super::at_values::evaluate(z, set));
+        match (alpha, zeta) {
+            (Some(a), Some(z)) => {
+                out.push_str(&format!("      α = {} 1/s, ζ = {}\n", a.text(), z.text()))
+            }
+            (Some(a), None) => out.push_str(&format!("      α = {} 1/s\n", a.text())),
+            _ => {}
+        }
     }
     out.push_str(&format!("  regime: {}\n", sf.regime));
     out
@@ -257,12 +272,15 @@ fn frequencies_text(md: &Modes, set: &Values) -> String {
         );
         for (i, (w2, mode)) in md.omega_squared.iter().zip(&md.modes).enumerate() {
             let m: Vec<String> = mode.iter().map(as_unicode).collect();
+            let sub = print::subscript(&(i + 1).to_string());
             out.push_str(&format!(
-                "  ω{}² = {}    mode ({})\n",
-                print::subscript(&(i + 1).to_string()),
+                "  ω{sub}² = {}    mode ({})\n",
                 expanded(w2),
                 m.join(", ")
             ));
+            if let Some(n) = super::at_values::frequency(&sub, w2, set) {
+                out.push_str(&format!("      {n}\n"));
+            }
         }
     }
     let numeric = osc::numeric_modes_or_why(md, set);

@@ -8,6 +8,7 @@ use crate::app::{Command, Format, FrequencyResponse};
 use crate::diag::{Diagnostic, ErrorKind};
 use crate::expr::Expr;
 use crate::simulate::response::ResponseTable;
+use crate::solve::equilibrium::Values;
 use crate::solve::oscillations as osc;
 use crate::solve::response::{LoadPeak, Peak, Response, SingleDof, OMEGA};
 use serde::Serialize;
@@ -16,7 +17,7 @@ use serde::Serialize;
 /// swept one as text, CSV or JSON.
 pub(super) fn render(r: &FrequencyResponse, fmt: Format) -> Result<String, Diagnostic> {
     Ok(match (r, fmt) {
-        (FrequencyResponse::Exact(e), Format::Text) => text(&e.0, &e.1),
+        (FrequencyResponse::Exact(e), Format::Text) => text(&e.0, &e.1, &e.2),
         (FrequencyResponse::Exact(e), Format::Json) => {
             super::wire::json_string(&ResponseJson::new(&e.0, &e.1))
         }
@@ -41,8 +42,9 @@ fn paren(e: &Expr) -> String {
     }
 }
 
-/// The exact response for reading.
-pub fn text(md: &osc::Modes, r: &Response) -> String {
+/// The exact response for reading, its frequencies evaluated at `set`
+/// (when it gives every value).
+pub fn text(md: &osc::Modes, r: &Response, set: &Values) -> String {
     let sys = &r.system;
     let pretty = |q: &str| crate::expr::print::pretty_name(q, 0);
     let mut out = format!(
@@ -70,6 +72,12 @@ pub fn text(md: &osc::Modes, r: &Response) -> String {
             "  undamped natural frequencies: ω² = {}\n",
             list.join(", ")
         ));
+        for (i, w2) in md.omega_squared.iter().enumerate() {
+            let sub = crate::expr::print::subscript(&(i + 1).to_string());
+            if let Some(n) = super::at_values::frequency(&sub, w2, set) {
+                out.push_str(&format!("    {n}\n"));
+            }
+        }
     }
     out.push_str("\nReceptance X = (K − Ω²·M + i·Ω·C)⁻¹·F,  q(t) = |X|·cos(Ω·t − φ)\n");
     for (j, q) in sys.coordinates.iter().enumerate() {
@@ -88,7 +96,7 @@ pub fn text(md: &osc::Modes, r: &Response) -> String {
     }
     out.push_str(&antiresonance_text(r));
     if let Some(s) = &r.single {
-        out.push_str(&single_text(s));
+        out.push_str(&single_text(s, set));
     }
     out
 }
@@ -116,7 +124,8 @@ fn antiresonance_text(r: &Response) -> String {
     out
 }
 
-fn single_text(s: &SingleDof) -> String {
+fn single_text(s: &SingleDof, set: &Values) -> String {
+    use super::at_values::evaluate;
     let mut out =
         String::from("\nOne degree of freedom  (ω₀² = K/M, α = C/(2M), ζ = α/ω₀, r = Ω/ω₀)\n");
     out.push_str(&format!(
@@ -125,6 +134,26 @@ fn single_text(s: &SingleDof) -> String {
         as_unicode(&s.alpha),
         as_unicode(&s.zeta_squared)
     ));
+    if let Some(w) = super::at_values::frequency("₀", &s.omega0_squared, set) {
+        let zeta = evaluate(&s.zeta_squared, set).and_then(|z| z.sqrt());
+        let zeta = zeta
+            .map(|z| format!(", ζ = {}", z.text()))
+            .unwrap_or_default();
+        out.push_str(&format!("    {w}{zeta}\n"));
+    }
+    // a frequency squared at the values, as ω in rad/s and f in Hz
+    let at = |name: &str, f: &str, w2: &Expr| {
+        evaluate(w2, set)
+            .and_then(|v| v.sqrt())
+            .map(|w| {
+                format!(
+                    "    {name} = {} rad/s, {f} = {} Hz\n",
+                    w.text(),
+                    w.per_turn().text()
+                )
+            })
+            .unwrap_or_default()
+    };
     if let Some(x) = &s.static_deflection {
         out.push_str(&format!("  static deflection F/K = {}\n", as_unicode(x)));
     }
@@ -163,6 +192,7 @@ fn single_text(s: &SingleDof) -> String {
                     None => String::new(),
                 }
             ));
+            out.push_str(&at("ω_peak", "f_peak", omega_squared));
             out.push_str(&format!(
                 "  D_peak = 1/(2ζ·√(1 − ζ²)),  D_peak² = {}\n",
                 as_unicode(magnification_squared)
@@ -183,6 +213,7 @@ fn single_text(s: &SingleDof) -> String {
                     "  bandwidth (Ω₂ − Ω₁)² = {}  (≈ (2ζω₀)² = 4α² for light damping)\n",
                     as_unicode(b)
                 ));
+                out.push_str(&at("Ω₂ − Ω₁", "Δf", b));
             }
         }
     }

@@ -92,6 +92,8 @@ struct Statement {
 struct Snapshot {
     statements: Vec<Statement>,
     last: Option<Value>,
+    /// What the change was, as `:undo` says it.
+    what: String,
 }
 
 /// A REPL session: the scene so far, the last result, the output format.
@@ -258,6 +260,9 @@ impl Session {
         if let Some(cmd) = trimmed.strip_prefix(':') {
             return self.command(cmd);
         }
+        if let Some(r) = self.bare_command(trimmed) {
+            return r;
+        }
         let expr_try = crate::parse::parse_expr(entry);
         match expr_try {
             Ok(e) => self.expression(entry, &e),
@@ -273,6 +278,33 @@ impl Session {
                 }
             },
         }
+    }
+
+    /// A command typed without its colon, when its word names nothing in
+    /// the scene: `exit` and `quit` leave, `help` shows the commands, and a
+    /// command's name alone or before options (`solve`, `modes --set …`)
+    /// says to type the colon.
+    fn bare_command(&mut self, entry: &str) -> Option<Response> {
+        let (word, rest) = match entry.find(char::is_whitespace) {
+            Some(i) => (&entry[..i], entry[i..].trim()),
+            None => (entry, ""),
+        };
+        if !(rest.is_empty() || rest.starts_with("--")) || self.names().iter().any(|n| n == word) {
+            return None;
+        }
+        match word {
+            "exit" | "quit" if rest.is_empty() => {
+                return Some(self.command("quit"));
+            }
+            "help" if rest.is_empty() => return Some(self.command("help")),
+            _ => {}
+        }
+        let c = commands::find(word).filter(|c| c.name == word || word == "eq")?;
+        Some(Response::error(format!(
+            "error: `{word}` is a command: commands start with a colon\n  = hint: type `:{}{}{rest}`\n",
+            c.name,
+            if rest.is_empty() { "" } else { " " }
+        )))
     }
 
     // ------------------------------------------------------------ statements
@@ -347,7 +379,13 @@ impl Session {
                 }
             }
         }
-        self.push_undo();
+        let first = |i: usize| list[i].text.lines().next().unwrap_or("").to_string();
+        let what = match placed.as_slice() {
+            [(i, _)] => format!("`{}`", first(*i)),
+            [(i, _), ..] => format!("{} statements from `{}`", placed.len(), first(*i)),
+            [] => "nothing".to_string(),
+        };
+        self.push_undo(what);
         self.statements = list;
         self.scene = scene;
         let mut out = notes;
@@ -386,13 +424,35 @@ impl Session {
 
     /// `d` rendered against the entry, positioned in the entry's source.
     fn render(&self, d: &Diagnostic, entry: &str) -> String {
-        d.render_from(&self.origin.name, entry, self.origin.first_line)
+        match self.dot_hint(d) {
+            Some(d) => d.render_from(&self.origin.name, entry, self.origin.first_line),
+            None => d.render_from(&self.origin.name, entry, self.origin.first_line),
+        }
     }
 
-    fn push_undo(&mut self) {
+    /// `d` with a better hint when it is an unknown name written as a
+    /// coordinate's derivative in words (`thetadot`, `xddot`): the prime.
+    fn dot_hint(&self, d: &Diagnostic) -> Option<Diagnostic> {
+        let crate::diag::ErrorKind::UnknownName { name } = d.kind() else {
+            return None;
+        };
+        let (stem, primes) = [("ddot", "''"), ("dd", "''"), ("dot", "'"), ("d", "'")]
+            .into_iter()
+            .find_map(|(suffix, primes)| Some((name.strip_suffix(suffix)?, primes)))
+            .filter(|(stem, _)| self.scene.coordinates.iter().any(|c| c.name == *stem))?;
+        let mut d = d.clone();
+        d.hint = Some(format!(
+            "a time derivative is written with primes: `{stem}{primes}` (`{stem}'` the velocity, `{stem}''` the acceleration)"
+        ));
+        Some(d)
+    }
+
+    /// Remember the state before a change, `what` saying the change.
+    fn push_undo(&mut self, what: String) {
         self.undo.push(Snapshot {
             statements: self.statements.clone(),
             last: self.last.clone(),
+            what,
         });
     }
 
@@ -418,7 +478,10 @@ impl Session {
         let layout = self.layout(e, &extra);
         let out = self.show_value(None, &value, layout);
         let err: String = warnings.iter().map(|w| self.render(w, entry)).collect();
-        self.push_undo();
+        self.push_undo(format!(
+            "the result of `{}`",
+            entry.trim().lines().next().unwrap_or("")
+        ));
         self.last = Some(value);
         self.last_command = None;
         Response {
@@ -629,7 +692,7 @@ impl Session {
                             self.statements = s.statements;
                             self.last = s.last;
                             self.last_command = None;
-                            Response::out("(undone)")
+                            Response::out(format!("(undone: {})", s.what))
                         }
                         Err(d) => Response::error(d.render("scene", &src)),
                     }
@@ -637,7 +700,7 @@ impl Session {
                 None => Response::error("error: nothing to undo"),
             },
             "reset" => {
-                self.push_undo();
+                self.push_undo(":reset".to_string());
                 self.statements.clear();
                 self.scene = Scene::default();
                 self.last = None;

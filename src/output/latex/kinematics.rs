@@ -26,17 +26,20 @@ impl Writer {
         if energies.is_empty() {
             return (e_name, false);
         }
-        let what = if energies.len() > 1 {
-            "body by body, "
-        } else {
-            ""
+        // a body's energy comes with its own sentence: the lead-in ends
+        // before it, as a sentence of its own
+        let of_bodies = energies
+            .first()
+            .is_some_and(|d| scene.bodies.iter().any(|b| b.kinetic == d.name));
+        let what = match (energies.len() > 1, of_bodies) {
+            (true, true) => "the kinetic energy is found body by body.",
+            (false, true) => "the kinetic energy is found from the body's data.",
+            (true, false) => "body by body, the kinetic energy is",
+            (false, false) => "the kinetic energy is",
         };
         self.para(
             "Kinetic energy.",
-            &format!(
-                "In the coordinates ${}$, {what}the kinetic energy is",
-                coords.join(", ")
-            ),
+            &format!("In the coordinates ${}$, {what}", coords.join(", ")),
         );
         let mut rows: Vec<Row> = Vec::new();
         for d in &energies {

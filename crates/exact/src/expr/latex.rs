@@ -112,12 +112,21 @@ fn split_subscript(tex: &str) -> (&str, &str) {
     (tex, "")
 }
 
-/// `theta3` → (`theta`, `3`); `y_1` → (`y`, `1`); `F_max` → (`F`, `max`).
+/// `theta3` → (`theta`, `3`); `y_1` → (`y`, `1`); `F_max` → (`F`, `max`);
+/// a small letter before capitals, a point's coordinate, `xB` → (`x`,
+/// `B`), so that a dot sits on the letter alone (`\dot{x}_{B}`).
 fn split_name(name: &str) -> (&str, Option<&str>) {
     if let Some(i) = name.find('_') {
         if i > 0 && i + 1 < name.len() {
             return (&name[..i], Some(&name[i + 1..]));
         }
+    }
+    let mut chars = name.chars();
+    if chars.next().is_some_and(|c| c.is_ascii_lowercase())
+        && name.len() > 1
+        && chars.all(|c| c.is_ascii_uppercase())
+    {
+        return (&name[..1], Some(&name[1..]));
     }
     let split = name
         .char_indices()
@@ -350,7 +359,7 @@ enum Kind {
     Plain,
     /// A fraction, `\frac{…}{…}`: its bar sets it apart from any neighbour.
     Frac,
-    /// A name of several letters (`\mathit{AB}`, `\dot{\mathit{xB}}^{2}`):
+    /// A name of several letters (`\mathit{AB}`, `\dot{\mathit{xy}}^{2}`):
     /// side by side with another factor it would read as a longer name.
     Word,
     /// A sum: parenthesized when it is not alone.
@@ -416,7 +425,7 @@ fn product(mut fs: Vec<Factor>) -> String {
 /// text starting with a digit when `digit_next`). Math mode ignores the
 /// space between `\mathit{AB} B_{x}`: the page shows ABBₓ, so a word
 /// takes a dot on each side, except after a number (`2 \mathit{AB}` reads
-/// as 2·AB), beside a fraction (`\frac{G}{g} \mathit{xB}`) and before a
+/// as 2·AB), beside a fraction (`\frac{G}{g} \mathit{AB}`) and before a
 /// function, whose name TeX sets apart (`\mathit{AB} \sin\alpha`).
 fn separated(a: Kind, b: Kind, digit_next: bool) -> bool {
     match (a, b) {

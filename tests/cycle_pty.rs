@@ -1,0 +1,83 @@
+//! `qdot cycle` chooses its output by where it goes: on a terminal (a real
+//! pseudo-terminal, rexpect) the reactions as an aligned table, piped the
+//! whole CSV, whose columns have unique names; `--output`/`--format`
+//! choose either way.
+
+use crate::common::run::qdot;
+use std::process::Command;
+
+/// Generous: CI machines are shared and slow.
+const TIMEOUT_MS: u64 = 60_000;
+
+/// The slider-crank of seed 21.3 at 5 positions.
+const ARGS: [&str; 8] = [
+    "cycle",
+    "examples/seed_21_3.qd",
+    "--over",
+    "phi=0:360deg:5",
+    "--set",
+    "G1=20,G2=15,G3=10,g=9.81,R=0.1,AB=0.4,AC=0.15,J2=0.02,k=500,l0=0.45,mu=0.15,omega=20",
+    "--guess",
+    "x2=0.25,xB=0.5",
+];
+
+/// The table a terminal shows.
+const TABLE: &str = "\
+phi (deg)      O_x     O_y      A_x      A_y      B_x      B_y     S_n        M      S_f
+    0 [1]  -95.208  29.375  -95.208    9.375  -28.312   -5.625  15.625   0.9375   2.3438
+    0 [1]  -90.521  29.375  -90.521    9.375  -23.625   -5.625  15.625   0.9375  -2.3438
+       90  -15.164   5.021  -15.164  -14.979  -21.086    8.247   1.753   1.5164   0.2629
+  180 [2]    8.665  29.375    8.665    9.375  -46.763   -5.625  15.625  -0.9375   2.3437
+  180 [2]   13.353  29.375   13.353    9.375  -42.075   -5.625  15.625  -0.9375  -2.3437
+      270  -10.651  54.894  -10.651   34.894  -16.573  -18.332  28.332  -1.0651  -4.2498
+  360 [3]  -90.521  29.375  -90.521    9.375  -23.625   -5.625  15.625   0.9375  -2.3438
+  360 [3]  -95.208  29.375  -95.208    9.375  -28.312   -5.625  15.625   0.9375   2.3438
+[1] row 1: stick: the relative velocity in the joint `S` vanishes here (0.0e0), so its friction may be anywhere between its values for sliding either way: the reactions are given at both, the limits v → 0⁻ and v → 0⁺ (the first line the limit v → 0⁻, the second v → 0⁺)
+[2] row 3: stick: the relative velocity in the joint `S` vanishes here (-1.8e-16), so its friction may be anywhere between its values for sliding either way: the reactions are given at both, the limits v → 0⁻ and v → 0⁺ (the first line the limit v → 0⁻, the second v → 0⁺)
+[3] row 5: stick: the relative velocity in the joint `S` vanishes here (6.1e-16), so its friction may be anywhere between its values for sliding either way: the reactions are given at both, the limits v → 0⁻ and v → 0⁺ (the first line the limit v → 0⁺, the second v → 0⁻)
+";
+
+/// What qdot printed on a pseudo-terminal, line ends as written.
+fn on_terminal(extra: &[&str]) -> String {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_qdot"));
+    cmd.args(ARGS)
+        .args(extra)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("TERM", "xterm");
+    let mut p = rexpect::session::spawn_command(cmd, Some(TIMEOUT_MS)).expect("qdot starts");
+    let out = p.exp_eof().expect("qdot ends");
+    // rexpect reads byte by byte, each byte a char
+    let bytes: Vec<u8> = out.chars().map(|c| c as u8).collect();
+    String::from_utf8(bytes)
+        .expect("UTF-8")
+        .replace("\r\n", "\n")
+}
+
+#[test]
+fn a_terminal_gets_the_reactions_as_a_table() {
+    assert_eq!(on_terminal(&[]), TABLE);
+    // asked for, CSV on a terminal too
+    let csv = on_terminal(&["--format", "csv"]);
+    assert!(csv.starts_with("phi (varied),x1,y1,phi,"), "{csv}");
+}
+
+#[test]
+fn a_pipe_gets_the_csv_with_unique_column_names() {
+    let (code, out, err) = qdot(&ARGS);
+    assert_eq!(code, 0, "{err}");
+    let header = out.lines().next().unwrap_or("");
+    assert_eq!(
+        header,
+        "phi (varied),x1,y1,phi,x2,y2,alpha,xB,yB,x1',y1',phi',x2',y2',alpha',xB',yB',\
+         x1'',y1'',phi'',x2'',y2'',alpha'',xB'',yB'',O_x,O_y,A_x,A_y,B_x,B_y,S_n,M,S_f,note"
+    );
+    // the rows keep every digit
+    let second = out.lines().nth(3).unwrap_or("");
+    assert!(
+        second.starts_with("1.57079632679489656e0,0.00000000000000000e0,"),
+        "{second}"
+    );
+    // asked for, the table when piped too
+    let (_, text, _) = qdot(&[&ARGS[..], &["--output", "text"]].concat());
+    assert_eq!(text, TABLE);
+}
