@@ -42,7 +42,7 @@ fn on_terminal(extra: &[&str]) -> String {
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_qdot"));
     cmd.args(ARGS)
         .args(extra)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .current_dir(env!("QDOT_ROOT"))
         .env("TERM", "xterm");
     let mut p = rexpect::session::spawn_command(cmd, Some(TIMEOUT_MS)).expect("qdot starts");
     let out = p.exp_eof().expect("qdot ends");

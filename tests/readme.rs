@@ -79,7 +79,7 @@ fn workdir() -> PathBuf {
     let d = std::env::temp_dir().join(format!("qdot-readme-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).expect("a temporary directory");
-    let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let examples = Path::new(env!("QDOT_ROOT")).join("examples");
     std::os::unix::fs::symlink(examples, d.join("examples")).expect("a link to examples/");
     d
 }
