@@ -253,6 +253,10 @@ pub struct FloquetArgs {
     /// parameter) or the stability chart (two).
     #[arg(long)]
     pub plot: Option<String>,
+    /// With --over: the grid's points on this many threads (0: one per
+    /// core), as `sweep --threads`; the output is the same for any number.
+    #[arg(long, default_value_t = 0)]
+    pub threads: usize,
 }
 
 impl FloquetArgs {
@@ -274,6 +278,7 @@ impl FloquetArgs {
         opts.functions = self.function.clone();
         opts.period = self.period;
         opts.max_steps = Some(self.max_steps);
+        opts.threads = self.threads;
         opts.set = parse_set(self.set.as_deref())?;
         opts.over = self
             .over
