@@ -302,7 +302,7 @@ fn bad_input_is_refused_with_a_reason() {
         ),
         (
             &["response", "examples/forced_oscillator.qd", "--over", "Omega=0:1:10", "--set", "m=1,k=2"],
-            "error: the swept frequency response needs a value for every parameter, and F0, c have none\n  = hint: give them with --set F0=…,c=…\n",
+            "error: no value for the parameters c, F0\n  = hint: give every parameter a value: --set c=1,F0=1\n",
         ),
         (
             &["response", "examples/forced_oscillator.qd", "--output", "csv"],
