@@ -229,9 +229,8 @@ fn a_value_is_refused_with_the_same_words_by_every_option() {
         err
     };
     let set = |v: &str| format!("m=1,R=1,Omega={v},g=9.81");
-    let sim = ["--t-end", "1"];
     assert_eq!(
-        refused("simulate", &["--set", &set("abc"), &sim[0], sim[1]]),
+        refused("simulate", &["--set", &set("abc"), "--t-end", "1"]),
         "error: `--set Omega=abc`: `abc` is not a number\n  = hint: write numbers or constant expressions: --set m=1.5,g=9.81,Omega=2*pi\n"
     );
     assert_eq!(
@@ -239,24 +238,24 @@ fn a_value_is_refused_with_the_same_words_by_every_option() {
         "error: `--set Omega=10^400`: `10^400` is beyond the range of double precision (about 1.8e308)\n  = hint: numeric work is done in doubles; rescale the units\n"
     );
     assert_eq!(
-        refused("simulate", &["--set", &set("1"), "--init", "theta=1/10^400", &sim[0], sim[1]]),
+        refused("simulate", &["--set", &set("1"), "--init", "theta=1/10^400", "--t-end", "1"]),
         "error: `--init theta=1/10^400`: `1/10^400` is below the smallest double (about 4.9e-324)\n  = hint: numeric work is done in doubles; rescale the units\n"
     );
     assert_eq!(
-        refused("simulate", &["--set", &set("1"), "--init", "theta=sqrt(-1)", &sim[0], sim[1]]),
+        refused("simulate", &["--set", &set("1"), "--init", "theta=sqrt(-1)", "--t-end", "1"]),
         "error: `--init theta=sqrt(-1)`: `sqrt(-1)` is not a number\n  = hint: write numbers or constant expressions: --init x=0.1,x'=-2.5,theta=30deg\n"
     );
     assert_eq!(
-        refused("sweep", &["--set", "m=1,R=1,g=9.81", "--vary", "Omega=1e400:1:2", &sim[0], sim[1]]),
+        refused("sweep", &["--set", "m=1,R=1,g=9.81", "--vary", "Omega=1e400:1:2", "--t-end", "1"]),
         "error: `--vary Omega=1e400:1:2`: `1e400` is beyond the range of double precision (about 1.8e308)\n  = hint: --vary NAME=FROM:TO:COUNT, e.g. --vary \"l=0.5:2:16\" (COUNT may be left out with --samples)\n"
     );
     assert_eq!(
-        refused("sweep", &["--set", "m=1,R=1,g=9.81", "--vary", "Omega=:1:2", &sim[0], sim[1]]),
+        refused("sweep", &["--set", "m=1,R=1,g=9.81", "--vary", "Omega=:1:2", "--t-end", "1"]),
         "error: `--vary Omega=:1:2`: `` is not a number\n  = hint: --vary NAME=FROM:TO:COUNT, e.g. --vary \"l=0.5:2:16\" (COUNT may be left out with --samples)\n"
     );
     // a comma inside parentheses belongs to its value
     assert_eq!(
-        refused("simulate", &["--set", &set("max(1, 2)"), &sim[0], sim[1]]),
+        refused("simulate", &["--set", &set("max(1, 2)"), "--t-end", "1"]),
         "error: `--set Omega=max(1, 2)`: `max(1, 2)` is not a number\n  = hint: write numbers or constant expressions: --set m=1.5,g=9.81,Omega=2*pi\n"
     );
 }
