@@ -332,7 +332,7 @@ class Scene:
 
     def floquet(self, set: Values = None, at: Any = None, over: Optional[Over] = None,
                 functions: Sequence[str] = (), period: Optional[float] = None,
-                max_steps: Optional[int] = None) -> Floquet:
+                max_steps: Optional[int] = None, threads: int = 0) -> Floquet:
         """Floquet's stability about a motion (``qdot floquet``): the
         monodromy matrix over one period of the coefficients, the
         multipliers, the verdict; at the ``set`` values, or over one or two
@@ -340,10 +340,12 @@ class Scene:
         ``{"delta": (-1, 3, 81), "eps": (0, 2, 41)}``). ``at``: the
         reference motion; ``functions``: ``"s=EXPR"`` per given function
         of time; ``period`` when it is not found; ``max_steps`` per
-        integration."""
+        integration; ``threads`` for the grid's points (0: one per core; the
+        result is the same for any number)."""
         options: Dict[str, Any] = {"set": set, "at": at, "over": over,
                                    "functions": list(functions) or None,
-                                   "period": period, "max_steps": max_steps}
+                                   "period": period, "max_steps": max_steps,
+                                   "threads": threads or None}
         formats = ["json", "text", "csv"]
         outs, _ = self._report("floquet", formats, **options)
         return Floquet(self, dict(zip(formats, outs)), _native_options(self, options))

@@ -69,3 +69,15 @@ def test_a_bad_set_value_is_a_qdot_error():
         scene.simulate(set={"m": 1, "l": "sqrt(-1)", "g": 9.81}, init={"theta": 1}, t_end=1)
     assert e.value.message == "`--set l=sqrt(-1)`: `sqrt(-1)` is not a number"
     assert e.value.kind == "bad_option"
+
+
+def test_floquet_threads_give_the_same_chart(cli):
+    scene = qdot.Scene.load(ROOT / "examples" / "mathieu.qd")
+    over = {"delta": (-0.5, 2.5, 13), "eps": (0, 2, 5)}
+    one = scene.floquet(set={"m": 1, "w": 1}, over=over, threads=1)
+    two = scene.floquet(set={"m": 1, "w": "2/2"}, over=over, threads=2)
+    assert one.to_csv() == two.to_csv()
+    out = cli("floquet", str(ROOT / "examples" / "mathieu.qd"), "--set", "m=1,w=1", "--over",
+              "delta=-0.5:2.5:13,eps=0:2:5", "--output", "csv", "--threads", "1")
+    assert out.returncode == 0, out.stderr
+    assert one.to_csv() == out.stdout
