@@ -380,3 +380,53 @@ fn floquet_over_gives_the_same_bytes_on_one_thread_and_on_two() {
     assert_eq!(one, run("2"));
     assert_eq!(one.0.lines().count(), 1 + 13 * 5);
 }
+
+#[test]
+fn time_options_take_constant_expressions_and_keep_their_checks() {
+    let run = |t_end: &str| {
+        ok_hoop(
+            "t-end",
+            "simulate",
+            &[
+                "--set",
+                "m=1,R=1,Omega=1,g=9.81",
+                "--init",
+                "theta=1",
+                "--t-end",
+                t_end,
+                "--points",
+                "3",
+            ],
+        )
+    };
+    assert_eq!(run("2*pi"), run("6.283185307179586"));
+    let (code, _, err) = qdot_on(
+        "numeric_values",
+        "t-end-inf",
+        HOOP,
+        "simulate",
+        &[
+            "--set",
+            "m=1,R=1,Omega=1,g=9.81",
+            "--init",
+            "theta=1",
+            "--t-end",
+            "inf",
+        ],
+    );
+    assert_eq!(
+        (code, err.as_str()),
+        (1, "error: --t-end inf must be a positive number\n")
+    );
+    let floquet = |period: &str| {
+        ok(&[
+            "floquet",
+            "examples/mathieu.qd",
+            "--set",
+            "m=1,w=1,delta=1,eps=0.1",
+            "--period",
+            period,
+        ])
+    };
+    assert_eq!(floquet("2*pi"), floquet("6.283185307179586"));
+}

@@ -236,8 +236,8 @@ pub struct FloquetArgs {
     #[arg(long = "function")]
     pub function: Vec<String>,
     /// The period of the coefficients, when it is not found from their
-    /// time dependence.
-    #[arg(long)]
+    /// time dependence: a number or a constant expression (2*pi).
+    #[arg(long, value_parser = super::args::number)]
     pub period: Option<f64>,
     /// The most steps one integration over the period may take (a period
     /// long against the motion's own time scale needs more).
