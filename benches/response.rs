@@ -137,7 +137,7 @@ fn main() {
         .expect("linearizes");
     let set = values();
     let over = over(FREQUENCIES);
-    let mut compiled = CompiledResponse::new(&sys, &set).expect("compiles");
+    let mut compiled = CompiledResponse::new(&scene, &sys, &set).expect("compiles");
     let whole = || sweep(&src, &set, &over).expect("runs");
     checked(whole());
     checked(compiled.run(&over));

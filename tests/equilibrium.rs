@@ -887,7 +887,7 @@ fn set_errors_and_time_dependence() {
         ),
         (
             "m=abc",
-            "error: `--set m=abc`: `abc` is not a number\n  = hint: write decimal numbers: --set m=1.5,g=9.81\n",
+            "error: `--set m=abc`: `abc` is not a number\n  = hint: write numbers or constant expressions: --set m=1.5,g=9.81,Omega=2*pi\n",
         ),
         (
             "m=1,g=inf",

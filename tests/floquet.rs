@@ -5,7 +5,7 @@
 //! form (constant coefficients, Liouville's det Φ = exp(−∫tr C dt)); the
 //! chart; and the refusals, word for word.
 
-use qdot::floquet::{parameter_values, prepare, FloquetRequest, Prepared, Verdict};
+use qdot::floquet::{prepare, FloquetRequest, Prepared, Verdict};
 use qdot::Scene;
 use std::f64::consts::PI;
 
@@ -26,9 +26,18 @@ fn prepared(file: &str, at: Option<&str>) -> Prepared {
         .expect("the scene linearizes")
 }
 
-fn values(pairs: &[(&str, f64)]) -> rustc_hash::FxHashMap<qdot_exact::poly::Var, f64> {
+/// `pairs` as `p` takes them, checked as `--set` values are in the scene
+/// `file`.
+fn values(
+    p: &Prepared,
+    file: &str,
+    pairs: &[(&str, f64)],
+) -> rustc_hash::FxHashMap<qdot_exact::poly::Var, f64> {
+    let scene = Scene::parse(&std::fs::read_to_string(file).expect("the example"))
+        .expect("the scene parses");
     let set = pairs.iter().map(|(k, v)| (k.to_string(), *v)).collect();
-    parameter_values(&set)
+    p.parameter_map(&scene, &set)
+        .expect("values the scene takes")
 }
 
 /// The rows of the SciPy fixture: ε and the boundaries a0, b1, a1 in δ.
@@ -51,7 +60,11 @@ fn mathieu_first_tongue_is_scipys_to_1e_6_and_follows_its_series() {
     let p = prepared(MATHIEU, None);
     assert!(p.lagrangian);
     for (eps, a0, b1, a1) in fixture() {
-        let v = values(&[("delta", 0.0), ("eps", eps), ("m", 1.0), ("w", 1.0)]);
+        let v = values(
+            &p,
+            MATHIEU,
+            &[("delta", 0.0), ("eps", eps), ("m", 1.0), ("w", 1.0)],
+        );
         let lower = p
             .boundary(&v, "delta", 0.25 - eps, 0.25)
             .expect("lower edge");
@@ -91,7 +104,12 @@ fn kapitza_inverted_pendulum_is_stable_above_the_threshold_within_1_percent() {
     assert!(p.lagrangian);
     for (l, g, a) in [(1.0f64, 9.81, 0.05), (0.5, 9.81, 0.02), (2.0, 1.62, 0.1)] {
         let threshold = (2.0 * g * l).sqrt() / a;
-        let v = values(&[("m", 1.0), ("l", l), ("g", g), ("a", a), ("w", 0.0)]);
+        // w is varied by `boundary`: any value the scene takes
+        let v = values(
+            &p,
+            KAPITZA,
+            &[("m", 1.0), ("l", l), ("g", g), ("a", a), ("w", threshold)],
+        );
         let w = p
             .boundary(&v, "w", 0.5 * threshold, 2.0 * threshold)
             .expect("a threshold");
@@ -108,7 +126,11 @@ fn kapitza_inverted_pendulum_is_stable_above_the_threshold_within_1_percent() {
             "ε = {eps}: {w}"
         );
         let at = |w: f64| {
-            let v = values(&[("m", 1.0), ("l", l), ("g", g), ("a", a), ("w", w)]);
+            let v = values(
+                &p,
+                KAPITZA,
+                &[("m", 1.0), ("l", l), ("g", g), ("a", a), ("w", w)],
+            );
             p.analyse(&v).expect("analysed").verdict
         };
         assert_eq!(at(0.9 * w), Verdict::Unstable);

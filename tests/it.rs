@@ -64,6 +64,7 @@ mod limits_doc;
 mod mechanisms;
 mod modes;
 mod no_panic;
+mod numeric_values;
 mod oscillation_details;
 mod parse_ast;
 mod parse_errors;

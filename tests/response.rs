@@ -58,7 +58,7 @@ fn swept(file: &str, set: &Values, omega: f64) -> Vec<(f64, f64)> {
         to: omega,
         count: 1,
     };
-    let t = CompiledResponse::new(&sys, set).unwrap().run(&over);
+    let t = CompiledResponse::new(&scene, &sys, set).unwrap().run(&over);
     (0..sys.coordinates.len())
         .map(|j| (t.amplitude[0][j].unwrap(), t.phase[0][j].unwrap()))
         .collect()
@@ -302,7 +302,7 @@ fn bad_input_is_refused_with_a_reason() {
         ),
         (
             &["response", "examples/forced_oscillator.qd", "--over", "Omega=0:1:10", "--set", "m=1,k=2"],
-            "error: the swept frequency response needs a value for every parameter, and F0, c have none\n  = hint: give them with --set F0=…,c=…\n",
+            "error: no value for the parameters c, F0\n  = hint: give every parameter a value: --set c=1,F0=1\n",
         ),
         (
             &["response", "examples/forced_oscillator.qd", "--output", "csv"],
@@ -439,12 +439,14 @@ fn a_gyroscopic_system_is_solved_with_its_skew_c() {
         Some("C has gyroscopic terms, which the undamped system keeps: no antiresonances computed")
     );
     let set = values("m=1,k=4,W=0.5,F0=1");
-    let t = CompiledResponse::new(&sys, &set).unwrap().run(&Over {
-        name: OMEGA.into(),
-        from: 0.7,
-        to: 3.1,
-        count: 3,
-    });
+    let t = CompiledResponse::new(&scene, &sys, &set)
+        .unwrap()
+        .run(&Over {
+            name: OMEGA.into(),
+            from: 0.7,
+            to: 3.1,
+            count: 3,
+        });
     let w = &t.natural_frequencies;
     assert!(
         (w[0] - 1.5).abs() < 1e-12 && (w[1] - 2.5).abs() < 1e-12,

@@ -299,7 +299,7 @@ fn one_range_reader() {
     refused(
         &CYCLE_OVER,
         "phi=0:1e400:3",
-        "`--over phi=0:1e400:3`: `1e400` is not a number",
+        "`--over phi=0:1e400:3`: `1e400` is beyond the range of double precision (about 1.8e308)",
     );
     refused(
         &CYCLE_OVER,

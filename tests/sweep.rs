@@ -218,7 +218,7 @@ fn bad_sweeps_are_refused_with_a_hint() {
         ),
         (
             &["--vary", "theta=0;1"],
-            "the range is FROM:TO or FROM:TO:COUNT",
+            "1 parts after `=`, and it takes 2 or 3 (FROM:TO or FROM:TO:COUNT)",
             "--vary",
         ),
         (&["--vary", "theta=a:1:2"], "`a` is not a number", "--vary"),

@@ -98,6 +98,7 @@ def run_report(
     functions: Sequence[str] = ...,
     period: Optional[float] = ...,
     max_steps: Optional[int] = ...,
+    threads: int = ...,
 ) -> Tuple[List[str], List[str]]:
     """A command run once, written in each format: (outputs, warnings)."""
     ...

@@ -36,11 +36,32 @@ def _names(names: Sequence[str]) -> List[str]:
 
 
 def _pairs(values: Values, kind: str) -> List[Tuple[str, float]]:
+    """``set=``/``init=``/``guess=`` as (name, value) pairs: a number as it
+    is, text (``"30deg"``, ``"2*pi"``) read by qdot's one evaluator of
+    numeric values, as the CLI reads it; a value it refuses raises
+    :class:`qdot.QdotError`."""
     if values is None:
         return []
     if isinstance(values, str):
         return _native.parse_values(values, kind)
-    return [(str(k), float(v)) for k, v in values.items()]
+    return [(str(k), _number(str(k), v, kind)) for k, v in values.items()]
+
+
+def _number(name: str, value: Any, kind: str) -> float:
+    """One value of ``set=``/``init=``/``vary=``: a real number as a float,
+    anything else read as the CLI reads ``name=value`` (text) or refused
+    there (a QdotError)."""
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return float(value)
+    if not isinstance(value, str):
+        try:
+            return float(value)  # NumPy's scalars, Fraction, Decimal
+        except (TypeError, ValueError):
+            value = repr(value)
+    pairs = _native.parse_values(f"{name}={value}", kind)
+    if len(pairs) != 1:
+        raise _native.QdotError(f"`{name}={value}`: one value for {name}, not {len(pairs)}")
+    return pairs[0][1]
 
 
 def _over(over: Over) -> str:
@@ -311,7 +332,7 @@ class Scene:
 
     def floquet(self, set: Values = None, at: Any = None, over: Optional[Over] = None,
                 functions: Sequence[str] = (), period: Optional[float] = None,
-                max_steps: Optional[int] = None) -> Floquet:
+                max_steps: Optional[int] = None, threads: int = 0) -> Floquet:
         """Floquet's stability about a motion (``qdot floquet``): the
         monodromy matrix over one period of the coefficients, the
         multipliers, the verdict; at the ``set`` values, or over one or two
@@ -319,10 +340,12 @@ class Scene:
         ``{"delta": (-1, 3, 81), "eps": (0, 2, 41)}``). ``at``: the
         reference motion; ``functions``: ``"s=EXPR"`` per given function
         of time; ``period`` when it is not found; ``max_steps`` per
-        integration."""
+        integration; ``threads`` for the grid's points (0: one per core; the
+        result is the same for any number)."""
         options: Dict[str, Any] = {"set": set, "at": at, "over": over,
                                    "functions": list(functions) or None,
-                                   "period": period, "max_steps": max_steps}
+                                   "period": period, "max_steps": max_steps,
+                                   "threads": threads or None}
         formats = ["json", "text", "csv"]
         outs, _ = self._report("floquet", formats, **options)
         return Floquet(self, dict(zip(formats, outs)), _native_options(self, options))
@@ -359,7 +382,8 @@ class Scene:
             r = tuple(r)
             if len(r) not in (2, 3):
                 raise ValueError(f"vary[{name!r}]: (from, to, count) or (from, to)")
-            axes.append((str(name), float(r[0]), float(r[1]), int(r[2]) if len(r) == 3 else 0))
+            ends = [_number(str(name), x, "init") for x in r[:2]]
+            axes.append((str(name), ends[0], ends[1], int(r[2]) if len(r) == 3 else 0))
         raw = _native.sweep(
             self.source, _pairs(set, "set"), _pairs(init, "init"), axes, float(t_end),
             samples=samples, seed=seed, threads=threads, method=method, rtol=rtol, atol=atol,

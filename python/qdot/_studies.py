@@ -264,7 +264,7 @@ def _native_options(scene: Any, options: Dict[str, Any]) -> Dict[str, Any]:
             out[key] = _names(value)
         elif key in ("period",):
             out[key] = float(value)
-        elif key in ("max_steps",):
+        elif key in ("max_steps", "threads"):
             out[key] = int(value)
         elif key in ("steps", "standalone", "title", "structure"):
             out[key] = value

@@ -176,6 +176,7 @@ fn command_options(
         functions: study.functions,
         period: study.period,
         max_steps: study.max_steps,
+        threads: study.threads,
         // simulate, sweep and codegen have calls of their own (`simulate`,
         // `sweep`, `codegen` below), with their options
         ..CommandOptions::default()
@@ -191,6 +192,8 @@ struct StudyOptions {
     functions: Vec<String>,
     period: Option<f64>,
     max_steps: Option<usize>,
+    /// `floquet --threads`: 0 is one per core (`qdot::app::thread_count`).
+    threads: usize,
 }
 
 fn format_by_name(name: &str) -> PyResult<Format> {
@@ -217,7 +220,7 @@ fn commands() -> Vec<(&'static str, Vec<&'static str>)> {
 /// `formats`: (the outputs, warnings rendered). The options are the
 /// CLI's; `over` its `--over` text.
 #[pyfunction]
-#[pyo3(signature = (command, source, formats, file="<scene>", set=Vec::new(), at=None, init=None, steady=None, steps=false, standalone=false, title=String::new(), max_terms=0, structure="auto", keep=Vec::new(), over=None, guess=Vec::new(), columns=None, functions=Vec::new(), period=None, max_steps=None))]
+#[pyo3(signature = (command, source, formats, file="<scene>", set=Vec::new(), at=None, init=None, steady=None, steps=false, standalone=false, title=String::new(), max_terms=0, structure="auto", keep=Vec::new(), over=None, guess=Vec::new(), columns=None, functions=Vec::new(), period=None, max_steps=None, threads=0))]
 #[allow(clippy::too_many_arguments)]
 fn run_report(
     py: Python<'_>,
@@ -241,6 +244,7 @@ fn run_report(
     functions: Vec<String>,
     period: Option<f64>,
     max_steps: Option<usize>,
+    threads: usize,
 ) -> PyResult<(Vec<String>, Vec<String>)> {
     let cmd = command_by_name(command)?;
     let fmts = formats
@@ -254,6 +258,7 @@ fn run_report(
         functions,
         period,
         max_steps,
+        threads,
     };
     let opts = command_options(
         cmd, set, at, init, steady, steps, standalone, title, max_terms, structure, keep, study,

@@ -233,6 +233,9 @@ pub struct CommandOptions {
     /// `floquet --max-steps N`: the steps one integration over the period
     /// may take (`None`: [`crate::limits::DEFAULT_MAX_STEPS`]).
     pub max_steps: Option<usize>,
+    /// `floquet --threads N`: the grid's points on N threads (0: one per
+    /// core; [`thread_count`], the policy `sweep --threads` follows too).
+    pub threads: usize,
     // the numeric commands
     /// `simulate` and `sweep`: the run (`--t-end`, `--method`, `--init`,
     /// …); its `set` is not read: the parameter values are

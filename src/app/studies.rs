@@ -126,7 +126,7 @@ pub(super) fn response(
             let at = at_values(scene, opts)?;
             let sys = ForcedSystem::of_scene(scene, at.as_deref())?;
             FrequencyResponse::Swept(
-                crate::simulate::response::CompiledResponse::new(&sys, set)?.run(over),
+                crate::simulate::response::CompiledResponse::new(scene, &sys, set)?.run(over),
             )
         }
         _ => {
@@ -188,21 +188,7 @@ pub(super) fn floquet(
         }
         set.insert(a.name.clone(), a.from);
     }
-    // 0 is refused where it makes M singular or the period infinite
-    let inertial: Vec<String> = scene
-        .parameters
-        .iter()
-        .map(|p| p.name.clone())
-        .filter(|p| {
-            let v = crate::expr::atom::param(p);
-            prepared
-                .mass
-                .iter()
-                .flatten()
-                .chain(&prepared.frequency)
-                .any(|e| e.depends_on(v))
-        })
-        .collect();
+    let inertial = prepared.inertial_parameters(scene);
     let base = crate::scene::given::parameter_map(scene, &set, &inertial)?;
     if over.is_empty() {
         let f = prepared.analyse(&base)?;
@@ -228,21 +214,51 @@ pub(super) fn floquet(
             v
         })
         .collect();
-    let points = grid
-        .into_par_iter()
-        .map(|v| {
-            let mut values: FxHashMap<Var, f64> = base.clone();
-            for (var, x) in vars.iter().zip(&v) {
-                values.insert(*var, *x);
-            }
-            let r = prepared.analyse(&values).map_err(|d| d.message.clone());
-            (v, r)
-        })
-        .collect();
+    // every point's values checked as `--set` values are, before any run
+    for v in &grid {
+        for (a, x) in over.iter().zip(v) {
+            set.insert(a.name.clone(), *x);
+        }
+        crate::scene::given::parameter_map(scene, &set, &inertial)
+            .map_err(|d| over_value_error(d, over))?;
+    }
+    // `--threads`, as every parallel command takes it
+    let pool = super::thread_pool(opts.threads, total)?;
+    let points = pool.install(|| {
+        grid.into_par_iter()
+            .map(|v| {
+                let mut values: FxHashMap<Var, f64> = base.clone();
+                for (var, x) in vars.iter().zip(&v) {
+                    values.insert(*var, *x);
+                }
+                let r = prepared.analyse(&values).map_err(|d| d.message.clone());
+                (v, r)
+            })
+            .collect()
+    });
     let run = FloquetRun {
         prepared,
         axes: over.clone(),
         points,
     };
     Ok(report(ctx, scene, run))
+}
+
+/// A grid point's values refused: the error, said of the `--over` ranges.
+fn over_value_error(d: Diagnostic, over: &[GridAxis]) -> Diagnostic {
+    let ranges: Vec<String> = over
+        .iter()
+        .map(|a| format!("{}={}:{}:{}", a.name, a.from, a.to, a.count))
+        .collect();
+    Diagnostic::global(format!(
+        "`--over {}` reaches values qdot refuses: {}",
+        ranges.join(","),
+        d.message
+    ))
+    .with_hint(
+        d.hint
+            .as_deref()
+            .unwrap_or("keep the ranges within the scene's assumptions"),
+    )
+    .with_kind(ErrorKind::bad_option("--over"))
 }

@@ -342,8 +342,9 @@ impl StructureArgs {
 /// The integration options `simulate` and `sweep` share.
 #[derive(clap::Args)]
 pub struct Integration {
-    /// The final time (from t = 0).
-    #[arg(long = "t-end")]
+    /// The final time (from t = 0): a number or a constant expression
+    /// (2*pi).
+    #[arg(long = "t-end", value_parser = number)]
     pub t_end: f64,
     /// rk4, dopri5, dop853, vern7, gauss6 (symplectic) or radau5 (stiff)
     #[arg(long, default_value = "dop853")]
@@ -355,7 +356,7 @@ pub struct Integration {
     #[arg(long, default_value_t = 1e-10)]
     pub atol: f64,
     /// The step of rk4 and gauss6 (the first step of the others).
-    #[arg(long)]
+    #[arg(long, value_parser = number)]
     pub dt: Option<f64>,
     /// Evenly spaced output times from 0 to --t-end (2 to 1,000,000); a
     /// sweep reads max|q| and the energy drift at them.
@@ -676,4 +677,14 @@ pub fn base_name(file: &str) -> String {
         .and_then(|s| s.to_str())
         .unwrap_or(file)
         .to_string()
+}
+
+/// A time option's value (`--t-end`, `--dt`, `floquet --period`): a
+/// decimal as a double reads it (`inf` and `1e400` too, refused with the
+/// option's own message later), else a constant expression read by the
+/// one evaluator of numeric values (`2*pi`, `pi/100`).
+pub fn number(s: &str) -> Result<f64, String> {
+    s.trim()
+        .parse::<f64>()
+        .or_else(|_| qdot::scene::given::constant_value(s).map_err(|e| e.message(s.trim())))
 }

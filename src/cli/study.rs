@@ -247,8 +247,8 @@ pub struct FloquetArgs {
     #[arg(long = "function")]
     pub function: Vec<String>,
     /// The period of the coefficients, when it is not found from their
-    /// time dependence.
-    #[arg(long)]
+    /// time dependence: a number or a constant expression (2*pi).
+    #[arg(long, value_parser = super::args::number)]
     pub period: Option<f64>,
     /// The most steps one integration over the period may take (a period
     /// long against the motion's own time scale needs more).
@@ -264,6 +264,10 @@ pub struct FloquetArgs {
     /// parameter) or the stability chart (two).
     #[arg(long)]
     pub plot: Option<String>,
+    /// With --over: the grid's points on this many threads (0: one per
+    /// core), as `sweep --threads`; the output is the same for any number.
+    #[arg(long, default_value_t = 0)]
+    pub threads: usize,
 }
 
 impl FloquetArgs {
@@ -285,6 +289,7 @@ impl FloquetArgs {
         opts.functions = self.function.clone();
         opts.period = self.period;
         opts.max_steps = Some(self.max_steps);
+        opts.threads = self.threads;
         opts.set = parse_set(self.set.as_deref())?;
         opts.over = self
             .over

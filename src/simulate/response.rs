@@ -14,14 +14,15 @@
 use crate::algebra::sign::Values;
 use crate::cycle::Over;
 use crate::diag::{Diagnostic, ErrorKind};
-use crate::expr::atom::{self, Atom};
+use crate::expr::atom;
 use crate::expr::Expr;
 use crate::poly::Var;
 use crate::scene::given::{parse_ranges, RESPONSE_OVER};
+use crate::scene::Scene;
 use crate::solve::response::{natural_frequencies, ForcedSystem, OMEGA};
 use qdot_compile::compile::{compile_with, Program};
 use qdot_ode::dense::{solve_complex_scaled, Complex, Lu};
-use rustc_hash::FxHashMap;
+use rustc_hash::FxHashSet;
 
 /// The swept frequency response.
 #[derive(Clone, Debug)]
@@ -77,8 +78,15 @@ pub fn check_axis(over: &Over, written: &str) -> Result<(), Diagnostic> {
 }
 
 impl CompiledResponse {
-    /// Compile `sys` with every parameter but Ω bound to its value in `set`.
-    pub fn new(sys: &ForcedSystem, set: &Values) -> Result<CompiledResponse, Diagnostic> {
+    /// Compile `sys`, linearized from `scene`, with every parameter but Ω
+    /// bound to its value in `set`: the values checked as every numeric
+    /// command checks them ([`crate::scene::given::parameter_map_of`]), each
+    /// parameter of the system given (those of M not 0).
+    pub fn new(
+        scene: &Scene,
+        sys: &ForcedSystem,
+        set: &Values,
+    ) -> Result<CompiledResponse, Diagnostic> {
         let n = sys.coordinates.len();
         let outputs: Vec<Expr> = [&sys.stiffness, &sys.mass, &sys.damping]
             .into_iter()
@@ -87,43 +95,24 @@ impl CompiledResponse {
             .chain(sys.load_sin.iter().cloned())
             .collect();
         let omega = atom::param(OMEGA);
-        let mut missing: Vec<String> = Vec::new();
-        let mut params: FxHashMap<Var, f64> = FxHashMap::default();
-        for e in &outputs {
-            for v in e.vars() {
-                if v == omega {
-                    continue;
-                }
-                if let Atom::Param(name) = atom::atom(v) {
-                    match set.get(&*name) {
-                        Some(&x) => {
-                            params.insert(v, x);
-                        }
-                        None if !missing.iter().any(|m| **m == *name) => {
-                            missing.push(name.to_string())
-                        }
-                        None => {}
-                    }
-                }
-            }
-        }
-        if !missing.is_empty() {
-            missing.sort();
-            return Err(Diagnostic::global(format!(
-                "the swept frequency response needs a value for every parameter, and {} {} none",
-                missing.join(", "),
-                if missing.len() == 1 { "has" } else { "have" }
-            ))
-            .with_hint(format!(
-                "give them with --set {}",
-                missing
-                    .iter()
-                    .map(|m| format!("{m}=…"))
-                    .collect::<Vec<_>>()
-                    .join(",")
-            ))
-            .with_kind(ErrorKind::bad_option("--set")));
-        }
+        let used = |m: &[Expr]| -> FxHashSet<Var> {
+            m.iter()
+                .flat_map(|e| e.vars())
+                .filter(|&v| v != omega)
+                .collect()
+        };
+        let needed = used(&outputs);
+        let massive = used(&sys.mass.concat());
+        let inertial: Vec<String> = scene
+            .parameters
+            .iter()
+            .filter(|p| massive.contains(&atom::param(&p.name)))
+            .map(|p| p.name.clone())
+            .collect();
+        let mut params = crate::scene::given::parameter_map_of(scene, set, &inertial, &|p| {
+            needed.contains(&atom::param(p))
+        })?;
+        params.retain(|v, _| needed.contains(v));
         let program = compile_with(&outputs, &[omega], &params).map_err(|e| {
             Diagnostic::global(format!("the frequency response does not compile: {e}"))
         })?;

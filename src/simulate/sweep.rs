@@ -33,19 +33,10 @@ pub const SWEEP_VARY: crate::scene::given::RangeSyntax = crate::scene::given::Ra
 };
 
 /// One varied name: a parameter, a coordinate (`theta`) or a velocity
-/// (`theta'`), from `from` to `to`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Axis {
-    /// The name, as in `--set` or `--init`.
-    pub name: String,
-    /// The first value.
-    pub from: f64,
-    /// The last value.
-    pub to: f64,
-    /// How many evenly spaced values, ends included, on a grid (1: `from`
-    /// alone); ignored by a random design.
-    pub count: usize,
-}
+/// (`theta'`), from `from` to `to` in `count` evenly spaced values, ends
+/// included, on a grid (1: `from` alone); a random design ignores `count`
+/// (0 when `--vary` leaves it out).
+pub use crate::scene::given::GridAxis as Axis;
 
 /// How the runs' values are chosen.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -98,49 +89,17 @@ pub struct Sweep {
     pub compilations: usize,
 }
 
-/// `NAME=FROM:TO:COUNT` (grid) or `NAME=FROM:TO` (random design).
+/// `NAME=FROM:TO:COUNT` (grid) or `NAME=FROM:TO` (random design): the one
+/// range reader, [`crate::scene::given::parse_ranges`] with [`SWEEP_VARY`].
 pub fn parse_axis(text: &str) -> Result<Axis, Diagnostic> {
-    let hint = "--vary NAME=FROM:TO:COUNT, e.g. --vary \"l=0.5:2:16\" (COUNT may be left out with --samples)";
-    let bad = |what: String| {
-        Diagnostic::global(format!("`--vary {text}`: {what}"))
-            .with_hint(hint)
-            .with_kind(ErrorKind::bad_option("--vary"))
-    };
-    let (name, range) = text.split_once('=').ok_or_else(|| bad("no `=`".into()))?;
-    let name = name.trim();
-    if name.is_empty() {
-        return Err(bad("no name before `=`".into()));
-    }
-    let parts: Vec<&str> = range.split(':').map(str::trim).collect();
-    if !(2..=3).contains(&parts.len()) {
-        return Err(bad("the range is FROM:TO or FROM:TO:COUNT".into()));
-    }
-    let number = |s: &str| -> Result<f64, Diagnostic> {
-        match s.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(v),
-            _ => Err(bad(format!("`{s}` is not a number"))),
-        }
-    };
-    let (from, to) = (number(parts[0])?, number(parts[1])?);
-    let count = match parts.get(2) {
-        Some(c) => c
-            .parse::<usize>()
-            .ok()
-            .filter(|&c| (1..=MAX_SWEEP_RUNS).contains(&c))
-            .ok_or_else(|| {
-                bad(format!(
-                    "COUNT `{c}` must be a whole number from 1 to {}",
-                    crate::budget::grouped(MAX_SWEEP_RUNS)
-                ))
-            })?,
-        None => 0,
-    };
-    Ok(Axis {
-        name: name.to_string(),
-        from,
-        to,
-        count,
-    })
+    crate::scene::given::parse_ranges(&SWEEP_VARY, text)?
+        .into_iter()
+        .next()
+        .ok_or_else(|| {
+            Diagnostic::global(format!("`--vary {text}`: no range"))
+                .with_hint(SWEEP_VARY.hint)
+                .with_kind(ErrorKind::bad_option("--vary"))
+        })
 }
 
 /// The values of every run, in order: a grid's product or random points.

@@ -1,8 +1,11 @@
 //! Values given for a scene's names outside the scene: `--set m=1,g=9.81`
 //! (parameters, as doubles), `--at th=pi` and `--init y=1/10,y'=0` (exact
-//! expressions), the simulator's `--init th=0.5,th'=0` (doubles). One
-//! reader of `name=value,…` lists serves them all, so they accept the same
-//! syntax and refuse it with the same messages.
+//! expressions), the simulator's `--init th=0.5,th'=0` (doubles), and the
+//! ranges of `--over` and `--vary` (`phi=0:360deg:73`). One reader of
+//! `name=value,…` lists, one of ranges ([`parse_ranges`]) and one
+//! evaluator of numeric values ([`constant_value`]: `30deg`, `2*pi`) serve
+//! them all, so they accept the same syntax and refuse it with the same
+//! messages.
 
 use super::Scene;
 use crate::algebra::sign::Values;
@@ -59,9 +62,14 @@ pub struct NameValue<'s> {
 
 /// `a=1, b = 2,,c=x` as its items, trimmed: empty items are skipped; an
 /// item without `=` or without a name, or a name given twice, is refused.
+/// A comma inside parentheses belongs to its value (`a=atan2(1, 2)`).
 pub fn name_value_pairs(syntax: OptionSyntax, s: &str) -> Result<Vec<NameValue<'_>>, Diagnostic> {
     let mut out: Vec<NameValue<'_>> = Vec::new();
-    for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+    for part in top_level_items(s)
+        .into_iter()
+        .map(str::trim)
+        .filter(|p| !p.is_empty())
+    {
         let Some((k, v)) = part.split_once('=').filter(|(k, _)| !k.trim().is_empty()) else {
             return Err(Diagnostic::global(format!(
                 "`{} {part}`: expected name=value",
@@ -184,19 +192,31 @@ pub fn set_names_are_parameters(scene: &Scene, set: &Values) -> Result<(), Diagn
 }
 
 /// Every parameter's value from `--set` as the numeric commands take
-/// them (`simulate`, `cycle`): signs checked ([`numeric_parameter_signs`],
-/// 0 allowed but for the parameters `inertial`), every parameter given,
-/// and no other name.
+/// them (`simulate`, `sweep`, `cycle`, `floquet`): signs checked
+/// ([`numeric_parameter_signs`], 0 allowed but for the parameters
+/// `inertial`), every parameter given, and no other name.
 pub fn parameter_map(
     scene: &Scene,
     set: &Values,
     inertial: &[String],
 ) -> Result<rustc_hash::FxHashMap<crate::poly::Var, f64>, Diagnostic> {
+    parameter_map_of(scene, set, inertial, &|_| true)
+}
+
+/// [`parameter_map`] of a command that needs only the parameters `needed`
+/// says it does (`response --over`: those of its linearized system): the
+/// same checks, but a parameter it does not need may be left out.
+pub fn parameter_map_of(
+    scene: &Scene,
+    set: &Values,
+    inertial: &[String],
+    needed: &dyn Fn(&str) -> bool,
+) -> Result<rustc_hash::FxHashMap<crate::poly::Var, f64>, Diagnostic> {
     numeric_parameter_signs(scene, set, inertial)?;
     let missing: Vec<&str> = scene
         .parameters
         .iter()
-        .filter(|p| !set.contains_key(&p.name))
+        .filter(|p| !set.contains_key(&p.name) && needed(&p.name))
         .map(|p| p.name.as_str())
         .collect();
     if !missing.is_empty() {
@@ -326,70 +346,148 @@ fn order_fact_holds(fact: &Expr, set: &Values) -> Result<(), Diagnostic> {
 }
 
 /// Parse `--set m=1,g=-9.81` into finite doubles of either sign (the
-/// scene decides which may be negative: [`parameter_signs`]).
+/// scene decides which may be negative: [`parameter_signs`]); each value
+/// a number or a constant expression ([`constant_value`]).
 pub fn parameter_values_any_sign(s: &str) -> Result<Values, Diagnostic> {
+    numeric_values(SET, s)
+}
+
+/// The simulator's `--init q=0.5,q'=0` (finite doubles, signs allowed;
+/// each value a number or a constant expression: [`constant_value`]).
+pub fn numeric_initial_values(s: &str) -> Result<Values, Diagnostic> {
+    numeric_values(SIMULATE_INIT, s)
+}
+
+/// `name=value,…` of a numeric option: each value read by
+/// [`constant_value`], refused with its reason.
+fn numeric_values(syntax: OptionSyntax, s: &str) -> Result<Values, Diagnostic> {
     let mut out = Values::new();
     for NameValue {
-        written: part,
-        name: k,
-        value: v_text,
-    } in name_value_pairs(SET, s)?
+        written,
+        name,
+        value,
+    } in name_value_pairs(syntax, s)?
     {
-        let v: f64 = match v_text.parse::<f64>() {
-            Ok(x) if f64::is_finite(x) => x,
-            // a number past the double range (1e400): say so
-            Ok(_)
-                if !v_text.to_ascii_lowercase().contains("inf")
-                    && !v_text.to_ascii_lowercase().contains("nan") =>
-            {
-                return Err(Diagnostic::global(format!(
-                    "`--set {part}`: `{v_text}` is beyond the range of double precision (about 1.8e308)"
-                ))
-                .with_hint("numeric work is done in doubles; rescale the units")
-                .with_kind(ErrorKind::bad_option(SET.option)))
-            }
-            _ => {
-                return Err(Diagnostic::global(format!(
-                    "`--set {part}`: `{v_text}` is not a number"
-                ))
-                .with_hint("write decimal numbers: --set m=1.5,g=9.81")
-                .with_kind(ErrorKind::bad_option(SET.option)))
-            }
-        };
-        if v == 0.0 && has_nonzero_digit(v_text) {
-            return Err(Diagnostic::global(format!(
-                "`--set {part}`: `{v_text}` is below the smallest double (about 4.9e-324)"
+        let v = constant_value(value).map_err(|e| {
+            Diagnostic::global(format!(
+                "`{} {written}`: {}",
+                syntax.option,
+                e.message(value)
             ))
-            .with_hint("numeric work is done in doubles; rescale the units")
-            .with_kind(ErrorKind::bad_option(SET.option)));
-        }
-        out.insert(k.to_string(), v);
+            .with_hint(e.hint(syntax))
+            .with_kind(ErrorKind::bad_option(syntax.option))
+        })?;
+        out.insert(name.to_string(), v);
     }
     Ok(out)
 }
 
-/// The simulator's `--init q=0.5,q'=0` (finite doubles, signs allowed).
-pub fn numeric_initial_values(s: &str) -> Result<Values, Diagnostic> {
-    let mut out = Values::new();
-    for NameValue {
-        written: part,
-        name: k,
-        value: v,
-    } in name_value_pairs(SIMULATE_INIT, s)?
-    {
-        let x = match v.parse::<f64>() {
-            Ok(x) if f64::is_finite(x) => x,
-            _ => {
-                return Err(
-                    Diagnostic::global(format!("`--init {part}`: `{v}` is not a number"))
-                        .with_hint("write decimal numbers: --init x=0.1,x'=-2.5")
-                        .with_kind(ErrorKind::bad_option(SIMULATE_INIT.option)),
-                )
+/// Why a text is not a value of a numeric option ([`constant_value`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ConstantError {
+    /// Neither a number nor a constant expression with a real value.
+    NotNumber,
+    /// A value beyond the doubles (`1e400`).
+    BeyondRange,
+    /// A value not 0 below the smallest double (`1e-400`).
+    BelowSmallest,
+}
+
+impl ConstantError {
+    /// What is wrong with the value `text`.
+    pub fn message(self, text: &str) -> String {
+        match self {
+            ConstantError::NotNumber => format!("`{text}` is not a number"),
+            ConstantError::BeyondRange => {
+                format!("`{text}` is beyond the range of double precision (about 1.8e308)")
             }
-        };
-        out.insert(k.to_string(), x);
+            ConstantError::BelowSmallest => {
+                format!("`{text}` is below the smallest double (about 4.9e-324)")
+            }
+        }
     }
-    Ok(out)
+
+    /// How to write a value of the option `syntax`.
+    fn hint(self, syntax: OptionSyntax) -> String {
+        match self {
+            ConstantError::NotNumber if syntax.option == SET.option => {
+                "write numbers or constant expressions: --set m=1.5,g=9.81,Omega=2*pi".to_string()
+            }
+            ConstantError::NotNumber => {
+                "write numbers or constant expressions: --init x=0.1,x'=-2.5,theta=30deg"
+                    .to_string()
+            }
+            _ => "numeric work is done in doubles; rescale the units".to_string(),
+        }
+    }
+}
+
+/// The one evaluator of every numeric option's values (`--set`, the
+/// simulator's `--init`, the ends of `--over` and `--vary`, `--guess`): a
+/// decimal number (read as Rust reads a double), `deg` (or `°`) after a
+/// value for degrees, `pi` (`2pi`, `-pi`, `π`), or a constant expression
+/// of the scene language (`pi/6`, `2*pi`, `sqrt(2)`, `1/3`). A value that
+/// is not a real number, or that the doubles cannot hold, is refused.
+pub fn constant_value(text: &str) -> Result<f64, ConstantError> {
+    use std::f64::consts::PI;
+    let s = text.trim();
+    let (body, scale) = match s.strip_suffix("deg").or_else(|| s.strip_suffix('°')) {
+        Some(n) => (n.trim(), PI / 180.0),
+        None => (s, 1.0),
+    };
+    let x = match body.parse::<f64>() {
+        Ok(x) if x.is_finite() => {
+            if x == 0.0 && has_nonzero_digit(body) {
+                return Err(ConstantError::BelowSmallest);
+            }
+            x
+        }
+        // `inf`, `NaN` are words, not numbers; `1e400` a number too large
+        Ok(_) => {
+            let lower = body.to_ascii_lowercase();
+            return Err(if lower.contains("inf") || lower.contains("nan") {
+                ConstantError::NotNumber
+            } else {
+                ConstantError::BeyondRange
+            });
+        }
+        Err(_) => match body.strip_suffix("pi").or_else(|| body.strip_suffix('π')) {
+            Some(n) => {
+                let k: f64 = match n.trim() {
+                    "" => 1.0,
+                    "-" => -1.0,
+                    n => match n.trim_end_matches('*').trim().parse() {
+                        Ok(k) => k,
+                        Err(_) => constant(body)? / PI,
+                    },
+                };
+                k * PI
+            }
+            None => constant(body)?,
+        },
+    };
+    let v = x * scale;
+    if !v.is_finite() {
+        return Err(ConstantError::BeyondRange);
+    }
+    if v == 0.0 && x != 0.0 {
+        return Err(ConstantError::BelowSmallest);
+    }
+    Ok(v)
+}
+
+/// A constant expression's value (`pi/2`, `sqrt(2)`): no names but `pi`.
+fn constant(text: &str) -> Result<f64, ConstantError> {
+    let e = Scene::default()
+        .expr(text)
+        .map_err(|_| ConstantError::NotNumber)?;
+    match e.eval_f64(&|_| None) {
+        Some(v) if v.is_nan() => Err(ConstantError::NotNumber),
+        Some(v) if !v.is_finite() => Err(ConstantError::BeyondRange),
+        Some(v) if v == 0.0 && !e.is_zero() => Err(ConstantError::BelowSmallest),
+        Some(v) => Ok(v),
+        None => Err(ConstantError::NotNumber),
+    }
 }
 
 /// Whether a decimal number's text has a nonzero digit before any exponent
@@ -618,8 +716,8 @@ pub const FLOQUET_OVER: RangeSyntax = RangeSyntax {
 
 /// The one reader of ranges and grids: `NAME=FROM:TO:COUNT`, or several
 /// comma-separated (a grid, the first varying fastest). FROM and TO are
-/// numbers, `deg` (or `°`) after one for degrees, `pi` (`2pi`, `-pi`), or
-/// constant expressions (`pi/2`, `sqrt(2)`, `1/3`); COUNT a whole number
+/// values of [`constant_value`] (`0.5`, `360deg`, `2pi`, `pi/2`,
+/// `sqrt(2)`); COUNT a whole number
 /// from 1 (FROM alone) to the syntax's limit, the product of the counts
 /// too.
 pub fn parse_ranges(syntax: &RangeSyntax, text: &str) -> Result<Vec<GridAxis>, Diagnostic> {
@@ -672,8 +770,7 @@ pub fn parse_ranges(syntax: &RangeSyntax, text: &str) -> Result<Vec<GridAxis>, D
                 ))
             }
         };
-        let number =
-            |s: &str| range_value(s).ok_or_else(|| bad(item, format!("`{s}` is not a number")));
+        let number = |s: &str| constant_value(s).map_err(|e| bad(item, e.message(s)));
         let (from, to) = (number(from)?, number(to)?);
         let count = match count {
             Some(c) => c
@@ -741,39 +838,8 @@ fn top_level_items(text: &str) -> Vec<&str> {
     items
 }
 
-/// A value of a range or a guess: `0.5`, `360deg` (or `°`) → 2π, `2pi`,
-/// `pi` → π, or a constant expression (`pi/2`, `sqrt(2)`); `None` for
-/// anything else, or a value beyond the doubles.
+/// A value of a range or a guess: [`constant_value`], `None` where it
+/// refuses the text.
 pub fn range_value(s: &str) -> Option<f64> {
-    let s = s.trim();
-    let (body, scale) = match s.strip_suffix("deg").or_else(|| s.strip_suffix('°')) {
-        Some(n) => (n.trim(), std::f64::consts::PI / 180.0),
-        None => (s, 1.0),
-    };
-    let v = match body.parse::<f64>() {
-        Ok(x) => x,
-        Err(_) => match body.strip_suffix("pi").or_else(|| body.strip_suffix('π')) {
-            Some(n) => {
-                let x: f64 = match n.trim() {
-                    "" => 1.0,
-                    "-" => -1.0,
-                    n => match n.trim_end_matches('*').trim().parse() {
-                        Ok(x) => x,
-                        Err(_) => constant(body)? / std::f64::consts::PI,
-                    },
-                };
-                x * std::f64::consts::PI
-            }
-            None if body.is_empty() => 1.0,
-            None if body == "-" => -1.0,
-            None => constant(body)?,
-        },
-    } * scale;
-    v.is_finite().then_some(v)
-}
-
-/// A constant expression's value (`pi/2`, `sqrt(2)`): no names but `pi`.
-fn constant(text: &str) -> Option<f64> {
-    let e = Scene::default().expr(text).ok()?;
-    e.eval_f64(&|_| None)
+    constant_value(s).ok()
 }

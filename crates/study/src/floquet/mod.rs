@@ -250,17 +250,42 @@ pub fn is_lagrangian(m: &[Vec<Expr>], c: &[Vec<Expr>], k: &[Vec<Expr>]) -> bool 
     })
 }
 
-/// Parameter values by name (`--set`) as [`Prepared::analyse`] takes them.
-pub fn parameter_values(set: &crate::algebra::sign::Values) -> FxHashMap<Var, f64> {
-    set.iter().map(|(k, &v)| (atom::param(k), v)).collect()
-}
-
 /// An atom's name as the input syntax writes it.
 fn name_of(v: Var) -> String {
     crate::expr::print::input(&Expr::var(v))
 }
 
 impl Prepared {
+    /// Parameter values by name (`--set`, with a grid point's values) as
+    /// [`Prepared::analyse`] takes them, checked as every numeric command
+    /// checks them ([`crate::scene::given::parameter_map`]): every
+    /// parameter of `scene` given, no other name, signs and `assume` facts
+    /// kept, and not 0 where 0 makes M singular or the period infinite.
+    pub fn parameter_map(
+        &self,
+        scene: &Scene,
+        set: &crate::algebra::sign::Values,
+    ) -> Result<FxHashMap<Var, f64>, Diagnostic> {
+        crate::scene::given::parameter_map(scene, set, &self.inertial_parameters(scene))
+    }
+
+    /// The parameters of `scene` in M or in the coefficients' frequency.
+    pub fn inertial_parameters(&self, scene: &Scene) -> Vec<String> {
+        scene
+            .parameters
+            .iter()
+            .map(|p| p.name.clone())
+            .filter(|p| {
+                let v = atom::param(p);
+                self.mass
+                    .iter()
+                    .flatten()
+                    .chain(&self.frequency)
+                    .any(|e| e.depends_on(v))
+            })
+            .collect()
+    }
+
     /// The number of coordinates.
     pub fn n(&self) -> usize {
         self.coordinates.len()
