@@ -59,6 +59,7 @@ mod latex;
 mod latex_pdf;
 mod latex_steps;
 mod lazy;
+mod lecturer_form;
 mod library_budget;
 mod limits_doc;
 mod mechanisms;

@@ -203,7 +203,7 @@ Conditions (each coordinate's equation there)
   θ:  m·R²·cos(θ)·sin(θ)·φ̇² − g·m·R·sin(θ) = 0
 
 Steady motions (stability about each: `qdot modes --steady`)
-  1. θ = 0  — undecided (stable when −R·φ̇² + g > 0; at one rate: qdot modes --steady phi --at \"theta=…,phi'=…\")
+  1. θ = 0  — undecided (stable when R·φ̇² < g; at one rate: qdot modes --steady phi --at \"theta=…,phi'=…\")
   2. θ = π  — unstable
   3. θ = acos(g/(R·φ̇²))  — stable
      exists when |g/(R·φ̇²)| ≤ 1

@@ -609,6 +609,33 @@ pub fn stable_factorization(
     f
 }
 
+/// `p` factored over ℚ within `subsets` recombination trials
+/// ([`crate::poly::factor::factor_within`]) as [`stable_factorization`]
+/// prints it, by a search independent of the ids: the factorization
+/// chooses its main variable, evaluation points and lifting order by the
+/// variables' order, so it runs on `p` with its atoms renamed by rank in
+/// [`stable_cmp`]'s order. Otherwise whether it fits the allowance (a
+/// result printed factored or expanded) would follow the process's history.
+pub fn stable_factor_within(
+    p: &Poly,
+    subsets: usize,
+) -> Option<crate::poly::factor::Factorization> {
+    let mut vars = p.vars();
+    vars.sort_by(|&a, &b| stable_cmp(a, b));
+    let rank: FxHashMap<Var, Var> = vars
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| (v, i as Var))
+        .collect();
+    let ranked = p.map_vars(&|v| rank.get(&v).copied().unwrap_or(v));
+    let mut f = crate::poly::factor::factor_within(&ranked, subsets)?;
+    let back = |v: Var| vars.get(v as usize).copied().unwrap_or(v);
+    for (g, _) in f.factors.iter_mut() {
+        *g = g.map_vars(&back);
+    }
+    Some(stable_factorization(f))
+}
+
 /// Whether `p`'s first term in the history-independent order (the
 /// highest degree, then [`stable_mono_key`]) has a negative coefficient:
 /// the sign the canonical forms normalize (`sin(u)` keeps `u` or `−u`)

@@ -52,6 +52,71 @@ pub(super) enum Positivity {
 
 /// x > 0 in the fewest and simplest conditions (see the module docs).
 pub(super) fn positive(x: &Expr) -> Positivity {
+    let Factors {
+        negative,
+        kept,
+        unless,
+    } = deciding_factors(x);
+    if kept.is_empty() && negative {
+        return if unless.is_empty() {
+            Positivity::Fails
+        } else {
+            // −p² > 0 nowhere, and not "unstable" where p = 0
+            Positivity::When(vec![Condition::Holds(format!(
+                "{} > 0",
+                crate::expr::print::expanded(x)
+            ))])
+        };
+    }
+    if kept.is_empty() && unless.is_empty() {
+        return Positivity::Holds;
+    }
+    let mut out = Vec::new();
+    if !kept.is_empty() {
+        out.push(Condition::Holds(inequality(kept, negative).holds()));
+    }
+    out.extend(unless.iter().map(|zeros| {
+        let eqs: Vec<String> = zeros.iter().map(equation).collect();
+        Condition::Unless(eqs.join(" and "))
+    }));
+    Positivity::When(out)
+}
+
+/// The verdict on the sign of x when it is one inequality between the
+/// parameters ("stable when Ω²·R < g, unstable when Ω²·R > g"); `None`
+/// when the factors of x decide nothing alone or leave an "unless".
+pub(super) fn sign_decides(x: &Expr) -> Option<String> {
+    let Factors {
+        negative,
+        kept,
+        unless,
+    } = deciding_factors(x);
+    if kept.is_empty() || !unless.is_empty() {
+        return None;
+    }
+    let i = inequality(kept, negative);
+    Some(format!(
+        "stable when {}, unstable when {}",
+        i.holds(),
+        i.fails()
+    ))
+}
+
+/// The factors of x that decide its sign.
+struct Factors {
+    /// Whether the factors left out make x's sign the opposite of the
+    /// product of `kept`.
+    negative: bool,
+    /// The factors of odd power and no sign of their own, each with its
+    /// first printed term positive, in the order of their texts.
+    kept: Vec<Poly>,
+    /// The zeros of the factors of even power (or sums of squares).
+    unless: Vec<Vec<Poly>>,
+}
+
+/// x's numerator and denominator factored, each factor sorted out (see
+/// the module docs).
+fn deciding_factors(x: &Expr) -> Factors {
     let num = best_factored(x.num());
     let den = factor(x.den());
     let mut negative = num.unit.is_negative() != den.unit.is_negative();
@@ -93,45 +158,84 @@ pub(super) fn positive(x: &Expr) -> Positivity {
         }
     }
     kept.sort_by_cached_key(unicode_collected);
-    if kept.is_empty() && negative {
-        return if unless.is_empty() {
-            Positivity::Fails
-        } else {
-            // −p² > 0 nowhere, and not "unstable" where p = 0
-            Positivity::When(vec![Condition::Holds(format!(
-                "{} > 0",
-                crate::expr::print::expanded(x)
-            ))])
-        };
+    Factors {
+        negative,
+        kept,
+        unless,
     }
-    if kept.is_empty() && unless.is_empty() {
-        return Positivity::Holds;
-    }
-    let mut out = Vec::new();
-    if !kept.is_empty() {
-        if negative {
-            // a sum takes the sign (C·s − A·Ω·cos(lat) rather than −cos(lat))
-            let i = kept.iter().position(|g| g.len() > 1).unwrap_or(0);
-            kept[i] = -&kept[i];
+}
+
+/// `smaller < larger`, or `larger > 0` when `smaller` is `None`.
+struct Inequality {
+    smaller: Option<String>,
+    larger: String,
+}
+
+impl Inequality {
+    /// The inequality as it must hold.
+    fn holds(&self) -> String {
+        match &self.smaller {
+            Some(s) => format!("{s} < {}", self.larger),
+            None => format!("{} > 0", self.larger),
         }
-        let factors: Vec<String> = kept.iter().map(unicode_collected).collect();
-        let product: Vec<String> = factors
-            .iter()
-            .map(|f| {
-                if factors.len() > 1 && crate::expr::print::is_sum(f) {
-                    format!("({f})")
-                } else {
-                    f.clone()
-                }
-            })
-            .collect();
-        out.push(Condition::Holds(format!("{} > 0", product.join("·"))));
     }
-    out.extend(unless.iter().map(|zeros| {
-        let eqs: Vec<String> = zeros.iter().map(equation).collect();
-        Condition::Unless(eqs.join(" and "))
-    }));
-    Positivity::When(out)
+
+    /// The opposite strict inequality (`< 0` after a product's `… > 0`).
+    fn fails(&self) -> String {
+        match &self.smaller {
+            Some(s) => format!("{s} > {}", self.larger),
+            None => "< 0".to_string(),
+        }
+    }
+}
+
+/// The product of `kept` (negated when `negative`) > 0 as a lecturer
+/// writes it: one sum with terms of both signs as `B < A`, its negative
+/// terms on the left (Ω²·R < g for g − Ω²·R > 0); a product as `… > 0`,
+/// the sign taken by a sum (C·s − A·Ω·cos(lat) rather than −cos(lat)).
+fn inequality(mut kept: Vec<Poly>, negative: bool) -> Inequality {
+    if negative {
+        let i = kept.iter().position(|g| g.len() > 1).unwrap_or(0);
+        kept[i] = -&kept[i];
+    }
+    if let [g] = kept.as_slice() {
+        let (plus, minus): (Vec<_>, Vec<_>) = g
+            .terms()
+            .iter()
+            .map(|(m, c)| (m.clone(), c.clone()))
+            .partition(|(_, c)| !c.is_negative());
+        if !plus.is_empty() && !minus.is_empty() {
+            return Inequality {
+                smaller: Some(side(minus, true)),
+                larger: side(plus, false),
+            };
+        }
+    }
+    let factors: Vec<String> = kept.iter().map(unicode_collected).collect();
+    let product: Vec<String> = factors
+        .iter()
+        .map(|f| {
+            if factors.len() > 1 && crate::expr::print::is_sum(f) {
+                format!("({f})")
+            } else {
+                f.clone()
+            }
+        })
+        .collect();
+    Inequality {
+        smaller: None,
+        larger: product.join("·"),
+    }
+}
+
+/// The sum of the terms `ts` (negated when `flip`), printed.
+fn side(ts: Vec<(Mono, Q)>, flip: bool) -> String {
+    let q = Poly::from_terms(
+        ts.into_iter()
+            .map(|(m, c)| (m, if flip { -c } else { c }))
+            .collect(),
+    );
+    unicode_collected(&q)
 }
 
 /// The sign of a factor a + b·sin²(u) for every u: a linear function of
@@ -257,14 +361,6 @@ fn equation(p: &Poly) -> String {
         .iter()
         .map(|(m, c)| (m.clone(), c.clone()))
         .partition(|(_, c)| !c.is_negative());
-    let side = |ts: Vec<(Mono, Q)>, flip: bool| {
-        let q = Poly::from_terms(
-            ts.into_iter()
-                .map(|(m, c)| (m, if flip { -c } else { c }))
-                .collect(),
-        );
-        unicode_collected(&q)
-    };
     match (plus.is_empty(), minus.is_empty()) {
         (false, false) => format!("{} = {}", side(plus, false), side(minus, true)),
         (false, true) => format!("{} = 0", side(plus, false)),
@@ -318,7 +414,7 @@ mod tests {
     fn positive_factors_are_left_out_and_a_negative_one_flips() {
         // −m·(a − b): b − a > 0
         let x = p("m").neg().mul(&p("a").sub(&p("b")));
-        assert_eq!(when(&x), vec![Condition::Holds("b − a > 0".into())]);
+        assert_eq!(when(&x), vec![Condition::Holds("a < b".into())]);
     }
 
     #[test]
@@ -340,6 +436,6 @@ mod tests {
     fn an_odd_power_decides_like_its_base() {
         let d = p("a").sub(&p("b"));
         let x = d.mul(&d).mul(&d);
-        assert_eq!(when(&x), vec![Condition::Holds("a − b > 0".into())]);
+        assert_eq!(when(&x), vec![Condition::Holds("b < a".into())]);
     }
 }

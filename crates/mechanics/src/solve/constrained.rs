@@ -365,10 +365,13 @@ fn classify_restricted(kc: &[Vec<Expr>], set: &Values, gyroscopic: bool) -> Stab
         Err(undecided) => return undecided,
     };
     if r == 1 && signs[0].is_none() {
-        return Stability::Undecided(format!(
-            "stable when {} > 0, unstable when < 0; give values with --set",
-            crate::expr::print::unicode(&kc[0][0])
-        ));
+        let verdict = super::condition::sign_decides(&kc[0][0]).unwrap_or_else(|| {
+            format!(
+                "stable when {} > 0, unstable when < 0",
+                crate::expr::print::unicode(&kc[0][0])
+            )
+        });
+        return Stability::Undecided(format!("{verdict}; give values with --set"));
     }
     if r == 1 && signs[0] == Some(Sign::Zero) {
         return Stability::Undecided(

@@ -1085,10 +1085,13 @@ fn classify_potential(
         return higher_order(f, q[0], &vals[0], set);
     }
     if n == 1 && signs[0].is_none() {
-        return Stability::Undecided(format!(
-            "stable when {} > 0, unstable when < 0; give values with --set",
-            crate::expr::print::unicode(&k[0][0])
-        ));
+        let verdict = super::condition::sign_decides(&k[0][0]).unwrap_or_else(|| {
+            format!(
+                "stable when {} > 0, unstable when < 0",
+                crate::expr::print::unicode(&k[0][0])
+            )
+        });
+        return Stability::Undecided(format!("{verdict}; give values with --set"));
     }
     jacobi(&signs, gyroscopic)
 }

@@ -360,13 +360,14 @@ fn factored(p: &Poly) -> Option<Poly> {
     if p.len() < 2 || p.len() > MAX_FACTORED_TERMS {
         return None;
     }
-    let f = crate::poly::factor::factor_within(p, MAX_PRINTED_FACTOR_SUBSETS)?;
+    let f = atom::stable_factor_within(p, MAX_PRINTED_FACTOR_SUBSETS)?;
     let sums: Vec<&(Poly, u32)> = f.factors.iter().filter(|(g, _)| g.len() > 1).collect();
     if sums.is_empty() || (sums.len() == 1 && sums[0].1 == 1) {
         return None;
     }
     let mut unit = f.unit.clone();
     let mut mono: Vec<(Var, u32)> = Vec::new();
+    let mut sums: Vec<(Poly, u32)> = Vec::new();
     for (g, e) in &f.factors {
         if g.len() == 1 {
             let (m, c) = &g.terms()[0];
@@ -378,9 +379,34 @@ fn factored(p: &Poly) -> Option<Poly> {
         if flipped && e % 2 == 1 {
             unit = -unit;
         }
-        mono.push((group(g), *e));
+        sums.push((g, *e));
     }
+    if unit.is_negative() {
+        negate_into_a_sum(&mut sums, &mut unit);
+    }
+    mono.extend(sums.into_iter().map(|(g, e)| (group(g), e)));
     Some(Poly::monomial(Mono::from_pairs(mono), unit))
+}
+
+/// A negative unit taken into the sum (to an odd power) most of whose
+/// terms are negative, as a lecturer distributes the sign:
+/// `(m₁ + m₂)·(l₁²·m₁ + … − 2·l₁·l₂·m₁)` rather than
+/// `−(2·l₁·l₂·m₁ − l₁²·m₁ − …)·(m₁ + m₂)`; the unit stays when no sum has
+/// more negative terms than positive ones.
+fn negate_into_a_sum(sums: &mut [(Poly, u32)], unit: &mut Q) {
+    let surplus = |g: &Poly| {
+        let minus = g.terms().iter().filter(|(_, c)| c.is_negative()).count();
+        minus as i64 - (g.len() - minus) as i64
+    };
+    let best = sums
+        .iter()
+        .enumerate()
+        .filter(|(_, (g, e))| e % 2 == 1 && surplus(g) > 0)
+        .max_by_key(|(i, (g, _))| (surplus(g), std::cmp::Reverse(*i)));
+    if let Some((i, _)) = best {
+        sums[i].0 = -&sums[i].0;
+        *unit = -unit.clone();
+    }
 }
 
 /// `p` with the terms that share a monomial in moving atoms collected:
