@@ -50,6 +50,7 @@ mod library_budget;
 mod limits_doc;
 mod mechanisms;
 mod modes;
+mod motion_pages;
 mod no_panic;
 mod oscillation_details;
 mod parse_ast;
