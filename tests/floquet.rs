@@ -310,6 +310,13 @@ fn the_chart_marks_the_tongues_and_is_drawn() {
         drawn.contains("stability chart") && drawn.contains("<rect"),
         "{drawn}"
     );
+    // titled with the scene's name (its first comment), not the file's
+    assert!(
+        drawn.contains(
+            "The Mathieu equation x&apos;&apos; + (delta + eps*cos(w*t))*x = 0: stability chart"
+        ),
+        "{drawn}"
+    );
     let (code, csv, _) = qdot(&[
         "floquet",
         MATHIEU,

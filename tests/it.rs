@@ -64,6 +64,7 @@ mod library_budget;
 mod limits_doc;
 mod mechanisms;
 mod modes;
+mod motion_pages;
 mod no_panic;
 mod numeric_values;
 mod oscillation_details;

@@ -419,6 +419,16 @@ fn book_figure_is_the_commands_plot() {
         now.matches("<polyline").count() >= 4,
         "two amplitudes and two phases"
     );
+    // titled with the scene's name; the logarithmic axes read 0.1, 1, 10,
+    // never 1.0e-1
+    assert!(
+        now.contains("Den Hartog&apos;s vibration absorber — amplitude |X| against Ω"),
+        "{now}"
+    );
+    assert!(!now.contains(".0e"), "an axis labelled 1.0e1");
+    for tick in ["\n0.1\n", "\n1\n", "\n10\n"] {
+        assert!(now.contains(tick), "no tick {tick}");
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 

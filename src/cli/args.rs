@@ -218,6 +218,11 @@ pub struct SimulateArgs {
     /// and the energy error when the scene conserves energy.
     #[arg(long)]
     pub plot: Option<String>,
+    /// Also write the motion to this self-contained HTML page: the
+    /// scene's bodies, particles and points moving in 3D (play, pause,
+    /// scrub, orbit the camera).
+    #[arg(long)]
+    pub animate: Option<String>,
     /// End the run where this changes sign: "theta = 0", "x' = 0"
     /// (located on the dense output of dopri5, dop853, vern7 or rk4).
     #[arg(long = "stop-when")]
@@ -287,6 +292,10 @@ pub struct ModesArgs {
     /// first comment, else the file's base name)
     #[arg(long, requires = "standalone")]
     pub title: Option<String>,
+    /// Also write each mode shape oscillating about the equilibrium to
+    /// this self-contained HTML page (needs every parameter's --set value).
+    #[arg(long)]
+    pub animate: Option<String>,
 }
 
 impl ModesArgs {
@@ -462,6 +471,8 @@ pub struct ExactArgs<'a> {
     /// The other options, or the error of an option that cannot be
     /// (`modes --standalone` without LaTeX).
     pub options: Result<CommandOptions, Diagnostic>,
+    /// `modes --animate`: the page to write the mode shapes to.
+    pub animate: Option<&'a str>,
 }
 
 impl Command {
@@ -521,6 +532,7 @@ impl Command {
                     format: args.format,
                     set: args.set.as_deref(),
                     options,
+                    animate: args.animate.as_deref(),
                 });
             }
             _ => return None,
@@ -531,6 +543,7 @@ impl Command {
             format,
             set,
             options: Ok(opts),
+            animate: None,
         })
     }
 }
@@ -565,7 +578,7 @@ impl SimulateArgs {
             .map(run::parse_init)
             .transpose()?
             .unwrap_or_default();
-        if self.plot.is_some() {
+        if self.plot.is_some() || self.animate.is_some() {
             req.plot_samples = qdot::simulate::plot::SAMPLES;
         }
         Ok(CommandOptions {

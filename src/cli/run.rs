@@ -39,10 +39,39 @@ pub fn exact(a: ExactArgs, max_terms: usize) -> ExitCode {
                 report.print(w, &src);
             }
             emit(&out);
-            ExitCode::SUCCESS
+            match a
+                .animate
+                .map(|path| modes_animation(path, &src, report.file, &opts))
+            {
+                Some(Err(d)) => report.fail(&d, &src),
+                _ => ExitCode::SUCCESS,
+            }
         }
         Err(d) => report.fail(&d, &src),
     }
+}
+
+/// `modes --animate PATH`: each mode shape moving about the equilibrium.
+fn modes_animation(
+    path: &str,
+    src: &str,
+    file: &str,
+    opts: &qdot::CommandOptions,
+) -> Result<(), Diagnostic> {
+    let ctx = Context::new().with_max_terms(opts.max_terms);
+    let r = app::modes(&ctx, src, opts)?;
+    let (title, subtitle) =
+        qdot::drawing::motion::titles(src, file, Some(r.scene()), &r.result.set);
+    let page = qdot::drawing::modes_page(r.scene(), &r.result, &title, &subtitle)?;
+    write_page(path, &page)
+}
+
+/// A page written to `path` (`--animate`).
+fn write_page(path: &str, page: &str) -> Result<(), Diagnostic> {
+    std::fs::write(path, page).map_err(|e| {
+        Diagnostic::global(format!("cannot write the animation `{path}`: {e}"))
+            .with_kind(qdot::diag::ErrorKind::bad_option("--animate"))
+    })
 }
 
 /// `cmd` on `src` in the context of `--max-terms`.
@@ -112,6 +141,21 @@ pub fn simulate(a: &SimulateArgs, max_terms: usize) -> ExitCode {
         if let Err(e) = written {
             let d = Diagnostic::global(format!("cannot write the plot `{path}`: {e}"))
                 .with_kind(qdot::diag::ErrorKind::bad_option("--plot"));
+            return report.fail(&d, "");
+        }
+    }
+    if let Some(path) = &a.animate {
+        let labels =
+            qdot::simulate::plot::Labels::of_run(Some(r.scene()), &src, report.file, &sim.request);
+        let written = qdot::drawing::run_page(
+            r.scene(),
+            &sim.run,
+            &sim.request.set,
+            &labels.title,
+            &labels.subtitle,
+        )
+        .and_then(|page| write_page(path, &page));
+        if let Err(d) = written {
             return report.fail(&d, "");
         }
     }

@@ -80,7 +80,7 @@ impl CycleArgs {
         let qdot::AnyReport::Cycle(r) = report else {
             return Ok(());
         };
-        let (run, title) = (&r.result, base_name(&self.file));
+        let (run, title) = (&r.result, figure_title(&self.file, r.scene()));
         if let Some(path) = &self.plot {
             let svg =
                 qdot::drawing::reaction_diagrams(&run.table, &title, run.degrees).map_err(|e| {
@@ -99,6 +99,12 @@ impl CycleArgs {
         }
         Ok(())
     }
+}
+
+/// A figure's title: the scene's name (its first comment's first
+/// phrase, as `simulate --plot` takes it), else the file's base name.
+fn figure_title(file: &str, scene: &qdot::Scene) -> String {
+    qdot::simulate::plot::scene_title(&scene.source).unwrap_or_else(|| base_name(file))
 }
 
 /// A picture written to `path`.
@@ -223,7 +229,7 @@ impl ResponseArgs {
         let qdot::app::FrequencyResponse::Swept(table) = &r.result else {
             return Ok(());
         };
-        qdot::simulate::response_plot::svg(table, &base_name(&self.file))
+        qdot::simulate::response_plot::svg(table, &figure_title(&self.file, r.scene()))
             .map_err(|e| e.to_string())
             .and_then(|svg| std::fs::write(path, svg).map_err(|e| e.to_string()))
             .map_err(|e| qdot::Diagnostic::global(format!("cannot write the plot `{path}`: {e}")))
@@ -305,7 +311,7 @@ impl FloquetArgs {
         let (Some(path), qdot::AnyReport::Floquet(r)) = (&self.plot, report) else {
             return Ok(());
         };
-        qdot::drawing::floquet::svg(&r.result, &base_name(&self.file))
+        qdot::drawing::floquet::svg(&r.result, &figure_title(&self.file, r.scene()))
             .map_err(|e| format!("cannot draw the chart: {e}"))
             .and_then(|svg| {
                 std::fs::write(path, svg).map_err(|e| format!("cannot write `{path}`: {e}"))

@@ -92,3 +92,49 @@ where
         .label_style(font(TICKS))
         .axis_desc_style(font(AXIS))
 }
+
+/// A tick of a logarithmic axis as people write numbers: `10`, `100`,
+/// `0.01`, `2.5`; a power of ten beyond 10⁵ or below 10⁻³ as `1e-5`,
+/// `2.5e6` (never `1.0e1`).
+pub fn log_label(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let trim = |s: String| {
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    };
+    if (1e-3..1e5).contains(&v.abs()) {
+        // three significant digits
+        let decimals = (2 - v.abs().log10().floor() as i32).max(0) as usize;
+        return trim(format!("{v:.decimals$}"));
+    }
+    let s = format!("{v:.2e}");
+    match s.split_once('e') {
+        Some((mantissa, exponent)) => format!("{}e{exponent}", trim(mantissa.to_string())),
+        None => s,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::log_label;
+
+    /// Decades as people write them, on either side of 1, and beyond.
+    #[test]
+    fn log_ticks_read_as_numbers() {
+        let got: Vec<String> = [
+            10.0, 100.0, 1.0, 0.1, 0.01, 0.001, 2.5, 1e5, 1e-5, 2.5e6, 12345.0,
+        ]
+        .iter()
+        .map(|&v| log_label(v))
+        .collect();
+        assert_eq!(
+            got,
+            ["10", "100", "1", "0.1", "0.01", "0.001", "2.5", "1e5", "1e-5", "2.5e6", "12345"]
+        );
+    }
+}

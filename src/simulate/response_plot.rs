@@ -10,7 +10,7 @@
 
 use super::plot::{pretty_column, tick_label, PlotError};
 use super::response::ResponseTable;
-use crate::drawing::style::{self, colour};
+use crate::drawing::style::{self, colour, log_label};
 use plotters::prelude::*;
 
 /// The runs of consecutive finite points with positive x (and positive y
@@ -44,13 +44,6 @@ fn unwrap_degrees(run: &mut [(f64, f64)]) {
         }
         run[k].1 += shift;
     }
-}
-
-/// A frequency on the logarithmic axis: three decimals at most, no
-/// trailing zeros (`0.5`, `1`, `2.5`).
-fn frequency_label(v: f64) -> String {
-    let s = format!("{v:.3}");
-    s.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
 /// The least and largest of `v`, or `None` when it is empty.
@@ -108,8 +101,8 @@ pub fn svg(t: &ResponseTable, title: &str) -> Result<String, PlotError> {
             .map_err(PlotError::drawing)?;
         style::mesh(&mut chart.configure_mesh())
             .x_desc("Ω")
-            .x_label_formatter(&|v| frequency_label(*v))
-            .y_label_formatter(&|v| format!("{v:.1e}"))
+            .x_label_formatter(&|v| log_label(*v))
+            .y_label_formatter(&|v| log_label(*v))
             .draw()
             .map_err(PlotError::drawing)?;
         for &w in &marks {
@@ -162,7 +155,7 @@ pub fn svg(t: &ResponseTable, title: &str) -> Result<String, PlotError> {
             .map_err(PlotError::drawing)?;
         style::mesh(&mut chart.configure_mesh())
             .x_desc("Ω")
-            .x_label_formatter(&|v| frequency_label(*v))
+            .x_label_formatter(&|v| log_label(*v))
             .y_label_formatter(&|v| tick_label(*v, p1 - p0))
             .draw()
             .map_err(PlotError::drawing)?;
