@@ -305,12 +305,8 @@ mod tests {
     fn same_as_formatter(x: f64) -> Result<(), TestCaseError> {
         let mut ours = b"x,".to_vec();
         write_full(&mut ours, x);
-        prop_assert_eq!(
-            &ours[2..],
-            format!("{x:.17e}").as_bytes(),
-            "bits {:#x}",
-            x.to_bits()
-        );
+        let want = format!("{x:.17e}");
+        prop_assert_eq!(&ours[2..], want.as_bytes(), "bits {:#x}", x.to_bits());
         prop_assert_eq!(full(x), format!("{x:.17e}"));
         Ok(())
     }

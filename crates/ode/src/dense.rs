@@ -495,6 +495,44 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_complex_quotient_is_the_division_bit_for_bit() {
+        let parts = [0.0, -0.0, 1.5, -2.25, 1e-310, -3e300, f64::MIN_POSITIVE];
+        let bits = |z: Complex<f64>| (z.re.to_bits(), z.im.to_bits());
+        for &xr in &parts {
+            for &xi in &parts {
+                for &dr in &parts {
+                    for &di in &parts {
+                        let (x, d) = (Complex::new(xr, xi), Complex::new(dr, di));
+                        assert_eq!(bits(x.quotient(d)), bits(x / d), "{x} / {d}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_binary_exponent_brackets_x() {
+        for x in [
+            5e-324,
+            1e-310,
+            f64::MIN_POSITIVE,
+            0.5,
+            0.75,
+            1.0,
+            3.0,
+            1e300,
+            f64::MAX,
+        ] {
+            let e = binary_exponent(x);
+            assert!(scaled_by_power_of_two(x, -e) < 1.0, "{x:e}");
+            assert!(scaled_by_power_of_two(x, 1 - e) >= 1.0, "{x:e}");
+        }
+        assert_eq!(binary_exponent(1.0), 1);
+        assert_eq!(binary_exponent(5e-324), -1073);
+        assert_eq!(binary_exponent(0.0), 0);
+    }
+
+    #[test]
     fn solve_spd_cholesky_and_fallback() {
         // SPD: [[4, 2], [2, 3]]·x = [2, 1] → x = [1/2, 0].
         let mut m = vec![4.0, 2.0, 2.0, 3.0];
