@@ -6,7 +6,9 @@
 //!   program of Ω compiled → 10,000 complex LU solves, amplitudes, phases
 //!   and peaks, as the command line does it;
 //! - `response/sweep_10000`: the sweep alone, compiled once
-//!   ([`CompiledResponse::run`]).
+//!   ([`CompiledResponse::run`]);
+//! - the whole command written out as `--output csv` and `--output json`
+//!   (`app::run`, then `output::render`), what the command line prints.
 //!
 //! The target: 10,000 frequencies of a 10-dof chain in ≤ 50 ms.
 //! After criterion, the amplitudes are checked against the NumPy reference
@@ -19,7 +21,7 @@
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 use criterion::Criterion;
-use qdot::app::{self, AnyReport, CommandOptions, Context, FrequencyResponse};
+use qdot::app::{self, AnyReport, CommandOptions, Context, Format, FrequencyResponse};
 use qdot::cycle::Over;
 use qdot::simulate::response::{CompiledResponse, ResponseTable};
 use qdot::solve::response::ForcedSystem;
@@ -113,6 +115,18 @@ fn sweep(
     }
 }
 
+/// The whole command, then its table rendered in `fmt`: what
+/// `qdot response --over … --output csv|json` prints (its length).
+fn rendered(src: &str, set: &qdot::solve::equilibrium::Values, over: &Over, fmt: Format) -> usize {
+    let opts = CommandOptions {
+        set: set.clone(),
+        over: vec![over.clone()],
+        ..CommandOptions::default()
+    };
+    let report = app::run(&Context::new(), app::Command::Response, src, &opts).expect("runs");
+    qdot::output::render(&report, fmt).expect("renders").len()
+}
+
 /// The largest relative difference of our amplitudes from NumPy's at 101
 /// frequencies.
 fn numpy_difference(src: &str) -> Result<f64, String> {
@@ -161,10 +175,18 @@ fn main() {
     let sweep_s = best_of(10, || {
         black_box(compiled.run(&over));
     });
+    let csv_s = best_of(10, || {
+        black_box(rendered(&src, &set, &over, Format::Csv));
+    });
+    let json_s = best_of(10, || {
+        black_box(rendered(&src, &set, &over, Format::Json));
+    });
     println!(
-        "qdot response, {FREQUENCIES} frequencies of the 10-mass chain (best of 10): whole {:.1} ms, sweep {:.1} ms (target ≤ 50 ms)",
+        "qdot response, {FREQUENCIES} frequencies of the 10-mass chain (best of 10): whole {:.1} ms, sweep {:.1} ms (target ≤ 50 ms); written out: CSV {:.1} ms, JSON {:.1} ms",
         whole_s * 1e3,
-        sweep_s * 1e3
+        sweep_s * 1e3,
+        csv_s * 1e3,
+        json_s * 1e3
     );
     match numpy_difference(&src) {
         Ok(d) => println!(
@@ -176,10 +198,12 @@ fn main() {
         .and_then(|t| t.trim().parse::<f64>().map_err(|_| format!("not a number of seconds: {t}")))
     {
         Ok(s) => println!(
-            "NumPy reference, the same {FREQUENCIES} frequencies (batched numpy.linalg.solve, best of 3): {:.1} ms; NumPy / qdot: {:.1}× (whole), {:.1}× (sweep)",
+            "NumPy reference, the same {FREQUENCIES} frequencies (batched numpy.linalg.solve, best of 3): {:.1} ms; NumPy / qdot: {:.1}× (whole), {:.1}× (sweep), {:.1}× (CSV written), {:.1}× (JSON written)",
             s * 1e3,
             s / whole_s,
-            s / sweep_s
+            s / sweep_s,
+            s / csv_s,
+            s / json_s
         ),
         Err(why) => println!("NumPy reference not timed: {why}"),
     }

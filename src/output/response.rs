@@ -2,7 +2,7 @@
 //! ([`crate::solve::response`]) as text or JSON; with it the swept table
 //! ([`crate::simulate::response`]) as text, CSV or JSON.
 
-use super::table::{full, right_aligned, short};
+use super::table::{right_aligned, short, Csv};
 use super::{as_input, as_unicode};
 use crate::app::{Command, Format, FrequencyResponse};
 use crate::diag::{Diagnostic, ErrorKind};
@@ -449,19 +449,14 @@ fn swept_columns(t: &ResponseTable) -> Vec<String> {
 /// The table as CSV: Ω, then each coordinate's amplitude and phase
 /// (radians); an empty cell where A is singular.
 pub fn swept_csv(t: &ResponseTable) -> String {
-    let mut out = swept_columns(t).join(",");
-    out.push('\n');
+    let mut table = Csv::new(swept_columns(t));
+    // at most 25 bytes a number, and its comma
+    table.reserve(t.omega.len() * (1 + 2 * t.coordinates.len()) * 26);
     for (k, w) in t.omega.iter().enumerate() {
-        out.push_str(&full(*w));
-        for j in 0..t.coordinates.len() {
-            for v in [t.amplitude[k][j], t.phase[k][j]] {
-                out.push(',');
-                out.push_str(&v.map(full).unwrap_or_default());
-            }
-        }
-        out.push('\n');
+        let cells = (0..t.coordinates.len()).flat_map(|j| [t.amplitude[k][j], t.phase[k][j]]);
+        table.number_row(std::iter::once(Some(*w)).chain(cells));
     }
-    out
+    table.finish()
 }
 
 /// `response --over … --output json`.

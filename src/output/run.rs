@@ -1,7 +1,7 @@
 //! `simulate`'s writers: the run as CSV and as JSON ([`RunJson`]), and
 //! the `--stats` lines.
 
-use super::table::{full, Csv};
+use super::table::Csv;
 use crate::simulate::compile::Engine;
 use crate::simulate::run::{method_name, status_word, Run};
 use crate::simulate::Status;
@@ -11,7 +11,7 @@ use crate::simulate::Status;
 pub fn csv(run: &Run) -> String {
     let mut table = Csv::new(&run.columns);
     for row in &run.rows {
-        table.row(row.iter().map(|&x| full(x)));
+        table.number_row(row.iter().map(|&x| Some(x)));
     }
     table.finish()
 }

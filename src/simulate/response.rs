@@ -132,14 +132,17 @@ impl CompiledResponse {
         let n = self.n;
         self.program
             .eval(&[omega], &mut self.registers, &mut self.values);
-        let v = &self.values;
         let nn = n * n;
+        let (stiffness, rest) = self.values.split_at(nn);
+        let (mass, rest) = rest.split_at(nn);
+        let (damping, load) = rest.split_at(nn);
+        let (load_cos, load_sin) = load.split_at(n);
         let w2 = omega * omega;
-        for (k, z) in lu.a.iter_mut().enumerate() {
-            *z = Complex::new(v[k] - w2 * v[nn + k], omega * v[2 * nn + k]);
+        for (z, ((&k, &m), &c)) in lu.a.iter_mut().zip(stiffness.iter().zip(mass).zip(damping)) {
+            *z = Complex::new(k - w2 * m, omega * c);
         }
-        for (j, z) in x.iter_mut().enumerate() {
-            *z = Complex::new(v[3 * nn + j], -v[3 * nn + n + j]);
+        for (z, (&fc, &fs)) in x.iter_mut().zip(load_cos.iter().zip(load_sin)) {
+            *z = Complex::new(fc, -fs);
         }
         solve_complex_scaled(lu, x).is_ok()
             && x.iter().all(|z| z.re.is_finite() && z.im.is_finite())

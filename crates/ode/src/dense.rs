@@ -49,6 +49,11 @@ pub trait Scalar:
     /// A magnitude for pivoting (|re| + |im| for complex, as LINPACK's
     /// ZGEFA).
     fn mag(self) -> f64;
+
+    /// self / d, bit for bit.
+    fn quotient(self, d: Self) -> Self {
+        self / d
+    }
 }
 
 impl Scalar for f64 {
@@ -61,6 +66,20 @@ impl Scalar for Complex<f64> {
     fn mag(self) -> f64 {
         self.re.abs() + self.im.abs()
     }
+
+    /// num-complex's division (x·d̄ / |d|²), without its two divisions
+    /// when x is zero and |d|² positive: a signed zero over a positive
+    /// number is that zero (the zeros below a banded matrix's pivots).
+    fn quotient(self, d: Self) -> Self {
+        let norm_sqr = d.re * d.re + d.im * d.im;
+        let re = self.re * d.re + self.im * d.im;
+        let im = self.im * d.re - self.re * d.im;
+        if self.re == 0.0 && self.im == 0.0 && norm_sqr > 0.0 {
+            Complex::new(re, im)
+        } else {
+            Complex::new(re / norm_sqr, im / norm_sqr)
+        }
+    }
 }
 
 /// A square matrix (row-major) and, after [`Lu::factor`], its LU factors
@@ -70,6 +89,10 @@ pub struct Lu<T> {
     /// The matrix, row-major, to fill before [`Lu::factor`]; its factors after.
     pub a: Vec<T>,
     piv: Vec<usize>,
+    /// Scratch of [`solve_complex_scaled`]: the columns' powers of two,
+    /// their largest entries.
+    column_scale: Vec<i32>,
+    column_big: Vec<f64>,
 }
 
 impl<T: Scalar> Lu<T> {
@@ -79,6 +102,8 @@ impl<T: Scalar> Lu<T> {
             n,
             a: vec![zero; n * n],
             piv: vec![0; n],
+            column_scale: vec![0; n],
+            column_big: vec![0.0; n],
         }
     }
 
@@ -93,7 +118,7 @@ impl<T: Scalar> Lu<T> {
     /// relative singularity test).
     pub fn factor_above(&mut self, tiny: f64) -> bool {
         let n = self.n;
-        let a = &mut self.a;
+        let a = &mut self.a[..n * n];
         for k in 0..n {
             let mut p = k;
             let mut best = a[k * n + k].mag();
@@ -109,17 +134,20 @@ impl<T: Scalar> Lu<T> {
                 return false;
             }
             if p != k {
-                for j in 0..n {
-                    a.swap(k * n + j, p * n + j);
-                }
+                let (above, from_p) = a.split_at_mut(p * n);
+                above[k * n..(k + 1) * n].swap_with_slice(&mut from_p[..n]);
             }
-            let pivot = a[k * n + k];
-            for i in k + 1..n {
-                let l = a[i * n + k] / pivot;
-                a[i * n + k] = l;
+            // rows as slices: the same operations in the same order, without
+            // an index check per entry
+            let (to_k, below) = a.split_at_mut((k + 1) * n);
+            let row_k = &to_k[k * n..];
+            let pivot = row_k[k];
+            for row_i in below.chunks_exact_mut(n) {
+                let l = row_i[k].quotient(pivot);
+                row_i[k] = l;
                 if l.mag() != 0.0 {
-                    for j in k + 1..n {
-                        a[i * n + j] = a[i * n + j] - l * a[k * n + j];
+                    for (x, &u) in row_i[k + 1..].iter_mut().zip(&row_k[k + 1..]) {
+                        *x = *x - l * u;
                     }
                 }
             }
@@ -139,15 +167,15 @@ impl<T: Scalar> Lu<T> {
         }
         for i in 0..n {
             let mut s = b[i];
-            for j in 0..i {
-                s = s - a[i * n + j] * b[j];
+            for (&l, &x) in a[i * n..i * n + i].iter().zip(&b[..i]) {
+                s = s - l * x;
             }
             b[i] = s;
         }
         for i in (0..n).rev() {
             let mut s = b[i];
-            for j in i + 1..n {
-                s = s - a[i * n + j] * b[j];
+            for (&u, &x) in a[i * n + i + 1..(i + 1) * n].iter().zip(&b[i + 1..n]) {
+                s = s - u * x;
             }
             b[i] = s / a[i * n + i];
         }
@@ -173,8 +201,7 @@ impl Lu<f64> {
 /// 2^e·x without overflow of 2^e itself (|e| up to the whole exponent
 /// range of f64): exact unless the result is subnormal or out of range.
 fn scaled_by_power_of_two(mut x: f64, mut e: i32) -> f64 {
-    const STEP: i32 = 1000;
-    let big = f64::powi(2.0, STEP);
+    let big = power_of_two(STEP);
     while e > STEP {
         x *= big;
         e -= STEP;
@@ -183,29 +210,72 @@ fn scaled_by_power_of_two(mut x: f64, mut e: i32) -> f64 {
         x /= big;
         e += STEP;
     }
-    x * f64::powi(2.0, e)
+    x * power_of_two(e)
+}
+
+/// The largest power of two [`scaled_by_power_of_two`] multiplies by at once.
+const STEP: i32 = 1000;
+
+/// 2^e for −1022 ≤ e ≤ 1023, from its bits (a normal double).
+fn power_of_two(e: i32) -> f64 {
+    debug_assert!((-1022..=1023).contains(&e));
+    f64::from_bits(((e + 1023) as u64) << 52)
 }
 
 /// The e with 2^(e−1) ≤ x < 2^e for a positive finite x (0 for anything
-/// else): the power of two that brings x into [1/2, 1).
+/// else): the power of two that brings x into [1/2, 1), read off the bits.
 fn binary_exponent(x: f64) -> i32 {
     if !(x > 0.0 && x.is_finite()) {
         return 0;
     }
-    let mut e = x.log2().floor() as i32 + 1;
-    // log2 may round across a power of two: correct by one step
-    let m = scaled_by_power_of_two(x, -e);
-    if m >= 1.0 {
-        e += 1;
-    } else if m < 0.5 {
-        e -= 1;
+    let bits = x.to_bits();
+    let biased = (bits >> 52) as i32;
+    if biased == 0 {
+        // subnormal: x = f·2^-1074, 2^(b−1074) ≤ x < 2^(b−1073) for f's top bit b
+        return (63 - bits.leading_zeros() as i32) - 1073;
     }
-    e
+    biased - 1022
 }
 
 /// The larger of |re| and |im|: a magnitude that cannot overflow.
 fn max_part(z: Complex<f64>) -> f64 {
     z.re.abs().max(z.im.abs())
+}
+
+/// [`max_part`] of a finite z (no NaN to rule on).
+fn finite_max_part(z: Complex<f64>) -> f64 {
+    let (re, im) = (z.re.abs(), z.im.abs());
+    if im > re {
+        im
+    } else {
+        re
+    }
+}
+
+/// The largest [`max_part`] of the finite entries of `row`.
+fn largest(row: &[Complex<f64>]) -> f64 {
+    let mut big = 0.0f64;
+    for &z in row {
+        let m = finite_max_part(z);
+        if m > big {
+            big = m;
+        }
+    }
+    big
+}
+
+/// [`scale_complex`] of every entry of `row` by the one power 2^e.
+fn scale_row(row: &mut [Complex<f64>], e: i32) {
+    if (-STEP..=STEP).contains(&e) {
+        let f = power_of_two(e);
+        for z in row {
+            *z = Complex::new(z.re * f, z.im * f);
+        }
+    } else {
+        for z in row {
+            *z = scale_complex(*z, e);
+        }
+    }
 }
 
 fn scale_complex(z: Complex<f64>, e: i32) -> Complex<f64> {
@@ -240,25 +310,51 @@ pub fn solve_complex_scaled(
     {
         return Err(DenseError::Singular { column: 0 });
     }
-    for i in 0..n {
-        let row = &mut a[i * n..(i + 1) * n];
-        let big = row.iter().fold(0.0f64, |m, &z| m.max(max_part(z)));
+    // (every entry of A is finite: `largest` needs no NaN rule)
+    for (i, row) in a[..n * n].chunks_exact_mut(n).enumerate() {
+        let big = largest(row);
         if big == 0.0 {
             return Err(DenseError::Singular { column: i });
         }
         let e = -binary_exponent(big);
-        row.iter_mut().for_each(|z| *z = scale_complex(*z, e));
+        scale_row(row, e);
         b[i] = scale_complex(b[i], e);
     }
-    let mut column = vec![0i32; n];
-    for (j, c) in column.iter_mut().enumerate() {
-        let big = (0..n).fold(0.0f64, |m, i| m.max(max_part(a[i * n + j])));
+    // the columns' largest entries in one pass over the rows
+    let column_big = &mut lu.column_big;
+    column_big.clear();
+    column_big.resize(n, 0.0);
+    for row in a[..n * n].chunks_exact(n) {
+        for (big, &z) in column_big.iter_mut().zip(row) {
+            let m = finite_max_part(z);
+            if m > *big {
+                *big = m;
+            }
+        }
+    }
+    let column = &mut lu.column_scale;
+    column.resize(n, 0);
+    for (j, (c, &big)) in column.iter_mut().zip(column_big.iter()).enumerate() {
         if big == 0.0 {
             return Err(DenseError::Singular { column: j });
         }
         *c = -binary_exponent(big);
-        for i in 0..n {
-            a[i * n + j] = scale_complex(a[i * n + j], *c);
+    }
+    if column.iter().all(|c| (-STEP..=STEP).contains(c)) {
+        // each column's 2^c once: one product per part, as scale_complex
+        for (f, &c) in column_big.iter_mut().zip(column.iter()) {
+            *f = power_of_two(c);
+        }
+        for row in a[..n * n].chunks_exact_mut(n) {
+            for (z, &f) in row.iter_mut().zip(column_big.iter()) {
+                *z = Complex::new(z.re * f, z.im * f);
+            }
+        }
+    } else {
+        for row in a[..n * n].chunks_exact_mut(n) {
+            for (z, &c) in row.iter_mut().zip(column.iter()) {
+                *z = scale_complex(*z, c);
+            }
         }
     }
     let big_b = b[..n].iter().fold(0.0f64, |m, &z| m.max(max_part(z)));
@@ -278,7 +374,7 @@ pub fn solve_complex_scaled(
         return Err(DenseError::Singular { column });
     }
     lu.solve(b);
-    for (z, &c) in b[..n].iter_mut().zip(&column) {
+    for (z, &c) in b[..n].iter_mut().zip(&lu.column_scale) {
         *z = scale_complex(*z, c - eb);
     }
     Ok(())
@@ -397,6 +493,44 @@ fn gauss_solve(a: &mut [f64], b: &mut [f64], n: usize) -> Result<(), DenseError>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_complex_quotient_is_the_division_bit_for_bit() {
+        let parts = [0.0, -0.0, 1.5, -2.25, 1e-310, -3e300, f64::MIN_POSITIVE];
+        let bits = |z: Complex<f64>| (z.re.to_bits(), z.im.to_bits());
+        for &xr in &parts {
+            for &xi in &parts {
+                for &dr in &parts {
+                    for &di in &parts {
+                        let (x, d) = (Complex::new(xr, xi), Complex::new(dr, di));
+                        assert_eq!(bits(x.quotient(d)), bits(x / d), "{x} / {d}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_binary_exponent_brackets_x() {
+        for x in [
+            5e-324,
+            1e-310,
+            f64::MIN_POSITIVE,
+            0.5,
+            0.75,
+            1.0,
+            3.0,
+            1e300,
+            f64::MAX,
+        ] {
+            let e = binary_exponent(x);
+            assert!(scaled_by_power_of_two(x, -e) < 1.0, "{x:e}");
+            assert!(scaled_by_power_of_two(x, 1 - e) >= 1.0, "{x:e}");
+        }
+        assert_eq!(binary_exponent(1.0), 1);
+        assert_eq!(binary_exponent(5e-324), -1073);
+        assert_eq!(binary_exponent(0.0), 0);
+    }
 
     #[test]
     fn solve_spd_cholesky_and_fallback() {
