@@ -423,7 +423,7 @@ proptest! {
 /// first prints what a fresh `qdot response` prints.
 #[test]
 fn response_prints_as_in_a_fresh_process_after_other_scenes() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = Path::new(env!("QDOT_ROOT"));
     let primer = "coordinates x1\nparameters p, F0, c, k, m\n\
                   kinetic T = 1/2*m*x1'^2\npotential V = p*F0*c*k*x1^2/2\n";
     let opts = CommandOptions::default();

@@ -10,7 +10,7 @@ use std::process::Command;
 fn qdot(args: &[&str]) -> String {
     let out = Command::new(env!("CARGO_BIN_EXE_qdot"))
         .args(args)
-        .current_dir(Path::new(env!("CARGO_MANIFEST_DIR")))
+        .current_dir(Path::new(env!("QDOT_ROOT")))
         .output()
         .expect("qdot runs");
     assert!(out.status.success(), "{args:?}: {out:?}");
