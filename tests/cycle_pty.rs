@@ -23,15 +23,15 @@ const ARGS: [&str; 8] = [
 
 /// The table a terminal shows.
 const TABLE: &str = "\
-phi (deg)      O_x     O_y      A_x      A_y      B_x      B_y     S_n        M      S_f
-    0 [1]  -95.208  29.375  -95.208    9.375  -28.312   -5.625  15.625   0.9375   2.3438
-    0 [1]  -90.521  29.375  -90.521    9.375  -23.625   -5.625  15.625   0.9375  -2.3438
-       90  -15.164   5.021  -15.164  -14.979  -21.086    8.247   1.753   1.5164   0.2629
-  180 [2]    8.665  29.375    8.665    9.375  -46.763   -5.625  15.625  -0.9375   2.3437
-  180 [2]   13.353  29.375   13.353    9.375  -42.075   -5.625  15.625  -0.9375  -2.3437
-      270  -10.651  54.894  -10.651   34.894  -16.573  -18.332  28.332  -1.0651  -4.2498
-  360 [3]  -90.521  29.375  -90.521    9.375  -23.625   -5.625  15.625   0.9375  -2.3438
-  360 [3]  -95.208  29.375  -95.208    9.375  -28.312   -5.625  15.625   0.9375   2.3438
+phi (deg)       O_x      O_y       A_x       A_y       B_x       B_y      S_n        M       S_f
+    0 [1]  -95.2082   29.375  -95.2082     9.375  -28.3121    -5.625   15.625   0.9375   2.34375
+    0 [1]  -90.5207   29.375  -90.5207     9.375  -23.6246    -5.625   15.625   0.9375  -2.34375
+       90  -15.1637  5.02115  -15.1637  -14.9789  -21.0857   8.24745  1.75255  1.51637  0.262883
+  180 [2]   8.66542   29.375   8.66542     9.375  -46.7627    -5.625   15.625  -0.9375   2.34375
+  180 [2]   13.3529   29.375   13.3529     9.375  -42.0752    -5.625   15.625  -0.9375  -2.34375
+      270   -10.651   54.894   -10.651    34.894   -16.573  -18.3323  28.3323  -1.0651  -4.24984
+  360 [3]  -90.5207   29.375  -90.5207     9.375  -23.6246    -5.625   15.625   0.9375  -2.34375
+  360 [3]  -95.2082   29.375  -95.2082     9.375  -28.3121    -5.625   15.625   0.9375   2.34375
 [1] row 1: stick: the relative velocity in the joint `S` vanishes here (0.0e0), so its friction may be anywhere between its values for sliding either way: the reactions are given at both, the limits v → 0⁻ and v → 0⁺ (the first line the limit v → 0⁻, the second v → 0⁺)
 [2] row 3: stick: the relative velocity in the joint `S` vanishes here (-1.8e-16), so its friction may be anywhere between its values for sliding either way: the reactions are given at both, the limits v → 0⁻ and v → 0⁺ (the first line the limit v → 0⁻, the second v → 0⁺)
 [3] row 5: stick: the relative velocity in the joint `S` vanishes here (6.1e-16), so its friction may be anywhere between its values for sliding either way: the reactions are given at both, the limits v → 0⁻ and v → 0⁺ (the first line the limit v → 0⁺, the second v → 0⁻)

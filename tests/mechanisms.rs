@@ -317,7 +317,9 @@ fn the_cli_prints_the_reference_rows_as_json_and_csv() {
     assert!(ok, "{err}");
     let mut lines = out.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    assert_eq!(header[..f.columns.len()], f.columns[..]);
+    // the varied angle is also a coordinate: its column says `(varied)`
+    assert_eq!(header[0], format!("{} (varied)", f.columns[0]));
+    assert_eq!(header[1..f.columns.len()], f.columns[1..]);
     assert_eq!(header[f.columns.len()..], ["O_f", "A_f", "G_f", "note"]);
     let body: Vec<&str> = lines.collect();
     assert_eq!(body.len(), f.rows.len());

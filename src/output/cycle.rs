@@ -113,12 +113,10 @@ pub fn reading(run: &CycleRun) -> String {
 /// The table for reading: aligned columns, the varied angle in degrees
 /// (when `degrees`), notes below the table. A stick position is two
 /// lines, the reactions at its two limits of sliding, its note saying
-/// which is which. Each column prints with fixed decimals: 5 significant
-/// digits of its largest value, and no finer than 6 of the largest of its
-/// kind (positions, velocities, accelerations, reactions), since a
-/// regular position's values are certain only to about 1e-6 of that
-/// scale (Newton's method to 1e-12, the constraint Jacobian's pivot ratio
-/// above 1e-6); a value below that resolution prints as 0.
+/// which is which. Each value prints with 6 significant digits; rounding
+/// noise prints as 0: below 1e-12 of the largest value of its kind
+/// (positions, velocities, accelerations, reactions), so that no unit
+/// makes a small value vanish.
 pub fn text(table: &CycleTable, degrees: bool) -> String {
     aligned(table, table, degrees)
 }
@@ -133,14 +131,13 @@ fn aligned(shown: &CycleTable, full: &CycleTable, degrees: bool) -> String {
     let mut cells: Vec<Vec<String>> = vec![header];
     let mut notes = Vec::new();
     let split = shown.stick_rows_split();
-    let decimals = column_decimals(&split, full);
+    let noise = column_noise(&split, full);
     let cell = |k: usize, v: &Option<f64>| match v {
         Some(x) if k == 0 && degrees => format!("{:.6}", x.to_degrees())
             .trim_end_matches('0')
             .trim_end_matches('.')
             .to_string(),
-        Some(x) if k == 0 => short_nonzero(*x),
-        Some(x) if x.is_finite() => fixed(*x, decimals[k]),
+        Some(x) if x.abs() < noise[k] => "0".into(),
         Some(x) => short_nonzero(*x),
         None => "—".to_string(),
     };
@@ -205,77 +202,41 @@ fn unique_columns(table: &CycleTable) -> Vec<String> {
     names
 }
 
-/// Per column of `shown` (a selection of `full`'s), the decimals it
-/// prints with: see [`text`]. The varied column's entry is unused.
-fn column_decimals(shown: &CycleTable, full: &CycleTable) -> Vec<usize> {
+/// Per column of `shown` (a selection of `full`'s), the size below which
+/// a value is rounding noise: 1e-12 of the largest value of its kind in
+/// `full` (see [`text`]).
+fn column_noise(shown: &CycleTable, full: &CycleTable) -> Vec<f64> {
     let n = full.coordinates.max(1);
     // the kind of a column of `full`: positions, velocities,
     // accelerations, reactions (the varied one apart)
     let kind = |k: usize| if k == 0 { 0 } else { ((k - 1) / n).min(3) + 1 };
-    let largest = |values: &mut dyn Iterator<Item = f64>| {
-        values
-            .filter(|x| x.is_finite())
-            .fold(0.0f64, |m, x| m.max(x.abs()))
-    };
     let mut of_kind = [0.0f64; 5];
-    for (k, m) in of_kind.iter_mut().enumerate() {
-        *m = largest(&mut full.rows.iter().flat_map(|r| {
-            let mut all: Vec<f64> = Vec::new();
-            let mut push = |vs: &[Option<f64>]| {
-                all.extend(
-                    vs.iter()
-                        .enumerate()
-                        .filter(|(j, _)| kind(*j) == k)
-                        .filter_map(|(_, v)| *v),
-                )
-            };
-            push(&r.values);
-            if let Some(l) = &r.limits {
-                push(&l.minus);
-                push(&l.plus);
+    for r in &full.rows {
+        let sides = [
+            Some(&r.values),
+            r.limits.as_ref().map(|l| &l.minus),
+            r.limits.as_ref().map(|l| &l.plus),
+        ];
+        for values in sides.into_iter().flatten() {
+            for (k, v) in values.iter().enumerate() {
+                if let Some(x) = v.filter(|x| x.is_finite()) {
+                    of_kind[kind(k)] = of_kind[kind(k)].max(x.abs());
+                }
             }
-            all
-        }));
+        }
     }
     (0..shown.columns.len())
         .map(|k| {
             if k == 0 {
-                return 0;
+                return 1e-12 * of_kind[0];
             }
-            let name = &shown.columns[k];
             let in_full = full
                 .columns
                 .iter()
                 .skip(1)
-                .position(|c| c == name)
+                .position(|c| *c == shown.columns[k])
                 .map_or(3 * n + 1, |j| j + 1);
-            let column = largest(&mut shown.rows.iter().filter_map(|r| r.values[k]));
-            let scale = of_kind[kind(in_full)];
-            // the resolution: 5 digits of the column, 6 of its kind
-            let exponent = |x: f64| (x > 0.0).then(|| x.log10().floor() as i32);
-            let finest = [
-                exponent(column).map(|e| e - 4),
-                exponent(scale).map(|e| e - 5),
-            ]
-            .into_iter()
-            .flatten()
-            .max();
-            let Some(finest) = finest else { return 0 };
-            (-finest).clamp(0, 17) as usize
+            1e-12 * of_kind[kind(in_full)]
         })
         .collect()
-}
-
-/// `x` with `decimals` decimals, a value that rounds to zero as 0 (never
-/// −0).
-fn fixed(x: f64, decimals: usize) -> String {
-    let s = format!("{x:.decimals$}");
-    if s.trim_start_matches('-')
-        .chars()
-        .all(|c| c == '0' || c == '.')
-    {
-        format!("{:.decimals$}", 0.0)
-    } else {
-        s
-    }
 }
