@@ -290,9 +290,10 @@ const COUNTED_APART: &[&str] = &[
 ];
 
 /// The error constructions without a specific kind in the library, at
-/// most: 15 in `src/` and 25 in the files of [`COUNTED_APART`]; none in
-/// the rest of `crates/`. Lower it when a site gets its kind.
-const MAX_KINDLESS: usize = 40;
+/// most: the two where none fits (`src/cli/study.rs`: a file that cannot
+/// be written, where the kinds have a file that cannot be read); none in
+/// `crates/`. Lower it when a site gets its kind.
+const MAX_KINDLESS: usize = 2;
 
 #[test]
 fn errors_carry_a_specific_kind() {

@@ -130,6 +130,9 @@ fn floquet_on_mathieu_is_the_clis() {
     same_as_cli("examples/mathieu.qd", "floquet", &set, &["text", "json"]);
     let over = ["--set", "m=1,w=1", "--over", "delta=-0.5:2.5:13,eps=0:2:5"];
     same_as_cli("examples/mathieu.qd", "floquet", &over, &["csv"]);
+    // --threads as on the command line: the grid on one thread
+    let one = [&over[..], &["--threads", "1"]].concat();
+    same_as_cli("examples/mathieu.qd", "floquet", &one, &["csv"]);
 }
 
 #[test]
@@ -196,7 +199,7 @@ fn a_misspelt_option_or_command_is_named() {
     assert!(r.failed);
     assert_eq!(
         r.err,
-        "error: `:floquet` takes no option `--perod`\n  = hint: did you mean `--period`? :floquet takes --at, --set, --function, --period, --max-steps, --over, --output, --plot\n"
+        "error: `:floquet` takes no option `--perod`\n  = hint: did you mean `--period`? :floquet takes --at, --set, --function, --period, --max-steps, --over, --threads, --output, --plot\n"
     );
     let r = s.execute(":flokuet");
     assert_eq!(

@@ -11,6 +11,7 @@
 //! embeds them as JSON with three.js (pinned in book/package.json,
 //! vendored under assets/vendor/three/) and a small player.
 
+use crate::diag::ErrorKind;
 use crate::expr::atom::Atom;
 use crate::expr::tape::Tape;
 use crate::scene::dimension::Dimension;
@@ -179,7 +180,7 @@ impl Stage {
             )
             .with_hint(
                 "give the scene a position: `particle bob: mass m, at [l*sin(th), -l*cos(th)]`, a vector definition `P = [x, 0]`, or definitions `x1 = …` and `y1 = …`",
-            ));
+            ).with_kind(ErrorKind::NothingToSolve));
         }
         Ok(stage)
     }
@@ -429,7 +430,8 @@ pub fn page_data(
         return Err(Diagnostic::global(
             "nothing to animate: no position of the scene could be evaluated along the motion",
         )
-        .with_hint("every parameter needs a value (--set) and the positions a finite value"));
+        .with_hint("every parameter needs a value (--set) and the positions a finite value")
+        .with_kind(ErrorKind::NothingToSolve));
     }
     let size = size_of(&all);
     let links = links(stage, &all, size);

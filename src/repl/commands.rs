@@ -148,9 +148,9 @@ fn of_app(c: Command) -> ReplCommand {
         ),
         Command::Floquet => cmd(
             "floquet",
-            "[--at q=…] [--set …] [--function s=…] [--period T] [--max-steps N] [--over …] [--output F] [--plot F.svg]",
+            "[--at q=…] [--set …] [--function s=…] [--period T] [--max-steps N] [--over …] [--threads N] [--output F] [--plot F.svg]",
             "Floquet multipliers and stability about a motion, at a point or over parameters",
-            &["at", "set", "function", "period", "max-steps", "over", "output", "plot"],
+            &["at", "set", "function", "period", "max-steps", "over", "threads", "output", "plot"],
         ),
         #[allow(unreachable_patterns)] // a command the REPL does not describe yet
         _ => cmd(c.name(), "", "", &[]),
@@ -396,6 +396,7 @@ pub(super) fn app_options(
             "function" => opts.functions.push(v.clone()),
             "period" => opts.period = Some(number(k, v)?),
             "max-steps" => opts.max_steps = Some(number(k, v)?),
+            "threads" => opts.threads = number(k, v)?,
             "output" => fmt = Some(output_format(c, v)?),
             // the pictures are written after the run
             _ => {}

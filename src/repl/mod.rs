@@ -247,6 +247,7 @@ impl Session {
                 Response::error(
                     Diagnostic::global(e.message())
                         .with_hint(hint)
+                        .with_kind(crate::diag::ErrorKind::TooLarge { measure: e.measure })
                         .render(&self.origin.name, ""),
                 )
             })

@@ -245,7 +245,9 @@ impl Problem {
         let lag = constrained::stabilized(scene.lagrange()?)?;
         super::run::best_dynamics(&scene, &lag, &self.param_map())
             .map(|(d, _)| d)
-            .map_err(|e| Diagnostic::global(format!("cannot compile {}: {e}", self.name)))
+            .map_err(|e| {
+                Diagnostic::global(format!("cannot compile {}: {e}", self.name)).with_kind(e.kind())
+            })
     }
 
     /// The conserved Jacobi integral compiled over `[t, q…, q̇…]`, when the
@@ -269,7 +271,10 @@ impl Problem {
         let exprs: Vec<_> = drift.into_iter().map(|(_, e)| e).collect();
         compile_with(&exprs, &state_inputs(&lag.coordinates), &self.param_map())
             .map(Some)
-            .map_err(|e| Diagnostic::global(format!("cannot compile the constraints: {e}")))
+            .map_err(|e| {
+                Diagnostic::global(format!("cannot compile the constraints: {e}"))
+                    .with_kind(e.kind())
+            })
     }
 
     /// The exact state at `t`, for the problems that have a closed form.

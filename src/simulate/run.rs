@@ -389,8 +389,10 @@ impl Prepared {
         }
         let names = &self.lag.coordinates;
         let start = Instant::now();
-        let (mut dynamics, evaluator) = best_dynamics(&self.scene, &self.lag, &params)
-            .map_err(|e| Diagnostic::global(format!("cannot compile the equations: {e}")))?;
+        let (mut dynamics, evaluator) =
+            best_dynamics(&self.scene, &self.lag, &params).map_err(|e| {
+                Diagnostic::global(format!("cannot compile the equations: {e}")).with_kind(e.kind())
+            })?;
         // timed apart (`EngineReport::compile_seconds`), so excluded below
         let engine = dynamics.use_engine(req.engine);
         let energy = conserved_quantity(&self.scene, names, &params)?;
@@ -401,6 +403,7 @@ impl Prepared {
             Some(
                 compile_with(&exprs, &state_inputs(names), &params).map_err(|e| {
                     Diagnostic::global(format!("cannot compile the constraints: {e}"))
+                        .with_kind(e.kind())
                 })?,
             )
         };
@@ -492,18 +495,17 @@ impl Prepared {
         // without the `cli` feature there is no bar to draw
         #[cfg(not(feature = "cli"))]
         let solution = run_method(&mut dynamics, req.method, &y0, &opts, event.as_ref());
-        let solution = solution.map_err(|e| {
-            match e {
-                SimError::BadInput(s) => Diagnostic::global(s).with_hint(match req.method {
+        let solution = solution.map_err(|e| match e {
+            SimError::BadInput(s) => Diagnostic::global(s)
+                .with_hint(match req.method {
                     _ if event.is_some() && matches!(req.method, Method::Gauss6 | Method::Radau5) => {
                         "--stop-when finds its time on the dense output: --method dopri5, dop853 or vern7"
                     }
                     Method::Rk4 | Method::Gauss6 => "RK4 and Gauss6 take a fixed step: --dt 0.01",
                     _ => "check --rtol, --atol and --dt",
-                }),
-                e => Diagnostic::global(e.to_string()),
-            }
-            .with_kind(ErrorKind::Integration)
+                })
+                .with_kind(ErrorKind::Integration),
+            e => Diagnostic::global(e.to_string()).with_kind(ErrorKind::Integration),
         })?;
         let mut seconds = start.elapsed().as_secs_f64();
         // `auto` may have compiled during the run
@@ -666,8 +668,9 @@ pub fn conserved_quantity(
     let Some(h) = jacobi_integral(scene, coordinates) else {
         return Ok(None);
     };
-    let program = compile_with(&[h], &state_inputs(coordinates), params)
-        .map_err(|e| Diagnostic::global(format!("cannot compile the energy: {e}")))?;
+    let program = compile_with(&[h], &state_inputs(coordinates), params).map_err(|e| {
+        Diagnostic::global(format!("cannot compile the energy: {e}")).with_kind(e.kind())
+    })?;
     Ok(Some(program))
 }
 

@@ -70,6 +70,30 @@ impl fmt::Display for CompileError {
 
 impl std::error::Error for CompileError {}
 
+impl CompileError {
+    /// The kind of the diagnostic that reports this error: a value the
+    /// user did not give, a definition missing, a singular matrix; the
+    /// rest are the caller's mistakes ([`ErrorKind::Internal`]).
+    pub fn kind(&self) -> crate::diag::ErrorKind {
+        use crate::diag::ErrorKind;
+        match self {
+            CompileError::UnsetParameter(_) => ErrorKind::BadOption {
+                option: "--set".into(),
+            },
+            CompileError::UndefinedFunction(_) => ErrorKind::Undefined,
+            CompileError::Singular { .. } => ErrorKind::SingularSystem {
+                unknowns: Vec::new(),
+            },
+            CompileError::NoAccelerations(_) => ErrorKind::NoClosedForm,
+            CompileError::NotAnInput(_)
+            | CompileError::BadRadical(_)
+            | CompileError::PrintOnly
+            | CompileError::Shape(_)
+            | CompileError::NoMassMatrix(_) => ErrorKind::Internal,
+        }
+    }
+}
+
 impl From<crate::dense::DenseError> for CompileError {
     fn from(e: crate::dense::DenseError) -> CompileError {
         match e {

@@ -23,7 +23,7 @@
 
 use super::oscillations::Modes;
 use crate::algebra::sign::{sign_of, Sign, Values};
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, ErrorKind};
 use crate::expr::atom::{self, Atom};
 use crate::expr::{func, Expr};
 use crate::num::Q;
@@ -56,7 +56,7 @@ pub struct ForcedSystem {
 }
 
 fn math(m: crate::expr::MathError) -> Diagnostic {
-    let d = Diagnostic::global(m.message);
+    let d = Diagnostic::global(m.message).with_kind(ErrorKind::Undefined);
     match m.hint {
         Some(h) => d.with_hint(h),
         None => d,
@@ -151,7 +151,7 @@ fn forced(
                 return Err(Diagnostic::global(
                     "the scene has a parameter `Omega`, and `qdot response` names the forcing frequency Ω",
                 )
-                .with_hint("rename the scene's parameter `Omega`"));
+                .with_hint("rename the scene's parameter `Omega`").with_kind(ErrorKind::DuplicateName { name: "Omega".into() }));
             }
             // p = q·v is Ω: v = Ω/q wherever the system has it
             let q_inv = Q::one().checked_div(&q).unwrap_or_else(Q::one);
@@ -165,7 +165,7 @@ fn forced(
                     "the load's frequency is {}, and the system also depends on its parameters: Ω cannot replace it",
                     p.to_unicode()
                 ))
-                .with_hint("name the forcing frequency with one parameter: `cos(p*t)`"));
+                .with_hint("name the forcing frequency with one parameter: `cos(p*t)`").with_kind(ErrorKind::Unsupported));
             }
         }
     }
@@ -401,7 +401,7 @@ fn harmonic(forcing: &[Expr]) -> Result<(Expr, Vec<Expr>, Vec<Expr>), Diagnostic
             "the load's angle {} is not p·t with a constant p: the frequency response takes F·cos(p·t) and F·sin(p·t)",
             u.to_unicode()
         ))
-        .with_hint(LOAD_HINT));
+        .with_hint(LOAD_HINT).with_kind(ErrorKind::Unsupported));
     }
     let (sv, cv) = atom::intern_trig(&u);
     let not_harmonic = |f: &Expr| {
@@ -409,7 +409,7 @@ fn harmonic(forcing: &[Expr]) -> Result<(Expr, Vec<Expr>, Vec<Expr>), Diagnostic
             "the forcing {} is not F_c·cos(p·t) + F_s·sin(p·t): the frequency response takes one harmonic load",
             f.to_unicode()
         ))
-        .with_hint(LOAD_HINT)
+        .with_hint(LOAD_HINT).with_kind(ErrorKind::Unsupported)
     };
     // per coordinate, per harmonic k: (cos kθ, sin kθ)
     let mut table: Vec<Vec<(Expr, Expr)>> = Vec::with_capacity(forcing.len());
@@ -435,7 +435,7 @@ fn harmonic(forcing: &[Expr]) -> Result<(Expr, Vec<Expr>, Vec<Expr>), Diagnostic
                 f.to_unicode(),
                 row[0].0.to_unicode()
             ))
-            .with_hint(LOAD_HINT));
+            .with_hint(LOAD_HINT).with_kind(ErrorKind::Unsupported));
         }
         table.push(row);
     }
@@ -466,7 +466,7 @@ fn more_than_one(a: &str, b: &str) -> Diagnostic {
     Diagnostic::global(format!(
         "the load has more than one frequency (cos({a}) and cos({b})): the frequency response takes one harmonic load"
     ))
-    .with_hint("keep one frequency in the scene; the responses to several add up")
+    .with_hint("keep one frequency in the scene; the responses to several add up").with_kind(ErrorKind::Unsupported)
 }
 
 /// The exact frequency response.
@@ -620,6 +620,7 @@ fn receptance(sys: &ForcedSystem) -> Result<(Vec<Expr>, Vec<Expr>), Diagnostic> 
     let singular = |_| {
         Diagnostic::global("K − Ω²·M + i·Ω·C is singular for every Ω: the steady state is not unique")
             .with_hint("a free coordinate (a zero row of M, C and K) has no steady response; fix it or remove it")
+            .with_kind(ErrorKind::SingularSystem { unknowns: Vec::new() })
     };
     if !sys.damped() {
         let x = crate::algebra::linear::solve(&p, &sys.load_cos).map_err(singular)?;

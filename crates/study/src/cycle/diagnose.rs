@@ -5,7 +5,7 @@
 use super::model::Model;
 use super::scale::Scales;
 use super::Over;
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, ErrorKind};
 use crate::scene::Scene;
 use nalgebra::{DMatrix, DVector};
 
@@ -260,7 +260,7 @@ pub(super) fn unassembled(
             over.name,
         ),
     )
-    .with_hint("check the lengths (a loop closes only when its links can reach), or give `--guess` values of an assembly near the first position");
+    .with_hint("check the lengths (a loop closes only when its links can reach), or give `--guess` values of an assembly near the first position").with_kind(ErrorKind::Constraints);
     for &span in &spans[1..] {
         diag = diag.with_label(span, "open too");
     }
@@ -302,7 +302,7 @@ pub(super) fn dependent(scene: &Scene, d: &Dependency, over: &Over, v: f64) -> D
             free.join(", ")
         ),
     )
-    .with_hint("a drive prescribes a coordinate the joints and constraints leave free: drive another coordinate, or remove the condition that repeats another");
+    .with_hint("a drive prescribes a coordinate the joints and constraints leave free: drive another coordinate, or remove the condition that repeats another").with_kind(ErrorKind::Constraints);
     let mut labelled = vec![scene.constraints[at].span];
     for &j in &d.constraints {
         let span = scene.constraints[j].span;

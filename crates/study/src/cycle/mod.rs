@@ -73,7 +73,7 @@ fn counted(scene: &Scene) -> Result<(), Diagnostic> {
             "prescribe the input: `drive M: phi = omega*t`".to_string()
         } else {
             format!("drive one more coordinate besides {}, or check that every joint is declared", driven.join(", "))
-        }));
+        }).with_kind(ErrorKind::InvalidScene));
     }
     Ok(())
 }

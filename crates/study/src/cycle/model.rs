@@ -5,7 +5,7 @@
 
 use super::table::{Drawing, DrawnBody, DrawnJoint, JointKind};
 use crate::compile::{compile_with, CompileError, Program};
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, ErrorKind};
 use crate::expr::{atom, Expr};
 use crate::mechanics::Lagrange;
 use crate::poly::Var;
@@ -135,7 +135,7 @@ impl Model {
                 }
                 (false, None) => {
                     return Err(Diagnostic::error(c.span, format!("the constraint {} restricts the velocities, so it has no equation for the positions", c.label(j)))
-                        .with_hint(qdot_mechanics::solve::integrable::hint(c, &q, "`qdot cycle` solves the positions from holonomic constraints: joints, drives and constraints without velocities")))
+                        .with_hint(qdot_mechanics::solve::integrable::hint(c, &q, "`qdot cycle` solves the positions from holonomic constraints: joints, drives and constraints without velocities")).with_kind(ErrorKind::Constraints))
                 }
             }
         }
@@ -156,10 +156,10 @@ impl Model {
             if let Some(f) = &jt.friction {
                 let coefficient = constant(&f.coefficient, params)
                     .filter(|v| v.is_finite())
-                    .ok_or_else(|| Diagnostic::error(f.span, "the friction coefficient has no finite value with the parameters given"))?;
+                    .ok_or_else(|| Diagnostic::error(f.span, "the friction coefficient has no finite value with the parameters given").with_kind(ErrorKind::Undefined))?;
                 if coefficient < 0.0 {
                     return Err(Diagnostic::error(f.span, format!("the friction coefficient is negative ({coefficient}) with the parameters given"))
-                        .with_hint("Coulomb friction opposes the motion: its coefficient is ≥ 0"));
+                        .with_hint("Coulomb friction opposes the motion: its coefficient is ≥ 0").with_kind(ErrorKind::Unphysical));
                 }
                 frictions.push(FrictionModel {
                     joint: jt.name.clone(),
@@ -210,6 +210,7 @@ fn compile_error(e: CompileError) -> Diagnostic {
     Diagnostic::global(format!(
         "the mechanism's equations cannot be evaluated: {e}"
     ))
+    .with_kind(e.kind())
 }
 
 /// The drawing's points (x, y pairs, flattened) and its bodies and joints:

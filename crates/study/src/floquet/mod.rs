@@ -128,7 +128,7 @@ pub fn prepare(scene: &Scene, req: &FloquetRequest) -> Result<Prepared, Diagnost
         return Err(Diagnostic::global(
             "the linearized coefficients do not change with time: there is no parametric excitation",
         )
-        .with_hint("`qdot modes` gives the small oscillations about an equilibrium"));
+        .with_hint("`qdot modes` gives the small oscillations about an equilibrium").with_kind(ErrorKind::NothingToSolve));
     }
     let frequency = match req.period {
         Some(p) if p.is_finite() && p > 0.0 => None,
@@ -158,6 +158,7 @@ pub fn prepare(scene: &Scene, req: &FloquetRequest) -> Result<Prepared, Diagnost
     inputs.extend(&parameters);
     let program = compile(&outputs, &inputs).map_err(|e| {
         Diagnostic::global(format!("cannot compile the linearized coefficients: {e}"))
+            .with_kind(e.kind())
     })?;
     let lagrangian = is_lagrangian(&mass, &damping, &stiffness);
     Ok(Prepared {
@@ -202,7 +203,7 @@ fn check_motion(
             .rhs
             .sub(&eq.lhs)
             .subs_many(&point)
-            .map_err(|m| Diagnostic::global(m.message))?;
+            .map_err(|m| Diagnostic::global(m.message).with_kind(ErrorKind::Undefined))?;
         let f = crate::given::substitute(&f, defs)?;
         if !f.is_zero() {
             return Err(not_a_motion(&l.coordinates, q0, k, &f));
@@ -228,6 +229,7 @@ fn not_a_motion(names: &[String], at: &[Expr], k: usize, f: &Expr) -> Diagnostic
     .with_hint(
         "Floquet theory linearizes about a motion: choose --at where the forces vanish at every t",
     )
+    .with_kind(ErrorKind::NoEquilibrium)
 }
 
 /// Whether M·q̈ + C·q̇ + K·q = 0 are the Euler–Lagrange equations of
@@ -336,7 +338,8 @@ impl Prepared {
                 w.unwrap_or_default(),
                 monodromy::shortest(omega)
             ))
-            .with_hint("give the parameters values with a nonzero frequency"));
+            .with_hint("give the parameters values with a nonzero frequency")
+            .with_kind(ErrorKind::Undefined));
         }
         Ok(2.0 * std::f64::consts::PI / omega)
     }
@@ -411,7 +414,8 @@ impl Prepared {
                 "the verdict is the same at {name} = {} and {name} = {}: no boundary to bisect",
                 monodromy::shortest(lo),
                 monodromy::shortest(hi)
-            )));
+            ))
+            .with_kind(ErrorKind::NothingToSolve));
         }
         for _ in 0..200 {
             let mid = 0.5 * (a + b);

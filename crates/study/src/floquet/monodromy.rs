@@ -221,7 +221,7 @@ fn multipliers(phi: &[f64], d: usize) -> Result<Vec<Multiplier>, Diagnostic> {
         .map_err(|e| {
             Diagnostic::global(format!(
                 "the Floquet multipliers (the eigenvalues of the monodromy matrix) could not be computed: {e}"
-            ))
+            )).with_kind(ErrorKind::Convergence)
         })?
         .iter()
         .map(|z| Multiplier { re: z.re, im: z.im })
@@ -376,13 +376,16 @@ fn monodromy(
         t_out: vec![period],
         max_steps: p.max_steps,
     };
-    let sol = explicit::integrate(&mut sys, Method::Dop853, &y0, &opts)
-        .map_err(|e| Diagnostic::global(format!("cannot integrate over the period: {e}")))?;
+    let sol = explicit::integrate(&mut sys, Method::Dop853, &y0, &opts).map_err(|e| {
+        Diagnostic::global(format!("cannot integrate over the period: {e}"))
+            .with_kind(ErrorKind::Integration)
+    })?;
     if let Some(t) = sys.singular_at {
         return Err(Diagnostic::global(format!(
             "the linearized mass matrix M is singular at t = {t:.6e}"
         ))
-        .with_hint("a singular M has no x' = A(t)·x: check the reference and the parameters"));
+        .with_hint("a singular M has no x' = A(t)·x: check the reference and the parameters")
+        .with_kind(ErrorKind::Integration));
     }
     match (&sol.status, sol.y.last()) {
         (Status::Done, Some(y)) => Ok((y.clone(), sol.stats.steps)),

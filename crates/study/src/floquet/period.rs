@@ -45,7 +45,7 @@ fn not_periodic(what: &str) -> Diagnostic {
     Diagnostic::global(format!(
         "the linearized coefficients are not periodic in t: {what}"
     ))
-    .with_hint("Floquet theory needs coefficients periodic in t (sin and cos of w*t, or a periodic --function); give --period T if they are periodic in another way")
+    .with_hint("Floquet theory needs coefficients periodic in t (sin and cos of w*t, or a periodic --function); give --period T if they are periodic in another way").with_kind(ErrorKind::Unsupported)
 }
 
 /// Push the angular frequency ω of every sin(ω·t + φ) and cos(ω·t + φ) in
