@@ -490,7 +490,7 @@ fn escape(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
-/// A run's rows chosen for the page: at most [`MAX_FRAMES`], evenly.
+/// A run's rows chosen for the page: at most `MAX_FRAMES` (1,500), evenly.
 pub fn thinned<T: Clone>(rows: &[T]) -> Vec<T> {
     if rows.len() <= MAX_FRAMES {
         return rows.to_vec();

@@ -73,7 +73,7 @@ impl std::error::Error for CompileError {}
 impl CompileError {
     /// The kind of the diagnostic that reports this error: a value the
     /// user did not give, a definition missing, a singular matrix; the
-    /// rest are the caller's mistakes ([`ErrorKind::Internal`]).
+    /// rest are the caller's mistakes ([`crate::diag::ErrorKind::Internal`]).
     pub fn kind(&self) -> crate::diag::ErrorKind {
         use crate::diag::ErrorKind;
         match self {
