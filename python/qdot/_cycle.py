@@ -55,7 +55,8 @@ class Cycle:
         """Write the reaction diagrams to ``path``, an SVG file (``cycle
         --plot``): each joint's components and each drive against the varied
         quantity, and the polar diagram of each pin force. ``title``:
-        the scene file's name by default, as the CLI titles it."""
+        the scene's name (its first comment) by default, else the file's,
+        as the CLI titles it."""
         _write(path, self._table.reaction_diagrams(self.title if title is None else title))
 
     def animate(self, path: Union[str, "os.PathLike[str]"], title: Optional[str] = None) -> None:

@@ -365,7 +365,9 @@ class Scene:
             file=self.name, max_terms=self.max_terms,
             columns=None if columns is None else _names(columns),
         )
-        return Cycle(raw, os.path.splitext(os.path.basename(self.name))[0])
+        # the pictures' title, as the command line's: the scene's name
+        title = _native.scene_title(self.source) or os.path.splitext(os.path.basename(self.name))[0]
+        return Cycle(raw, title)
 
     def sweep(self, set: Values, init: Values, vary: Mapping[str, Sequence[float]], t_end: float,
               samples: Optional[int] = None, seed: int = 0, threads: int = 0,

@@ -747,6 +747,13 @@ fn intermediate_order(input: &str) -> (&str, u32) {
     (input, 0)
 }
 
+/// A figure's title for the scene `source`: its first comment's first
+/// phrase, as the command line titles its pictures (`None` without one).
+#[pyfunction]
+fn scene_title(source: &str) -> Option<String> {
+    qdot::simulate::plot::scene_title(source)
+}
+
 /// The version of the qdot library inside.
 #[pyfunction]
 fn version() -> &'static str {
@@ -757,6 +764,7 @@ fn version() -> &'static str {
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("QdotError", m.py().get_type::<QdotError>())?;
     m.add_function(wrap_pyfunction!(run_command, m)?)?;
+    m.add_function(wrap_pyfunction!(scene_title, m)?)?;
     m.add_function(wrap_pyfunction!(run_report, m)?)?;
     m.add_function(wrap_pyfunction!(commands, m)?)?;
     m.add_function(wrap_pyfunction!(check_scene, m)?)?;
