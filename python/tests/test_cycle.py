@@ -86,7 +86,7 @@ def test_the_cli_pictures_byte_for_byte(crank, cli, tmp_path):
     assert page == (tmp_path / "cli.html").read_text(encoding="utf-8")
     assert page.startswith("<!DOCTYPE html>") and "<title>The seed's problem 21.3 (§21.5)</title>" in page
     cli_cycle(cli, "--animate", str(tmp_path / "cli_anim.svg"))
-    crank.animate(str(tmp_path / "py_anim.svg"), title="seed_21_3")
+    crank.animate(str(tmp_path / "py_anim.svg"))
     assert ((tmp_path / "py_anim.svg").read_text(encoding="utf-8")
             == (tmp_path / "cli_anim.svg").read_text(encoding="utf-8"))
     crank.plot(tmp_path / "titled.svg", title="Problem 21.3")
