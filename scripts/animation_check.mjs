@@ -15,9 +15,8 @@
 // $CHROMIUM or /usr/bin/chromium.
 import { existsSync } from "node:fs";
 import { resolve } from "node:path";
-import { pathToFileURL } from "node:url";
 
-import { offlineBrowser } from "./offline_browser.mjs";
+import { offlineBrowser, openPage } from "./offline_browser.mjs";
 
 const [pageArg, shotArg] = process.argv.slice(2);
 if (!pageArg || !shotArg) {
@@ -38,16 +37,7 @@ const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
 const { browser, context, offline } = await offlineBrowser({ viewport: { width: 1360, height: 760 } });
 try {
-    const page = await context.newPage();
-    const errors = [];
-    page.on("pageerror", (e) => errors.push(String(e)));
-    page.on("console", (m) => {
-        if (m.type() === "error") errors.push(m.text());
-    });
-    page.on("requestfailed", (r) => {
-        if (r.url().startsWith("file:")) errors.push(`missing ${r.url()}`);
-    });
-    await page.goto(pathToFileURL(file).href, { waitUntil: "load" });
+    const { page, errors } = await openPage(context, file);
 
     // the drawing's moving attributes now, the slider, the texts
     const state = () =>

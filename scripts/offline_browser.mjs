@@ -1,11 +1,12 @@
 // Headless Chromium for the offline checks (scripts/book_math_check.mjs,
-// scripts/animation_check.mjs): playwright-core from book/package.json
+// scripts/animation_check.mjs, scripts/motion_check.mjs): playwright-core from book/package.json
 // (scripts/book_assets.sh --test), Chromium at $CHROMIUM or
 // /usr/bin/chromium with a fresh profile and no background networking,
 // and a context that refuses every request but file: and data: (listed in
 // `offline`, so a page that reaches for the network fails its check).
 import { createRequire } from "node:module";
 import { join, resolve } from "node:path";
+import { pathToFileURL } from "node:url";
 
 const root = resolve(new URL("..", import.meta.url).pathname);
 
@@ -41,4 +42,21 @@ export async function offlineBrowser(options = {}) {
         return route.abort("internetdisconnected");
     });
     return { browser, context, offline };
+}
+
+/// A new page of `context` loaded from the local `file`, and the errors it
+/// reports while it lives: uncaught exceptions, console errors and local
+/// files it could not load.
+export async function openPage(context, file) {
+    const page = await context.newPage();
+    const errors = [];
+    page.on("pageerror", (e) => errors.push(String(e)));
+    page.on("console", (m) => {
+        if (m.type() === "error") errors.push(m.text());
+    });
+    page.on("requestfailed", (r) => {
+        if (r.url().startsWith("file:")) errors.push(`missing ${r.url()}`);
+    });
+    await page.goto(pathToFileURL(file).href, { waitUntil: "load" });
+    return { page, errors };
 }
